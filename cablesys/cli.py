@@ -1,0 +1,51 @@
+"""The ``cablesys`` command: parses arguments, calls the API, writes files.
+
+Each sub-command lives in the module that owns its analysis and exposes
+``register(subparsers)``; this file only wires them together.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import logging
+import sys
+
+from .errors import CablesysError
+
+# module -> provides register(subparsers); order is the order in --help
+COMMAND_MODULES = (
+    "cablesys.commands",        # run, scene (Wang 1971 time domain)
+    "cablesys.slack.cli",       # slack  (Griffin & Rosenthal 1985)
+    "cablesys.towed.cli",       # towed  (Kennedy & Strahan 1981)
+)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="cablesys",
+        description="Dynamics of suspended and towed marine cables (CasADi).")
+    parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    for name in COMMAND_MODULES:
+        importlib.import_module(name).register(sub)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    logging.basicConfig(level=logging.INFO if args.verbose else logging.WARNING,
+                        format="%(levelname)s %(name)s: %(message)s")
+    if not getattr(args, "func", None):
+        parser.print_help()
+        return 2
+    try:
+        return int(args.func(args) or 0)
+    except CablesysError as err:
+        print(f"cablesys {args.command}: error: {err}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
