@@ -1,0 +1,218 @@
+"""Linear in-plane and out-of-plane modes of the lumped-mass cable about its equilibrium.
+
+Equations of motion M q'' + K q = 0 about the static shape:
+- in plane, K is the Hessian of the potential energy (statics module);
+- out of plane, K is the geometric stiffness T_e / l_e of each element (the
+  y-block of the 3-D Hessian of the same energy; in- and out-of-plane motion
+  decouple exactly about a plane equilibrium);
+- M is lumped at the nodes; in water the cable's added mass acts normal to
+  the cable only and a point mass's added mass in every direction
+  (Griffin & Rosenthal 1985 section 7: added mass affects the transverse
+  motion, not the longitudinal/elastic motion; eq. 26).
+
+Modes are mass-normalized as eq. 25 (sum of psi^2 dm including the
+discrete masses equals 1) and classified O / A / S / H by their mirror
+symmetry about the perpendicular bisector of the chord.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg
+import scipy.sparse as sp
+import scipy.sparse.linalg
+
+from ..errors import ParameterError, SolverError
+from .results import Equilibrium, ModeSet
+from .statics import Discretization, solve_equilibrium, stiffness_inplane
+
+log = logging.getLogger(__name__)
+
+#: symmetric fraction above which an in-plane mode is 'S', below 1 - this 'A'
+SYMMETRY_THRESHOLD = 0.9
+#: largest generalized problem solved densely; above it sparse shift-invert
+DENSE_LIMIT = 1200
+
+
+def _tangents(eq: Equilibrium) -> np.ndarray:
+    """Unit tangent at every node (mean of the adjacent element directions)."""
+    d = np.stack([np.diff(eq.x), np.diff(eq.z)], axis=1)
+    d /= np.linalg.norm(d, axis=1)[:, None]
+    t = np.zeros((len(eq.x), 2))
+    t[:-1] += d
+    t[1:] += d
+    return t / np.linalg.norm(t, axis=1)[:, None]
+
+
+def mass_matrices(eq: Equilibrium, d: Discretization):
+    """(M_inplane, M_outofplane) as sparse matrices on the interior nodes.
+
+    In-plane ordering [x_1..x_{n-1}, z_1..z_{n-1}] matches the statics NLP.
+    Node block: (m + a_iso + a_t) I - a_t t t^T (added mass normal to the cable).
+    """
+    t = _tangents(eq)[1:-1]
+    m = d.mass[1:-1] + d.added_isotropic[1:-1]
+    a = d.added_transverse[1:-1]
+    mxx = m + a * (1 - t[:, 0] ** 2)
+    mzz = m + a * (1 - t[:, 1] ** 2)
+    mxz = -a * t[:, 0] * t[:, 1]
+    Min = sp.bmat([[sp.diags(mxx), sp.diags(mxz)], [sp.diags(mxz), sp.diags(mzz)]], format="csc")
+    Mout = sp.diags(m + a, format="csc")
+    return Min, Mout
+
+
+def stiffness_outofplane(eq: Equilibrium) -> sp.csc_matrix:
+    """Geometric stiffness T_e / l_e assembled on the interior nodes (tridiagonal)."""
+    k = eq.tension / eq.element_lengths
+    main = k[:-1] + k[1:]
+    off = -k[1:-1]
+    return sp.diags([off, main, off], [-1, 0, 1], format="csc")
+
+
+def _eig(K, M, k: int, solver: str):
+    """k lowest eigenpairs of K phi = omega^2 M phi (phi^T M phi = 1)."""
+    k = min(k, K.shape[0])
+    if solver == "auto":
+        solver = "dense" if K.shape[0] <= DENSE_LIMIT else "sparse"
+    if solver == "dense" or k >= K.shape[0] - 1:
+        lam, V = scipy.linalg.eigh(K.toarray(), M.toarray(), subset_by_index=[0, k - 1])
+    elif solver == "sparse":
+        # shift-invert about 0: K is positive definite (both ends fixed), so
+        # the largest eigenvalues of K^-1 M are the lowest modes; one sparse LU.
+        lam, V = scipy.sparse.linalg.eigsh(K.tocsc(), k=k, M=M.tocsc(), sigma=0.0, which="LM")
+        order = np.argsort(lam)
+        lam, V = lam[order], V[:, order]
+    else:
+        raise ParameterError("solver", solver, "must be 'auto', 'dense' or 'sparse'")
+    if np.any(lam <= 0):
+        raise SolverError(f"non-positive eigenvalue {lam.min():.3g}: the equilibrium is not stable")
+    # eq. 25: psi / psi_R with psi_R^2 = psi^T M psi (discrete masses included)
+    V = V / np.sqrt(np.einsum("ij,ij->j", V, M @ V))[None, :]
+    return np.sqrt(lam), V, solver
+
+
+def symmetric_fraction(eq: Equilibrium, ux: np.ndarray, uz: np.ndarray) -> float:
+    """Share of the in-plane displacement that is mirror symmetric about mid-chord.
+
+    Mirror: chordwise component u_c(s) -> -u_c(L - s), normal u_n(s) -> u_n(L - s)
+    (the symmetric modes of Irvine & Caughey: vertical motion symmetric,
+    horizontal antisymmetric). Arc-length quadrature weights.
+    """
+    th = eq.scene.inclination
+    uc = ux * math.cos(th) + uz * math.sin(th)
+    un = -ux * math.sin(th) + uz * math.cos(th)
+    s = eq.s
+    L = s[-1]
+    uc_m = -np.interp(L - s, s, uc)
+    un_m = np.interp(L - s, s, un)
+    wq = np.zeros(len(s))
+    wq[:-1] += np.diff(s) / 2
+    wq[1:] += np.diff(s) / 2
+    sym = wq @ (((uc + uc_m) / 2) ** 2 + ((un + un_m) / 2) ** 2)
+    tot = wq @ (uc ** 2 + un ** 2)
+    return float(sym / tot)
+
+
+def compute_modes(eq: Equilibrium, d: Discretization, n_modes: int, *, solver: str = "auto") -> ModeSet:
+    """The ``n_modes`` lowest modes (in-plane and out-of-plane merged), ascending."""
+    if int(n_modes) != n_modes or n_modes < 1:
+        raise ParameterError("n_modes", n_modes, "must be an integer >= 1")
+    t0 = time.perf_counter()
+    nn = len(eq.x)
+    Kin = stiffness_inplane(eq, d)
+    Kout = stiffness_outofplane(eq)
+    Min, Mout = mass_matrices(eq, d)
+    w_in, V_in, used = _eig(Kin, Min, n_modes, solver)
+    w_out, V_out, _ = _eig(Kout, Mout, n_modes, solver)
+    rows = []
+    ni = nn - 2
+    for j in range(len(w_in)):
+        shape = np.zeros((nn, 3))
+        shape[1:-1, 0] = V_in[:ni, j]
+        shape[1:-1, 2] = V_in[ni:, j]
+        f = symmetric_fraction(eq, shape[:, 0], shape[:, 2])
+        typ = "S" if f >= SYMMETRY_THRESHOLD else "A" if f <= 1 - SYMMETRY_THRESHOLD else "H"
+        rows.append((w_in[j], typ, f, shape))
+    for j in range(len(w_out)):
+        shape = np.zeros((nn, 3))
+        shape[1:-1, 1] = V_out[:, j]
+        rows.append((w_out[j], "O", np.nan, shape))
+    rows.sort(key=lambda r: r[0])
+    rows = rows[: int(n_modes)]
+    for r in rows:  # sign convention: largest displacement component positive
+        k = np.unravel_index(np.argmax(np.abs(r[3])), r[3].shape)
+        if r[3][k] < 0:
+            r[3][...] *= -1
+    return ModeSet(omega=np.array([r[0] for r in rows]), mode_type=tuple(r[1] for r in rows),
+                   symmetric_fraction=np.array([r[2] for r in rows]),
+                   shapes=np.stack([r[3] for r in rows]), s=eq.s.copy(),
+                   n_elements=d.n_elements, solver=used, seconds=time.perf_counter() - t0)
+
+
+def analyze(scene, n_modes: int = 12, *, n_elements: int | None = None, solver: str = "auto"):
+    """Statics (CasADi NLP) then modes: returns (Equilibrium, ModeSet)."""
+    eq, d = solve_equilibrium(scene, n_elements=n_elements)
+    return eq, compute_modes(eq, d, n_modes, solver=solver)
+
+
+@dataclass(frozen=True, kw_only=True)
+class Convergence:
+    """Frequencies at element counts n, 2n, 4n and their Richardson extrapolation.
+
+    omega: (n_levels, n_modes) rad/s, modes matched within the in-plane and
+    out-of-plane families by index; order: observed convergence order
+    p = log2((w1 - w2) / (w2 - w3)) per mode; richardson: w3 + (w3 - w2) /
+    (2^p_assumed - 1) with p_assumed = 2 (the lumped-mass chain's order).
+    """
+
+    levels: tuple[int, ...]
+    mode_type: tuple[str, ...]
+    omega: np.ndarray
+    order: np.ndarray
+    richardson: np.ndarray
+    p_assumed: float = 2.0
+
+    @property
+    def relative_error_finest(self) -> np.ndarray:
+        """|w_finest - w_Richardson| / w_Richardson per mode."""
+        return np.abs(self.omega[-1] - self.richardson) / self.richardson
+
+    def table(self) -> list[dict]:
+        order = np.argsort(self.richardson)
+        return [{"mode_type": self.mode_type[i], "omega": float(self.richardson[i])} for i in order]
+
+
+def converge(scene, n_modes: int, *, levels: tuple[int, ...] = (48, 96, 192),
+             solver: str = "auto") -> Convergence:
+    """Solve at each element count and Richardson-extrapolate (h^2 convergence).
+
+    Modes are matched by family ('O' versus in-plane) and index within the
+    family, so that a change of in-plane order near a crossover between
+    levels cannot pair different modes across families.
+    """
+    if len(levels) < 3:
+        raise ParameterError("levels", levels, "needs at least three element counts")
+    fam_w = []
+    types = None
+    n_extra = n_modes + 4
+    for n in levels:
+        eq, ms = analyze(scene, n_extra * 2, n_elements=n, solver=solver)
+        o = ms.of_type("O")
+        i = ms.of_type("A", "S", "H")
+        ti = [t for t in ms.mode_type if t != "O"]
+        fam_w.append((o, i, ti))
+    no = min(len(f[0]) for f in fam_w)
+    ni = min(len(f[1]) for f in fam_w)
+    W = np.array([np.concatenate([f[0][:no], f[1][:ni]]) for f in fam_w])
+    types = ["O"] * no + fam_w[-1][2][:ni]
+    rich = W[-1] + (W[-1] - W[-2]) / (2.0 ** 2 - 1.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        order = np.log2(np.abs((W[-3] - W[-2]) / (W[-2] - W[-1])))
+    keep = np.argsort(rich)[:n_modes]   # ascending converged frequency
+    return Convergence(levels=tuple(levels), mode_type=tuple(types[k] for k in keep),
+                       omega=W[:, keep], order=order[keep], richardson=rich[keep])

@@ -1,0 +1,128 @@
+"""Immutable results of a slack-cable analysis (a leaf module: imports no solver)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+MODE_TYPES = {"O": "out-of-plane", "A": "in-plane antisymmetric",
+              "S": "in-plane symmetric", "H": "in-plane hybrid"}
+
+
+@dataclass(frozen=True, kw_only=True)
+class Equilibrium:
+    """Static shape of the chain: node arc length s (m, unstretched), x, z (m), element tension (N)."""
+
+    scene: Any
+    s: np.ndarray
+    x: np.ndarray
+    z: np.ndarray
+    tension: np.ndarray
+    method: str
+    iterations: int
+    seconds: float
+    message: str = ""
+    success: bool = True
+
+    @property
+    def element_lengths(self) -> np.ndarray:
+        return np.hypot(np.diff(self.x), np.diff(self.z))
+
+    @property
+    def horizontal_tension(self) -> float:
+        """H, the horizontal tension component (the same in every element), N."""
+        return float(np.mean(self.tension * np.diff(self.x) / self.element_lengths))
+
+    @property
+    def chord_tension(self) -> float:
+        """H1 = H / cos(theta) (Griffin & Rosenthal 1985 section 5), N."""
+        return self.horizontal_tension / math.cos(self.scene.inclination)
+
+    @property
+    def normal_offset(self) -> np.ndarray:
+        """Distance of each node below the chord line (m)."""
+        th = self.scene.inclination
+        return self.x * math.sin(th) - self.z * math.cos(th)
+
+    @property
+    def sag(self) -> float:
+        """Largest distance of the cable below its chord, s (m)."""
+        return float(np.max(self.normal_offset))
+
+    @property
+    def sag_to_length(self) -> float:
+        """s / L with L the unstretched length (the abscissa of Figs. 6-8)."""
+        return self.sag / self.scene.cable.length
+
+    @property
+    def virtual_length(self) -> float:
+        """Le1 = integral (ds/dc)^3 dc along the chord (eq. 5 in chord axes), m."""
+        th = self.scene.inclination
+        dc = np.diff(self.x) * math.cos(th) + np.diff(self.z) * math.sin(th)
+        return float(np.sum(self.element_lengths ** 3 / dc ** 2))
+
+    @property
+    def lambda2(self) -> float:
+        """Irvine's lambda^2 of this shape in chord axes (eqs. 4 and 22), cable weight only."""
+        sc = self.scene
+        w, _ = sc.cable.weight_and_added_mass(sc.medium, sc.gravity)
+        th = sc.inclination
+        H1 = self.chord_tension
+        return (w * math.cos(th) * sc.chord / H1) ** 2 * sc.chord / (
+            H1 * self.virtual_length / sc.cable.axial_stiffness)
+
+    def to_dict(self) -> dict:
+        return {"method": self.method, "iterations": self.iterations, "seconds": self.seconds,
+                "horizontal_tension_N": self.horizontal_tension,
+                "max_tension_N": float(np.max(self.tension)),
+                "min_tension_N": float(np.min(self.tension)),
+                "sag_m": self.sag, "sag_to_length": self.sag_to_length,
+                "lambda2": self.lambda2,
+                "nodes": {"s_m": self.s.tolist(), "x_m": self.x.tolist(), "z_m": self.z.tolist()},
+                "element_tension_N": self.tension.tolist()}
+
+
+@dataclass(frozen=True, kw_only=True)
+class ModeSet:
+    """Natural modes about an equilibrium, ascending in omega.
+
+    omega (rad/s); mode_type 'O'|'A'|'S'|'H' (out-of-plane, in-plane
+    antisymmetric, symmetric, hybrid); symmetric_fraction: share of the
+    in-plane mode's mass-weighted norm that is mirror symmetric about the
+    mid-chord (1 for S, 0 for A); shapes: (n_modes, n_nodes, 3) nodal
+    displacements in x (horizontal), y (out of plane), z (up), normalized by
+    Griffin & Rosenthal (1985) eq. 25 so that sum(M psi^2) = 1 (kg^-1/2 m).
+    """
+
+    omega: np.ndarray
+    mode_type: tuple[str, ...]
+    symmetric_fraction: np.ndarray
+    shapes: np.ndarray
+    s: np.ndarray
+    n_elements: int
+    solver: str
+    seconds: float
+
+    def __len__(self) -> int:
+        return len(self.omega)
+
+    def table(self) -> list[dict]:
+        """[{'mode_type', 'omega'}] ascending: the JSON row format of the study."""
+        return [{"mode_type": t, "omega": float(w)} for t, w in zip(self.mode_type, self.omega)]
+
+    def of_type(self, *types: str) -> np.ndarray:
+        return np.array([w for t, w in zip(self.mode_type, self.omega) if t in types])
+
+    def to_xarray(self):
+        import xarray as xr
+        return xr.Dataset(
+            {"omega": ("mode", self.omega), "mode_type": ("mode", list(self.mode_type)),
+             "symmetric_fraction": ("mode", self.symmetric_fraction),
+             "shape": (("mode", "node", "dof"), self.shapes)},
+            coords={"mode": np.arange(1, len(self) + 1), "s": ("node", self.s),
+                    "dof": ["x", "y", "z"]},
+            attrs={"n_elements": self.n_elements, "solver": self.solver,
+                   "normalization": "Griffin & Rosenthal (1985) eq. 25: sum M psi^2 = 1"})

@@ -1,0 +1,265 @@
+"""Inputs of a slack-cable analysis: frozen, keyword-only, SI, validated on creation.
+
+A scene is one extensible cable hung between support A (the origin) and
+support B at (``span``, ``rise``), with point masses attached at unstretched
+arc-length positions measured from A, in air or in water. The TOML format
+read by :func:`load_scene` is documented in :data:`EXAMPLE_TOML`.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..errors import ParameterError, require_finite, require_nonnegative, require_positive
+from ..units import G_STANDARD
+
+MEDIA = ("air", "water")
+
+
+def _buoyancy_and_added(mass: float, S: float | None, c_am: float, medium: str, g: float,
+                        field_name: str) -> tuple[float, float]:
+    """Submerged weight and added mass of a body of mass ``mass`` and specific gravity S.
+
+    Griffin & Rosenthal (1985) eq. 26: added mass = C_am m / S (the displaced
+    fluid mass times C_am); the buoyancy is m g / S.
+    """
+    if medium == "air":
+        return mass * g, 0.0
+    if S is None:
+        raise ParameterError(f"{field_name}.specific_gravity", None,
+                             "must be given (> 1) for a scene in water")
+    return mass * g * (1.0 - 1.0 / S), c_am * mass / S
+
+
+@dataclass(frozen=True, kw_only=True)
+class Cable:
+    """A uniform extensible cable.
+
+    length: unstretched length L (m); mass_per_length: m in air (kg/m);
+    axial_stiffness: EA (N); specific_gravity: S, needed in water;
+    added_mass_coefficient: C_am of eq. 26 (water only);
+    submerged_weight_per_length / added_mass_per_length: optional explicit
+    values (N/m, kg/m) that override the ones derived from S and C_am;
+    max_strain: the largest strain the cable may take, which fixes how far it
+    can reach (chord < length * (1 + max_strain)).
+    """
+
+    length: float
+    mass_per_length: float
+    axial_stiffness: float
+    specific_gravity: float | None = None
+    added_mass_coefficient: float = 1.0
+    submerged_weight_per_length: float | None = None
+    added_mass_per_length: float | None = None
+    max_strain: float = 0.02
+
+    def __post_init__(self):
+        require_positive("cable.length", self.length, "m")
+        require_positive("cable.mass_per_length", self.mass_per_length, "kg/m")
+        require_positive("cable.axial_stiffness", self.axial_stiffness, "N")
+        if self.specific_gravity is not None and require_positive(
+                "cable.specific_gravity", self.specific_gravity) <= 1.0:
+            raise ParameterError("cable.specific_gravity", self.specific_gravity,
+                                 "must be > 1 (a cable that floats cannot hang as a catenary)")
+        require_nonnegative("cable.added_mass_coefficient", self.added_mass_coefficient)
+        if self.submerged_weight_per_length is not None:
+            require_positive("cable.submerged_weight_per_length", self.submerged_weight_per_length, "N/m")
+        if self.added_mass_per_length is not None:
+            require_nonnegative("cable.added_mass_per_length", self.added_mass_per_length, "kg/m")
+        v = require_positive("cable.max_strain", self.max_strain)
+        if v >= 0.5:
+            raise ParameterError("cable.max_strain", v, "must be in (0, 0.5)")
+
+    def weight_and_added_mass(self, medium: str, g: float) -> tuple[float, float]:
+        """(weight per length N/m, transverse added mass per length kg/m) in ``medium``."""
+        if medium == "water" and self.submerged_weight_per_length is not None \
+                and self.added_mass_per_length is not None:
+            return self.submerged_weight_per_length, self.added_mass_per_length
+        w, ma = _buoyancy_and_added(self.mass_per_length, self.specific_gravity,
+                                    self.added_mass_coefficient, medium, g, "cable")
+        if medium == "water":
+            w = self.submerged_weight_per_length if self.submerged_weight_per_length is not None else w
+            ma = self.added_mass_per_length if self.added_mass_per_length is not None else ma
+        return w, ma
+
+
+@dataclass(frozen=True, kw_only=True)
+class PointMass:
+    """A point mass at unstretched arc length ``position`` (m) from support A.
+
+    mass in air (kg); specific_gravity S and added_mass_coefficient C_am as
+    for the cable (eq. 26; added mass is taken isotropic for a compact body);
+    name is a label for outputs.
+    """
+
+    position: float
+    mass: float
+    specific_gravity: float | None = None
+    added_mass_coefficient: float = 1.0
+    name: str = ""
+
+    def __post_init__(self):
+        require_finite("mass.position", self.position)
+        require_positive("mass.mass", self.mass, "kg")
+        if self.specific_gravity is not None:
+            require_positive("mass.specific_gravity", self.specific_gravity)
+        require_nonnegative("mass.added_mass_coefficient", self.added_mass_coefficient)
+
+
+@dataclass(frozen=True, kw_only=True)
+class SlackScene:
+    """A cable between support A at (0, 0) and support B at (span, rise), z up.
+
+    span: horizontal distance (m, > 0); rise: height of B above A (m);
+    masses: attached point masses; medium: 'air' or 'water';
+    gravity (m/s^2); n_elements: lumped-mass elements (mass positions are
+    added as nodes).
+    """
+
+    cable: Cable
+    span: float
+    rise: float = 0.0
+    masses: tuple[PointMass, ...] = field(default_factory=tuple)
+    medium: str = "air"
+    gravity: float = G_STANDARD
+    n_elements: int = 120
+
+    def __post_init__(self):
+        require_positive("scene.span", self.span, "m")
+        require_finite("scene.rise", self.rise)
+        require_positive("scene.gravity", self.gravity, "m/s^2")
+        if self.medium not in MEDIA:
+            raise ParameterError("scene.medium", self.medium, f"must be one of {MEDIA}")
+        if int(self.n_elements) != self.n_elements or self.n_elements < 4:
+            raise ParameterError("scene.n_elements", self.n_elements, "must be an integer >= 4")
+        object.__setattr__(self, "masses", tuple(self.masses))
+        L = self.cable.length
+        for i, pm in enumerate(self.masses):
+            if not isinstance(pm, PointMass):
+                raise ParameterError(f"masses[{i}]", pm, "must be a PointMass")
+            if not (0.0 < pm.position < L):
+                raise ParameterError(f"masses[{i}].position", pm.position,
+                                     f"must be in (0, {L:g}) m: on the cable, between the supports")
+            if self.medium == "water" and pm.specific_gravity is None:
+                raise ParameterError(f"masses[{i}].specific_gravity", None,
+                                     "must be given for a scene in water")
+        reach = L * (1.0 + self.cable.max_strain)
+        if self.chord >= reach:
+            raise ParameterError("scene.chord", round(self.chord, 6),
+                                 f"must be < {reach:.6g} m = cable.length * (1 + cable.max_strain): "
+                                 "the cable cannot reach that far",
+                                 hint="shorten span/rise or lengthen the cable")
+        self.cable.weight_and_added_mass(self.medium, self.gravity)  # checks water data
+
+    @property
+    def chord(self) -> float:
+        """Distance between the supports (m)."""
+        return math.hypot(self.span, self.rise)
+
+    @property
+    def inclination(self) -> float:
+        """Chord angle above the horizontal (rad)."""
+        return math.atan2(self.rise, self.span)
+
+    @classmethod
+    def from_chord(cls, *, cable: Cable, chord: float, theta_deg: float = 0.0, **kw) -> "SlackScene":
+        """A scene from the chord length (m) and its inclination (degrees)."""
+        chord = require_positive("chord", chord, "m")
+        th = math.radians(require_finite("theta_deg", theta_deg))
+        if not (-90.0 < theta_deg < 90.0):
+            raise ParameterError("theta_deg", theta_deg, "must be in (-90, 90) deg")
+        return cls(cable=cable, span=chord * math.cos(th), rise=chord * math.sin(th), **kw)
+
+    def replace(self, **changes) -> "SlackScene":
+        """A copy with some fields changed (validated again)."""
+        import dataclasses
+        return dataclasses.replace(self, **changes)
+
+
+EXAMPLE_TOML = """\
+# cablesys slack scene: SI units throughout (m, kg, N, s).
+# Support A is at (0, 0); support B at (span, rise), z up.
+[scene]
+span = 22.9           # horizontal distance between supports, m (> 0)
+rise = 0.0            # height of B above A, m
+medium = "air"        # "air" or "water"
+n_elements = 120      # lumped-mass elements (>= 4)
+# gravity = 9.80665   # m/s^2
+n_modes = 12          # modes to report
+
+[cable]
+length = 23.80        # unstretched length L, m (chord < L (1 + max_strain))
+mass_per_length = 1.14    # kg/m, in air
+axial_stiffness = 8.9e5   # EA, N
+# specific_gravity = 7.8        # needed in water: buoyancy and added mass (eq. 26)
+# added_mass_coefficient = 1.0  # C_am
+# submerged_weight_per_length = 47.6   # N/m, overrides the value from S
+# added_mass_per_length = 0.71         # kg/m, overrides C_am m / S
+# max_strain = 0.02
+
+# one [[masses]] table per attached point mass
+[[masses]]
+name = "heavy-1"
+position = 7.933      # unstretched arc length from A, m, in (0, L)
+mass = 4.5            # kg
+# specific_gravity = 2.0   # needed in water
+
+[[masses]]
+name = "heavy-2"
+position = 15.867
+mass = 4.5
+"""
+
+_SCENE_KEYS = {"span", "rise", "medium", "n_elements", "gravity", "n_modes"}
+_CABLE_KEYS = {f for f in Cable.__dataclass_fields__}
+_MASS_KEYS = {f for f in PointMass.__dataclass_fields__}
+
+
+def _check_keys(table: dict, allowed: set, where: str) -> None:
+    for k in table:
+        if k not in allowed:
+            raise ParameterError(f"{where}.{k}", table[k], f"unknown key; allowed: {sorted(allowed)}")
+
+
+def scene_from_dict(doc: dict) -> tuple[SlackScene, int]:
+    """(scene, n_modes) from a parsed TOML document (see :data:`EXAMPLE_TOML`)."""
+    for k in doc:
+        if k not in ("scene", "cable", "masses"):
+            raise ParameterError(k, doc[k], "unknown table; allowed: scene, cable, masses")
+    sc = dict(doc.get("scene", {}))
+    _check_keys(sc, _SCENE_KEYS, "scene")
+    if "cable" not in doc:
+        raise ParameterError("cable", None, "a [cable] table is required")
+    cab = dict(doc["cable"])
+    _check_keys(cab, _CABLE_KEYS, "cable")
+    for req in ("length", "mass_per_length", "axial_stiffness"):
+        if req not in cab:
+            raise ParameterError(f"cable.{req}", None, "is required")
+    masses = []
+    for i, mt in enumerate(doc.get("masses", [])):
+        _check_keys(mt, _MASS_KEYS, f"masses[{i}]")
+        for req in ("position", "mass"):
+            if req not in mt:
+                raise ParameterError(f"masses[{i}].{req}", None, "is required")
+        masses.append(PointMass(**mt))
+    n_modes = sc.pop("n_modes", 12)
+    if int(n_modes) != n_modes or n_modes < 1:
+        raise ParameterError("scene.n_modes", n_modes, "must be an integer >= 1")
+    if "span" not in sc:
+        raise ParameterError("scene.span", None, "is required")
+    return SlackScene(cable=Cable(**cab), masses=tuple(masses), **sc), int(n_modes)
+
+
+def load_scene(path: str | Path) -> tuple[SlackScene, int]:
+    """Read a scene TOML file (stdlib tomllib); returns (scene, n_modes)."""
+    p = Path(path)
+    if not p.is_file():
+        raise ParameterError("scene file", str(p), "must be an existing TOML file")
+    try:
+        doc = tomllib.loads(p.read_text())
+    except tomllib.TOMLDecodeError as err:
+        raise ParameterError("scene file", str(p), f"must be valid TOML ({err})") from None
+    return scene_from_dict(doc)
