@@ -1,0 +1,55 @@
+"""The ``cablesys slack`` sub-command: a user's own cable from a TOML scene."""
+
+from __future__ import annotations
+
+import json
+import logging
+import sys
+from pathlib import Path
+
+from ..errors import ParameterError
+
+log = logging.getLogger(__name__)
+
+
+def register(sub) -> None:
+    """Add ``slack SCENE.toml [--out DIR] [--example]`` to the cablesys parser."""
+    p = sub.add_parser("slack", help="slack cable: equilibrium, tensions, natural modes (Griffin & Rosenthal 1985)",
+                       description="Static equilibrium and linear natural modes of a slack extensible cable "
+                                   "with point masses, in air or water. SCENE.toml is in SI units; "
+                                   "see `cablesys slack --example` for every field.")
+    p.add_argument("scene", nargs="?", help="scene TOML file")
+    p.add_argument("--out", default="slack_out", help="output directory (default: slack_out)")
+    p.add_argument("--example", action="store_true", help="print an example scene TOML and exit")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from .scene import EXAMPLE_TOML, load_scene
+    if args.example:
+        sys.stdout.write(EXAMPLE_TOML)
+        return 0
+    if not args.scene:
+        raise ParameterError("scene", None, "a scene TOML file is required (or --example)")
+    from .modes import analyze
+    from .plots import plot_equilibrium, plot_mode_shapes
+
+    scene, n_modes = load_scene(args.scene)
+    eq, modes = analyze(scene, n_modes)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    doc = {"scene": str(args.scene), "medium": scene.medium, "n_elements": modes.n_elements,
+           "equilibrium": eq.to_dict(), "modes": modes.table(),
+           "mode_shapes": {"s_m": modes.s.tolist(), "dof": ["x", "y", "z"],
+                           "normalization": "Griffin & Rosenthal (1985) eq. 25",
+                           "shapes": modes.shapes.tolist()}}
+    (out / "slack_result.json").write_text(json.dumps(doc, indent=1))
+    plot_equilibrium(eq, out / "equilibrium.png")
+    plot_mode_shapes(eq, modes, out / "mode_shapes.png", n=min(6, n_modes))
+    lines = [f"sag/L = {eq.sag_to_length:.5f}, H = {eq.horizontal_tension:.6g} N, "
+             f"max tension = {eq.tension.max():.6g} N",
+             "mode  type  omega (rad/s)"]
+    lines += [f"{k + 1:4d}  {t:>4s}  {w:.6g}" for k, (t, w) in enumerate(zip(modes.mode_type, modes.omega))]
+    lines.append(f"wrote {out / 'slack_result.json'}, equilibrium.png, mode_shapes.png")
+    sys.stdout.write("\n".join(lines) + "\n")
+    return 0
