@@ -1,0 +1,184 @@
+r"""The Kennedy & Strahan (1981) transverse equation of a towed cable, nondimensionalized.
+
+Derivation (checked against the dimensional physics; the OCR of eq. 1 is garbled)
+-------------------------------------------------------------------------------
+A neutrally buoyant cable of diameter ``d_c`` and length ``L`` lies along the flow
+(``x`` from the tow point, increasing downstream, fluid speed ``U`` along ``+x``);
+``y(x, t)`` is its small cross-track displacement.  Per unit length:
+
+* cable mass ``m`` and added (displaced-fluid) mass ``M = rho pi d_c^2 / 4``;
+* the fluid-inertia (Paidoussis 1966) terms of a slender body in axial flow,
+  ``M (d/dt + U d/dx)^2 y = M (y_tt + 2 U y_xt + U^2 y_xx)``;
+* tension ``T(x)`` carried by tangential friction, ``F_t = (rho/2) pi d_c c_t U^2``
+  per unit length (Kennedy & Strahan (1981) eq. 1b with the ``pi`` convention
+  implied by eq. 1c, ``c_T = 4 c_t``), accumulated from the free end, plus a
+  constant drogue drag ``T_d = 2 c_t' M U^2`` (the drogue term ``c_t'``):
+  ``T(x) = 2 M U^2 [c_t (L - x)/d_c + c_t']``, falling linearly to the drogue;
+* the linearized (Taylor/Paidoussis) normal drag on the relative cross-flow
+  ``y_t + U y_x``: ``F_n = (rho/2) d_c c_n U (y_t + U y_x)``.
+
+Momentum (Kennedy & Strahan (1981) eq. 1, flexural rigidity dropped)::
+
+    (M+m) y_tt + 2 M U y_xt + M U^2 y_xx - d/dx (T y_x) + (rho/2) d_c c_n U (y_t + U y_x) = 0 .
+
+With ``xi = x/L``, ``tau = U t/L``, ``eps = L/d_c``, ``beta = M/(M+m)``, dividing by
+``(M+m) U^2 / L^2`` and using ``M U^2 / d_c = (rho/2)(pi/2) d_c U^2``:
+
+* ``y_xx``: ``beta [1 - T/(M U^2)] = beta (1 - 2 c_t eps - 2 c_t') + 2 beta c_t eps xi = a + b xi``;
+* ``y_x`` from ``-T' y_x``: ``2 beta c_t eps``; from the normal drag ``(2/pi) beta c_n eps``;
+  together ``c = 2 (c_t + c_n/pi) eps beta``;
+* ``y_t`` from the normal drag: ``d = (2/pi) beta c_n eps``.
+
+So (Kennedy & Strahan (1981) eq. 3, the reading given in issue 6 confirmed)::
+
+    eta_tt + 2 beta eta_xt + (a + b xi) eta_xx + c eta_x + d eta_t = 0,
+    a = beta (1 - 2 c_t eps - 2 c_t'),  b = 2 beta c_t eps,
+    c = 2 (c_t + c_n/pi) eps beta = b + d,  d = (2/pi) beta c_n eps .
+
+``a + b xi < 0`` where tension exceeds the fluid-inertia term (hyperbolic); it
+vanishes at ``xi* = -a/b = 1 + (2 c_t' - 1)/(2 c_t eps)``, the free end of the
+"lengthened cable" ``L* = L + d_c c_t'/c_t`` that replaces the drogue (report p. 10).
+
+With ``eta = v(xi) exp(i omega tau)`` (eq. 4) the ODE is::
+
+    (a + b xi) v'' + (c + 2 i beta omega) v' + (i omega d - omega^2) v = 0,
+
+and with ``z^2 = a + b xi`` it is Bessel's equation of eq. 5 with
+``alpha = (2/b)(c + 2 i omega beta) - 1`` and ``b_o^2 = (4 omega/b^2)(i d - omega)``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ParameterError, require_positive, require_range, require_nonnegative
+
+__all__ = ["TowedCable", "Coefficients", "REPORT_SEA_TRIAL", "REPORT_TYPICAL"]
+
+
+@dataclass(frozen=True, kw_only=True)
+class Coefficients:
+    """Nondimensional coefficients of Kennedy & Strahan (1981) eq. 3 (SI-free).
+
+    ``a`` and ``b`` multiply ``eta_xx`` (``a + b xi``), ``c`` multiplies ``eta_x``,
+    ``d`` multiplies ``eta_t``; ``beta`` = M/(M+m).
+    """
+
+    a: float
+    b: float
+    c: float
+    d: float
+    beta: float
+
+    def __post_init__(self):
+        for name in ("a", "c", "d"):
+            v = getattr(self, name)
+            if not math.isfinite(v):
+                raise ParameterError(f"coefficients.{name}", v, "must be finite")
+        require_positive("coefficients.b", self.b)
+        require_nonnegative("coefficients.d", self.d)
+        require_range("coefficients.beta", self.beta, 0.0, 1.0, lo_open=True)
+
+    @property
+    def p(self) -> float:
+        """Real Bessel order of the report, ``p = c/b - 1 = c_n/(pi c_t)`` (eq. 8c)."""
+        return self.c / self.b - 1.0
+
+    @property
+    def xi_turn(self) -> float:
+        """Zero-tension point ``xi* = -a/b`` where ``a + b xi = 0``."""
+        return -self.a / self.b
+
+    def q(self, omega):
+        """``q = 1 - nu = (c + 2 i beta omega)/b``: parameter of the regular 0F1 solution.
+
+        nu is the exact complex Bessel order of Kennedy & Strahan (1981) eq. 8a.
+        """
+        return (self.c + 2j * self.beta * np.asarray(omega)) / self.b
+
+    def nu(self, omega):
+        """Exact complex order ``nu = 1 - (c + 2 i beta omega)/b`` (eq. 8a)."""
+        return 1.0 - self.q(omega)
+
+    def order_ratio(self, omega):
+        """``|Im nu| / |Re nu| = 2 beta omega / (b p)``: the eq. 8b smallness measure.
+
+        The report replaces ``nu`` by ``-p`` (eq. 8b/8c); this ratio must be << 1.
+        """
+        return 2.0 * self.beta * np.abs(np.asarray(omega, dtype=float)) / (self.b * abs(self.p))
+
+    def x_arg(self, xi, omega):
+        """Argument ``x = -b_o^2 z^2 / 4 = (omega^2 - i omega d)(a + b xi)/b^2`` of 0F1."""
+        xi = np.asarray(xi, dtype=float)
+        omega = np.asarray(omega, dtype=float)
+        return (omega**2 - 1j * omega * self.d) * (self.a + self.b * xi) / self.b**2
+
+
+@dataclass(frozen=True, kw_only=True)
+class TowedCable:
+    """A towed cable and its tow, SI (Kennedy & Strahan (1981) eq. 1-3 symbols).
+
+    length (m) L, speed (m/s) U, diameter (m) d_c, c_t tangential drag,
+    c_n linearized normal drag (use the effective c_n* = A c_n, eq. 39, for a
+    depressed cable), c_t_drogue the drogue term c_t', beta = M/(M+m).
+    """
+
+    length: float
+    speed: float
+    diameter: float = 0.016
+    c_t: float = 0.0101
+    c_n: float = 0.16
+    c_t_drogue: float = 228.0
+    beta: float = 0.5
+
+    def __post_init__(self):
+        require_positive("length", self.length, "m")
+        require_positive("speed", self.speed, "m/s")
+        require_positive("diameter", self.diameter, "m")
+        require_positive("c_t", self.c_t)
+        require_positive("c_n", self.c_n)
+        require_nonnegative("c_t_drogue", self.c_t_drogue)
+        require_range("beta", self.beta, 0.0, 1.0, lo_open=True)
+
+    @property
+    def eps(self) -> float:
+        """Slenderness ``eps = L/d_c`` (eq. 2)."""
+        return self.length / self.diameter
+
+    @property
+    def drag_term(self) -> float:
+        """``D = 2 c_t eps + 2 c_t'`` (eq. 20a), total tension / (M U^2) at the tow point."""
+        return 2.0 * self.c_t * self.eps + 2.0 * self.c_t_drogue
+
+    def coefficients(self) -> Coefficients:
+        """Kennedy & Strahan (1981) eq. 3 coefficients."""
+        e, bt = self.eps, self.beta
+        return Coefficients(
+            a=bt * (1.0 - 2.0 * self.c_t * e - 2.0 * self.c_t_drogue),
+            b=2.0 * bt * self.c_t * e,
+            c=2.0 * (self.c_t + self.c_n / math.pi) * e * bt,
+            d=(2.0 / math.pi) * bt * self.c_n * e,
+            beta=bt,
+        )
+
+    def omega(self, frequency_hz):
+        """Nondimensional angular frequency ``omega = 2 pi f L / U`` (eq. 2, tau = U t/L)."""
+        f = np.asarray(frequency_hz, dtype=float)
+        return 2.0 * math.pi * f * self.length / self.speed
+
+    def time_scale(self) -> float:
+        """``L/U`` (s): one unit of nondimensional time tau."""
+        return self.length / self.speed
+
+
+# Report's sea-trial coefficients (Kennedy & Strahan (1981) p. 31): c_n* = 0.16,
+# c_t = 0.0101, beta = 0.5, d_c = 16 mm, c_t' = 228; L and U vary per run.
+REPORT_SEA_TRIAL = dict(diameter=0.016, c_t=0.0101, c_n=0.16, c_t_drogue=228.0, beta=0.5)
+
+# Report's "typical values" for the damping time (p. 17): c_t = .0025, c_n = .07,
+# c_t' = 57, eps = 75000, d_c = .01 m, U = 3 m/s  ->  L = eps d_c = 750 m.
+REPORT_TYPICAL = dict(length=750.0, speed=3.0, diameter=0.01, c_t=0.0025, c_n=0.07,
+                      c_t_drogue=57.0, beta=0.5)
