@@ -209,6 +209,21 @@ def _chain_ends(HV: np.ndarray, d: Discretization, EA: float):
     return np.cumsum(H * stretch), np.cumsum(Vz * stretch)
 
 
+def _elastic_parabola_tension(W: float, c: float, L: float, EA: float) -> float:
+    """Chord tension of an elastic parabola: W c / (8 sag) with L(1 + H/EA) = c (1 + 8/3 (sag/c)^2).
+
+    Griffin & Rosenthal (1985) eq. 1 and its length; used only as a starting
+    guess (brentq on log H, the residual is monotone in H).
+    """
+    def res(logH):
+        H = math.exp(logH)
+        Ls = L * (1.0 + H / EA)
+        sag = c * math.sqrt(max(3.0 / 8.0 * (Ls / c - 1.0), 1e-30))
+        return math.log(W * c / (8.0 * sag)) - logH
+    lo, hi = math.log(W * 1e-3), math.log(max(W, EA) * 10.0)
+    return math.exp(scipy.optimize.brentq(res, lo, hi))
+
+
 def solve_equilibrium_shooting(scene: SlackScene, *, n_elements: int | None = None
                                ) -> tuple[Equilibrium, Discretization]:
     """Exact equilibrium of the same chain by shooting on (H, V_A) (scipy.optimize.root).
@@ -222,16 +237,18 @@ def solve_equilibrium_shooting(scene: SlackScene, *, n_elements: int | None = No
     t0 = time.perf_counter()
     Wtot = float(np.sum(d.weight[1:-1]))
     c, L = scene.chord, scene.cable.length
-    sag = c * math.sqrt(max(3.0 / 8.0 * (L / c - 1.0), 1e-4))
-    H0 = Wtot * scene.span / (8 * sag)
+    H0 = _elastic_parabola_tension(Wtot * math.cos(scene.inclination), c, L, EA) * math.cos(scene.inclination)
     VA0 = -Wtot / 2 + H0 * scene.rise / max(scene.span, 1e-9)
 
     def res(v):
         X, Z = _chain_ends(np.array([math.exp(v[0]), v[1]]), d, EA)
         return [(X[-1] - scene.span) / c, (Z[-1] - scene.rise) / c]
 
-    sol = scipy.optimize.root(res, [math.log(H0), VA0], method="hybr", options={"xtol": 1e-13})
-    if not sol.success or np.max(np.abs(sol.fun)) > 1e-9:
+    for method in ("hybr", "lm"):   # Powell hybrid first, Levenberg-Marquardt as a fallback
+        sol = scipy.optimize.root(res, [math.log(H0), VA0], method=method, options={"xtol": 1e-13})
+        if np.max(np.abs(sol.fun)) <= 1e-9:
+            break
+    if np.max(np.abs(sol.fun)) > 1e-9:
         raise SolverError(f"statics shooting did not converge: {sol.message}")
     X, Z = _chain_ends(np.array([math.exp(sol.x[0]), sol.x[1]]), d, EA)
     x = np.concatenate([[0.0], X[:-1], [scene.span]])
