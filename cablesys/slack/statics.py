@@ -40,6 +40,9 @@ from .scene import SlackScene, _buoyancy_and_added
 
 log = logging.getLogger(__name__)
 
+#: above this element count the NLP starts from a solved coarse chain
+COARSE_LIMIT = 200
+
 
 @dataclass(frozen=True, kw_only=True)
 class Discretization:
@@ -182,7 +185,15 @@ def solve_equilibrium(scene: SlackScene, *, n_elements: int | None = None,
     n = d.n_elements
     t0 = time.perf_counter()
     solver = _nlp_solver(n, int(max_iter), float(tol))
-    w0 = parabola_guess(scene, d) if guess is None else np.asarray(guess, float)
+    if guess is not None:
+        w0 = np.asarray(guess, float)
+    elif int(n_elements or scene.n_elements) > COARSE_LIMIT:
+        # two-level start: solve a coarse chain, interpolate its shape in s
+        # (its O(h^2)-close) so that IPOPT needs a few Newton steps, not ~90
+        eqc, _ = solve_equilibrium(scene, n_elements=COARSE_LIMIT, max_iter=max_iter, tol=tol)
+        w0 = np.concatenate([np.interp(d.s[1:-1], eqc.s, eqc.x), np.interp(d.s[1:-1], eqc.s, eqc.z)])
+    else:
+        w0 = parabola_guess(scene, d)
     scale = 1.0 / (float(np.sum(d.weight)) * scene.chord)
     sol = solver(x0=w0, p=np.append(_params(scene, d), scale))
     stats = solver.stats()
