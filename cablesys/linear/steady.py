@@ -1,0 +1,112 @@
+"""Steady state: the equilibrium (phi_0, u_0) of a scene with its top at rest.
+
+Solves f(q, q' = 0, e = 0, p) = 0 from the same CasADi model used in the time domain
+(Wang 1971 eq. 47-48 with all rates zero), with CasADi's KINSOL rootfinder (line search).
+Waves are switched off (a steady state has none); current and tow speed stay.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import casadi as ca
+import numpy as np
+
+from ..errors import SolverError
+from ..model import EXO_LABELS, CableModel
+
+
+@dataclasses.dataclass(frozen=True)
+class SteadyState:
+    """An equilibrium: coordinates, outputs (labelled), the residual reached."""
+
+    q: np.ndarray
+    q_labels: tuple
+    outputs: dict
+    residual: float
+
+    @property
+    def x(self) -> np.ndarray:
+        """Full state (q, q' = 0)."""
+        return np.concatenate([self.q, np.zeros_like(self.q)])
+
+
+def _static_parameters(model: CableModel, p) -> np.ndarray:
+    p = np.array(p, dtype=float)
+    for i, lbl in enumerate(model.layout.labels):
+        if lbl.startswith("environment.waves[") and lbl.endswith(".amplitude"):
+            p[i] = 0.0
+    for i in model.slack_index:
+        p[i] = 0.0
+    return p
+
+
+def _rootfinder(model: CableModel) -> ca.Function:
+    q = ca.SX.sym("q", model.nq)
+    p = ca.SX.sym("p", len(model.layout))
+    _, f = model.dynamics(q, ca.SX.zeros(model.nq), ca.SX.zeros(len(EXO_LABELS)), p)
+    g = ca.Function("static_residual", [q, p], [f])
+    return ca.rootfinder("steady", "kinsol", g, {"strategy": "linesearch", "abstol": 1e-12,
+                                                  "error_on_fail": False, "print_level": 0})
+
+
+def _guesses(model: CableModel, p):
+    """Hanging stretch u = (weight below + W_c/2)/k for every section, several angles."""
+    lay = model.layout
+    n = model.n_sections
+    pre = (lambda i: "") if n == 1 else (lambda i: f"sections[{i}].")
+    val = lambda lbl: p[lay.index(lbl)]
+    u, below = [0.0] * n, 0.0
+    for i in reversed(range(n)):
+        k = val(f"{pre(i)}cable.ae") / val(f"{pre(i)}cable.length")
+        w_c = val(f"{pre(i)}cable.weight_per_length") * val(f"{pre(i)}cable.length")
+        u[i] = (below + val(f"{pre(i)}body.weight") + 0.5 * w_c) / k
+        below += val(f"{pre(i)}body.weight") + w_c
+    for phi in (0.0, 0.3, -0.3, 0.8, -0.8, 1.2, -1.2, 1.45, -1.45):
+        q = []
+        for lbl in model.q_labels:
+            if lbl.startswith("phi"):
+                q.append(phi)
+            else:
+                i = 0 if lbl == "u" else int(lbl.split("_")[-1]) - 1
+                q.append(u[i])
+        yield np.array(q)
+
+
+def steady_state(model: CableModel, p, *, guess=None, solver: ca.Function | None = None) -> SteadyState:
+    """Equilibrium of the scene with parameters ``p`` (top at rest, no waves).
+
+    Raises :class:`SolverError` if no equilibrium is found from any starting guess.
+    """
+    p = _static_parameters(model, p)
+    rf = solver or _rootfinder(model)
+    q_res = ca.SX.sym("q", model.nq)
+    _, f = model.dynamics(q_res, ca.SX.zeros(model.nq), ca.SX.zeros(len(EXO_LABELS)), ca.DM(p))
+    resid_fn = ca.Function("r", [q_res], [f])
+    guesses = [np.asarray(guess, float)] if guess is not None else list(_guesses(model, p))
+    best = None
+    for g0 in guesses:
+        q = np.array(rf(g0, p)).ravel()
+        if not np.all(np.isfinite(q)):
+            continue
+        r = float(np.max(np.abs(np.array(resid_fn(q)))))
+        phis = [q[i] for i, lbl in enumerate(model.q_labels) if lbl.startswith("phi")]
+        if best is None or r < best[1]:
+            best = (q, r)
+        if r < 1e-9 * max(1.0, _force_scale(model, p)) and all(abs(a) < math.pi / 2 for a in phis):
+            break
+    if best is None or best[1] > 1e-6 * max(1.0, _force_scale(model, p)):
+        raise SolverError("steady state not found: the equilibrium rootfinder (KINSOL) did not converge "
+                          f"(best residual {best[1] if best else float('nan'):.3g}); check that the current "
+                          "or tow speed is not so strong that the cable streams horizontally, and that weights are "
+                          "positive, or give an initial guess")
+    q = best[0]
+    x = np.concatenate([q, np.zeros_like(q)])
+    y = np.array(model.outputs(x, np.zeros(len(EXO_LABELS)), p)).ravel()
+    return SteadyState(q=q, q_labels=model.q_labels, outputs=dict(zip(model.output_labels, y)), residual=best[1])
+
+
+def _force_scale(model: CableModel, p) -> float:
+    lay = model.layout
+    return max(abs(p[i]) for i, lbl in enumerate(lay.labels) if lbl.endswith("body.weight")) + 1e-300

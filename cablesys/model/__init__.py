@@ -1,0 +1,7 @@
+"""The equations, written once: energies + generalized forces -> CasADi functions."""
+
+from .build import EXO_LABELS, OUTPUT_NAMES, CableModel, build_model
+from .params import ParameterLayout, parameter_items, structure_of
+
+__all__ = ["CableModel", "EXO_LABELS", "OUTPUT_NAMES", "ParameterLayout", "build_model",
+           "parameter_items", "structure_of"]

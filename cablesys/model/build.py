@@ -1,0 +1,131 @@
+"""Assemble the CasADi model of a scene: Lagrangian -> M(q) q'' = f -> functions.
+
+The chain of sections (Wang 1971 p. 32-33) is built from the one-section pieces of
+:mod:`section`; one section is exactly Wang's 2-DOF model. The top motion enters
+through the exogenous vector e = (t, x_s, y_s, x_s', y_s', x_s'', y_s'').
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import casadi as ca
+import numpy as np
+
+from ..scene import Scene
+from .lagrange import lagrange_equations, virtual_work
+from .params import ParameterLayout, section_prefix
+from .section import SectionParameters, section_terms
+from .top_motion import top_motion_function
+
+EXO_LABELS = ("t", "x_s", "y_s", "x_s_rate", "y_s_rate", "x_s_acc", "y_s_acc")
+OUTPUT_NAMES = ("phi", "phi_rate", "u", "u_rate", "x_b", "x_b_rate", "y_b", "y_b_rate", "tension")
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class CableModel:
+    """CasADi functions of one scene structure; every scene number is an entry of ``p``.
+
+    Functions (all SX, built once):
+      ``dynamics(q, qd, e, p) -> (M, f)`` with M q'' = f;
+      ``ode(x, t, p) -> x'`` with x = (q, q') and the top motion composed in;
+      ``top(t, p) -> e``; ``outputs(x, e, p) -> y`` (labels ``output_labels``);
+      ``energy(x, e, p) -> (K, V)``; ``cable_force(x, p) -> F_bc - TENS`` per section.
+    """
+
+    layout: ParameterLayout
+    n_sections: int
+    angles: str
+    q_labels: tuple
+    output_labels: tuple
+    dynamics: ca.Function
+    ode: ca.Function
+    top: ca.Function
+    outputs: ca.Function
+    energy: ca.Function
+    cable_force: ca.Function
+    slack_index: tuple          # positions of the per-section slack switches in p
+
+    @property
+    def nq(self) -> int:
+        return len(self.q_labels)
+
+    @property
+    def state_labels(self) -> tuple:
+        return self.q_labels + tuple(f"{q}_rate" for q in self.q_labels)
+
+    def parameters(self, scene: Scene) -> np.ndarray:
+        """Numeric parameter vector of ``scene`` (same structure as the model)."""
+        return self.layout.values(scene)
+
+
+def _coordinates(n: int, angles: str):
+    """Symbols and labels of q: per section (phi_i, u_i), or a shared phi and u_1..u_n."""
+    sfx = (lambda i: "") if n == 1 else (lambda i: f"_{i + 1}")
+    if angles == "shared" or n == 1:
+        labels = ("phi",) + tuple(f"u{sfx(i)}" for i in range(n))
+    else:
+        labels = tuple(x for i in range(n) for x in (f"phi{sfx(i)}", f"u{sfx(i)}"))
+    q = ca.SX.sym("q", len(labels))
+    qd = ca.SX.sym("qd", len(labels))
+    idx = {lbl: k for k, lbl in enumerate(labels)}
+
+    def pick(vec, i):
+        phi = vec[idx["phi"]] if "phi" in idx else vec[idx[f"phi{sfx(i)}"]]
+        return phi, vec[idx[f"u{sfx(i)}"]]
+    return q, qd, labels, pick, sfx
+
+
+def build_model(scene: Scene) -> CableModel:
+    """Build the CasADi functions for ``scene``'s structure (values go in through ``p``)."""
+    layout = ParameterLayout.from_scene(scene)
+    p = layout.symbol
+    n = len(scene.sections)
+    q, qd, q_labels, pick, sfx = _coordinates(n, scene.angles)
+    e = ca.SX.sym("e", len(EXO_LABELS))
+    t, z, zd, zdd = e[0], e[1:3], e[3:5], e[5:7]
+    env_p = {
+        "current_depths": [layout.sym(f"environment.current_depths[{k}]") for k in range(len(scene.environment.current_depths))],
+        "current_speeds": [layout.sym(f"environment.current_speeds[{k}]") for k in range(len(scene.environment.current_depths))],
+        "system_speed": layout.sym("environment.system_speed"),
+        "gravity": layout.sym("environment.gravity"),
+        "waves": [tuple(layout.sym(f"environment.waves[{k}].{a}") for a in ("amplitude", "length", "phase"))
+                  for k in range(len(scene.environment.waves))],
+    }
+    rho = layout.sym("environment.density")
+    depth0 = layout.sym("environment.top_depth")
+
+    top_r, top_v = (z[0], depth0 + z[1]), (zd[0], zd[1])
+    K = V = 0
+    forces, Q_direct = [], ca.SX.zeros(len(q_labels))
+    out, gaps = [], []
+    for i, sec in enumerate(scene.sections):
+        P = SectionParameters.from_layout(layout, section_prefix(n, i), sec.body.is_sphere)
+        phi, u = pick(q, i)
+        phid, ud = pick(qd, i)
+        T = section_terms(P, top_r, top_v, phi, u, phid, ud, t=t, env=env_p, rho=rho,
+                          n_segments=scene.numerics.drag_segments)
+        K, V = K + T["K"], V + T["V"]
+        forces += T["point_forces"]
+        Q_direct += ca.jacobian(u, q).T * T["Q_u"]      # eq. 46 acts on this section's stretch
+        out += [phi, phid, u, ud, T["r_b"][0], T["v_b"][0], T["r_b"][1] - depth0, T["v_b"][1], T["tension"]]
+        gaps.append(T["F_bc"] - P.tens)
+        top_r, top_v = T["r_b"], T["v_b"]
+
+    Q = virtual_work(forces, qd) + Q_direct
+    M, f = lagrange_equations(K - V, Q, q, qd, z, zd, zdd)
+    x = ca.vertcat(q, qd)
+    dynamics = ca.Function("dynamics", [q, qd, e, p], [M, f], ["q", "qd", "e", "p"], ["M", "f"])
+    top = top_motion_function(scene, layout)
+    ts = ca.SX.sym("t")
+    e_t = top(ts, p)
+    M_t, f_t = dynamics(q, qd, e_t, p)
+    ode = ca.Function("ode", [x, ts, p], [ca.vertcat(qd, ca.solve(M_t, f_t))], ["x", "t", "p"], ["xdot"])
+    output_labels = tuple(f"{name}{sfx(i)}" for i in range(n) for name in OUTPUT_NAMES)
+    outputs = ca.Function("outputs", [x, e, p], [ca.vertcat(*out)], ["x", "e", "p"], ["y"])
+    energy = ca.Function("energy", [x, e, p], [K, V], ["x", "e", "p"], ["K", "V"])
+    cable_force = ca.Function("cable_force", [x, p], [ca.vertcat(*gaps)], ["x", "p"], ["gap"])
+    slack_index = tuple(layout.index(f"{section_prefix(n, i)}slack") for i in range(n))
+    return CableModel(layout=layout, n_sections=n, angles=scene.angles, q_labels=q_labels,
+                      output_labels=output_labels, dynamics=dynamics, ode=ode, top=top,
+                      outputs=outputs, energy=energy, cable_force=cable_force, slack_index=slack_index)

@@ -1,0 +1,108 @@
+"""The parameter vector: every number of a scene as one labelled entry of a CasADi vector.
+
+The model is built once per scene *structure* (number of sections, angle mode, body drag
+shapes, drag segments, current points, waves, sinusoids, time-series grid); every value is
+an entry of ``p``, so changing a value never rebuilds or recompiles a function. Labels
+follow the scene's field paths (``cable.ae``, ``sections[1].body.weight``,
+``top_motion.x[0].amplitude``) so sweeps and sensitivities can name what they vary.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import casadi as ca
+import numpy as np
+
+from ..errors import ParameterError
+from ..scene import Scene
+
+_CABLE = ("length", "tension_ref", "ae", "diameter", "mass_per_length", "weight_per_length",
+          "thinning_ratio", "added_mass_factor", "cd_normal", "ct_tangential", "internal_damping",
+          "tension_floor", "cable_mass_switch")
+_BODY = ("weight", "mass_x", "mass_y", "drag_area_normal", "drag_area_tangential", "axis_angle")
+_ENV = ("density", "gravity", "system_speed", "top_depth")
+_SINE = ("amplitude", "frequency", "phase")
+_WAVE = ("amplitude", "length", "phase")
+TENSION_FLOOR_NONE = -1e300   # stands for -inf (a rod that never goes slack)
+
+
+def section_prefix(scene_or_n, i: int) -> str:
+    n = scene_or_n if isinstance(scene_or_n, int) else len(scene_or_n.sections)
+    return "" if n == 1 else f"sections[{i}]."
+
+
+def structure_of(scene: Scene) -> tuple:
+    """What fixes the shape of the CasADi functions (everything else is a parameter value)."""
+    env, top = scene.environment, scene.top_motion
+    return (len(scene.sections), scene.angles, tuple(s.body.is_sphere for s in scene.sections),
+            scene.numerics.drag_segments, len(env.current_depths), len(env.waves),
+            len(top.x), len(top.y), None if top.series is None else top.series.times)
+
+
+def parameter_items(scene: Scene) -> list[tuple[str, float]]:
+    """(label, SI value) for every scene number, in vector order."""
+    items: list[tuple[str, float]] = []
+    n = len(scene.sections)
+    for i, s in enumerate(scene.sections):
+        pre = section_prefix(n, i)
+        for name in _CABLE:
+            v = getattr(s.cable, name)
+            if name == "tension_floor" and v == -math.inf:
+                v = TENSION_FLOOR_NONE
+            items.append((f"{pre}cable.{name}", float(v)))
+        for name in _BODY:
+            v = math.radians(s.body.axis_angle_deg) if name == "axis_angle" else getattr(s.body, name)
+            items.append((f"{pre}body.{name}", float(v)))
+        items.append((f"{pre}slack", 0.0))          # 1 while the section is slack (set by the simulator)
+    env = scene.environment
+    items += [(f"environment.{k}", float(getattr(env, k))) for k in _ENV]
+    for k, (d, c) in enumerate(zip(env.current_depths, env.current_speeds)):
+        items += [(f"environment.current_depths[{k}]", d), (f"environment.current_speeds[{k}]", c)]
+    for k, w in enumerate(env.waves):
+        items += [(f"environment.waves[{k}].{a}", float(getattr(w, a))) for a in _WAVE]
+    top = scene.top_motion
+    for axis in ("x", "y"):
+        for k, s in enumerate(getattr(top, axis)):
+            items += [(f"top_motion.{axis}[{k}].{a}", float(getattr(s, a))) for a in _SINE]
+    if top.series is not None:
+        for axis in ("x", "y"):
+            items += [(f"top_motion.series.{axis}[{k}]", v) for k, v in enumerate(getattr(top.series, axis))]
+    return items
+
+
+@dataclasses.dataclass(frozen=True)
+class ParameterLayout:
+    """Labels of the parameter vector and the symbolic vector itself."""
+
+    labels: tuple
+    structure: tuple
+    symbol: ca.SX = dataclasses.field(repr=False, compare=False)
+
+    @classmethod
+    def from_scene(cls, scene: Scene) -> "ParameterLayout":
+        labels = tuple(lbl for lbl, _ in parameter_items(scene))
+        return cls(labels=labels, structure=structure_of(scene), symbol=ca.SX.sym("p", len(labels)))
+
+    def __len__(self) -> int:
+        return len(self.labels)
+
+    def index(self, label: str) -> int:
+        """Position of ``label`` in the vector (clear error for an unknown label)."""
+        try:
+            return self.labels.index(label)
+        except ValueError:
+            close = [lb for lb in self.labels if label.split(".")[-1] in lb][:6]
+            raise ParameterError("parameter", label, f"is not a model parameter; similar: {close}") from None
+
+    def sym(self, label: str) -> ca.SX:
+        return self.symbol[self.index(label)]
+
+    def values(self, scene: Scene) -> np.ndarray:
+        """The numeric vector of ``scene``; the scene must have this layout's structure."""
+        if structure_of(scene) != self.structure:
+            raise ParameterError("scene", scene.name,
+                                 "has a different structure (sections, drag shapes, segments, current points, "
+                                 "waves, sinusoids or series grid) than the model; build a model for it")
+        return np.array([v for _, v in parameter_items(scene)], dtype=float)

@@ -1,0 +1,257 @@
+"""Immutable, validated scene components (SI units inside).
+
+Every field documents its unit and meaning (Wang 1971 notation in brackets).
+Validation runs in ``__post_init__`` and raises :class:`~cablesys.errors.ParameterError`
+naming the field, its value and the allowed range, before any model is built.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from ..errors import (ParameterError, require_finite, require_nonnegative,
+                      require_positive, require_range)
+from .fields import spec
+
+
+def _check_all_finite(obj, prefix: str) -> None:
+    for f in dataclasses.fields(obj):
+        v = getattr(obj, f.name)
+        if isinstance(v, (int, float)) and not isinstance(v, bool):
+            if f.name == "tension_floor" and v == -math.inf:
+                continue  # -inf: the cable never goes slack (a rod)
+            require_finite(f"{prefix}.{f.name}", v)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Cable:
+    """One cable section, described at its reference tension (Wang 1971 eq. 1-7)."""
+
+    length: float = spec("length", "reference length l_r at the reference tension")
+    tension_ref: float = spec("force", "reference tension T_r at which length/ae/diameter are given", 0.0)
+    ae: float = spec("force", "reference spring coefficient (AE)_r; spring constant k = (AE)_r / l_r")
+    diameter: float = spec("length", "cable thickness d_r at the reference tension")
+    mass_per_length: float = spec("mass_per_length", "cable mass per unit length m_r at the reference tension")
+    weight_per_length: float = spec("force_per_length", "cable weight in water per unit length (W_c = w l_r)")
+    thinning_ratio: float = spec("none", "ratio p of lateral contraction to strain, d = d_0 (1 - p u / l_r) (eq. 3)", 0.0)
+    added_mass_factor: float = spec("none", "added-mass factor gamma of the cable (1 for a round cable, eq. 23)", 1.0)
+    cd_normal: float = spec("none", "normal drag coefficient C_D of the cable (eq. 42)", 1.5)
+    ct_tangential: float = spec("none", "tangential friction coefficient C_t of the cable (eq. 44)", 0.01)
+    internal_damping: float = spec("force_time", "Voigt internal damping constant C_I, force = (C_I/l_r) du/dt (eq. 46)", 0.0)
+    tension_floor: float = spec("force", "least tension TENS the cable supports; 0 for a flexible cable, -inf for a rod (eq. 54)", 0.0)
+    cable_mass_switch: float = spec("none", "the report's CBMAS: any negative value drops the cable mass and added-mass terms", 1.0)
+
+    def __post_init__(self):
+        _check_all_finite(self, "cable")
+        require_positive("cable.length", self.length, "m")
+        require_positive("cable.ae", self.ae, "N")
+        require_positive("cable.diameter", self.diameter, "m")
+        require_nonnegative("cable.mass_per_length", self.mass_per_length, "kg/m")
+        require_range("cable.thinning_ratio", self.thinning_ratio, 0.0, 1.0)
+        for name in ("added_mass_factor", "cd_normal", "ct_tangential", "internal_damping"):
+            require_nonnegative(f"cable.{name}", getattr(self, name))
+        if self.tension_ref >= self.ae:
+            raise ParameterError("cable.tension_ref", self.tension_ref,
+                                 f"must be < cable.ae = {self.ae} so that the zero-tension length l_0 = l_r - T_r/k is positive (eq. 1)")
+        if self.thinning_ratio * self.tension_ref / self.ae >= 1.0:
+            raise ParameterError("cable.thinning_ratio", self.thinning_ratio, "must keep d_0 > 0 (eq. 4)")
+        if self.tension_floor != -math.inf:
+            require_finite("cable.tension_floor", self.tension_floor)
+
+    # zero-tension quantities, Wang (1971) eq. 1-7 (numeric twins of the symbolic ones in model/section.py)
+    @property
+    def spring_constant(self) -> float:
+        """k = (AE)_r / l_r (Wang 1971, below eq. 1)."""
+        return self.ae / self.length
+
+    @property
+    def length_zero(self) -> float:
+        """l_0 = l_r - T_r / k (Wang 1971 eq. 1)."""
+        return self.length - self.tension_ref / self.spring_constant
+
+    @property
+    def total_mass(self) -> float:
+        """M_c = m_r l_r (Wang 1971 eq. 5); zero when CBMAS < 0."""
+        return self.mass_per_length * self.length if self.cable_mass_switch >= 0 else 0.0
+
+    @property
+    def total_weight(self) -> float:
+        """W_c, the cable weight in water (Wang 1971 eq. 12)."""
+        return self.weight_per_length * self.length
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Body:
+    """A rigid body at the lower end of a cable section (no rotation; Wang 1971 eq. 16, 32-35)."""
+
+    weight: float = spec("force", "weight in water W_b (negative: buoyant)")
+    mass_x: float = spec("mass", "virtual mass (mass plus added mass) for motion in x, M_bvx")
+    mass_y: float = spec("mass", "virtual mass (mass plus added mass) for motion in y, M_bvy")
+    drag_area_normal: float = spec("area", "CDABN: (C_D A_b)_n, or C_D A_b of a sphere (eq. 32-33)", 0.0)
+    drag_area_tangential: float = spec("area", "CDABT: (C_D A_b)_t; equal to CDABN for a sphere (eq. 33b)", 0.0)
+    axis_angle_deg: float = spec("angle_deg", "PHIBD: angle phi_b of the body's tangential axis with the vertical in degrees; |PHIBD| > 180 selects sphere drag (eq. 32)", 999.0)
+
+    def __post_init__(self):
+        _check_all_finite(self, "body")
+        require_positive("body.mass_x", self.mass_x, "kg")
+        require_positive("body.mass_y", self.mass_y, "kg")
+        require_nonnegative("body.drag_area_normal", self.drag_area_normal, "m^2")
+        require_nonnegative("body.drag_area_tangential", self.drag_area_tangential, "m^2")
+        if self.is_sphere and not math.isclose(self.drag_area_normal, self.drag_area_tangential, rel_tol=1e-12, abs_tol=0.0):
+            raise ParameterError("body.drag_area_tangential", self.drag_area_tangential,
+                                 f"must equal body.drag_area_normal = {self.drag_area_normal} for sphere drag "
+                                 "(|axis_angle_deg| > 180, the report's PHIBD rule)")
+
+    @property
+    def is_sphere(self) -> bool:
+        """The report's PHIBD rule: |PHIBD| > 180 means sphere drag, eq. 32."""
+        return abs(self.axis_angle_deg) > 180.0
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Section:
+    """A cable section and the body at its lower end."""
+
+    cable: Cable
+    body: Body
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Wave:
+    """A deep-water surface wave component (Wang 1971 eq. 26)."""
+
+    amplitude: float = spec("length", "wave amplitude a")
+    length: float = spec("length", "wave length lambda; n = 2 pi / lambda, sigma = sqrt(g n)")
+    phase: float = spec("angle", "phase added to n x - sigma t", 0.0)
+
+    def __post_init__(self):
+        require_nonnegative("waves.amplitude", self.amplitude, "m")
+        require_positive("waves.length", self.length, "m")
+        require_finite("waves.phase", self.phase)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Environment:
+    """Fluid, gravity, current profile (the report's CUR) and waves."""
+
+    density: float = spec("density", "fluid density rho", 1025.0)
+    gravity: float = spec("acceleration", "gravity g", 9.80665)
+    current_depths: tuple = spec("length", "depths y (down) of the current-profile points, strictly increasing", (0.0,))
+    current_speeds: tuple = spec("velocity", "actual current speed in +x at each depth; linearly interpolated, constant beyond the ends", (0.0,))
+    system_speed: float = spec("velocity", "steady speed of the cable system in +x (ship speed); subtracted from the current: c(y) = current(y) - speed (eq. 27)", 0.0)
+    top_depth: float = spec("length", "mean depth of the top of the cable below the still surface", 0.0)
+    waves: tuple = spec("none", "deep-water wave components", ())
+
+    def __post_init__(self):
+        require_positive("environment.density", self.density, "kg/m^3")
+        require_positive("environment.gravity", self.gravity, "m/s^2")
+        require_finite("environment.system_speed", self.system_speed)
+        require_finite("environment.top_depth", self.top_depth)
+        d, s = tuple(self.current_depths), tuple(self.current_speeds)
+        if len(d) == 0 or len(d) != len(s):
+            raise ParameterError("environment.current_speeds", s,
+                                 f"must have one speed per depth ({len(d)} depths given, at least one)")
+        for i, (di, si) in enumerate(zip(d, s)):
+            require_finite(f"environment.current_depths[{i}]", di)
+            require_finite(f"environment.current_speeds[{i}]", si)
+        for i in range(1, len(d)):
+            if not d[i] > d[i - 1]:
+                raise ParameterError("environment.current_depths", d,
+                                     f"must be strictly increasing (entry {i} = {d[i]} <= {d[i - 1]})")
+        object.__setattr__(self, "current_depths", tuple(float(v) for v in d))
+        object.__setattr__(self, "current_speeds", tuple(float(v) for v in s))
+        object.__setattr__(self, "waves", tuple(self.waves))
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Sinusoid:
+    """One term amplitude * sin(frequency * t + phase) of the top motion."""
+
+    amplitude: float = spec("length", "amplitude")
+    frequency: float = spec("frequency", "circular frequency omega")
+    phase: float = spec("angle", "phase", 0.0)
+
+    def __post_init__(self):
+        require_finite("top_motion.amplitude", self.amplitude)
+        require_positive("top_motion.frequency", self.frequency, "rad/s")
+        require_finite("top_motion.phase", self.phase)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class TimeSeries:
+    """Sampled, non-periodic top motion; interpolated by a cubic spline through the samples."""
+
+    times: tuple = spec("time", "sample times, strictly increasing, at least 4")
+    x: tuple = spec("length", "x_s at the sample times")
+    y: tuple = spec("length", "y_s at the sample times")
+
+    def __post_init__(self):
+        t = tuple(float(v) for v in self.times)
+        if len(t) < 4:
+            raise ParameterError("top_motion.series.times", self.times, "needs at least 4 samples")
+        for name in ("x", "y"):
+            v = getattr(self, name)
+            if len(v) != len(t):
+                raise ParameterError(f"top_motion.series.{name}", f"{len(v)} values",
+                                     f"must have one value per sample time ({len(t)})")
+            for i, vi in enumerate(v):
+                require_finite(f"top_motion.series.{name}[{i}]", vi)
+            object.__setattr__(self, name, tuple(float(a) for a in v))
+        for i in range(1, len(t)):
+            if not t[i] > t[i - 1]:
+                raise ParameterError("top_motion.series.times", f"entry {i} = {t[i]}", "must be strictly increasing")
+        object.__setattr__(self, "times", t)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class TopMotion:
+    """Prescribed motion of the top of the cable (ship motion): sinusoids and/or a time series."""
+
+    x: tuple = spec("none", "sinusoids in x (horizontal, + to the right)", ())
+    y: tuple = spec("none", "sinusoids in y (vertical, + downwards)", ())
+    series: TimeSeries | None = spec("none", "sampled motion added to the sinusoids", None)
+
+    def __post_init__(self):
+        object.__setattr__(self, "x", tuple(self.x))
+        object.__setattr__(self, "y", tuple(self.y))
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Initial:
+    """Initial state; ``None`` entries start from the steady state of the scene."""
+
+    phi: float | None = spec("angle", "initial angle phi of every section (rad)", None)
+    u: float | None = spec("length", "initial stretch u of every section (m)", None)
+    phi_rate: float = spec("frequency", "initial d phi/dt", 0.0)
+    u_rate: float = spec("velocity", "initial du/dt", 0.0)
+
+
+INTEGRATORS = ("cvodes", "cvodes-adams", "idas", "rk", "collocation")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Numerics:
+    """How to integrate."""
+
+    drag_segments: int = spec("none", "number N of cable segments for drag (eq. 30-45)", 10)
+    integrator: str = spec("none", f"one of {INTEGRATORS}", "cvodes")
+    rtol: float = spec("none", "relative tolerance (the report used 1e-3)", 1e-7)
+    atol: float = spec("none", "absolute tolerance (SI state units)", 1e-9)
+    duration: float = spec("time", "simulated time", 60.0)
+    output_step: float = spec("time", "spacing of output times", 0.05)
+    steps_per_output: int = spec("none", "fixed-step methods (rk, collocation): steps per output interval", 10)
+
+    def __post_init__(self):
+        if not isinstance(self.drag_segments, int) or isinstance(self.drag_segments, bool) or not 1 <= self.drag_segments <= 1000:
+            raise ParameterError("numerics.drag_segments", self.drag_segments, "must be an integer in [1, 1000]")
+        if self.integrator not in INTEGRATORS:
+            raise ParameterError("numerics.integrator", self.integrator, f"must be one of {INTEGRATORS}")
+        require_range("numerics.rtol", self.rtol, 1e-14, 1e-1)
+        require_range("numerics.atol", self.atol, 1e-16, 1.0)
+        require_positive("numerics.duration", self.duration, "s")
+        require_positive("numerics.output_step", self.output_step, "s")
+        if self.output_step > self.duration:
+            raise ParameterError("numerics.output_step", self.output_step, f"must be <= numerics.duration = {self.duration}")
+        if not isinstance(self.steps_per_output, int) or not 1 <= self.steps_per_output <= 100000:
+            raise ParameterError("numerics.steps_per_output", self.steps_per_output, "must be an integer in [1, 100000]")

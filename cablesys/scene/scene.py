@@ -1,0 +1,109 @@
+"""The scene: everything that defines one cable-system problem, immutable and in SI."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from ..errors import ParameterError
+from .components import Body, Cable, Environment, Initial, Numerics, Section, TopMotion
+
+ANGLE_MODES = ("per_section", "shared")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Scene:
+    """A chain of cable sections hanging from a moving top (Wang 1971, Fig. 1 and p. 33).
+
+    One section is Wang's 2-DOF model (angle phi, stretch u). Several sections are the
+    report's extensions: ``angles="shared"`` is the dual-isolation model (one swing angle,
+    one stretch per section); ``angles="per_section"`` the general segmented cable.
+    """
+
+    name: str = "scene"
+    sections: tuple
+    angles: str = "per_section"
+    environment: Environment = dataclasses.field(default_factory=Environment)
+    top_motion: TopMotion = dataclasses.field(default_factory=TopMotion)
+    initial: Initial = dataclasses.field(default_factory=Initial)
+    numerics: Numerics = dataclasses.field(default_factory=Numerics)
+
+    def __post_init__(self):
+        secs = tuple(self.sections)
+        if not secs:
+            raise ParameterError("sections", secs, "needs at least one cable section")
+        for i, s in enumerate(secs):
+            if not isinstance(s, Section):
+                raise ParameterError(f"sections[{i}]", type(s).__name__, "must be a Section(cable=..., body=...)")
+        object.__setattr__(self, "sections", secs)
+        if self.angles not in ANGLE_MODES:
+            raise ParameterError("angles", self.angles, f"must be one of {ANGLE_MODES}")
+        self._check_hanging_tension()
+
+    def _check_hanging_tension(self) -> None:
+        """Each section must be taut when hanging still: k u = weights below + W_c/2 > TENS (eq. 49b, 54)."""
+        below = 0.0
+        for i in reversed(range(len(self.sections))):
+            c, b = self.sections[i].cable, self.sections[i].body
+            tension = below + b.weight + 0.5 * c.total_weight
+            if tension <= c.tension_floor:
+                field = "body.weight" if len(self.sections) == 1 else f"sections[{i}].body.weight"
+                raise ParameterError(
+                    field, b.weight,
+                    f"the hanging cable force W_b + W_c/2 + (weight below) = {tension:.6g} N must exceed "
+                    f"tension_floor = {c.tension_floor:.6g} N; a body lighter than water with TENS = 0 has no taut "
+                    "equilibrium (make the body heavier or lower cable.tension_floor)")
+            below += b.weight + c.total_weight
+
+    # single-section shortcuts
+    @property
+    def cable(self) -> Cable:
+        """The cable of a one-section scene."""
+        self._require_single("cable")
+        return self.sections[0].cable
+
+    @property
+    def body(self) -> Body:
+        """The (lower) body of a one-section scene."""
+        self._require_single("body")
+        return self.sections[0].body
+
+    def _require_single(self, what: str) -> None:
+        if len(self.sections) != 1:
+            raise ParameterError("sections", f"{len(self.sections)} sections",
+                                 f"scene.{what} is defined for one section only; use scene.sections[i].{what}")
+
+    @property
+    def n_sections(self) -> int:
+        return len(self.sections)
+
+    @property
+    def output_times(self) -> np.ndarray:
+        """0, dt, 2 dt, ... up to the duration (inclusive when it divides evenly)."""
+        n = self.numerics
+        k = int(np.floor(n.duration / n.output_step + 1e-9))
+        return np.arange(k + 1) * n.output_step
+
+    def replace(self, **changes) -> "Scene":
+        """A copy with top-level fields replaced (validated again)."""
+        return dataclasses.replace(self, **changes)
+
+    def replace_section(self, index: int = 0, *, cable: dict | None = None, body: dict | None = None) -> "Scene":
+        """A copy with fields of one section's cable and/or body replaced, e.g. ``cable={"ae": 1e4}``."""
+        secs = list(self.sections)
+        s = secs[index]
+        secs[index] = Section(cable=dataclasses.replace(s.cable, **(cable or {})),
+                              body=dataclasses.replace(s.body, **(body or {})))
+        return dataclasses.replace(self, sections=tuple(secs))
+
+    def with_numerics(self, **changes) -> "Scene":
+        return dataclasses.replace(self, numerics=dataclasses.replace(self.numerics, **changes))
+
+    def with_environment(self, **changes) -> "Scene":
+        return dataclasses.replace(self, environment=dataclasses.replace(self.environment, **changes))
+
+
+def single_section_scene(*, cable: Cable, body: Body, **kw) -> Scene:
+    """Convenience: Wang's 2-DOF scene from one cable and one body."""
+    return Scene(sections=(Section(cable=cable, body=body),), **kw)

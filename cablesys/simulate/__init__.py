@@ -1,0 +1,6 @@
+"""Time-domain simulation: an integrator registry behind one call."""
+
+from .integrators import METHODS, IntegratorSettings, make_integrator
+from .run import Simulator, initial_state, simulate
+
+__all__ = ["METHODS", "IntegratorSettings", "Simulator", "initial_state", "make_integrator", "simulate"]

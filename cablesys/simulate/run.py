@@ -1,0 +1,254 @@
+"""Time-domain runs: ``simulate(scene)`` and the reusable :class:`Simulator`.
+
+The whole integration between events runs inside one compiled CasADi integrator call
+(no Python per step). Slack switches are located as described in :mod:`.events`.
+"""
+
+from __future__ import annotations
+
+import logging
+import re
+import time as _time
+
+import casadi as ca
+import numpy as np
+
+from ..errors import ParameterError
+from ..linear.steady import steady_state
+from ..model import CableModel, build_model
+from ..results import SlackEvent, SnapLoad, TimeResult
+from ..scene import Scene
+from . import events as ev
+from .integrators import ADAPTIVE, IntegratorSettings, make_integrator
+
+log = logging.getLogger(__name__)
+
+REMEDIES = {
+    "TOO_MUCH_WORK": "the step size collapsed: use the stiff default 'cvodes' (BDF), loosen rtol, or check for a "
+                     "cable that goes slack and taut violently",
+    "CONV_FAIL": "Newton iterations failed: tighten tolerances, shorten numerics.output_step, or try 'idas'",
+    "ERR_FAIL": "error test failed repeatedly: the motion may be unbounded or discontinuous; check the inputs",
+    "nonfinite": "the state became infinite: a fixed-step method above its stability limit; raise "
+                 "numerics.steps_per_output or use 'cvodes'",
+    "chatter": "the cable switched taut/slack endlessly at one instant (Zeno): set a tension_floor below 0 "
+               "or add internal damping",
+}
+
+
+def _reason(err: Exception) -> tuple[str, float | None]:
+    text = str(err)
+    flag = re.search(r'returned "([A-Z_]+)"', text)
+    when = re.search(r"[Aa]t t ?= ?([-+0-9.eE]+)", text)
+    return (flag.group(1) if flag else text.strip().splitlines()[-1][:200],
+            float(when.group(1)) if when else None)
+
+
+class Simulator:
+    """Integrators and helper functions for one model, output grid and method; reusable for sweeps."""
+
+    def __init__(self, model: CableModel, times, settings: IntegratorSettings | None = None):
+        self.model = model
+        self.times = np.asarray(times, dtype=float)
+        if self.times.ndim != 1 or self.times.size < 2 or np.any(np.diff(self.times) <= 0):
+            raise ParameterError("times", f"{self.times.size} values", "must be >= 2 strictly increasing output times")
+        self.settings = settings or IntegratorSettings()
+        t_build = _time.perf_counter()
+        self._full = make_integrator(model, self.settings, self.times - self.times[0], "full")
+        self._step = make_integrator(model, self.settings, [0.0, 1.0], "step")
+        x, t = ca.SX.sym("x", 2 * model.nq), ca.SX.sym("t")
+        p = ca.SX.sym("p", len(model.layout))
+        g = model.cable_force(x, p)
+        xdot = model.ode(x, t, p)
+        self._gap_and_rate = ca.Function("gap_rate", [x, t, p], [g, ca.mtimes(ca.jacobian(g, x), xdot)])
+        self._jac = ca.Function("ode_jacobian", [x, t, p], [ca.jacobian(xdot, x)])
+        n = self.times.size
+        self._gap_rate_map = self._gap_and_rate.map(n)
+        self._outputs_map = model.outputs.map(n)
+        self._top_map = model.top.map(n)
+        self.build_s = _time.perf_counter() - t_build
+        self._stats = {}
+
+    # -- helpers -------------------------------------------------------------------------
+    def _count(self, f: ca.Function) -> None:
+        st = f.stats()
+        for key in ("nsteps", "nfevals", "nresevals", "njevals"):
+            if key in st:
+                self._stats[key] = self._stats.get(key, 0) + int(st[key])
+
+    def _advance(self, x, t_a, h, p):
+        xf = np.array(self._step(x0=x, p=np.concatenate([p, [t_a, h]]))["xf"]).ravel()
+        self._count(self._step)
+        if not np.all(np.isfinite(xf)):
+            raise FloatingPointError("nonfinite")
+        return xf
+
+    def _with_mode(self, p, mode):
+        p = p.copy()
+        p[list(self.model.slack_index)] = mode
+        return p
+
+    # -- the run ------------------------------------------------------------------------
+    def run(self, p, x0) -> tuple:
+        """Integrate from ``x0`` at ``times[0]``; returns (X, modes, events, snaps, success, message, stats)."""
+        p = np.asarray(p, dtype=float)
+        x0 = np.asarray(x0, dtype=float)
+        self._stats = {}
+        wall = _time.perf_counter()
+        nsec, times = self.model.n_sections, self.times
+        g0, _ = self._gap_and_rate(x0, times[0], self._with_mode(p, np.zeros(nsec)))
+        mode = (np.array(g0).ravel() < 0).astype(float)
+        X, modes = [x0], [mode.copy()]
+        events, snaps = [], []
+        success, message = True, ""
+        k = 0
+        # 1) one compiled call over all output times
+        try:
+            pm = self._with_mode(p, mode)
+            Xs = np.array(self._full(x0=x0, p=np.concatenate([pm, [times[0], 1.0]]))["xf"])
+            self._count(self._full)
+            cols = np.column_stack([x0, Xs])
+            finite = np.all(np.isfinite(cols), axis=0)
+            G, D = (np.array(a) for a in self._gap_rate_map(cols[:, :], times, np.tile(pm[:, None], (1, times.size))))
+            j = 1
+            while j < times.size and finite[j] and not self._violation(G[:, j - 1], G[:, j], D[:, j - 1], D[:, j],
+                                                                      times[j] - times[j - 1], mode):
+                X.append(cols[:, j]); modes.append(mode.copy()); j += 1
+            k = j - 1
+        except RuntimeError as err:
+            log.info("one-shot integration failed (%s); stepping interval by interval", _reason(err)[0])
+        # 2) interval by interval after an event (or a failure), locating switches
+        x, t_a = X[-1], times[k]
+        switches_here = 0
+        while k < times.size - 1:
+            t_b = times[k + 1]
+            pm = self._with_mode(p, mode)
+            try:
+                xb = self._advance(x, t_a, t_b - t_a, pm)
+                hit = self._first_event(x, t_a, xb, t_b, pm, mode)
+            except (RuntimeError, FloatingPointError) as err:
+                flag, when = _reason(err)
+                key = next((kk for kk in REMEDIES if kk in flag), None)
+                success = False
+                message = (f"{self.settings.method} failed between t = {t_a:.6g} s and {t_b:.6g} s"
+                           + (f" (at t = {when + t_a:.6g} s)" if when is not None and self.settings.method in ADAPTIVE else "")
+                           + f": {flag}. Remedy: {REMEDIES.get(key, 'check the scene and tolerances')}. "
+                           f"Results up to t = {times[k]:.6g} s are kept.")
+                break
+            if hit is None:
+                x, t_a, k = xb, t_b, k + 1
+                X.append(x); modes.append(mode.copy())
+                switches_here = 0
+                continue
+            t_star, i_sec = hit
+            x = self._advance(x, t_a, t_star - t_a, pm) if t_star > t_a else x
+            kind = "taut" if mode[i_sec] == 1.0 else "slack"
+            mode[i_sec] = 1.0 - mode[i_sec]
+            _, rate = self._gap_and_rate(x, t_star, self._with_mode(p, mode))
+            events.append(SlackEvent(time=float(t_star), section=i_sec, kind=kind, rate=float(np.array(rate)[i_sec, 0])))
+            if kind == "taut":
+                snap = self._snap(x, t_star, self._with_mode(p, mode), i_sec, times[-1])
+                if snap is not None:
+                    snaps.append(snap)
+            t_a = t_star
+            switches_here = switches_here + 1 if t_star - (events[-2].time if len(events) > 1 else -np.inf) < 1e-12 else 0
+            if switches_here > 4:
+                success, message = False, f"taut/slack chattering at t = {t_star:.9g} s: {REMEDIES['chatter']}"
+                break
+        stats = dict(self._stats, method=self.settings.method, wall_s=_time.perf_counter() - wall,
+                     build_s=self.build_s, n_events=len(events))
+        return np.array(X).T, np.array(modes).T, tuple(events), tuple(snaps), success, message, stats
+
+    def _violation(self, ga, gb, da, db, h, mode) -> bool:
+        return any(ev.first_violation(ga[i], gb[i], da[i], db[i], h, mode[i] == 1.0, self._gtol(ga[i], gb[i])) is not None
+                   for i in range(len(mode)))
+
+    @staticmethod
+    def _gtol(ga, gb) -> float:
+        return 1e-12 * max(1.0, abs(ga), abs(gb))
+
+    def _first_event(self, xa, t_a, xb, t_b, pm, mode):
+        """Earliest located switch in (t_a, t_b] as (time, section), or None."""
+        ga, da = (np.array(v).ravel() for v in self._gap_and_rate(xa, t_a, pm))
+        gb, db = (np.array(v).ravel() for v in self._gap_and_rate(xb, t_b, pm))
+        h, best = t_b - t_a, None
+        for i in range(len(mode)):
+            s = ev.first_violation(ga[i], gb[i], da[i], db[i], h, mode[i] == 1.0, self._gtol(ga[i], gb[i]))
+            if s is None:
+                continue
+            g_of_t = lambda t, i=i: float(np.array(self._gap_and_rate(
+                self._advance(xa, t_a, t - t_a, pm) if t > t_a else xa, t, pm)[0])[i, 0])
+            t_hi = t_a + s * h
+            t_star = ev.locate_crossing(g_of_t, t_a, t_hi, 1e-13 * max(1.0, abs(t_hi)))
+            if t_star is None and s < 1.0:   # the Hermite dip was not confirmed at t_hi: try the whole interval
+                t_star = ev.locate_crossing(g_of_t, t_a, t_b, 1e-13 * max(1.0, abs(t_b)))
+            if t_star is not None and (best is None or t_star < best[0]):
+                best = (t_star, i)
+        return best
+
+    def _snap(self, x, t_star, pm, i_sec, t_end):
+        """First tension maximum after section ``i_sec`` went taut at ``t_star``."""
+        J = np.array(self._jac(x, t_star, pm))
+        iu = self.model.q_labels.index("u" if self.model.n_sections == 1 else f"u_{i_sec + 1}")
+        w2 = max(-J[self.model.nq + iu, iu], 1e-12)
+        dt = np.pi / np.sqrt(w2) / 16.0
+        rate = lambda t: float(np.array(self._gap_and_rate(self._advance(x, t_star, t - t_star, pm), t, pm)[1])[i_sec, 0])
+        try:
+            t_pk = ev.locate_first_maximum(rate, t_star, dt, min(t_end, t_star + 64 * dt), 1e-13 * max(1.0, t_star))
+        except (RuntimeError, FloatingPointError):
+            return None
+        if t_pk is None:
+            return None
+        g = float(np.array(self._gap_and_rate(self._advance(x, t_star, t_pk - t_star, pm), t_pk, pm)[0])[i_sec, 0])
+        tens = pm[self.model.layout.index(("" if self.model.n_sections == 1 else f"sections[{i_sec}].") + "cable.tension_floor")]
+        return SnapLoad(time=float(t_pk), section=i_sec, tension=g + float(tens))
+
+    def outputs(self, X, modes, p) -> dict:
+        """Labelled outputs and top motion at the output times reached."""
+        n = X.shape[1]
+        P = np.tile(np.asarray(p, float)[:, None], (1, n))
+        P[list(self.model.slack_index), :] = modes
+        pad = self.times.size - n
+        Xp = np.pad(X, ((0, 0), (0, pad)), mode="edge")
+        Pp = np.pad(P, ((0, 0), (0, pad)), mode="edge")
+        E = np.array(self._top_map(self.times, Pp))
+        Y = np.array(self._outputs_map(Xp, E, Pp))[:, :n]
+        data = {lbl: Y[i] for i, lbl in enumerate(self.model.output_labels)}
+        data["x_s"], data["y_s"] = E[1, :n], E[2, :n]
+        return data
+
+
+def initial_state(scene: Scene, model: CableModel, p) -> np.ndarray:
+    """x0 from ``scene.initial``; unset angle/stretch come from the steady state."""
+    ini = scene.initial
+    q = steady_state(model, p).q if (ini.phi is None or ini.u is None) else None
+    q0 = np.array([(ini.phi if ini.phi is not None else q[i]) if lbl.startswith("phi")
+                   else (ini.u if ini.u is not None else q[i]) for i, lbl in enumerate(model.q_labels)])
+    qd0 = np.array([ini.phi_rate if lbl.startswith("phi") else ini.u_rate for lbl in model.q_labels])
+    return np.concatenate([q0, qd0])
+
+
+def simulate(scene: Scene, *, model: CableModel | None = None, method: str | None = None,
+             rtol: float | None = None, atol: float | None = None, times=None, x0=None,
+             simulator: Simulator | None = None) -> TimeResult:
+    """Run ``scene`` in the time domain; returns a :class:`~cablesys.results.TimeResult`.
+
+    ``method``/``rtol``/``atol`` override ``scene.numerics``; ``times`` the output times.
+    An integrator failure returns ``success=False`` with the results computed so far.
+    """
+    t_build = _time.perf_counter()
+    model = model or (simulator.model if simulator else build_model(scene))
+    num = scene.numerics
+    if simulator is None:
+        settings = IntegratorSettings(method=method or num.integrator, rtol=rtol or num.rtol,
+                                      atol=atol or num.atol, steps_per_output=num.steps_per_output)
+        simulator = Simulator(model, scene.output_times if times is None else times, settings)
+    build_s = _time.perf_counter() - t_build
+    p = model.parameters(scene)
+    x0 = initial_state(scene, model, p) if x0 is None else np.asarray(x0, float)
+    X, modes, events, snaps, ok, msg, stats = simulator.run(p, x0)
+    stats["build_s"] = build_s
+    if not ok:
+        log.warning(msg)
+    data = simulator.outputs(X, modes, p)
+    return TimeResult(time=simulator.times[: X.shape[1]], data=data, success=ok, message=msg, stats=stats,
+                      events=events, snaps=snaps, scene_name=scene.name)
