@@ -101,12 +101,12 @@ def exact_solution(coef: Coefficients, xi, omega, *, tol: float = 1e-9, derivati
     F0 = np.broadcast_to(F0, xi_b.shape).copy()
     err0 = np.broadcast_to(err0, xi_b.shape)
     x0 = coef.x_arg(np.zeros_like(xi_b), om_b)
-    F, dF, err = hyp0f1_complex(q, x)
+    F, dF, err = (np.array(a) for a in hyp0f1_complex(q, x))   # 0-d arrays stay assignable
     bad = (err > tol) | (err0 > tol) | ~np.isfinite(F) | ~np.isfinite(F0)
     if np.any(bad):
         n = int(bad.sum())
         log.info("0F1 series: %d of %d points lose > %g, recomputed with mpmath", n, bad.size, tol)
-        for idx in zip(*np.nonzero(bad)):
+        for idx in map(tuple, np.argwhere(bad)):
             F[idx], dF[idx] = _mp_hyp0f1(q[idx], x[idx])
             F0[idx], _ = _mp_hyp0f1(q[idx], x0[idx])
     v = F / F0

@@ -18,7 +18,7 @@ from .bessel import exact_solution, mpmath_solution, real_order_solution
 from .equation import Coefficients
 
 __all__ = ["transfer_function", "phase_lag", "c_star", "phase_velocity",
-           "water_pulley_c_star", "TransferGrid", "transfer_grid", "METHODS"]
+           "water_pulley_c_star", "TransferGrid", "transfer_grid", "METHODS", "fine_xi"]
 
 
 def _bvp(coef, xi, omega):
@@ -61,7 +61,8 @@ def transfer_function(coef: Coefficients, xi, omega, method: str = "exact"):
     return _method(method)(coef, _check_xi(xi), _check_omega(omega))
 
 
-def _fine_xi(xi_max: float, omega_max: float, n_min: int) -> np.ndarray:
+def fine_xi(xi_max: float, omega_max: float, n_min: int = 65) -> np.ndarray:
+    """xi grid from the tow point fine enough to unwrap the phase lag (steps << pi)."""
     # |psi'| <~ omega (c >~ 1): 8 points per radian keeps unwrap steps far below pi
     n = max(n_min, int(np.ceil(8.0 * omega_max * xi_max)) + 1)
     return np.linspace(0.0, xi_max, n)
@@ -74,7 +75,7 @@ def phase_lag(coef: Coefficients, xi, omega, method: str = "exact", n_min: int =
     """
     xi = np.atleast_1d(_check_xi(xi))
     omega = np.atleast_1d(_check_omega(omega))
-    fine = np.unique(np.concatenate([_fine_xi(float(xi.max()), float(omega.max()), n_min), xi]))
+    fine = np.unique(np.concatenate([fine_xi(float(xi.max()), float(omega.max()), n_min), xi]))
     H = _method(method)(coef, fine[:, None], omega[None, :])
     psi = -np.unwrap(np.angle(H), axis=0)
     idx = np.searchsorted(fine, xi)
