@@ -73,7 +73,11 @@ def symmetric_roots(lambda2: float, n: int) -> np.ndarray:
     lambda^2 = 0 gives the taut string x = (2k - 1) pi / 2 (eq. 9);
     lambda^2 = inf the inextensible cable tan x = x (eq. 11).
     """
-    lam2 = require_nonnegative("lambda2", lambda2)
+    lam2 = float(lambda2)
+    if not math.isinf(lam2):
+        lam2 = require_nonnegative("lambda2", lambda2)
+    elif lam2 < 0:
+        raise ParameterError("lambda2", lambda2, "must be >= 0 (inf for an inextensible cable)")
     if int(n) != n or n < 1:
         raise ParameterError("n", n, "must be an integer >= 1")
     if lam2 == 0.0:

@@ -1,0 +1,69 @@
+"""The `cablesys slack` sub-command, the TOML format and the benchmark script."""
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from cablesys.errors import ParameterError
+from cablesys.slack import cli
+from cablesys.slack.scene import EXAMPLE_TOML, load_scene
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def run(argv):
+    p = argparse.ArgumentParser()
+    sub = p.add_subparsers(dest="command")
+    cli.register(sub)
+    a = p.parse_args(argv)
+    return a.func(a)
+
+
+def test_example_scene_runs_and_writes_outputs(tmp_path, capsys, monkeypatch):
+    monkeypatch.setenv("MPLBACKEND", "Agg")
+    f = tmp_path / "s.toml"
+    f.write_text(EXAMPLE_TOML)
+    scene, n = load_scene(f)
+    assert len(scene.masses) == 2 and n == 12
+    assert run(["slack", str(f), "--out", str(tmp_path / "o")]) == 0
+    doc = json.loads((tmp_path / "o" / "slack_result.json").read_text())
+    types = [m["mode_type"] for m in doc["modes"]]
+    assert types[:9] == list("OAOSOAOSO")
+    assert doc["equilibrium"]["horizontal_tension_N"] > 0
+    assert (tmp_path / "o" / "equilibrium.png").exists() and (tmp_path / "o" / "mode_shapes.png").exists()
+
+
+@pytest.mark.parametrize("edit, field", [
+    (("mass = 4.5", "mass = -4.5"), "mass.mass"),
+    (("position = 15.867", "position = 40.0"), "masses[1].position"),
+    (("span = 22.9 ", "span = 30.0 "), "scene.chord"),
+    (("length = 23.80", "length = 0"), "cable.length"),
+    (("medium = \"air\"", "colour = \"red\""), "scene.colour"),
+])
+def test_bad_toml_names_the_field(tmp_path, edit, field):
+    f = tmp_path / "bad.toml"
+    assert edit[0] in EXAMPLE_TOML
+    f.write_text(EXAMPLE_TOML.replace(edit[0], edit[1], 1))
+    with pytest.raises(ParameterError) as err:
+        load_scene(f)
+    assert err.value.field == field
+
+
+def test_example_flag(capsys):
+    assert run(["slack", "--example"]) == 0
+    assert "[cable]" in capsys.readouterr().out
+
+
+def test_bench_script_small(tmp_path):
+    env = dict(os.environ, MPLBACKEND="Agg")
+    subprocess.run([sys.executable, str(ROOT / "studies" / "bench_slack.py"), "--out", str(tmp_path),
+                    "--elements", "300", "--modes", "20", "--repeat", "1"], check=True, env=env, timeout=120)
+    doc = json.loads((tmp_path / "bench_slack.json").read_text())
+    assert {"static_s", "modes_s", "total_s"} <= set(doc)
+    assert doc["static_nlp_vs_shooting_max_dz_m"] < 1e-6
+    assert max(abs(x) for x in doc["rel_diff_first10_vs_400_dense"]) < 1e-3
