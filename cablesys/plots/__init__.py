@@ -1,0 +1,1 @@
+"""Figures from results only; matplotlib is imported lazily inside each function."""
