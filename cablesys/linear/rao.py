@@ -1,0 +1,80 @@
+"""Response amplitude operators: complex output amplitudes per unit input, on labelled arrays.
+
+As in Capytaine's ``post_pro/rao.py``, an RAO is a complex array with dimensions
+(omega, output, input); amplitude and phase are two small pure functions of it. The
+phase convention: output = Re(RAO * A e^{i omega t}) for input Re(A e^{i omega t}).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from ..results import unit_of
+from .linearize import LinearModel
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class RAO:
+    """Complex RAO ``values[k, j, i]``: output j per unit input i at ``omega[k]``."""
+
+    omega: np.ndarray
+    output_labels: tuple
+    input_labels: tuple
+    values: np.ndarray
+    kind: str = "exact"
+    info: dict = dataclasses.field(default_factory=dict)
+
+    def __call__(self, output: str, input: str) -> np.ndarray:
+        """The complex RAO curve of one output for one input."""
+        return self.values[:, self.output_labels.index(output), self.input_labels.index(input)]
+
+    def amplitude(self, output: str, input: str) -> np.ndarray:
+        return np.abs(self(output, input))
+
+    def phase(self, output: str, input: str) -> np.ndarray:
+        """Phase in rad, unwrapped along omega."""
+        return np.unwrap(np.angle(self(output, input)))
+
+    def peak(self, output: str, input: str) -> tuple[float, float]:
+        """(omega, amplitude) of the largest amplitude on the grid."""
+        a = self.amplitude(output, input)
+        k = int(np.argmax(a))
+        return float(self.omega[k]), float(a[k])
+
+    def to_xarray(self):
+        """``xarray.DataArray`` (complex) with dims omega, output, input."""
+        import xarray as xr
+        return xr.DataArray(self.values, dims=("omega", "output", "input"),
+                            coords={"omega": ("omega", self.omega, {"units": "rad/s"}),
+                                    "output": list(self.output_labels), "input": list(self.input_labels),
+                                    "output_units": ("output", [unit_of(o) for o in self.output_labels])},
+                            name="rao", attrs={"kind": self.kind})
+
+    def table(self, input: str) -> tuple[list[str], np.ndarray]:
+        """(header, rows) for CSV: omega, then amplitude and phase (deg) of every output."""
+        head = ["omega [rad/s]"]
+        cols = [self.omega]
+        for o in self.output_labels:
+            u = unit_of(o) or "-"
+            head += [f"{o}_amp [{u}/m]", f"{o}_phase [deg]"]
+            cols += [self.amplitude(o, input), np.degrees(self.phase(o, input))]
+        return head, np.column_stack(cols)
+
+
+def amplitude(rao_values: np.ndarray) -> np.ndarray:
+    """|RAO|."""
+    return np.abs(rao_values)
+
+
+def phase(rao_values: np.ndarray) -> np.ndarray:
+    """arg RAO in rad."""
+    return np.angle(rao_values)
+
+
+def rao(lin: LinearModel, omega) -> RAO:
+    """RAOs of every output of ``lin`` for every input, one batched complex solve over ``omega``."""
+    omega = np.atleast_1d(np.asarray(omega, float))
+    _, Y = lin.transfer(omega)
+    return RAO(omega=omega, output_labels=lin.output_labels, input_labels=lin.input_labels, values=Y, kind=lin.kind)
