@@ -150,7 +150,7 @@ class HarmonicResponse:
 
 
 def harmonic_response(model: CableModel, p, omega, input_amplitude, *, n_theta: int = 64,
-                      ladder: int = 12) -> HarmonicResponse:
+                      ladder: int = 6) -> HarmonicResponse:
     """Describing-function equivalent linearization at each ``omega`` for the regular input
     Re(Z e^{i omega t}), Z = ``input_amplitude`` = (x_s, y_s, wave amplitudes...) complex.
 

@@ -130,7 +130,7 @@ def periodic_steady_state(model: CableModel, p, omega: float, *, n_harmonics: in
     if guess is None:
         if input_amplitude is None:
             raise SolverError("periodic_steady_state needs input_amplitude (complex x_s, y_s) or a guess")
-        h = harmonic_response(model, p, [omega], input_amplitude)
+        h = harmonic_response(model, p, [omega], input_amplitude, n_theta=32, ladder=4)
         Q = h.q_amplitude[0]
         guess = h.q_mean[0][:, None] + np.real(Q[:, None] * np.exp(1j * omega * times)[None, :])
     rf = _collocation_rootfinder(model, n)
