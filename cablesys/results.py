@@ -52,6 +52,7 @@ class TimeResult:
     events: tuple = ()
     snaps: tuple = ()
     scene_name: str = ""
+    initially_slack: tuple = ()   # sections slack at the first output time
 
     @property
     def labels(self) -> tuple:
@@ -73,7 +74,7 @@ class TimeResult:
 
     def time_slack(self) -> float:
         """Total time any section spent slack, from the located switch times."""
-        total, open_at = 0.0, {}
+        total, open_at = 0.0, {i: float(self.time[0]) for i in self.initially_slack}
         for ev in self.events:
             if ev.kind == "slack":
                 open_at[ev.section] = ev.time

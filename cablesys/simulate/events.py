@@ -2,16 +2,18 @@
 
 We do not rely on CasADi's experimental zero-crossing events (casadi issue 4393: IDAS
 ignores them, CVODES fires in one direction only). Instead the simulator integrates each
-mode (taut or slack, a parameter of the same compiled function) smoothly, checks the
-switching function g = F_bc - TENS at the output times and, between them, a cubic Hermite
-interpolant of g built from g and dg/dt (which catches short excursions between output
-times), and locates each crossing with Brent's method on g(integrate(x_a, t_a -> t)).
+mode (taut or slack, a parameter of the same compiled function) smoothly and checks the
+switching function g = F_bc - TENS at the output times and, between them, on a cubic Hermite
+interpolant built from g and dg/dt (which catches short excursions between output times).
+A suspected crossing is bracketed on a dense grid from one integrator call, then refined by
+a safeguarded Newton iteration whose derivative dg/dt comes from automatic differentiation;
+each iterate integrates only from the nearest dense point. Snap loads (the first tension
+maximum after going taut) are located the same way on dg/dt = 0 with d2g/dt2.
 """
 
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import brentq
 
 HERMITE_SAMPLES = np.linspace(0.0, 1.0, 33)[1:]
 
@@ -31,33 +33,41 @@ def first_violation(ga, gb, da, db, h, slack: bool, tol: float):
     Taut: g must stay >= -tol. Slack: g (the unclamped F_bc - TENS) must stay <= tol.
     """
     sign = -1.0 if slack else 1.0
-    if sign * gb < -tol:
-        end_bad = True
-    else:
-        end_bad = False
     vals = sign * hermite(ga, gb, da, db, h, HERMITE_SAMPLES)
     bad = np.nonzero(vals < -tol)[0]
     if bad.size:
         return float(HERMITE_SAMPLES[bad[0]])
-    return 1.0 if end_bad else None
+    return 1.0 if sign * gb < -tol else None
 
 
-def locate_crossing(g_of_t, t_a: float, t_b: float, xtol: float):
-    """Brent's method on a bracketing interval; returns the crossing time or None."""
-    ga, gb = g_of_t(t_a), g_of_t(t_b)
-    if ga == 0.0:
-        return t_a
-    if np.sign(ga) == np.sign(gb):
-        return None
-    return brentq(g_of_t, t_a, t_b, xtol=xtol, rtol=4 * np.finfo(float).eps, maxiter=200)
+def newton_bracketed(fun, a: float, b: float, fa: float, fb: float, xtol: float, maxiter: int = 60):
+    """Root of ``fun`` in [a, b] (fa, fb of opposite sign); ``fun(t) -> (f, df/dt)``.
 
-
-def locate_first_maximum(rate_of_t, t_start: float, dt: float, t_limit: float, xtol: float):
-    """First time after ``t_start`` where ``rate_of_t`` turns from positive to negative."""
-    t_prev, t = t_start, t_start
-    while t < t_limit:
-        t = min(t + dt, t_limit)
-        if rate_of_t(t) < 0.0:
-            return brentq(rate_of_t, t_prev, t, xtol=xtol, rtol=4 * np.finfo(float).eps, maxiter=200)
-        t_prev = t
-    return None
+    Newton steps from the better end, bisection whenever a step leaves the bracket or
+    does not shrink it fast enough (hand-written because each evaluation is an integrator
+    call that returns the derivative for free; scipy's brentq would need 5-10x more calls).
+    """
+    if fa == 0.0:
+        return a
+    if fb == 0.0:
+        return b
+    t = a if abs(fa) < abs(fb) else b
+    f, df = fun(t)
+    for _ in range(maxiter):
+        step_ok = df != 0.0 and np.isfinite(df)
+        t_new = t - f / df if step_ok else 0.5 * (a + b)
+        if not (a < t_new < b):
+            t_new = 0.5 * (a + b)
+        if abs(t_new - t) < xtol:
+            return t_new
+        t = t_new
+        f, df = fun(t)
+        if f == 0.0:
+            return t
+        if np.sign(f) == np.sign(fa):
+            a, fa = t, f
+        else:
+            b = t
+        if b - a < xtol:
+            return 0.5 * (a + b)
+    return t

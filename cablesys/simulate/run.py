@@ -46,6 +46,8 @@ def _reason(err: Exception) -> tuple[str, float | None]:
 class Simulator:
     """Integrators and helper functions for one model, output grid and method; reusable for sweeps."""
 
+    DENSE = 32     # points of the dense grid used to bracket a switch inside one interval
+
     def __init__(self, model: CableModel, times, settings: IntegratorSettings | None = None):
         self.model = model
         self.times = np.asarray(times, dtype=float)
@@ -55,11 +57,15 @@ class Simulator:
         t_build = _time.perf_counter()
         self._full = make_integrator(model, self.settings, self.times - self.times[0], "full")
         self._step = make_integrator(model, self.settings, [0.0, 1.0], "step")
+        self._dense = make_integrator(model, self.settings, np.linspace(0.0, 1.0, self.DENSE + 1), "dense")
         x, t = ca.SX.sym("x", 2 * model.nq), ca.SX.sym("t")
         p = ca.SX.sym("p", len(model.layout))
         g = model.cable_force(x, p)
         xdot = model.ode(x, t, p)
-        self._gap_and_rate = ca.Function("gap_rate", [x, t, p], [g, ca.mtimes(ca.jacobian(g, x), xdot)])
+        g1 = ca.mtimes(ca.jacobian(g, x), xdot)
+        g2 = ca.mtimes(ca.jacobian(g1, x), xdot) + ca.jacobian(g1, t)
+        self._gap_and_rate = ca.Function("gap_rate", [x, t, p], [g, g1])
+        self._gap_rates = ca.Function("gap_rates", [x, t, p], [g, g1, g2])
         self._jac = ca.Function("ode_jacobian", [x, t, p], [ca.jacobian(xdot, x)])
         n = self.times.size
         self._gap_rate_map = self._gap_and_rate.map(n)
@@ -166,39 +172,80 @@ class Simulator:
     def _gtol(ga, gb) -> float:
         return 1e-12 * max(1.0, abs(ga), abs(gb))
 
+    def _dense_states(self, x, t_a, h, pm):
+        """States at t_a + h * (0, 1/DENSE, ..., 1) from one integrator call."""
+        Xd = np.array(self._dense(x0=x, p=np.concatenate([pm, [t_a, h]]))["xf"])
+        self._count(self._dense)
+        if not np.all(np.isfinite(Xd)):
+            raise FloatingPointError("nonfinite")
+        return np.column_stack([x, Xd]), t_a + h * np.linspace(0.0, 1.0, self.DENSE + 1)
+
+    def _rates_at(self, X, T, pm):
+        G = self._gap_rates(X, T[None, :], np.tile(pm[:, None], (1, T.size)))   # CasADi maps over columns
+        return [np.array(v) for v in G]
+
+    def _refine(self, X, T, j, pm, i, which: int):
+        """Root of derivative ``which`` (0: g, 1: dg/dt) of section i in [T[j-1], T[j]]."""
+        x0, t0 = X[:, j - 1], T[j - 1]
+
+        def fun(t):
+            xt = self._advance(x0, t0, t - t0, pm) if t > t0 else x0
+            vals = self._gap_rates(xt, t, pm)
+            return float(np.array(vals[which])[i, 0]), float(np.array(vals[which + 1])[i, 0])
+        G = self._rates_at(X[:, j - 1:j + 1], T[j - 1:j + 1], pm)
+        return ev.newton_bracketed(fun, T[j - 1], T[j], G[which][i, 0], G[which][i, 1],
+                                   1e-13 * max(1.0, abs(T[j])))
+
     def _first_event(self, xa, t_a, xb, t_b, pm, mode):
         """Earliest located switch in (t_a, t_b] as (time, section), or None."""
         ga, da = (np.array(v).ravel() for v in self._gap_and_rate(xa, t_a, pm))
         gb, db = (np.array(v).ravel() for v in self._gap_and_rate(xb, t_b, pm))
-        h, best = t_b - t_a, None
-        for i in range(len(mode)):
-            s = ev.first_violation(ga[i], gb[i], da[i], db[i], h, mode[i] == 1.0, self._gtol(ga[i], gb[i]))
-            if s is None:
-                continue
-            g_of_t = lambda t, i=i: float(np.array(self._gap_and_rate(
-                self._advance(xa, t_a, t - t_a, pm) if t > t_a else xa, t, pm)[0])[i, 0])
-            t_hi = t_a + s * h
-            t_star = ev.locate_crossing(g_of_t, t_a, t_hi, 1e-13 * max(1.0, abs(t_hi)))
-            if t_star is None and s < 1.0:   # the Hermite dip was not confirmed at t_hi: try the whole interval
-                t_star = ev.locate_crossing(g_of_t, t_a, t_b, 1e-13 * max(1.0, abs(t_b)))
+        h = t_b - t_a
+        suspects = [i for i in range(len(mode))
+                    if ev.first_violation(ga[i], gb[i], da[i], db[i], h, mode[i] == 1.0, self._gtol(ga[i], gb[i])) is not None]
+        if not suspects:
+            return None
+        X, T = self._dense_states(xa, t_a, h, pm)
+        G, D, _ = self._rates_at(X, T, pm)
+        best = None
+        for i in suspects:
+            sign = -1.0 if mode[i] == 1.0 else 1.0
+            for j in range(1, T.size):
+                tol = self._gtol(G[i, j - 1], G[i, j])
+                if sign * G[i, j] < -tol:                       # a bracketed crossing
+                    t_star = self._refine(X, T, j, pm, i, 0)
+                    break
+                s = ev.first_violation(G[i, j - 1], G[i, j], D[i, j - 1], D[i, j], T[j] - T[j - 1], mode[i] == 1.0, tol)
+                if s is not None:                              # a dip between dense points: look closer
+                    sub = self._first_event(X[:, j - 1], T[j - 1], X[:, j], T[j], pm, mode) if T[j] - T[j - 1] > 1e-9 * max(1.0, T[j]) else None
+                    t_star = sub[0] if sub is not None and sub[1] == i else None
+                    if t_star is not None:
+                        break
+            else:
+                t_star = None
             if t_star is not None and (best is None or t_star < best[0]):
                 best = (t_star, i)
         return best
 
     def _snap(self, x, t_star, pm, i_sec, t_end):
-        """First tension maximum after section ``i_sec`` went taut at ``t_star``."""
+        """First tension maximum after section ``i_sec`` went taut at ``t_star`` (dg/dt = 0, d2g/dt2 < 0)."""
         J = np.array(self._jac(x, t_star, pm))
         iu = self.model.q_labels.index("u" if self.model.n_sections == 1 else f"u_{i_sec + 1}")
         w2 = max(-J[self.model.nq + iu, iu], 1e-12)
-        dt = np.pi / np.sqrt(w2) / 16.0
-        rate = lambda t: float(np.array(self._gap_and_rate(self._advance(x, t_star, t - t_star, pm), t, pm)[1])[i_sec, 0])
+        window = min(t_end - t_star, 2.0 * np.pi / np.sqrt(w2))      # within one stretch period
+        if window <= 0:
+            return None
         try:
-            t_pk = ev.locate_first_maximum(rate, t_star, dt, min(t_end, t_star + 64 * dt), 1e-13 * max(1.0, t_star))
+            X, T = self._dense_states(x, t_star, window, pm)
+            G, D, _ = self._rates_at(X, T, pm)
+            j = next((j for j in range(1, T.size) if D[i_sec, j - 1] > 0 >= D[i_sec, j]), None)
+            if j is None:
+                return None
+            t_pk = self._refine(X, T, j, pm, i_sec, 1)
+            x_pk = self._advance(X[:, j - 1], T[j - 1], t_pk - T[j - 1], pm) if t_pk > T[j - 1] else X[:, j - 1]
         except (RuntimeError, FloatingPointError):
             return None
-        if t_pk is None:
-            return None
-        g = float(np.array(self._gap_and_rate(self._advance(x, t_star, t_pk - t_star, pm), t_pk, pm)[0])[i_sec, 0])
+        g = float(np.array(self._gap_and_rate(x_pk, t_pk, pm)[0])[i_sec, 0])
         tens = pm[self.model.layout.index(("" if self.model.n_sections == 1 else f"sections[{i_sec}].") + "cable.tension_floor")]
         return SnapLoad(time=float(t_pk), section=i_sec, tension=g + float(tens))
 
@@ -251,4 +298,5 @@ def simulate(scene: Scene, *, model: CableModel | None = None, method: str | Non
         log.warning(msg)
     data = simulator.outputs(X, modes, p)
     return TimeResult(time=simulator.times[: X.shape[1]], data=data, success=ok, message=msg, stats=stats,
-                      events=events, snaps=snaps, scene_name=scene.name)
+                      events=events, snaps=snaps, scene_name=scene.name,
+                      initially_slack=tuple(int(i) for i in np.nonzero(modes[:, 0])[0]))
