@@ -106,12 +106,14 @@ class PeriodicSolution:
 def scene_input_amplitude(scene) -> tuple[float, np.ndarray]:
     """(omega, Z) of a top motion made of sinusoids at one frequency: a sin(wt + ph) = Re(-i a e^{i ph} e^{iwt})."""
     terms = [(ax, s) for ax in ("x", "y") for s in getattr(scene.top_motion, ax)]
-    freqs = {round(s.frequency, 12) for _, s in terms}
+    freqs = {round(s.frequency, 12) for _, s in terms if s.amplitude != 0.0}
     if len(freqs) != 1 or scene.top_motion.series is not None:
         raise SolverError("the periodic solve needs a top motion of sinusoids at one frequency "
                           f"(found frequencies {sorted(freqs)}); give one frequency or use simulate()")
     Z = np.zeros(2 + len(scene.environment.waves), complex)
     for ax, s in terms:
+        if s.amplitude == 0.0:
+            continue
         Z[0 if ax == "x" else 1] += -1j * s.amplitude * np.exp(1j * s.phase)
     return freqs.pop(), Z
 
