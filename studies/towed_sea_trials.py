@@ -48,7 +48,7 @@ def curves(lengths, omega, c_n):
 
 def plot(plt, out: Path, om, H_data, c_data, lengths_run, fits, n_curve):
     omega = np.linspace(0.1, 20.0, n_curve)
-    groups = sorted({round(L, -2) for L in lengths_run})
+    groups = sorted({round(L, -2) for L in lengths_run}, reverse=True)   # longest (most runs) first
     cases = [("report c_n* = 0.16", 0.16, "k", "-"),
              (f"best amplitude fit c_n = {fits['amplitude'].c_n:.3f}", fits["amplitude"].c_n, "C0", "--"),
              (f"best phase fit c_n = {fits['phase'].c_n:.3f}", fits["phase"].c_n, "C3", "-."),
@@ -71,7 +71,8 @@ def plot(plt, out: Path, om, H_data, c_data, lengths_run, fits, n_curve):
                     mec="k", ls="none", label=f"sea trial, L ~ {L:.0f} m ({sel.sum()} runs)")
         ax.set_xlabel("omega = 2 pi f L / U (-)")
         ax.set_ylabel(ylabel)
-        ax.set_title(name + "\nthin lines: L ~ %.0f m curves" % groups[0] if len(groups) > 1 else name)
+        thin = ", ".join(f"{L:.0f}" for L in groups[1:])
+        ax.set_title(name + (f"\nthick lines: L = {groups[0]:.0f} m; thin lines: L = {thin} m" if thin else ""))
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
         if k == 1:
