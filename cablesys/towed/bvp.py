@@ -31,7 +31,7 @@ __all__ = ["bvp_solution", "shoot_from_zero_tension"]
 
 
 def shoot_from_zero_tension(coef: Coefficients, omega: float, sigma_eval, *, rtol: float = 1e-11):
-    """Regular solution with ``v(sigma=0) = 1`` at ``sigma_eval`` (ascending, <= xi*), and v_s."""
+    """Regular solution with ``v(sigma=0) = 1`` at ``sigma_eval`` (strictly ascending), and v_s."""
     xs = coef.xi_turn
     if not xs > 0:
         raise ParameterError("coefficients.a", coef.a, "need a < 0 (tension at the tow point "
@@ -48,12 +48,16 @@ def shoot_from_zero_tension(coef: Coefficients, omega: float, sigma_eval, *, rto
         return np.array([y[1], (r * y[0] - q * y[1]) / sigma])
 
     sigma_eval = np.asarray(sigma_eval, dtype=float)
-    t_eval = np.clip(sigma_eval, s0, None)
-    sol = solve_ivp(rhs, (s0, float(t_eval.max())), y0, method="DOP853", t_eval=t_eval,
-                    rtol=rtol, atol=1e-300)
-    if not sol.success:
-        raise SolverError(f"shooting failed for omega = {omega:g}: {sol.message}")
-    return sol.y[0], sol.y[1]
+    v = 1.0 + v1 * sigma_eval + 0.5 * v2 * sigma_eval**2       # Taylor start, used below s0
+    dv = v1 + v2 * sigma_eval
+    far = sigma_eval > s0
+    if np.any(far):
+        sol = solve_ivp(rhs, (s0, float(sigma_eval[far].max())), y0, method="DOP853",
+                        t_eval=sigma_eval[far], rtol=rtol, atol=1e-300)
+        if not sol.success:
+            raise SolverError(f"shooting failed for omega = {omega:g}: {sol.message}")
+        v[far], dv[far] = sol.y[0], sol.y[1]
+    return v, dv
 
 
 def bvp_solution(coef: Coefficients, xi, omega, *, rtol: float = 1e-11):
