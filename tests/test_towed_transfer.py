@@ -1,0 +1,72 @@
+"""Transfer function, c* and phase velocity (Kennedy & Strahan (1981) eq. 14, 26-27)."""
+
+import numpy as np
+import pytest
+
+from cablesys.errors import ParameterError
+from cablesys.towed.equation import REPORT_SEA_TRIAL, REPORT_TYPICAL, TowedCable
+from cablesys.towed.transfer import (c_star, phase_lag, phase_velocity, transfer_function,
+                                     transfer_grid, water_pulley_c_star)
+
+SEA = TowedCable(length=1190.0, speed=5.0, **REPORT_SEA_TRIAL).coefficients()
+TYP = TowedCable(**REPORT_TYPICAL).coefficients()
+
+
+@pytest.mark.parametrize("coef", [SEA, TYP], ids=["sea", "typical"])
+def test_low_frequency_water_pulley_limit(coef):
+    """c* -> 1 + 1/p and |H| -> 1 as omega -> 0 (eq. 12-14), at every xi."""
+    xi = np.array([0.25, 0.5, 1.0])
+    cs = c_star(coef, xi, np.array([1e-3]))[:, 0]
+    assert cs == pytest.approx(water_pulley_c_star(coef), rel=1e-5)
+    assert np.abs(transfer_function(coef, xi, 1e-3)) == pytest.approx(1.0, abs=1e-4)
+    # and the report's statement that typical p > 10 makes c* near 1 does not hold here: p ~ 5-9
+    assert 1.1 < water_pulley_c_star(coef) < 1.25
+
+
+def test_amplitude_falls_and_phase_speed_rises_with_frequency():
+    """Low-pass cable (Fig. 6) and dispersive, faster string-like waves (Fig. 7)."""
+    om = np.linspace(0.1, 30.0, 40)
+    H = np.abs(transfer_function(SEA, 1.0, om))
+    cs = c_star(SEA, 1.0, om)[0]
+    assert np.all(np.diff(H) < 0) and H[-1] < 0.01
+    assert np.all(np.diff(cs) > 0)
+    # c* larger near the tow point than at the end (report p. 22)
+    both = c_star(SEA, np.array([0.1, 1.0]), np.array([15.0]))
+    assert both[0, 0] > both[1, 0]
+
+
+def test_c_star_consistent_with_local_phase_velocity():
+    """c* over a short reach equals the local phase velocity (eq. 27a vs 27b)."""
+    om = np.array([2.0, 10.0])
+    local = phase_velocity(SEA, 0.0, om)
+    short = c_star(SEA, np.array([1e-4]), om)[0]
+    assert short == pytest.approx(local, rel=1e-3)
+    # psi(xi) is the integral of omega / c(xi)
+    xi = np.linspace(0, 1, 401)
+    integral = np.trapezoid(om[1] / phase_velocity(SEA, xi, om[1]), xi)
+    assert phase_lag(SEA, 1.0, om[1])[0, 0] == pytest.approx(integral, rel=1e-5)
+
+
+def test_grid_matches_pointwise_routes():
+    xi = np.linspace(0.0, 1.0, 120)
+    om = np.linspace(0.1, 25.0, 30)
+    g = transfer_grid(SEA, xi, om)
+    assert g.H.shape == (120, 30) and g.c_star.shape == (120, 30)
+    assert np.max(np.abs(g.H - transfer_function(SEA, xi[:, None], om[None, :]))) < 1e-14
+    assert g.c_star[-1] == pytest.approx(c_star(SEA, 1.0, om)[0], rel=1e-10)
+    ds = g.to_xarray()
+    assert ds["H_abs"].dims == ("xi", "omega")
+    # the shooting route through the same protocol agrees
+    assert transfer_function(SEA, 1.0, 5.0, method="bvp") == pytest.approx(
+        transfer_function(SEA, 1.0, 5.0), rel=1e-8)
+
+
+def test_bad_inputs():
+    with pytest.raises(ParameterError, match="omega"):
+        transfer_function(SEA, 0.5, 0.0)
+    with pytest.raises(ParameterError, match="xi"):
+        transfer_function(SEA, -0.1, 1.0)
+    with pytest.raises(ParameterError, match="method"):
+        transfer_function(SEA, 0.5, 1.0, method="magic")
+    with pytest.raises(ParameterError, match="xi"):
+        transfer_function(SEA, 1.5, 1.0, method="bvp")          # beyond the zero-tension point
