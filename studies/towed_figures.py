@@ -21,6 +21,7 @@ from cablesys.towed.bessel import exact_solution, mpmath_solution, real_order_so
 from cablesys.towed.bvp import bvp_solution
 from cablesys.towed.eigen import damping_time, eigenfrequencies, exact_eigenfrequency
 from cablesys.towed.equation import REPORT_SEA_TRIAL, REPORT_TYPICAL, TowedCable
+from cablesys.towed.mol import forced_response, slowest_mode
 from cablesys.towed.interaction import (amplification, effective_amplification,
                                         effective_amplification_exact)
 from cablesys.towed.transfer import c_star, transfer_grid, water_pulley_c_star
@@ -167,16 +168,21 @@ def checks(coef) -> dict:
     vb = bvp_solution(coef, xi, om)
     vm = mpmath_solution(coef, xi[::5], om)
     low = float(c_star(coef, 1.0, 1e-3)[0, 0])
+    mol_om = (2.0, 8.0)
+    mol_err = [float(np.abs(forced_response(coef, w, [0.5, 1.0], n=200)
+                            - exact_solution(coef, np.array([0.5, 1.0]), w)).max()) for w in mol_om]
     typ = TowedCable(**REPORT_TYPICAL)
     e = eigenfrequencies(typ.coefficients(), 5)
     return {
         "max_abs_exact_minus_shooting": float(np.abs(ve - vb).max()),
         "max_abs_exact_minus_mpmath": float(np.abs(ve[::5] - vm).max()),
+        "max_abs_exact_minus_mol_casadi_n200": dict(zip([f"omega_{w:g}" for w in mol_om], mol_err)),
         "water_pulley": {"c_star_at_omega_1e-3": low, "1_plus_1_over_p": water_pulley_c_star(coef)},
         "typical_values": REPORT_TYPICAL,
         "t0_s": {"report_eq25_delta1_eq_p": damping_time(typ, zero="report"),
                  "first_zero_of_J_p": damping_time(typ, zero="bessel"),
-                 "exact_complex_order": damping_time(typ, zero="exact")},
+                 "exact_complex_order": damping_time(typ, zero="exact"),
+                 "mol_time_domain_operator_n200": typ.time_scale() / slowest_mode(typ.coefficients(), 200).imag},
         "eigen_typical": {
             "p": typ.coefficients().p, "D": typ.drag_term,
             "delta_n": e.delta.tolist(),

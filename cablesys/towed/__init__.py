@@ -2,7 +2,8 @@
 
 equation     nondimensional coefficients of eq. 3 (derivation in its docstring)
 bessel       particular solutions: exact complex order (0F1) and the report's real order (eq. 16)
-bvp          independent collocation solution of the same boundary-value problem
+bvp          independent shooting solution of the same boundary-value problem (solve_ivp)
+mol          the PDE in time: method of lines + CasADi CVODES; forced H and slowest mode
 transfer     H(xi, omega) (eq. 26), phase velocity (eq. 27a), c* (eq. 27b), water pulley (eq. 14)
 eigen        complementary solution: eigenfrequencies (eq. 18-21), validity (eq. 20b), t_0 (eq. 23-25)
 interaction  horizontal-vertical amplification A(theta, phi) (eq. 38) and its Gaussian average (App. B)
