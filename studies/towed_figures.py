@@ -147,7 +147,8 @@ def interaction(plt, out: Path):
         ax.set_ylabel("amplification A = c_n* / c_n (-)")
         ax.set_yscale("log")
         ax.yaxis.set_major_formatter(ScalarFormatter())
-        ax.yaxis.set_minor_formatter(ScalarFormatter())
+        if ax is axes[0]:                          # narrow range: label the minor ticks too
+            ax.yaxis.set_minor_formatter(ScalarFormatter())
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=7)
     axes[0].text(20, 0.16 / 0.07 * 1.08, "report: 0.16/0.07 = 2.29", fontsize=8)
