@@ -17,6 +17,7 @@ from .errors import CablesysError
 COMMAND_MODULES = (
     "cablesys.commands",        # run, scene (Wang 1971 time domain)
     "cablesys.slack.cli",       # slack  (Griffin & Rosenthal 1985)
+    "cablesys.linear.cli",      # rao    (steady state, linearization, RAOs)
     "cablesys.towed.cli",       # towed  (Kennedy & Strahan 1981)
 )
 

@@ -16,7 +16,7 @@ from ..scene import Scene
 from .lagrange import lagrange_equations, virtual_work
 from .params import ParameterLayout, section_prefix
 from .section import SectionParameters, section_terms
-from .top_motion import top_motion_function
+from .top_motion import symbolic_type, top_motion_function
 
 EXO_LABELS = ("t", "x_s", "y_s", "x_s_rate", "y_s_rate", "x_s_acc", "y_s_acc")
 OUTPUT_NAMES = ("phi", "phi_rate", "u", "u_rate", "x_b", "x_b_rate", "y_b", "y_b_rate", "tension")
@@ -45,6 +45,11 @@ class CableModel:
     energy: ca.Function
     cable_force: ca.Function
     slack_index: tuple          # positions of the per-section slack switches in p
+    symbolic: type = ca.SX      # ca.MX when the top motion has a sampled series
+
+    def sym(self, name: str, n: int = 1):
+        """A symbol of the model's symbolic type, for composing its functions."""
+        return self.symbolic.sym(name, n)
 
     @property
     def nq(self) -> int:
@@ -117,10 +122,11 @@ def build_model(scene: Scene) -> CableModel:
     x = ca.vertcat(q, qd)
     dynamics = ca.Function("dynamics", [q, qd, e, p], [M, f], ["q", "qd", "e", "p"], ["M", "f"])
     top = top_motion_function(scene, layout)
-    ts = ca.SX.sym("t")
-    e_t = top(ts, p)
-    M_t, f_t = dynamics(q, qd, e_t, p)
-    ode = ca.Function("ode", [x, ts, p], [ca.vertcat(qd, ca.solve(M_t, f_t))], ["x", "t", "p"], ["xdot"])
+    S = symbolic_type(scene)
+    xs, ts, ps = S.sym("x", x.shape[0]), S.sym("t"), S.sym("p", p.shape[0])
+    M_t, f_t = dynamics(xs[: len(q_labels)], xs[len(q_labels):], top(ts, ps), ps)
+    ode = ca.Function("ode", [xs, ts, ps], [ca.vertcat(xs[len(q_labels):], ca.solve(M_t, f_t))],
+                      ["x", "t", "p"], ["xdot"])
     output_labels = tuple(f"{name}{sfx(i)}" for i in range(n) for name in OUTPUT_NAMES)
     outputs = ca.Function("outputs", [x, e, p], [ca.vertcat(*out)], ["x", "e", "p"], ["y"])
     energy = ca.Function("energy", [x, e, p], [K, V], ["x", "e", "p"], ["K", "V"])
@@ -128,4 +134,5 @@ def build_model(scene: Scene) -> CableModel:
     slack_index = tuple(layout.index(f"{section_prefix(n, i)}slack") for i in range(n))
     return CableModel(layout=layout, n_sections=n, angles=scene.angles, q_labels=q_labels,
                       output_labels=output_labels, dynamics=dynamics, ode=ode, top=top,
-                      outputs=outputs, energy=energy, cable_force=cable_force, slack_index=slack_index)
+                      outputs=outputs, energy=energy, cable_force=cable_force, slack_index=slack_index,
+                      symbolic=S)

@@ -49,16 +49,16 @@ class IntegratorSettings:
 
 def _dae(model: CableModel, implicit: bool):
     """The DAE in relative time s: x' = h * ode(x, t0 + h s), parameters (p, t0, h)."""
-    x = ca.SX.sym("x", 2 * model.nq)
-    s = ca.SX.sym("s")
-    p = ca.SX.sym("p", len(model.layout))
-    t0, h = ca.SX.sym("t0"), ca.SX.sym("h")
+    x = model.sym("x", 2 * model.nq)
+    s = model.sym("s")
+    p = model.sym("p", len(model.layout))
+    t0, h = model.sym("t0"), model.sym("h")
     t = t0 + h * s
     q, qd = x[: model.nq], x[model.nq:]
     pa = ca.vertcat(p, t0, h)
     if not implicit:
         return {"x": x, "t": s, "p": pa, "ode": h * model.ode(x, t, p)}
-    z = ca.SX.sym("qdd", model.nq)
+    z = model.sym("qdd", model.nq)
     M, f = model.dynamics(q, qd, model.top(t, p), p)
     return {"x": x, "z": z, "t": s, "p": pa, "ode": h * ca.vertcat(qd, z), "alg": ca.mtimes(M, z) - f}
 

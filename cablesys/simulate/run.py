@@ -58,8 +58,8 @@ class Simulator:
         self._full = make_integrator(model, self.settings, self.times - self.times[0], "full")
         self._step = make_integrator(model, self.settings, [0.0, 1.0], "step")
         self._dense = make_integrator(model, self.settings, np.linspace(0.0, 1.0, self.DENSE + 1), "dense")
-        x, t = ca.SX.sym("x", 2 * model.nq), ca.SX.sym("t")
-        p = ca.SX.sym("p", len(model.layout))
+        x, t = model.sym("x", 2 * model.nq), model.sym("t")
+        p = model.sym("p", len(model.layout))
         g = model.cable_force(x, p)
         xdot = model.ode(x, t, p)
         g1 = ca.mtimes(ca.jacobian(g, x), xdot)
@@ -81,8 +81,17 @@ class Simulator:
             if key in st:
                 self._stats[key] = self._stats.get(key, 0) + int(st[key])
 
-    def _advance(self, x, t_a, h, p):
-        xf = np.array(self._step(x0=x, p=np.concatenate([p, [t_a, h]]))["xf"]).ravel()
+    def _advance(self, x, t_a, h, p, depth: int = 0):
+        """State at t_a + h. An interval too long for max_num_steps is split in halves (up to
+        2^12 pieces), so a long output interval does not fail a run that is merely long."""
+        try:
+            xf = np.array(self._step(x0=x, p=np.concatenate([p, [t_a, h]]))["xf"]).ravel()
+        except RuntimeError as err:
+            if "TOO_MUCH_WORK" not in str(err) or depth >= 12:
+                raise
+            self._count(self._step)
+            x_mid = self._advance(x, t_a, 0.5 * h, p, depth + 1)
+            return self._advance(x_mid, t_a + 0.5 * h, 0.5 * h, p, depth + 1)
         self._count(self._step)
         if not np.all(np.isfinite(xf)):
             raise FloatingPointError("nonfinite")
