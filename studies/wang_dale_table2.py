@@ -110,8 +110,9 @@ def model_frequencies(model) -> dict:
     x0 = initial_state(scene, model, p)
     x = ca.SX.sym("x", len(x0))
     J = np.array(ca.Function("J", [x], [ca.jacobian(model.ode(x, 0.0, p), x)])(x0))
-    w = np.sort(np.sqrt(np.abs(np.linalg.eigvals(J).imag)))[::2]
-    return {"pendulum_rad_s": float(w[0]), "stretch_rad_s": float(w[-1])}
+    w = np.sort(np.abs(np.linalg.eigvals(J).imag))[::2]      # eigenvalues +-i omega (drag has no linear part)
+    return {"pendulum_rad_s": float(w[0]), "stretch_rad_s": float(w[-1]),
+            "pendulum_over_measured_omega_n": float(w[0] / OMEGA_N_MEASURED)}
 
 
 def main(argv=None) -> int:
