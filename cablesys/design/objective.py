@@ -1,0 +1,173 @@
+"""Symbolic objective and constraints of the isolation design, differentiable end to end.
+
+Chain of CasADi expressions of the normalized design vector x (no finite differences):
+
+1. p(x): the scene's parameter vector with the decision variables inserted (``problem.py``).
+2. Steady state q_0(p): ``casadi.rootfinder`` (Newton) on the static residual f(q, 0, 0, p) = 0
+   of the model (Wang 1971 eq. 47-48 with all rates zero). Its derivative is the implicit-
+   function-theorem one, dq_0/dp = -(df/dq)^-1 df/dp, provided by CasADi.
+3. Linearization about q_0 by the model's own AD Jacobians (``cablesys.linear.linearize``):
+   M dq'' + C dq' + K dq = F0 z + F1 z' + F2 z'', y = Cq dq + Cv dq' + D0 z + D1 z' + D2 z''.
+4. Transfer on a fixed frequency grid in real arithmetic: with Z = K - w^2 M + i w C (dJ included),
+   [[Re Z, -Im Z], [Im Z, Re Z]] [Re Q; Im Q] = [Re F; Im F] for the buoy input z = (1, i) a
+   (the top follows the surface orbit of Wang 1971 eq. 26 at x = 0, as in
+   :mod:`cablesys.linear.stochastic`).
+5. Response variances sigma^2 = int |Y(w)|^2 S(w) dw (trapezoid on the grid), the significant
+   amplitude 2 sigma (Longuet-Higgins 1952), or the band RMS of the RAO.
+
+The quadratic drag (eq. 32-45) has zero slope about a still-water equilibrium, so its
+equivalent linearization comes from the Gaussian equivalent linearization
+(:func:`cablesys.linear.stochastic.stochastic_response`): dJ = E[dr/dxi] - dr/dxi(q_0), the
+drag damping C_eq *and* the drag excitation by the top velocity (dr/dz', the cable segments
+move with the top) plus the small geometric averaging of K and M. Choice made here: dJ is a
+*parameter* of the NLP, held fixed during one solve and updated between solves until the
+design and dJ agree (an outer fixed-point iteration, ``solve.py``). Reason: making it
+self-consistent inside the NLP would need the expected drag Jacobian E[dr/dxi] as a
+symbolic function of the response covariance (a Gaussian expectation of |v| v per drag
+element, a quadrature in 3 n_q + 6 dimensions in the library) plus the standard deviations
+as extra variables and equality constraints; the held matrix keeps the NLP small and its
+gradient exact for the problem it solves, and the fixed point is checked on convergence.
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+import numpy as np
+
+from ..linear.linearize import functions, xi_blocks
+from ..linear.spectra import jonswap
+from ..linear.stochastic import BUOY
+from ..model import CableModel
+from .problem import DesignSettings
+
+# constraint rows: (kind, section index); kinds below
+CONSTRAINT_KINDS = ("slack", "peak_tension", "static_strain")
+
+
+def _trapezoid_weights(w: np.ndarray) -> np.ndarray:
+    d = np.diff(w)
+    out = np.zeros_like(w)
+    out[:-1] += d / 2
+    out[1:] += d / 2
+    return out
+
+
+def _output_index(model: CableModel, name: str, i: int) -> int:
+    n = model.n_sections
+    return model.output_labels.index(name if n == 1 else f"{name}_{i + 1}")
+
+
+def _q_index(model: CableModel, i: int) -> int:
+    return model.q_labels.index("u" if model.n_sections == 1 else f"u_{i + 1}")
+
+
+def parameter_map(model: CableModel, variables: tuple):
+    """(x -> p) as an SX Function of (x, p_base): the variables replace their parameters."""
+    x = ca.SX.sym("x", len(variables))
+    pb = ca.SX.sym("p_base", len(model.layout))
+    p = [pb[k] for k in range(len(model.layout))]
+    for j, v in enumerate(variables):
+        val = v.value(x[j])
+        for label, factor in v.targets:
+            p[model.layout.index(label)] = factor * val
+    return ca.Function("design_parameters", [x, pb], [ca.vertcat(*p)], ["x", "p_base"], ["p"])
+
+
+def static_rootfinder(model: CableModel) -> ca.Function:
+    """Newton rootfinder q_0(q_guess, p) of the static residual (differentiable)."""
+    b = xi_blocks(model)
+    q = ca.SX.sym("q", model.nq)
+    p = ca.SX.sym("p", len(model.layout))
+    xi = ca.vertcat(q, ca.SX.zeros(b["n"] - model.nq))
+    g = ca.Function("static_residual", [q, p], [functions(model)["residual"](xi, p)])
+    return ca.rootfinder("design_steady", "newton", g, {"abstol": 1e-10, "max_iter": 50, "error_on_fail": False})
+
+
+def response_functions(model: CableModel, settings: DesignSettings) -> ca.Function:
+    """SX Function (q0, p, dJ) -> (objective, sigma of [y_b, tensions], mean tensions, static strains).
+
+    ``dJ`` is added to the exact residual Jacobian dr/dxi at q0 (the held equivalent-drag part)."""
+    b = xi_blocks(model)
+    n = model.n_sections
+    nq = model.nq
+    q0 = ca.SX.sym("q0", nq)
+    p = ca.SX.sym("p", len(model.layout))
+    d_jac = ca.SX.sym("dJ", nq, b["n"])
+    xi = ca.vertcat(q0, ca.SX.zeros(b["n"] - nq))
+    fns = functions(model)
+    J = fns["jac"](xi, p) + d_jac
+    y0, Jy = fns["out_jac"](xi, p)
+    M, C, K = -J[:, b["qdd"]], -J[:, b["qd"]], -J[:, b["q"]]
+    F0, F1, F2 = J[:, b["z"]], J[:, b["zd"]], J[:, b["zdd"]]
+    rows = [_output_index(model, "y_b", n - 1)] + [_output_index(model, "tension", i) for i in range(n)]
+    Cq, Cv = Jy[rows, b["q"]], Jy[rows, b["qd"]]
+    D0, D1, D2 = Jy[rows, b["z"]], Jy[rows, b["zd"]], Jy[rows, b["zdd"]]
+    dr, di = np.real(BUOY), np.imag(BUOY)
+
+    omega = settings.omega
+    S = jonswap(omega, settings.hs, settings.tp, settings.gamma)
+    wts = _trapezoid_weights(omega)
+    band = (omega >= settings.band[0]) & (omega <= settings.band[1])
+    wband = wts * band / np.sum(wts * band)
+    var = ca.SX.zeros(len(rows))
+    band_ms = 0
+    for k, w in enumerate(omega):
+        A, B = K - w**2 * M, w * C
+        Fr = ca.mtimes(F0, dr) - w * ca.mtimes(F1, di) - w**2 * ca.mtimes(F2, dr)
+        Fi = ca.mtimes(F0, di) + w * ca.mtimes(F1, dr) - w**2 * ca.mtimes(F2, di)
+        Qri = ca.solve(ca.vertcat(ca.horzcat(A, -B), ca.horzcat(B, A)), ca.vertcat(Fr, Fi))
+        Qr, Qi = Qri[:nq], Qri[nq:]
+        Yr = ca.mtimes(Cq, Qr) - w * ca.mtimes(Cv, Qi) + ca.mtimes(D0, dr) - w * ca.mtimes(D1, di) - w**2 * ca.mtimes(D2, dr)
+        Yi = ca.mtimes(Cq, Qi) + w * ca.mtimes(Cv, Qr) + ca.mtimes(D0, di) + w * ca.mtimes(D1, dr) - w**2 * ca.mtimes(D2, di)
+        mag2 = Yr**2 + Yi**2
+        var += wts[k] * S[k] * mag2
+        band_ms += wband[k] * mag2[0]
+    sigma = ca.sqrt(var)
+    objective = 2.0 * sigma[0] if settings.objective == "significant" else ca.sqrt(band_ms)
+    mean_t = ca.vertcat(*[y0[_output_index(model, "tension", i)] for i in range(n)])
+    strain = []
+    for i in range(n):
+        pre = "" if n == 1 else f"sections[{i}]."
+        ps = lambda name: p[model.layout.index(f"{pre}cable.{name}")]
+        l_0 = ps("length") - ps("tension_ref") * ps("length") / ps("ae")          # eq. 1
+        strain.append(q0[_q_index(model, i)] / l_0)
+    return ca.Function("design_response", [q0, p, d_jac], [objective, sigma, mean_t, ca.vertcat(*strain)],
+                       ["q0", "p", "dJ"], ["objective", "sigma", "mean_tension", "static_strain"])
+
+
+def constraint_names(n: int) -> tuple:
+    return tuple(f"{kind}_{i + 1}" for kind in CONSTRAINT_KINDS for i in range(n))
+
+
+def nlp_functions(model: CableModel, settings: DesignSettings, variables: tuple, p_base: np.ndarray):
+    """The NLP in MX: f(x; dJ), g(x; dJ) with g <= 0 meaning 'met', plus a report function.
+
+    The NLP parameter vector is (dJ flattened column-major, q_guess of the rootfinder).
+
+    Constraints per section i (normalized to order one):
+      slack_i:         (TENS_i - (T_i - n_sigma sigma_Ti)) / T_i <= 0    (Wang 1971 eq. 54 floor)
+      peak_tension_i:  (T_i + n_sigma sigma_Ti) / WLL_i - 1 <= 0
+      static_strain_i: (u_0i / l_0i) / limit_i - 1 <= 0
+    """
+    n = model.n_sections
+    nq = model.nq
+    pmap = parameter_map(model, variables)
+    rf = static_rootfinder(model)
+    resp = response_functions(model, settings)
+    x = ca.MX.sym("x", len(variables))
+    n_xi = xi_blocks(model)["n"]
+    dj_flat = ca.MX.sym("dJ", nq * n_xi)
+    q_guess = ca.MX.sym("q_guess", nq)
+    p = pmap(x, ca.DM(p_base))
+    q0 = rf(q_guess, p)
+    obj, sigma, mean_t, strain = resp(q0, p, ca.reshape(dj_flat, nq, n_xi))
+    pre = (lambda i: "") if n == 1 else (lambda i: f"sections[{i}].")
+    tens = [float(p_base[model.layout.index(f"{pre(i)}cable.tension_floor")]) for i in range(n)]
+    g = ([(tens[i] - (mean_t[i] - settings.n_sigma * sigma[1 + i])) / mean_t[i] for i in range(n)]
+         + [(mean_t[i] + settings.n_sigma * sigma[1 + i]) / settings.working_load[i] - 1 for i in range(n)]
+         + [strain[i] / settings.strain_limit[i] - 1 for i in range(n)])
+    g = ca.vertcat(*g)
+    par = ca.vertcat(dj_flat, q_guess)
+    report = ca.Function("design_report", [x, par], [obj, g, sigma, mean_t, strain, q0, p],
+                         ["x", "par"], ["objective", "g", "sigma", "mean_tension", "static_strain", "q0", "p"])
+    return x, par, obj, g, report

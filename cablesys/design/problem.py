@@ -1,0 +1,180 @@
+"""The dual-isolation design problem (Wang 1971 p. 33): decision variables, bounds, sea, limits.
+
+Wang: "this model is applicable to vibration isolation systems where the motion of the lower
+body is minimized by the placement of an intermediate body along the cable as well as by
+varying the spring constant of the cable itself" (a dual isolation system). The decision
+variables are, per section i, the spring coefficient (AE)_i and the Voigt internal damping
+C_I,i (eq. 46), and optionally the size of the intermediate body (its weight and virtual
+masses scaled together). Everything is in SI and immutable; a scene TOML can carry it as a
+``[design]`` table (:func:`settings_from_dict`).
+
+Inside the NLP each variable is v = lo (hi/lo)^x with x in [0, 1]: the variables span one to
+three decades, and log scaling gives IPOPT a well-conditioned problem; it also keeps every
+value strictly positive (so C_I needs a lower bound > 0).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ..errors import ParameterError, require_positive, require_range
+
+OBJECTIVES = ("significant", "rao_band")
+
+
+def _pairs(field: str, value, n: int | None = None) -> tuple:
+    try:
+        pairs = tuple((float(a), float(b)) for a, b in value)
+    except (TypeError, ValueError):
+        raise ParameterError(field, value, "must be a list of [lower, upper] pairs, one per section") from None
+    if n is not None and len(pairs) != n:
+        raise ParameterError(field, value, f"needs one [lower, upper] pair per section ({n})")
+    for i, (lo, hi) in enumerate(pairs):
+        require_positive(f"{field}[{i}] lower", lo)
+        if not hi > lo:
+            raise ParameterError(f"{field}[{i}]", [lo, hi], "upper bound must exceed the lower bound")
+    return pairs
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class DesignSettings:
+    """What to optimize, within which bounds, under which sea, subject to which limits.
+
+    Per-section tuples are ordered from the top (section 1 hangs from the ship).
+    """
+
+    ae_bounds: tuple                        # ((lo, hi), ...) N, spring coefficient (AE)_r per section
+    damping_bounds: tuple                   # ((lo, hi), ...) N s, internal damping C_I per section (eq. 46)
+    intermediate_mass_bounds: tuple | None = None   # (lo, hi) kg: virtual heave mass of body 1 (scaled body)
+    objective: str = "significant"          # or "rao_band"
+    hs: float = 2.5                         # m, significant wave height (JONSWAP)
+    tp: float = 8.0                         # s, peak period
+    gamma: float = 3.3                      # JONSWAP peak enhancement
+    omega_min: float = 0.25                 # rad/s, frequency grid of the spectral integrals
+    omega_max: float = 3.0
+    n_omega: int = 60
+    band: tuple = (0.5, 1.5)                # rad/s, band of the "rao_band" objective
+    strain_limit: tuple = (0.1, 0.1)        # static stretch u_0 / l_0 per section
+    working_load: tuple = (2e4, 2e4)        # N, limit on mean + n_sigma std of the tension per section
+    n_sigma: float = 3.0                    # slack: mean - n_sigma std > TENS; peak: mean + n_sigma std < WLL
+    n_starts: int = 4
+    outer_iterations: int = 6               # self-consistent drag linearization (see objective.py)
+    outer_tol: float = 1e-3                 # relative change of the objective between outer iterations
+    max_iter: int = 100                     # IPOPT iterations per solve
+    tol: float = 1e-8                       # IPOPT tolerance
+
+    def __post_init__(self):
+        ae = _pairs("design.ae_bounds", self.ae_bounds)
+        n = len(ae)
+        object.__setattr__(self, "ae_bounds", ae)
+        object.__setattr__(self, "damping_bounds", _pairs("design.damping_bounds", self.damping_bounds, n))
+        if self.intermediate_mass_bounds is not None:
+            (m,) = _pairs("design.intermediate_mass_bounds", (self.intermediate_mass_bounds,))
+            object.__setattr__(self, "intermediate_mass_bounds", m)
+        if self.objective not in OBJECTIVES:
+            raise ParameterError("design.objective", self.objective, f"must be one of {OBJECTIVES}")
+        require_positive("design.hs", self.hs, "m")
+        require_positive("design.tp", self.tp, "s")
+        require_range("design.gamma", self.gamma, 1.0, 7.0)
+        require_positive("design.omega_min", self.omega_min, "rad/s")
+        if not self.omega_max > self.omega_min:
+            raise ParameterError("design.omega_max", self.omega_max, f"must exceed design.omega_min = {self.omega_min}")
+        if not isinstance(self.n_omega, int) or not 8 <= self.n_omega <= 2000:
+            raise ParameterError("design.n_omega", self.n_omega, "must be an integer in [8, 2000]")
+        band = tuple(float(b) for b in self.band)
+        if len(band) != 2 or not self.omega_min <= band[0] < band[1] <= self.omega_max:
+            raise ParameterError("design.band", self.band, f"must be [lo, hi] inside [{self.omega_min}, {self.omega_max}] rad/s")
+        object.__setattr__(self, "band", band)
+        for name in ("strain_limit", "working_load"):
+            v = tuple(float(a) for a in getattr(self, name))
+            if len(v) != n:
+                raise ParameterError(f"design.{name}", v, f"needs one value per section ({n})")
+            for i, a in enumerate(v):
+                require_positive(f"design.{name}[{i}]", a)
+            object.__setattr__(self, name, v)
+        require_positive("design.n_sigma", self.n_sigma)
+        for name, lo, hi in (("n_starts", 1, 64), ("outer_iterations", 1, 50), ("max_iter", 1, 100000)):
+            v = getattr(self, name)
+            if not isinstance(v, int) or not lo <= v <= hi:
+                raise ParameterError(f"design.{name}", v, f"must be an integer in [{lo}, {hi}]")
+        require_range("design.outer_tol", self.outer_tol, 1e-12, 1.0)
+        require_range("design.tol", self.tol, 1e-14, 1e-2)
+
+    @property
+    def n_sections(self) -> int:
+        return len(self.ae_bounds)
+
+    @property
+    def omega(self) -> np.ndarray:
+        return np.linspace(self.omega_min, self.omega_max, self.n_omega)
+
+    def replace(self, **changes) -> "DesignSettings":
+        return dataclasses.replace(self, **changes)
+
+
+def settings_from_dict(table: dict) -> DesignSettings:
+    """A :class:`DesignSettings` from a TOML ``[design]`` table (SI; keys as the field names)."""
+    allowed = {f.name for f in dataclasses.fields(DesignSettings)}
+    for key in table:
+        if key not in allowed:
+            raise ParameterError(f"design.{key}", table[key], f"unknown key; allowed: {', '.join(sorted(allowed))}")
+    for key in ("ae_bounds", "damping_bounds"):
+        if key not in table:
+            raise ParameterError(f"design.{key}", "missing", "the [design] table needs per-section [lower, upper] pairs")
+    return DesignSettings(**table)
+
+
+@dataclasses.dataclass(frozen=True)
+class Variable:
+    """One decision variable: its name, the parameter labels it sets, and its log-scaled bounds."""
+
+    name: str
+    lower: float
+    upper: float
+    targets: tuple            # ((parameter label, factor per unit of the variable), ...)
+
+    def value(self, x):
+        """Physical value of the normalized variable x in [0, 1] (works on CasADi symbols)."""
+        return self.lower * (self.upper / self.lower) ** x
+
+    def normalized(self, v: float) -> float:
+        return math.log(v / self.lower) / math.log(self.upper / self.lower)
+
+
+def variables(scene, settings: DesignSettings) -> tuple:
+    """The decision variables of ``settings`` for ``scene`` (whose structure must match)."""
+    n = len(scene.sections)
+    if n != settings.n_sections:
+        raise ParameterError("design.ae_bounds", f"{settings.n_sections} pairs",
+                             f"the scene has {n} sections; give one pair per section")
+    pre = (lambda i: "") if n == 1 else (lambda i: f"sections[{i}].")
+    out = []
+    for i in range(n):
+        out.append(Variable(f"ae_{i + 1}", *settings.ae_bounds[i], ((f"{pre(i)}cable.ae", 1.0),)))
+        out.append(Variable(f"internal_damping_{i + 1}", *settings.damping_bounds[i],
+                            ((f"{pre(i)}cable.internal_damping", 1.0),)))
+    if settings.intermediate_mass_bounds is not None:
+        if n < 2:
+            raise ParameterError("design.intermediate_mass_bounds", settings.intermediate_mass_bounds,
+                                 "needs a scene with at least two sections (an intermediate body)")
+        b = scene.sections[0].body
+        # body 1 scaled as a whole (same shape and material): weight and virtual masses per kg of mass_y
+        out.append(Variable("intermediate_mass", *settings.intermediate_mass_bounds,
+                            (("sections[0].body.mass_y", 1.0), ("sections[0].body.mass_x", b.mass_x / b.mass_y),
+                             ("sections[0].body.weight", b.weight / b.mass_y))))
+    return tuple(out)
+
+
+def current_values(scene, variables_: tuple) -> np.ndarray:
+    """The scene's own values of the decision variables (first target of each)."""
+    n = len(scene.sections)
+    vals = []
+    for v in variables_:
+        label = v.targets[0][0]
+        sec = scene.sections[0] if n == 1 else scene.sections[int(label.split("[")[1].split("]")[0])]
+        obj = sec.cable if ".cable." in f".{label}" else sec.body
+        vals.append(getattr(obj, label.split(".")[-1]))
+    return np.array(vals, float)

@@ -1,0 +1,150 @@
+"""Solve the isolation design NLP with IPOPT (``casadi.nlpsol``): several starts, drag fixed point.
+
+The problem is not convex (resonances move through the sea spectrum as AE changes), so the
+first solve runs from ``n_starts`` points: the scene's own design and a Latin hypercube in
+the log-scaled box. The equivalent linearization (the Jacobian shift dJ) is then updated from the Gaussian
+equivalent linearization at the optimum (:mod:`cablesys.linear.stochastic`) and the NLP is
+warm-started from the best point, until the objective changes by less than ``outer_tol``
+(see :mod:`.objective` for why dJ is held during a solve). IPOPT uses a limited-memory
+quasi-Newton Hessian; its gradients and constraint Jacobians are exact (CasADi AD).
+
+IPOPT's status is translated: infeasibility names the constraint (or bound) that cannot be
+met, with the best value reached, and raises :class:`DesignInfeasible`.
+"""
+
+from __future__ import annotations
+
+import logging
+import time
+
+import casadi as ca
+import numpy as np
+from scipy.stats import qmc
+
+from ..errors import SolverError
+from ..linear.linearize import linearize, xi_blocks
+from ..linear.spectra import jonswap
+from ..linear.steady import steady_state
+from ..linear.stochastic import stochastic_response
+from ..model import build_model
+from .objective import constraint_names, nlp_functions
+from .problem import DesignSettings, current_values, variables
+from .results import DesignResult, describe_constraint
+
+log = logging.getLogger(__name__)
+OK_STATUS = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
+FEASIBILITY_TOL = 1e-6
+
+
+class DesignInfeasible(SolverError):
+    """No design within the bounds meets the constraints; ``constraint`` names the culprit."""
+
+    def __init__(self, message: str, constraint: str, violation: float):
+        super().__init__(message)
+        self.constraint, self.violation = constraint, violation
+
+
+def _jacobian_of(lin) -> np.ndarray:
+    """dr/dxi of a LinearModel, xi = (q, q', q'', z, z', z'', w) (inverse of ``from_jacobian``)."""
+    return np.hstack([-lin.K, -lin.C, -lin.M, lin.F0[:, :2], lin.F1[:, :2], lin.F2[:, :2], lin.F0[:, 2:]]).real
+
+
+def equivalent_jacobian_shift(model, p, settings: DesignSettings, *, n_log2: int = 8):
+    """dJ = E[dr/dxi] - dr/dxi(q_0): what the Gaussian equivalent linearization adds (mostly drag)."""
+    omega = settings.omega
+    st = stochastic_response(model, p, omega, jonswap(omega, settings.hs, settings.tp, settings.gamma), n_log2=n_log2)
+    return _jacobian_of(st.linear) - _jacobian_of(linearize(model, p)), st
+
+
+def _starts(x_scene: np.ndarray, n: int) -> list:
+    pts = [np.clip(x_scene, 0.02, 0.98)]
+    if n > 1:
+        pts += list(0.05 + 0.9 * qmc.LatinHypercube(d=len(x_scene), seed=1).random(n - 1))
+    return pts
+
+
+def _infeasibility(g: np.ndarray, names: tuple, settings: DesignSettings, report_row) -> DesignInfeasible:
+    k = int(np.argmax(g))
+    text = describe_constraint(names[k], settings)
+    return DesignInfeasible(
+        f"design infeasible: the constraint '{names[k]}' ({text}) cannot be met within the bounds; the best point "
+        f"IPOPT reached still violates it by {g[k]:.3g} (relative; 0 = just met). {report_row}"
+        "Relax that limit, widen the bounds of the variables it depends on, or change the sea state.",
+        names[k], float(g[k]))
+
+
+def design(scene, settings: DesignSettings, *, model=None) -> DesignResult:
+    """Optimize ``scene``'s AE and C_I per section (and optionally the intermediate body) for ``settings``."""
+    t_start = time.perf_counter()
+    model = model or build_model(scene)
+    vars_ = variables(scene, settings)
+    p_base = model.parameters(scene)
+    x_sym, par, f, g, report = nlp_functions(model, settings, vars_, p_base)
+    solver = ca.nlpsol("isolation_design", "ipopt", {"x": x_sym, "p": par, "f": f, "g": g},
+                       {"print_time": False, "ipopt": {"print_level": 0, "sb": "yes", "max_iter": settings.max_iter,
+                                                       "tol": settings.tol, "hessian_approximation": "limited-memory",
+                                                       "acceptable_tol": 1e-6}})
+    names = constraint_names(model.n_sections)
+    ng = len(names)
+    x_scene = np.array([v.normalized(np.clip(val, v.lower, v.upper)) for v, val in zip(vars_, current_values(scene, vars_))])
+    q_guess = steady_state(model, p_base).q
+    n_xi = xi_blocks(model)["n"]
+
+    def p_of(xv):
+        return np.array(report(xv, np.r_[np.zeros(model.nq * n_xi), q_guess])[6]).ravel()
+
+    dJ, st = equivalent_jacobian_shift(model, p_of(x_scene), settings)
+    starts = _starts(x_scene, settings.n_starts)
+    runs, history = [], []
+    best, f_prev = None, None
+    for outer in range(settings.outer_iterations):
+        par_val = np.r_[dJ.ravel(order="F"), q_guess]
+        candidates = []
+        for x0 in starts:
+            t0 = time.perf_counter()
+            sol = solver(x0=x0, lbx=0.0, ubx=1.0, lbg=-np.inf, ubg=0.0, p=par_val)
+            wall = time.perf_counter() - t0
+            s = solver.stats()
+            xv = np.array(sol["x"]).ravel()
+            gv = np.array(sol["g"]).ravel()
+            run = {"outer": outer, "start": [float(a) for a in x0], "status": s["return_status"],
+                   "iterations": int(s["iter_count"]), "wall_s": wall,
+                   "objective": float(sol["f"]), "max_violation": float(max(gv.max(), 0.0))}
+            runs.append(run)
+            candidates.append((run, xv, gv, np.array(sol["lam_x"]).ravel(), np.array(sol["lam_g"]).ravel()))
+        feasible = [c for c in candidates if c[0]["max_violation"] <= FEASIBILITY_TOL]
+        if not feasible:
+            c = min(candidates, key=lambda c: c[0]["max_violation"])
+            raise _infeasibility(c[2], names, settings,
+                                 f"(IPOPT status {c[0]['status']}, {c[0]['iterations']} iterations.) ")
+        best = min(feasible, key=lambda c: c[0]["objective"])
+        f_now = best[0]["objective"]
+        # update the equivalent drag damping at the optimum (the outer fixed point)
+        C_new, st = equivalent_jacobian_shift(model, p_of(best[1]), settings)
+        change = float(np.max(np.abs(C_new - dJ)) / max(np.max(np.abs(C_new)), 1e-30))
+        history.append({"outer": outer, "objective": f_now, "dJ_change": change})
+        dJ = C_new
+        starts = [best[1]]
+        if f_prev is not None and abs(f_now - f_prev) <= settings.outer_tol * abs(f_now):
+            break
+        f_prev = f_now
+    run, xv, gv, lam_x, lam_g = best
+    rep = report(xv, np.r_[dJ.ravel(order="F"), q_guess])
+    obj, gv_final, sigma, mean_t, strain, q0, p = (np.array(a).ravel() for a in rep)
+    values = np.array([v.value(a) for v, a in zip(vars_, xv)])
+    active = [f"{v.name} at {'lower' if a < 0.5 else 'upper'} bound" for v, a, lx in zip(vars_, xv, lam_x)
+              if min(a, 1 - a) < 1e-6 or abs(lx) > 1e-8 * max(1.0, abs(run["objective"]))]
+    active += [names[k] for k in range(ng) if gv_final[k] > -1e-5 or lam_g[k] > 1e-8 * max(1.0, abs(run["objective"]))]
+    converged = run["status"] in OK_STATUS and len(history) < settings.outer_iterations or (
+        len(history) >= 2 and abs(history[-1]["objective"] - history[-2]["objective"]) <= settings.outer_tol * abs(history[-1]["objective"]))
+    if not converged:
+        log.warning("isolation design: outer drag iteration or IPOPT did not converge (%s)", run["status"])
+    return DesignResult(
+        variable_names=tuple(v.name for v in vars_), values=values, lower=np.array([v.lower for v in vars_]),
+        upper=np.array([v.upper for v in vars_]), objective=float(obj[0]), objective_kind=settings.objective,
+        constraint_names=names, constraint_values=gv_final, active=tuple(active), sigma_y_b=float(sigma[0]),
+        sigma_tension=sigma[1:], mean_tension=mean_t, static_strain=strain, q0=q0, parameters=p,
+        jacobian_shift=dJ, status=run["status"], converged=bool(converged), runs=tuple(runs), outer_history=tuple(history),
+        nlp_iterations=int(sum(r["iterations"] for r in runs)), nlp_wall_s=float(sum(r["wall_s"] for r in runs)),
+        total_wall_s=time.perf_counter() - t_start, stochastic_sig_y_b=st.significant_amplitude(
+            "y_b" if model.n_sections == 1 else f"y_b_{model.n_sections}"))
