@@ -15,7 +15,7 @@ from .errors import CablesysError
 
 # module -> provides register(subparsers); order is the order in --help
 COMMAND_MODULES = (
-    "cablesys.commands",        # run, scene (Wang 1971 time domain)
+    "cablesys.simulate.cli",    # run, scene (Wang 1971 time domain)
     "cablesys.slack.cli",       # slack  (Griffin & Rosenthal 1985)
     "cablesys.linear.cli",      # rao    (steady state, linearization, RAOs)
     "cablesys.towed.cli",       # towed  (Kennedy & Strahan 1981)

@@ -7,7 +7,7 @@ import logging
 import math
 from pathlib import Path
 
-from . import units as U
+from .. import units as U
 
 log = logging.getLogger(__name__)
 
@@ -33,7 +33,7 @@ def register(sub) -> None:
 
 
 def _scene(args) -> int:
-    from .scene import default_scene, dump_scene, load_scene
+    from ..scene import default_scene, dump_scene, load_scene
     if args.example or args.file is None:
         print(dump_scene(default_scene(), units=args.units, annotate=True), end="")
         return 0
@@ -47,8 +47,8 @@ def _forcing_period(scene) -> float | None:
 
 
 def _run(args) -> int:
-    from .scene import dale_scene, load_scene
-    from .simulate import simulate
+    from ..scene import dale_scene, load_scene
+    from . import simulate
     out = args.out or Path("cablesys-out")
     if args.scene is None:
         return _run_dale_table(args, out)
@@ -66,7 +66,7 @@ def _run(args) -> int:
 
 def write_run(scene, result, out: Path) -> dict:
     """Write time series (CSV, netCDF), summary.json and the figure for one run."""
-    from .plots.time_domain import plot_time_series
+    from ..plots.time_domain import plot_time_series
     out.mkdir(parents=True, exist_ok=True)
     result.to_csv(out / "timeseries.csv")
     result.to_netcdf(out / "timeseries.nc")
@@ -94,8 +94,8 @@ def _print_summary(summary: dict) -> None:
 
 
 def _run_dale_table(args, out: Path) -> int:
-    from .scene import OMEGA_N_MEASURED, dale_scene
-    from .simulate import simulate
+    from ..scene import OMEGA_N_MEASURED, dale_scene
+    from . import simulate
     print("Dale et al. water-channel model (Wang 1971, Table 1): 9 ft cable, 1 in sphere, circular top motion 5 in p-p")
     print("steady-state amplitudes of the lower body (half peak-to-peak over the last 3 periods)")
     print(f"{'omega/omega_n':>14} {'omega rad/s':>12} {'x_bA ft':>9} {'y_bA ft':>9} {'x_bA m':>9} {'y_bA m':>9} {'ms':>6}")
