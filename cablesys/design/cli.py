@@ -1,0 +1,59 @@
+"""The ``cablesys design`` sub-command: the isolation-design NLP for a scene with a ``[design]`` table."""
+
+from __future__ import annotations
+
+import json
+import sys
+import tomllib
+from pathlib import Path
+
+
+def register(sub) -> None:
+    """Add ``design SCENE.toml [--out DIR]`` to the cablesys parser."""
+    p = sub.add_parser("design", help="tune AE and C_I of each cable section (dual-isolation NLP, IPOPT)",
+                       description="Minimize the lower body's vertical significant amplitude (or its band RAO) "
+                                   "in the sea state of the scene's [design] table, over AE and C_I per section "
+                                   "within the given bounds, with no-slack, working-load and static-strain "
+                                   "constraints (Wang 1971 p. 33, dual isolation). Writes design.json.")
+    p.add_argument("scene", help="scene TOML file with a [design] table (keys of cablesys.design.DesignSettings)")
+    p.add_argument("--out", default="design_out", help="output directory (default: design_out)")
+    p.set_defaults(func=run)
+
+
+def load(path) -> tuple:
+    """(scene, settings) from a scene TOML file with a ``[design]`` table."""
+    from ..errors import ParameterError
+    from ..scene import scene_from_dict
+    from .problem import settings_from_dict
+
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text())
+    except OSError as err:
+        raise ParameterError("scene file", str(path), f"cannot be read ({err.strerror})") from None
+    except tomllib.TOMLDecodeError as err:
+        raise ParameterError("scene file", str(path), f"is not valid TOML: {err}") from None
+    table = data.pop("design", None)
+    if table is None:
+        raise ParameterError("design", "missing", "the scene file needs a [design] table with ae_bounds and damping_bounds")
+    return scene_from_dict(data), settings_from_dict(table)
+
+
+def run(args) -> int:
+    from .solve import design
+
+    scene, settings = load(args.scene)
+    result = design(scene, settings)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    doc = {"scene": scene.name, **result.to_dict()}
+    (out / "design.json").write_text(json.dumps(doc, indent=2, default=float) + "\n")
+    w = sys.stdout.write
+    w(f"{scene.name}\n{'converged' if result.converged else 'NOT converged'} ({result.status}); "
+      f"{result.nlp_iterations} IPOPT iterations in {result.nlp_wall_s:.2f} s (total {result.total_wall_s:.2f} s)\n")
+    w(f"objective ({result.objective_kind}): {result.objective:.6g}\n")
+    for name, v, lo, hi in zip(result.variable_names, result.values, result.lower, result.upper):
+        w(f"  {name:<20s} {v:12.5g}   [{lo:.4g}, {hi:.4g}]\n")
+    w("constraint margins (>= 0 met): " + ", ".join(f"{k} {v:+.3g}" for k, v in result.margins.items()) + "\n")
+    w(f"active: {', '.join(result.active) or 'none'}\nwrote {out / 'design.json'}\n")
+    return 0 if result.converged else 1
