@@ -70,3 +70,7 @@ def require_range(field: str, value: float, lo: float, hi: float, unit: str = ""
         rb = ")" if hi_open else "]"
         raise ParameterError(field, value, f"must be in {lb}{lo}, {hi}{rb}{' ' + unit if unit else ''}")
     return v
+
+
+class NumericalWarning(UserWarning):
+    """A numerical caveat: the computation goes on, but read its result with care."""

@@ -89,7 +89,9 @@ def test_integrator_failure_keeps_results_and_says_where():
     scene = bouncing_scene(duration=2.0, method="rk").replace_section(0, cable={"ae": 1e9, "tension_floor": -math.inf})
     scene = scene.replace(initial=Initial(phi=0.0, u=0.01), numerics=Numerics(
         duration=2.0, output_step=0.05, integrator="rk", steps_per_output=2, drag_segments=2))
-    r = simulate(scene)
+    from cablesys.errors import NumericalWarning
+    with pytest.warns(NumericalWarning, match=r"RK4 stability limit\): expect growth; use steps_per_output >= \d+"):
+        r = simulate(scene)
     assert not r.success
     assert "failed between t =" in r.message and "steps_per_output" in r.message
     assert 0 < r.time.size < 41
@@ -111,3 +113,17 @@ def test_long_output_interval_is_split_not_failed():
     ref = simulate(scene, times=np.linspace(0.0, 60.5, 1211))
     np.testing.assert_allclose(X[:, -1], [ref["phi"][-1], ref["u"][-1], ref["phi_rate"][-1], ref["u_rate"][-1]],
                                rtol=1e-4, atol=1e-7)
+
+
+def test_unstable_rk_with_slack_fails_instead_of_chattering():
+    """Above RK4's stability limit a slack-capable cable must not 'succeed' through endless switches."""
+    from cablesys.errors import NumericalWarning
+    from cablesys.scene import dale_scene
+    scene = dale_scene(duration=5.0).with_numerics(integrator="rk", steps_per_output=2)
+    with pytest.warns(NumericalWarning):
+        r = simulate(scene)
+    assert not r.success
+    assert ("chattering" in r.message) or ("failed between" in r.message)
+    assert "stability" in r.message or "steps_per_output" in r.message
+    stable = simulate(scene.with_numerics(integrator="rk", steps_per_output=20))
+    assert stable.success and not stable.events

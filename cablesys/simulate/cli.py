@@ -22,6 +22,7 @@ def register(sub) -> None:
     p.add_argument("--out", type=Path, default=None, help="output folder (default: cablesys-out)")
     p.add_argument("--method", default=None, help="cvodes | cvodes-adams | idas | rk | collocation")
     p.add_argument("--duration", type=float, default=None, help="simulated time in s (overrides the scene)")
+    p.add_argument("--jit", action="store_true", help="compile the model with the C compiler (faster long runs, ~2 s build)")
     p.set_defaults(func=_run)
     s = sub.add_parser("scene", help="print an annotated example scene, or check a scene file",
                        description="With --example: print an annotated scene (the Dale default). With a file: "
@@ -55,7 +56,7 @@ def _run(args) -> int:
     scene = load_scene(args.scene)
     if args.duration:
         scene = scene.with_numerics(duration=args.duration)
-    result = simulate(scene, method=args.method)
+    result = simulate(scene, method=args.method, jit=args.jit)
     summary = write_run(scene, result, out)
     _print_summary(summary)
     if not result.success:
@@ -102,7 +103,7 @@ def _run_dale_table(args, out: Path) -> int:
     rows, ok = [], True
     for ratio in (0.5, 1.0, 1.5, 2.0):
         scene = dale_scene(omega_ratio=ratio, duration=args.duration or 150.0)
-        r = simulate(scene, method=args.method)
+        r = simulate(scene, method=args.method, jit=args.jit)
         ok &= r.success
         T = 2 * math.pi / (ratio * OMEGA_N_MEASURED)
         xa, ya = r.steady_amplitude("x_b", T, 3), r.steady_amplitude("y_b", T, 3)

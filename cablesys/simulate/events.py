@@ -40,6 +40,22 @@ def first_violation(ga, gb, da, db, h, slack: bool, tol: float):
     return 1.0 if sign * gb < -tol else None
 
 
+def first_bad_interval(G, D, h, slack, tol_rel: float = 1e-12):
+    """Index j >= 1 of the first output interval (t_{j-1}, t_j] where any section leaves its
+    mode, or None; vectorized :func:`first_violation` over all intervals and sections.
+
+    ``G``, ``D``: (n_sections, n_times) values of g and dg/dt; ``h``: (n_times - 1,) interval
+    lengths; ``slack``: (n_sections,) booleans.
+    """
+    sign = np.where(np.asarray(slack, bool), -1.0, 1.0)[:, None, None]
+    ga, gb, da, db = G[:, :-1, None], G[:, 1:, None], D[:, :-1, None], D[:, 1:, None]
+    vals = sign * hermite(ga, gb, da, db, np.asarray(h)[None, :, None], HERMITE_SAMPLES[None, None, :])
+    tol = tol_rel * np.maximum(1.0, np.maximum(np.abs(ga), np.abs(gb)))
+    bad = np.any(vals < -tol, axis=(0, 2))
+    idx = np.nonzero(bad)[0]
+    return int(idx[0]) + 1 if idx.size else None
+
+
 def newton_bracketed(fun, a: float, b: float, fa: float, fb: float, xtol: float, maxiter: int = 60):
     """Root of ``fun`` in [a, b] (fa, fb of opposite sign); ``fun(t) -> (f, df/dt)``.
 

@@ -41,6 +41,7 @@ class IntegratorSettings:
     atol: float = 1e-10
     steps_per_output: int = 10        # fixed-step methods only
     max_num_steps: int = 100000
+    jit: bool = False                 # compile the DAE with the C compiler (about 3x faster, ~1 s build each)
 
     def __post_init__(self):
         if self.method not in METHODS:
@@ -78,5 +79,7 @@ def make_integrator(model: CableModel, settings: IntegratorSettings, grid, name:
         if settings.method == "collocation":
             opts["rootfinder"] = "newton"   # the q'' system is small and dense
     opts["print_stats"] = False
+    if settings.jit:
+        opts.update(jit=True, compiler="shell", jit_options={"flags": ["-O2"], "verbose": False})
     dae = _dae(model, settings.method == "idas")
     return ca.integrator(name, plugin, dae, float(grid[0]), list(grid[1:]), opts)
