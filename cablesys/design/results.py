@@ -30,7 +30,10 @@ def describe_constraint(name: str, settings=None) -> str:
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class DesignResult:
-    """Optimal design. ``constraint_values`` are g <= 0 (normalized); the margin is -g."""
+    """Optimal design. ``constraint_values`` are g <= 0 (normalized); the margin is -g.
+
+    ``converged``: IPOPT succeeded and the outer drag fixed point settled (objective change <= outer_tol;
+    with ``outer_iterations = 1`` only the NLP for the first held dJ is solved)."""
 
     variable_names: tuple
     values: np.ndarray

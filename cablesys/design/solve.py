@@ -135,8 +135,9 @@ def design(scene, settings: DesignSettings, *, model=None) -> DesignResult:
     active = [f"{v.name} at {'lower' if a < 0.5 else 'upper'} bound" for v, a, lx in zip(vars_, xv, lam_x)
               if min(a, 1 - a) < 1e-6 or abs(lx) > 1e-8 * max(1.0, abs(run["objective"]))]
     active += [names[k] for k in range(ng) if gv_final[k] > -1e-5 or lam_g[k] > 1e-8 * max(1.0, abs(run["objective"]))]
-    converged = run["status"] in OK_STATUS and len(history) < settings.outer_iterations or (
-        len(history) >= 2 and abs(history[-1]["objective"] - history[-2]["objective"]) <= settings.outer_tol * abs(history[-1]["objective"]))
+    outer_converged = len(history) >= 2 and (
+        abs(history[-1]["objective"] - history[-2]["objective"]) <= settings.outer_tol * abs(history[-1]["objective"]))
+    converged = run["status"] in OK_STATUS and (outer_converged or settings.outer_iterations == 1)
     if not converged:
         log.warning("isolation design: outer drag iteration or IPOPT did not converge (%s)", run["status"])
     return DesignResult(
