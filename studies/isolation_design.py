@@ -6,7 +6,8 @@ C_I of both ropes chosen by the NLP of :mod:`cablesys.design` (example values an
 their reasons in :mod:`cablesys.design.example`). Outputs:
 
 * RAO of the package's heave per unit sea amplitude, before/after, over the sea spectrum;
-* the parameter table (Markdown) and ``isolation_design.json``;
+* the parameter table (Markdown), ``isolation_design.json`` and the problem as a scene TOML with a
+  ``[design]`` table (``dual_isolation_design.toml``, for ``cablesys design``);
 * the check with the nonlinear time-domain model in one irregular-sea realization (random-phase
   sum of spectral components, the top following the surface orbit as in the linear model): the
   reduction of the package's heave standard deviation must be within 10 % of the linear
@@ -26,12 +27,12 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
 
-from cablesys.design import design  # noqa: E402
+from cablesys.design import design, settings_to_toml  # noqa: E402
 from cablesys.design.example import baseline_scene, dual_scene, example_settings  # noqa: E402
 from cablesys.linear.spectra import jonswap  # noqa: E402
 from cablesys.linear.stochastic import stochastic_response  # noqa: E402
 from cablesys.model import build_model  # noqa: E402
-from cablesys.scene import Sinusoid, TopMotion  # noqa: E402
+from cablesys.scene import Sinusoid, TopMotion, dump_scene  # noqa: E402
 from cablesys.simulate import simulate  # noqa: E402
 
 TRANSIENT_S = 100.0
@@ -161,6 +162,8 @@ def main(argv=None) -> int:
              f"package heave RAO (stochastic linearization, Hs = {settings.hs} m, Tp = {settings.tp} s); "
              f"significant heave {sig_base:.2f} m -> {sig_opt:.2f} m ({reduction_db:+.1f} dB)")
     (args.out / "isolation_parameters.md").write_text(parameter_table(base, opt, result))
+    # the same problem for the command line: cablesys design dual_isolation_design.toml
+    (args.out / "dual_isolation_design.toml").write_text(dump_scene(start) + "\n" + settings_to_toml(settings))
 
     duration = 500.0 if args.quick else 1300.0
     top, sea_std = sea_realization(settings, 120 if args.quick else 300, seed=7)

@@ -14,7 +14,7 @@ from cablesys.linear.linearize import linearize
 from cablesys.linear.modes import modes
 from cablesys.linear.steady import steady_state
 from cablesys.model import build_model
-from cablesys.scene import Body, Cable, Environment, Numerics, Scene, Section, Sinusoid, TopMotion
+from cablesys.scene import Body, Cable, Numerics, Scene, Section, Sinusoid, TopMotion
 from cablesys.scene.scene import single_section_scene
 from cablesys.simulate import simulate
 

@@ -8,7 +8,6 @@ from cablesys.design.example import baseline_scene, dual_scene, example_settings
 from cablesys.design.objective import complex_solve, nlp_functions, parameter_map, response_functions
 from cablesys.design.problem import variables
 from cablesys.design.solve import equivalent_jacobian_shift
-from cablesys.linear.linearize import xi_blocks
 from cablesys.linear.steady import steady_state
 from cablesys.model import build_model
 

@@ -126,12 +126,19 @@ def _cli(argv):
 
 def test_cli_design_writes_json(tmp_path, capsys):
     path = tmp_path / "dual.toml"
-    path.write_text(dump_scene(dual_scene()) + DESIGN_TABLE)
+    path.write_text(dump_scene(dual_scene()) + DESIGN_TABLE)   # hand-written table, as a user would
     assert _cli(["design", str(path), "--out", str(tmp_path / "out")]) == 0
     doc = json.loads((tmp_path / "out" / "design.json").read_text())
     assert doc["converged"] and "static_strain_1" in doc["active"]
     assert doc["variables"]["ae_1"]["value"] == pytest.approx(5.98e4, rel=0.01)
     assert "active: " in capsys.readouterr().out
+
+
+def test_settings_toml_round_trip():
+    import tomllib
+    from cablesys.design import settings_to_toml
+    s = example_settings(intermediate_mass_bounds=(900.0, 3600.0), objective="rao_band", band=(0.6, 1.2))
+    assert settings_from_dict(tomllib.loads(settings_to_toml(s))["design"]) == s
 
 
 def test_cli_design_needs_a_design_table(tmp_path):

@@ -127,6 +127,24 @@ def settings_from_dict(table: dict) -> DesignSettings:
     return DesignSettings(**table)
 
 
+def _toml_value(v) -> str:
+    if isinstance(v, str):
+        return f'"{v}"'
+    if isinstance(v, (tuple, list)):
+        return "[" + ", ".join(_toml_value(a) for a in v) + "]"
+    return repr(v)
+
+
+def settings_to_toml(settings: DesignSettings) -> str:
+    """The ``[design]`` table of ``settings`` (read back by :func:`settings_from_dict`)."""
+    lines = ["[design]"]
+    for f in dataclasses.fields(settings):
+        v = getattr(settings, f.name)
+        if v is not None:
+            lines.append(f"{f.name} = {_toml_value(v)}")
+    return "\n".join(lines) + "\n"
+
+
 @dataclasses.dataclass(frozen=True)
 class Variable:
     """One decision variable: its name, the parameter labels it sets, and its log-scaled bounds."""
