@@ -63,6 +63,8 @@ class DesignSettings:
     n_starts: int = 4
     outer_iterations: int = 6               # self-consistent drag linearization (see objective.py)
     outer_tol: float = 1e-3                 # relative change of the objective between outer iterations
+    quadrature_log2: int = 7                # 2 x 2^k Sobol points of the Gaussian equivalent linearization
+    equivalent_tol: float = 1e-3            # its self-consistency tolerance on the response std
     max_iter: int = 100                     # IPOPT iterations per solve
     tol: float = 1e-8                       # IPOPT tolerance
 
@@ -96,11 +98,13 @@ class DesignSettings:
                 require_positive(f"design.{name}[{i}]", a)
             object.__setattr__(self, name, v)
         require_positive("design.n_sigma", self.n_sigma)
-        for name, lo, hi in (("n_starts", 1, 64), ("outer_iterations", 1, 50), ("max_iter", 1, 100000)):
+        for name, lo, hi in (("n_starts", 1, 64), ("outer_iterations", 1, 50), ("max_iter", 1, 100000),
+                             ("quadrature_log2", 4, 14)):
             v = getattr(self, name)
             if not isinstance(v, int) or not lo <= v <= hi:
                 raise ParameterError(f"design.{name}", v, f"must be an integer in [{lo}, {hi}]")
         require_range("design.outer_tol", self.outer_tol, 1e-12, 1.0)
+        require_range("design.equivalent_tol", self.equivalent_tol, 1e-8, 0.1)
         require_range("design.tol", self.tol, 1e-14, 1e-2)
 
     @property

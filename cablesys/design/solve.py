@@ -49,10 +49,11 @@ def _jacobian_of(lin) -> np.ndarray:
     return np.hstack([-lin.K, -lin.C, -lin.M, lin.F0[:, :2], lin.F1[:, :2], lin.F2[:, :2], lin.F0[:, 2:]]).real
 
 
-def equivalent_jacobian_shift(model, p, settings: DesignSettings, *, n_log2: int = 8):
+def equivalent_jacobian_shift(model, p, settings: DesignSettings, *, n_log2: int | None = None):
     """dJ = E[dr/dxi] - dr/dxi(q_0): what the Gaussian equivalent linearization adds (mostly drag)."""
     omega = settings.omega
-    st = stochastic_response(model, p, omega, jonswap(omega, settings.hs, settings.tp, settings.gamma), n_log2=n_log2)
+    st = stochastic_response(model, p, omega, jonswap(omega, settings.hs, settings.tp, settings.gamma),
+                             n_log2=n_log2 or settings.quadrature_log2, tol=settings.equivalent_tol)
     return _jacobian_of(st.linear) - _jacobian_of(linearize(model, p)), st
 
 
