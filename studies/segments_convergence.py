@@ -153,6 +153,10 @@ def plot(results: dict, out: Path) -> None:
             if pts:
                 n, e = np.array(pts).T
                 ax.loglog(n, np.maximum(e, 1e-9), sty, label=f"{lab} (vs N = {ref})")
+        from matplotlib.ticker import NullFormatter, ScalarFormatter
+        ax.set_xticks([r["n"] for r in res["rows"] if r["n"] != res["reference_n"]])
+        ax.xaxis.set_major_formatter(ScalarFormatter())
+        ax.xaxis.set_minor_formatter(NullFormatter())
         ax.set_xlabel("number of segments N (N = 1: Wang's 2-DOF model)")
         ax.set_ylabel("relative difference from the finest N")
         ax.set_title(f"{res['scene']}\nW_c / W_b = {res['cable_to_body_weight']:.2f}", fontsize=9)

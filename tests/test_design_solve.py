@@ -146,3 +146,11 @@ def test_cli_design_needs_a_design_table(tmp_path):
     path.write_text(dump_scene(dual_scene()))
     with pytest.raises(ParameterError, match=r"\[design\] table"):
         _cli(["design", str(path)])
+
+
+def test_intermediate_mass_as_a_variable_can_only_improve(example):
+    """The example's plate mass (1800 kg) lies inside the bounds: freeing it cannot make the optimum worse."""
+    r = design(dual_scene(), example_settings(intermediate_mass_bounds=(900.0, 3600.0), n_starts=2))
+    assert r.converged and r.variable_names[-1] == "intermediate_mass"
+    assert r.objective < example.objective * 1.002
+    assert all(m > -1e-6 for m in r.margins.values())
