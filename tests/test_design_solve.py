@@ -97,6 +97,8 @@ def test_settings_are_validated_with_field_names():
         example_settings(band=(0.1, 1.0))
     with pytest.raises(ParameterError, match=r"design\.max_iters"):
         settings_from_dict({"ae_bounds": [[1, 2]], "damping_bounds": [[1, 2]], "max_iters": 3})
+    with pytest.raises(ParameterError, match=r"design\.ae_bounds\[0\] lower.*reference tension"):
+        design(dual_scene(), example_settings(ae_bounds=((5e3, 3e6), (3e4, 3e6))))
     with pytest.raises(ParameterError, match=r"the scene has 1 sections"):
         design(baseline_scene(), example_settings())
     with pytest.raises(ParameterError, match=r"intermediate body"):

@@ -175,6 +175,11 @@ def variables(scene, settings: DesignSettings) -> tuple:
     pre = (lambda i: "") if n == 1 else (lambda i: f"sections[{i}].")
     out = []
     for i in range(n):
+        t_ref = scene.sections[i].cable.tension_ref
+        if settings.ae_bounds[i][0] <= t_ref:
+            raise ParameterError(f"design.ae_bounds[{i}] lower", settings.ae_bounds[i][0],
+                                 f"must exceed the section's reference tension {t_ref:.6g} N so that the zero-tension "
+                                 "length l_0 = l_r (1 - T_r / AE) stays positive (Wang 1971 eq. 1)")
         out.append(Variable(f"ae_{i + 1}", *settings.ae_bounds[i], ((f"{pre(i)}cable.ae", 1.0),)))
         out.append(Variable(f"internal_damping_{i + 1}", *settings.damping_bounds[i],
                             ((f"{pre(i)}cable.internal_damping", 1.0),)))

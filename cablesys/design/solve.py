@@ -113,7 +113,11 @@ def design(scene, settings: DesignSettings, *, model=None) -> DesignResult:
                    "objective": float(sol["f"]), "max_violation": float(max(gv.max(), 0.0))}
             runs.append(run)
             candidates.append((run, xv, gv, np.array(sol["lam_x"]).ravel(), np.array(sol["lam_g"]).ravel()))
-        feasible = [c for c in candidates if c[0]["max_violation"] <= FEASIBILITY_TOL]
+        feasible = [c for c in candidates if c[0]["max_violation"] <= FEASIBILITY_TOL and np.isfinite(c[0]["objective"])]
+        if not feasible and not any(np.all(np.isfinite(c[2])) for c in candidates):
+            raise SolverError(f"isolation design: IPOPT failed from every start ({candidates[0][0]['status']}): the "
+                              "objective or constraints are not finite (check that the bounds keep AE above the "
+                              "reference tension and that the scene has a taut steady state)")
         if not feasible:
             c = min(candidates, key=lambda c: c[0]["max_violation"])
             raise _infeasibility(c[2], names, settings,
