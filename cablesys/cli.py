@@ -18,6 +18,7 @@ COMMAND_MODULES = (
     "cablesys.simulate.cli",    # run, scene (Wang 1971 time domain)
     "cablesys.slack.cli",       # slack  (Griffin & Rosenthal 1985)
     "cablesys.linear.cli",      # rao    (steady state, linearization, RAOs)
+    "cablesys.design.cli",      # design (dual-isolation NLP)
     "cablesys.towed.cli",       # towed  (Kennedy & Strahan 1981)
 )
 

@@ -125,5 +125,9 @@ def test_no_equilibrium_errors(dale):
     s, m, p = dale
     with pytest.raises(ParameterError, match="no taut"):
         s.replace_section(0, body={"weight": -1.0})
-    with pytest.raises(SolverError, match="steady state not found"):
-        steady_state(m, p, guess=[np.nan, np.nan])                  # rootfinder cannot start
+    # a rootfinder that does not converge (here: one that returns NaN) gives a clear SolverError
+    import casadi as ca
+    q, pp = ca.SX.sym("q", m.nq), ca.SX.sym("p", len(m.layout))
+    diverging = ca.Function("diverging", [q, pp], [q * np.nan])
+    with pytest.raises(SolverError, match="steady state not found.*give an initial guess"):
+        steady_state(m, p, solver=diverging)

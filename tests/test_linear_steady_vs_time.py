@@ -37,3 +37,11 @@ def test_hanging_tension_equals_submerged_weights():
     assert ss.q[0] == 0.0
     assert ss.outputs["tension"] == pytest.approx(scene.body.weight + 0.5 * scene.cable.total_weight, rel=1e-12)
     assert ss.outputs["y_b"] == pytest.approx(scene.cable.length_zero + ss.q[1], rel=1e-14)
+
+
+def test_bad_guess_does_not_return_an_inverted_compressed_cable():
+    """A root with phi = -pi and u < 0 solves the equations but is not a hanging equilibrium."""
+    scene = dale_scene()
+    model = build_model(scene)
+    ss = steady_state(model, model.parameters(scene), guess=np.array([3.0, -0.01]))
+    assert ss.q[0] == pytest.approx(0.0, abs=1e-12) and ss.q[1] > 0

@@ -48,7 +48,10 @@ def _rootfinder(model: CableModel) -> ca.Function:
     _, f = model.dynamics(q, ca.SX.zeros(model.nq), ca.SX.zeros(len(EXO_LABELS)), p)
     g = ca.Function("static_residual", [q, p], [f])
     return ca.rootfinder("steady", "kinsol", g, {"strategy": "linesearch", "abstol": 1e-12,
-                                                  "error_on_fail": False, "print_level": 0})
+                                                  "error_on_fail": False, "print_level": 0,
+                                                  # failed starting guesses are expected and retried:
+                                                  # keep KINSOL's line-search messages off stderr
+                                                  "disable_internal_warnings": True})
 
 
 def _guesses(model: CableModel, p):
@@ -84,7 +87,8 @@ def steady_state(model: CableModel, p, *, guess=None, solver: ca.Function | None
     q_res = ca.SX.sym("q", model.nq)
     _, f = model.dynamics(q_res, ca.SX.zeros(model.nq), ca.SX.zeros(len(EXO_LABELS)), ca.DM(p))
     resid_fn = ca.Function("r", [q_res], [f])
-    guesses = [np.asarray(guess, float)] if guess is not None else list(_guesses(model, p))
+    guesses = ([np.asarray(guess, float)] if guess is not None else []) + list(_guesses(model, p))
+    gap_fn = model.cable_force
     best = None
     for g0 in guesses:
         q = np.array(rf(g0, p)).ravel()
@@ -92,15 +96,19 @@ def steady_state(model: CableModel, p, *, guess=None, solver: ca.Function | None
             continue
         r = float(np.max(np.abs(np.array(resid_fn(q)))))
         phis = [q[i] for i, lbl in enumerate(model.q_labels) if lbl.startswith("phi")]
+        taut = np.all(np.array(gap_fn(np.concatenate([q, np.zeros_like(q)]), p)) > 0)
+        if not (taut and all(abs(a) < math.pi / 2 for a in phis)):
+            continue          # a root of the equations, but an inverted or compressed cable
         if best is None or r < best[1]:
             best = (q, r)
-        if r < 1e-9 * max(1.0, _force_scale(model, p)) and all(abs(a) < math.pi / 2 for a in phis):
+        if r < 1e-9 * max(1.0, _force_scale(model, p)):
             break
     if best is None or best[1] > 1e-6 * max(1.0, _force_scale(model, p)):
-        raise SolverError("steady state not found: the equilibrium rootfinder (KINSOL) did not converge "
-                          f"(best residual {best[1] if best else float('nan'):.3g}); check that the current "
-                          "or tow speed is not so strong that the cable streams horizontally, and that weights are "
-                          "positive, or give an initial guess")
+        raise SolverError("steady state not found: the equilibrium rootfinder (KINSOL) found no hanging "
+                          "equilibrium (every |phi| < 90 deg, every section's tension above its floor; best residual "
+                          f"{best[1] if best else float('nan'):.3g}); a buoyant body on a rod only balances inverted, "
+                          "and a very strong current or tow speed streams the cable horizontally: check weights and "
+                          "speeds, or give an initial guess")
     q = best[0]
     x = np.concatenate([q, np.zeros_like(q)])
     y = np.array(model.outputs(x, np.zeros(len(EXO_LABELS)), p)).ravel()
