@@ -46,7 +46,15 @@ def _rootfinder(model: CableModel) -> ca.Function:
     q = ca.SX.sym("q", model.nq)
     p = ca.SX.sym("p", len(model.layout))
     _, f = model.dynamics(q, ca.SX.zeros(model.nq), ca.SX.zeros(len(EXO_LABELS)), p)
-    g = ca.Function("static_residual", [q, p], [f])
+    # scale rows to O(1): u-rows (forces) by the total weight, phi-rows (moments) by weight x length,
+    # so that KINSOL's tolerance is relative and not below round-off for heavy, long systems
+    lab = model.layout.labels
+    weight = sum(ca.fabs(p[i]) for i, lb in enumerate(lab) if lb.endswith("body.weight")) + sum(
+        ca.fabs(p[i] * p[lab.index(lb.replace("weight_per_length", "length"))])
+        for i, lb in enumerate(lab) if lb.endswith("cable.weight_per_length"))
+    length = sum(p[i] for i, lb in enumerate(lab) if lb.endswith("cable.length"))
+    scale = ca.vertcat(*[weight * length if lbl.startswith("phi") else weight for lbl in model.q_labels])
+    g = ca.Function("static_residual", [q, p], [f / scale])
     return ca.rootfinder("steady", "kinsol", g, {"strategy": "linesearch", "abstol": 1e-12,
                                                   "error_on_fail": False, "print_level": 0,
                                                   # failed starting guesses are expected and retried:
