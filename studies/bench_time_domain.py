@@ -159,7 +159,6 @@ def main(argv=None) -> int:
     res["compiled"] = {}
     have_cc = shutil.which("gcc") or shutil.which("cc")
     if have_cc:
-        pm = p
         for method in ("cvodes", "cvodes-adams"):
             tb = time.perf_counter()
             simj = Simulator(model, times, IntegratorSettings(method=method, rtol=RTOL, atol=ATOL, jit=True))

@@ -33,7 +33,7 @@ from cablesys.simulate import simulate
 FULL_SCALE_OMEGA_N_MEASURED = 0.49     # rad/s, Wang (1971) Table 1, full-scale column
 
 
-def full_scale_scene(omega: float = FULL_SCALE_OMEGA_N_MEASURED) -> "Scene":
+def full_scale_scene(omega: float = FULL_SCALE_OMEGA_N_MEASURED):
     """Table 1 full scale: 50 ft cable of 0.14 in, 5.5 in sphere weighing 4.18 lb in water, 2.3 ft p-p.
 
     Cable weight, mass and AE are the model's scaled by the diameter ratio squared (same
@@ -98,7 +98,7 @@ def analyse(scene, omega_meas, tag, out: Path, quick: bool) -> dict:
 
     # nonlinear RAO: periodic solve along frequency (continuation) vs describing function
     w_nl = np.linspace(omega[0], omega[-1], 6 if quick else 24)
-    amp_nl, amp_hb = [], []
+    amp_nl = []
     guess = None
     for w in w_nl:
         sc = with_frequency(scene, w)
@@ -106,7 +106,6 @@ def analyse(scene, omega_meas, tag, out: Path, quick: bool) -> dict:
                                     guess=guess, n_harmonics=20)
         guess = sol.q if sol.success else None
         amp_nl.append(sol.amplitude("x_b") / a if sol.success else np.nan)
-    amp_hb = np.interp(w_nl, omega, h_circ.amplitude("x_b") / a)
     plot_nonlinear_rao(omega, {"describing function (circular top motion)": h_circ.amplitude("x_b") / a,
                                "exact linearization (x only; undamped)": np.minimum(r_exact.amplitude("x_b", "x_s"), 10)},
                        natural, "x_b amplitude / top amplitude [-]", out / f"{tag}_nonlinear_rao.png",

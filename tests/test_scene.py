@@ -8,7 +8,7 @@ import pytest
 
 from cablesys import units as U
 from cablesys.errors import ParameterError
-from cablesys.scene import (Body, Cable, Environment, Numerics, Sinusoid, TimeSeries, TopMotion,
+from cablesys.scene import (Body, Cable, TimeSeries, TopMotion,
                             dale_scene, default_scene, dump_scene, load_scene, scene_from_dict)
 
 

@@ -34,7 +34,7 @@ def test_nlp_equals_shooting(rise):
 
 
 def test_hessian_is_stiffness_matches_finite_difference_of_forces():
-    from cablesys.slack.statics import _energy_functions, _params, discretize, stiffness_inplane
+    from cablesys.slack.statics import _energy_functions, _params, stiffness_inplane
     import casadi as ca
     sc = scene(0.97, n=12)
     eq, d = solve_equilibrium(sc)

@@ -35,7 +35,7 @@ import numpy as np
 
 from ..errors import SolverError
 from ..model import CableModel
-from .linearize import (LinearModel, from_jacobian, functions, linearize, operating_xi,
+from .linearize import (from_jacobian, functions, linearize, operating_xi,
                         static_parameters, xi_blocks)
 from .rao import RAO
 from .steady import steady_state

@@ -48,7 +48,7 @@ def _forcing_period(scene) -> float | None:
 
 
 def _run(args) -> int:
-    from ..scene import dale_scene, load_scene
+    from ..scene import load_scene
     from . import simulate
     out = args.out or Path("cablesys-out")
     if args.scene is None:

@@ -33,7 +33,6 @@ so the result is exact to ``tol`` everywhere (tests compare with mpmath).
 from __future__ import annotations
 
 import logging
-import math
 
 import numpy as np
 import scipy.special as sc
