@@ -19,7 +19,6 @@ The state-space form x = (dq, dq') is x' = A x + B0 z + B1 z' + B2 z''.
 from __future__ import annotations
 
 import dataclasses
-import weakref
 
 import casadi as ca
 import numpy as np
@@ -28,7 +27,6 @@ from ..model import EXO_LABELS, CableModel
 from .steady import SteadyState, steady_state
 
 TOP_INPUTS = ("x_s", "y_s")
-_CACHE: "weakref.WeakKeyDictionary[CableModel, dict]" = weakref.WeakKeyDictionary()
 
 
 def wave_amplitude_indices(model: CableModel) -> list[int]:
@@ -55,8 +53,8 @@ def functions(model: CableModel) -> dict:
     ``residual(xi, p) -> r``, ``jac(xi, p) -> dr/dxi`` and ``out_jac(xi, p) -> (y, dy/dxi)``;
     the time in e is 0 and the wave amplitudes of p are replaced by the w block of xi.
     """
-    if model in _CACHE:
-        return _CACHE[model]
+    if "linearize" in model.derived:
+        return model.derived["linearize"]
     b = xi_blocks(model)
     xi = ca.SX.sym("xi", b["n"])
     p = ca.SX.sym("p", len(model.layout))
@@ -73,7 +71,7 @@ def functions(model: CableModel) -> dict:
         "jac": ca.Function("lin_jac", [xi, p], [ca.jacobian(r, xi)], ["xi", "p"], ["J"]),
         "out_jac": ca.Function("lin_out_jac", [xi, p], [y, ca.jacobian(y, xi)], ["xi", "p"], ["y", "Jy"]),
     }
-    _CACHE[model] = fns
+    model.derived["linearize"] = fns
     return fns
 
 

@@ -46,6 +46,9 @@ class CableModel:
     cable_force: ca.Function
     slack_index: tuple          # positions of the per-section slack switches in p
     symbolic: type = ca.SX      # ca.MX when the top motion has a sampled series
+    # functions that analyses derive from this model (linearization, collocation), built once
+    # and kept with the model they belong to (no module-level cache)
+    derived: dict = dataclasses.field(default_factory=dict, repr=False)
 
     def sym(self, name: str, n: int = 1):
         """A symbol of the model's symbolic type, for composing its functions."""
