@@ -34,6 +34,7 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
+from ..linear.steady import static_residual
 from ..linear.linearize import functions, xi_blocks
 from ..linear.spectra import jonswap
 from ..linear.stochastic import BUOY
@@ -108,13 +109,10 @@ def parameter_map(model: CableModel, variables: tuple):
 
 
 def static_rootfinder(model: CableModel) -> ca.Function:
-    """Newton rootfinder q_0(q_guess, p) of the static residual (differentiable)."""
-    b = xi_blocks(model)
-    q = ca.SX.sym("q", model.nq)
-    p = ca.SX.sym("p", len(model.layout))
-    xi = ca.vertcat(q, ca.SX.zeros(b["n"] - model.nq))
-    g = ca.Function("static_residual", [q, p], [functions(model)["residual"](xi, p)])
-    return ca.rootfinder("design_steady", "newton", g, {"abstol": 1e-10, "max_iter": 50, "error_on_fail": False})
+    """Newton rootfinder q_0(q_guess, p) of the model's static residual (differentiable; the
+    residual is the one :func:`cablesys.linear.steady.steady_state` solves, built once per model)."""
+    return model.derive("design_steady", lambda: ca.rootfinder(
+        "design_steady", "newton", static_residual(model), {"abstol": 1e-12, "max_iter": 50, "error_on_fail": False}))
 
 
 def response_functions(model: CableModel, settings: DesignSettings) -> ca.Function:

@@ -73,12 +73,13 @@ def complex_xi(model: CableModel, Q, Z, omega) -> np.ndarray:
 # --------------------------------------------------------------------------------------------
 # harmonic
 # --------------------------------------------------------------------------------------------
-def _hb1_rootfinder(model: CableModel, n_theta: int) -> ca.Function:
-    """KINSOL on (mean residual, first harmonic) = 0 for unknowns (q0, Re Q, Im Q)."""
-    key = f"hb1_{n_theta}"
+def _hb1_rootfinder(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Function]:
+    """KINSOL on (mean residual, first harmonic) = 0 for unknowns (q0, Re Q, Im Q), and that residual."""
+    return model.derive(f"hb1_{n_theta}", lambda: _build_hb1(model, n_theta))
+
+
+def _build_hb1(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Function]:
     fns = functions(model)
-    if key in fns:
-        return fns[key]
     nq, b = model.nq, xi_blocks(model)
     nu = 2 + (b["w"].stop - b["w"].start)
     v = ca.SX.sym("v", 3 * nq)
@@ -102,9 +103,7 @@ def _hb1_rootfinder(model: CableModel, n_theta: int) -> ca.Function:
     G = ca.Function("hb1", [v, ca.vertcat(w, Zr, Zi, p)], [g])
     rf = ca.rootfinder("hb1_solve", "kinsol", G, {"strategy": "linesearch", "abstol": 1e-13,
                                                   "error_on_fail": False, "print_level": 0})
-    fns[key] = rf
-    fns[f"{key}_res"] = G
-    return rf
+    return rf, G
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -164,8 +163,7 @@ def harmonic_response(model: CableModel, p, omega, input_amplitude, *, n_theta: 
     Z = np.asarray(input_amplitude, complex)
     if Z.shape != (len(lin0.input_labels),):
         raise SolverError(f"input_amplitude needs {len(lin0.input_labels)} entries {lin0.input_labels}, got {Z.shape}")
-    rf = _hb1_rootfinder(model, n_theta)
-    G = functions(model)[f"hb1_{n_theta}_res"]
+    rf, G = _hb1_rootfinder(model, n_theta)
     order = np.argsort(omega)
     pre = np.geomspace(omega[order[0]] / 4.0, omega[order[0]], ladder + 1)[:-1]
     nq = model.nq

@@ -53,8 +53,10 @@ def functions(model: CableModel) -> dict:
     ``residual(xi, p) -> r``, ``jac(xi, p) -> dr/dxi`` and ``out_jac(xi, p) -> (y, dy/dxi)``;
     the time in e is 0 and the wave amplitudes of p are replaced by the w block of xi.
     """
-    if "linearize" in model.derived:
-        return model.derived["linearize"]
+    return model.derive("linearize", lambda: _build_functions(model))
+
+
+def _build_functions(model: CableModel) -> dict:
     b = xi_blocks(model)
     xi = ca.SX.sym("xi", b["n"])
     p = ca.SX.sym("p", len(model.layout))
@@ -71,7 +73,6 @@ def functions(model: CableModel) -> dict:
         "jac": ca.Function("lin_jac", [xi, p], [ca.jacobian(r, xi)], ["xi", "p"], ["J"]),
         "out_jac": ca.Function("lin_out_jac", [xi, p], [y, ca.jacobian(y, xi)], ["xi", "p"], ["y", "Jy"]),
     }
-    model.derived["linearize"] = fns
     return fns
 
 

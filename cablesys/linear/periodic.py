@@ -22,7 +22,6 @@ import numpy as np
 from ..errors import SolverError
 from ..model import CableModel
 from .equivalent import harmonic_response
-from .linearize import functions
 
 
 def fourier_differentiation(n: int, period: float) -> np.ndarray:
@@ -45,11 +44,12 @@ def trig_interpolate(values: np.ndarray, n_fine: int) -> np.ndarray:
     return out
 
 
-def _collocation_rootfinder(model: CableModel, n: int) -> ca.Function:
-    key = f"colloc_{n}"
-    fns = functions(model)
-    if key in fns:
-        return fns[key]
+def _collocation_rootfinder(model: CableModel, n: int) -> tuple[ca.Function, ca.Function]:
+    """Newton on the collocation residual at n nodes, and that residual (built once per model and n)."""
+    return model.derive(f"colloc_{n}", lambda: _build_collocation(model, n))
+
+
+def _build_collocation(model: CableModel, n: int) -> tuple[ca.Function, ca.Function]:
     nq = model.nq
     Q = ca.SX.sym("Q", nq, n)
     T = ca.SX.sym("T")
@@ -69,9 +69,7 @@ def _collocation_rootfinder(model: CableModel, n: int) -> ca.Function:
     g = ca.vec(ca.horzcat(*res))
     G = ca.Function("colloc", [ca.vec(Q), ca.vertcat(T, t0, p)], [g])
     rf = ca.rootfinder("colloc_solve", "newton", G, {"abstol": 1e-12, "max_iter": 50, "error_on_fail": False})
-    fns[key] = rf
-    fns[f"{key}_res"] = G
-    return rf
+    return rf, G
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -135,8 +133,7 @@ def periodic_steady_state(model: CableModel, p, omega: float, *, n_harmonics: in
         h = harmonic_response(model, p, [omega], input_amplitude, n_theta=32, ladder=4)
         Q = h.q_amplitude[0]
         guess = h.q_mean[0][:, None] + np.real(Q[:, None] * np.exp(1j * omega * times)[None, :])
-    rf = _collocation_rootfinder(model, n)
-    G = functions(model)[f"colloc_{n}_res"]
+    rf, G = _collocation_rootfinder(model, n)
     par = np.concatenate([[T, t0], p])
     sol = np.array(rf(np.asarray(guess, float).ravel(order="F"), par)).ravel()
     res = float(np.max(np.abs(np.array(G(sol, par))))) if np.all(np.isfinite(sol)) else np.inf

@@ -19,7 +19,8 @@ from ..model import EXO_LABELS, CableModel
 
 @dataclasses.dataclass(frozen=True)
 class SteadyState:
-    """An equilibrium: coordinates, outputs (labelled), the residual reached."""
+    """An equilibrium: coordinates, outputs (labelled), the relative residual reached
+    (forces over total weight, moments over weight x length; see :func:`static_residual`)."""
 
     q: np.ndarray
     q_labels: tuple
@@ -34,32 +35,46 @@ class SteadyState:
 
 def _static_parameters(model: CableModel, p) -> np.ndarray:
     p = np.array(p, dtype=float)
-    for i, lbl in enumerate(model.layout.labels):
-        if lbl.startswith("environment.waves[") and lbl.endswith(".amplitude"):
-            p[i] = 0.0
-    for i in model.slack_index:
-        p[i] = 0.0
+    p[_static_zeroed(model)] = 0.0
     return p
 
 
+def _static_zeroed(model: CableModel) -> list[int]:
+    """Parameter entries a steady state ignores: wave amplitudes and the slack switches."""
+    waves = [i for i, lbl in enumerate(model.layout.labels)
+             if lbl.startswith("environment.waves[") and lbl.endswith(".amplitude")]
+    return waves + list(model.slack_index)
+
+
+def static_residual(model: CableModel) -> ca.Function:
+    """``(q, p) -> r``: the static residual f(q, q' = 0, e = 0, p) with waves and slack off,
+    scaled to O(1) (built once per model; shared by :func:`steady_state` and the design NLP).
+
+    u-rows (forces) are divided by the total weight, phi-rows (moments) by weight x length,
+    so that solver tolerances are relative and not below round-off for heavy, long systems.
+    """
+    def build():
+        q = ca.SX.sym("q", model.nq)
+        p = ca.SX.sym("p", len(model.layout))
+        zeroed = set(_static_zeroed(model))
+        ps = ca.vertcat(*[0.0 if i in zeroed else p[i] for i in range(len(model.layout))])
+        _, f = model.dynamics(q, ca.SX.zeros(model.nq), ca.SX.zeros(len(EXO_LABELS)), ps)
+        lab = model.layout.labels
+        weight = sum(ca.fabs(p[i]) for i, lb in enumerate(lab) if lb.endswith("body.weight")) + sum(
+            ca.fabs(p[i] * p[lab.index(lb.replace("weight_per_length", "length"))])
+            for i, lb in enumerate(lab) if lb.endswith("cable.weight_per_length"))
+        length = sum(p[i] for i, lb in enumerate(lab) if lb.endswith("cable.length"))
+        scale = ca.vertcat(*[weight * length if lbl.startswith("phi") else weight for lbl in model.q_labels])
+        return ca.Function("static_residual", [q, p], [f / scale], ["q", "p"], ["r"])
+    return model.derive("static_residual", build)
+
+
 def _rootfinder(model: CableModel) -> ca.Function:
-    q = ca.SX.sym("q", model.nq)
-    p = ca.SX.sym("p", len(model.layout))
-    _, f = model.dynamics(q, ca.SX.zeros(model.nq), ca.SX.zeros(len(EXO_LABELS)), p)
-    # scale rows to O(1): u-rows (forces) by the total weight, phi-rows (moments) by weight x length,
-    # so that KINSOL's tolerance is relative and not below round-off for heavy, long systems
-    lab = model.layout.labels
-    weight = sum(ca.fabs(p[i]) for i, lb in enumerate(lab) if lb.endswith("body.weight")) + sum(
-        ca.fabs(p[i] * p[lab.index(lb.replace("weight_per_length", "length"))])
-        for i, lb in enumerate(lab) if lb.endswith("cable.weight_per_length"))
-    length = sum(p[i] for i, lb in enumerate(lab) if lb.endswith("cable.length"))
-    scale = ca.vertcat(*[weight * length if lbl.startswith("phi") else weight for lbl in model.q_labels])
-    g = ca.Function("static_residual", [q, p], [f / scale])
-    return ca.rootfinder("steady", "kinsol", g, {"strategy": "linesearch", "abstol": 1e-12,
-                                                  "error_on_fail": False, "print_level": 0,
-                                                  # failed starting guesses are expected and retried:
-                                                  # keep KINSOL's line-search messages off stderr
-                                                  "disable_internal_warnings": True})
+    return model.derive("steady_kinsol", lambda: ca.rootfinder(
+        "steady", "kinsol", static_residual(model),
+        {"strategy": "linesearch", "abstol": 1e-12, "error_on_fail": False, "print_level": 0,
+         # failed starting guesses are expected and retried: keep KINSOL's messages off stderr
+         "disable_internal_warnings": True}))
 
 
 def _guesses(model: CableModel, p):
@@ -92,9 +107,7 @@ def steady_state(model: CableModel, p, *, guess=None, solver: ca.Function | None
     """
     p = _static_parameters(model, p)
     rf = solver or _rootfinder(model)
-    q_res = ca.SX.sym("q", model.nq)
-    _, f = model.dynamics(q_res, ca.SX.zeros(model.nq), ca.SX.zeros(len(EXO_LABELS)), ca.DM(p))
-    resid_fn = ca.Function("r", [q_res], [f])
+    resid_fn = static_residual(model)
     guesses = ([np.asarray(guess, float)] if guess is not None else []) + list(_guesses(model, p))
     gap_fn = model.cable_force
     best = None
@@ -102,16 +115,16 @@ def steady_state(model: CableModel, p, *, guess=None, solver: ca.Function | None
         q = np.array(rf(g0, p)).ravel()
         if not np.all(np.isfinite(q)):
             continue
-        r = float(np.max(np.abs(np.array(resid_fn(q)))))
+        r = float(np.max(np.abs(np.array(resid_fn(q, p)))))
         phis = [q[i] for i, lbl in enumerate(model.q_labels) if lbl.startswith("phi")]
         taut = np.all(np.array(gap_fn(np.concatenate([q, np.zeros_like(q)]), p)) > 0)
         if not (taut and all(abs(a) < math.pi / 2 for a in phis)):
             continue          # a root of the equations, but an inverted or compressed cable
         if best is None or r < best[1]:
             best = (q, r)
-        if r < 1e-9 * max(1.0, _force_scale(model, p)):
+        if r < 1e-10:
             break
-    if best is None or best[1] > 1e-6 * max(1.0, _force_scale(model, p)):
+    if best is None or best[1] > 1e-9:
         raise SolverError("steady state not found: the equilibrium rootfinder (KINSOL) found no hanging "
                           "equilibrium (every |phi| < 90 deg, every section's tension above its floor; best residual "
                           f"{best[1] if best else float('nan'):.3g}); a buoyant body on a rod only balances inverted, "
@@ -121,8 +134,3 @@ def steady_state(model: CableModel, p, *, guess=None, solver: ca.Function | None
     x = np.concatenate([q, np.zeros_like(q)])
     y = np.array(model.outputs(x, np.zeros(len(EXO_LABELS)), p)).ravel()
     return SteadyState(q=q, q_labels=model.q_labels, outputs=dict(zip(model.output_labels, y)), residual=best[1])
-
-
-def _force_scale(model: CableModel, p) -> float:
-    lay = model.layout
-    return max(abs(p[i]) for i, lbl in enumerate(lay.labels) if lbl.endswith("body.weight")) + 1e-300

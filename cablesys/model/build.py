@@ -50,6 +50,13 @@ class CableModel:
     # and kept with the model they belong to (no module-level cache)
     derived: dict = dataclasses.field(default_factory=dict, repr=False)
 
+    def derive(self, key: str, build):
+        """``build()`` once per model and key; later calls return the same object (functions that
+        analyses derive from this model are built once, not per call)."""
+        if key not in self.derived:
+            self.derived[key] = build()
+        return self.derived[key]
+
     def sym(self, name: str, n: int = 1):
         """A symbol of the model's symbolic type, for composing its functions."""
         return self.symbolic.sym(name, n)
