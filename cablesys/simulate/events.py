@@ -27,22 +27,11 @@ def hermite(ga, gb, da, db, h, s):
     return h00 * ga + h10 * h * da + h01 * gb + h11 * h * db
 
 
-def first_violation(ga, gb, da, db, h, slack: bool, tol: float):
-    """Fraction in (0, 1] of the first point where g leaves the current mode, or None.
-
-    Taut: g must stay >= -tol. Slack: g (the unclamped F_bc - TENS) must stay <= tol.
-    """
-    sign = -1.0 if slack else 1.0
-    vals = sign * hermite(ga, gb, da, db, h, HERMITE_SAMPLES)
-    bad = np.nonzero(vals < -tol)[0]
-    if bad.size:
-        return float(HERMITE_SAMPLES[bad[0]])
-    return 1.0 if sign * gb < -tol else None
-
-
 def first_bad_interval(G, D, h, slack, tol_rel: float = 1e-12):
-    """Index j >= 1 of the first output interval (t_{j-1}, t_j] where any section leaves its
-    mode, or None; vectorized :func:`first_violation` over all intervals and sections.
+    """Index j >= 1 of the first interval (t_{j-1}, t_j] where any section leaves its mode, or None.
+
+    Taut: g must stay >= -tol; slack: g (the unclamped F_bc - TENS) must stay <= tol, checked at
+    the Hermite samples of every interval (the interval end included) at once.
 
     ``G``, ``D``: (n_sections, n_times) values of g and dg/dt; ``h``: (n_times - 1,) interval
     lengths; ``slack``: (n_sections,) booleans.

@@ -128,7 +128,7 @@ class Simulator:
         p = np.asarray(p, dtype=float)
         x0 = np.asarray(x0, dtype=float)
         self._stats = {}
-        self.stability_note = self._check_fixed_step(x0, p)
+        stability_note = self._check_fixed_step(x0, p)
         wall = _time.perf_counter()
         nsec, times = self.model.n_sections, self.times
         g0, _ = self._gap_and_rate(x0, times[0], self._with_mode(p, np.zeros(nsec)))
@@ -194,17 +194,13 @@ class Simulator:
             if switches_here > 4 or events_in_interval > self.MAX_EVENTS_PER_INTERVAL:
                 success, message = False, (f"taut/slack chattering at t = {t_star:.9g} s ({events_in_interval} switches "
                                            f"in one output interval): {REMEDIES['chatter']}"
-                                           + ("; " + self.stability_note if self.stability_note else ""))
+                                           + ("; " + stability_note if stability_note else ""))
                 break
         stats = dict(self._stats, method=self.settings.method, wall_s=_time.perf_counter() - wall,
                      build_s=self.build_s, n_events=len(events))
-        if self.stability_note:
-            stats["warning"] = self.stability_note
+        if stability_note:
+            stats["warning"] = stability_note
         return np.array(X).T, np.array(modes).T, tuple(events), tuple(snaps), success, message, stats
-
-    @staticmethod
-    def _gtol(ga, gb) -> float:
-        return 1e-12 * max(1.0, abs(ga), abs(gb))
 
     def _dense_states(self, x, t_a, h, pm):
         """States at t_a + h * (0, 1/DENSE, ..., 1) from one integrator call."""
@@ -232,34 +228,34 @@ class Simulator:
 
     def _first_event(self, xa, t_a, xb, t_b, pm, mode):
         """Earliest located switch in (t_a, t_b] as (time, section), or None."""
-        ga, da = (np.array(v).ravel() for v in self._gap_and_rate(xa, t_a, pm))
-        gb, db = (np.array(v).ravel() for v in self._gap_and_rate(xb, t_b, pm))
-        h = t_b - t_a
+        G, D, _ = self._rates_at(np.column_stack([xa, xb]), np.array([t_a, t_b]), pm)
         suspects = [i for i in range(len(mode))
-                    if ev.first_violation(ga[i], gb[i], da[i], db[i], h, mode[i] == 1.0, self._gtol(ga[i], gb[i])) is not None]
+                    if ev.first_bad_interval(G[i:i + 1], D[i:i + 1], [t_b - t_a], mode[i:i + 1] == 1.0) is not None]
         if not suspects:
             return None
-        X, T = self._dense_states(xa, t_a, h, pm)
+        X, T = self._dense_states(xa, t_a, t_b - t_a, pm)
         G, D, _ = self._rates_at(X, T, pm)
-        best = None
-        for i in suspects:
-            sign = -1.0 if mode[i] == 1.0 else 1.0
-            for j in range(1, T.size):
-                tol = self._gtol(G[i, j - 1], G[i, j])
-                if sign * G[i, j] < -tol:                       # a bracketed crossing
-                    t_star = self._refine(X, T, j, pm, i, 0)
-                    break
-                s = ev.first_violation(G[i, j - 1], G[i, j], D[i, j - 1], D[i, j], T[j] - T[j - 1], mode[i] == 1.0, tol)
-                if s is not None:                              # a dip between dense points: look closer
-                    sub = self._first_event(X[:, j - 1], T[j - 1], X[:, j], T[j], pm, mode) if T[j] - T[j - 1] > 1e-9 * max(1.0, T[j]) else None
-                    t_star = sub[0] if sub is not None and sub[1] == i else None
-                    if t_star is not None:
-                        break
-            else:
-                t_star = None
-            if t_star is not None and (best is None or t_star < best[0]):
-                best = (t_star, i)
-        return best
+        found = [(t, i) for i in suspects if (t := self._locate(X, T, G, D, pm, mode, i)) is not None]
+        return min(found) if found else None
+
+    def _locate(self, X, T, G, D, pm, mode, i):
+        """First crossing of section i on the dense grid (X, T), refined; None if there is none."""
+        slack = mode[i:i + 1] == 1.0
+        sign = -1.0 if slack[0] else 1.0
+        lo = 0                                   # search intervals (T[lo], T[lo+1]], ...
+        while lo < T.size - 1:
+            j = ev.first_bad_interval(G[i:i + 1, lo:], D[i:i + 1, lo:], np.diff(T[lo:]), slack)
+            if j is None:
+                return None
+            j += lo
+            if sign * G[i, j] < -1e-12 * max(1.0, abs(G[i, j - 1]), abs(G[i, j])):
+                return self._refine(X, T, j, pm, i, 0)          # bracketed by the dense points
+            if T[j] - T[j - 1] > 1e-9 * max(1.0, abs(T[j])):   # a dip between dense points: look closer
+                sub = self._first_event(X[:, j - 1], T[j - 1], X[:, j], T[j], pm, mode)
+                if sub is not None and sub[1] == i:
+                    return sub[0]
+            lo = j
+        return None
 
     def _snap(self, x, t_star, pm, i_sec, t_end):
         """First tension maximum after section ``i_sec`` went taut at ``t_star`` (dg/dt = 0, d2g/dt2 < 0)."""
