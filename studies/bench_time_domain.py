@@ -41,6 +41,7 @@ from cablesys.model import build_model  # noqa: E402
 from cablesys.scene import dale_scene  # noqa: E402
 from cablesys.simulate import IntegratorSettings, Simulator  # noqa: E402
 from cablesys.simulate.run import initial_state  # noqa: E402
+from cablesys.plots import save_figure  # noqa: E402
 
 RTOL, ATOL = 1e-6, 1e-10
 STATE = ("phi", "u", "phi_rate", "u_rate")
@@ -258,9 +259,7 @@ def plot(path, res, times, Xs, X, Xref, pos_ref, model, p):
     ax2.set_title("error against CVODES at rtol 1e-12")
     ax2.legend()
     ax2.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
 
 
 if __name__ == "__main__":

@@ -34,6 +34,7 @@ from cablesys.linear.stochastic import stochastic_response  # noqa: E402
 from cablesys.model import build_model  # noqa: E402
 from cablesys.scene import Sinusoid, TopMotion, dump_scene  # noqa: E402
 from cablesys.simulate import simulate  # noqa: E402
+from cablesys.plots import save_figure  # noqa: E402
 
 TRANSIENT_S = 100.0
 
@@ -95,9 +96,7 @@ def plot_rao(omega, S, curves, out: Path, title: str):
     h2, l2 = ax2.get_legend_handles_labels()
     ax.legend(h1 + h2, l1 + l2, fontsize=8, loc="center right")
     ax.set_title(title, fontsize=9)
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
+    save_figure(fig, out, dpi=110)
 
 
 def plot_time(results: dict, out: Path):
@@ -115,9 +114,7 @@ def plot_time(results: dict, out: Path):
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8, loc="upper right")
     axes[0].set_title("irregular-sea realization, nonlinear time domain (dotted: start of statistics)", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
+    save_figure(fig, out, dpi=110)
 
 
 def parameter_table(base, opt_scene, result) -> str:

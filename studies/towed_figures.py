@@ -25,6 +25,7 @@ from cablesys.towed.mol import forced_response, slowest_mode
 from cablesys.towed.interaction import (amplification, effective_amplification,
                                         effective_amplification_exact)
 from cablesys.towed.transfer import c_star, transfer_grid, water_pulley_c_star
+from cablesys.plots import save_figure  # noqa: E402
 
 
 def shapes(plt, coef, out: Path):
@@ -44,9 +45,7 @@ def shapes(plt, coef, out: Path):
     axes[0].legend(fontsize=7, ncol=3, loc="upper right")
     axes[-1].set_xlabel("xi = x / L (-), tow point at 0")
     fig.suptitle("Cable shape over one period (Kennedy & Strahan 1981 Figs. 3-5 analogue)")
-    fig.tight_layout()
-    fig.savefig(out / "towed_shapes.png", dpi=110)
-    plt.close(fig)
+    save_figure(fig, out / "towed_shapes.png", dpi=110)
 
 
 def space_frequency(plt, coef, out: Path, n: int):
@@ -68,9 +67,7 @@ def space_frequency(plt, coef, out: Path, n: int):
     for ax in axes:
         ax.set_xlabel("omega = 2 pi f L / U (-)")
         ax.set_ylabel("xi = x / L (-)")
-    fig.tight_layout()
-    fig.savefig(out / "towed_space_frequency.png", dpi=110)
-    plt.close(fig)
+    save_figure(fig, out / "towed_space_frequency.png", dpi=110)
     return g
 
 
@@ -112,9 +109,7 @@ def real_order_map(plt, out: Path, n: int):
     axes[1].clabel(cs3, fmt="(beta omega/b)|ln(1+b/a)| = %g", fontsize=7)
     axes[1].set_title("Real-order (eq. 16) minus exact: relative to |H|\n"
                       "(white dashed: 1 % and 10 %; cyan: asymptotic estimate)")
-    fig.tight_layout()
-    fig.savefig(out / "towed_real_order_map.png", dpi=110)
-    plt.close(fig)
+    save_figure(fig, out / "towed_real_order_map.png", dpi=110)
     # summary: worst |dH| inside bands of the eq. 8b ratio
     bands = {}
     for lo, hi in [(0, 0.01), (0.01, 0.03), (0.03, 0.1), (0.1, 0.3), (0.3, 10)]:
@@ -156,9 +151,7 @@ def interaction(plt, out: Path):
     axes[0].set_title("A(theta, phi), eq. 38 (Fig. 11 analogue)")
     axes[1].set_xlabel("rms horizontal angle sigma_theta (deg)")
     axes[1].set_title("Effective amplification, Appendix B")
-    fig.tight_layout()
-    fig.savefig(out / "towed_interaction.png", dpi=110)
-    plt.close(fig)
+    save_figure(fig, out / "towed_interaction.png", dpi=110)
 
 
 def checks(coef) -> dict:

@@ -23,6 +23,7 @@ from cablesys.towed.equation import REPORT_SEA_TRIAL, TowedCable
 from cablesys.towed.interaction import rms_angle_for
 from cablesys.towed.runs import fit_normal_drag, model_runs, read_runs
 from cablesys.towed.transfer import transfer_grid
+from cablesys.plots import save_figure  # noqa: E402
 
 RISPIN_CN = 0.070          # Rispin's shallow-angle coefficient (report p. 31)
 
@@ -77,9 +78,7 @@ def plot(plt, out: Path, om, H_data, c_data, lengths_run, fits, n_curve):
         ax.legend(fontsize=8)
         if k == 1:
             ax.set_ylim(0.6, 3.0)
-        fig.tight_layout()
-        fig.savefig(out / fname, dpi=110)
-        plt.close(fig)
+        save_figure(fig, out / fname, dpi=110)
 
 
 def plot_cn(plt, out: Path, runs, H_data, c_data, fits, n):
@@ -102,9 +101,7 @@ def plot_cn(plt, out: Path, runs, H_data, c_data, fits, n):
     ax.set_title("No single c_n fits both amplitude and phase (Table A-2)")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(out / "towed_trials_cn.png", dpi=110)
-    plt.close(fig)
+    save_figure(fig, out / "towed_trials_cn.png", dpi=110)
 
 
 def main(argv=None) -> int:

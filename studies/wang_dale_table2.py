@@ -38,6 +38,7 @@ from cablesys.scene import dale_scene  # noqa: E402
 from cablesys.scene.dale import CABLE_CD, CABLE_CT, OMEGA_N_MEASURED, SPHERE_CD, TOP_MOTION_PEAK_TO_PEAK  # noqa: E402
 from cablesys.simulate import IntegratorSettings, Simulator  # noqa: E402
 from cablesys.simulate.run import initial_state  # noqa: E402
+from cablesys.plots import save_figure  # noqa: E402
 
 RATIOS = (0.5, 1.0, 1.5, 2.0)
 K_PERIODS = 3                  # amplitude = half peak-to-peak over the last K periods
@@ -215,9 +216,7 @@ def plot(path, res, base):
     ax.set_title(f"body paths over the last {K_PERIODS} periods")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
 
 
 if __name__ == "__main__":

@@ -29,6 +29,7 @@ from cablesys import units as U
 from cablesys.model import build_model
 from cablesys.scene import Body, Cable, Environment, Initial, Numerics, Sinusoid, TopMotion, single_section_scene
 from cablesys.simulate import simulate
+from cablesys.plots import save_figure  # noqa: E402
 
 
 def spring_scene(*, k_lb_ft=2.0, length_ft=10.0, body_slug=1.0, weight_lb=32.2, cable_slug=0.0,
@@ -170,9 +171,7 @@ def _plot(res: dict, out: Path) -> None:
     ax2.plot(te, de, lw=0.8)
     ax2.set(xlabel="time (s)", ylabel=r"$(E - E_0)/(E_0 - V_{eq})$",
             title="Energy with drag and damping off (rtol 1e-11)")
-    fig.tight_layout()
-    fig.savefig(out / "wang_direct_checks.png", dpi=120)
-    plt.close(fig)
+    save_figure(fig, out / "wang_direct_checks.png", dpi=120)
 
 
 if __name__ == "__main__":

@@ -34,6 +34,7 @@ from cablesys.model import build_model  # noqa: E402
 from cablesys.scene import dale_scene  # noqa: E402
 from cablesys.simulate import IntegratorSettings, Simulator  # noqa: E402
 from cablesys.simulate.run import initial_state  # noqa: E402
+from cablesys.plots import save_figure  # noqa: E402
 
 ADAPTIVE = ("cvodes", "cvodes-adams", "idas")
 FIXED = ("rk", "collocation")
@@ -240,9 +241,7 @@ def plot_wp(path, wp):
                      fontsize=10)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8, loc="upper right")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
 
 
 def plot_stability(path, stab):
@@ -268,9 +267,7 @@ def plot_stability(path, stab):
     ax2.set_title("omega_max = sqrt(k / (M_by + M_c/3))")
     ax2.grid(True, which="both", alpha=0.3)
     ax2.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
 
 
 if __name__ == "__main__":

@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from ..results import unit_of
+from ..plots import save_figure
 
 
 def _plt():
@@ -48,9 +49,7 @@ def plot_rao_bode(raos: dict, output: str, input: str, natural: dict, path, titl
     a1.grid(True, which="both", alpha=0.3)
     a2.grid(True, alpha=0.3)
     fig.suptitle(title or f"RAO of {output} for top motion {input}")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
     return Path(path)
 
 
@@ -75,9 +74,7 @@ def plot_modes(modes, length: float, path, title: str = "") -> Path:
         ax.set_title(f"mode {k + 1} ({modes.dominant[k]}): {modes.omega_undamped[k]:.3g} rad/s", fontsize=9)
         ax.legend(fontsize=7, loc="lower left")
     fig.suptitle(title or "mode shapes (stretch exaggerated)")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
     return Path(path)
 
 
@@ -96,9 +93,7 @@ def plot_nonlinear_rao(omega, curves: dict, natural: dict, ylabel: str, path, ti
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     ax.set_title(title)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
     return Path(path)
 
 
@@ -116,7 +111,5 @@ def plot_response_spectrum(stoch, output: str, natural: dict, path, title: str =
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     ax.set_title(title)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
     return Path(path)

@@ -6,11 +6,11 @@ from pathlib import Path
 
 import numpy as np
 
+from . import save_figure
+
 
 def plot_time_series(result, path, *, title: str | None = None) -> Path:
     """2 x 2 panel: body path x_b-y_b (y down), phi(t), u(t), tension(t), slack events marked."""
-    import matplotlib
-    matplotlib.use(matplotlib.get_backend())
     import matplotlib.pyplot as plt
 
     t = result.time
@@ -42,8 +42,4 @@ def plot_time_series(result, path, *, title: str | None = None) -> Path:
         if len(a.get_legend_handles_labels()[0]) > 1:
             a.legend(fontsize=8)
     fig.suptitle(title or result.scene_name)
-    fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
