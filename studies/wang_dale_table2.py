@@ -38,6 +38,8 @@ from cablesys.scene import dale_scene  # noqa: E402
 from cablesys.scene.dale import CABLE_CD, CABLE_CT, OMEGA_N_MEASURED, SPHERE_CD, TOP_MOTION_PEAK_TO_PEAK  # noqa: E402
 from cablesys.simulate import IntegratorSettings, Simulator  # noqa: E402
 from cablesys.simulate.run import initial_state  # noqa: E402
+from cablesys.linear.linearize import linearize  # noqa: E402
+from cablesys.linear.modes import modes  # noqa: E402
 from cablesys.plots import save_figure  # noqa: E402
 
 RATIOS = (0.5, 1.0, 1.5, 2.0)
@@ -101,17 +103,10 @@ class DaleRunner:
 
 
 def model_frequencies(model) -> dict:
-    """Undamped small-motion frequencies of the model at rest (drag is quadratic: no linear part)."""
-    import casadi as ca
+    """Undamped small-motion frequencies of the model at rest (cablesys.linear; drag has no linear part)."""
     scene = dale_scene()
-    p = model.parameters(scene)
-    for lbl in model.layout.labels:
-        if lbl.startswith("top_motion.") and lbl.endswith("amplitude"):
-            p[model.layout.index(lbl)] = 0.0
-    x0 = initial_state(scene, model, p)
-    x = ca.SX.sym("x", len(x0))
-    J = np.array(ca.Function("J", [x], [ca.jacobian(model.ode(x, 0.0, p), x)])(x0))
-    w = np.sort(np.abs(np.linalg.eigvals(J).imag))[::2]      # eigenvalues +-i omega (drag has no linear part)
+    m = modes(linearize(model, model.parameters(scene)))
+    w = np.sort(m.omega_undamped)
     return {"pendulum_rad_s": float(w[0]), "stretch_rad_s": float(w[-1]),
             "pendulum_over_measured_omega_n": float(w[0] / OMEGA_N_MEASURED)}
 

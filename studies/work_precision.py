@@ -34,6 +34,8 @@ from cablesys.model import build_model  # noqa: E402
 from cablesys.scene import dale_scene  # noqa: E402
 from cablesys.simulate import IntegratorSettings, Simulator  # noqa: E402
 from cablesys.simulate.run import initial_state  # noqa: E402
+from cablesys.linear.linearize import linearize  # noqa: E402
+from cablesys.linear.modes import modes  # noqa: E402
 from cablesys.plots import save_figure  # noqa: E402
 
 ADAPTIVE = ("cvodes", "cvodes-adams", "idas")
@@ -159,16 +161,8 @@ def stability_limit(model, scene, n_steps, rel=2e-3) -> float:
 
 
 def linear_stretch_frequency(model, scene) -> float:
-    """Largest undamped frequency of the linearized model at rest (top still), rad/s."""
-    import casadi as ca
-    p = model.parameters(scene)
-    for lbl in model.layout.labels:
-        if lbl.startswith("top_motion.") and lbl.endswith("amplitude"):
-            p[model.layout.index(lbl)] = 0.0
-    x0 = initial_state(scene, model, p)
-    x = ca.SX.sym("x", len(x0))
-    J = np.array(ca.Function("J", [x], [ca.jacobian(model.ode(x, 0.0, p), x)])(x0))
-    return float(np.max(np.abs(np.linalg.eigvals(J))))
+    """Largest undamped frequency of the model linearized at rest (cablesys.linear), rad/s."""
+    return float(np.max(modes(linearize(model, model.parameters(scene))).omega_undamped))
 
 
 def main(argv=None) -> int:
