@@ -51,3 +51,16 @@ def test_console_script_help():
     assert proc.returncode == 0
     for cmd in ("run", "scene", "slack", "towed"):
         assert cmd in proc.stdout
+
+
+def test_main_job_without_a_scene_runs_the_dale_table(tmp_path, capsys):
+    """`cablesys run`: the Dale default at the four Table 2 frequencies, one compiled model."""
+    assert main(["run", "--out", str(tmp_path), "--duration", "40"]) == 0
+    assert "omega/omega_n" in capsys.readouterr().out
+    rows = json.loads((tmp_path / "dale_amplitudes.json").read_text())
+    assert [r["omega_over_omega_n"] for r in rows] == [0.5, 1.0, 1.5, 2.0]
+    for r in rows:       # the vertical motion follows the 2.5 in top amplitude (Wang 1971 p. 30)
+        assert r["ybA_ft"] == pytest.approx(2.5 / 12, rel=0.03)
+    xs = [r["xbA_ft"] for r in rows]
+    assert xs == sorted(xs, reverse=True)        # above resonance the horizontal amplitude falls
+    assert (tmp_path / "summary.json").exists() and (tmp_path / "timeseries.png").exists()
