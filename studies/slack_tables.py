@@ -28,7 +28,8 @@ from cablesys.slack.scene import Cable, PointMass, SlackScene
 from cablesys.slack.statics import solve_equilibrium, solve_equilibrium_shooting
 
 log = logging.getLogger("slack_tables")
-REF = Path(__file__).resolve().parents[1] / ".." / "shared" / "reference"
+# the published tables, copied into the package with their source headers (Griffin & Rosenthal 1985)
+REF = Path(__file__).resolve().parents[1] / "cablesys" / "data"
 
 # Griffin & Rosenthal (1985) section 6: l = 22.9 m, m = 1.14 kg/m, EA = 8.9e5 N
 SPAN6, M6, EA6 = 22.9, 1.14, 8.9e5

@@ -6,7 +6,6 @@ import pytest
 
 os.environ.setdefault("MPLBACKEND", "Agg")
 ROOT = Path(__file__).resolve().parents[1]
-SHARED_REFERENCE = ROOT.parent / "shared" / "reference"
 
 
 @pytest.fixture
@@ -14,11 +13,11 @@ def run_study(tmp_path):
     """Run ``studies/<name>.py --out tmp --quick`` in a subprocess; return the out folder."""
     import subprocess
 
-    def _run(name, *args, timeout=600):
+    def _run(name, *args):
         out = tmp_path / name
         cmd = [sys.executable, str(ROOT / "studies" / f"{name}.py"), "--out", str(out), *args]
         env = dict(os.environ, MPLBACKEND="Agg")
-        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=ROOT)
+        proc = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=ROOT)
         assert proc.returncode == 0, f"{name} failed:\n{proc.stdout[-2000:]}\n{proc.stderr[-4000:]}"
         return out
     return _run

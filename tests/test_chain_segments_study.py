@@ -4,7 +4,7 @@ import json
 
 
 def test_segments_convergence_quick(run_study):
-    out = run_study("segments_convergence", "--quick", timeout=300)
+    out = run_study("segments_convergence", "--quick")
     doc = json.loads((out / "segments_convergence.json").read_text())
     assert doc["n_sections"] == [1, 2, 4, 8]
     for key in ("dale", "heavy_cable"):

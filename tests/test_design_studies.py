@@ -4,7 +4,7 @@ import json
 
 
 def test_isolation_design_study_quick(run_study):
-    out = run_study("isolation_design", "--quick", timeout=300)
+    out = run_study("isolation_design", "--quick")
     doc = json.loads((out / "isolation_design.json").read_text())
     assert doc["converged"] and doc["nlp_iterations"] < 200 and doc["nlp_wall_s"] < 4.0
     assert set(doc["optimal_parameters"]) == {"ae_1", "internal_damping_1", "ae_2", "internal_damping_2"}
@@ -27,7 +27,7 @@ def test_isolation_design_study_quick(run_study):
 
 
 def test_bench_design_quick(run_study):
-    out = run_study("bench_design", "--quick", timeout=300)
+    out = run_study("bench_design", "--quick")
     doc = json.loads((out / "bench_design.json").read_text())
     assert doc["single_solve"]["status"] == "Solve_Succeeded" and doc["single_solve"]["iterations"] < 100
     assert doc["design"]["nlp_iterations_max_per_solve"] < 100 and doc["design"]["converged"]

@@ -12,7 +12,7 @@ ROOT = Path(__file__).resolve().parents[1]
 def test_linear_response_quick(tmp_path):
     env = dict(os.environ, MPLBACKEND="Agg")
     subprocess.run([sys.executable, str(ROOT / "studies" / "linear_response.py"), "--out", str(tmp_path), "--quick"],
-                   check=True, env=env, cwd=ROOT, timeout=300)
+                   check=True, env=env, cwd=ROOT)
     doc = json.loads((tmp_path / "linear_response.json").read_text())
     for key in ("dale", "full_scale"):
         d = doc[key]

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-REF = ROOT / ".." / "shared" / "reference"
+REF = ROOT / "cablesys" / "data"   # published tables with their source headers
 KEYS = ("table1", "table2", "table3_two_masses", "table4_five_masses", "table5_bare")
 
 
@@ -25,7 +25,7 @@ def study(tmp_path_factory):
     out = tmp_path_factory.mktemp("slack_study")
     env = dict(os.environ, MPLBACKEND="Agg")
     subprocess.run([sys.executable, str(ROOT / "studies" / "slack_tables.py"), "--quick", "--out", str(out)],
-                   check=True, env=env, cwd=ROOT, timeout=300)
+                   check=True, env=env, cwd=ROOT)
     return out, json.loads((out / "slack_tables.json").read_text())
 
 

@@ -22,7 +22,7 @@ TOP_AMPLITUDE_FT = 2.5 / 12.0
 def run_study(script: str, out: Path) -> None:
     env = dict(os.environ, MPLBACKEND="Agg")
     proc = subprocess.run([sys.executable, str(ROOT / "studies" / script), "--out", str(out), "--quick"],
-                          cwd=ROOT, env=env, capture_output=True, text=True, timeout=600)
+                          cwd=ROOT, env=env, capture_output=True, text=True)
     assert proc.returncode == 0, f"{script} failed:\n{proc.stdout[-3000:]}\n{proc.stderr[-3000:]}"
 
 

@@ -14,7 +14,7 @@ from cablesys.errors import ParameterError
 from cablesys.towed.runs import model_runs, read_runs
 
 ROOT = Path(__file__).resolve().parents[1]
-TABLE = ROOT.parent / "shared" / "reference" / "kennedy_tableA2.csv"
+TABLE = ROOT / "cablesys" / "data" / "kennedy_tableA2.csv"   # Table A-2 with its source header
 
 
 @pytest.fixture
@@ -89,7 +89,7 @@ def test_sea_trial_study_quick(tmp_path):
     out = tmp_path / "trials"
     env = dict(os.environ, MPLBACKEND="Agg")
     proc = subprocess.run([sys.executable, str(ROOT / "studies" / "towed_sea_trials.py"), "--quick",
-                           "--out", str(out)], capture_output=True, text=True, env=env, timeout=300)
+                           "--out", str(out)], capture_output=True, text=True, env=env)
     assert proc.returncode == 0, proc.stderr[-3000:]
     res = json.loads((out / "towed_sea_trials.json").read_text())
     assert len(res["runs"]) == 17

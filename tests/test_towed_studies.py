@@ -14,7 +14,7 @@ ROOT = Path(__file__).resolve().parents[1]
 def run(name, out, *args):
     env = dict(os.environ, MPLBACKEND="Agg")
     proc = subprocess.run([sys.executable, str(ROOT / "studies" / f"{name}.py"), "--out", str(out), *args],
-                          capture_output=True, text=True, env=env, timeout=300)
+                          capture_output=True, text=True, env=env)
     assert proc.returncode == 0, proc.stderr[-3000:]
 
 
