@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import dataclasses
+from typing import ClassVar
 
 import numpy as np
+
+from ..results import ResultBase
 
 _TEXT = {
     "slack": "mean tension minus n_sigma standard deviations above the tension floor TENS of section {i} (no slack)",
@@ -29,11 +32,12 @@ def describe_constraint(name: str, settings=None) -> str:
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class DesignResult:
+class DesignResult(ResultBase):
     """Optimal design. ``constraint_values`` are g <= 0 (normalized); the margin is -g.
 
-    ``converged``: IPOPT succeeded and the outer drag fixed point settled (objective change <= outer_tol;
-    with ``outer_iterations = 1`` only the NLP for the first held dJ is solved)."""
+    ``success``: IPOPT succeeded and the outer drag fixed point settled (objective change <= outer_tol;
+    with ``outer_iterations = 1`` only the NLP for the first held dJ is solved); ``message`` says
+    which did not. ``stats``: ``wall_time_s``, ``iterations`` (IPOPT, all solves), ``nlp_wall_s``."""
 
     variable_names: tuple
     values: np.ndarray
@@ -52,13 +56,47 @@ class DesignResult:
     parameters: np.ndarray
     jacobian_shift: np.ndarray       # dJ held in the last solve (see objective.py)
     status: str
-    converged: bool
+    success: bool
     runs: tuple
     outer_history: tuple
     nlp_iterations: int
     nlp_wall_s: float
     total_wall_s: float
     stochastic_sig_y_b: float
+    message: str = ""
+    stats: dict = dataclasses.field(default_factory=dict)
+
+    VARIABLES: ClassVar[dict] = {"value": ("SI", "optimal value of the design variable"), "lower": ("SI", "lower bound"),
+                 "upper": ("SI", "upper bound"), "variable": ("1", "design variable"),
+                 "constraint": ("1", "constraint"), "margin": ("1", "normalized constraint margin -g (>= 0 met)")}
+
+    @property
+    def converged(self) -> bool:
+        """Alias of :attr:`success`."""
+        return self.success
+
+    def summary(self) -> dict:
+        """The JSON document of :meth:`to_dict` with ``success``, ``message`` and ``stats``.
+
+        Returns
+        -------
+        dict
+            JSON-able.
+        """
+        return {**super().summary(), **self.to_dict()}
+
+    def to_xarray(self):
+        """Variables with bounds (dim ``variable``) and constraint margins (dim ``constraint``).
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+        import xarray as xr
+        return xr.Dataset({"value": ("variable", self.values), "lower": ("variable", self.lower),
+                           "upper": ("variable", self.upper), "margin": ("constraint", -self.constraint_values)},
+                          coords={"variable": list(self.variable_names), "constraint": list(self.constraint_names)},
+                          attrs={"objective": self.objective, "objective_kind": self.objective_kind})
 
     @property
     def margins(self) -> dict:
@@ -70,7 +108,7 @@ class DesignResult:
 
     def to_dict(self) -> dict:
         return {
-            "converged": self.converged, "status": self.status,
+            "converged": self.success, "status": self.status, "message": self.message,
             "objective": self.objective, "objective_kind": self.objective_kind,
             "variables": {n: {"value": float(v), "lower": float(lo), "upper": float(hi)}
                           for n, v, lo, hi in zip(self.variable_names, self.values, self.lower, self.upper)},

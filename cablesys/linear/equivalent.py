@@ -29,14 +29,22 @@ current linear model; the expectation is a scrambled-Sobol quadrature with antit
 from __future__ import annotations
 
 import dataclasses
+from typing import ClassVar
 
 import casadi as ca
 import numpy as np
 
 from ..errors import SolverError
 from ..model import CableModel
-from .linearize import (from_jacobian, functions, linearize, operating_xi,
-                        static_parameters, xi_blocks)
+from ..results import ResultBase, timed
+from .linearize import (
+    from_jacobian,
+    functions,
+    linearize,
+    operating_xi,
+    static_parameters,
+    xi_blocks,
+)
 from .rao import RAO
 from .steady import steady_state
 
@@ -107,7 +115,7 @@ def _build_hb1(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Functio
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class HarmonicResponse:
+class HarmonicResponse(ResultBase):
     """One-harmonic (describing-function) response to a regular input of complex amplitude ``input``.
 
     ``q_amplitude[k]`` complex dq at ``omega[k]``; ``output_amplitude[k]`` the exact first
@@ -125,10 +133,18 @@ class HarmonicResponse:
     output_mean: np.ndarray
     residual: np.ndarray
     linear: tuple
+    success: bool = True
+    message: str = ""
+    stats: dict = dataclasses.field(default_factory=dict)
+
+    VARIABLES: ClassVar[dict] = {"output_amplitude": ("SI", "complex first-harmonic amplitude of each output"),
+                 "output_mean": ("SI", "mean of each output over the orbit"),
+                 "residual": ("1", "harmonic-balance residual"), "output": ("1", "output")}
 
     @property
     def converged(self) -> bool:
-        return bool(np.all(self.residual < 1e-8))
+        """Alias of :attr:`success` (every frequency's residual below 1e-8)."""
+        return self.success
 
     def amplitude(self, output: str) -> np.ndarray:
         return np.abs(self.output_amplitude[:, self.output_labels.index(output)])
@@ -148,6 +164,7 @@ class HarmonicResponse:
                           attrs={"kind": "harmonic", "input": str(self.input)})
 
 
+@timed
 def harmonic_response(model: CableModel, p, omega, input_amplitude, *, n_theta: int = 64,
                       ladder: int = 6) -> HarmonicResponse:
     """Describing-function equivalent linearization at each ``omega`` for the regular input
@@ -155,6 +172,26 @@ def harmonic_response(model: CableModel, p, omega, input_amplitude, *, n_theta: 
 
     Solved by continuation from ``omega.min()/4`` (where the exact linear response is a good
     guess) up through the requested frequencies.
+
+    Parameters
+    ----------
+    model : CableModel
+        The Wang (1971) model (:func:`cablesys.build_model`).
+    p : array_like
+        Parameter vector (``scene.parameters()``); slack switches are cleared.
+    omega : array_like
+        Angular frequencies (rad/s).
+    input_amplitude : array_like of complex
+        Z: top x_s, y_s (m) and wave amplitudes (m), one per input of the linear model.
+    n_theta : int, optional
+        Phase samples per cycle of the harmonic balance.
+    ladder : int, optional
+        Continuation steps below ``omega.min()``.
+
+    Returns
+    -------
+    HarmonicResponse
+        ``success`` is False when a frequency's harmonic-balance residual stays above 1e-8.
     """
     p = static_parameters(model, p)
     st = steady_state(model, p)
@@ -200,4 +237,12 @@ def harmonic_response(model: CableModel, p, omega, input_amplitude, *, n_theta: 
         Ya.append(2.0 / n_theta * (y @ np.exp(-1j * theta))); Ym.append(y.mean(axis=1))
     return HarmonicResponse(omega=omega, input=Z, input_labels=lin0.input_labels, output_labels=model.output_labels,
                             q_amplitude=np.array(Qa), q_mean=np.array(Qm), output_amplitude=np.array(Ya),
-                            output_mean=np.array(Ym), residual=np.array(R), linear=tuple(lins))
+                            output_mean=np.array(Ym), residual=np.array(R), linear=tuple(lins),
+                            success=bool(np.all(np.array(R) < 1e-8)), message=_harmonic_message(omega, R),
+                            stats={"n_theta": n_theta, "continuation_steps": ladder})
+
+
+def _harmonic_message(omega, residual) -> str:
+    bad = [f"{w:.4g}" for w, r in zip(omega, residual) if not r < 1e-8]
+    return "" if not bad else (f"harmonic balance did not converge at omega = {', '.join(bad)} rad/s "
+                               "(residual > 1e-8): refine the grid near those frequencies or use simulate()")

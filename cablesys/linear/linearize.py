@@ -19,11 +19,13 @@ The state-space form x = (dq, dq') is x' = A x + B0 z + B1 z' + B2 z''.
 from __future__ import annotations
 
 import dataclasses
+from typing import ClassVar
 
 import casadi as ca
 import numpy as np
 
 from ..model import EXO_LABELS, CableModel
+from ..results import ResultBase, timed
 from .steady import SteadyState, steady_state
 
 TOP_INPUTS = ("x_s", "y_s")
@@ -77,7 +79,7 @@ def _build_functions(model: CableModel) -> dict:
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class LinearModel:
+class LinearModel(ResultBase):
     """M dq'' + C dq' + K dq = F0 u + F1 u' + F2 u'';  y = Cq dq + Cv dq' + D0 u + D1 u' + D2 u''.
 
     ``u`` are the inputs (``input_labels``: x_s, y_s and one per wave amplitude). Matrices may
@@ -103,6 +105,18 @@ class LinearModel:
     y0: np.ndarray
     kind: str = "exact"
     omega: float | None = None
+    success: bool = True
+    message: str = ""
+    stats: dict = dataclasses.field(default_factory=dict)
+
+    VARIABLES: ClassVar[dict] = {"q": ("1", "generalized coordinate (row)"), "q_col": ("1", "generalized coordinate (column)"),
+                 "input": ("1", "input"), "output": ("1", "output"),
+                 "M": ("SI", "mass matrix"), "C": ("SI", "damping matrix"), "K": ("SI", "stiffness matrix"),
+                 "F0": ("SI", "input force matrix"), "F1": ("SI", "input-rate force matrix"),
+                 "F2": ("SI", "input-acceleration force matrix"), "Cq": ("SI", "output matrix of dq"),
+                 "Cv": ("SI", "output matrix of dq'"), "D0": ("SI", "feedthrough of u"),
+                 "D1": ("SI", "feedthrough of u'"), "D2": ("SI", "feedthrough of u''"),
+                 "q0": ("SI", "operating point"), "y0": ("SI", "outputs at the operating point")}
 
     @property
     def nq(self) -> int:
@@ -195,12 +209,27 @@ def static_parameters(model: CableModel, p) -> np.ndarray:
     return p
 
 
+@timed
 def linearize(model: CableModel, p, *, steady: SteadyState | None = None) -> LinearModel:
     """Exact first-order linearization about the steady state (Jacobians by CasADi AD).
 
     With a current or tow speed this is the exact linearization about the steady relative
     flow (the drag slope 2 * 1/2 rho C A |U| per element). Without flow the quadratic drag has
     zero slope and this model is undamped: use :mod:`.equivalent` for amplitudes near resonance.
+
+    Parameters
+    ----------
+    model : CableModel
+        The Wang (1971) model (:func:`cablesys.build_model`).
+    p : array_like
+        Parameter vector (``scene.parameters()``); slack switches are cleared.
+    steady : SteadyState, optional
+        The operating point; solved with :func:`steady_state` when omitted.
+
+    Returns
+    -------
+    LinearModel
+        M, C, K, input and output matrices about the steady state (SI units of the labels).
     """
     p = static_parameters(model, p)
     steady = steady or steady_state(model, p)

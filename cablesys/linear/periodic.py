@@ -21,6 +21,7 @@ import numpy as np
 
 from ..errors import SolverError
 from ..model import CableModel
+from ..results import ResultBase, timed
 from .equivalent import harmonic_response
 
 
@@ -73,7 +74,7 @@ def _build_collocation(model: CableModel, n: int) -> tuple[ca.Function, ca.Funct
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class PeriodicSolution:
+class PeriodicSolution(ResultBase):
     """Periodic orbit at the collocation times ``time`` (period ``period``) with labelled outputs."""
 
     period: float
@@ -84,6 +85,7 @@ class PeriodicSolution:
     residual: float
     success: bool
     message: str = ""
+    stats: dict = dataclasses.field(default_factory=dict)
 
     def amplitude(self, label: str, n_fine: int = 4096) -> float:
         """Half the peak-to-peak of the trigonometric interpolant of ``label``."""
@@ -116,12 +118,37 @@ def scene_input_amplitude(scene) -> tuple[float, np.ndarray]:
     return freqs.pop(), Z
 
 
+@timed
 def periodic_steady_state(model: CableModel, p, omega: float, *, n_harmonics: int = 20,
                           input_amplitude=None, guess: np.ndarray | None = None, t0: float = 0.0) -> PeriodicSolution:
     """Periodic response of period 2 pi / ``omega`` to the top motion in ``p`` (it must have that period).
 
-    ``input_amplitude`` (complex x_s, y_s) seeds the guess from the describing-function orbit;
-    or pass ``guess`` (nq x N node values, e.g. a neighbouring solution for continuation).
+    Fourier collocation at N = 2 ``n_harmonics`` + 1 nodes solved by Newton; the equations
+    of motion are Wang (1971) eq. 47-48 at every node.
+
+    Parameters
+    ----------
+    model : CableModel
+        The Wang (1971) model.
+    p : array_like
+        Parameter vector whose top motion has period 2 pi / ``omega``.
+    omega : float
+        Forcing angular frequency (rad/s).
+    n_harmonics : int, optional
+        Harmonics kept in the collocation.
+    input_amplitude : array_like of complex, optional
+        Complex x_s, y_s (m) (and wave amplitudes) that seed the guess from the
+        describing-function orbit (:func:`harmonic_response`).
+    guess : ndarray, optional
+        ``(nq, N)`` node values, e.g. a neighbouring solution for continuation.
+    t0 : float, optional
+        Time of the first node (s).
+
+    Returns
+    -------
+    PeriodicSolution
+        ``success`` is False (with the reason in ``message``) when Newton does not reach a
+        residual of 1e-8 or the cable goes slack on the orbit.
     """
     n = 2 * n_harmonics + 1
     T = 2 * np.pi / omega
@@ -151,4 +178,5 @@ def periodic_steady_state(model: CableModel, p, omega: float, *, n_harmonics: in
     if ok and tens_min <= max(floors):
         ok, msg = False, (f"the cable goes slack on the orbit (min tension {tens_min:.4g} N): the smooth periodic "
                           "solve does not apply; use simulate()")
-    return PeriodicSolution(period=T, time=times, q=q, qd=qd, outputs=outputs, residual=res, success=ok, message=msg)
+    return PeriodicSolution(period=T, time=times, q=q, qd=qd, outputs=outputs, residual=res, success=ok, message=msg,
+                            stats={"n_harmonics": n_harmonics, "nodes": n})

@@ -8,15 +8,16 @@ phase convention: output = Re(RAO * A e^{i omega t}) for input Re(A e^{i omega t
 from __future__ import annotations
 
 import dataclasses
+from typing import ClassVar
 
 import numpy as np
 
-from ..results import unit_of
+from ..results import ResultBase, timed, unit_of
 from .linearize import LinearModel
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class RAO:
+class RAO(ResultBase):
     """Complex RAO ``values[k, j, i]``: output j per unit input i at ``omega[k]``."""
 
     omega: np.ndarray
@@ -25,6 +26,12 @@ class RAO:
     values: np.ndarray
     kind: str = "exact"
     info: dict = dataclasses.field(default_factory=dict)
+    success: bool = True
+    message: str = ""
+    stats: dict = dataclasses.field(default_factory=dict)
+
+    VARIABLES: ClassVar[dict] = {"rao": ("output unit per input unit", "response amplitude operator (complex)"),
+                 "output_units": ("1", "SI unit of each output"), "output": ("1", "output"), "input": ("1", "input")}
 
     def __call__(self, output: str, input: str) -> np.ndarray:
         """The complex RAO curve of one output for one input."""
@@ -73,8 +80,25 @@ def phase(rao_values: np.ndarray) -> np.ndarray:
     return np.angle(rao_values)
 
 
+@timed
 def rao(lin: LinearModel, omega) -> RAO:
-    """RAOs of every output of ``lin`` for every input, one batched complex solve over ``omega``."""
+    """RAOs of every output of ``lin`` for every input, one batched complex solve over ``omega``.
+
+    Y(omega) = (Cq + i omega Cv) Q + D0 + i omega D1 - omega^2 D2 with
+    (K + i omega C - omega^2 M) Q = F0 + i omega F1 - omega^2 F2.
+
+    Parameters
+    ----------
+    lin : LinearModel
+        The linear model (:func:`linearize`, or an equivalent linearization).
+    omega : array_like
+        Angular frequencies (rad/s).
+
+    Returns
+    -------
+    RAO
+        Complex output amplitude per unit input amplitude, dims (omega, output, input).
+    """
     omega = np.atleast_1d(np.asarray(omega, float))
     _, Y = lin.transfer(omega)
     return RAO(omega=omega, output_labels=lin.output_labels, input_labels=lin.input_labels, values=Y, kind=lin.kind)

@@ -15,22 +15,34 @@ amplitude; other input directions can be given.
 from __future__ import annotations
 
 import dataclasses
+from typing import ClassVar
 
 import numpy as np
 from scipy.stats import norm, qmc
 
-from ..errors import SolverError
+from ..errors import ParameterError
 from ..model import CableModel
+from ..results import ResultBase, timed
 from .equivalent import complex_xi
-from .linearize import LinearModel, from_jacobian, functions, linearize, operating_xi, static_parameters, xi_blocks
+from .linearize import (
+    LinearModel,
+    from_jacobian,
+    functions,
+    linearize,
+    operating_xi,
+    static_parameters,
+    xi_blocks,
+)
 from .spectra import significant_amplitude, slack_probability
 
 BUOY = np.array([1.0, 1.0j])
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class StochasticResponse:
-    """Self-consistent Gaussian linearization and the response statistics it predicts."""
+class StochasticResponse(ResultBase):
+    """Self-consistent Gaussian linearization and the response statistics it predicts.
+
+    ``success``: the response standard deviations settled to ``tol``; ``stats['iterations']``."""
 
     omega: np.ndarray
     spectrum: np.ndarray
@@ -39,9 +51,24 @@ class StochasticResponse:
     transfer: np.ndarray            # (n_omega, ny) outputs per unit sea amplitude
     output_mean: np.ndarray
     output_std: np.ndarray
-    iterations: int
-    converged: bool
     tension_floor: float
+    success: bool = True
+    message: str = ""
+    stats: dict = dataclasses.field(default_factory=dict)
+
+    VARIABLES: ClassVar[dict] = {"sea_spectrum": ("m^2 s/rad", "sea elevation spectrum"),
+                 "response_spectrum": ("SI^2 s/rad", "output spectrum"), "mean": ("SI", "output mean"),
+                 "std": ("SI", "output standard deviation"), "output": ("1", "output")}
+
+    @property
+    def converged(self) -> bool:
+        """Alias of :attr:`success`."""
+        return self.success
+
+    @property
+    def iterations(self) -> int:
+        """Fixed-point iterations done (``stats['iterations']``)."""
+        return int(self.stats.get("iterations", 0))
 
     def response_spectrum(self, output: str) -> np.ndarray:
         return np.abs(self.transfer[:, self.output_labels.index(output)]) ** 2 * self.spectrum
@@ -63,7 +90,7 @@ class StochasticResponse:
         return xr.Dataset({"sea_spectrum": ("omega", self.spectrum), "response_spectrum": (("omega", "output"), S_y),
                            "mean": ("output", self.output_mean), "std": ("output", self.output_std)},
                           coords={"omega": self.omega, "output": list(self.output_labels)},
-                          attrs={"iterations": self.iterations, "converged": int(self.converged)})
+                          attrs={"iterations": self.iterations})
 
 
 def _normal_samples(dim: int, n_log2: int, seed: int) -> np.ndarray:
@@ -72,14 +99,52 @@ def _normal_samples(dim: int, n_log2: int, seed: int) -> np.ndarray:
     return np.vstack([z, -z])                         # antithetic: odd moments exactly zero
 
 
+@timed
 def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY, n_log2: int = 10,
                         tol: float = 1e-4, max_iter: int = 60, relax: float = 0.5, seed: int = 0) -> StochasticResponse:
-    """Iterate N = E[J] <-> Sigma(N) until the response standard deviations change by < ``tol``."""
+    """Iterate N = E[J] <-> Sigma(N) until the response standard deviations change by < ``tol``.
+
+    Gaussian equivalent linearization (Roberts & Spanos ch. 5): N = E[dr/dxi] over the
+    response distribution, Sigma = int Re(Xi Xi^H) S(omega) d omega, E[r] = 0.
+
+    Parameters
+    ----------
+    model : CableModel
+        The Wang (1971) model.
+    p : array_like
+        Parameter vector; slack switches are cleared.
+    omega : array_like
+        Angular frequency grid (rad/s), at least 8 points.
+    spectrum : array_like
+        Sea elevation spectrum S(omega) (m^2 s/rad) on ``omega``.
+    direction : array_like of complex, optional
+        Input amplitudes per unit sea amplitude (default: the buoy orbit (1, i), Wang (1971) eq. 26).
+    n_log2 : int, optional
+        log2 of the Sobol sample count of the expectation.
+    tol : float, optional
+        Relative change of the standard deviations that stops the iteration.
+    max_iter : int, optional
+        Iteration limit.
+    relax : float, optional
+        Under-relaxation of the covariance update (0 < relax <= 1).
+    seed : int, optional
+        Seed of the scrambled Sobol sequence.
+
+    Returns
+    -------
+    StochasticResponse
+        ``success`` False (with ``message``) if the iteration did not settle.
+
+    Raises
+    ------
+    ParameterError
+        If ``omega`` and ``spectrum`` are not 1-D arrays of the same length (>= 8).
+    """
     p = static_parameters(model, p)
     omega = np.asarray(omega, float)
     S = np.asarray(spectrum, float)
     if omega.shape != S.shape or omega.ndim != 1 or omega.size < 8:
-        raise SolverError("omega and spectrum must be 1-D arrays of the same length (at least 8 points)")
+        raise ParameterError("omega, spectrum", (omega.shape, S.shape), "1-D arrays of the same length, at least 8 points")
     lin = linearize(model, p)
     direction = np.broadcast_to(np.asarray(direction, complex), (omega.size, len(direction)))
     nu = len(lin.input_labels)
@@ -118,5 +183,7 @@ def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY
     std = np.sqrt(np.trapezoid(np.abs(Y) ** 2 * S[:, None], omega, axis=0))
     floors = [p[model.layout.index(l)] for l in model.layout.labels if l.endswith("cable.tension_floor")]
     return StochasticResponse(omega=omega, spectrum=S, linear=lin, output_labels=model.output_labels, transfer=Y,
-                              output_mean=lin.y0, output_std=std, iterations=it, converged=converged,
-                              tension_floor=float(max(floors)))
+                              output_mean=lin.y0, output_std=std, tension_floor=float(max(floors)),
+                              success=converged, stats={"iterations": it, "samples": n},
+                              message="" if converged else (f"the standard deviations did not settle to {tol:g} in "
+                                                            f"{max_iter} iterations: raise max_iter or lower relax"))
