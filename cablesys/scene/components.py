@@ -13,6 +13,7 @@ import math
 from ..errors import (ParameterError, require_finite, require_nonnegative,
                       require_positive, require_range)
 from .fields import spec
+from .sea import MotionRAO, SeaSpectrum
 
 
 def _check_all_finite(obj, prefix: str) -> None:
@@ -22,6 +23,9 @@ def _check_all_finite(obj, prefix: str) -> None:
             if f.name == "tension_floor" and v == -math.inf:
                 continue  # -inf: the cable never goes slack (a rod)
             require_finite(f"{prefix}.{f.name}", v)
+
+
+MAX_SEGMENTS = 2000       # elements per section (the model's size grows linearly with it)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -41,6 +45,8 @@ class Cable:
     internal_damping: float = spec("force_time", "Voigt internal damping constant C_I, force = (C_I/l_r) du/dt (eq. 46)", 0.0)
     tension_floor: float = spec("force", "least tension TENS the cable supports; 0 for a flexible cable, -inf for a rod (eq. 54)", 0.0)
     cable_mass_switch: float = spec("none", "the report's CBMAS: any negative value drops the cable mass and added-mass terms", 1.0)
+    segments: int = spec("none", "number N of straight elements the section is divided into (node positions, "
+                         "tension-only elements); 1 is Wang's 2-DOF straight cable", 1)
 
     def __post_init__(self):
         _check_all_finite(self, "cable")
@@ -58,6 +64,9 @@ class Cable:
             raise ParameterError("cable.thinning_ratio", self.thinning_ratio, "must keep d_0 > 0 (eq. 4)")
         if self.tension_floor != -math.inf:
             require_finite("cable.tension_floor", self.tension_floor)
+        if (not isinstance(self.segments, int) or isinstance(self.segments, bool)
+                or not 1 <= self.segments <= MAX_SEGMENTS):
+            raise ParameterError("cable.segments", self.segments, f"must be an integer in [1, {MAX_SEGMENTS}]")
 
     # zero-tension quantities, Wang (1971) eq. 1-7 (numeric twins of the symbolic ones in model/section.py)
     @property
@@ -211,10 +220,23 @@ class TopMotion:
     x: tuple = spec("none", "sinusoids in x (horizontal, + to the right)", ())
     y: tuple = spec("none", "sinusoids in y (vertical, + downwards)", ())
     series: TimeSeries | None = spec("none", "sampled motion added to the sinusoids", None)
+    spectrum: SeaSpectrum | None = spec("none", "an irregular sea (scene/sea.py SeaSpectrum), realised as sinusoids appended to x and y", None)
+    rao: MotionRAO | None = spec("none", "vessel / crane-tip motion RAO turning the sea into top motion (scene/sea.py MotionRAO); "
+                               "none: the top heaves with the surface", None)
 
     def __post_init__(self):
         object.__setattr__(self, "x", tuple(self.x))
         object.__setattr__(self, "y", tuple(self.y))
+        if self.spectrum is not None:          # the sea as sinusoids: the compiled SX path (scene/sea.py)
+            from .sea import append_once, sea_sinusoids
+            sx, sy = sea_sinusoids(self.spectrum, self.rao)
+            nx, ny = len(self.x), len(self.y)
+            object.__setattr__(self, "x", append_once(self.x, sx))
+            object.__setattr__(self, "y", append_once(self.y, sy))
+            object.__setattr__(self, "_user_count", {"x": len(self.x) - len(sx) if len(self.x) == nx else nx,
+                                                     "y": len(self.y) - len(sy) if len(self.y) == ny else ny})
+        elif self.rao is not None:
+            raise ParameterError("top_motion.rao", "given", "needs a [top_motion.spectrum] sea to act on")
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
