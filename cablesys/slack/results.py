@@ -4,17 +4,21 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
+
+from ..results import ResultBase
 
 MODE_TYPES = {"O": "out-of-plane", "A": "in-plane antisymmetric",
               "S": "in-plane symmetric", "H": "in-plane hybrid"}
 
 
 @dataclass(frozen=True, kw_only=True)
-class Equilibrium:
-    """Static shape of the chain: node arc length s (m, unstretched), x, z (m), element tension (N)."""
+class Equilibrium(ResultBase):
+    """Static shape of the chain: node arc length s (m, unstretched), x, z (m), element tension (N).
+
+    ``stats``: ``wall_time_s`` (``seconds``) and ``iterations`` of the statics solver."""
 
     scene: Any
     s: np.ndarray
@@ -26,6 +30,40 @@ class Equilibrium:
     seconds: float
     message: str = ""
     success: bool = True
+
+    VARIABLES: ClassVar[dict] = {"s": ("m", "unstretched arc length"), "x": ("m", "horizontal node position"),
+                                 "z": ("m", "vertical node position (up)"), "tension": ("N", "element tension"),
+                                 "node": ("1", "node"), "element": ("1", "element")}
+    SUMMARY_EXCLUDE: ClassVar[tuple] = ("seconds", "iterations")
+
+    @property
+    def stats(self) -> dict:
+        """Solver statistics: ``wall_time_s`` (s) and ``iterations``."""
+        return {"wall_time_s": self.seconds, "iterations": self.iterations}
+
+    def summary(self) -> dict:
+        """Headline numbers (tensions in N, sag in m, lambda^2) without the node arrays.
+
+        Returns
+        -------
+        dict
+            JSON-able.
+        """
+        doc = self.to_dict()
+        del doc["nodes"], doc["element_tension_N"]
+        return {**super().summary(), **doc}
+
+    def to_xarray(self):
+        """Node positions (dim ``node``) and element tensions (dim ``element``).
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+        import xarray as xr
+        return xr.Dataset({"x": ("node", self.x), "z": ("node", self.z), "tension": ("element", self.tension)},
+                          coords={"s": ("node", self.s)},
+                          attrs={"method": self.method, "sag_m": self.sag, "horizontal_tension_N": self.horizontal_tension})
 
     @property
     def element_lengths(self) -> np.ndarray:
@@ -86,7 +124,7 @@ class Equilibrium:
 
 
 @dataclass(frozen=True, kw_only=True)
-class ModeSet:
+class ModeSet(ResultBase):
     """Natural modes about an equilibrium, ascending in omega.
 
     omega (rad/s); mode_type 'O'|'A'|'S'|'H' (out-of-plane, in-plane
@@ -105,6 +143,30 @@ class ModeSet:
     n_elements: int
     solver: str
     seconds: float
+    success: bool = True
+    message: str = ""
+
+    VARIABLES: ClassVar[dict] = {"omega": ("rad/s", "natural angular frequency"), "mode_type": ("1", "mode type O/A/S/H"),
+                                 "symmetric_fraction": ("1", "mirror-symmetric share of the in-plane norm"),
+                                 "shape": ("kg^-1/2 m", "mass-normalized mode shape (eq. 25)"),
+                                 "mode": ("1", "mode number"), "s": ("m", "unstretched arc length"),
+                                 "dof": ("1", "displacement component")}
+    SUMMARY_EXCLUDE: ClassVar[tuple] = ("seconds",)
+
+    @property
+    def stats(self) -> dict:
+        """Solver statistics: ``wall_time_s`` (s)."""
+        return {"wall_time_s": self.seconds}
+
+    def summary(self) -> dict:
+        """Mode table (type and omega in rad/s) with the protocol entries.
+
+        Returns
+        -------
+        dict
+            JSON-able.
+        """
+        return {**super().summary(), "modes": self.table()}
 
     def __len__(self) -> int:
         return len(self.omega)

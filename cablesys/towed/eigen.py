@@ -17,18 +17,25 @@ damping time is ``tau_0 = 1 / Im omega_1`` (eq. 23); the report takes ``delta_1 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import ClassVar
 
 import numpy as np
 import scipy.special as sc
 from scipy.optimize import brentq, root
 
 from ..errors import ParameterError, SolverError, require_positive
+from ..results import ResultBase, timed
 from .bessel import hyp0f1_complex
 from .equation import Coefficients, TowedCable
 
-__all__ = ["bessel_zeros", "Eigenfrequencies", "eigenfrequencies", "damping_time",
-           "exact_eigenfrequency"]
+__all__ = [
+    "Eigenfrequencies",
+    "bessel_zeros",
+    "damping_time",
+    "eigenfrequencies",
+    "exact_eigenfrequency",
+]
 
 
 def bessel_zeros(p: float, n: int) -> np.ndarray:
@@ -51,7 +58,7 @@ def bessel_zeros(p: float, n: int) -> np.ndarray:
 
 
 @dataclass(frozen=True, kw_only=True)
-class Eigenfrequencies:
+class Eigenfrequencies(ResultBase):
     """Complex nondimensional eigenfrequencies (eq. 20a): ``slow`` (- root) and ``fast`` (+ root).
 
     ``ratio_*`` = 2 beta |omega| / (b p) is the eq. 8b/20b measure; ``valid_*`` = ratio <= tol.
@@ -65,8 +72,29 @@ class Eigenfrequencies:
     valid_slow: np.ndarray
     valid_fast: np.ndarray
     tol: float
+    success: bool = True
+    message: str = ""
+    stats: dict = field(default_factory=dict)
+
+    VARIABLES: ClassVar[dict] = {
+        "delta": ("1", "zero of J_p (eq. 19)"), "slow": ("1", "slow eigenfrequency omega L/U (eq. 20a, - root)"),
+        "fast": ("1", "fast eigenfrequency omega L/U (eq. 20a, + root)"),
+        "ratio_slow": ("1", "eq. 20b measure 2 beta |omega| / (b p), slow"),
+        "ratio_fast": ("1", "eq. 20b measure 2 beta |omega| / (b p), fast"), "mode": ("1", "mode number")}
+
+    def to_xarray(self):
+        """Eigenfrequencies and validity measures on dimension ``mode`` (complex frequencies kept complex).
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+        import xarray as xr
+        return xr.Dataset({k: ("mode", getattr(self, k)) for k in ("delta", "slow", "fast", "ratio_slow", "ratio_fast")},
+                          coords={"mode": np.arange(1, len(self.delta) + 1)}, attrs={"tol": self.tol})
 
 
+@timed
 def eigenfrequencies(coef: Coefficients, n: int = 5, *, tol: float = 0.1) -> Eigenfrequencies:
     """First ``n`` pairs of eigenfrequencies (Kennedy & Strahan (1981) eq. 18-20a) with the eq. 20b test."""
     require_positive("tol", tol)

@@ -9,16 +9,27 @@ both in units of U.  At low frequency ``c* -> 1 + 1/p`` (eq. 14, "water pulley")
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import ClassVar
 
 import numpy as np
 
 from ..errors import ParameterError
+from ..results import ResultBase, timed
 from .bessel import exact_solution, mpmath_solution, real_order_solution
 from .equation import Coefficients
 
-__all__ = ["transfer_function", "phase_lag", "c_star", "phase_velocity",
-           "water_pulley_c_star", "TransferGrid", "transfer_grid", "METHODS", "fine_xi"]
+__all__ = [
+    "METHODS",
+    "TransferGrid",
+    "c_star",
+    "fine_xi",
+    "phase_lag",
+    "phase_velocity",
+    "transfer_function",
+    "transfer_grid",
+    "water_pulley_c_star",
+]
 
 
 def _bvp(coef, xi, omega):
@@ -115,14 +126,25 @@ def water_pulley_c_star(coef: Coefficients) -> float:
 
 
 @dataclass(frozen=True, kw_only=True)
-class TransferGrid:
-    """H and c* on a (xi, omega) grid; arrays have shape (len(xi), len(omega))."""
+class TransferGrid(ResultBase):
+    """H and c* on a (xi, omega) grid; arrays have shape (len(xi), len(omega)).
+
+    Nondimensional: xi = x/L along the cable, omega in units of U/L (Kennedy & Strahan (1981) eq. 5)."""
 
     xi: np.ndarray
     omega: np.ndarray
     H: np.ndarray
     c_star: np.ndarray
     method: str
+    success: bool = True
+    message: str = ""
+    stats: dict = field(default_factory=dict)
+
+    VARIABLES: ClassVar[dict] = {"xi": ("1", "position along the cable x/L (0 at the tow point)"),
+                                 "omega": ("1", "nondimensional angular frequency omega L/U"),
+                                 "H_abs": ("1", "|H|, transfer function magnitude (eq. 26)"),
+                                 "H_phase": ("rad", "arg H (eq. 26)"),
+                                 "c_star": ("1", "nondimensional mean phase velocity c* (eq. 27b)")}
 
     def to_xarray(self):
         """Labelled ``xarray.Dataset`` with dims (xi, omega)."""
@@ -136,6 +158,7 @@ class TransferGrid:
             attrs={"method": self.method, "source": "Kennedy & Strahan (1981) eq. 26-27"})
 
 
+@timed
 def transfer_grid(coef: Coefficients, xi, omega, method: str = "exact") -> TransferGrid:
     """H (eq. 26) and c* (eq. 27b) over a grid; ``xi`` must start at 0 and be fine
     enough (steps of psi < pi) for unwrapping directly along it."""
