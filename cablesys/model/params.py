@@ -38,7 +38,8 @@ def structure_of(scene: Scene) -> tuple:
     env, top = scene.environment, scene.top_motion
     return (len(scene.sections), scene.angles, tuple(s.body.is_sphere for s in scene.sections),
             scene.numerics.drag_segments, len(env.current_depths), len(env.waves),
-            len(top.x), len(top.y), None if top.series is None else top.series.times)
+            len(top.x), len(top.y), None if top.series is None else top.series.times,
+            tuple(s.cable.segments for s in scene.sections))
 
 
 def parameter_items(scene: Scene) -> list[tuple[str, float]]:
