@@ -1,0 +1,238 @@
+"""An irregular sea at the top: a wave spectrum, a vessel (crane-tip) motion RAO, and its realisation.
+
+The sea is realised as a sum of sinusoids so the top motion stays on the fast compiled
+(SX) path of :mod:`cablesys.model.top_motion`: at scene-build time the spectrum becomes
+``n_components`` entries of ``top_motion.x`` / ``top_motion.y`` (and, when asked, of
+``environment.waves``, the deep-water particle velocities of Wang 1971 eq. 26-28).
+
+Conventions (stated once, used by ``rao``, the statistics and the tests):
+
+* wave elevation at the vessel (z up): eta(t) = sum_k a_k sin(omega_k t + eps_k),
+  a_k = sqrt(2 S(omega_k) d_omega) on equal bins over the band (deterministic amplitudes,
+  random phases eps_k ~ U(0, 2 pi) from ``numpy.random.default_rng(seed)``);
+* a motion RAO R_j(omega) = |R_j| e^{i theta_j} (amplitude per unit wave amplitude, phase
+  *lead* theta_j in degrees over the wave elevation at the vessel) gives the motion
+  sum_k |R_j(omega_k)| a_k sin(omega_k t + eps_k + theta_j(omega_k));
+* surge (+ in the wave direction) is x_s (+ to the right); heave is + up, so y_s = -heave
+  (cablesys' y is + down: the heave term is written with amplitude |R| a and phase + pi);
+* waves at the cable travel in +x (Wang 1971 eq. 26: argument n x - sigma t + phase); component k
+  gets amplitude a_k, length 2 pi g / omega_k^2 and phase pi - eps_k, so that its elevation
+  a_k sin(n x - sigma t + phase) equals a_k sin(omega_k t + eps_k) at x = 0.
+"""
+
+from __future__ import annotations
+
+import csv
+import dataclasses
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import ParameterError, require_finite, require_nonnegative, require_positive, require_range
+from .fields import spec
+
+SPECTRA = ("jonswap", "pierson-moskowitz")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class SeaSpectrum:
+    """A JONSWAP or Pierson-Moskowitz sea (one-sided S(omega), DNV-RP-C205 sec. 3.5.5)."""
+
+    kind: str = spec("none", f"spectrum: one of {SPECTRA}", "jonswap")
+    hs: float = spec("length", "significant wave height H_s = 4 sqrt(m0)")
+    tp: float = spec("time", "peak period T_p")
+    gamma: float = spec("none", "JONSWAP peak-enhancement factor (1..7; ignored for pierson-moskowitz)", 3.3)
+    heading_deg: float = spec("angle_deg", "direction the waves travel, deg from +x (the RAO table is for this heading; "
+                                           "waves_at_cable needs 0)", 0.0)
+    seed: int = spec("none", "seed of the random phases (same seed, same sea)", 0)
+    n_components: int = spec("none", "number of sinusoids (equal frequency bins)", 100)
+    omega_min: float = spec("frequency", "lower end of the band; 0: where 0.1 % of the energy lies below", 0.0)
+    omega_max: float = spec("frequency", "upper end of the band; 0: where 0.1 % of the energy lies above", 0.0)
+    waves_at_cable: bool = spec("none", "also add the sea's particle velocities at the cable (Wang 1971 eq. 26-28)", False)
+
+    def __post_init__(self):
+        if self.kind not in SPECTRA:
+            raise ParameterError("top_motion.spectrum.kind", self.kind, f"must be one of {SPECTRA}")
+        require_positive("top_motion.spectrum.hs", self.hs, "m")
+        require_positive("top_motion.spectrum.tp", self.tp, "s")
+        require_range("top_motion.spectrum.gamma", self.gamma, 1.0, 7.0)
+        require_finite("top_motion.spectrum.heading_deg", self.heading_deg)
+        for name in ("seed", "n_components"):
+            v = getattr(self, name)
+            if not isinstance(v, int) or isinstance(v, bool) or v < 0:
+                raise ParameterError(f"top_motion.spectrum.{name}", v, "must be an integer >= 0")
+        if not 2 <= self.n_components <= 5000:
+            raise ParameterError("top_motion.spectrum.n_components", self.n_components, "must be in [2, 5000]")
+        require_nonnegative("top_motion.spectrum.omega_min", self.omega_min, "rad/s")
+        require_nonnegative("top_motion.spectrum.omega_max", self.omega_max, "rad/s")
+        if self.omega_min and self.omega_max and not self.omega_max > self.omega_min:
+            raise ParameterError("top_motion.spectrum.omega_max", self.omega_max,
+                                 f"must be > omega_min = {self.omega_min} rad/s")
+        if not isinstance(self.waves_at_cable, bool):
+            raise ParameterError("top_motion.spectrum.waves_at_cable", self.waves_at_cable, "must be true or false")
+        if self.waves_at_cable and self.heading_deg % 360.0 != 0.0:
+            raise ParameterError("top_motion.spectrum.heading_deg", self.heading_deg,
+                                 "must be 0 with waves_at_cable (Wang's plane model has waves travelling in +x)")
+
+    @property
+    def omega_peak(self) -> float:
+        """omega_p = 2 pi / T_p (rad/s)."""
+        return 2 * math.pi / self.tp
+
+    def density(self, omega) -> np.ndarray:
+        """S(omega) in m^2 s/rad (reuses :mod:`cablesys.linear.spectra`)."""
+        from ..linear.spectra import jonswap, pierson_moskowitz   # lazy: linear imports scene
+        if self.kind == "pierson-moskowitz":
+            return pierson_moskowitz(omega, self.hs, self.tp)
+        return jonswap(omega, self.hs, self.tp, self.gamma)
+
+    def band(self) -> tuple[float, float]:
+        """(omega_min, omega_max): given, or the 0.1 % and 99.9 % points of the cumulative energy."""
+        wp = self.omega_peak
+        w = np.linspace(0.2 * wp, 8.0 * wp, 8001)
+        cum = np.concatenate([[0.0], np.cumsum(0.5 * (self.density(w)[1:] + self.density(w)[:-1]) * np.diff(w))])
+        cum /= cum[-1]
+        lo = self.omega_min or float(np.interp(1e-3, cum, w))
+        hi = self.omega_max or float(np.interp(1 - 1e-3, cum, w))
+        if not hi > lo:
+            raise ParameterError("top_motion.spectrum.omega_max", hi, f"must be > omega_min = {lo} rad/s")
+        return lo, hi
+
+    def components(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(omega_k, a_k, eps_k): bin centres, amplitudes sqrt(2 S dw), random phases (rad)."""
+        lo, hi = self.band()
+        n = self.n_components
+        dw = (hi - lo) / n
+        omega = lo + dw * (np.arange(n) + 0.5)
+        amp = np.sqrt(2.0 * self.density(omega) * dw)
+        eps = np.random.default_rng(self.seed).uniform(0.0, 2 * math.pi, n)
+        return omega, amp, eps
+
+    def elevation(self, t) -> np.ndarray:
+        """eta(t) at the vessel (m, z up) of this realisation."""
+        w, a, e = self.components()
+        t = np.asarray(t, float)
+        return np.sum(a[:, None] * np.sin(w[:, None] * t.ravel()[None, :] + e[:, None]), axis=0).reshape(t.shape)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class MotionRAO:
+    """Vessel or crane-tip motion per unit wave amplitude, per frequency (linear interpolation,
+    end values held outside the table). Inline arrays or ``file``: a CSV with header
+    ``omega,surge_amplitude,surge_phase_deg,heave_amplitude,heave_phase_deg`` (read at load time
+    and kept inline, so a dumped scene reproduces the run)."""
+
+    omega: tuple = spec("frequency", "table frequencies, strictly increasing", ())
+    surge_amplitude: tuple = spec("none", "surge amplitude per unit wave amplitude [m/m]", ())
+    surge_phase_deg: tuple = spec("none", "surge phase lead over the wave elevation [deg]", ())
+    heave_amplitude: tuple = spec("none", "heave (+ up) amplitude per unit wave amplitude [m/m]", ())
+    heave_phase_deg: tuple = spec("none", "heave phase lead over the wave elevation [deg]", ())
+    file: str = spec("none", "CSV file with the table instead of the arrays (path relative to the working directory)", "")
+
+    _COLUMNS = ("omega", "surge_amplitude", "surge_phase_deg", "heave_amplitude", "heave_phase_deg")
+
+    def __post_init__(self):
+        if self.file:
+            if self.omega:
+                raise ParameterError("top_motion.rao.file", self.file, "give either the file or the inline arrays")
+            for k, v in _read_rao_csv(self.file).items():
+                object.__setattr__(self, k, v)
+            object.__setattr__(self, "file", "")
+        w = tuple(float(v) for v in self.omega)
+        if len(w) < 1:
+            raise ParameterError("top_motion.rao.omega", self.omega, "needs at least one frequency")
+        for i in range(len(w)):
+            require_positive(f"top_motion.rao.omega[{i}]", w[i], "rad/s")
+            if i and not w[i] > w[i - 1]:
+                raise ParameterError("top_motion.rao.omega", w, f"must be strictly increasing (entry {i})")
+        object.__setattr__(self, "omega", w)
+        for name in self._COLUMNS[1:]:
+            v = tuple(float(x) for x in getattr(self, name))
+            if not v:
+                v = (0.0,) * len(w)
+            if len(v) != len(w):
+                raise ParameterError(f"top_motion.rao.{name}", f"{len(v)} values", f"needs one per frequency ({len(w)})")
+            for i, x in enumerate(v):
+                require_finite(f"top_motion.rao.{name}[{i}]", x)
+                if name.endswith("amplitude"):
+                    require_nonnegative(f"top_motion.rao.{name}[{i}]", x)
+            object.__setattr__(self, name, v)
+
+    def __call__(self, dof: str, omega) -> np.ndarray:
+        """Complex RAO |R| e^{i theta} of ``dof`` ('surge' or 'heave') at ``omega``."""
+        amp = np.interp(omega, self.omega, getattr(self, f"{dof}_amplitude"))
+        ph = np.interp(omega, self.omega, np.unwrap(np.radians(getattr(self, f"{dof}_phase_deg"))))
+        return amp * np.exp(1j * ph)
+
+
+def _read_rao_csv(path) -> dict:
+    try:
+        with Path(path).open(newline="") as fh:
+            rows = list(csv.DictReader(fh))
+    except OSError as err:
+        raise ParameterError("top_motion.rao.file", str(path), f"cannot be read ({err.strerror})") from None
+    cols = MotionRAO._COLUMNS
+    if not rows or any(c not in rows[0] for c in ("omega", "heave_amplitude")):
+        raise ParameterError("top_motion.rao.file", str(path), f"needs a header with columns {', '.join(cols)}")
+    try:
+        return {c: tuple(float(r[c]) for r in rows) for c in cols if c in rows[0]}
+    except (TypeError, ValueError):
+        raise ParameterError("top_motion.rao.file", str(path), "every table entry must be a number") from None
+
+
+HEAVE_ONLY = None   # no RAO table: the top heaves with the surface (|R_heave| = 1, phase 0), no surge
+
+
+def top_transfer(rao: MotionRAO | None, omega) -> tuple[np.ndarray, np.ndarray]:
+    """Complex amplitudes (X_s, Y_s) of the top motion per unit wave amplitude, in cablesys axes
+    (x + right, y + down), relative to the wave elevation eta = Re(-i e^{i omega t}) = sin(omega t).
+
+    Returns the multipliers of eta's complex amplitude: x_s = Re(X_s eta_c e^{iwt}), likewise y_s."""
+    omega = np.asarray(omega, float)
+    if rao is None:
+        return np.zeros(omega.shape, complex), -np.ones(omega.shape, complex)
+    return rao("surge", omega), -rao("heave", omega)
+
+
+def sea_sinusoids(spectrum: SeaSpectrum, rao: MotionRAO | None) -> tuple[tuple, tuple]:
+    """(x sinusoids, y sinusoids) of the top motion realising ``spectrum`` through ``rao``."""
+    from .components import Sinusoid
+    w, a, eps = spectrum.components()
+    X, Y = top_transfer(rao, w)
+    out = []
+    for T in (X, Y):
+        terms = []
+        for wk, ak, ek, Tk in zip(w, a, eps, T):
+            amp = float(abs(Tk) * ak)
+            if amp > 0.0:
+                terms.append(Sinusoid(amplitude=amp, frequency=float(wk), phase=float((ek + np.angle(Tk)) % (2 * math.pi))))
+        out.append(tuple(terms))
+    return out[0], out[1]
+
+
+def sea_waves(spectrum: SeaSpectrum, gravity: float) -> tuple:
+    """Wang (1971) eq. 26 wave components of the realised sea (see the module docstring)."""
+    from .components import Wave
+    w, a, eps = spectrum.components()
+    return tuple(Wave(amplitude=float(ak), length=float(2 * math.pi * gravity / wk**2),
+                      phase=float((math.pi - ek) % (2 * math.pi))) for wk, ak, ek in zip(w, a, eps))
+
+
+def _close(u, v) -> bool:
+    fu, fv = dataclasses.astuple(u), dataclasses.astuple(v)
+    return all(math.isclose(p, q, rel_tol=1e-9, abs_tol=1e-12) for p, q in zip(fu, fv))
+
+
+def append_once(existing: tuple, new: tuple) -> tuple:
+    """``existing + new`` unless ``existing`` already ends with ``new`` (a scene written out and read
+    back holds its realised components; reading it must not add them twice)."""
+    n = len(new)
+    if n and len(existing) >= n and all(_close(u, v) for u, v in zip(existing[-n:], new)):
+        return tuple(existing)
+    return tuple(existing) + tuple(new)
+
+
+def user_count(obj, name: str) -> int:
+    """How many entries of ``obj.name`` the user gave (the rest realise the sea)."""
+    return getattr(obj, "_user_count", {}).get(name, len(getattr(obj, name)))
