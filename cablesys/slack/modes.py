@@ -20,7 +20,6 @@ from __future__ import annotations
 import logging
 import math
 import time
-from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg
@@ -28,7 +27,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg
 
 from ..errors import ParameterError, SolverError
-from .results import Equilibrium, ModeSet
+from ..results import timed
+from .results import Convergence, Equilibrium, ModeSet
 from .statics import Discretization, solve_equilibrium, stiffness_inplane
 
 log = logging.getLogger(__name__)
@@ -160,33 +160,7 @@ def analyze(scene, n_modes: int = 12, *, n_elements: int | None = None, solver: 
     return eq, compute_modes(eq, d, n_modes, solver=solver)
 
 
-@dataclass(frozen=True, kw_only=True)
-class Convergence:
-    """Frequencies at element counts n, 2n, 4n and their Richardson extrapolation.
-
-    omega: (n_levels, n_modes) rad/s, modes matched within the in-plane and
-    out-of-plane families by index; order: observed convergence order
-    p = log2((w1 - w2) / (w2 - w3)) per mode; richardson: w3 + (w3 - w2) /
-    (2^p_assumed - 1) with p_assumed = 2 (the lumped-mass chain's order).
-    """
-
-    levels: tuple[int, ...]
-    mode_type: tuple[str, ...]
-    omega: np.ndarray
-    order: np.ndarray
-    richardson: np.ndarray
-    p_assumed: float = 2.0
-
-    @property
-    def relative_error_finest(self) -> np.ndarray:
-        """|w_finest - w_Richardson| / w_Richardson per mode."""
-        return np.abs(self.omega[-1] - self.richardson) / self.richardson
-
-    def table(self) -> list[dict]:
-        order = np.argsort(self.richardson)
-        return [{"mode_type": self.mode_type[i], "omega": float(self.richardson[i])} for i in order]
-
-
+@timed
 def converge(scene, n_modes: int, *, levels: tuple[int, ...] = (48, 96, 192),
              solver: str = "auto") -> Convergence:
     """Solve at each element count and Richardson-extrapolate (h^2 convergence).
@@ -214,5 +188,7 @@ def converge(scene, n_modes: int, *, levels: tuple[int, ...] = (48, 96, 192),
     with np.errstate(divide="ignore", invalid="ignore"):
         order = np.log2(np.abs((W[-3] - W[-2]) / (W[-2] - W[-1])))
     keep = np.argsort(rich)[:n_modes]   # ascending converged frequency
+    ok = bool(np.all(np.isfinite(rich[keep])))
     return Convergence(levels=tuple(levels), mode_type=tuple(types[k] for k in keep),
-                       omega=W[:, keep], order=order[keep], richardson=rich[keep])
+                       omega=W[:, keep], order=order[keep], richardson=rich[keep], success=ok,
+                       message="" if ok else "a Richardson extrapolation is not finite: check the element counts")

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
 import numpy as np
@@ -188,3 +188,61 @@ class ModeSet(ResultBase):
                     "dof": ["x", "y", "z"]},
             attrs={"n_elements": self.n_elements, "solver": self.solver,
                    "normalization": "Griffin & Rosenthal (1985) eq. 25: sum M psi^2 = 1"})
+
+
+@dataclass(frozen=True, kw_only=True)
+class Convergence(ResultBase):
+    """Frequencies at element counts n, 2n, 4n and their Richardson extrapolation.
+
+    omega: (n_levels, n_modes) rad/s, modes matched within the in-plane and
+    out-of-plane families by index; order: observed convergence order
+    p = log2((w1 - w2) / (w2 - w3)) per mode; richardson: w3 + (w3 - w2) /
+    (2^p_assumed - 1) with p_assumed = 2 (the lumped-mass chain's order).
+    """
+
+    levels: tuple[int, ...]
+    mode_type: tuple[str, ...]
+    omega: np.ndarray
+    order: np.ndarray
+    richardson: np.ndarray
+    p_assumed: float = 2.0
+    success: bool = True
+    message: str = ""
+    stats: dict = field(default_factory=dict)
+
+    VARIABLES: ClassVar[dict] = {"omega": ("rad/s", "natural angular frequency at each element count"),
+                                 "richardson": ("rad/s", "Richardson-extrapolated natural frequency"),
+                                 "order": ("1", "observed convergence order"), "level": ("1", "number of elements"),
+                                 "mode": ("1", "mode number"), "mode_type": ("1", "mode type O/A/S/H")}
+
+    def summary(self) -> dict:
+        """Extrapolated frequencies (rad/s) and observed orders, JSON-able.
+
+        Returns
+        -------
+        dict
+        """
+        return {**super().summary(), "levels": list(self.levels), "modes": self.table(),
+                "order": [float(o) for o in self.order]}
+
+    def to_xarray(self):
+        """Frequencies on (``level``, ``mode``) and the extrapolation on ``mode``.
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+        import xarray as xr
+        return xr.Dataset({"omega": (("level", "mode"), self.omega), "richardson": ("mode", self.richardson),
+                           "order": ("mode", self.order)},
+                          coords={"level": list(self.levels), "mode": np.arange(1, len(self.richardson) + 1),
+                                  "mode_type": ("mode", list(self.mode_type))})
+
+    @property
+    def relative_error_finest(self) -> np.ndarray:
+        """|w_finest - w_Richardson| / w_Richardson per mode."""
+        return np.abs(self.omega[-1] - self.richardson) / self.richardson
+
+    def table(self) -> list[dict]:
+        order = np.argsort(self.richardson)
+        return [{"mode_type": self.mode_type[i], "omega": float(self.richardson[i])} for i in order]
