@@ -8,6 +8,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from .components import Body, Cable, Environment, Initial, Numerics, Section, TopMotion
+from .limits import Limits
 
 ANGLE_MODES = ("per_section", "shared")
 
@@ -28,6 +29,7 @@ class Scene:
     top_motion: TopMotion = dataclasses.field(default_factory=TopMotion)
     initial: Initial = dataclasses.field(default_factory=Initial)
     numerics: Numerics = dataclasses.field(default_factory=Numerics)
+    limits: Limits | None = None      # what a run is checked against (cablesys.verdict); optional
 
     def __post_init__(self):
         secs = tuple(self.sections)

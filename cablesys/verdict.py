@@ -1,0 +1,158 @@
+"""Statistics of a run and its verdict against the scene's ``[limits]`` (pure numpy, reads results).
+
+Criteria (each checked only when its limit is given; values over the statistics window):
+
+``peak_tension``     largest tension of any tension output <= working load (SWL, or MBL / safety factor);
+``least_tension``    smallest tension >= the least allowed tension;
+``slack``            smallest tension >= slack_fraction x static (mean) tension of the same output. With
+                     slack_fraction = 0.1 this is the slack-sling criterion of DNV-RP-H103 (April 2011),
+                     sec. 4.7.2 for lifts through the splash zone (hydrodynamic load <= 0.9 x the least
+                     static weight), applied here to the rope tension. The wording was not available to
+                     check with the search tool; the section number and the 0.9 factor are as commonly cited;
+``excursion``        largest excursion of the lowest body from its mean, horizontal or vertical;
+``daf``              dynamic amplification factor, largest peak / static (mean) tension of a tension output.
+
+margin = (limit - value) / |limit| for upper limits, (value - limit) / |limit| for lower limits
+(absolute when the limit is 0): >= 0 passes.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import statistics as st
+
+
+def statistics_window(time, limits=None) -> np.ndarray:
+    """Boolean mask of the statistics window: from ``limits.statistics_start`` (default 20 % of the run)."""
+    t = np.asarray(time, float)
+    start = getattr(limits, "statistics_start", None)
+    if start is None:
+        start = t[0] + 0.2 * (t[-1] - t[0])
+    mask = t >= start
+    if mask.sum() < 2:
+        mask[:] = True
+    return mask
+
+
+def tension_labels(labels) -> list[str]:
+    """The tension outputs: ``tension_top``/``tension_bottom``... when present, else ``tension*``."""
+    tens = [lbl for lbl in labels if lbl.startswith("tension") and not lbl.endswith("rate")]
+    return tens
+
+
+def body_labels(labels) -> tuple[str, str] | None:
+    """(x, y) labels of the lowest body: ``x_b``/``y_b`` or the highest-numbered ``x_b_k``/``y_b_k``."""
+    xs = sorted((lbl for lbl in labels if lbl.startswith("x_b") and not lbl.endswith("rate")),
+                key=lambda s: (len(s), s))
+    if not xs:
+        return None
+    x = xs[-1]
+    y = "y" + x[1:]
+    return (x, y) if y in labels else None
+
+
+def run_statistics(result, limits=None) -> dict:
+    """Time-domain statistics (:func:`cablesys.statistics.time_domain`) of the lowest body's motion and
+    every tension output over the statistics window; exposure from ``limits.exposure``."""
+    mask = statistics_window(result.time, limits)
+    t = result.time[mask]
+    exposure = getattr(limits, "exposure", None)
+    labels = list(tension_labels(result.labels))
+    body = body_labels(result.labels)
+    if body:
+        labels = list(body) + labels
+    return {lbl: st.time_domain(t, np.asarray(result[lbl])[mask], exposure) for lbl in labels}
+
+
+def _upper(value, limit, unit, text):
+    m = (limit - value) / abs(limit) if limit else limit - value
+    return {"value": float(value), "limit": float(limit), "margin": float(m), "pass": bool(m >= 0),
+            "unit": unit, "text": text}
+
+
+def _lower(value, limit, unit, text):
+    m = (value - limit) / abs(limit) if limit else value - limit
+    return {"value": float(value), "limit": float(limit), "margin": float(m), "pass": bool(m >= 0),
+            "unit": unit, "text": text}
+
+
+def evaluate(limits, stats: dict) -> dict:
+    """The verdict ``{criterion: {value, limit, margin, pass, unit, text}}`` from :func:`run_statistics`.
+
+    With ``limits.exposure`` the extremes are the larger of the observed and the most probable
+    (Rayleigh) extreme over the exposure."""
+    if limits is None:
+        return {}
+    use_mpm = getattr(limits, "exposure", None) is not None
+    tens = [k for k in stats if k.startswith("tension")]
+
+    def hi(s):
+        return max(s["max"], s["most_probable_max"]) if use_mpm else s["max"]
+
+    def lo(s):
+        return min(s["min"], s["most_probable_min"]) if use_mpm else s["min"]
+
+    out = {}
+    if tens:
+        peak_lbl = max(tens, key=lambda k: hi(stats[k]))
+        low_lbl = min(tens, key=lambda k: lo(stats[k]))
+        if limits.working_load is not None:
+            out["peak_tension"] = _upper(hi(stats[peak_lbl]), limits.working_load, "N",
+                                         f"largest tension ({peak_lbl}) <= working load")
+        if limits.least_tension is not None:
+            out["least_tension"] = _lower(lo(stats[low_lbl]), limits.least_tension, "N",
+                                          f"smallest tension ({low_lbl}) >= least allowed tension")
+        if limits.slack_fraction is not None:
+            ratios = {k: lo(stats[k]) / stats[k]["mean"] for k in tens if stats[k]["mean"] > 0}
+            if ratios:
+                k = min(ratios, key=ratios.get)
+                out["slack"] = _lower(ratios[k], limits.slack_fraction, "-",
+                                      f"smallest / static tension ({k}) >= slack fraction (DNV-RP-H103 slack sling)")
+        if limits.max_daf is not None:
+            dafs = {k: hi(stats[k]) / stats[k]["mean"] for k in tens if stats[k]["mean"] > 0}
+            if dafs:
+                k = max(dafs, key=dafs.get)
+                out["daf"] = _upper(dafs[k], limits.max_daf, "-", f"peak / static tension ({k}) <= allowed DAF")
+    if limits.max_excursion is not None:
+        body = [k for k in stats if k.startswith(("x_b", "y_b"))]
+        if body:
+            exc = {k: max(hi(stats[k]) - stats[k]["mean"], stats[k]["mean"] - lo(stats[k])) for k in body}
+            k = max(exc, key=exc.get)
+            out["excursion"] = _upper(exc[k], limits.max_excursion, "m", f"largest excursion of the body ({k}) from its mean")
+    return out
+
+
+def warnings_of(result) -> list[str]:
+    """Slack and snap-load warnings of a run (located events, Wang 1971 eq. 54)."""
+    out = []
+    n_slack = sum(1 for e in result.events if e.kind == "slack")
+    if n_slack or result.initially_slack:
+        out.append(f"WARNING: the cable went slack {n_slack} times ({result.time_slack():.3g} s slack in total)")
+    if result.snaps:
+        s = max(result.snaps, key=lambda s: s.tension)
+        out.append(f"WARNING: {len(result.snaps)} snap loads; largest {s.tension:.4g} N at t = {s.time:.4g} s "
+                   f"(section {s.section})")
+    return out
+
+
+def passed(verdict: dict) -> bool:
+    """True when every criterion passes (vacuously true without limits)."""
+    return all(v["pass"] for v in verdict.values())
+
+
+def format_table(verdict: dict, scale=None) -> list[str]:
+    """Console lines: criterion, value, limit, margin and PASS/FAIL. ``scale(unit) -> (factor, name)``
+    converts SI values for display."""
+    if not verdict:
+        return ["verdict: no [limits] given"]
+    lines = [f"{'criterion':<14} {'value':>12} {'limit':>12} {'margin':>8}  result"]
+    for name, v in verdict.items():
+        f, u = scale(v["unit"]) if scale else (1.0, v["unit"])
+        unit = "" if u == "-" else f" {u}"
+        val, lim = v["value"] / f, v["limit"] / f
+        lines.append(f"{name:<14} {val:>12.5g} {lim:>12.5g} {v['margin']:>+8.1%}  {'PASS' if v['pass'] else 'FAIL'}"
+                     f"{unit and '  [' + unit.strip() + ']'}")
+    lines.append("verdict: " + ("PASS" if passed(verdict) else "FAIL"))
+    return lines
+
