@@ -150,7 +150,7 @@ class Environment:
     current_speeds: tuple = spec("velocity", "actual current speed in +x at each depth; linearly interpolated, constant beyond the ends", (0.0,))
     system_speed: float = spec("velocity", "steady speed of the cable system in +x (ship speed); subtracted from the current: c(y) = current(y) - speed (eq. 27)", 0.0)
     top_depth: float = spec("length", "mean depth of the top of the cable below the still surface", 0.0)
-    waves: tuple = spec("none", "deep-water wave components", ())
+    waves: tuple[Wave, ...] = spec("none", "deep-water wave components", ())
 
     def __post_init__(self):
         require_positive("environment.density", self.density, "kg/m^3")
@@ -217,8 +217,8 @@ class TimeSeries:
 class TopMotion:
     """Prescribed motion of the top of the cable (ship motion): sinusoids and/or a time series."""
 
-    x: tuple = spec("none", "sinusoids in x (horizontal, + to the right)", ())
-    y: tuple = spec("none", "sinusoids in y (vertical, + downwards)", ())
+    x: tuple[Sinusoid, ...] = spec("none", "sinusoids in x (horizontal, + to the right)", ())
+    y: tuple[Sinusoid, ...] = spec("none", "sinusoids in y (vertical, + downwards)", ())
     series: TimeSeries | None = spec("none", "sampled motion added to the sinusoids", None)
     spectrum: SeaSpectrum | None = spec("none", "an irregular sea (scene/sea.py SeaSpectrum), realised as sinusoids appended to x and y", None)
     rao: MotionRAO | None = spec("none", "vessel / crane-tip motion RAO turning the sea into top motion (scene/sea.py MotionRAO); "
@@ -247,6 +247,15 @@ class Initial:
     u: float | None = spec("length", "initial stretch u of every section (m)", None)
     phi_rate: float = spec("frequency", "initial d phi/dt", 0.0)
     u_rate: float = spec("velocity", "initial du/dt", 0.0)
+
+    def __post_init__(self):
+        # the section lengths l_0 + u > 0 are checked by the Scene, which knows l_0
+        if self.phi is not None:
+            require_range("initial.phi", self.phi, -math.pi, math.pi, "rad")
+        if self.u is not None:
+            require_finite("initial.u", self.u)
+        require_finite("initial.phi_rate", self.phi_rate)
+        require_finite("initial.u_rate", self.u_rate)
 
 
 INTEGRATORS = ("cvodes", "cvodes-adams", "idas", "rk", "collocation")
