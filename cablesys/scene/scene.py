@@ -42,12 +42,23 @@ class Scene:
         if self.angles not in ANGLE_MODES:
             raise ParameterError("angles", self.angles, f"must be one of {ANGLE_MODES}")
         self._check_hanging_tension()
+        self._check_initial_lengths()
         sea = self.top_motion.spectrum
         if sea is not None and sea.waves_at_cable:   # the same sea at the cable (Wang 1971 eq. 26-28; scene/sea.py)
             from .sea import append_once, sea_waves
             env = self.environment
             object.__setattr__(self, "environment", dataclasses.replace(
                 env, waves=append_once(env.waves, sea_waves(sea, env.gravity))))
+
+    def _check_initial_lengths(self) -> None:
+        """An initial stretch u must leave every section a positive length l_0 + u (Wang 1971 eq. 10)."""
+        u = self.initial.u
+        if u is None:
+            return
+        shortest = min(s.cable.length_zero for s in self.sections)
+        if not u > -shortest:
+            raise ParameterError("initial.u", u, f"must be > -{shortest:.6g} m: the shortest section's zero-tension "
+                                 "length l_0, so that every section keeps a positive length l_0 + u")
 
     def _check_hanging_tension(self) -> None:
         """Each section must be taut when hanging still: k u = weights below + W_c/2 > TENS (eq. 49b, 54)."""
