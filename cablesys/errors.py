@@ -18,15 +18,33 @@ class ParameterError(CablesysError, ValueError):
     """An input value outside its allowed range.
 
     ``str(err)`` reads ``"<field> = <value>: <allowed>"``, e.g.
-    ``"cable.length = -3.0: must be > 0 (m)"``.
+    ``"cable.length = -3.0: must be > 0 (m)"``; an error read from a file starts with the
+    file and line: ``"my.toml, line 7: cable.length = -3.0: must be > 0 (m)"``.
     """
 
-    def __init__(self, field: str, value: Any, allowed: str, hint: str = ""):
+    def __init__(self, field: str, value: Any, allowed: str, hint: str = "", *,
+                 file: str | None = None, line: int | None = None):
         self.field, self.value, self.allowed, self.hint = field, value, allowed, hint
-        msg = f"{field} = {value!r}: {allowed}"
+        self.file, self.line = file, line
+        msg = f"{field} = {_short(value)}: {allowed}"
         if hint:
             msg += f" ({hint})"
+        if file:
+            msg = f"{file}{f', line {line}' if line else ''}: {msg}"
         super().__init__(msg)
+
+    def __reduce__(self):  # picklable (worker processes) with its keyword arguments
+        return (_rebuild, (self.field, self.value, self.allowed, self.hint, self.file, self.line))
+
+
+def _rebuild(field, value, allowed, hint, file, line):
+    return ParameterError(field, value, allowed, hint, file=file, line=line)
+
+
+def _short(value: Any, limit: int = 200) -> str:
+    """``repr(value)``, cut to ``limit`` characters so a huge input does not flood the message."""
+    text = repr(value)
+    return text if len(text) <= limit else text[: limit - 20] + f"... ({len(text)} characters)"
 
 
 class SolverError(CablesysError, RuntimeError):

@@ -11,101 +11,102 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import tomllib
 from pathlib import Path
 
 from ..errors import ParameterError
-from .components import (Body, Cable, Environment, Initial, Numerics, Section, Sinusoid,
-                         TimeSeries, TopMotion, Wave)
+from ..reader import SourceMap, build, located, read_toml, typed_fields
+from .components import Section
 from .fields import SI_UNIT, UNIT_SYSTEMS, from_si, to_si
 from .scene import Scene
 
-_NESTED = {("environment", "waves"): Wave, ("top_motion", "x"): Sinusoid,
-           ("top_motion", "y"): Sinusoid, ("top_motion", "series"): TimeSeries}
+# top-level keys read as tables/values of Scene's own fields (generic: a new Scene field is read too)
+_SCENE_FIELDS = {f.name: f for f in dataclasses.fields(Scene) if f.init and f.name != "sections"}
 
 
-def _build(cls, table, where: str, units: str):
-    if not isinstance(table, dict):
-        raise ParameterError(where, table, "must be a table")
-    names = {f.name: f for f in dataclasses.fields(cls)}
-    unknown = sorted(set(table) - set(names))
-    if unknown:
-        raise ParameterError(f"{where}.{unknown[0]}", table[unknown[0]],
-                             f"unknown key; allowed keys: {', '.join(names)}")
-    kw = {}
-    for key, value in table.items():
-        f = names[key]
-        sub = _NESTED.get((where.split("[")[0].split(".")[-1], key))
-        if sub is not None:
-            if isinstance(value, list):
-                kw[key] = tuple(_build(sub, v, f"{where}.{key}[{i}]", units) for i, v in enumerate(value))
-            else:
-                kw[key] = _build(sub, value, f"{where}.{key}", units)
-        elif isinstance(value, (int, float, list)) and not isinstance(value, bool) and f.metadata.get("dim"):
-            if isinstance(value, int) and f.type in ("int", int):
-                kw[key] = value
-            else:
-                try:
-                    kw[key] = to_si(value, f.metadata["dim"], units)
-                except (TypeError, ValueError):
-                    raise ParameterError(f"{where}.{key}", value, "must be a number or a list of numbers") from None
-        else:
-            kw[key] = value
+def _converter(units: str):
+    def convert(value: float, dim: str) -> float:
+        return to_si(value, dim, units)
+    return convert
+
+
+def scene_from_dict(data: dict, source: SourceMap | str | None = None) -> Scene:
+    """Build a validated :class:`Scene` from a parsed TOML document.
+
+    Parameters
+    ----------
+    data : dict
+        The parsed document (see the module docstring for its tables).
+    source : SourceMap or str, optional
+        Where the document came from; errors then name the file and line.
+
+    Returns
+    -------
+    Scene
+        The frozen scene in SI.
+
+    Raises
+    ------
+    ParameterError
+        Naming the field (``sections[1].cable.ae``), its value and the allowed range.
+    """
     try:
-        return cls(**kw)
+        return _scene_from_dict(data)
     except ParameterError as err:
-        if where not in ("cable", "body") and not err.field.startswith(where):
-            raise ParameterError(f"{where}.{err.field.split('.')[-1]}", err.value, err.allowed, err.hint) from None
-        raise
-    except TypeError as err:  # a missing required field
-        raise ParameterError(where, "missing field", str(err).split(":")[-1].strip()) from None
+        raise located(err, source) from None
 
 
-def scene_from_dict(data: dict) -> Scene:
-    """Build a validated :class:`Scene` from a parsed TOML document."""
+def _scene_from_dict(data: dict) -> Scene:
+    if not isinstance(data, dict):
+        raise ParameterError("scene", data, "must be a TOML document (a table)")
     data = dict(data)
     units = data.pop("units", "SI")
     if units not in UNIT_SYSTEMS:
         raise ParameterError("units", units, f"must be one of {UNIT_SYSTEMS}")
-    allowed = {"name", "angles", "cable", "body", "sections", "environment", "top_motion", "initial", "numerics"}
+    convert = _converter(units)
+    allowed = set(_SCENE_FIELDS) | {"cable", "body", "sections"}
     unknown = sorted(set(data) - allowed)
     if unknown:
         raise ParameterError(unknown[0], data[unknown[0]], f"unknown key; allowed: units, {', '.join(sorted(allowed))}")
     if "sections" in data:
         if "cable" in data or "body" in data:
             raise ParameterError("sections", "given with [cable]/[body]", "use either [cable]+[body] or [[sections]]")
-        sections = []
-        for i, s in enumerate(data["sections"]):
-            extra = sorted(set(s) - {"cable", "body"})
-            if extra:
-                raise ParameterError(f"sections[{i}].{extra[0]}", s[extra[0]], "unknown key; allowed: cable, body")
-            sections.append(Section(cable=_build(Cable, s.get("cable", {}), f"sections[{i}].cable", units),
-                                    body=_build(Body, s.get("body", {}), f"sections[{i}].body", units)))
+        secs = data.pop("sections")
+        if isinstance(secs, dict):
+            raise ParameterError("sections", "one table", "must be an array of tables: write [[sections]] per section")
+        if not isinstance(secs, list) or not all(isinstance(s, dict) for s in secs):
+            raise ParameterError("sections", secs, "must be an array of tables [[sections]], each with "
+                                 "[sections.cable] and [sections.body]")
+        sections = [build(Section, s, f"sections[{i}]", convert=convert) for i, s in enumerate(secs)]
     else:
         for key in ("cable", "body"):
             if key not in data:
                 raise ParameterError(key, "missing", f"a scene needs a [{key}] table (or [[sections]])")
-        sections = [Section(cable=_build(Cable, data["cable"], "cable", units),
-                            body=_build(Body, data["body"], "body", units))]
-    kw = dict(name=data.get("name", "scene"), sections=tuple(sections), angles=data.get("angles", "per_section"))
-    for key, cls in (("environment", Environment), ("top_motion", TopMotion), ("initial", Initial), ("numerics", Numerics)):
-        if key in data:
-            kw[key] = _build(cls, data[key], key, units)
-    return Scene(**kw)
+        sections = [build(Section, {"cable": data.pop("cable"), "body": data.pop("body")}, "", convert=convert)]
+    # every other top-level key is a field of Scene, typed by its annotation
+    return Scene(sections=tuple(sections), **typed_fields(Scene, data, "", convert=convert, skip=("sections",)))
 
 
 def load_scene(path: str | Path) -> Scene:
-    """Read a scene TOML file."""
-    path = Path(path)
-    try:
-        text = path.read_text()
-    except OSError as err:
-        raise ParameterError("scene file", str(path), f"cannot be read ({err.strerror})") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        raise ParameterError("scene file", str(path), f"is not valid TOML: {err}") from None
-    return scene_from_dict(data)
+    """Read a scene TOML file.
+
+    Parameters
+    ----------
+    path : str or Path
+        A UTF-8 TOML file (a byte-order mark is accepted).
+
+    Returns
+    -------
+    Scene
+        The validated scene in SI.
+
+    Raises
+    ------
+    ParameterError
+        The file cannot be read or decoded, is not TOML, or a value is out of range; the
+        message names the file, the line where it can be found, the field and the value.
+    """
+    data, source = read_toml(path, "scene file")
+    return scene_from_dict(data, source)
 
 
 # ---------------------------------------------------------------- writing
