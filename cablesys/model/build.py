@@ -19,7 +19,8 @@ from .section import SectionParameters, section_terms
 from .top_motion import symbolic_type, top_motion_function
 
 EXO_LABELS = ("t", "x_s", "y_s", "x_s_rate", "y_s_rate", "x_s_acc", "y_s_acc")
-OUTPUT_NAMES = ("phi", "phi_rate", "u", "u_rate", "x_b", "x_b_rate", "y_b", "y_b_rate", "tension")
+OUTPUT_NAMES = ("phi", "phi_rate", "u", "u_rate", "x_b", "x_b_rate", "y_b", "y_b_rate", "tension",
+                "tension_bottom", "tension_top")
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -46,6 +47,7 @@ class CableModel:
     cable_force: ca.Function
     slack_index: tuple          # positions of the per-section slack switches in p
     symbolic: type = ca.SX      # ca.MX when the top motion has a sampled series
+    kind: str = "wang"          # which rung of the model ladder: "wang", "quasi-static", "segmented"
     # functions that analyses derive from this model (linearization, collocation), built once
     # and kept with the model they belong to (no module-level cache)
     derived: dict = dataclasses.field(default_factory=dict, repr=False)
@@ -91,6 +93,32 @@ def _coordinates(n: int, angles: str):
     return q, qd, labels, pick, sfx
 
 
+def _end_forces(momenta, ext, M, f, q, qd, z, zd, zdd):
+    """Forces of every section's cable on its body and on its top point, as ((Fx, Fy), (Fx, Fy)).
+
+    Momentum balances with dP/dt taken along the motion by AD, q'' = M^-1 f (Wang 1971 eq. 47-48):
+    - on the body: M_bv a_b - W_b - D_b (eq. 16, 32-35): the cable tension at the body end.
+      Hanging at rest it is W_b, whereas the spring force F_bc = k u (eq. 54, the ``tension``
+      output) is W_b + W_c/2 there: the uniform stretch makes k u the mean tension of the cable;
+    - on the top point of section i: sum over the cables and bodies below of W + D - dP/dt, with
+      weights in water (eq. 12, 15), drag (eq. 32-35, 42, 44) and momenta of the virtual masses of
+      the kinetic energy (eq. 16, 22-25). Spring, Voigt damper and slack rule (eq. 46, 54) are
+      internal and cancel. Hanging at rest it is W_b + W_c.
+    """
+    qdd = ca.solve(M, f)
+
+    def rate(P):
+        Pv = ca.vertcat(*P)
+        return (ca.mtimes(ca.jacobian(Pv, q), qd) + ca.mtimes(ca.jacobian(Pv, qd), qdd)
+                + ca.mtimes(ca.jacobian(Pv, z), zd) + ca.mtimes(ca.jacobian(Pv, zd), zdd))
+    out, fx, fy = [], 0.0, 0.0
+    for (P, P_b), (F, F_b) in zip(reversed(momenta), reversed(ext)):
+        dP, dP_b = rate(P), rate(P_b)
+        fx, fy = fx + F[0] - dP[0], fy + F[1] - dP[1]
+        out.append(((dP_b[0] - F_b[0], dP_b[1] - F_b[1]), (fx, fy)))
+    return list(reversed(out))
+
+
 def build_model(scene: Scene) -> CableModel:
     """Build the CasADi functions for ``scene``'s structure (values go in through ``p``)."""
     layout = ParameterLayout.from_scene(scene)
@@ -113,7 +141,7 @@ def build_model(scene: Scene) -> CableModel:
     top_r, top_v = (z[0], depth0 + z[1]), (zd[0], zd[1])
     K = V = 0
     forces, Q_direct = [], ca.SX.zeros(len(q_labels))
-    out, gaps = [], []
+    out, gaps, momenta, ext = [], [], [], []
     for i, sec in enumerate(scene.sections):
         P = SectionParameters.from_layout(layout, section_prefix(n, i), sec.body.is_sphere)
         phi, u = pick(q, i)
@@ -123,12 +151,17 @@ def build_model(scene: Scene) -> CableModel:
         K, V = K + T["K"], V + T["V"]
         forces += T["point_forces"]
         Q_direct += ca.jacobian(u, q).T * T["Q_u"]      # eq. 46 acts on this section's stretch
-        out += [phi, phid, u, ud, T["r_b"][0], T["v_b"][0], T["r_b"][1] - depth0, T["v_b"][1], T["tension"]]
+        out.append([phi, phid, u, ud, T["r_b"][0], T["v_b"][0], T["r_b"][1] - depth0, T["v_b"][1], T["tension"]])
+        momenta.append((T["momentum"], T["body_momentum"]))
+        ext.append((T["external_force"], T["body_external_force"]))
         gaps.append(T["F_bc"] - P.tens)
         top_r, top_v = T["r_b"], T["v_b"]
 
     Q = virtual_work(forces, qd) + Q_direct
     M, f = lagrange_equations(K - V, Q, q, qd, z, zd, zdd)
+    for i, (bottom, top_force) in enumerate(_end_forces(momenta, ext, M, f, q, qd, z, zd, zdd)):
+        out[i] += [ca.sqrt(bottom[0] ** 2 + bottom[1] ** 2), ca.sqrt(top_force[0] ** 2 + top_force[1] ** 2)]
+    out = [y for row in out for y in row]
     x = ca.vertcat(q, qd)
     dynamics = ca.Function("dynamics", [q, qd, e, p], [M, f], ["q", "qd", "e", "p"], ["M", "f"])
     top = top_motion_function(scene, layout)

@@ -154,5 +154,21 @@ def section_terms(P: SectionParameters, top_r, top_v, phi, u, phid, ud, *, t, en
     # section is slack (P.slack = 1) spring and damper are replaced by the constant TENS.
     F_bc = P.cable_force(u, ud)
     Q_u = -P.c_i / P.l_r * ud + P.slack * (F_bc - P.tens)
+
+    # Momentum and external force of the section (cable + its body), for the top tension.
+    # Cable: the velocity field is linear along the cable (eq. 38 with frac = s/l), so its
+    # momentum is that of the mid-point velocity, with the mass M_c along e_t and the virtual
+    # mass M_cv = M_c + added mass along e_n (the same split as the kinetic energy, eq. 22-25).
+    # Body: virtual masses M_bvx, M_bvy (eq. 16). External: weights in water (eq. 12, 15) and
+    # every drag force of this section (body eq. 32-35, cable eq. 42, 44).
+    v_m = (0.5 * (top_v[0] + v_b[0]), 0.5 * (top_v[1] + v_b[1]))
+    vm_t, vm_n = _dot(v_m, e_t), _dot(v_m, e_n)
+    body_momentum = (P.m_bx * v_b[0], P.m_by * v_b[1])
+    momentum = (P.m_c * vm_t * e_t[0] + m_cv * vm_n * e_n[0] + body_momentum[0],
+                P.m_c * vm_t * e_t[1] + m_cv * vm_n * e_n[1] + body_momentum[1])
+    fx_ext = sum((F[0] for _, F in point_forces), 0.0)
+    fy_ext = sum((F[1] for _, F in point_forces), 0.0) + P.w_b + P.w_c
     return dict(K=K, V=V, point_forces=point_forces, Q_u=Q_u, r_b=r_b, v_b=v_b, F_bc=F_bc,
-                tension=F_bc + P.slack * (P.tens - F_bc), l=l, m_cv=m_cv)
+                tension=F_bc + P.slack * (P.tens - F_bc), l=l, m_cv=m_cv,
+                momentum=momentum, external_force=(fx_ext, fy_ext),
+                body_momentum=body_momentum, body_external_force=(d_b[0], d_b[1] + P.w_b))

@@ -1,0 +1,69 @@
+"""Top and body-end tension of Wang's 2-DOF model (momentum balances of the straight cable and body)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from cablesys.linear.linearize import linearize
+from cablesys.linear.steady import steady_state
+from cablesys.model import build_model
+from cablesys.scene import dale_scene
+
+
+@pytest.fixture(scope="module")
+def dale():
+    scene = dale_scene()
+    model = build_model(scene)
+    return scene, model, model.parameters(scene)
+
+
+def test_hanging_tensions_are_hand_statics(dale):
+    """At rest: top W_b + W_c, body end W_b, Wang's spring force k u = W_b + W_c/2 (eq. 49b, 54)."""
+    scene, model, p = dale
+    y = steady_state(model, p).outputs
+    w_b, w_c = scene.body.weight, scene.cable.total_weight
+    assert y["tension_top"] == pytest.approx(w_b + w_c, rel=1e-10)
+    assert y["tension_bottom"] == pytest.approx(w_b, rel=1e-10)
+    assert y["tension"] == pytest.approx(w_b + 0.5 * w_c, rel=1e-10)
+
+
+def test_slow_heave_tension_is_weight_plus_inertia(dale):
+    """Vertical top motion far below the axial frequency: the top carries W + (M_bv + M_c) a, the
+    body end W_b + M_bv a (the cable's added mass acts normal to it only, eq. 23)."""
+    scene, model, p = dale
+    lin = linearize(model, p)
+    w_ax = math.sqrt(scene.cable.spring_constant / (scene.body.mass_y + scene.cable.total_mass / 3))
+    omega = 0.01 * w_ax
+    _, Y = lin.transfer([omega])
+    col = lin.input_labels.index("y_s")
+    top = abs(Y[0, lin.output_labels.index("tension_top"), col])
+    bottom = abs(Y[0, lin.output_labels.index("tension_bottom"), col])
+    m_b, m_c = scene.body.mass_y, scene.cable.total_mass
+    assert top == pytest.approx((m_b + m_c) * omega**2, rel=1e-3)
+    assert bottom == pytest.approx(m_b * omega**2, rel=1e-3)
+
+
+def test_steady_current_top_force_balances_weight_and_drag(dale):
+    """In a uniform current the top force is the vector sum of the weights and the total drag:
+    F_top = (D_x, W_b + W_c + D_y), with the drag of the body (eq. 32) and of the inclined cable
+    (normal along e_n, eq. 42; tangential along e_t, eq. 44) in the relative flow (U, 0)."""
+    scene, _, _ = dale
+    U = 0.3
+    sc = scene.with_environment(current_speeds=(U,))
+    model = build_model(sc)
+    p = model.parameters(sc)
+    st = steady_state(model, p)
+    phi = st.q[0]
+    c, b, rho = sc.cable, sc.body, sc.environment.density
+    length = c.length_zero + st.q[1]
+    d = c.diameter                                     # thinning ratio 0
+    s_, c_ = math.sin(phi), math.cos(phi)
+    v_n, v_t = -U * c_, -U * s_                        # (U, 0) . e_n, (U, 0) . e_t
+    d_n = 0.5 * rho * c.cd_normal * d * length * abs(v_n) * v_n
+    d_t = 0.5 * rho * c.ct_tangential * d * length * abs(v_t) * v_t
+    d_x = 0.5 * rho * b.drag_area_normal * U * U + d_n * (-c_) + d_t * (-s_)
+    d_y = d_n * (-s_) + d_t * c_
+    expect = math.hypot(d_x, b.weight + c.total_weight + d_y)
+    assert st.outputs["tension_top"] == pytest.approx(expect, rel=1e-9)
+    assert st.outputs["tension_bottom"] == pytest.approx(math.hypot(b.weight, 0.5 * rho * b.drag_area_normal * U * U), rel=1e-9)
