@@ -14,7 +14,7 @@ import numpy as np
 
 from cablesys.linear.linearize import linearize
 from cablesys.linear.periodic import periodic_steady_state, scene_input_amplitude
-from cablesys.linear.rao import rao
+from cablesys.linear import rao
 from cablesys.linear.steady import steady_state
 from cablesys.model import build_model
 from cablesys.scene import dale_scene

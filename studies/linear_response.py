@@ -18,10 +18,10 @@ import numpy as np
 from cablesys import units as U
 from cablesys.linear.equivalent import harmonic_response
 from cablesys.linear.linearize import linearize
-from cablesys.linear.modes import modes as modes_of
+from cablesys.linear import modes as modes_of
 from cablesys.linear.periodic import periodic_steady_state, scene_input_amplitude
 from cablesys.linear.plots import plot_modes, plot_nonlinear_rao, plot_rao_bode, plot_response_spectrum
-from cablesys.linear.rao import rao
+from cablesys.linear import rao
 from cablesys.linear.spectra import jonswap
 from cablesys.linear.stochastic import stochastic_response
 from cablesys.model import build_model

@@ -32,7 +32,7 @@ from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
 
 from cablesys import units as U  # noqa: E402
 from cablesys.linear.linearize import linearize  # noqa: E402
-from cablesys.linear.modes import modes as modes_of  # noqa: E402
+from cablesys.linear import modes as modes_of  # noqa: E402
 from cablesys.linear.spectra import jonswap  # noqa: E402
 from cablesys.linear.stochastic import stochastic_response  # noqa: E402
 from cablesys.model import build_model  # noqa: E402

@@ -39,7 +39,7 @@ from cablesys.scene.dale import CABLE_CD, CABLE_CT, OMEGA_N_MEASURED, SPHERE_CD,
 from cablesys.simulate import IntegratorSettings, Simulator  # noqa: E402
 from cablesys.simulate.run import initial_state  # noqa: E402
 from cablesys.linear.linearize import linearize  # noqa: E402
-from cablesys.linear.modes import modes  # noqa: E402
+from cablesys.linear import modes  # noqa: E402
 from cablesys.plots import save_figure  # noqa: E402
 
 RATIOS = (0.5, 1.0, 1.5, 2.0)

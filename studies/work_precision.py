@@ -35,7 +35,7 @@ from cablesys.scene import dale_scene  # noqa: E402
 from cablesys.simulate import IntegratorSettings, Simulator  # noqa: E402
 from cablesys.simulate.run import initial_state  # noqa: E402
 from cablesys.linear.linearize import linearize  # noqa: E402
-from cablesys.linear.modes import modes  # noqa: E402
+from cablesys.linear import modes  # noqa: E402
 from cablesys.plots import save_figure  # noqa: E402
 
 ADAPTIVE = ("cvodes", "cvodes-adams", "idas")

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from cablesys.linear.linearize import linearize
-from cablesys.linear.modes import modes
+from cablesys.linear import modes
 from cablesys.linear.steady import steady_state
 from cablesys.model import build_model
 from cablesys.scene import Body, Cable, Numerics, Scene, Section, Sinusoid, TopMotion

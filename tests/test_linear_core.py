@@ -8,9 +8,9 @@ import pytest
 from cablesys.errors import ParameterError, SolverError
 from cablesys.linear.equivalent import describing_function, describing_matrices, harmonic_response
 from cablesys.linear.linearize import linearize
-from cablesys.linear.modes import modes
+from cablesys.linear import modes
 from cablesys.linear.periodic import periodic_steady_state, scene_input_amplitude
-from cablesys.linear.rao import rao
+from cablesys.linear import rao
 from cablesys.linear.spectra import jonswap, pierson_moskowitz, significant_amplitude, slack_probability, spectral_moment
 from cablesys.linear.steady import steady_state
 from cablesys.model import build_model

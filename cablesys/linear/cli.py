@@ -28,10 +28,10 @@ def run(args) -> int:
     from ..scene import load_scene
     from .equivalent import harmonic_response
     from .linearize import linearize
-    from .modes import modes as modes_of
+    from .modal import modes as modes_of
     from .periodic import scene_input_amplitude
     from .plots import plot_modes, plot_rao_bode
-    from .rao import rao
+    from .frequency_response import rao
 
     scene = load_scene(args.scene)
     if args.n < 2:

@@ -45,7 +45,7 @@ from .linearize import (
     static_parameters,
     xi_blocks,
 )
-from .rao import RAO
+from .frequency_response import RAO
 from .steady import steady_state
 
 
