@@ -1,0 +1,163 @@
+"""What one case computes, per analysis, and the per-process cache of compiled models.
+
+Each analysis takes (scene, options, cache) and returns (summary dict, success, message);
+the summary is the result's own ``summary()`` where it has one, so statistics and verdicts
+added there flow into sweeps (:mod:`.metrics` flattens them). Models are built once per
+scene structure and simulators once per (structure, numerics) in each worker process:
+every other value enters through the parameter vector ``p``.
+"""
+
+from __future__ import annotations
+
+import collections
+import dataclasses
+import math
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..model import build_model, structure_of
+
+
+class ModelCache:
+    """One model per scene structure and one Simulator per (structure, numerics), least recently used out."""
+
+    def __init__(self, maxsize: int = 8):
+        self.maxsize = maxsize
+        self._models = collections.OrderedDict()
+        self._sims = collections.OrderedDict()
+        self.builds = 0
+
+    def _get(self, store, key, make):
+        if key in store:
+            store.move_to_end(key)
+            return store[key]
+        store[key] = make()
+        if len(store) > self.maxsize:
+            store.popitem(last=False)
+        return store[key]
+
+    def model(self, scene):
+        def make():
+            self.builds += 1
+            return build_model(scene)
+        return self._get(self._models, structure_of(scene), make)
+
+    def simulator(self, scene, jit: bool = False):
+        from ..simulate import IntegratorSettings, Simulator
+        num = scene.numerics
+        settings = IntegratorSettings(method=num.integrator, rtol=num.rtol, atol=num.atol,
+                                      steps_per_output=num.steps_per_output, jit=jit)
+        key = (structure_of(scene), num, jit)
+        return self._get(self._sims, key, lambda: Simulator(self.model(scene), scene.output_times, settings))
+
+
+def forcing_frequency(scene) -> float | None:
+    """Lowest frequency of the top-motion sinusoids with a non-zero amplitude (rad/s)."""
+    freqs = [s.frequency for s in scene.top_motion.x + scene.top_motion.y if s.amplitude != 0.0]
+    return min(freqs) if freqs else None
+
+
+def _outputs(labels) -> list:
+    return [lbl for lbl in labels if not lbl.endswith("rate") and lbl not in ("x_s", "y_s")]
+
+
+def run(scene, options, cache):
+    """Time-domain run (Wang 1971 eq. 47-48 integrated); amplitudes over the last ``periods`` forcing periods."""
+    from ..simulate import simulate
+    r = simulate(scene, simulator=cache.simulator(scene, jit=bool(options.get("jit", False))))
+    s = dict(r.summary())
+    w = forcing_frequency(scene)
+    n = int(options.get("periods", 3))
+    if w and r.time[-1] - r.time[0] >= 2 * n * 2 * math.pi / w:
+        s["amplitude"] = {lbl: r.steady_amplitude(lbl, 2 * math.pi / w, n) for lbl in _outputs(r.labels)}
+    return s, r.success, r.message
+
+
+def rao(scene, options, cache):
+    """Linearization about the steady state: natural frequencies, |RAO| at the forcing frequency and peaks."""
+    from ..linear.linearize import linearize
+    from ..linear import modes
+    from ..linear.periodic import scene_input_amplitude
+    model = cache.model(scene)
+    lin = linearize(model, model.parameters(scene))
+    md = modes(lin)
+    s = {"omega_n": {f"{k}_rad_s": float(w) for k, w in enumerate(md.omega_undamped)},
+         "damping_ratio": {str(k): float(z) for k, z in enumerate(md.damping_ratio)},
+         "mode_dominant": {str(k): str(d) for k, d in enumerate(md.dominant)}}
+    outs = _outputs(lin.output_labels)
+    w_max = float(options.get("omega_max", 3.0 * float(np.max(md.omega_undamped))))
+    w_min = float(options.get("omega_min", w_max / 300))
+    omega = np.linspace(w_min, w_max, int(options.get("n_omega", 300)))
+    _, Y = lin.transfer(omega)
+    for j, inp in enumerate(lin.input_labels[:2]):
+        for o in ("x_b", "y_b", "tension"):
+            if o in lin.output_labels:
+                a = np.abs(Y[:, lin.output_labels.index(o), j])
+                k = int(np.argmax(a))
+                s[f"rao_peak_{o}_{inp}"] = float(a[k])
+                s[f"rao_peak_omega_{o}_{inp}_rad_s"] = float(omega[k])
+    w = forcing_frequency(scene)
+    if w:
+        _, Yf = lin.transfer([w])
+        try:
+            _, Z = scene_input_amplitude(scene)
+        except Exception:          # several frequencies: per-unit RAOs only
+            Z = None
+        for o in outs:
+            i = lin.output_labels.index(o)
+            for j, inp in enumerate(lin.input_labels[:2]):
+                s[f"rao_{o}_{inp}"] = float(abs(Yf[0, i, j]))
+            if Z is not None:
+                s[f"amplitude_{o}"] = float(abs(Yf[0, i, :Z.size] @ Z))
+    return s, True, ""
+
+
+def periodic(scene, options, cache):
+    """Nonlinear periodic steady state (harmonic balance) at the top motion's one frequency."""
+    from ..linear.periodic import periodic_steady_state, scene_input_amplitude
+    model = cache.model(scene)
+    w, Z = scene_input_amplitude(scene)
+    sol = periodic_steady_state(model, model.parameters(scene), w, input_amplitude=Z,
+                                n_harmonics=int(options.get("n_harmonics", 20)))
+    s = {"amplitude": {o: sol.amplitude(o) for o in _outputs(sol.outputs)}, "residual": sol.residual,
+         "success": sol.success}
+    for o, y in sol.outputs.items():
+        if o.startswith("tension"):
+            s[f"{o}_min_N"], s[f"{o}_max_N"] = float(np.min(y)), float(np.max(y))
+    return s, sol.success, sol.message
+
+
+def stochastic(scene, options, cache):
+    """Gaussian equivalent linearization in a JONSWAP sea (``hs``, ``tp``, ``gamma`` options)."""
+    from ..linear.spectra import jonswap
+    from ..linear.stochastic import stochastic_response
+    model = cache.model(scene)
+    hs, tp = float(options.get("hs", 2.0)), float(options.get("tp", 8.0))
+    omega = np.linspace(float(options.get("omega_min", 0.25)), float(options.get("omega_max", 3.0)),
+                        int(options.get("n_omega", 60)))
+    st = stochastic_response(model, model.parameters(scene), omega, jonswap(omega, hs, tp, float(options.get("gamma", 3.3))),
+                             n_log2=int(options.get("n_log2", 8)))
+    outs = _outputs(st.output_labels)
+    s = {"mean": {o: float(st.output_mean[st.output_labels.index(o)]) for o in outs},
+         "std": {o: st.std(o) for o in outs},
+         "slack_probability": st.slack_probability(), "iterations": st.iterations, "converged": st.converged}
+    if hasattr(st, "summary"):               # the result's own headline numbers (statistics, verdicts) on top
+        s.update(st.summary())
+    return s, bool(st.converged), "" if st.converged else "the Gaussian linearization did not converge"
+
+
+def design(scene, options, cache):
+    """The isolation design NLP (Wang 1971 p. 33) with ``options['settings']`` (fields variable as ``design.<field>``)."""
+    from ..design import design as solve, DesignSettings
+    settings = options.get("settings")
+    if not isinstance(settings, DesignSettings):
+        raise ParameterError("options['settings']", settings, "a design sweep needs a DesignSettings")
+    changes = {k: v for k, v in options.items() if k != "settings"}
+    if changes:
+        settings = dataclasses.replace(settings, **changes)
+    res = solve(scene, settings, model=cache.model(scene))
+    return res.to_dict(), bool(res.converged), "" if res.converged else f"not converged: {res.status}"
+
+
+ANALYSIS = {"run": run, "rao": rao, "periodic": periodic, "stochastic": stochastic, "design": design}

@@ -1,0 +1,117 @@
+"""``sweep(scene, vary=..., analysis=...)``: many cases of one analysis, as one labelled Dataset."""
+
+from __future__ import annotations
+
+import logging
+import time
+
+from ..errors import ParameterError
+from ..scene import Scene
+from . import backends
+from .analyses import ANALYSIS
+from .grid import Grid
+from .store import CaseStore, assemble
+from .values import check_labels, unit_of_label
+from .worker import SweepSpec
+
+log = logging.getLogger(__name__)
+
+
+def sweep(scene: Scene, vary: dict, analysis: str = "run", *, metrics=None, zip=False, options: dict | None = None,
+          out=None, workers: int | None = None, scheduler=None, chunk_size: int | None = None,
+          progress: bool = True, retry_failed: bool = False):
+    """Run ``analysis`` for every combination of the values in ``vary``; one labelled Dataset back.
+
+    Parameters
+    ----------
+    scene : Scene
+        The base scene; each case replaces the varied values (SI) and is validated again.
+    vary : dict
+        {label: values}. Labels of the parameter vector (``cable.ae``, ``sections[1].body.weight``,
+        ``top_motion.y[0].frequency``, ``environment.current_speeds[0]``), other scene fields
+        (``numerics.drag_segments``: a model per structure), or options of the analysis
+        (``stochastic.hs``, ``stochastic.tp``, ``design.hs``, ``run.periods``).
+    analysis : str
+        ``run`` (time domain, Wang 1971 eq. 47-48), ``rao`` (linearization: natural frequencies,
+        RAOs), ``periodic`` (harmonic balance), ``stochastic`` (Gaussian linearization in a JONSWAP
+        sea) or ``design`` (isolation NLP; ``options={"settings": DesignSettings(...)}``).
+    metrics : list of str, optional
+        Glob patterns of the metric names to keep (``["tension_*", "amplitude_x_b"]``); default all
+        numbers and strings of the result's ``summary()`` (flattened, see :mod:`.metrics`).
+    zip : bool or list of tuples
+        False: outer product, one dimension per label. True: all lists in step (one dimension).
+        A list of label groups: each group advances in step, groups and other labels are crossed.
+    options : dict, optional
+        Analysis options (``periods``, ``omega_max``, ``n_harmonics``, ``hs``, ``tp``, ``settings``).
+    out : path, optional
+        Folder for finished cases (netCDF per chunk, written as they finish) and ``sweep.nc``.
+        Calling again with the same sweep and folder computes only the missing cases.
+    workers : int, optional
+        Local processes (default: all cores of this machine; 1 runs in this process).
+    scheduler : distributed.Client or str, optional
+        Run on a Dask cluster (a client or a scheduler address) instead of local processes.
+    chunk_size : int, optional
+        Cases per task (default: about 8 tasks per worker, at most 64 cases each).
+    progress : bool
+        A tqdm progress bar (terminal or Jupyter).
+    retry_failed : bool
+        With ``out``: compute again the stored cases whose status is not ``ok``.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions: one per varied label (zipped labels share the first one's); coordinates with
+        SI units in attributes; variables: the metrics, ``status``, ``message``, ``wall_s``.
+        Attributes: ``analysis``, ``n_cases``, ``n_computed`` (this call), ``n_ok``, ``wall_s``, ``backend``.
+    """
+    if analysis not in ANALYSIS:
+        raise ParameterError("analysis", analysis, f"must be one of {tuple(ANALYSIS)}")
+    if not isinstance(scene, Scene):
+        raise ParameterError("scene", type(scene).__name__, "must be a cablesys Scene (load_scene, dale_scene)")
+    grid = Grid.build(vary, zip)
+    check_labels(scene, grid.all_names, analysis)
+    patterns = None if metrics is None else tuple([metrics] if isinstance(metrics, str) else metrics)
+    spec = SweepSpec(scene=scene, analysis=analysis, grid=grid, options=dict(options or {}), metrics=patterns)
+    t0 = time.perf_counter()
+    store = CaseStore(out, spec) if out is not None else None
+    records = store.finished() if store else {}
+    if retry_failed:
+        records = {k: r for k, r in records.items() if r["status"] == "ok"}
+    todo = [k for k in range(len(grid)) if k not in records]
+    n_workers = 1 if scheduler is not None else (workers or backends.local_cores())
+    if workers is not None and workers < 1:
+        raise ParameterError("workers", workers, "must be >= 1")
+    parts = backends.chunks(todo, n_workers if scheduler is None else 16, chunk_size)
+    if scheduler is not None:
+        backend, stream = "dask", backends.run_dask(spec, parts, scheduler)
+    elif n_workers == 1 or len(parts) <= 1:
+        backend, stream = "serial", backends.run_serial(spec, parts)
+    else:
+        backend, stream = "processes", backends.run_processes(spec, parts, min(n_workers, len(parts)))
+    bar = _bar(len(todo), f"sweep {analysis}", progress)
+    try:
+        for _, recs in stream:
+            keep = [r for r in recs if not r.pop("transient", False)]
+            if store and keep:
+                store.write(keep)
+            records.update({r["case"]: r for r in recs})
+            bar.update(len(recs))
+            bad = sum(r["status"] != "ok" for r in recs)
+            if bad:
+                bar.set_postfix(not_ok=sum(r["status"] != "ok" for r in records.values()))
+    finally:
+        bar.close()
+    units = {n: unit_of_label(scene, n, analysis) for n in grid.all_names}
+    n_ok = sum(r["status"] == "ok" for r in records.values())
+    attrs = {"analysis": analysis, "scene": scene.name, "n_cases": len(grid), "n_computed": len(todo),
+             "n_ok": n_ok, "wall_s": time.perf_counter() - t0, "backend": backend,
+             "workers": n_workers if scheduler is None else -1, "options": repr(sorted((options or {}).items()))}
+    ds = assemble(spec, records, units, attrs)
+    if store:
+        ds.to_netcdf(store.out / "sweep.nc", engine="scipy")
+    return ds
+
+
+def _bar(total: int, desc: str, enabled: bool):
+    from tqdm.auto import tqdm
+    return tqdm(total=total, desc=desc, unit="case", disable=not enabled or total == 0, leave=True)
