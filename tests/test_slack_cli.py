@@ -39,7 +39,7 @@ def test_example_scene_runs_and_writes_outputs(tmp_path, capsys, monkeypatch):
 
 
 @pytest.mark.parametrize("edit, field", [
-    (("mass = 4.5", "mass = -4.5"), "mass.mass"),
+    (("mass = 4.5", "mass = -4.5"), "masses[0].mass"),
     (("position = 15.867", "position = 40.0"), "masses[1].position"),
     (("span = 22.9 ", "span = 30.0 "), "scene.chord"),
     (("length = 23.80", "length = 0"), "cable.length"),

@@ -9,14 +9,16 @@ read by :func:`load_scene` is documented in :data:`EXAMPLE_TOML`.
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import ParameterError, require_finite, require_nonnegative, require_positive
+from ..reader import build, integer, located, read_toml, typed_fields
 from ..units import G_STANDARD
 
 MEDIA = ("air", "water")
+MAX_ELEMENTS = 5000      # lumped-mass elements: 3 N unknowns, a few seconds of sparse shift-invert at the limit
+MAX_MODES = 200          # modes reported by a scene file
 
 
 def _buoyancy_and_added(mass: float, S: float | None, c_am: float, medium: str, g: float,
@@ -133,8 +135,11 @@ class SlackScene:
         require_positive("scene.gravity", self.gravity, "m/s^2")
         if self.medium not in MEDIA:
             raise ParameterError("scene.medium", self.medium, f"must be one of {MEDIA}")
-        if int(self.n_elements) != self.n_elements or self.n_elements < 4:
-            raise ParameterError("scene.n_elements", self.n_elements, "must be an integer >= 4")
+        if (not isinstance(self.n_elements, int) or isinstance(self.n_elements, bool)
+                or not 4 <= self.n_elements <= MAX_ELEMENTS):
+            raise ParameterError("scene.n_elements", self.n_elements,
+                                 f"must be an integer in [4, {MAX_ELEMENTS}] (the limit keeps the eigenproblem "
+                                 "within seconds and memory)")
         object.__setattr__(self, "masses", tuple(self.masses))
         L = self.cable.length
         for i, pm in enumerate(self.masses):
@@ -213,53 +218,84 @@ position = 15.867
 mass = 4.5
 """
 
-_SCENE_KEYS = {"span", "rise", "medium", "n_elements", "gravity", "n_modes"}
-_CABLE_KEYS = {f for f in Cable.__dataclass_fields__}
-_MASS_KEYS = {f for f in PointMass.__dataclass_fields__}
+def scene_from_dict(doc: dict, source=None) -> tuple[SlackScene, int]:
+    """(scene, n_modes) from a parsed TOML document (see :data:`EXAMPLE_TOML`).
+
+    Parameters
+    ----------
+    doc : dict
+        The parsed document: ``[scene]`` (with ``n_modes``), ``[cable]``, ``[[masses]]``.
+    source : cablesys.reader.SourceMap or str, optional
+        Where the document came from; errors then name the file and line.
+
+    Returns
+    -------
+    scene : SlackScene
+        The validated scene (SI).
+    n_modes : int
+        Number of modes to report, in [1, MAX_MODES].
+
+    Raises
+    ------
+    ParameterError
+        Naming the field, its value and the allowed range (and the file and line).
+    """
+    try:
+        return _scene_from_dict(doc)
+    except ParameterError as err:
+        raise located(err, source) from None
 
 
-def _check_keys(table: dict, allowed: set, where: str) -> None:
-    for k in table:
-        if k not in allowed:
-            raise ParameterError(f"{where}.{k}", table[k], f"unknown key; allowed: {sorted(allowed)}")
-
-
-def scene_from_dict(doc: dict) -> tuple[SlackScene, int]:
-    """(scene, n_modes) from a parsed TOML document (see :data:`EXAMPLE_TOML`)."""
+def _scene_from_dict(doc: dict) -> tuple[SlackScene, int]:
+    if not isinstance(doc, dict):
+        raise ParameterError("document", doc, "must be a TOML document (a table)")
     for k in doc:
         if k not in ("scene", "cable", "masses"):
             raise ParameterError(k, doc[k], "unknown table; allowed: scene, cable, masses")
-    sc = dict(doc.get("scene", {}))
-    _check_keys(sc, _SCENE_KEYS, "scene")
     if "cable" not in doc:
         raise ParameterError("cable", None, "a [cable] table is required")
-    cab = dict(doc["cable"])
-    _check_keys(cab, _CABLE_KEYS, "cable")
-    for req in ("length", "mass_per_length", "axial_stiffness"):
-        if req not in cab:
-            raise ParameterError(f"cable.{req}", None, "is required")
-    masses = []
-    for i, mt in enumerate(doc.get("masses", [])):
-        _check_keys(mt, _MASS_KEYS, f"masses[{i}]")
-        for req in ("position", "mass"):
-            if req not in mt:
-                raise ParameterError(f"masses[{i}].{req}", None, "is required")
-        masses.append(PointMass(**mt))
-    n_modes = sc.pop("n_modes", 12)
-    if int(n_modes) != n_modes or n_modes < 1:
-        raise ParameterError("scene.n_modes", n_modes, "must be an integer >= 1")
-    if "span" not in sc:
-        raise ParameterError("scene.span", None, "is required")
-    return SlackScene(cable=Cable(**cab), masses=tuple(masses), **sc), int(n_modes)
+    cable = build(Cable, doc["cable"], "cable")
+    masses = doc.get("masses", [])
+    if isinstance(masses, dict):
+        raise ParameterError("masses", "one table", "must be an array of tables: write [[masses]] per point mass")
+    if not isinstance(masses, list) or not all(isinstance(m, dict) for m in masses):
+        raise ParameterError("masses", masses, "must be an array of tables [[masses]]")
+    masses = tuple(build(PointMass, m, f"masses[{i}]") for i, m in enumerate(masses))
+    sc = doc.get("scene", {})
+    if isinstance(sc, dict):
+        sc = dict(sc)
+        n_modes = integer("scene.n_modes", sc.pop("n_modes", 12))
+    else:
+        n_modes = 12                          # typed_fields names the wrong type below
+    if not 1 <= n_modes <= MAX_MODES:
+        raise ParameterError("scene.n_modes", n_modes, f"must be an integer in [1, {MAX_MODES}]")
+    kw = typed_fields(SlackScene, sc, "scene", skip=("cable", "masses"))
+    scene = SlackScene(cable=cable, masses=masses, **kw)
+    if n_modes > 3 * (scene.n_elements - 1) - 1:
+        raise ParameterError("scene.n_modes", n_modes, f"must be < 3 (n_elements - 1) = {3 * (scene.n_elements - 1)}, "
+                             "the number of degrees of freedom")
+    return scene, n_modes
 
 
 def load_scene(path: str | Path) -> tuple[SlackScene, int]:
-    """Read a scene TOML file (stdlib tomllib); returns (scene, n_modes)."""
-    p = Path(path)
-    if not p.is_file():
-        raise ParameterError("scene file", str(p), "must be an existing TOML file")
-    try:
-        doc = tomllib.loads(p.read_text())
-    except tomllib.TOMLDecodeError as err:
-        raise ParameterError("scene file", str(p), f"must be valid TOML ({err})") from None
-    return scene_from_dict(doc)
+    """Read a slack-cable scene TOML file (UTF-8, a byte-order mark accepted).
+
+    Parameters
+    ----------
+    path : str or Path
+        The TOML file (format: :data:`EXAMPLE_TOML`).
+
+    Returns
+    -------
+    scene : SlackScene
+        The validated scene.
+    n_modes : int
+        Number of modes to report.
+
+    Raises
+    ------
+    ParameterError
+        Unreadable, undecodable or invalid file, or a value out of range (file, line, field).
+    """
+    doc, source = read_toml(path, "scene file")
+    return scene_from_dict(doc, source)
