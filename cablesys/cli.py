@@ -20,6 +20,7 @@ COMMAND_MODULES = (
     "cablesys.linear.cli",      # rao    (steady state, linearization, RAOs)
     "cablesys.design.cli",      # design (dual-isolation NLP)
     "cablesys.towed.cli",       # towed  (Kennedy & Strahan 1981)
+    "cablesys.sweep.cli",       # sweep  (parameter sweeps of any analysis)
 )
 
 
