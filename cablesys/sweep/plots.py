@@ -72,7 +72,9 @@ def plot_metric(ds, name: str, path) -> Path:
     panels = [None] if len(dims) == 2 else list(range(min(6, da.sizes[dims[2]])))
     ncol = min(3, len(panels))
     nrow = -(-len(panels) // ncol)
-    fig, axes = plt.subplots(nrow, ncol, figsize=(4.6 * ncol + 1.0, 3.9 * nrow + 0.6), squeeze=False)
+    fig, grid_axes = plt.subplots(nrow, ncol + 1, figsize=(4.6 * ncol + 1.2, 3.9 * nrow + 0.6), squeeze=False,
+                                  gridspec_kw={"width_ratios": [1.0] * ncol + [0.06]})
+    axes, cbar_axes = grid_axes[:, :ncol], grid_axes[:, ncol]
     vals = da.values[np.isfinite(da.values)]
     vmin, vmax = (float(vals.min()), float(vals.max())) if vals.size else (0.0, 1.0)
     cmap = plt.get_cmap("viridis").copy()
@@ -94,7 +96,9 @@ def plot_metric(ds, name: str, path) -> Path:
             ax.set_title(f"{dims[2]} = {v:.3g}" if not isinstance(v, str) else f"{dims[2]} = {v}", fontsize=9)
     for ax in axes.ravel()[len(panels):]:
         ax.set_visible(False)
-    fig.colorbar(im, ax=axes.ravel().tolist(), label=_label(ds, name), shrink=0.9)
+    fig.colorbar(im, cax=cbar_axes[0], label=_label(ds, name))
+    for ax in cbar_axes[1:]:
+        ax.set_visible(False)
     fig.suptitle(title, fontsize=10)
     return save_figure(fig, path)
 

@@ -1,0 +1,53 @@
+"""The ``cablesys sweep`` sub-command: a parameter sweep of a scene file, a Dataset and plots."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+
+def register(sub) -> None:
+    """Add ``sweep SCENE --vary NAME=VALUES ... [--analysis A] [--out DIR]`` to the cablesys parser."""
+    p = sub.add_parser("sweep", help="run an analysis over a grid of parameter values (parallel, resumable)",
+                       description="Run ANALYSIS for every combination of the --vary values (outer product; --zip "
+                                   "to advance the lists in step) on all local cores or a Dask cluster. Writes "
+                                   "OUT/sweep.nc (one dimension per varied label, metrics, per-case status and message), "
+                                   "OUT/sweep.csv, a plot per metric in OUT/plots/, and keeps finished cases in "
+                                   "OUT/cases/ so that running the same command again computes only the missing ones.")
+    p.add_argument("scene", type=Path, help="scene TOML file (see `cablesys scene --example`)")
+    p.add_argument("--vary", action="append", required=True, metavar="NAME=VALUES",
+                   help="a labelled value and its values: a list (body.weight=2000,3000,4000) or a range "
+                        "start:stop:lin|log:count (cable.ae=1e5:1e7:log:20); repeat for more dimensions")
+    p.add_argument("--analysis", default="run", choices=("run", "rao", "periodic", "stochastic"),
+                   help="run (time domain), rao (linearization), periodic (harmonic balance), stochastic (JONSWAP sea)")
+    p.add_argument("--metric", action="append", default=None, metavar="PATTERN",
+                   help="keep metrics matching this glob (repeatable; default all, e.g. 'tension_*')")
+    p.add_argument("--zip", action="store_true", help="advance all --vary lists in step (one dimension)")
+    p.add_argument("--out", type=Path, default=Path("sweep-out"), help="output folder (default: sweep-out)")
+    p.add_argument("--workers", type=int, default=None, help="local processes (default: all cores)")
+    p.add_argument("--scheduler", default=None, help="Dask scheduler address (tcp://host:8786) instead of local processes")
+    p.add_argument("--duration", type=float, default=None, help="simulated time in s (overrides the scene)")
+    p.add_argument("--no-plots", action="store_true", help="skip the figures")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from ..scene import load_scene
+    from . import sweep
+    from .grid import parse_vary
+    from .plots import plot_sweep
+    scene = load_scene(args.scene)
+    if args.duration:
+        scene = scene.with_numerics(duration=args.duration)
+    ds = sweep(scene, parse_vary(args.vary), args.analysis, metrics=args.metric, zip=args.zip, out=args.out,
+               workers=args.workers, scheduler=args.scheduler, progress=sys.stderr.isatty())
+    ds.to_dataframe().to_csv(args.out / "sweep.csv")
+    figs = [] if args.no_plots else plot_sweep(ds, args.out / "plots")
+    status = ds["status"].values.ravel()
+    print(f"{scene.name}: {ds.attrs['analysis']} over {' x '.join(f'{d} ({n})' for d, n in ds.sizes.items())} = "
+          f"{ds.attrs['n_cases']} cases, {ds.attrs['n_computed']} computed now ({ds.attrs['backend']}, "
+          f"{ds.attrs['wall_s']:.1f} s); ok {int((status == 'ok').sum())}, not ok {int((status != 'ok').sum())}")
+    for k in [i for i, s in enumerate(status) if s != "ok"][:5]:
+        print(f"  case {k}: {status[k]}: {ds['message'].values.ravel()[k]}")
+    print(f"wrote {args.out}/sweep.nc, sweep.csv and {len(figs)} plots in {args.out}/plots/")
+    return 0 if (status == "ok").all() else 1
