@@ -4,12 +4,37 @@ from __future__ import annotations
 
 from pathlib import Path
 
+__all__ = ["plot_time_series", "save_figure"]
+
 
 def save_figure(fig, path, **savefig_kw) -> Path:
-    """Lay out, write and close a figure (every plot of the package and the studies ends here)."""
+    """Lay out, write and close a figure (every plot of the package and the studies ends here).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure; it is closed afterwards.
+    path : str or pathlib.Path
+        Output file; the format follows the suffix (``.png``, ``.pdf``, ``.svg``).
+    **savefig_kw
+        Passed to ``Figure.savefig`` (``dpi`` defaults to 120).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
     import matplotlib.pyplot as plt
     savefig_kw.setdefault("dpi", 120)
     fig.tight_layout()
     fig.savefig(path, **savefig_kw)
     plt.close(fig)
     return Path(path)
+
+
+def __getattr__(name):
+    """``plot_time_series`` on first use (its module imports this one)."""
+    if name == "plot_time_series":
+        from .time_domain import plot_time_series
+        return plot_time_series
+    raise AttributeError(f"module 'cablesys.plots' has no attribute {name!r}")

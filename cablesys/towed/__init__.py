@@ -11,10 +11,15 @@ runs         sea-trial runs: CSV reading with row/column errors, model per run, 
 cli          the `cablesys towed` sub-command
 """
 
-from .equation import Coefficients, TowedCable, REPORT_SEA_TRIAL, REPORT_TYPICAL
-from .transfer import (transfer_function, c_star, phase_velocity, phase_lag,
-                       water_pulley_c_star, transfer_grid, TransferGrid)
+from .eigen import Eigenfrequencies, damping_time, eigenfrequencies, exact_eigenfrequency
+from .equation import REPORT_SEA_TRIAL, REPORT_TYPICAL, Coefficients, TowedCable
+from .interaction import amplification, effective_amplification
+from .mol import forced_response, slowest_mode
+from .runs import fit_normal_drag, model_runs, read_runs
+from .transfer import TransferGrid, c_star, phase_lag, phase_velocity, transfer_function
+from .transfer import transfer_grid, water_pulley_c_star
 
-__all__ = ["Coefficients", "TowedCable", "REPORT_SEA_TRIAL", "REPORT_TYPICAL",
-           "transfer_function", "c_star", "phase_velocity", "phase_lag",
-           "water_pulley_c_star", "transfer_grid", "TransferGrid"]
+__all__ = ["REPORT_SEA_TRIAL", "REPORT_TYPICAL", "Coefficients", "Eigenfrequencies", "TowedCable", "TransferGrid",
+           "amplification", "c_star", "damping_time", "effective_amplification", "eigenfrequencies",
+           "exact_eigenfrequency", "fit_normal_drag", "forced_response", "model_runs", "phase_lag", "phase_velocity",
+           "read_runs", "slowest_mode", "transfer_function", "transfer_grid", "water_pulley_c_star"]
