@@ -156,3 +156,44 @@ def format_table(verdict: dict, scale=None) -> list[str]:
     lines.append("verdict: " + ("PASS" if passed(verdict) else "FAIL"))
     return lines
 
+
+
+QUANTITY = {"N": "force_N", "m": "length_m", "rad": "angle_rad", "m/s": "velocity_m_s", "rad/s": "rate_rad_s"}
+
+
+def _unit(label: str) -> str:
+    from .results import unit_of
+    return unit_of(label) or "-"
+
+
+def report(scene, result) -> dict:
+    """``summary.json`` entries of a run: ``statistics`` grouped by quantity (SI units in the group
+    names), ``verdict`` against ``scene.limits`` and the slack/snap ``warnings``."""
+    limits = getattr(scene, "limits", None)
+    stats = run_statistics(result, limits)
+    grouped: dict = {}
+    for lbl, s in stats.items():
+        grouped.setdefault(QUANTITY.get(_unit(lbl), "other"), {})[lbl] = s
+    mask = statistics_window(result.time, limits)
+    window = [float(result.time[mask][0]), float(result.time[mask][-1])]
+    return {"statistics": {"window_s": window, "exposure_s": getattr(limits, "exposure", None) or window[1] - window[0],
+                           **grouped},
+            "verdict": evaluate(limits, stats), "warnings": warnings_of(result)}
+
+
+def format_statistics(statistics: dict) -> list[str]:
+    """Console lines of the ``statistics`` entry of :func:`report` (SI)."""
+    lines = []
+    if "window_s" in statistics:
+        w = statistics["window_s"]
+        lines.append(f"statistics over t = {w[0]:.4g} .. {w[1]:.4g} s; most probable extremes for "
+                     f"{statistics['exposure_s']:.5g} s")
+    lines.append(f"{'output':<16} {'mean':>11} {'std':>10} {'min':>11} {'max':>11} {'MPM max':>11} {'Tz s':>7}")
+    for group, rows in statistics.items():
+        if not isinstance(rows, dict):
+            continue
+        unit = group.split("_", 1)[1].replace("_", "/") if "_" in group else ""
+        for lbl, s in rows.items():
+            lines.append(f"{lbl + ' [' + unit + ']':<16} {s['mean']:>11.5g} {s['std']:>10.4g} {s['min']:>11.5g} "
+                         f"{s['max']:>11.5g} {s['most_probable_max']:>11.5g} {s['zero_upcrossing_period_s']:>7.3g}")
+    return lines

@@ -8,8 +8,8 @@ The sea is realised as a sum of sinusoids so the top motion stays on the fast co
 Conventions (stated once, used by ``rao``, the statistics and the tests):
 
 * wave elevation at the vessel (z up): eta(t) = sum_k a_k sin(omega_k t + eps_k),
-  a_k = sqrt(2 S(omega_k) d_omega) on equal bins over the band (deterministic amplitudes,
-  random phases eps_k ~ U(0, 2 pi) from ``numpy.random.default_rng(seed)``);
+  a_k = sqrt(2 S(omega_k) d_omega) on equal bins over the band, omega_k uniform within its bin
+  (deterministic amplitudes; phases eps_k ~ U(0, 2 pi) and omega_k from ``numpy.random.default_rng(seed)``);
 * a motion RAO R_j(omega) = |R_j| e^{i theta_j} (amplitude per unit wave amplitude, phase
   *lead* theta_j in degrees over the wave elevation at the vessel) gives the motion
   sum_k |R_j(omega_k)| a_k sin(omega_k t + eps_k + theta_j(omega_k));
@@ -100,13 +100,15 @@ class SeaSpectrum:
         return lo, hi
 
     def components(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(omega_k, a_k, eps_k): bin centres, amplitudes sqrt(2 S dw), random phases (rad)."""
+        """(omega_k, a_k, eps_k): a random frequency in each of the equal bins dw (so the sum does not
+        repeat after 2 pi / dw), amplitudes sqrt(2 S(omega_k) dw), random phases (rad)."""
         lo, hi = self.band()
         n = self.n_components
         dw = (hi - lo) / n
-        omega = lo + dw * (np.arange(n) + 0.5)
-        amp = np.sqrt(2.0 * self.density(omega) * dw)
-        eps = np.random.default_rng(self.seed).uniform(0.0, 2 * math.pi, n)
+        rng = np.random.default_rng(self.seed)
+        eps = rng.uniform(0.0, 2 * math.pi, n)
+        omega = lo + dw * (np.arange(n) + rng.uniform(0.0, 1.0, n))    # one random frequency per bin:
+        amp = np.sqrt(2.0 * self.density(omega) * dw)                     # no repetition period 2 pi / dw
         return omega, amp, eps
 
     def elevation(self, t) -> np.ndarray:

@@ -8,6 +8,7 @@ import math
 from pathlib import Path
 
 from .. import units as U
+from ..results import unit_of
 
 log = logging.getLogger(__name__)
 
@@ -23,20 +24,30 @@ def register(sub) -> None:
     p.add_argument("--method", default=None, help="cvodes | cvodes-adams | idas | rk | collocation")
     p.add_argument("--duration", type=float, default=None, help="simulated time in s (overrides the scene)")
     p.add_argument("--jit", action="store_true", help="compile the model with the C compiler (faster long runs, ~2 s build)")
+    p.add_argument("--strict", action="store_true", help="exit with status 3 when a criterion of the scene's [limits] fails")
     p.set_defaults(func=_run)
     s = sub.add_parser("scene", help="print an annotated example scene, or check a scene file",
                        description="With --example: print an annotated scene (the Dale default). With a file: "
                                    "validate it and print it back in SI.")
     s.add_argument("file", nargs="?", type=Path)
-    s.add_argument("--example", action="store_true", help="print the annotated default scene")
+    s.add_argument("--example", nargs="?", const="dale", default=None, choices=("dale", "rov-lift"),
+                   help="print an annotated example scene: dale (default) or rov-lift (irregular sea, limits, design)")
+    s.add_argument("--design", action="store_true", help="with --example: append a commented [design] template")
     s.add_argument("--units", default="SI", choices=("SI", "fps"), help="units to print in")
     s.set_defaults(func=_scene)
 
 
 def _scene(args) -> int:
     from ..scene import default_scene, dump_scene, load_scene
+    if args.example == "rov-lift":
+        from ..examples import example_text
+        print(example_text("rov-lift"), end="")
+        return 0
     if args.example or args.file is None:
         print(dump_scene(default_scene(), units=args.units, annotate=True), end="")
+        if args.design:
+            from ..design.example import design_template
+            print(design_template(), end="")
         return 0
     print(dump_scene(load_scene(args.file), units=args.units, annotate=True), end="")
     return 0
@@ -62,6 +73,8 @@ def _run(args) -> int:
     if not result.success:
         print(f"error: {result.message}")
         return 1
+    if getattr(args, "strict", False) and not all(v["pass"] for v in summary.get("verdict", {}).values()):
+        return 3
     return 0
 
 
@@ -73,11 +86,15 @@ def write_run(scene, result, out: Path) -> dict:
     result.to_netcdf(out / "timeseries.nc")
     summary = result.summary()
     period = _forcing_period(scene)
-    if period and result.time[-1] - result.time[0] >= 6 * period:
+    if period and scene.top_motion.spectrum is None and result.time[-1] - result.time[0] >= 6 * period:
         summary["amplitude_periods"] = 3
-        summary["amplitudes_m"] = {lbl: result.steady_amplitude(lbl, period, 3)
-                                   for lbl in result.labels if lbl.startswith(("x_b", "y_b", "phi", "u", "tension"))
-                                   and not lbl.endswith("rate")}
+        amps = {lbl: result.steady_amplitude(lbl, period, 3)
+                for lbl in result.labels if lbl.startswith(("x_b", "y_b", "phi", "u", "tension"))
+                and not lbl.endswith("rate")}
+        for unit in ("m", "rad", "N"):      # grouped by quantity, the unit in the key
+            summary[f"amplitudes_{unit}"] = {k: v for k, v in amps.items() if unit_of(k) == unit}
+    from ..verdict import report
+    summary.update(report(scene, result))
     (out / "summary.json").write_text(json.dumps(summary, indent=2, default=float))
     plot_time_series(result, out / "timeseries.png")
     return summary
@@ -88,10 +105,15 @@ def _print_summary(summary: dict) -> None:
     st = summary["stats"]
     print(f"integrator {st['method']}: {st.get('nsteps', '-')} steps, {st.get('nfevals', st.get('nresevals', '-'))} "
           f"rhs evaluations, {st['wall_s'] * 1e3:.0f} ms (+ {st['build_s'] * 1e3:.0f} ms build)")
-    for k, v in summary.get("amplitudes_m", {}).items():
-        print(f"  amplitude {k:12s} {v:.6g}")
+    for unit in ("m", "rad", "N"):
+        for k, v in summary.get(f"amplitudes_{unit}", {}).items():
+            print(f"  amplitude {k:14s} {v:.6g} {unit}")
     print(f"  tension min/max {summary.get('tension_min_N', float('nan')):.4g} / {summary.get('tension_max_N', float('nan')):.4g} N,"
           f" time slack {summary['time_slack_s']:.3g} s")
+    from ..verdict import format_statistics, format_table
+    for line in (format_statistics(summary["statistics"]) if "statistics" in summary else []) + \
+            summary.get("warnings", []) + (format_table(summary["verdict"]) if summary.get("verdict") else []):
+        print("  " + line)
 
 
 def _run_dale_table(args, out: Path) -> int:
