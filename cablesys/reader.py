@@ -12,14 +12,13 @@ through this module, so every input is checked the same way before any computati
   ``metadata["dim"]``; strings and booleans are refused where numbers belong, a table
   where an array of tables belongs and vice versa; unknown and missing keys are named;
 * errors carry the file and, where it can be found, the line (:class:`SourceMap`);
-* command-line numbers are parsed by :func:`float_option` / :func:`int_option`.
+* command-line numbers are checked by :func:`option_number` / :func:`option_int`.
 
 The module sits below the scene layer: it knows dataclasses and units, not cables.
 """
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 import math
 import re
@@ -32,7 +31,7 @@ from typing import Callable
 from .errors import ParameterError
 
 __all__ = ["MAX_INPUT_BYTES", "read_text", "read_toml", "SourceMap", "build", "typed_fields", "located",
-           "number", "integer", "float_option", "int_option"]
+           "number", "integer", "option_number", "option_int"]
 
 MAX_INPUT_BYTES = 64 * 2**20          # an input file larger than 64 MiB is refused, not parsed
 _BOM = b"\xef\xbb\xbf"
@@ -465,12 +464,16 @@ def _range_text(lo, hi, lo_open, hi_open) -> str:
     return "a finite number"
 
 
-def float_option(*, lo: float | None = None, hi: float | None = None, lo_open: bool = False,
-                 hi_open: bool = False, unit: str = "") -> Callable[[str], float]:
-    """An argparse ``type=`` for a finite real number within optional bounds.
+def option_number(flag: str, value, *, lo: float | None = None, hi: float | None = None,
+                  lo_open: bool = False, hi_open: bool = False, unit: str = "") -> float:
+    """Check a command-line number (already parsed by argparse) against its allowed range.
 
     Parameters
     ----------
+    flag : str
+        The option as typed (``"--omega-max"``), named in the message.
+    value : float
+        The parsed value.
     lo, hi : float, optional
         Bounds; open ends when ``lo_open``/``hi_open``.
     lo_open, hi_open : bool
@@ -480,49 +483,47 @@ def float_option(*, lo: float | None = None, hi: float | None = None, lo_open: b
 
     Returns
     -------
-    callable
-        ``text -> float``; anything else raises ``argparse.ArgumentTypeError``, which
-        argparse reports with the option, the value and the allowed range (exit 2).
+    float
+        ``value`` when it is finite and in range.
+
+    Raises
+    ------
+    ParameterError
+        ``"--flag = value: must be a finite number in [lo, hi] unit"``.
     """
-    def parse(text: str) -> float:
-        try:
-            v = float(text)
-        except (TypeError, ValueError):
-            raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
-        ok = math.isfinite(v)
-        ok = ok and (lo is None or (v > lo if lo_open else v >= lo))
-        ok = ok and (hi is None or (v < hi if hi_open else v <= hi))
-        if not ok:
-            raise argparse.ArgumentTypeError(f"{text!r}: must be {_range_text(lo, hi, lo_open, hi_open)}"
-                                             f"{' ' + unit if unit else ''}")
-        return v
-    parse.__name__ = "number"
-    return parse
+    v = float(value)
+    ok = math.isfinite(v)
+    ok = ok and (lo is None or (v > lo if lo_open else v >= lo))
+    ok = ok and (hi is None or (v < hi if hi_open else v <= hi))
+    if not ok:
+        raise ParameterError(flag, value, f"must be {_range_text(lo, hi, lo_open, hi_open)}{' ' + unit if unit else ''}")
+    return v
 
 
-def int_option(*, lo: int, hi: int, what: str = "") -> Callable[[str], int]:
-    """An argparse ``type=`` for an integer in ``[lo, hi]``.
+def option_int(flag: str, value, *, lo: int, hi: int, why: str = "") -> int:
+    """Check a command-line integer against ``[lo, hi]`` (``hi`` is usually a work limit).
 
     Parameters
     ----------
+    flag : str
+        The option as typed, named in the message.
+    value : int
+        The parsed value.
     lo, hi : int
-        Inclusive bounds; ``hi`` is usually a limit on requested work.
-    what : str
+        Inclusive bounds.
+    why : str
         Why the bound is there, added to the message.
 
     Returns
     -------
-    callable
-        ``text -> int``, raising ``argparse.ArgumentTypeError`` otherwise.
+    int
+        ``value`` when in range.
+
+    Raises
+    ------
+    ParameterError
+        ``"--n = 100000000: must be an integer in [2, 20000] (why)"``.
     """
-    def parse(text: str) -> int:
-        try:
-            v = int(text)
-        except (TypeError, ValueError):
-            raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
-        if not lo <= v <= hi:
-            raise argparse.ArgumentTypeError(f"{text!r}: must be an integer in [{lo}, {hi}]"
-                                             f"{' (' + what + ')' if what else ''}")
-        return v
-    parse.__name__ = "integer"
-    return parse
+    if isinstance(value, bool) or not isinstance(value, int) or not lo <= value <= hi:
+        raise ParameterError(flag, value, f"must be an integer in [{lo}, {hi}]{' (' + why + ')' if why else ''}")
+    return value

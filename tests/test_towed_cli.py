@@ -72,7 +72,7 @@ def test_bad_csv_names_row_and_column(tmp_path, capsys, body, needle):
 
 def test_bad_option_is_a_clear_error(small_csv, capsys):
     assert main(["towed", str(small_csv), "--c-t", "-0.01"]) == 2
-    assert "c_t = -0.01: must be > 0" in capsys.readouterr().err
+    assert "--c-t = -0.01: must be a finite number in [0.0001, 1]" in capsys.readouterr().err
 
 
 def test_report_coefficients_against_table_A2():

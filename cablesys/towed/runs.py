@@ -15,11 +15,12 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ..errors import ParameterError, require_positive
+from ..errors import ParameterError, SolverError, require_positive
+from ..reader import read_text
 from .equation import REPORT_SEA_TRIAL, TowedCable
 from .transfer import fine_xi, transfer_grid
 
-__all__ = ["Run", "REQUIRED_COLUMNS", "read_runs", "model_runs", "CnFit", "fit_normal_drag"]
+__all__ = ["Run", "REQUIRED_COLUMNS", "MAX_RUNS", "read_runs", "model_runs", "CnFit", "fit_normal_drag"]
 
 REQUIRED_COLUMNS = ("L_m", "U_mps", "f_mHz")
 _UNITS = {"L_m": "m", "U_mps": "m/s", "f_mHz": "mHz"}
@@ -41,39 +42,65 @@ class Run:
         require_positive(f"run {self.label}: frequency", self.frequency, "Hz")
 
 
+MAX_RUNS = 10_000      # rows of a run table (each run is one transfer-function evaluation)
+
+
 def read_runs(path) -> list[Run]:
     """Read a CSV with columns L_m, U_mps, f_mHz (others kept, lines starting with '#' skipped).
 
-    Errors name the file, the row (1-based data row and file line) and the column.
+    Parameters
+    ----------
+    path : str or Path
+        A UTF-8 CSV file (a byte-order mark, as spreadsheets write it, is accepted).
+
+    Returns
+    -------
+    list of Run
+        One run per data row, SI.
+
+    Raises
+    ------
+    ParameterError
+        Naming the file, the row (1-based data row and file line), the column and the value:
+        undecodable text, missing columns, a row with more or fewer fields than the header,
+        a value that is not a number > 0, more than ``MAX_RUNS`` rows.
     """
     path = Path(path)
-    try:
-        text = path.read_text()
-    except OSError as err:
-        raise ParameterError("RUNS.csv", str(path), f"cannot be read: {err.strerror}") from None
+    text = read_text(path, "RUNS.csv")
     lines = [(i + 1, ln) for i, ln in enumerate(text.splitlines())
              if ln.strip() and not ln.lstrip().startswith("#")]
     if not lines:
         raise ParameterError(f"{path}", "empty", "needs a header with columns " + ", ".join(REQUIRED_COLUMNS))
-    reader = csv.DictReader([ln for _, ln in lines])
-    header = [h.strip() for h in (reader.fieldnames or [])]
+    try:
+        rows = [(n, next(csv.reader([ln]))) for n, ln in lines]
+    except csv.Error as err:
+        raise ParameterError(f"{path}", "not CSV", f"cannot be parsed as CSV ({err})") from None
+    header_line, header = rows[0][0], [h.strip() for h in rows[0][1]]
     missing = [c for c in REQUIRED_COLUMNS if c not in header]
     if missing:
-        raise ParameterError(f"{path}: header", header,
+        raise ParameterError(f"{path}, line {header_line}: header", header,
                              f"missing column(s) {', '.join(missing)}; need {', '.join(REQUIRED_COLUMNS)}")
+    dup = sorted({h for h in header if header.count(h) > 1})
+    if dup:
+        raise ParameterError(f"{path}, line {header_line}: header", header, f"column {dup[0]!r} appears twice")
+    if len(rows) - 1 > MAX_RUNS:
+        raise ParameterError(f"{path}", f"{len(rows) - 1} rows", f"at most {MAX_RUNS} runs per table")
     runs = []
-    for k, (row, (lineno, _)) in enumerate(zip(reader, lines[1:]), start=1):
-        row = {(key or "").strip(): (val or "").strip() for key, val in row.items()}
+    for k, (lineno, cells) in enumerate(rows[1:], start=1):
+        if len(cells) != len(header):
+            raise ParameterError(f"{path.name} row {k} (line {lineno})", ",".join(cells),
+                                 f"has {len(cells)} fields; the header has {len(header)} ({', '.join(header)})")
+        row = {key: val.strip() for key, val in zip(header, cells)}
         vals = {}
         for col in REQUIRED_COLUMNS:
             where = f"{path.name} row {k} (line {lineno}), column {col}"
-            raw = row.get(col, "")
+            raw = row[col]
             try:
                 v = float(raw)
             except ValueError:
                 raise ParameterError(where, raw, f"must be a number ({_UNITS[col]})") from None
             if not math.isfinite(v) or v <= 0:
-                raise ParameterError(where, raw, f"must be > 0 ({_UNITS[col]})")
+                raise ParameterError(where, raw, f"must be a finite number > 0 ({_UNITS[col]})")
             vals[col] = v
         label = row.get("run") or str(k)
         runs.append(Run(label=label, length=vals["L_m"], speed=vals["U_mps"],
@@ -98,6 +125,10 @@ def model_runs(runs, **coefficients):
         g = transfer_grid(cable.coefficients(), fine_xi(1.0, w), np.array([w]))
         H.append(abs(complex(g.H[-1, 0])))
         cs.append(float(g.c_star[-1, 0]))
+        if not (math.isfinite(H[-1]) and math.isfinite(cs[-1])):
+            raise SolverError(f"run {r.label}: the transfer function at xi = 1 is not finite (|H| = {H[-1]}, "
+                              f"c* = {cs[-1]}) at omega = {w:.6g}; the coefficients {kw} are outside the range "
+                              "where the complex-order solution can be evaluated")
         om.append(w)
     return np.array(H), np.array(cs), np.array(om)
 
