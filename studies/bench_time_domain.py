@@ -136,17 +136,17 @@ def main(argv=None) -> int:
     ref_sim = Simulator(model, times, IntegratorSettings(method="cvodes", rtol=1e-12, atol=1e-14,
                                                          max_num_steps=10_000_000))
     ref = ref_sim.run(p, x0)
-    Xref = ref[0]
+    Xref = ref.states
     pos_ref = body_position(model, Xref, times, p)
     wall, out = best_of(lambda: sim.run(p, x0), repeat)
-    X, st = out[0], out[-1]
-    assert out[4], out[5]
+    X, st = out.states, out.stats
+    assert out.success, out.message
     res["cablesys_ms"] = 1e3 * wall
     res["build_s"] = build_s
     res["cablesys_steps"] = int(st["nsteps"])
     res["cablesys_rhs_evals"] = int(st["nfevals"])
     res["cablesys_errors"] = errors(X, Xref, body_position(model, X, times, p), pos_ref)
-    res["reference"] = {"method": "cvodes", "rtol": 1e-12, "atol": 1e-14, "steps": int(ref[-1]["nsteps"])}
+    res["reference"] = {"method": "cvodes", "rtol": 1e-12, "atol": 1e-14, "steps": int(ref.stats["nsteps"])}
     print(f"cablesys (shipped): {res['cablesys_ms']:.1f} ms, {st['nsteps']} steps, build {build_s:.2f} s")
 
     # -- compiled variants (what CasADi offers) -------------------------------------------
@@ -166,7 +166,7 @@ def main(argv=None) -> int:
             simj.run(p, x0)                    # first call: nothing left to compile afterwards
             b = time.perf_counter() - tb
             w, o = best_of(lambda: simj.run(p, x0), repeat)
-            Xj, fst = o[0], o[-1]
+            Xj, fst = o.states, o.stats
             res["compiled"][f"{method}_jit"] = {
                 "ms": 1e3 * w, "build_s": b, "steps": int(fst["nsteps"]), "rhs_evals": int(fst["nfevals"]),
                 "errors": errors(Xj, Xref, body_position(model, Xj, times, p), pos_ref)}

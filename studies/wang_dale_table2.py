@@ -78,25 +78,16 @@ class DaleRunner:
         while True:
             sim = self._sim(ratio, n)
             t0 = time.perf_counter()
-            X, modes, events, _, ok, msg, stats = sim.run(p, x0)
+            r = sim.run(p, x0)
             self.wall += time.perf_counter() - t0
-            if not ok:
-                raise RuntimeError(f"Dale run at omega/omega_n = {ratio} failed: {msg}")
-            d = sim.outputs(X, modes, p)
-            S = SAMPLES_PER_PERIOD
-            out = {}
-            for lbl in ("x_b", "y_b"):
-                y = d[lbl]
-                last = y[-K_PERIODS * S - 1:]
-                before = y[-2 * K_PERIODS * S - 1: -K_PERIODS * S]
-                a_last = 0.5 * (last.max() - last.min()) / U.FT
-                a_before = 0.5 * (before.max() - before.min()) / U.FT
-                out[lbl] = a_last
-                out[f"{lbl}_change"] = abs(a_last - a_before)
-            out["steady_change_ft"] = max(out.pop("x_b_change"), out.pop("y_b_change"))
+            if not r.success:
+                raise RuntimeError(f"Dale run at omega/omega_n = {ratio} failed: {r.message}")
+            period = 2 * math.pi / (ratio * OMEGA_N_MEASURED)
+            out = {lbl: r.steady_amplitude(lbl, period, K_PERIODS) / U.FT for lbl in ("x_b", "y_b")}
+            out["steady_change_ft"] = max(r.amplitude_drift(lbl, period, K_PERIODS) for lbl in ("x_b", "y_b")) / U.FT
             out["n_periods"] = n
-            out["n_events"] = len(events)
-            out["series"] = (sim.times, d["x_b"], d["y_b"], d["x_s"], d["y_s"])
+            out["n_events"] = len(r.events)
+            out["series"] = (r.time, r["x_b"], r["y_b"], r["x_s"], r["y_s"])
             if out["steady_change_ft"] <= STEADY_TOL_FT or n >= 8 * self.n_periods:
                 return out
             n *= 2

@@ -52,13 +52,8 @@ def stretch_frequency(scene) -> float:
     return math.sqrt(c.spring_constant / (b.mass_y + c.total_mass / 3.0))
 
 
-def body_xy(sim, X, modes, p):
-    d = sim.outputs(X, modes, p)
-    return d["x_b"], d["y_b"]
-
-
 def run_case(model, scene, times, settings, repeat=2):
-    """(wall_s, nsteps, X, modes, ok, msg) for one method/tolerance, build excluded."""
+    """(best wall time in s, RunRecord) for one method/tolerance, build excluded."""
     sim = Simulator(model, times, settings)
     p = model.parameters(scene)
     x0 = initial_state(scene, model, p)
@@ -67,21 +62,20 @@ def run_case(model, scene, times, settings, repeat=2):
         t0 = time.perf_counter()
         out = sim.run(p, x0)
         best = min(best, time.perf_counter() - t0)
-        if not out[4] or best > 1.0:      # failed, or long enough to time once
+        if not out.success or best > 1.0:      # failed, or long enough to time once
             break
-    X, modes, events, _, ok, msg, stats = out
-    stats = dict(stats, n_events=len(events))
-    return sim, p, best, stats, X, modes, ok, msg
+    return best, out
 
 
 def work_precision(model, scene, name, span, rtols, spos, log, repeat) -> dict:
     times = np.arange(int(round(span / OUTPUT_STEP)) + 1) * OUTPUT_STEP
-    ref_sim, p, ref_wall, ref_stats, Xr, mr, ok, msg = run_case(
+    ref_wall, ref = run_case(
         model, scene, times, IntegratorSettings(method="cvodes", rtol=1e-12, atol=1e-14, max_num_steps=10_000_000),
         repeat=1)
-    if not ok:
-        raise RuntimeError(f"reference run failed: {msg}")
-    xr, yr = body_xy(ref_sim, Xr, mr, p)
+    if not ref.success:
+        raise RuntimeError(f"reference run failed: {ref.message}")
+    ref_stats = ref.stats
+    xr, yr = ref["x_b"], ref["y_b"]
     res = {"scene": name, "ae_lb": scene.cable.ae / U.LBF, "span_s": span, "output_step_s": OUTPUT_STEP,
            "omega_max_rad_s": stretch_frequency(scene),
            "reference": {"method": "cvodes", "rtol": 1e-12, "atol": 1e-14, "wall_s": ref_wall,
@@ -97,10 +91,11 @@ def work_precision(model, scene, name, span, rtols, spos, log, repeat) -> dict:
                 st = IntegratorSettings(method=method, steps_per_output=int(v))
             if method == "collocation" and v > (100 if name == "stiff" else 20):
                 continue                  # minutes of Newton solves for nothing new
-            sim, p, wall, stats, X, modes, ok, msg = run_case(model, scene, times, st, repeat)
+            wall, r = run_case(model, scene, times, st, repeat)
+            stats, msg = r.stats, r.message
             row = {"rtol" if method in ADAPTIVE else "steps_per_output": v, "wall_s": wall,
                    "steps": int(stats.get("nsteps", 0)) if method in ADAPTIVE else int(v) * (times.size - 1),
-                   "success": bool(ok and X.shape[1] == times.size), "slack_events": stats["n_events"]}
+                   "success": bool(r.success and r.n_outputs == times.size), "slack_events": stats["n_events"]}
             if row["success"] and stats["n_events"] > ref_stats["n_events"]:
                 # the Dale scenes stay taut; an unstable explicit run makes the stretch oscillation grow
                 # until the cable "goes slack", and the slack logic then hides the blow-up
@@ -110,7 +105,7 @@ def work_precision(model, scene, name, span, rtols, spos, log, repeat) -> dict:
                 row["h_s"] = OUTPUT_STEP / v
                 row["h_omega_max"] = OUTPUT_STEP / v * res["omega_max_rad_s"]
             if row["success"]:
-                xb, yb = body_xy(sim, X, modes, p)
+                xb, yb = r["x_b"], r["y_b"]
                 row["error_m"] = float(np.max(np.hypot(xb - xr, yb - yr)))
                 row["success"] = bool(np.isfinite(row["error_m"]))
             else:
@@ -135,10 +130,10 @@ def rk_stable(model, scene, h, n_steps) -> bool:
         times = np.arange(n_steps + 1) * step
         sim = Simulator(model, times, IntegratorSettings(method="rk", steps_per_output=1))
         p = model.parameters(scene)
-        X, _, events, _, ok, _, _ = sim.run(p, initial_state(scene, model, p))
-        if not ok or events or X.shape[1] < times.size or not np.all(np.isfinite(X)):
+        r = sim.run(p, initial_state(scene, model, p))
+        if not r.success or r.events or r.n_outputs < times.size or not np.all(np.isfinite(r.states)):
             return math.inf
-        return float(np.max(np.abs(X[1])))
+        return float(np.max(np.abs(r["u"])))
     bound = max_stretch(h / 10.0)          # a tenth of the step (shorter span): well inside the limit
     return max_stretch(h) < 10.0 * bound
 

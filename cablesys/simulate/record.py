@@ -1,0 +1,242 @@
+"""What one time-domain run returns, how it stops when interrupted, and how big it may be.
+
+:class:`RunRecord` is the result of :meth:`Simulator.run` and :func:`simulate`: a
+:class:`~cablesys.results.TimeResult` (labelled series, events, snap loads, statistics,
+``steady_amplitude``) that also keeps the raw states and slack modes at the output times and
+says whether the run finished, failed or was interrupted.
+
+An interrupt (Ctrl-C, or SIGTERM when the ``cablesys`` command is running) raises
+:class:`RunInterrupted`, a ``KeyboardInterrupt`` that carries the record computed so far.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import dataclasses
+import signal
+import threading
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..results import TimeResult
+
+# Limits on the work a run may ask for, checked before anything is built.
+MAX_OUTPUTS = 10_000_000            # output times per run
+MAX_MEMORY_BYTES = 2 * 1024 ** 3    # estimated memory for states and labelled series
+_COPIES = 3                         # states/series are held about this many times (lists, arrays, writers)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class RunRecord(TimeResult):
+    """A time-domain run (Wang 1971): labelled series, raw states and modes, and how it ended.
+
+    Parameters
+    ----------
+    states : numpy.ndarray
+        ``(2 nq, n)`` states ``(q, dq/dt)`` at the output times reached (SI).
+    modes : numpy.ndarray
+        ``(n_sections, n)`` slack switches (1 slack, 0 taut) at those times.
+    state_labels : tuple of str
+        Labels of the rows of ``states`` (``phi``, ``u``, ``phi_rate``, ``u_rate``...).
+    interrupted : bool
+        True when the run was stopped by an interrupt (``success`` is then False).
+    """
+
+    states: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((0, 0)))
+    modes: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((0, 0)))
+    state_labels: tuple = ()
+    interrupted: bool = False
+
+    @property
+    def status(self) -> str:
+        """``"success"``, ``"failed"`` or ``"interrupted"``."""
+        return "interrupted" if self.interrupted else ("success" if self.success else "failed")
+
+    @property
+    def n_outputs(self) -> int:
+        """Number of output times reached."""
+        return int(self.time.size)
+
+    def amplitudes(self, period: float, n_periods: int = 3, labels=None) -> dict:
+        """Steady amplitudes (half peak-to-peak over the last ``n_periods`` periods) of several series.
+
+        Parameters
+        ----------
+        period : float
+            Forcing period (s).
+        n_periods : int
+            Number of trailing periods.
+        labels : iterable of str, optional
+            Series to measure (default: every series).
+
+        Returns
+        -------
+        dict
+            ``{label: amplitude}`` in the series' SI unit.
+        """
+        return {lbl: self.steady_amplitude(lbl, period, n_periods) for lbl in (labels or self.labels)}
+
+    def amplitude_drift(self, label: str, period: float, n_periods: int = 3) -> float:
+        """How far the run is from steady: |A(last n periods) - A(the n periods before)|.
+
+        Parameters
+        ----------
+        label : str
+            Series to measure.
+        period : float
+            Forcing period (s).
+        n_periods : int
+            Periods per window.
+
+        Returns
+        -------
+        float
+            Change of the half peak-to-peak amplitude, in the series' SI unit.
+        """
+        t = self.time
+        t1 = t[-1] - n_periods * period
+        t0 = t1 - n_periods * period
+        if t0 < t[0] - 1e-9 * period:
+            raise ValueError(f"the run lasts {t[-1] - t[0]:.4g} s, shorter than {2 * n_periods} periods of {period:.4g} s")
+        y = self[label][(t >= t0 - 1e-12) & (t <= t1 + 1e-12)]
+        return abs(self.steady_amplitude(label, period, n_periods) - 0.5 * float(np.max(y) - np.min(y)))
+
+    def summary(self) -> dict:
+        """The :class:`TimeResult` summary plus ``status`` and ``n_outputs``.
+
+        Returns
+        -------
+        dict
+            JSON-able numbers for ``summary.json``.
+        """
+        out = super().summary()
+        out.update(status=self.status, n_outputs=self.n_outputs)
+        return out
+
+
+class RunInterrupted(KeyboardInterrupt):
+    """A run stopped by an interrupt; ``result`` holds what was computed (a :class:`RunRecord`)."""
+
+    def __init__(self, result):
+        super().__init__(f"interrupted at t = {float(result.time[-1]):.6g} s")
+        self.result = result
+
+
+class InterruptFlag:
+    """Notes SIGINT (and SIGTERM, when a Python handler is installed for it) during a run.
+
+    CasADi checks for signals inside its integrators and then reports a generic failure
+    ("CV_RHSFUNC_FAIL"; the text "rhs failed: KeyboardInterrupt" goes to stderr only), so the
+    simulator must learn from its own handler that the failure was an interrupt. The previous
+    handlers are called as well and restored on exit. Outside the main thread this does nothing.
+    """
+
+    def __init__(self):
+        self.hit = False
+        self._saved = {}
+
+    def __enter__(self):
+        if threading.current_thread() is not threading.main_thread():
+            return self
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            prev = signal.getsignal(sig)
+            if not callable(prev):          # SIG_DFL / SIG_IGN for SIGTERM: leave it alone
+                continue
+
+            def handler(signum, frame, prev=prev):
+                self.hit = True
+                prev(signum, frame)
+            with contextlib.suppress(ValueError, OSError):
+                signal.signal(sig, handler)
+                self._saved[sig] = prev
+        return self
+
+    def __exit__(self, *exc):
+        for sig, prev in self._saved.items():
+            with contextlib.suppress(ValueError, OSError):
+                signal.signal(sig, prev)
+        self._saved = {}
+        return False
+
+
+def check_run_size(n_outputs: int, n_sections: int, *, field: str = "numerics.output_step",
+                   asked: str = "") -> None:
+    """Refuse a run whose output count or memory estimate exceeds the limits.
+
+    Parameters
+    ----------
+    n_outputs : int
+        Number of output times asked for.
+    n_sections : int
+        Cable sections of the scene (each has 4 states, 1 slack switch and 11 output series).
+    field, asked : str
+        The input named in the error and how it was asked (e.g. ``"duration 1e12 s / step 0.05 s"``).
+
+    Returns
+    -------
+    None
+        Raises :class:`~cablesys.errors.ParameterError` when a limit is exceeded.
+    """
+    asked = asked or f"{n_outputs:.4g} output times"
+    if not np.isfinite(n_outputs) or n_outputs > MAX_OUTPUTS:
+        raise ParameterError(field, asked, f"gives {n_outputs:.4g} output times; at most {MAX_OUTPUTS:.0e} per run",
+                             "raise numerics.output_step or shorten numerics.duration")
+    need = run_memory_bytes(n_outputs, n_sections)
+    if need > MAX_MEMORY_BYTES:
+        raise ParameterError(field, asked, f"needs about {need / 1024 ** 3:.3g} GiB for the series; the limit is "
+                             f"{MAX_MEMORY_BYTES / 1024 ** 3:.3g} GiB", "raise numerics.output_step or shorten numerics.duration")
+
+
+def run_memory_bytes(n_outputs: float, n_sections: int) -> float:
+    """Estimated bytes held for ``n_outputs`` output times (states, modes, series, top motion).
+
+    Parameters
+    ----------
+    n_outputs : float
+        Number of output times.
+    n_sections : int
+        Cable sections.
+
+    Returns
+    -------
+    float
+        Bytes (8 per number, :data:`_COPIES` copies).
+    """
+    per_output = 4 * n_sections + n_sections + 11 * n_sections + 3
+    return 8.0 * _COPIES * per_output * float(n_outputs)
+
+
+def scene_output_count(scene) -> float:
+    """Number of output times of ``scene`` (duration / output_step + 1), without building the grid.
+
+    Parameters
+    ----------
+    scene : cablesys.scene.Scene
+        The scene.
+
+    Returns
+    -------
+    float
+        ``floor(duration / output_step) + 1`` (a float: it may be astronomically large).
+    """
+    n = scene.numerics
+    return float(np.floor(n.duration / n.output_step + 1e-9)) + 1.0
+
+
+def check_scene_run_size(scene) -> None:
+    """:func:`check_run_size` for a scene's duration and output step (before any grid is built).
+
+    Parameters
+    ----------
+    scene : cablesys.scene.Scene
+        The scene to run.
+
+    Returns
+    -------
+    None
+        Raises :class:`~cablesys.errors.ParameterError` when a limit is exceeded.
+    """
+    n = scene.numerics
+    check_run_size(scene_output_count(scene), scene.n_sections,
+                   asked=f"{n.output_step:g} s over numerics.duration = {n.duration:g} s")
