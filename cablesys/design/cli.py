@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import sys
-import tomllib
 from pathlib import Path
 
 
@@ -23,20 +22,16 @@ def register(sub) -> None:
 def load(path) -> tuple:
     """(scene, settings) from a scene TOML file with a ``[design]`` table."""
     from ..errors import ParameterError
+    from ..reader import located, read_toml
     from ..scene import scene_from_dict
     from .problem import settings_from_dict
 
-    path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text())
-    except OSError as err:
-        raise ParameterError("scene file", str(path), f"cannot be read ({err.strerror})") from None
-    except tomllib.TOMLDecodeError as err:
-        raise ParameterError("scene file", str(path), f"is not valid TOML: {err}") from None
+    data, source = read_toml(path, "scene file")
     table = data.pop("design", None)
     if table is None:
-        raise ParameterError("design", "missing", "the scene file needs a [design] table with ae_bounds and damping_bounds")
-    return scene_from_dict(data), settings_from_dict(table)
+        raise located(ParameterError("design", "missing", "the scene file needs a [design] table with ae_bounds "
+                                     "and damping_bounds"), source)
+    return scene_from_dict(data, source), settings_from_dict(table, source)
 
 
 def run(args) -> int:

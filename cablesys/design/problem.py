@@ -21,6 +21,7 @@ import math
 import numpy as np
 
 from ..errors import ParameterError, require_positive, require_range
+from ..reader import build, located
 
 OBJECTIVES = ("significant", "rao_band")
 
@@ -119,16 +120,31 @@ class DesignSettings:
         return dataclasses.replace(self, **changes)
 
 
-def settings_from_dict(table: dict) -> DesignSettings:
-    """A :class:`DesignSettings` from a TOML ``[design]`` table (SI; keys as the field names)."""
-    allowed = {f.name for f in dataclasses.fields(DesignSettings)}
-    for key in table:
-        if key not in allowed:
-            raise ParameterError(f"design.{key}", table[key], f"unknown key; allowed: {', '.join(sorted(allowed))}")
-    for key in ("ae_bounds", "damping_bounds"):
-        if key not in table:
-            raise ParameterError(f"design.{key}", "missing", "the [design] table needs per-section [lower, upper] pairs")
-    return DesignSettings(**table)
+def settings_from_dict(table: dict, source=None) -> DesignSettings:
+    """A :class:`DesignSettings` from a TOML ``[design]`` table (SI; keys as the field names).
+
+    Parameters
+    ----------
+    table : dict
+        The parsed ``[design]`` table; numbers must be numbers (never strings or booleans),
+        bounds arrays of ``[lower, upper]`` pairs.
+    source : cablesys.reader.SourceMap or str, optional
+        Where the table came from; errors then name the file and line.
+
+    Returns
+    -------
+    DesignSettings
+        The validated settings.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``design.<key>``, its value and the allowed range.
+    """
+    try:
+        return build(DesignSettings, table, "design")
+    except ParameterError as err:
+        raise located(err, source) from None
 
 
 def _toml_value(v) -> str:
@@ -140,7 +156,18 @@ def _toml_value(v) -> str:
 
 
 def settings_to_toml(settings: DesignSettings) -> str:
-    """The ``[design]`` table of ``settings`` (read back by :func:`settings_from_dict`)."""
+    """The ``[design]`` table of ``settings`` (read back by :func:`settings_from_dict`).
+
+    Parameters
+    ----------
+    settings : DesignSettings
+        The settings to write.
+
+    Returns
+    -------
+    str
+        TOML text of the ``[design]`` table.
+    """
     lines = ["[design]"]
     for f in dataclasses.fields(settings):
         v = getattr(settings, f.name)
@@ -167,7 +194,20 @@ class Variable:
 
 
 def variables(scene, settings: DesignSettings) -> tuple:
-    """The decision variables of ``settings`` for ``scene`` (whose structure must match)."""
+    """The decision variables of ``settings`` for ``scene`` (whose structure must match).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (its section count fixes the variables).
+    settings : DesignSettings
+        Bounds and which variables are free.
+
+    Returns
+    -------
+    tuple of Variable
+        Name, bounds and scaling of each decision variable.
+    """
     n = len(scene.sections)
     if n != settings.n_sections:
         raise ParameterError("design.ae_bounds", f"{settings.n_sections} pairs",
