@@ -75,7 +75,28 @@ def _infeasibility(g: np.ndarray, names: tuple, settings: DesignSettings, report
 
 
 def design(scene, settings: DesignSettings, *, model=None) -> DesignResult:
-    """Optimize ``scene``'s AE and C_I per section (and optionally the intermediate body) for ``settings``."""
+    """Optimize ``scene``'s AE and C_I per section (and optionally the intermediate body) for ``settings``.
+
+    Parameters
+    ----------
+    scene : Scene
+        The Wang (1971) scene whose AE and C_I are designed (its values are the first start).
+    settings : DesignSettings
+        Sea state, objective, bounds, constraints and solver settings.
+    model : CableModel, optional
+        A model already built for ``scene`` (its structure must match).
+
+    Returns
+    -------
+    DesignResult
+        Optimal values, margins, active set; ``success`` False if IPOPT or the outer
+        drag iteration did not converge.
+
+    Raises
+    ------
+    DesignInfeasible
+        If no design within the bounds meets the constraints (names the constraint).
+    """
     t_start = time.perf_counter()
     model = model or build_model(scene)
     vars_ = variables(scene, settings)

@@ -30,7 +30,22 @@ def _check_omega(omega) -> np.ndarray:
 
 def pierson_moskowitz(omega, hs: float, tp: float) -> np.ndarray:
     """S(w) = 5/16 Hs^2 wp^4 w^-5 exp(-5/4 (wp/w)^4), wp = 2 pi / Tp (Pierson & Moskowitz 1964;
-    DNV-RP-C205 eq. 3.5.5.1, written with Hs and Tp)."""
+    DNV-RP-C205 eq. 3.5.5.1, written with Hs and Tp).
+
+    Parameters
+    ----------
+    omega : array_like
+        Angular frequencies (rad/s), > 0.
+    hs : float
+        Significant wave height H_s (m).
+    tp : float
+        Peak period T_p (s).
+
+    Returns
+    -------
+    ndarray
+        S(omega), one-sided (m^2 s/rad); its zeroth moment is H_s^2 / 16.
+    """
     hs, tp = _check(hs, tp)
     w = _check_omega(omega)
     wp = 2 * math.pi / tp
@@ -39,7 +54,24 @@ def pierson_moskowitz(omega, hs: float, tp: float) -> np.ndarray:
 
 def jonswap(omega, hs: float, tp: float, gamma: float = 3.3) -> np.ndarray:
     """JONSWAP: A_gamma S_PM(w) gamma^exp(-(w - wp)^2 / (2 s^2 wp^2)), s = 0.07 (w <= wp) or 0.09,
-    A_gamma = 1 - 0.287 ln gamma (Hasselmann et al. 1973; normalization of DNV-RP-C205 eq. 3.5.5.2-5)."""
+    A_gamma = 1 - 0.287 ln gamma (Hasselmann et al. 1973; normalization of DNV-RP-C205 eq. 3.5.5.2-5).
+
+    Parameters
+    ----------
+    omega : array_like
+        Angular frequencies (rad/s), > 0.
+    hs : float
+        Significant wave height H_s (m).
+    tp : float
+        Peak period T_p (s).
+    gamma : float, optional
+        Peak enhancement factor (1 gives Pierson-Moskowitz).
+
+    Returns
+    -------
+    ndarray
+        S(omega), one-sided (m^2 s/rad).
+    """
     hs, tp = _check(hs, tp)
     require_finite("spectrum.gamma", gamma)
     if not 1.0 <= gamma <= 7.0:
@@ -66,12 +98,40 @@ def response_spectrum(transfer, S) -> np.ndarray:
 
 def significant_amplitude(omega, S) -> float:
     """2 sqrt(m0): the mean of the highest third of amplitudes of a narrow-band Gaussian
-    process (Longuet-Higgins 1952; Hs = 4 sqrt(m0) is the double amplitude)."""
+    process (Longuet-Higgins 1952; Hs = 4 sqrt(m0) is the double amplitude).
+
+    Parameters
+    ----------
+    omega : array_like
+        Angular frequencies (rad/s).
+    S : array_like
+        One-sided spectrum of the quantity on ``omega`` (unit^2 s/rad).
+
+    Returns
+    -------
+    float
+        Significant amplitude (unit of the quantity).
+    """
     return 2.0 * math.sqrt(max(spectral_moment(omega, S, 0), 0.0))
 
 
 def slack_probability(mean_tension: float, std_tension: float, tension_floor: float) -> float:
-    """P(T < TENS) for Gaussian tension N(mean, std^2) (Wang 1971 eq. 54 floor; Gaussian assumption)."""
+    """P(T < TENS) for Gaussian tension N(mean, std^2) (Wang 1971 eq. 54 floor; Gaussian assumption).
+
+    Parameters
+    ----------
+    mean_tension : float
+        Mean tension (N).
+    std_tension : float
+        Standard deviation of the tension (N).
+    tension_floor : float
+        TENS, the tension below which the cable is slack (N).
+
+    Returns
+    -------
+    float
+        Probability in [0, 1].
+    """
     if std_tension <= 0:
         return float(mean_tension < tension_floor)
     return float(norm.cdf((tension_floor - mean_tension) / std_tension))

@@ -40,6 +40,26 @@ def lambda_squared(*, m: float, g: float, span: float, H: float, EA: float,
 
     Griffin & Rosenthal (1985) eq. 4; ``Le`` defaults to the flat-sag virtual
     length of eq. 5 with the parabolic sag d = m g l^2 / (8 H).
+
+    Parameters
+    ----------
+    m : float
+        Mass per unit length (kg/m).
+    g : float
+        Gravity (m/s^2); m g is the weight per length (use the submerged weight in water).
+    span : float
+        Span l (m).
+    H : float
+        Horizontal tension (N).
+    EA : float
+        Axial stiffness (N).
+    Le : float, optional
+        Virtual length (m).
+
+    Returns
+    -------
+    float
+        lambda^2 (1).
     """
     m = require_positive("m", m, "kg/m")
     g = require_positive("g", g, "m/s^2")
@@ -122,6 +142,24 @@ def irvine_modes(n_modes: int, *, lambda2: float, span: float, H: float, m: floa
 
     Out-of-plane: string frequencies (k = 1, 2, ...); in-plane antisymmetric:
     even string frequencies (eq. 10); in-plane symmetric: eq. 6-7.
+
+    Parameters
+    ----------
+    n_modes : int
+        Number of modes (>= 1).
+    lambda2 : float
+        Irvine's parameter lambda^2 (eq. 4).
+    span : float
+        Span l (m).
+    H : float
+        Horizontal tension (N).
+    m : float
+        Mass per unit length, with the added mass in water (kg/m).
+
+    Returns
+    -------
+    list of IrvineMode
+        Ascending in omega (rad/s).
     """
     n = int(n_modes)
     if n < 1:

@@ -119,7 +119,24 @@ def symmetric_fraction(eq: Equilibrium, ux: np.ndarray, uz: np.ndarray) -> float
 
 
 def compute_modes(eq: Equilibrium, d: Discretization, n_modes: int, *, solver: str = "auto") -> ModeSet:
-    """The ``n_modes`` lowest modes (in-plane and out-of-plane merged), ascending."""
+    """The ``n_modes`` lowest modes (in-plane and out-of-plane merged), ascending.
+
+    Parameters
+    ----------
+    eq : Equilibrium
+        The static shape (:func:`solve_equilibrium`).
+    d : Discretization
+        Its discretization (returned with it).
+    n_modes : int
+        Number of modes (>= 1).
+    solver : str, optional
+        'auto', 'dense' (scipy.linalg.eigh) or 'sparse' (shift-invert eigsh).
+
+    Returns
+    -------
+    ModeSet
+        Frequencies (rad/s), types O/A/S/H and mass-normalized shapes (eq. 25).
+    """
     if int(n_modes) != n_modes or n_modes < 1:
         raise ParameterError("n_modes", n_modes, "must be an integer >= 1")
     t0 = time.perf_counter()
@@ -155,7 +172,24 @@ def compute_modes(eq: Equilibrium, d: Discretization, n_modes: int, *, solver: s
 
 
 def analyze(scene, n_modes: int = 12, *, n_elements: int | None = None, solver: str = "auto"):
-    """Statics (CasADi NLP) then modes: returns (Equilibrium, ModeSet)."""
+    """Statics (CasADi NLP) then modes: returns (Equilibrium, ModeSet).
+
+    Parameters
+    ----------
+    scene : SlackScene
+        The slack-cable scene (SI).
+    n_modes : int, optional
+        Number of modes.
+    n_elements : int, optional
+        Lumped-mass elements (default from the scene).
+    solver : str, optional
+        'auto', 'dense' (scipy.linalg.eigh) or 'sparse' (shift-invert eigsh).
+
+    Returns
+    -------
+    tuple of (Equilibrium, ModeSet)
+        The static shape and its modes.
+    """
     eq, d = solve_equilibrium(scene, n_elements=n_elements)
     return eq, compute_modes(eq, d, n_modes, solver=solver)
 
@@ -168,6 +202,22 @@ def converge(scene, n_modes: int, *, levels: tuple[int, ...] = (48, 96, 192),
     Modes are matched by family ('O' versus in-plane) and index within the
     family, so that a change of in-plane order near a crossover between
     levels cannot pair different modes across families.
+
+    Parameters
+    ----------
+    scene : SlackScene
+        The slack-cable scene (SI).
+    n_modes : int
+        Number of modes reported.
+    levels : tuple of int, optional
+        Element counts, each twice the previous (at least three).
+    solver : str, optional
+        'auto', 'dense' (scipy.linalg.eigh) or 'sparse' (shift-invert eigsh).
+
+    Returns
+    -------
+    Convergence
+        Frequencies (rad/s) per level, observed orders and Richardson extrapolation.
     """
     if len(levels) < 3:
         raise ParameterError("levels", levels, "needs at least three element counts")

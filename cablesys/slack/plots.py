@@ -19,7 +19,20 @@ def _plt():
 
 
 def plot_equilibrium(eq: Equilibrium, path: str | Path) -> Path:
-    """Static shape (m) and element tension (N) along the cable."""
+    """Static shape (m) and element tension (N) along the cable.
+
+    Parameters
+    ----------
+    eq : Equilibrium
+        The static shape.
+    path : str or pathlib.Path
+        Output image.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
     plt = _plt()
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 6), constrained_layout=True)
     a1.plot(eq.x, eq.z, "k-", lw=1.5, label="cable")
@@ -50,7 +63,24 @@ def _mass_nodes(eq: Equilibrium):
 
 
 def plot_mode_shapes(eq: Equilibrium, modes: ModeSet, path: str | Path, n: int = 6) -> Path:
-    """The first ``n`` mode shapes (eq. 25 normalization) against arc length."""
+    """The first ``n`` mode shapes (eq. 25 normalization) against arc length.
+
+    Parameters
+    ----------
+    eq : Equilibrium
+        The static shape.
+    modes : ModeSet
+        Its modes.
+    path : str or pathlib.Path
+        Output image.
+    n : int, optional
+        Number of modes drawn.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
     plt = _plt()
     n = min(n, len(modes))
     fig, axes = plt.subplots(n, 1, figsize=(7, 1.6 * n + 0.8), sharex=True, constrained_layout=True)

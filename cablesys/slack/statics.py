@@ -180,6 +180,24 @@ def solve_equilibrium(scene: SlackScene, *, n_elements: int | None = None,
     Returns the equilibrium and the discretization. ``guess`` is an initial
     w vector (e.g. a neighbouring solution in a sweep); default the parabola.
     Raises SolverError if IPOPT does not converge.
+
+    Parameters
+    ----------
+    scene : SlackScene
+        The slack-cable scene (SI).
+    n_elements : int, optional
+        Lumped-mass elements (default from the scene).
+    guess : ndarray, optional
+        Initial free-node coordinates (x then z, m).
+    max_iter : int, optional
+        IPOPT iteration limit.
+    tol : float, optional
+        IPOPT tolerance.
+
+    Returns
+    -------
+    tuple of (Equilibrium, Discretization)
+        Static shape with element tensions (N), and the element layout.
     """
     d = discretize(scene, n_elements)
     n = d.n_elements

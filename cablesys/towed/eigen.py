@@ -96,7 +96,22 @@ class Eigenfrequencies(ResultBase):
 
 @timed
 def eigenfrequencies(coef: Coefficients, n: int = 5, *, tol: float = 0.1) -> Eigenfrequencies:
-    """First ``n`` pairs of eigenfrequencies (Kennedy & Strahan (1981) eq. 18-20a) with the eq. 20b test."""
+    """First ``n`` pairs of eigenfrequencies (Kennedy & Strahan (1981) eq. 18-20a) with the eq. 20b test.
+
+    Parameters
+    ----------
+    coef : Coefficients
+        Nondimensional coefficients of eq. 3 (:meth:`TowedCable.coefficients`).
+    n : int, optional
+        Number of mode pairs.
+    tol : float, optional
+        Largest eq. 20b ratio 2 beta |omega| / (b p) for which a root is called valid.
+
+    Returns
+    -------
+    Eigenfrequencies
+        Complex nondimensional eigenfrequencies omega L / U (slow and fast roots).
+    """
     require_positive("tol", tol)
     p = coef.p
     if p <= 0:
@@ -119,6 +134,18 @@ def damping_time(cable: TowedCable, *, zero: str = "report") -> float:
     ``zero="report"``: the report's ``delta_1 ~ p`` and eq. 25, ``2 pi (D-1) d_c / (c_n U)``;
     ``zero="bessel"``: the true first zero of ``J_p`` in the eq. 19 root;
     ``zero="exact"``: the complex-order eigenfrequency (:func:`exact_eigenfrequency`).
+
+    Parameters
+    ----------
+    cable : TowedCable
+        The towed cable (SI).
+    zero : str, optional
+        'report', 'bessel' or 'exact' (see above).
+
+    Returns
+    -------
+    float
+        t_0 (s).
     """
     coef = cable.coefficients()
     if zero == "report":
@@ -138,6 +165,18 @@ def exact_eigenfrequency(coef: Coefficients, n: int = 1) -> complex:
     """Slow eigenfrequency with the exact complex order: ``0F1(; q(omega); x(0, omega)) = 0``.
 
     Newton-type root (scipy.optimize.root) started from the real-order eq. 19 value.
+
+    Parameters
+    ----------
+    coef : Coefficients
+        Nondimensional coefficients of eq. 3 (:meth:`TowedCable.coefficients`).
+    n : int, optional
+        Mode number (1 = slowest).
+
+    Returns
+    -------
+    complex
+        Nondimensional eigenfrequency omega L / U (Im > 0: damped).
     """
     w0 = eigenfrequencies(coef, n).slow[n - 1]
 

@@ -50,13 +50,40 @@ def normal_force_x(theta, phi):
 
 
 def amplification(theta, phi):
-    """``A(theta, phi)`` of Kennedy & Strahan (1981) eq. 38 (angles in rad)."""
+    """``A(theta, phi)`` of Kennedy & Strahan (1981) eq. 38 (angles in rad).
+
+    Parameters
+    ----------
+    theta : array_like
+        Horizontal angle of the cable to the flow (rad), 0 < theta <= pi/2.
+    phi : array_like
+        Steady depression angle (rad), 0 <= phi < pi/2.
+
+    Returns
+    -------
+    ndarray
+        A (1): the cross-track normal force of the inclined cable over that of a level cable
+        (eq. 36 / eq. 37), so that c_n* = A c_n (eq. 39).
+    """
     theta, phi = _angles(theta, phi)
     return np.cos(phi) ** 2 * np.sqrt(1.0 - np.cos(theta) ** 2 * np.cos(phi) ** 2) / np.sin(theta)
 
 
 def effective_amplification(sigma, phi):
-    """Small-angle Gaussian average ``sqrt(2/pi) cos^2 phi sin phi / sigma`` (eq. B-5)."""
+    """Small-angle Gaussian average ``sqrt(2/pi) cos^2 phi sin phi / sigma`` (eq. B-5).
+
+    Parameters
+    ----------
+    sigma : array_like
+        RMS horizontal angle (rad), > 0.
+    phi : array_like
+        Depression angle (rad).
+
+    Returns
+    -------
+    ndarray
+        A_eff (1), the Gaussian-averaged amplification of eq. B-5.
+    """
     sigma = np.asarray(sigma, dtype=float)
     if np.any(~np.isfinite(sigma)) or np.any(sigma <= 0):
         raise ParameterError("sigma", sigma, "rms horizontal angle must be > 0 (rad)")

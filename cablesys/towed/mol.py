@@ -72,6 +72,28 @@ def forced_response(coef: Coefficients, omega: float, xi_obs, *, n: int = 200, s
 
     Integrates to ``settle + periods`` forcing periods (``settle`` defaults to 12 damping
     times of the slowest mode) and fits ``eta = Im[H exp(i omega tau)]`` over the last periods.
+
+    Parameters
+    ----------
+    coef : Coefficients
+        Nondimensional coefficients of eq. 3 (:meth:`TowedCable.coefficients`).
+    omega : float
+        Nondimensional forcing frequency omega L / U (> 0).
+    xi_obs : array_like
+        Observation points x / L within the discretized cable.
+    n : int, optional
+        Number of MOL nodes.
+    settle : float, optional
+        Nondimensional settling time before the fit.
+    periods : int, optional
+        Forcing periods fitted.
+    integrator : str, optional
+        CasADi integrator plugin ('cvodes', 'idas', ...).
+
+    Returns
+    -------
+    ndarray of complex
+        H at ``xi_obs``.
     """
     import casadi as ca
 
@@ -106,7 +128,20 @@ def forced_response(coef: Coefficients, omega: float, xi_obs, *, n: int = 200, s
 
 def slowest_mode(coef: Coefficients, n: int = 200) -> complex:
     """Least-damped complementary eigenfrequency ``omega_1`` (eq. 22-23) from the MOL operator:
-    ``eta ~ exp(i omega tau)`` so ``omega = -i lambda`` for each eigenvalue ``lambda`` of A."""
+    ``eta ~ exp(i omega tau)`` so ``omega = -i lambda`` for each eigenvalue ``lambda`` of A.
+
+    Parameters
+    ----------
+    coef : Coefficients
+        Nondimensional coefficients of eq. 3 (:meth:`TowedCable.coefficients`).
+    n : int, optional
+        Number of MOL nodes.
+
+    Returns
+    -------
+    complex
+        omega_1 (nondimensional, Im > 0: damped).
+    """
     A, _ = mol_matrix(coef, n)
     lam = np.linalg.eigvals(A[:2 * n, :2 * n])
     k = int(np.argmax(lam.real))

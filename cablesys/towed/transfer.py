@@ -68,7 +68,25 @@ def _check_omega(omega):
 
 
 def transfer_function(coef: Coefficients, xi, omega, method: str = "exact"):
-    """Complex ``H(xi, omega)`` (Kennedy & Strahan (1981) eq. 26); xi, omega broadcast."""
+    """Complex ``H(xi, omega)`` (Kennedy & Strahan (1981) eq. 26); xi, omega broadcast.
+
+    Parameters
+    ----------
+    coef : Coefficients
+        Nondimensional coefficients of eq. 3 (:meth:`TowedCable.coefficients`).
+    xi : array_like
+        Position along the cable, x / L (0 at the tow point).
+    omega : array_like
+        Nondimensional angular frequency, omega L / U (> 0).
+    method : str, optional
+        Route to the solution (:data:`METHODS`): 'exact' (complex order, 0F1 series), 'real'
+        (the report's real order, eq. 16), 'mpmath' (arbitrary precision) or 'bvp' (shooting).
+
+    Returns
+    -------
+    ndarray of complex
+        H = eta(xi) / eta(0), broadcast shape of ``xi`` and ``omega``.
+    """
     return _method(method)(coef, _check_xi(xi), _check_omega(omega))
 
 
@@ -83,6 +101,25 @@ def phase_lag(coef: Coefficients, xi, omega, method: str = "exact", n_min: int =
     """Unwrapped phase lag ``psi(xi, omega) = -arg H`` (eq. 26), shape (len(xi), len(omega)).
 
     The phase is unwrapped along a fine xi grid from the tow point (psi(0) = 0).
+
+    Parameters
+    ----------
+    coef : Coefficients
+        Nondimensional coefficients of eq. 3 (:meth:`TowedCable.coefficients`).
+    xi : array_like
+        Position along the cable, x / L (0 at the tow point).
+    omega : array_like
+        Nondimensional angular frequency, omega L / U (> 0).
+    method : str, optional
+        Route to the solution (:data:`METHODS`): 'exact' (complex order, 0F1 series), 'real'
+        (the report's real order, eq. 16), 'mpmath' (arbitrary precision) or 'bvp' (shooting).
+    n_min : int, optional
+        Least number of points of the fine unwrapping grid.
+
+    Returns
+    -------
+    ndarray
+        psi (rad), shape (len(xi), len(omega)).
     """
     xi = np.atleast_1d(_check_xi(xi))
     omega = np.atleast_1d(_check_omega(omega))
@@ -97,6 +134,23 @@ def c_star(coef: Coefficients, xi, omega, method: str = "exact"):
     """``c* = omega xi / psi(xi)`` (Kennedy & Strahan (1981) eq. 27b), shape (len(xi), len(omega)).
 
     At ``xi = 0`` the limit is the local phase velocity (eq. 27a).
+
+    Parameters
+    ----------
+    coef : Coefficients
+        Nondimensional coefficients of eq. 3 (:meth:`TowedCable.coefficients`).
+    xi : array_like
+        Position along the cable, x / L (0 at the tow point).
+    omega : array_like
+        Nondimensional angular frequency, omega L / U (> 0).
+    method : str, optional
+        Route to the solution (:data:`METHODS`): 'exact' (complex order, 0F1 series), 'real'
+        (the report's real order, eq. 16), 'mpmath' (arbitrary precision) or 'bvp' (shooting).
+
+    Returns
+    -------
+    ndarray
+        c* in units of the tow speed U, shape (len(xi), len(omega)).
     """
     xi = np.atleast_1d(_check_xi(xi))
     omega = np.atleast_1d(_check_omega(omega))
@@ -113,6 +167,20 @@ def phase_velocity(coef: Coefficients, xi, omega):
     """Local phase velocity ``c = omega / psi'(xi)`` (Kennedy & Strahan (1981) eq. 27a).
 
     ``psi' = -Im(v'/v)`` from the exact solution and its derivative.
+
+    Parameters
+    ----------
+    coef : Coefficients
+        Nondimensional coefficients of eq. 3 (:meth:`TowedCable.coefficients`).
+    xi : array_like
+        Position along the cable, x / L (0 at the tow point).
+    omega : array_like
+        Nondimensional angular frequency, omega L / U (> 0).
+
+    Returns
+    -------
+    ndarray
+        c in units of the tow speed U.
     """
     xi = _check_xi(xi)
     omega = _check_omega(omega)
@@ -121,7 +189,18 @@ def phase_velocity(coef: Coefficients, xi, omega):
 
 
 def water_pulley_c_star(coef: Coefficients) -> float:
-    """Low-frequency limit ``c* = 1 + 1/p`` (Kennedy & Strahan (1981) eq. 14)."""
+    """Low-frequency limit ``c* = 1 + 1/p`` (Kennedy & Strahan (1981) eq. 14).
+
+    Parameters
+    ----------
+    coef : Coefficients
+        Nondimensional coefficients of eq. 3 (:meth:`TowedCable.coefficients`).
+
+    Returns
+    -------
+    float
+        c* in units of the tow speed U.
+    """
     return 1.0 + 1.0 / coef.p
 
 
@@ -161,7 +240,25 @@ class TransferGrid(ResultBase):
 @timed
 def transfer_grid(coef: Coefficients, xi, omega, method: str = "exact") -> TransferGrid:
     """H (eq. 26) and c* (eq. 27b) over a grid; ``xi`` must start at 0 and be fine
-    enough (steps of psi < pi) for unwrapping directly along it."""
+    enough (steps of psi < pi) for unwrapping directly along it.
+
+    Parameters
+    ----------
+    coef : Coefficients
+        Nondimensional coefficients of eq. 3 (:meth:`TowedCable.coefficients`).
+    xi : array_like
+        Increasing positions x / L starting at 0.
+    omega : array_like
+        Nondimensional angular frequency, omega L / U (> 0).
+    method : str, optional
+        Route to the solution (:data:`METHODS`): 'exact' (complex order, 0F1 series), 'real'
+        (the report's real order, eq. 16), 'mpmath' (arbitrary precision) or 'bvp' (shooting).
+
+    Returns
+    -------
+    TransferGrid
+        H and c* with dims (xi, omega).
+    """
     xi = np.asarray(_check_xi(xi), dtype=float)
     omega = np.asarray(_check_omega(omega), dtype=float)
     if xi.ndim != 1 or omega.ndim != 1 or xi[0] != 0.0 or np.any(np.diff(xi) <= 0):
