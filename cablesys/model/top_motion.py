@@ -2,55 +2,167 @@
 
 Sinusoids a sin(omega t + phase) (Wang 1971, "an arbitrary number of sinusoidal functions")
 plus an optional sampled series (the report's "non-periodic motions") interpolated by the
-not-a-knot cubic B-spline through the samples (the spline of ``scipy.interpolate.
-make_interp_spline``). The samples stay parameters: the spline coefficients solve the sparse
-banded collocation system A c = samples inside the function (A from ``BSpline.design_matrix``),
-and CasADi's ``bspline`` evaluates the spline from 4 coefficients at a time. That primitive
-exists for MX only, so a scene with a series gets MX functions (``symbolic_type``).
+not-a-knot cubic spline through the samples (the spline of ``scipy.interpolate.
+make_interp_spline``, held at its end values outside the sampled span).
+
+The spline is built from SX operations only, so every model is SX and compilable:
+
+- the second derivatives M_i at the samples solve the not-a-knot moment equations
+  (de Boor, *A Practical Guide to Splines*, ch. IV), a tridiagonal system once the two end
+  conditions are eliminated; it depends on the sample *times* only, so it is factored
+  numerically once and the forward/back substitution (Thomas algorithm) is applied to the
+  symbolic samples (the samples stay entries of ``p``);
+- the piece containing t is selected by a telescoping sum of steps,
+  v(t) = v_0 + sum_i [t >= t_i] (v_i - v_{i-1});
+- on the piece, s = A y_i + B y_{i+1} + ((A^3 - A) M_i + (B^3 - B) M_{i+1}) h_i^2 / 6 with
+  B = (t - t_i) / h_i, A = 1 - B (the moment form of the cubic spline).
+
+The cost is about 25 operations per sample per evaluation.
+
+History: this used to call CasADi's MX-only ``bspline`` primitive with the coefficients from
+``ca.solve(A, samples, "csparse")``. That aborted the process ("double free or corruption",
+exit 134) on scenes with slack: the event locator differentiates the top acceleration once
+more (d2g/dt2), which makes CasADi differentiate the cubic B-spline to degree 0, and CasADi's
+``casadi_nd_boor_eval`` (3.6-3.8.2) writes ``boor[degree - 1]``, i.e. one double *before* its
+work vector, when a degree-0 spline is evaluated exactly at an interior knot (an output time
+equal to a sample time). The corrupted heap chunk header is detected later by malloc. A
+4-sample series has no interior knot, hence no crash. Minimal reproducer (valgrind: "Invalid
+write of size 8 ... 8 bytes before a block")::
+
+    t = ca.MX.sym("t"); c = ca.MX.sym("c", 305)
+    knots = make_interp_spline(np.linspace(0, 60, 305), np.zeros(305), k=3).t
+    s = ca.bspline(t, c, [list(knots)], [3], 1, {})
+    d3 = ca.jacobian(ca.jacobian(ca.jacobian(s, t), t), t)
+    ca.Function("f", [t, c], [d3])(7.5, np.ones(305))   # 7.5 is an interior knot
+
+No upstream CasADi report of this was found (searched casadi/casadi issues: closest are
+#2202, a bspline interpolant segfault fixed in 3.3, and #2547/#2801, NaN results); the
+reproducer above is what to file. The SX spline removes the primitive, so the bug cannot be
+reached from cablesys.
 """
 
 from __future__ import annotations
 
 import casadi as ca
 import numpy as np
-from scipy.interpolate import BSpline, make_interp_spline
 
 
 def symbolic_type(scene):
-    """ca.SX for sinusoids only; ca.MX when a sampled series needs the B-spline primitive."""
-    return ca.MX if scene.top_motion.series is not None else ca.SX
+    """The symbolic type of the model's functions: always ``ca.SX`` (the series is SX too)."""
+    return ca.SX
 
 
-def _collocation(times):
-    """Knots of the interpolating cubic spline and its (sparse) collocation matrix."""
+def _thomas_factors(h):
+    """Numeric Thomas factors of the not-a-knot moment system for the interior M_1..M_{n-2}.
+
+    Rows i = 1..n-2: h_{i-1} M_{i-1} + 2 (h_{i-1} + h_i) M_i + h_i M_{i+1} = r_i; the end
+    moments are eliminated with the not-a-knot conditions (third derivative continuous at
+    t_1 and t_{n-2}): M_0 = (1 + h_0/h_1) M_1 - (h_0/h_1) M_2 and its mirror image.
+    Returns (sub, diag, sup) of the reduced tridiagonal matrix and the factors (cp, den).
+    """
+    m = len(h) - 1                     # number of interior moments (n - 2)
+    sub, diag, sup = np.zeros(m), np.zeros(m), np.zeros(m)
+    for k in range(m):                 # row for interior sample i = k + 1
+        i = k + 1
+        sub[k], diag[k], sup[k] = h[i - 1], 2.0 * (h[i - 1] + h[i]), h[i]
+    # not-a-knot at the start: substitute M_0 into row 1
+    r0 = h[0] / h[1]
+    diag[0] += h[0] * (1.0 + r0)
+    if m > 1:
+        sup[0] -= h[0] * r0
+    else:                              # n = 3 cannot happen (>= 4 samples), kept for safety
+        diag[0] -= h[0] * r0
+    # not-a-knot at the end: M_{n-1} = (1 + h_{n-2}/h_{n-3}) M_{n-2} - (h_{n-2}/h_{n-3}) M_{n-3}
+    rn = h[-1] / h[-2]
+    diag[-1] += h[-1] * (1.0 + rn)
+    if m > 1:
+        sub[-1] -= h[-1] * rn
+    cp, den = np.zeros(m), np.zeros(m)
+    for k in range(m):
+        den[k] = diag[k] - (sub[k] * cp[k - 1] if k > 0 else 0.0)
+        cp[k] = sup[k] / den[k]
+    return sub, den, cp
+
+
+def spline_moments(times, y):
+    """Second derivatives of the not-a-knot cubic spline at ``times`` (works on SX or floats).
+
+    Parameters
+    ----------
+    times : sequence of float
+        Sample times, strictly increasing, at least 4 [s].
+    y : sequence (SX or float)
+        Sample values.
+
+    Returns
+    -------
+    list
+        M_0 .. M_{n-1}, same type as ``y`` entries.
+    """
     t = np.asarray(times, float)
-    knots = make_interp_spline(t, np.zeros_like(t), k=3).t
-    A = BSpline.design_matrix(t, knots, 3).tocsc()
-    return knots, ca.DM(A)
+    h = np.diff(t)
+    n = t.size
+    sub, den, cp = _thomas_factors(h)
+    slope = [(y[i + 1] - y[i]) / h[i] for i in range(n - 1)]
+    r = [6.0 * (slope[i] - slope[i - 1]) for i in range(1, n - 1)]
+    m = n - 2
+    d = [None] * m                                     # forward sweep
+    for k in range(m):
+        d[k] = (r[k] - (sub[k] * d[k - 1] if k > 0 else 0.0)) / den[k]
+    M_int = [None] * m                                 # back substitution
+    for k in reversed(range(m)):
+        M_int[k] = d[k] - (cp[k] * M_int[k + 1] if k < m - 1 else 0.0)
+    M0 = (1.0 + h[0] / h[1]) * M_int[0] - (h[0] / h[1]) * M_int[1]
+    Mn = (1.0 + h[-1] / h[-2]) * M_int[-1] - (h[-1] / h[-2]) * M_int[-2]
+    return [M0] + M_int + [Mn]
+
+
+def spline_expression(times, y, t):
+    """SX expression of the not-a-knot cubic spline through (times, y) at ``t``, held outside.
+
+    ``y`` may be symbolic (entries of ``p``); the piece is selected without branching so the
+    expression is plain SX (see the module docstring for the formulas).
+    """
+    tk = np.asarray(times, float)
+    n = tk.size
+    M = spline_moments(tk, y)
+    steps = [t >= tk[i] for i in range(1, n - 1)]      # piece index = sum of steps
+
+    def select(values):                                # value of the piece containing tc
+        out = values[0]
+        for i, s in enumerate(steps, start=1):
+            out = out + s * (values[i] - values[i - 1])
+        return out
+    h = np.diff(tk)
+    t_i = select([float(v) for v in tk[:-1]])
+    h_i = select([float(v) for v in h])
+    y_i, y_j = select(list(y[:-1])), select(list(y[1:]))
+    M_i, M_j = select(M[:-1]), select(M[1:])
+    B = (t - t_i) / h_i
+    A = 1.0 - B
+    inside = A * y_i + B * y_j + ((A ** 3 - A) * M_i + (B ** 3 - B) * M_j) * h_i ** 2 / 6.0
+    # held at the end values outside the sampled span; at the end points themselves the
+    # one-sided derivatives of the spline are kept (a clamp fmin/fmax would zero them at t_0)
+    return ca.if_else(t < tk[0], y[0], ca.if_else(t > tk[-1], y[-1], inside))
 
 
 def top_motion_function(scene, layout) -> ca.Function:
     """``top(t, p) -> (t, x_s, y_s, x_s', y_s', x_s'', y_s'')`` for the scene's top motion."""
-    S = symbolic_type(scene)
-    t = S.sym("t")
-    p = S.sym("p", len(layout))
+    t = ca.SX.sym("t")
+    p = ca.SX.sym("p", len(layout))
     sym = lambda label: p[layout.index(label)]
     pos = []
     for axis in ("x", "y"):
-        s = 0
+        s = ca.SX(0)
         for k in range(len(getattr(scene.top_motion, axis))):
             a, w, ph = (sym(f"top_motion.{axis}[{k}].{n}") for n in ("amplitude", "frequency", "phase"))
             s = s + a * ca.sin(w * t + ph)
-        pos.append(s if isinstance(s, S) else S(s))
+        pos.append(s)
     series = scene.top_motion.series
     if series is not None:
-        knots, A = _collocation(series.times)
-        lo, hi = series.times[0], series.times[-1]
-        tc = ca.fmin(ca.fmax(t, lo), hi)     # held at the end values outside the sampled span
         for j, axis in enumerate(("x", "y")):
-            samples = ca.vertcat(*(sym(f"top_motion.series.{axis}[{k}]") for k in range(len(series.times))))
-            coef = ca.solve(A, samples, "csparse")
-            pos[j] = pos[j] + ca.bspline(tc, coef, [list(knots)], [3], 1, {})
+            samples = [sym(f"top_motion.series.{axis}[{k}]") for k in range(len(series.times))]
+            pos[j] = pos[j] + spline_expression(series.times, samples, t)
     pos = ca.vertcat(*pos)
     vel = ca.jacobian(pos, t)
     acc = ca.jacobian(vel, t)
