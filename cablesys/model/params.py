@@ -34,7 +34,18 @@ def section_prefix(scene_or_n, i: int) -> str:
 
 
 def structure_of(scene: Scene) -> tuple:
-    """What fixes the shape of the CasADi functions (everything else is a parameter value)."""
+    """What fixes the shape of the CasADi functions (everything else is a parameter value).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+
+    Returns
+    -------
+    tuple
+        Hashable structure key: two scenes with equal keys share one compiled model.
+    """
     env, top = scene.environment, scene.top_motion
     return (len(scene.sections), scene.angles, tuple(s.body.is_sphere for s in scene.sections),
             scene.numerics.drag_segments, len(env.current_depths), len(env.waves),
@@ -43,7 +54,18 @@ def structure_of(scene: Scene) -> tuple:
 
 
 def parameter_items(scene: Scene) -> list[tuple[str, float]]:
-    """(label, SI value) for every scene number, in vector order."""
+    """(label, SI value) for every scene number, in vector order.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+
+    Returns
+    -------
+    list of (str, float)
+        Labels (``sections[i].cable.ae``, ...) and values of the parameter vector p.
+    """
     items: list[tuple[str, float]] = []
     n = len(scene.sections)
     for i, s in enumerate(scene.sections):

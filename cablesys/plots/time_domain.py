@@ -10,7 +10,22 @@ from . import save_figure
 
 
 def plot_time_series(result, path, *, title: str | None = None) -> Path:
-    """2 x 2 panel: body path x_b-y_b (y down), phi(t), u(t), tension(t), slack events marked."""
+    """2 x 2 panel: body path x_b-y_b (y down), phi(t), u(t), tension(t), slack events marked.
+
+    Parameters
+    ----------
+    result : TimeResult
+        A time-domain run.
+    path : str or pathlib.Path
+        Output image.
+    title : str, optional
+        Figure title (default: the scene name).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
     import matplotlib.pyplot as plt
 
     t = result.time

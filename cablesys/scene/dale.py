@@ -31,7 +31,24 @@ CABLE_CT = 0.01
 
 def dale_scene(*, omega_ratio: float = 1.0, ae_lb: float = 1000.0, duration: float = 120.0,
                output_step: float = 0.05) -> Scene:
-    """The Dale et al. model scene driven in a circle at ``omega_ratio * 1.14`` rad/s."""
+    """The Dale et al. model scene driven in a circle at ``omega_ratio * 1.14`` rad/s.
+
+    Parameters
+    ----------
+    omega_ratio : float, optional
+        Forcing frequency over the measured natural frequency 1.14 rad/s (Wang 1971 Table 1).
+    ae_lb : float, optional
+        Axial stiffness AE in lb (the report: "between 5 and 1000 lb").
+    duration : float, optional
+        Simulated time (s).
+    output_step : float, optional
+        Output interval (s).
+
+    Returns
+    -------
+    Scene
+        One section: 9 ft cable, 1 in sphere, circular top motion of 5 in peak to peak.
+    """
     rho, g = U.RHO_FRESH, U.G_STANDARD
     length = 9.0 * U.FT
     w_c = 0.0036 * U.LBF                       # total cable weight in water
@@ -60,5 +77,11 @@ def dale_scene(*, omega_ratio: float = 1.0, ae_lb: float = 1000.0, duration: flo
 
 
 def default_scene() -> Scene:
-    """The built-in default scene (Dale et al. at omega = omega_n)."""
+    """The built-in default scene (Dale et al. at omega = omega_n).
+
+    Returns
+    -------
+    Scene
+        :func:`dale_scene` with its defaults.
+    """
     return dale_scene()

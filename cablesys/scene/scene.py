@@ -125,5 +125,20 @@ class Scene:
 
 
 def single_section_scene(*, cable: Cable, body: Body, **kw) -> Scene:
-    """Convenience: Wang's 2-DOF scene from one cable and one body."""
+    """Convenience: Wang's 2-DOF scene from one cable and one body.
+
+    Parameters
+    ----------
+    cable : Cable
+        The cable (SI).
+    body : Body
+        The body at its lower end.
+    **kw
+        Other :class:`Scene` fields (environment, top_motion, numerics, name...).
+
+    Returns
+    -------
+    Scene
+        A one-section scene.
+    """
     return Scene(sections=(Section(cable=cable, body=body),), **kw)

@@ -1,0 +1,151 @@
+"""The public API: what each package exports is documented and every result type keeps the protocol.
+
+Modelled on python-control's ``docstrings_test.py``: every exported function has a numpydoc
+docstring with a Parameters section naming each of its arguments and a Returns section; every
+exported class has a docstring; every result class (a subclass of ``ResultBase``) offers
+``success``, ``message``, ``stats``, ``summary`` and ``to_xarray``.
+"""
+
+import dataclasses
+import importlib
+import inspect
+import pkgutil
+import re
+
+import pytest
+
+import cablesys
+from cablesys.results import AnalysisResult, ResultBase
+
+PACKAGES = ["cablesys"] + [f"cablesys.{name}" for name in cablesys._SUBPACKAGES] + ["cablesys.statics"]
+
+
+def _exported():
+    seen = {}
+    for pkg_name in PACKAGES:
+        try:
+            pkg = importlib.import_module(pkg_name)
+        except ModuleNotFoundError:        # an optional subpackage not present in this checkout
+            continue
+        for name in getattr(pkg, "__all__", ()):
+            obj = getattr(pkg, name)
+            if inspect.ismodule(obj):
+                continue
+            seen.setdefault(id(obj), (f"{pkg_name}.{name}", obj))
+    return sorted(seen.values(), key=lambda t: t[0])
+
+
+EXPORTED = _exported()
+# Exported functions whose modules were being rewritten by other work when this test was
+# written: their numpydoc sections are owed. Strict xfail: once documented, the entry must go.
+PENDING = {
+    "cablesys.build_model", "cablesys.dump_scene", "cablesys.simulate.initial_state",
+    "cablesys.simulate.make_integrator", "cablesys.simulate.simulate", "cablesys.statics.elastic_catenary",
+    "cablesys.statics.static_residual", "cablesys.steady_state", "cablesys.sweep.parse_values",
+    "cablesys.sweep.parse_vary", "cablesys.towed.fit_normal_drag", "cablesys.towed.model_runs",
+}
+FUNCTIONS = [pytest.param(n, o, id=n, marks=[pytest.mark.xfail(strict=True, reason="docstring owed")]
+                          if n in PENDING else []) for n, o in EXPORTED if inspect.isfunction(o)]
+CLASSES = [(n, o) for n, o in EXPORTED if inspect.isclass(o)]
+
+
+def _section(doc: str, title: str) -> str:
+    """Text of a numpydoc section (from its underlined title to the next title)."""
+    m = re.search(rf"^\s*{title}\n\s*-{{3,}}\n(.*?)(?=^\s*\w[\w ]*\n\s*-{{3,}}\n|\Z)", doc, re.MULTILINE | re.DOTALL)
+    return m.group(1) if m else ""
+
+
+def test_every_package_declares_all():
+    for pkg_name in PACKAGES:
+        try:
+            pkg = importlib.import_module(pkg_name)
+        except ModuleNotFoundError:
+            continue
+        assert hasattr(pkg, "__all__"), f"{pkg_name} has no __all__"
+        for name in pkg.__all__:
+            assert hasattr(pkg, name), f"{pkg_name}.__all__ names {name!r}, which it does not define"
+
+
+@pytest.mark.parametrize("name,func", FUNCTIONS)
+def test_exported_function_docstring(name, func):
+    doc = inspect.getdoc(func) or ""
+    assert doc, f"{name} has no docstring"
+    params = [p for p in inspect.signature(func).parameters.values()
+              if p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD) and p.name not in ("self", "cls")]
+    if params:
+        section = _section(doc, "Parameters")
+        assert section, f"{name}: docstring has no 'Parameters' section"
+        documented = set(re.findall(r"^(\w+)(?:\s*,\s*(\w+))*\s*:", section, re.MULTILINE))
+        names = {n for group in documented for n in group if n}
+        missing = [p.name for p in params if p.name not in names]
+        assert not missing, f"{name}: parameters {missing} not documented"
+    assert _section(doc, "Returns") or _section(doc, "Yields"), f"{name}: docstring has no 'Returns' section"
+
+
+@pytest.mark.parametrize("name,cls", CLASSES, ids=[n for n, _ in CLASSES])
+def test_exported_class_docstring(name, cls):
+    assert cls.__doc__ and not cls.__doc__.startswith(f"{cls.__name__}("), f"{name} has no docstring"
+
+
+def _all_result_classes():
+    for mod in pkgutil.walk_packages(cablesys.__path__, "cablesys."):
+        if mod.name.endswith(("__main__", ".cli")):
+            continue
+        importlib.import_module(mod.name)
+    out, todo = [], [ResultBase]
+    while todo:
+        c = todo.pop()
+        for s in c.__subclasses__():
+            out.append(s)
+            todo.append(s)
+    return sorted(set(out), key=lambda c: c.__qualname__)
+
+
+RESULTS = _all_result_classes()
+
+
+def test_the_package_has_its_result_types():
+    names = {c.__name__ for c in RESULTS}
+    assert {"TimeResult", "LinearModel", "Modes", "RAO", "HarmonicResponse", "PeriodicSolution",
+            "StochasticResponse", "DesignResult", "Equilibrium", "ModeSet", "Convergence", "TransferGrid",
+            "Eigenfrequencies"} <= names
+
+
+@pytest.mark.parametrize("cls", RESULTS, ids=[c.__name__ for c in RESULTS])
+def test_result_type_keeps_the_protocol(cls):
+    assert dataclasses.is_dataclass(cls) and cls.__dataclass_params__.frozen, f"{cls.__name__} is not frozen"
+    fields = {f.name for f in dataclasses.fields(cls)}
+    for attr in ("success", "message", "stats"):
+        assert attr in fields or isinstance(inspect.getattr_static(cls, attr, None), property), \
+            f"{cls.__name__} has no {attr}"
+    assert callable(cls.summary) and callable(cls.to_xarray)
+    assert "to_xarray" in vars(cls) or any("to_xarray" in vars(b) for b in cls.__mro__[1:-2]), \
+        f"{cls.__name__} does not build a dataset"
+    assert cls.__repr__ is ResultBase.__repr__ or "__repr__" in vars(cls)
+    assert cls.__doc__ and not cls.__doc__.startswith(f"{cls.__name__}(")
+
+
+def test_results_are_short_json_and_labelled():
+    """A real result: short repr, JSON summary, units and long names on every variable."""
+    import json
+
+    import numpy as np
+
+    from cablesys.towed import (
+        REPORT_TYPICAL,
+        TowedCable,
+        eigenfrequencies,
+        transfer_grid,
+    )
+
+    coef = TowedCable(**REPORT_TYPICAL).coefficients()
+    for res in (transfer_grid(coef, np.linspace(0.0, 1.0, 401), np.linspace(0.1, 3.0, 300)),
+                eigenfrequencies(coef, 4)):
+        assert isinstance(res, AnalysisResult) and res.success and res.message == ""
+        assert res.stats["wall_time_s"] >= 0.0
+        assert len(repr(res)) < 400 and "array(" not in repr(res)
+        json.dumps(res.summary())
+        ds = res.to_xarray()
+        for name, var in list(ds.data_vars.items()) + list(ds.coords.items()):
+            assert var.attrs.get("units") and var.attrs.get("long_name"), name
+        assert ds.attrs["success"] == 1
