@@ -16,6 +16,7 @@ import numpy as np
 from ..results import unit_of
 
 SKIP = ("scene", "message", "result")   # in the Dataset as attributes/status already, or the result's class name
+RESERVED = ("status", "wall_s", "case")  # the sweep's own per-case variables: a summary's namesake is renamed result_*
 
 
 def flatten(summary: dict, prefix: str = "") -> dict:
@@ -25,6 +26,8 @@ def flatten(summary: dict, prefix: str = "") -> dict:
         name = f"{prefix}{key}".replace(".", "_").replace(" ", "_")
         if not prefix and key in SKIP:
             continue
+        if name in RESERVED:
+            name = f"result_{name}"
         if isinstance(val, dict):
             out.update(flatten(val, name + "_"))
         elif isinstance(val, (bool, np.bool_)):
