@@ -68,14 +68,17 @@ def time_domain(t, y, duration: float | None = None) -> dict:
     -------
     dict
         ``max, min, mean, std, significant_amplitude`` (mean of the highest third of the
-        cycle half-heights), ``zero_upcrossing_period_s`` (window / number of up-crossings of
+        cycle half-heights), ``zero_upcrossing_period_s`` (mean time between up-crossings of
         the mean), ``most_probable_max`` and ``most_probable_min`` (mean +- sigma sqrt(2 ln N)).
     """
     t, y = np.asarray(t, float), np.asarray(y, float)
     mean, std = float(np.mean(y)), float(np.std(y))
     span = float(t[-1] - t[0]) if len(t) > 1 else 0.0
     idx = upcrossings(y, mean) if std > 0 else np.array([], int)
-    tz = span / len(idx) if len(idx) else math.inf
+    if len(idx) >= 2:          # between the first and last up-crossing: whole cycles only
+        tz = float(t[idx[-1]] - t[idx[0]]) / (len(idx) - 1)
+    else:
+        tz = span / len(idx) if len(idx) else math.inf
     halves = [0.5 * (y[a:b + 1].max() - y[a:b + 1].min()) for a, b in zip(idx[:-1], idx[1:])]
     if halves:
         h = np.sort(halves)[::-1]

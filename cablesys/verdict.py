@@ -163,7 +163,7 @@ QUANTITY = {"N": "force_N", "m": "length_m", "rad": "angle_rad", "m/s": "velocit
 
 def _unit(label: str) -> str:
     from .results import unit_of
-    return unit_of(label) or "-"
+    return unit_of(label) or ("N" if label.startswith("tension") else "-")
 
 
 def report(scene, result) -> dict:

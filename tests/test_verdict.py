@@ -1,0 +1,101 @@
+"""The verdict against [limits] (cablesys/verdict.py): each criterion flips at its limit; the CLI's --strict."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from cablesys import verdict as vd
+from cablesys.errors import ParameterError
+from cablesys.scene.limits import Limits
+
+
+@dataclasses.dataclass
+class _Run:
+    """A stand-in for a TimeResult: a known tension and body motion."""
+    time: np.ndarray
+    data: dict
+    events: tuple = ()
+    snaps: tuple = ()
+    initially_slack: tuple = ()
+
+    @property
+    def labels(self):
+        return tuple(self.data)
+
+    def __getitem__(self, k):
+        return self.data[k]
+
+    def time_slack(self):
+        return 0.0
+
+
+def _run():
+    t = np.linspace(0, 100, 10001)
+    w = 2 * np.pi / 10
+    return _Run(t, {"x_b": 2.0 + 0.5 * np.sin(w * t), "y_b": 100 + 1.5 * np.sin(w * t),
+                    "tension_top": 1000 + 400 * np.sin(w * t), "tension_bottom": 600 + 300 * np.sin(w * t)})
+
+
+def _verdict(**limits):
+    lim = Limits(statistics_start=0.0, **limits)
+    r = _run()
+    return vd.evaluate(lim, vd.run_statistics(r, lim))
+
+
+@pytest.mark.parametrize("limits, criterion, at", [
+    ({"safe_working_load": None}, "peak_tension", 1400.0),                  # max of tension_top
+    ({"least_tension": None}, "least_tension", 300.0),                      # min of tension_bottom
+    ({"slack_fraction": None}, "slack", 0.5),                               # 300 / 600
+    ({"max_daf": None}, "daf", 1.5),                                        # 900 / 600 and 1400 / 1000
+    ({"max_excursion": None}, "excursion", 1.5),                            # heave of the body
+])
+def test_each_criterion_flips_at_its_limit(limits, criterion, at):
+    name = next(iter(limits))
+    upper = criterion in ("peak_tension", "daf", "excursion")
+    for factor, ok in ((1.01, upper), (0.99, not upper)):
+        v = _verdict(**{name: at * factor})[criterion]
+        assert v["value"] == pytest.approx(at, rel=1e-4)
+        assert v["pass"] is ok
+        assert (v["margin"] >= 0) is ok
+
+
+def test_mbl_and_safety_factor_give_the_working_load():
+    v = _verdict(minimum_breaking_load=7000.0, safety_factor=5.0)["peak_tension"]
+    assert v["limit"] == pytest.approx(1400.0) and v["margin"] == pytest.approx(0.0, abs=1e-4)
+    with pytest.raises(ParameterError, match="limits.safety_factor"):
+        Limits(safety_factor=3.0)
+
+
+def test_exposure_uses_the_most_probable_extreme_when_larger():
+    """A long exposure raises the peak to the Rayleigh most probable maximum."""
+    short = _verdict(safe_working_load=2000.0)["peak_tension"]["value"]
+    long = _verdict(safe_working_load=2000.0, exposure=3 * 3600.0)["peak_tension"]["value"]
+    sigma = 400 / np.sqrt(2)
+    assert long == pytest.approx(1000 + sigma * np.sqrt(2 * np.log(3 * 3600 / 10.0)), rel=1e-3)
+    assert long > short
+
+
+def test_no_limits_no_verdict_and_table_text():
+    assert vd.evaluate(None, {}) == {}
+    lines = vd.format_table(_verdict(safe_working_load=1000.0))
+    assert "FAIL" in lines[1] and lines[-1] == "verdict: FAIL"
+
+
+@pytest.mark.slow
+def test_run_strict_exits_nonzero_on_a_failed_criterion(tmp_path, capsys):
+    """The shipped ROV lift (shortened) passes; with a working load below its peak tension,
+    --strict exits 3 and the console prints FAIL."""
+    from cablesys.cli import main
+    from cablesys.examples import example_text
+    text = example_text("rov-lift").replace("duration = 600.0", "duration = 120.0")
+    ok = tmp_path / "ok.toml"
+    ok.write_text(text)
+    assert main(["run", str(ok), "--out", str(tmp_path / "a"), "--strict"]) == 0
+    assert "verdict: PASS" in capsys.readouterr().out
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text.replace("safety_factor = 5.0", "safety_factor = 30.0"))
+    assert main(["run", str(bad), "--out", str(tmp_path / "b"), "--strict"]) == 3
+    out = capsys.readouterr().out
+    assert "peak_tension" in out and "FAIL" in out
+    assert main(["run", str(bad), "--out", str(tmp_path / "c")]) == 0
