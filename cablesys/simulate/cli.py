@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-import json
 import logging
 import math
+import sys
 from pathlib import Path
 
 from .. import units as U
@@ -25,6 +25,9 @@ def register(sub) -> None:
     p.add_argument("--duration", type=float, default=None, help="simulated time in s (overrides the scene)")
     p.add_argument("--jit", action="store_true", help="compile the model with the C compiler (faster long runs, ~2 s build)")
     p.add_argument("--strict", action="store_true", help="exit with status 3 when a criterion of the scene's [limits] fails")
+    p.add_argument("--overwrite", action="store_true", help="replace results of another scene in --out")
+    p.add_argument("--max-steps", type=int, default=None,
+                   help="integrator step budget per output interval (default 100000); a run that needs more fails with a named message")
     p.set_defaults(func=_run)
     s = sub.add_parser("scene", help="print an annotated example scene, or check a scene file",
                        description="With --example: print an annotated scene (the Dale default). With a file: "
@@ -58,18 +61,62 @@ def _forcing_period(scene) -> float | None:
     return 2 * math.pi / min(freqs) if freqs else None
 
 
+RUN_FILES = ("timeseries.csv", "timeseries.nc", "timeseries.png")
+
+
+class _Progress:
+    """A progress line on stderr for runs longer than a few seconds (overwritten in place on a terminal)."""
+
+    AFTER_S, EVERY_S = 3.0, 2.0
+
+    def __init__(self, label: str = ""):
+        self.label, self.next = label, self.AFTER_S
+        self.tty = sys.stderr.isatty()
+        self.shown = False
+
+    def __call__(self, t: float, t_end: float, wall: float) -> None:
+        if wall < self.next and t < t_end:
+            return
+        if not self.shown and t >= t_end:
+            return                                  # a short run: no line at all
+        self.next = wall + self.EVERY_S
+        frac = t / t_end if t_end > 0 else 1.0
+        left = f", about {wall * (1 - frac) / frac:.0f} s left" if 0 < frac < 1 else ""
+        line = f"cablesys run{self.label}: t = {t:.6g} of {t_end:.6g} s ({100 * frac:.0f} %), {wall:.1f} s elapsed{left}"
+        end = "\n" if (not self.tty or t >= t_end) else ""
+        sys.stderr.write(("\r" if self.tty else "") + line + end)
+        sys.stderr.flush()
+        self.shown = True
+
+
+def _check_options(args) -> None:
+    """Option values refused before anything is built (named errors)."""
+    from ..errors import ParameterError, require_positive
+    if args.duration is not None:
+        require_positive("--duration", args.duration, "s")
+    if args.max_steps is not None and not 100 <= args.max_steps <= 10**9:
+        raise ParameterError("--max-steps", args.max_steps, "must be an integer in [100, 1e9] (steps per output interval)")
+
+
 def _run(args) -> int:
+    from ..outputs import OutputDir
     from ..scene import load_scene
-    from . import simulate
+    from .record import check_scene_run_size
+    _check_options(args)
     out = args.out or Path("cablesys-out")
     if args.scene is None:
         return _run_dale_table(args, out)
     scene = load_scene(args.scene)
-    if args.duration:
+    if args.duration is not None:
         scene = scene.with_numerics(duration=args.duration)
-    result = simulate(scene, method=args.method, jit=args.jit)
-    summary = write_run(scene, result, out)
+    check_scene_run_size(scene)                       # limits, before anything is built
+    outdir = OutputDir(out, "run", scene, overwrite=args.overwrite, owned=RUN_FILES)   # --out checked here
+    with outdir.start(scene=scene.name, scene_file=str(args.scene)):
+        result = _simulate_into(outdir, scene, method=args.method, jit=args.jit, max_num_steps=args.max_steps)
+        summary = write_run(scene, result, outdir)
+        outdir.finish(result.status, **summary)
     _print_summary(summary)
+    print(f"wrote {out}/ ({', '.join(outdir.files)}, summary.json)")
     if not result.success:
         print(f"error: {result.message}")
         return 1
@@ -78,13 +125,57 @@ def _run(args) -> int:
     return 0
 
 
-def write_run(scene, result, out: Path) -> dict:
-    """Write time series (CSV, netCDF), summary.json and the figure for one run."""
-    from ..plots.time_domain import plot_time_series
-    out.mkdir(parents=True, exist_ok=True)
-    result.to_csv(out / "timeseries.csv")
-    result.to_netcdf(out / "timeseries.nc")
+def _simulate_into(outdir, scene, label: str = "", **kw):
+    """Run ``scene`` with its series streamed to ``outdir``; on an interrupt write what was computed
+    (manifest status ``interrupted``) and re-raise."""
+    from .record import RunInterrupted
+    from .run import simulate
+    stream = outdir.stream_csv("timeseries.csv")
+    try:
+        result = simulate(scene, on_block=stream.append, progress=_Progress(label), **kw)
+    except RunInterrupted as err:
+        stream.close()
+        summary = write_run(scene, err.result, outdir, plot=False)
+        outdir.finish("interrupted", **summary)
+        print(f"interrupted: {err.result.message}; wrote {outdir.path}/ ({', '.join(outdir.files)})", file=sys.stderr)
+        raise
+    stream.close()
+    return result
+
+
+def write_run(scene, result, out, *, plot: bool = True) -> dict:
+    """Write time series (CSV, netCDF) and the figure for one run; return its summary.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene run.
+    result : RunRecord or TimeResult
+        Its result.
+    out : OutputDir or path
+        The folder. A plain path gets its own :class:`~cablesys.outputs.OutputDir` whose
+        manifest ``summary.json`` is finished here; with an ``OutputDir`` the caller finishes it.
+    plot : bool
+        Also draw ``timeseries.png``.
+
+    Returns
+    -------
+    dict
+        The summary (``summary.json`` content without the manifest entries).
+    """
+    from ..outputs import OutputDir
+    if not isinstance(out, OutputDir):
+        with OutputDir(out, "run", scene, overwrite=True).start(scene=scene.name) as od:
+            summary = write_run(scene, result, od, plot=plot)
+            od.finish(getattr(result, "status", "success" if result.success else "failed"), **summary)
+        return summary
+    if "timeseries.csv" not in out.files or not out.file("timeseries.csv").exists():
+        with out.writing("timeseries.csv") as tmp:
+            result.to_csv(tmp)
+    with out.writing("timeseries.nc") as tmp:
+        result.to_netcdf(tmp)
     summary = result.summary()
+    summary.pop("status", None)
     period = _forcing_period(scene)
     if period and scene.top_motion.spectrum is None and result.time[-1] - result.time[0] >= 6 * period:
         summary["amplitude_periods"] = 3
@@ -95,8 +186,10 @@ def write_run(scene, result, out: Path) -> dict:
             summary[f"amplitudes_{unit}"] = {k: v for k, v in amps.items() if unit_of(k) == unit}
     from ..verdict import report
     summary.update(report(scene, result))
-    (out / "summary.json").write_text(json.dumps(summary, indent=2, default=float))
-    plot_time_series(result, out / "timeseries.png")
+    if plot and result.time.size > 1:
+        from ..plots.time_domain import plot_time_series
+        with out.writing("timeseries.png") as tmp:
+            plot_time_series(result, tmp)
     return summary
 
 
@@ -117,30 +210,44 @@ def _print_summary(summary: dict) -> None:
 
 
 def _run_dale_table(args, out: Path) -> int:
+    from ..model import build_model
+    from ..outputs import OutputDir
     from ..scene import OMEGA_N_MEASURED, dale_scene
-    from . import simulate
+    from .integrators import IntegratorSettings
+    from .record import check_scene_run_size
+    from .run import Simulator, simulate
+    ratios = (0.5, 1.0, 1.5, 2.0)
+    scenes = [dale_scene(omega_ratio=r, duration=args.duration or 150.0) for r in ratios]
+    check_scene_run_size(scenes[0])
+    outdir = OutputDir(out, "run", {"dale_table": scenes}, overwrite=args.overwrite,
+                       owned=RUN_FILES + ("dale_amplitudes.json",))
     print("Dale et al. water-channel model (Wang 1971, Table 1): 9 ft cable, 1 in sphere, circular top motion 5 in p-p")
     print("steady-state amplitudes of the lower body (half peak-to-peak over the last 3 periods)")
     print(f"{'omega/omega_n':>14} {'omega rad/s':>12} {'x_bA ft':>9} {'y_bA ft':>9} {'x_bA m':>9} {'y_bA m':>9} {'ms':>6}")
-    from .integrators import IntegratorSettings
-    from .run import Simulator
-    from ..model import build_model
-    rows, ok, sim = [], True, None
-    for ratio in (0.5, 1.0, 1.5, 2.0):
-        scene = dale_scene(omega_ratio=ratio, duration=args.duration or 150.0)
-        if sim is None:      # one model and one set of integrators: only parameter values change
-            num = scene.numerics
-            sim = Simulator(build_model(scene), scene.output_times, IntegratorSettings(
-                method=args.method or num.integrator, rtol=num.rtol, atol=num.atol, jit=args.jit))
-        r = simulate(scene, simulator=sim)
-        ok &= r.success
-        T = 2 * math.pi / (ratio * OMEGA_N_MEASURED)
-        xa, ya = r.steady_amplitude("x_b", T, 3), r.steady_amplitude("y_b", T, 3)
-        rows.append({"omega_over_omega_n": ratio, "xbA_ft": xa / U.FT, "ybA_ft": ya / U.FT, "xbA_m": xa, "ybA_m": ya})
-        print(f"{ratio:14.2f} {ratio * OMEGA_N_MEASURED:12.3f} {xa / U.FT:9.4f} {ya / U.FT:9.4f} {xa:9.4f} {ya:9.4f} "
-              f"{r.stats['wall_s'] * 1e3:6.0f}")
-        if ratio == 1.0:
-            write_run(scene, r, out)
-    (out / "dale_amplitudes.json").write_text(json.dumps(rows, indent=2))
+    rows, ok, sim, summary = [], True, None, {}
+    with outdir.start(scene="Dale et al. water-channel model, omega/omega_n = 0.5, 1, 1.5, 2"):
+        try:
+            for ratio, scene in zip(ratios, scenes):
+                if sim is None:      # one model and one set of integrators: only parameter values change
+                    num = scene.numerics
+                    extra = {} if args.max_steps is None else {"max_num_steps": args.max_steps}
+                    sim = Simulator(build_model(scene), scene.output_times, IntegratorSettings(
+                        method=args.method or num.integrator, rtol=num.rtol, atol=num.atol, jit=args.jit, **extra))
+                tag = f" (omega/omega_n = {ratio:g})"
+                if ratio == 1.0:     # the run whose series, summary and plot go to --out
+                    r = _simulate_into(outdir, scene, tag, simulator=sim)
+                    summary = write_run(scene, r, outdir)
+                    outdir.manifest.update(summary)
+                else:
+                    r = simulate(scene, simulator=sim, progress=_Progress(tag))
+                ok &= r.success
+                T = 2 * math.pi / (ratio * OMEGA_N_MEASURED)
+                xa, ya = r.steady_amplitude("x_b", T, 3), r.steady_amplitude("y_b", T, 3)
+                rows.append({"omega_over_omega_n": ratio, "xbA_ft": xa / U.FT, "ybA_ft": ya / U.FT, "xbA_m": xa, "ybA_m": ya})
+                print(f"{ratio:14.2f} {ratio * OMEGA_N_MEASURED:12.3f} {xa / U.FT:9.4f} {ya / U.FT:9.4f} {xa:9.4f} {ya:9.4f} "
+                      f"{r.stats['wall_s'] * 1e3:6.0f}")
+        finally:                     # the rows computed so far, also when interrupted
+            outdir.write_json("dale_amplitudes.json", rows)
+        outdir.finish("success" if ok else "failed", **summary)
     print(f"wrote {out}/ (time series, summary.json and plots of the omega = omega_n run; dale_amplitudes.json)")
     return 0 if ok else 1
