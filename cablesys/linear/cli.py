@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import sys
-from pathlib import Path
 
 import numpy as np
 
@@ -17,31 +16,47 @@ def register(sub) -> None:
                                    "the scene, also the describing-function RAO at that motion's amplitude.")
     p.add_argument("scene", help="scene TOML file")
     p.add_argument("--out", default="rao_out", help="output directory (default: rao_out)")
-    p.add_argument("--omega-max", type=float, default=None, help="largest frequency in rad/s (default: 3 x pendulum)")
+    p.add_argument("--omega-max", type=float, default=None,
+                   help="largest frequency in rad/s (default: 3 x the largest natural or forcing frequency)")
     p.add_argument("--n", type=int, default=400, help="number of frequencies (default: 400)")
+    p.add_argument("--overwrite", action="store_true", help="replace results of another scene in --out")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    from ..errors import ParameterError, SolverError
-    from ..model import build_model
+    from ..errors import ParameterError
+    from ..outputs import OutputDir
     from ..scene import load_scene
-    from .equivalent import harmonic_response
-    from .linearize import linearize
-    from .modal import modes as modes_of
-    from .periodic import scene_input_amplitude
-    from .plots import plot_modes, plot_rao_bode
-    from .frequency_response import rao
 
     scene = load_scene(args.scene)
     if args.n < 2:
         raise ParameterError("--n", args.n, "must be >= 2")
+    # --out checked before any work; summary.json says running / success / failed / interrupted
+    outdir = OutputDir(args.out, "rao", scene, overwrite=getattr(args, "overwrite", False),
+                       owned=("rao_summary.json", "modes.png"))
+    with outdir.start(scene=scene.name):
+        return _analyse(args, scene, outdir)
+
+
+def _analyse(args, scene, outdir) -> int:
+    from ..errors import SolverError
+    from ..model import build_model
+    from .equivalent import harmonic_response
+    from .linearize import linearize
+    from .modal import modes as modes_of
+    from .periodic import scene_input_amplitude
+    from .band import default_band, forcing_frequencies
+    from .plots import noise_floor, is_noise, plot_modes, plot_rao_bode, plot_sea_response
+    from .sea_response import sea_response
+    from .frequency_response import rao
+
     model = build_model(scene)
     p = model.parameters(scene)
     lin = linearize(model, p)
     md = modes_of(lin)
-    w_max = args.omega_max or 3.0 * float(np.min(md.omega_undamped))
-    omega = np.linspace(w_max / args.n, w_max, args.n)
+    forcing = forcing_frequencies(scene)
+    omega = default_band(md.omega_undamped, forcing.values(), n=args.n, omega_max=args.omega_max)
+    w_max = float(omega[-1])
     raos = {"exact linearization": rao(lin, omega)}
     try:
         w_s, Z = scene_input_amplitude(scene)
@@ -53,29 +68,59 @@ def run(args) -> int:
                 raos[f"describing function, |{inp}| = {abs(Z[k]):.3g} m"] = h.rao(label=inp)
     except SolverError:
         pass
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    natural = {f"omega_{d}": float(w) for d, w in zip(md.dominant, md.omega_undamped) if w <= w_max}
+    out = outdir.path
+    natural = {f"omega_{d}": float(w) for d, w in zip(md.dominant, md.omega_undamped) if omega[0] <= w <= w_max}
     written = []
     for name, r in raos.items():
         tag = "exact" if name.startswith("exact") else "describing"
         for inp in r.input_labels[:2]:
             head, rows = r.table(inp)
-            f = out / f"rao_{tag}_{inp}.csv"
-            np.savetxt(f, rows, delimiter=",", header=",".join(head), comments="", fmt="%.8g")
-            written.append(f.name)
+            f = f"rao_{tag}_{inp}.csv"
+            with outdir.writing(f) as tmp:
+                np.savetxt(tmp, rows, delimiter=",", header=",".join(head), comments="", fmt="%.8g")
+            written.append(f)
+    plotted = [o for o in lin.output_labels if o.startswith(("x_b", "y_b", "tension")) and not o.endswith("rate")]
+    zero = []
     for inp in ("x_s", "y_s"):
-        for o in ("x_b", "y_b", "tension"):
+        for o in plotted:
             sel = {k: r for k, r in raos.items() if inp in r.input_labels}
-            written.append(plot_rao_bode(sel, o, inp, natural, out / f"rao_{o}_{inp}.png",
-                                         title=f"{scene.name}: {o} per unit {inp}").name)
-    written.append(plot_modes(md, float(lin.y0[model.output_labels.index("y_b")]), out / "modes.png").name)
+            floor = noise_floor([r.amplitude(o, i) for r in sel.values() for i in r.input_labels[:2]])
+            if all(is_noise(r.amplitude(o, inp), floor) for r in sel.values()):
+                zero.append(f"{o} per unit {inp}")
+            with outdir.writing(f"rao_{o}_{inp}.png") as tmp:
+                plot_rao_bode(sel, o, inp, natural, tmp, title=f"{scene.name}: {o} per unit {inp}", forcing=forcing)
+            written.append(f"rao_{o}_{inp}.png")
+    resp = sea_response(scene, lin)
+    if resp is not None:
+        with outdir.writing("sea_response.png") as tmp:
+            plot_sea_response(resp, natural, tmp, title=f"{scene.name}: response spectra in the sea", forcing=forcing)
+        written.append("sea_response.png")
+    with outdir.writing("modes.png") as tmp:
+        plot_modes(md, float(lin.y0[model.output_labels.index("y_b")]), tmp)
+    written.append("modes.png")
     doc = {"scene": scene.name, "steady_state": dict(zip(lin.q_labels, lin.q0.tolist())),
            "natural_frequencies_rad_s": md.omega_undamped.tolist(), "mode_dominant": list(md.dominant),
-           "damping_ratios_exact": md.damping_ratio.tolist()}
-    (out / "rao_summary.json").write_text(json.dumps(doc, indent=1))
+           "damping_ratios_exact": md.damping_ratio.tolist(),
+           "band_rad_s": [float(omega[0]), w_max], "forcing_rad_s": forcing, "zero_responses": zero}
+    verdict = {}
+    if resp is not None:
+        from ..verdict import evaluate
+        verdict = evaluate(getattr(scene, "limits", None), resp.statistics)
+        doc["sea_statistics"] = {"exposure_s": resp.exposure, **resp.statistics}
+        doc["verdict_frequency_domain"] = verdict
+    outdir.write_text("rao_summary.json", json.dumps(doc, indent=1))
     lines = [f"{scene.name}: natural frequencies " + ", ".join(f"{d} {w:.5g} rad/s" for d, w in
                                                               zip(md.dominant, md.omega_undamped)),
-             f"wrote {len(written) + 1} files to {out}"]
+             f"band {omega[0]:.3g} .. {w_max:.3g} rad/s; forcing: " + (", ".join(forcing) or "none")]
+    if zero:
+        lines.append("zero (below 1e-9 of the input, not drawn): " + ", ".join(zero))
+    if resp is not None:
+        from ..verdict import format_statistics, format_table
+        lines.append(f"frequency domain, the scene's sea (linear, exposure {resp.exposure:.5g} s):")
+        grouped = {"-": resp.statistics}
+        lines += ["  " + ln for ln in format_statistics(grouped)]
+        if verdict:
+            lines += ["  " + ln for ln in format_table(verdict)]
+    lines.append(f"wrote {len(written) + 1} files to {out}")
     sys.stdout.write("\n".join(lines) + "\n")
     return 0
