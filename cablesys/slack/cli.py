@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 import logging
 import sys
-from pathlib import Path
 
 from ..errors import ParameterError
 
@@ -21,6 +20,7 @@ def register(sub) -> None:
     p.add_argument("scene", nargs="?", help="scene TOML file")
     p.add_argument("--out", default="slack_out", help="output directory (default: slack_out)")
     p.add_argument("--example", action="store_true", help="print an example scene TOML and exit")
+    p.add_argument("--overwrite", action="store_true", help="replace results of another scene in --out")
     p.set_defaults(func=run)
 
 
@@ -31,21 +31,27 @@ def run(args) -> int:
         return 0
     if not args.scene:
         raise ParameterError("scene", None, "a scene TOML file is required (or --example)")
+    from ..outputs import OutputDir
     from .modes import analyze
     from .plots import plot_equilibrium, plot_mode_shapes
 
     scene, n_modes = load_scene(args.scene)
-    eq, modes = analyze(scene, n_modes)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    doc = {"scene": str(args.scene), "medium": scene.medium, "n_elements": modes.n_elements,
-           "equilibrium": eq.to_dict(), "modes": modes.table(),
-           "mode_shapes": {"s_m": modes.s.tolist(), "dof": ["x", "y", "z"],
-                           "normalization": "Griffin & Rosenthal (1985) eq. 25",
-                           "shapes": modes.shapes.tolist()}}
-    (out / "slack_result.json").write_text(json.dumps(doc, indent=1))
-    plot_equilibrium(eq, out / "equilibrium.png")
-    plot_mode_shapes(eq, modes, out / "mode_shapes.png", n=min(6, n_modes))
+    # --out checked before any work; summary.json says running / success / failed / interrupted
+    outdir = OutputDir(args.out, "slack", {"scene": scene, "n_modes": n_modes}, overwrite=getattr(args, "overwrite", False),
+                       owned=("slack_result.json", "equilibrium.png", "mode_shapes.png"))
+    with outdir.start(scene=str(args.scene)):
+        eq, modes = analyze(scene, n_modes)
+        out = outdir.path
+        doc = {"scene": str(args.scene), "medium": scene.medium, "n_elements": modes.n_elements,
+               "equilibrium": eq.to_dict(), "modes": modes.table(),
+               "mode_shapes": {"s_m": modes.s.tolist(), "dof": ["x", "y", "z"],
+                               "normalization": "Griffin & Rosenthal (1985) eq. 25",
+                               "shapes": modes.shapes.tolist()}}
+        outdir.write_text("slack_result.json", json.dumps(doc, indent=1))
+        with outdir.writing("equilibrium.png") as tmp:
+            plot_equilibrium(eq, tmp)
+        with outdir.writing("mode_shapes.png") as tmp:
+            plot_mode_shapes(eq, modes, tmp, n=min(6, n_modes))
     lines = [f"sag/L = {eq.sag_to_length:.5f}, H = {eq.horizontal_tension:.6g} N, "
              f"max tension = {eq.tension.max():.6g} N",
              "mode  type  omega (rad/s)"]
