@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import sys
-from pathlib import Path
 
 
 def register(sub) -> None:
@@ -16,6 +15,7 @@ def register(sub) -> None:
                                    "constraints (Wang 1971 p. 33, dual isolation). Writes design.json.")
     p.add_argument("scene", help="scene TOML file with a [design] table (keys of cablesys.design.DesignSettings)")
     p.add_argument("--out", default="design_out", help="output directory (default: design_out)")
+    p.add_argument("--overwrite", action="store_true", help="replace results of another scene in --out")
     p.set_defaults(func=run)
 
 
@@ -35,14 +35,19 @@ def load(path) -> tuple:
 
 
 def run(args) -> int:
+    from ..outputs import OutputDir
     from .solve import design
 
     scene, settings = load(args.scene)
-    result = design(scene, settings)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    doc = {"scene": scene.name, **result.to_dict()}
-    (out / "design.json").write_text(json.dumps(doc, indent=2, default=float) + "\n")
+    # --out checked before any work; summary.json says running / success / failed / interrupted
+    outdir = OutputDir(args.out, "design", {"scene": scene, "design": settings},
+                       overwrite=getattr(args, "overwrite", False), owned=("design.json",))
+    with outdir.start(scene=scene.name):
+        result = design(scene, settings)
+        out = outdir.path
+        doc = {"scene": scene.name, **result.to_dict()}
+        outdir.write_text("design.json", json.dumps(doc, indent=2, default=float) + "\n")
+        outdir.finish("success" if result.converged else "failed", message=str(result.status))
     w = sys.stdout.write
     w(f"{scene.name}\n{'converged' if result.converged else 'NOT converged'} ({result.status}); "
       f"{result.nlp_iterations} IPOPT iterations in {result.nlp_wall_s:.2f} s (total {result.total_wall_s:.2f} s)\n")
