@@ -67,8 +67,8 @@ class DesignResult(ResultBase):
     stats: dict = dataclasses.field(default_factory=dict)
 
     VARIABLES: ClassVar[dict] = {"value": ("SI", "optimal value of the design variable"), "lower": ("SI", "lower bound"),
-                 "upper": ("SI", "upper bound"), "variable": ("1", "design variable"),
-                 "constraint": ("1", "constraint"), "margin": ("1", "normalized constraint margin -g (>= 0 met)")}
+                                  "upper": ("SI", "upper bound"), "variable": ("1", "design variable"),
+                                  "constraint": ("1", "constraint"), "margin": ("1", "normalized constraint margin -g (>= 0 met)")}
 
     @property
     def converged(self) -> bool:

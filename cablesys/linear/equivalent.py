@@ -138,8 +138,8 @@ class HarmonicResponse(ResultBase):
     stats: dict = dataclasses.field(default_factory=dict)
 
     VARIABLES: ClassVar[dict] = {"output_amplitude": ("SI", "complex first-harmonic amplitude of each output"),
-                 "output_mean": ("SI", "mean of each output over the orbit"),
-                 "residual": ("1", "harmonic-balance residual"), "output": ("1", "output")}
+                                  "output_mean": ("SI", "mean of each output over the orbit"),
+                                  "residual": ("1", "harmonic-balance residual"), "output": ("1", "output")}
 
     @property
     def converged(self) -> bool:

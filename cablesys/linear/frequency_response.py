@@ -31,7 +31,7 @@ class RAO(ResultBase):
     stats: dict = dataclasses.field(default_factory=dict)
 
     VARIABLES: ClassVar[dict] = {"rao": ("output unit per input unit", "response amplitude operator (complex)"),
-                 "output_units": ("1", "SI unit of each output"), "output": ("1", "output"), "input": ("1", "input")}
+                                  "output_units": ("1", "SI unit of each output"), "output": ("1", "output"), "input": ("1", "input")}
 
     def __call__(self, output: str, input: str) -> np.ndarray:
         """The complex RAO curve of one output for one input."""

@@ -110,13 +110,13 @@ class LinearModel(ResultBase):
     stats: dict = dataclasses.field(default_factory=dict)
 
     VARIABLES: ClassVar[dict] = {"q": ("1", "generalized coordinate (row)"), "q_col": ("1", "generalized coordinate (column)"),
-                 "input": ("1", "input"), "output": ("1", "output"),
-                 "M": ("SI", "mass matrix"), "C": ("SI", "damping matrix"), "K": ("SI", "stiffness matrix"),
-                 "F0": ("SI", "input force matrix"), "F1": ("SI", "input-rate force matrix"),
-                 "F2": ("SI", "input-acceleration force matrix"), "Cq": ("SI", "output matrix of dq"),
-                 "Cv": ("SI", "output matrix of dq'"), "D0": ("SI", "feedthrough of u"),
-                 "D1": ("SI", "feedthrough of u'"), "D2": ("SI", "feedthrough of u''"),
-                 "q0": ("SI", "operating point"), "y0": ("SI", "outputs at the operating point")}
+                                  "input": ("1", "input"), "output": ("1", "output"),
+                                  "M": ("SI", "mass matrix"), "C": ("SI", "damping matrix"), "K": ("SI", "stiffness matrix"),
+                                  "F0": ("SI", "input force matrix"), "F1": ("SI", "input-rate force matrix"),
+                                  "F2": ("SI", "input-acceleration force matrix"), "Cq": ("SI", "output matrix of dq"),
+                                  "Cv": ("SI", "output matrix of dq'"), "D0": ("SI", "feedthrough of u"),
+                                  "D1": ("SI", "feedthrough of u'"), "D2": ("SI", "feedthrough of u''"),
+                                  "q0": ("SI", "operating point"), "y0": ("SI", "outputs at the operating point")}
 
     @property
     def nq(self) -> int:

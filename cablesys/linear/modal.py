@@ -35,11 +35,11 @@ class Modes(ResultBase):
     stats: dict = dataclasses.field(default_factory=dict)
 
     VARIABLES: ClassVar[dict] = {"omega_undamped": ("rad/s", "undamped natural frequency"),
-                 "omega_damped": ("rad/s", "damped natural frequency |Im lambda|"),
-                 "omega_natural": ("rad/s", "natural frequency |lambda|"),
-                 "damping_ratio": ("1", "damping ratio -Re lambda / |lambda|"),
-                 "shape": ("1", "mode shape (largest entry 1)"), "mode": ("1", "mode number"),
-                 "q": ("1", "generalized coordinate"), "dominant": ("1", "largest coordinate of the mode")}
+                                  "omega_damped": ("rad/s", "damped natural frequency |Im lambda|"),
+                                  "omega_natural": ("rad/s", "natural frequency |lambda|"),
+                                  "damping_ratio": ("1", "damping ratio -Re lambda / |lambda|"),
+                                  "shape": ("1", "mode shape (largest entry 1)"), "mode": ("1", "mode number"),
+                                  "q": ("1", "generalized coordinate"), "dominant": ("1", "largest coordinate of the mode")}
 
     @property
     def dominant(self) -> tuple:

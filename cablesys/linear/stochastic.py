@@ -57,8 +57,8 @@ class StochasticResponse(ResultBase):
     stats: dict = dataclasses.field(default_factory=dict)
 
     VARIABLES: ClassVar[dict] = {"sea_spectrum": ("m^2 s/rad", "sea elevation spectrum"),
-                 "response_spectrum": ("SI^2 s/rad", "output spectrum"), "mean": ("SI", "output mean"),
-                 "std": ("SI", "output standard deviation"), "output": ("1", "output")}
+                                  "response_spectrum": ("SI^2 s/rad", "output spectrum"), "mean": ("SI", "output mean"),
+                                  "std": ("SI", "output standard deviation"), "output": ("1", "output")}
 
     @property
     def converged(self) -> bool:

@@ -81,8 +81,8 @@ class SeaSpectrum:
         return 2 * math.pi / self.tp
 
     def density(self, omega) -> np.ndarray:
-        """S(omega) in m^2 s/rad (reuses :mod:`cablesys.linear.spectra`)."""
-        from ..linear.spectra import jonswap, pierson_moskowitz   # lazy: linear imports scene
+        """S(omega) in m^2 s/rad (:mod:`cablesys.scene.spectra`)."""
+        from .spectra import jonswap, pierson_moskowitz
         if self.kind == "pierson-moskowitz":
             return pierson_moskowitz(omega, self.hs, self.tp)
         return jonswap(omega, self.hs, self.tp, self.gamma)
