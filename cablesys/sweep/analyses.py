@@ -67,8 +67,19 @@ def run(scene, options, cache):
     from ..simulate import simulate
     r = simulate(scene, simulator=cache.simulator(scene, jit=bool(options.get("jit", False))))
     s = dict(r.summary())
+    s.pop("warnings", None)
     w = forcing_frequency(scene)
     n = int(options.get("periods", 3))
+    try:
+        from ..verdict import passed, report     # statistics and the verdict against scene.limits
+    except ImportError:          # pragma: no cover
+        report = None
+    if report is not None and r.time.size > 2:
+        s.update(report(scene, r))
+        if s.get("verdict"):
+            s["verdict_pass"] = passed(s["verdict"])
+    if getattr(scene.top_motion, "spectrum", None) is not None:
+        w = None                 # an irregular sea: statistics, not amplitudes over periods
     if w and r.time[-1] - r.time[0] >= 2 * n * 2 * math.pi / w:
         s["amplitude"] = {lbl: r.steady_amplitude(lbl, 2 * math.pi / w, n) for lbl in _outputs(r.labels)}
     return s, r.success, r.message

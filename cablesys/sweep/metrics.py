@@ -35,7 +35,8 @@ def flatten(summary: dict, prefix: str = "") -> dict:
         elif isinstance(val, (int, float, np.integer, np.floating)):
             out[name] = float(val) if isinstance(val, (float, np.floating)) else int(val)
         elif isinstance(val, str):
-            out[name] = val
+            if key not in ("text", "unit"):       # labels of a verdict entry: constant, not data
+                out[name] = val
         elif isinstance(val, (list, tuple, np.ndarray)):
             items = list(val)
             if items and all(isinstance(v, dict) for v in items):
