@@ -176,6 +176,8 @@ def write_run(scene, result, out, *, plot: bool = True) -> dict:
         result.to_netcdf(tmp)
     summary = result.summary()
     summary.pop("status", None)
+    st = result.stats
+    summary["timing"] = {k: float(st.get(k, 0.0)) for k in ("build_s", "load_s", "run_s")}
     period = _forcing_period(scene)
     if period and scene.top_motion.spectrum is None and result.time[-1] - result.time[0] >= 6 * period:
         summary["amplitude_periods"] = 3

@@ -10,6 +10,10 @@ Every integrator runs in relative time s with the parameter vector extended by (
 physical time t = t_0 + h s. With h = 1 the grid is in seconds from t_0 (one call over all
 output times); with the grid (0, 1) the same integrator steps one interval of any length h,
 which the slack-event location and the failure fallback use.
+
+The DAE is one SX function of the model (built once per model and form, kept in
+``model.derived``), compiled to C with its Jacobian and cached on disk by
+:mod:`cablesys.compiled` unless ``compiled=False`` (then CasADi's virtual machine runs it).
 """
 
 from __future__ import annotations
@@ -19,6 +23,7 @@ import dataclasses
 import casadi as ca
 import numpy as np
 
+from ..compiled import Compiled, compile_functions
 from ..errors import ParameterError
 from ..model import CableModel
 
@@ -41,27 +46,52 @@ class IntegratorSettings:
     atol: float = 1e-10
     steps_per_output: int = 10        # fixed-step methods only
     max_num_steps: int = 100000
-    jit: bool = False                 # compile the DAE with the C compiler (about 3x faster, ~1 s build each)
+    compiled: bool = True             # the DAE as cached compiled C (see cablesys.compiled); False: CasADi VM
+    jit: bool = False                 # former opt-in compilation; now an alias of ``compiled``
 
     def __post_init__(self):
         if self.method not in METHODS:
             raise ParameterError("method", self.method, f"must be one of {tuple(METHODS)}")
 
 
-def _dae(model: CableModel, implicit: bool):
-    """The DAE in relative time s: x' = h * ode(x, t0 + h s), parameters (p, t0, h)."""
-    x = model.sym("x", 2 * model.nq)
-    s = model.sym("s")
-    p = model.sym("p", len(model.layout))
-    t0, h = model.sym("t0"), model.sym("h")
+def _dae_function(model: CableModel, implicit: bool) -> ca.Function:
+    """The DAE in relative time s as a CasADi function with the integrator's signature
+    (``ca.dyn_in()`` -> ``ca.dyn_out()``): x' = h * ode(x, t0 + h s), parameters (p, t0, h);
+    implicit form: x' = h (q', q''), 0 = M(q) q'' - f."""
+    x = ca.SX.sym("x", 2 * model.nq)
+    s = ca.SX.sym("t")
+    p = ca.SX.sym("p", len(model.layout) + 2)
+    pm, t0, h = p[:-2], p[-2], p[-1]
     t = t0 + h * s
     q, qd = x[: model.nq], x[model.nq:]
-    pa = ca.vertcat(p, t0, h)
+    u = ca.SX.sym("u", 0)
+    empty = ca.SX(0, 1)
     if not implicit:
-        return {"x": x, "t": s, "p": pa, "ode": h * model.ode(x, t, p)}
-    z = model.sym("qdd", model.nq)
-    M, f = model.dynamics(q, qd, model.top(t, p), p)
-    return {"x": x, "z": z, "t": s, "p": pa, "ode": h * ca.vertcat(qd, z), "alg": ca.mtimes(M, z) - f}
+        z = ca.SX.sym("z", 0)
+        ode, alg = h * model.ode(x, t, pm), empty
+    else:
+        z = ca.SX.sym("z", model.nq)
+        M, f = model.dynamics(q, qd, model.top(t, pm), pm)
+        ode, alg = h * ca.vertcat(qd, z), ca.mtimes(M, z) - f
+    name = "cablesys_dae_implicit" if implicit else "cablesys_dae"
+    return ca.Function(name, [s, x, z, p, u], [ode, alg, empty, empty], ca.dyn_in(), ca.dyn_out())
+
+
+def dae_function(model: CableModel, implicit: bool, compiled: bool = True) -> Compiled:
+    """The model's DAE function, compiled and cached when ``compiled`` (built once per model).
+
+    Returns
+    -------
+    Compiled
+        ``functions[name]`` is the DAE; ``build_s``/``load_s`` the times of its first build.
+    """
+    key = f"dae:{'implicit' if implicit else 'explicit'}:{'compiled' if compiled else 'vm'}"
+    return model.derive(key, lambda: compile_functions([_dae_function(model, implicit)], enabled=compiled))
+
+
+def compiled_dae(model: CableModel, settings: IntegratorSettings) -> Compiled:
+    """The DAE that :func:`make_integrator` uses for ``settings`` (with its first build/load times)."""
+    return dae_function(model, settings.method == "idas", settings.compiled or settings.jit)
 
 
 def make_integrator(model: CableModel, settings: IntegratorSettings, grid, name: str = "F") -> ca.Function:
@@ -79,7 +109,6 @@ def make_integrator(model: CableModel, settings: IntegratorSettings, grid, name:
         if settings.method == "collocation":
             opts["rootfinder"] = "newton"   # the q'' system is small and dense
     opts["print_stats"] = False
-    if settings.jit:
-        opts.update(jit=True, compiler="shell", jit_options={"flags": ["-O2"], "verbose": False})
-    dae = _dae(model, settings.method == "idas")
+    comp = compiled_dae(model, settings)
+    dae = next(iter(comp.functions.values()))
     return ca.integrator(name, plugin, dae, float(grid[0]), list(grid[1:]), opts)

@@ -24,7 +24,7 @@ from ..model import CableModel, build_model
 from ..results import SlackEvent
 from ..scene import Scene
 from . import events as ev
-from .integrators import ADAPTIVE, IntegratorSettings, make_integrator
+from .integrators import ADAPTIVE, IntegratorSettings, compiled_dae, make_integrator
 from .record import (
     InterruptFlag,
     RunInterrupted,
@@ -91,6 +91,7 @@ class Simulator(ev.EventLocator):
         self._gap_rates = ca.Function("gap_rates", [x, t, p], [g, g1, g2])
         self._jac = ca.Function("ode_jacobian", [x, t, p], [ca.jacobian(xdot, x)])
         self.build_s = _time.perf_counter() - t_build
+        self.compiled = compiled_dae(model, self.settings)   # compiled/cached DAE: build and load times
         self._stats = {}
 
     # -- helpers -------------------------------------------------------------------------
@@ -207,6 +208,7 @@ class Simulator(ev.EventLocator):
         stats = dict(self._stats, method=self.settings.method, wall_s=_time.perf_counter() - wall,
                      build_s=self.build_s, n_events=len(track.events), max_num_steps=self.settings.max_num_steps)
         stats["wall_time_s"] = stats["wall_s"]
+        stats.update(run_s=stats["wall_s"], load_s=self.compiled.load_s, compiled=self.compiled.compiled)
         if stability_note:
             stats["warning"] = stability_note
         record = RunRecord(time=self.times[: X.shape[1]].copy(), data=data, success=success, message=message,
@@ -415,4 +417,4 @@ def simulate(scene: Scene, *, model: CableModel | None = None, method: str | Non
 
 
 def _named(record: RunRecord, scene: Scene, build_s: float) -> RunRecord:
-    return dataclasses.replace(record, scene_name=scene.name, stats={**record.stats, "build_s": build_s})
+    return dataclasses.replace(record, scene_name=scene.name, stats={**record.stats, "build_s": build_s - record.stats.get("load_s", 0.0)})

@@ -1,0 +1,95 @@
+"""Compiled model functions: on-disk cache, reuse across structures' values, fallback without a compiler."""
+
+import logging
+import subprocess
+import sys
+import textwrap
+
+import casadi as ca
+import numpy as np
+import pytest
+
+from cablesys.compiled import cache_dir, compile_functions
+
+
+def _pendulum():
+    x, t, p = ca.SX.sym("x", 2), ca.SX.sym("t"), ca.SX.sym("p", 2)
+    return ca.Function("pendulum_rhs", [x, t, p], [ca.vertcat(x[1], -p[0] * ca.sin(x[0]) - p[1] * x[1])])
+
+
+@pytest.fixture
+def cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("CABLESYS_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setenv("CABLESYS_CFLAGS", "-O0")
+    monkeypatch.delenv("CABLESYS_CC", raising=False)
+    monkeypatch.delenv("CABLESYS_COMPILE", raising=False)
+    return tmp_path / "cache"
+
+
+def test_compiled_equals_virtual_machine_and_is_cached(cache):
+    f = _pendulum()
+    first = compile_functions([f])
+    assert first.compiled and not first.cached and first.library.exists()
+    assert first.library.parent == cache_dir() and str(cache) in str(cache_dir())
+    g = first.functions["pendulum_rhs"]
+    args = ([0.3, -0.2], 0.0, [9.81, 0.1])
+    assert np.allclose(np.array(g(*args)), np.array(f(*args)), rtol=1e-15, atol=0)
+    # the Jacobian comes from the library too (jac_pendulum_rhs) and is exact
+    xs = ca.MX.sym("x", 2)
+    J = ca.Function("J", [xs], [ca.jacobian(g(xs, 0.0, ca.DM([9.81, 0.1])), xs)])
+    assert np.allclose(np.array(J([0.3, -0.2])), [[0, 1], [-9.81 * np.cos(0.3), -0.1]], rtol=1e-14)
+    second = compile_functions([_pendulum()])
+    assert second.cached and second.library == first.library
+    # a different structure is a different library
+    x = ca.SX.sym("x")
+    other = compile_functions([ca.Function("pendulum_rhs", [x], [x ** 3])])
+    assert other.library != first.library
+
+
+def test_no_compiler_falls_back_with_one_warning(cache, monkeypatch, caplog):
+    monkeypatch.setenv("CABLESYS_CC", "/nonexistent/bin/cc-missing")
+    f = _pendulum()
+    with caplog.at_level(logging.WARNING, logger="cablesys.compiled"):
+        out = compile_functions([f])
+    assert not out.compiled and out.functions["pendulum_rhs"] is f
+    notes = [r for r in caplog.records if r.name == "cablesys.compiled"]
+    assert len(notes) == 1 and "virtual machine" in notes[0].getMessage()
+
+
+def test_concurrent_builds_share_one_library(cache):
+    code = textwrap.dedent("""
+        import casadi as ca, numpy as np
+        from cablesys.compiled import compile_functions
+        x = ca.SX.sym("x", 3)
+        out = compile_functions([ca.Function("shared_f", [x], [ca.sin(x) * ca.exp(x)])])
+        assert out.compiled
+        print(out.library, float(out.functions["shared_f"]([1, 2, 3])[2]))
+    """)
+    procs = [subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+             for _ in range(3)]
+    outs = [p.communicate(timeout=300) for p in procs]
+    assert all(p.returncode == 0 for p in procs), [o[1][-1000:] for o in outs]
+    libs = {o[0].split()[0] for o in outs}
+    assert len(libs) == 1 and all(float(o[0].split()[1]) == pytest.approx(np.sin(3) * np.exp(3)) for o in outs)
+    assert not list(cache_dir().glob(".build-*"))          # no temporary files left behind
+
+
+@pytest.mark.parametrize("method", ["cvodes", "idas"])
+def test_simulation_compiled_agrees_with_virtual_machine(cache, method):
+    from cablesys.model import build_model
+    from cablesys.scene import dale_scene
+    from cablesys.simulate import Simulator, simulate
+    from cablesys.simulate.integrators import IntegratorSettings
+    scene = dale_scene().with_numerics(duration=3.0, drag_segments=2)
+    model = build_model(scene)
+    res = {}
+    for compiled in (True, False):
+        sim = Simulator(model, scene.output_times, IntegratorSettings(method=method, rtol=1e-9, atol=1e-11,
+                                                                        compiled=compiled))
+        res[compiled] = simulate(scene, model=model, simulator=sim)
+        assert res[compiled].success and res[compiled].stats["compiled"] is compiled
+    for lbl in ("phi", "u", "x_b"):
+        a, b = res[True][lbl], res[False][lbl]
+        assert np.max(np.abs(a - b)) < 1e-6 * (1e-3 + np.max(np.abs(b)))
+    st = res[True].stats
+    assert {"build_s", "load_s", "run_s"} <= set(st) and st["load_s"] >= 0.0
