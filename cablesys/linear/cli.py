@@ -87,6 +87,7 @@ def _analyse(args, scene, outdir) -> int:
             floor = noise_floor([r.amplitude(o, i) for r in sel.values() for i in r.input_labels[:2]])
             if all(is_noise(r.amplitude(o, inp), floor) for r in sel.values()):
                 zero.append(f"{o} per unit {inp}")
+                continue
             with outdir.writing(f"rao_{o}_{inp}.png") as tmp:
                 plot_rao_bode(sel, o, inp, natural, tmp, title=f"{scene.name}: {o} per unit {inp}", forcing=forcing)
             written.append(f"rao_{o}_{inp}.png")
@@ -106,19 +107,20 @@ def _analyse(args, scene, outdir) -> int:
     if resp is not None:
         from ..verdict import evaluate
         verdict = evaluate(getattr(scene, "limits", None), resp.statistics)
-        doc["sea_statistics"] = {"exposure_s": resp.exposure, **resp.statistics}
+        from ..verdict import group_by_quantity
+        doc["sea_statistics"] = {"exposure_s": resp.exposure, **group_by_quantity(resp.statistics)}
         doc["verdict_frequency_domain"] = verdict
     outdir.write_text("rao_summary.json", json.dumps(doc, indent=1))
     lines = [f"{scene.name}: natural frequencies " + ", ".join(f"{d} {w:.5g} rad/s" for d, w in
                                                               zip(md.dominant, md.omega_undamped)),
-             f"band {omega[0]:.3g} .. {w_max:.3g} rad/s; forcing: " + (", ".join(forcing) or "none")]
+             f"band {omega[0]:.3g} .. {w_max:.3g} rad/s; forcing: "
+             + (", ".join(k for k in forcing if not k.startswith("sea band")) or "none")]
     if zero:
         lines.append("zero (below 1e-9 of the input, not drawn): " + ", ".join(zero))
     if resp is not None:
-        from ..verdict import format_statistics, format_table
+        from ..verdict import format_statistics, format_table, group_by_quantity
         lines.append(f"frequency domain, the scene's sea (linear, exposure {resp.exposure:.5g} s):")
-        grouped = {"-": resp.statistics}
-        lines += ["  " + ln for ln in format_statistics(grouped)]
+        lines += ["  " + ln for ln in format_statistics(group_by_quantity(resp.statistics))]
         if verdict:
             lines += ["  " + ln for ln in format_table(verdict)]
     lines.append(f"wrote {len(written) + 1} files to {out}")

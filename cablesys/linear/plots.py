@@ -17,38 +17,93 @@ def _plt():
     return plt
 
 
-def _mark(ax, natural, label=True):
+NOISE = 1e-9      # a response below 1e-9 of its input (per unit input) is numerical zero
+
+
+def noise_floor(curves) -> float:
+    """The amplitude below which a curve of these RAOs is numerical noise: 1e-9 of the largest
+    response per unit input (and at least 1e-300)."""
+    peak = max((float(np.max(c)) for c in curves if len(c)), default=0.0)
+    return max(NOISE * peak, NOISE if peak == 0.0 else 0.0, 1e-300)
+
+
+def is_noise(amplitude, floor: float) -> bool:
+    """True when no point of ``amplitude`` rises above ``floor`` (identically zero or rounding noise)."""
+    return not np.any(np.asarray(amplitude) > floor)
+
+
+def _mark(ax, natural, label=True, forcing=None):
+    """Natural frequencies dashed (one colour each), forcing frequencies solid red, a sea band shaded."""
     for k, (name, w) in enumerate(natural.items()):
-        ax.axvline(w, color="0.4", ls=":", lw=1.2, label=f"{name} = {w:.3g} rad/s" if label else None)
+        ax.axvline(w, color=f"C{(k + 3) % 10}", ls="--", lw=1.1, label=f"natural {name} = {w:.3g} rad/s" if label else None)
+    forcing = dict(forcing or {})
+    lo, hi = forcing.pop("sea band low", None), forcing.pop("sea band high", None)
+    if lo is not None and hi is not None:
+        ax.axvspan(lo, hi, color="C0", alpha=0.07, label="sea band (99.8 % of the energy)" if label else None)
+    for name, w in forcing.items():
+        ax.axvline(w, color="red", ls="-", lw=1.3, alpha=0.8, label=name if label else None)
 
 
-def plot_rao_bode(raos: dict, output: str, input: str, natural: dict, path, title: str = "") -> Path:
-    """Magnitude (log) and phase of ``output`` per unit ``input`` for several RAOs ({legend: RAO})."""
+def _wrap(title: str, width: int = 70) -> str:
+    import textwrap
+    return "\n".join(textwrap.wrap(title, width)) if title else title
+
+
+def plot_rao_bode(raos: dict, output: str, input: str, natural: dict, path, title: str = "",
+                  forcing: dict | None = None) -> Path:
+    """Magnitude and unwrapped phase (deg) of ``output`` per unit ``input`` for several RAOs ({legend: RAO}).
+
+    Curves that are numerical zero (below :data:`NOISE` of the largest response per unit input)
+    are not drawn but named in the figure; points of a drawn curve below that floor are blanked
+    (with their phase). Log frequency axis when the band spans a decade or more; natural and
+    forcing frequencies are marked and labelled in distinct styles.
+    """
     plt = _plt()
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
+    curves = {}
     for name, r in raos.items():
         inp = input if input in r.input_labels else r.input_labels[0]
-        amp = r.amplitude(output, inp)
-        a1.plot(r.omega, amp, label=name + ("" if np.any(amp > 1e-12 * max(amp.max(), 1e-300)) and amp.max() > 0
-                                            else " (identically zero)"))
-        a2.plot(r.omega, np.degrees(r.phase(output, inp)), label=name)
-    if any(np.any(r.amplitude(output, input if input in r.input_labels else r.input_labels[0]) > 0)
-           for r in raos.values()):
+        curves[name] = (r, inp, r.amplitude(output, inp))
+    floor = noise_floor([c[2] for c in curves.values()])
+    zero, drawn = [], []
+    for k, (name, (r, inp, amp)) in enumerate(curves.items()):
+        if is_noise(amp, floor):
+            zero.append(name)
+            continue
+        keep = amp > floor
+        a1.plot(r.omega, np.where(keep, amp, np.nan), color=f"C{k}", label=name)
+        ph = np.degrees(np.unwrap(np.angle(r(output, inp)[keep])))
+        phase = np.full(len(r.omega), np.nan)
+        phase[keep] = ph
+        a2.plot(r.omega, phase, color=f"C{k}")
+        drawn.append((r.kind, amp[keep]))
+    omega = next(iter(curves.values()))[0].omega
+    if omega[-1] / max(omega[0], 1e-300) >= 10.0:
+        a1.set_xscale("log")
+    if drawn:
         a1.set_yscale("log")
-    _mark(a1, natural)
-    _mark(a2, natural, label=False)
-    u = unit_of(output) or "-"
+        lo = min(float(np.min(a)) for _, a in drawn)
+        damped = [float(np.max(a)) for kind, a in drawn if kind != "exact"]
+        hi = max(float(np.max(a)) for _, a in drawn)
+        if damped and hi > 20 * max(damped):
+            hi = 20 * max(damped)               # the undamped exact peak is clipped
+        a1.set_ylim(max(lo, hi * 1e-8) / 3, hi * 3)
+    else:
+        a1.text(0.5, 0.5, "identically zero (below 1e-9 of the input)", transform=a1.transAxes, ha="center")
+    _mark(a1, natural, forcing=forcing)
+    _mark(a2, natural, label=False, forcing=forcing)
+    a1.set_xlim(omega[0], omega[-1])
+    u = unit_of(output) or ("N" if output.startswith("tension") else "-")
     a1.set_ylabel(f"|{output}| per unit {input} [{u}/m]")
-    a2.set_ylabel("phase [deg]")
+    a2.set_ylabel("phase, unwrapped [deg]")
     a2.set_xlabel("forcing frequency omega [rad/s]")
-    damped = [r.amplitude(output, input if input in r.input_labels else r.input_labels[0]).max()
-              for k, r in raos.items() if r.kind != "exact"]
-    if damped and max(damped) > 0:
-        a1.set_ylim(top=20 * max(damped))          # the undamped exact peak is clipped
-    a1.legend(fontsize=8)
+    if zero:
+        a1.text(0.01, 0.02, "not drawn (numerical zero): " + "; ".join(zero), transform=a1.transAxes, fontsize=7,
+                va="bottom")
+    a1.legend(fontsize=7, loc="best")
     a1.grid(True, which="both", alpha=0.3)
-    a2.grid(True, alpha=0.3)
-    fig.suptitle(title or f"RAO of {output} for top motion {input}")
+    a2.grid(True, which="both", alpha=0.3)
+    fig.suptitle(_wrap(title or f"RAO of {output} for top motion {input}"), fontsize=10)
     save_figure(fig, path, dpi=110)
     return Path(path)
 
@@ -111,5 +166,41 @@ def plot_response_spectrum(stoch, output: str, natural: dict, path, title: str =
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     ax.set_title(title)
+    save_figure(fig, path, dpi=110)
+    return Path(path)
+
+
+def plot_sea_response(resp, natural: dict, path, title: str = "", forcing: dict | None = None) -> Path:
+    """The sea spectrum with the motion response spectra (top) and the tension response spectra (bottom)
+    of a :class:`~cablesys.linear.sea_response.SeaResponse`; legends give sigma and the most probable
+    maximum over the exposure. Responses below 1e-9 of the largest are listed, not drawn."""
+    plt = _plt()
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
+    a1.plot(resp.omega, resp.sea, "k", lw=1.5, label="sea elevation S(omega)")
+    peak = max(float(np.max(v)) for v in resp.spectra.values()) if resp.spectra else 0.0
+    zero = []
+    for k, (o, S) in enumerate(resp.spectra.items()):
+        s = resp.statistics[o]
+        tension = o.startswith("tension")
+        u = "N" if tension else (unit_of(o) or "-")
+        if is_noise(S, NOISE * peak if tension else NOISE * float(np.max(resp.sea))):
+            zero.append(o)
+            continue
+        (a2 if tension else a1).plot(resp.omega, S, color=f"C{k}", label=f"{o}: sigma {s['std']:.3g} {u}, "
+                                     f"MPM {s['most_probable_max'] - s['mean']:+.3g} {u} over {resp.exposure:.4g} s")
+    for ax in (a1, a2):
+        _mark(ax, {k: w for k, w in natural.items() if resp.omega[0] <= w <= resp.omega[-1]}, label=ax is a1,
+              forcing={k: w for k, w in (forcing or {}).items() if not k.startswith("sea band")})
+        ax.grid(True, alpha=0.3)
+    a1.set_ylabel("spectral density [m^2 s/rad]")
+    a2.set_ylabel("tension spectral density [N^2 s/rad]")
+    a2.set_xlabel("omega [rad/s]")
+    a1.legend(fontsize=7)
+    if a2.lines:
+        a2.legend(fontsize=7)
+    if zero:
+        a1.text(0.99, 0.5, "not drawn (numerical zero): " + ", ".join(zero), transform=a1.transAxes, fontsize=7,
+                ha="right")
+    fig.suptitle(_wrap(title or "response spectra in the sea"), fontsize=10)
     save_figure(fig, path, dpi=110)
     return Path(path)

@@ -1,0 +1,74 @@
+"""Response spectra and short-term statistics of the linearized system in the scene's irregular sea.
+
+The sea (``scene.top_motion.spectrum``) reaches the top through the motion RAO
+(``scene.top_motion.rao``, :func:`cablesys.scene.sea.top_transfer`); the RAOs of the exact
+linearization carry it to every output:
+
+    H_o(omega) = RAO(o, x_s) X_s(omega) + RAO(o, y_s) Y_s(omega),   S_o = |H_o|^2 S(omega),
+
+and :func:`cablesys.statistics.frequency_domain` turns S_o into sigma, T_z and the most probable
+extremes about the static value. The waves at the cable (``waves_at_cable``) are not included
+in this linear transfer (see ``stochastic_response`` for the drag-linearized sea).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from .. import statistics as st
+from ..scene.sea import top_transfer
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class SeaResponse:
+    """Sea spectrum, per-output response spectra and their statistics."""
+
+    omega: np.ndarray            # rad/s
+    sea: np.ndarray              # S(omega), m^2 s/rad
+    spectra: dict                # output -> S_o(omega), unit^2 s/rad
+    statistics: dict             # output -> cablesys.statistics.frequency_domain dict
+    exposure: float              # s
+
+
+def sea_response(scene, lin, *, outputs=None, exposure: float | None = None, n: int = 800) -> SeaResponse | None:
+    """The linear response of ``lin`` (a :class:`~cablesys.linear.LinearModel` of ``scene``) to its sea.
+
+    Parameters
+    ----------
+    scene : Scene
+        With ``top_motion.spectrum`` (returns None without one).
+    lin : LinearModel
+        The exact linearization about the steady state (inputs ``x_s``, ``y_s``).
+    outputs : sequence of str, optional
+        Outputs to evaluate (default: the body motion and every tension output).
+    exposure : float, optional
+        Duration of the most probable extremes (s); default ``scene.limits.exposure`` or 3 h.
+    n : int
+        Frequencies over the sea's band.
+
+    Returns
+    -------
+    SeaResponse or None
+    """
+    from .frequency_response import rao
+    sea = scene.top_motion.spectrum
+    if sea is None:
+        return None
+    lo, hi = sea.band()
+    omega = np.linspace(lo, hi, n)
+    S = sea.density(omega)
+    X, Y = top_transfer(scene.top_motion.rao, omega)
+    r = rao(lin, omega)
+    if outputs is None:
+        outputs = [o for o in r.output_labels if o.startswith(("x_b", "y_b", "tension")) and not o.endswith("rate")]
+    limits = getattr(scene, "limits", None)
+    exposure = exposure or getattr(limits, "exposure", None) or 3 * 3600.0
+    mean = dict(zip(lin.output_labels, np.asarray(lin.y0, float)))
+    spectra, stats = {}, {}
+    for o in outputs:
+        H = r(o, "x_s") * X + r(o, "y_s") * Y
+        spectra[o] = np.abs(H) ** 2 * S
+        stats[o] = st.frequency_domain(omega, spectra[o], exposure, mean=float(mean.get(o, 0.0)))
+    return SeaResponse(omega=omega, sea=S, spectra=spectra, statistics=stats, exposure=float(exposure))
