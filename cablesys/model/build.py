@@ -7,12 +7,10 @@ through the exogenous vector e = (t, x_s, y_s, x_s', y_s', x_s'', y_s'').
 
 from __future__ import annotations
 
-import dataclasses
-
 import casadi as ca
-import numpy as np
 
 from ..scene import Scene
+from .cable_model import CableModel
 from .lagrange import lagrange_equations, virtual_work
 from .params import ParameterLayout, section_prefix
 from .section import SectionParameters, section_terms
@@ -21,59 +19,6 @@ from .top_motion import symbolic_type, top_motion_function
 EXO_LABELS = ("t", "x_s", "y_s", "x_s_rate", "y_s_rate", "x_s_acc", "y_s_acc")
 OUTPUT_NAMES = ("phi", "phi_rate", "u", "u_rate", "x_b", "x_b_rate", "y_b", "y_b_rate", "tension",
                 "tension_bottom", "tension_top")
-
-
-@dataclasses.dataclass(frozen=True, eq=False)
-class CableModel:
-    """CasADi functions of one scene structure; every scene number is an entry of ``p``.
-
-    Functions (all SX, built once):
-      ``dynamics(q, qd, e, p) -> (M, f)`` with M q'' = f;
-      ``ode(x, t, p) -> x'`` with x = (q, q') and the top motion composed in;
-      ``top(t, p) -> e``; ``outputs(x, e, p) -> y`` (labels ``output_labels``);
-      ``energy(x, e, p) -> (K, V)``; ``cable_force(x, p) -> F_bc - TENS`` per section.
-    """
-
-    layout: ParameterLayout
-    n_sections: int
-    angles: str
-    q_labels: tuple
-    output_labels: tuple
-    dynamics: ca.Function
-    ode: ca.Function
-    top: ca.Function
-    outputs: ca.Function
-    energy: ca.Function
-    cable_force: ca.Function
-    slack_index: tuple          # positions of the per-section slack switches in p
-    symbolic: type = ca.SX      # ca.MX when the top motion has a sampled series
-    kind: str = "wang"          # which rung of the model ladder: "wang", "quasi-static", "segmented"
-    # functions that analyses derive from this model (linearization, collocation), built once
-    # and kept with the model they belong to (no module-level cache)
-    derived: dict = dataclasses.field(default_factory=dict, repr=False)
-
-    def derive(self, key: str, build):
-        """``build()`` once per model and key; later calls return the same object (functions that
-        analyses derive from this model are built once, not per call)."""
-        if key not in self.derived:
-            self.derived[key] = build()
-        return self.derived[key]
-
-    def sym(self, name: str, n: int = 1):
-        """A symbol of the model's symbolic type, for composing its functions."""
-        return self.symbolic.sym(name, n)
-
-    @property
-    def nq(self) -> int:
-        return len(self.q_labels)
-
-    @property
-    def state_labels(self) -> tuple:
-        return self.q_labels + tuple(f"{q}_rate" for q in self.q_labels)
-
-    def parameters(self, scene: Scene) -> np.ndarray:
-        """Numeric parameter vector of ``scene`` (same structure as the model)."""
-        return self.layout.values(scene)
 
 
 def _coordinates(n: int, angles: str):
@@ -121,6 +66,9 @@ def _end_forces(momenta, ext, M, f, q, qd, z, zd, zdd):
 
 def build_model(scene: Scene) -> CableModel:
     """Build the CasADi functions for ``scene``'s structure (values go in through ``p``)."""
+    if any(s.cable.segments > 1 for s in scene.sections):   # N straight elements per section
+        from .segmented import build_segmented_model
+        return build_segmented_model(scene)
     layout = ParameterLayout.from_scene(scene)
     p = layout.symbol
     n = len(scene.sections)

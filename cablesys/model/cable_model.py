@@ -1,0 +1,148 @@
+"""The model object (CasADi functions of one scene structure) and its cache of derived functions.
+
+A :class:`CableModel` is immutable: its functions are built once by
+:func:`~cablesys.model.build_model`. Analyses derive further functions from it (the
+linearization Jacobians, collocation and harmonic-balance residuals, the static rootfinder,
+the compiled integrator); they are built once per model and kept in the model's
+:class:`FunctionCache`, an explicit object with a documented interface, not a dict filled
+under ad hoc keys. A copy made with ``dataclasses.replace`` (a different model) starts
+with an empty cache.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import threading
+from collections.abc import Callable
+from typing import Any
+
+import casadi as ca
+import numpy as np
+
+from .params import ParameterLayout
+
+
+class FunctionCache:
+    """Functions derived from one model, each built once under a key.
+
+    ``get(key, build)`` returns the object stored under ``key``, calling ``build()`` the first
+    time. Keys name what is derived and its structural options (``"linearize"``,
+    ``"colloc_41"``); numbers that vary between calls must be arguments of the functions
+    (entries of ``p``), never part of a key. Safe to share between threads (a build may
+    itself ask the cache for another key). Pickling keeps no functions: a copy in another
+    process builds its own.
+    """
+
+    def __init__(self):
+        self._items: dict[str, Any] = {}
+        self._lock = threading.RLock()
+
+    def get(self, key: str, build: Callable[[], Any]) -> Any:
+        """The function stored under ``key``, built by ``build()`` on first use.
+
+        Parameters
+        ----------
+        key : str
+            Name of the derived function and its structural options.
+        build : callable
+            No-argument function that builds it.
+
+        Returns
+        -------
+        object
+            What ``build()`` returned the first time.
+        """
+        with self._lock:
+            if key not in self._items:
+                self._items[key] = build()
+            return self._items[key]
+
+    def __contains__(self, key: str) -> bool:
+        return key in self._items
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def keys(self) -> tuple:
+        """Keys built so far."""
+        return tuple(self._items)
+
+    def clear(self) -> None:
+        """Forget every derived function (they are rebuilt on next use)."""
+        with self._lock:
+            self._items.clear()
+
+    def __getstate__(self):
+        return {}
+
+    def __setstate__(self, state):
+        self.__init__()
+
+    def __repr__(self) -> str:
+        return f"FunctionCache({', '.join(self._items) or 'empty'})"
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class CableModel:
+    """CasADi functions of one scene structure; every scene number is an entry of ``p``.
+
+    Functions (all SX, built once):
+      ``dynamics(q, qd, e, p) -> (M, f)`` with M q'' = f;
+      ``ode(x, t, p) -> x'`` with x = (q, q') and the top motion composed in;
+      ``top(t, p) -> e``; ``outputs(x, e, p) -> y`` (labels ``output_labels``);
+      ``energy(x, e, p) -> (K, V)``; ``cable_force(x, p) -> F_bc - TENS`` per section.
+    ``cache`` holds the functions analyses derive from these (:class:`FunctionCache`).
+    """
+
+    layout: ParameterLayout
+    n_sections: int
+    angles: str
+    q_labels: tuple
+    output_labels: tuple
+    dynamics: ca.Function
+    ode: ca.Function
+    top: ca.Function
+    outputs: ca.Function
+    energy: ca.Function
+    cable_force: ca.Function
+    slack_index: tuple          # positions of the per-section slack switches in p
+    symbolic: type = ca.SX      # ca.MX when the top motion has a sampled series
+    kind: str = "wang"          # which rung of the model ladder: "wang", "quasi-static", "segmented"
+    cache: FunctionCache = dataclasses.field(init=False, repr=False)
+    derived: dataclasses.InitVar[dict | None] = None    # deprecated, ignored: use ``cache``
+
+    def __post_init__(self, derived):
+        object.__setattr__(self, "cache", FunctionCache())
+
+    def derive(self, key: str, build):
+        """``self.cache.get(key, build)``: a function derived from this model, built once.
+
+        Parameters
+        ----------
+        key : str
+            Name of the derived function and its structural options.
+        build : callable
+            No-argument function that builds it.
+
+        Returns
+        -------
+        object
+            The cached function.
+        """
+        return self.cache.get(key, build)
+
+    def sym(self, name: str, n: int = 1):
+        """A symbol of the model's symbolic type, for composing its functions."""
+        return self.symbolic.sym(name, n)
+
+    @property
+    def nq(self) -> int:
+        return len(self.q_labels)
+
+    @property
+    def state_labels(self) -> tuple:
+        return self.q_labels + tuple(f"{q}_rate" for q in self.q_labels)
+
+    def parameters(self, scene) -> np.ndarray:
+        """Numeric parameter vector of ``scene`` (same structure as the model)."""
+        return self.layout.values(scene)
