@@ -72,3 +72,36 @@ def sea_response(scene, lin, *, outputs=None, exposure: float | None = None, n: 
         spectra[o] = np.abs(H) ** 2 * S
         stats[o] = st.frequency_domain(omega, spectra[o], exposure, mean=float(mean.get(o, 0.0)))
     return SeaResponse(omega=omega, sea=S, spectra=spectra, statistics=stats, exposure=float(exposure))
+
+
+def side_by_side(scene, td_statistics: dict, exposure: float) -> dict:
+    """Time-domain statistics of a run next to the linear frequency-domain ones of the same sea.
+
+    Parameters
+    ----------
+    scene : Scene
+        With a sea (else {} is returned).
+    td_statistics : dict
+        {label: cablesys.statistics.time_domain dict} of the run.
+    exposure : float
+        The exposure used for the time-domain most probable extremes (s).
+
+    Returns
+    -------
+    dict
+        {label: {statistic: {"time_domain": v, "frequency_domain": v}}}; {} when the steady state
+        or linearization fails (the run's own statistics still stand).
+    """
+    from ..errors import SolverError
+    from ..model import build_model
+    from .linearize import linearize
+    if scene.top_motion.spectrum is None:
+        return {}
+    try:
+        model = build_model(scene)
+        lin = linearize(model, model.parameters(scene))
+        resp = sea_response(scene, lin, outputs=[k for k in td_statistics if k in lin.output_labels],
+                            exposure=exposure)
+    except SolverError:
+        return {}
+    return {k: st.side_by_side(td_statistics[k], resp.statistics.get(k)) for k in td_statistics}

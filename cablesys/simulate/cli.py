@@ -188,6 +188,10 @@ def write_run(scene, result, out, *, plot: bool = True) -> dict:
             summary[f"amplitudes_{unit}"] = {k: v for k, v in amps.items() if unit_of(k) == unit}
     from ..verdict import report
     summary.update(report(scene, result))
+    if scene.top_motion.spectrum is not None:       # the linear frequency-domain statistics of the same sea
+        from ..linear.sea_response import side_by_side
+        td = {k: v for g, rows in summary["statistics"].items() if isinstance(rows, dict) for k, v in rows.items()}
+        summary["statistics_time_vs_frequency_domain"] = side_by_side(scene, td, summary["statistics"]["exposure_s"])
     if plot and result.time.size > 1:
         from ..plots.time_domain import plot_time_series
         with out.writing("timeseries.png") as tmp:
