@@ -45,7 +45,7 @@ class IntegratorSettings:
     rtol: float = 1e-8
     atol: float = 1e-10
     steps_per_output: int = 10        # fixed-step methods only
-    max_num_steps: int = 100000
+    max_num_steps: int = 20000        # step budget per output interval (typical runs use < 100); more fails by name
     compiled: bool = True             # the DAE as cached compiled C (see cablesys.compiled); False: CasADi VM
     jit: bool = False                 # former opt-in compilation; now an alias of ``compiled``
 
