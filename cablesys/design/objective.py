@@ -111,7 +111,7 @@ def parameter_map(model: CableModel, variables: tuple):
 def static_rootfinder(model: CableModel) -> ca.Function:
     """Newton rootfinder q_0(q_guess, p) of the model's static residual (differentiable; the
     residual is the one :func:`cablesys.linear.steady.steady_state` solves, built once per model)."""
-    return model.derive("design_steady", lambda: ca.rootfinder(
+    return model.cache.get("design_steady", lambda: ca.rootfinder(
         "design_steady", "newton", static_residual(model), {"abstol": 1e-12, "max_iter": 50, "error_on_fail": False}))
 
 

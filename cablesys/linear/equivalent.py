@@ -34,7 +34,7 @@ from typing import ClassVar
 import casadi as ca
 import numpy as np
 
-from ..errors import SolverError
+from ..errors import ParameterError
 from ..model import CableModel
 from ..results import ResultBase, timed
 from .linearize import (
@@ -83,7 +83,7 @@ def complex_xi(model: CableModel, Q, Z, omega) -> np.ndarray:
 # --------------------------------------------------------------------------------------------
 def _hb1_rootfinder(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Function]:
     """KINSOL on (mean residual, first harmonic) = 0 for unknowns (q0, Re Q, Im Q), and that residual."""
-    return model.derive(f"hb1_{n_theta}", lambda: _build_hb1(model, n_theta))
+    return model.cache.get(f"hb1_{n_theta}", lambda: _build_hb1(model, n_theta))
 
 
 def _build_hb1(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Function]:
@@ -110,7 +110,8 @@ def _build_hb1(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Functio
                    ca.mtimes(R, -2.0 / n_theta * np.sin(theta)))
     G = ca.Function("hb1", [v, ca.vertcat(w, Zr, Zi, p)], [g])
     rf = ca.rootfinder("hb1_solve", "kinsol", G, {"strategy": "linesearch", "abstol": 1e-13,
-                                                  "error_on_fail": False, "print_level": 0})
+                                                  "error_on_fail": False, "print_level": 0,
+                                                  "disable_internal_warnings": True})
     return rf, G
 
 
@@ -199,7 +200,8 @@ def harmonic_response(model: CableModel, p, omega, input_amplitude, *, n_theta: 
     omega = np.atleast_1d(np.asarray(omega, float))
     Z = np.asarray(input_amplitude, complex)
     if Z.shape != (len(lin0.input_labels),):
-        raise SolverError(f"input_amplitude needs {len(lin0.input_labels)} entries {lin0.input_labels}, got {Z.shape}")
+        raise ParameterError("input_amplitude", f"shape {Z.shape}",
+                             f"needs {len(lin0.input_labels)} entries {lin0.input_labels}")
     rf, G = _hb1_rootfinder(model, n_theta)
     order = np.argsort(omega)
     pre = np.geomspace(omega[order[0]] / 4.0, omega[order[0]], ladder + 1)[:-1]

@@ -55,7 +55,7 @@ def functions(model: CableModel) -> dict:
     ``residual(xi, p) -> r``, ``jac(xi, p) -> dr/dxi`` and ``out_jac(xi, p) -> (y, dy/dxi)``;
     the time in e is 0 and the wave amplitudes of p are replaced by the w block of xi.
     """
-    return model.derive("linearize", lambda: _build_functions(model))
+    return model.cache.get("linearize", lambda: _build_functions(model))
 
 
 def _build_functions(model: CableModel) -> dict:

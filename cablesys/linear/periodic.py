@@ -19,7 +19,7 @@ import dataclasses
 import casadi as ca
 import numpy as np
 
-from ..errors import SolverError
+from ..errors import ParameterError
 from ..model import CableModel
 from ..results import ResultBase, timed
 from .equivalent import harmonic_response
@@ -47,7 +47,7 @@ def trig_interpolate(values: np.ndarray, n_fine: int) -> np.ndarray:
 
 def _collocation_rootfinder(model: CableModel, n: int) -> tuple[ca.Function, ca.Function]:
     """Newton on the collocation residual at n nodes, and that residual (built once per model and n)."""
-    return model.derive(f"colloc_{n}", lambda: _build_collocation(model, n))
+    return model.cache.get(f"colloc_{n}", lambda: _build_collocation(model, n))
 
 
 def _build_collocation(model: CableModel, n: int) -> tuple[ca.Function, ca.Function]:
@@ -108,8 +108,10 @@ def scene_input_amplitude(scene) -> tuple[float, np.ndarray]:
     terms = [(ax, s) for ax in ("x", "y") for s in getattr(scene.top_motion, ax)]
     freqs = {round(s.frequency, 12) for _, s in terms if s.amplitude != 0.0}
     if len(freqs) != 1 or scene.top_motion.series is not None:
-        raise SolverError("the periodic solve needs a top motion of sinusoids at one frequency "
-                          f"(found frequencies {sorted(freqs)}); give one frequency or use simulate()")
+        raise ParameterError("top_motion", f"frequencies {sorted(freqs)}"
+                             + (" and a sampled series" if scene.top_motion.series is not None else ""),
+                             "the periodic solve needs a top motion of sinusoids at one frequency and no sampled "
+                             "series; give one frequency or use simulate()")
     Z = np.zeros(2 + len(scene.environment.waves), complex)
     for ax, s in terms:
         if s.amplitude == 0.0:
@@ -156,7 +158,8 @@ def periodic_steady_state(model: CableModel, p, omega: float, *, n_harmonics: in
     p = np.asarray(p, float)
     if guess is None:
         if input_amplitude is None:
-            raise SolverError("periodic_steady_state needs input_amplitude (complex x_s, y_s) or a guess")
+            raise ParameterError("input_amplitude", None, "periodic_steady_state needs input_amplitude "
+                                 "(complex x_s, y_s) or a guess")
         h = harmonic_response(model, p, [omega], input_amplitude, n_theta=32, ladder=4)
         Q = h.q_amplitude[0]
         guess = h.q_mean[0][:, None] + np.real(Q[:, None] * np.exp(1j * omega * times)[None, :])

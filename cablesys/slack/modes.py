@@ -171,7 +171,8 @@ def compute_modes(eq: Equilibrium, d: Discretization, n_modes: int, *, solver: s
                    n_elements=d.n_elements, solver=used, seconds=time.perf_counter() - t0)
 
 
-def analyze(scene, n_modes: int = 12, *, n_elements: int | None = None, solver: str = "auto"):
+def analyze(scene, n_modes: int = 12, *, n_elements: int | None = None, solver: str = "auto",
+            cache=None):
     """Statics (CasADi NLP) then modes: returns (Equilibrium, ModeSet).
 
     Parameters
@@ -184,19 +185,21 @@ def analyze(scene, n_modes: int = 12, *, n_elements: int | None = None, solver: 
         Lumped-mass elements (default from the scene).
     solver : str, optional
         'auto', 'dense' (scipy.linalg.eigh) or 'sparse' (shift-invert eigsh).
+    cache : FunctionCache, optional
+        Keeps the CasADi functions per element count (see :func:`solve_equilibrium`).
 
     Returns
     -------
     tuple of (Equilibrium, ModeSet)
         The static shape and its modes.
     """
-    eq, d = solve_equilibrium(scene, n_elements=n_elements)
+    eq, d = solve_equilibrium(scene, n_elements=n_elements, cache=cache)
     return eq, compute_modes(eq, d, n_modes, solver=solver)
 
 
 @timed
 def converge(scene, n_modes: int, *, levels: tuple[int, ...] = (48, 96, 192),
-             solver: str = "auto") -> Convergence:
+             solver: str = "auto", cache=None) -> Convergence:
     """Solve at each element count and Richardson-extrapolate (h^2 convergence).
 
     Modes are matched by family ('O' versus in-plane) and index within the
@@ -213,6 +216,8 @@ def converge(scene, n_modes: int, *, levels: tuple[int, ...] = (48, 96, 192),
         Element counts, each twice the previous (at least three).
     solver : str, optional
         'auto', 'dense' (scipy.linalg.eigh) or 'sparse' (shift-invert eigsh).
+    cache : FunctionCache, optional
+        Keeps the CasADi functions per element count (see :func:`solve_equilibrium`).
 
     Returns
     -------
@@ -225,7 +230,7 @@ def converge(scene, n_modes: int, *, levels: tuple[int, ...] = (48, 96, 192),
     types = None
     n_extra = n_modes + 4
     for n in levels:
-        eq, ms = analyze(scene, n_extra * 2, n_elements=n, solver=solver)
+        _, ms = analyze(scene, n_extra * 2, n_elements=n, solver=solver, cache=cache)
         o = ms.of_type("O")
         i = ms.of_type("A", "S", "H")
         ti = [t for t in ms.mode_type if t != "O"]

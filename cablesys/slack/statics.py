@@ -27,14 +27,14 @@ from __future__ import annotations
 import logging
 import math
 import time
-from dataclasses import dataclass
-from functools import lru_cache
+from dataclasses import dataclass, field
 
 import casadi as ca
 import numpy as np
 import scipy.optimize
 
 from ..errors import SolverError
+from ..model.cable_model import FunctionCache
 from .results import Equilibrium
 from .scene import SlackScene, _buoyancy_and_added
 
@@ -52,7 +52,9 @@ class Discretization:
     weight: nodal weight in the medium (N); mass: nodal physical mass (kg);
     added_transverse: nodal added mass of the cable, acting normal to the
     cable only (kg); added_isotropic: added mass of point masses (kg);
-    mass_nodes: node index of each point mass, in scene order.
+    mass_nodes: node index of each point mass, in scene order; functions: the CasADi
+    energy, Hessian and NLP of this element count (:class:`~cablesys.model.FunctionCache`,
+    shared by the statics and the modes of one solve, and between solves given one cache).
     """
 
     s: np.ndarray
@@ -62,14 +64,18 @@ class Discretization:
     added_transverse: np.ndarray
     added_isotropic: np.ndarray
     mass_nodes: tuple[int, ...]
+    functions: FunctionCache = field(default_factory=FunctionCache, repr=False)
 
     @property
     def n_elements(self) -> int:
         return len(self.L0)
 
 
-def discretize(scene: SlackScene, n_elements: int | None = None) -> Discretization:
-    """Uniform nodes in unstretched arc length plus one node at each point mass."""
+def discretize(scene: SlackScene, n_elements: int | None = None, cache: FunctionCache | None = None) -> Discretization:
+    """Uniform nodes in unstretched arc length plus one node at each point mass.
+
+    ``cache`` (default: a new one) keeps the CasADi functions of each element count.
+    """
     n = int(n_elements or scene.n_elements)
     L = scene.cable.length
     s = np.linspace(0.0, L, n + 1)
@@ -95,16 +101,19 @@ def discretize(scene: SlackScene, n_elements: int | None = None) -> Discretizati
         mass[i] += pm.mass
         added_i[i] += ap
     return Discretization(s=s, L0=L0, weight=weight, mass=mass, added_transverse=added_t,
-                          added_isotropic=added_i, mass_nodes=tuple(nodes))
+                          added_isotropic=added_i, mass_nodes=tuple(nodes), functions=FunctionCache() if cache is None else cache)
 
 
-@lru_cache(maxsize=16)
-def _energy_functions(n: int):
+def _energy_functions(n: int, cache: FunctionCache | None = None):
     """CasADi potential energy V(w; p), its gradient and Hessian for n elements.
 
     w = [x_1..x_{n-1}, z_1..z_{n-1}] (interior nodes); p = [EA, xB, zB,
     L0_1..L0_n, W_1..W_{n-1}]. Vectorized SX so that 2000 elements build fast.
     """
+    return (FunctionCache() if cache is None else cache).get(f"energy_{n}", lambda: _build_energy(n))
+
+
+def _build_energy(n: int):
     w = ca.SX.sym("w", 2 * (n - 1))
     p = ca.SX.sym("p", 3 + n + (n - 1))
     EA, xB, zB = p[0], p[1], p[2]
@@ -122,9 +131,12 @@ def _energy_functions(n: int):
     return w, p, V, fV, fH
 
 
-@lru_cache(maxsize=16)
-def _nlp_solver(n: int, max_iter: int, tol: float):
-    w, p, V, _, _ = _energy_functions(n)
+def _nlp_solver(n: int, max_iter: int, tol: float, cache: FunctionCache):
+    return cache.get(f"nlp_{n}_{max_iter}_{tol!r}", lambda: _build_nlp(n, max_iter, tol, cache))
+
+
+def _build_nlp(n: int, max_iter: int, tol: float, cache: FunctionCache):
+    w, p, V, _, _ = _energy_functions(n, cache)
     # objective scaled by 1 / (total weight * chord) so that IPOPT's tolerance
     # is relative: the scale is an extra parameter
     scale = ca.SX.sym("scale")
@@ -174,7 +186,7 @@ def _equilibrium_from_nodes(scene, d, x, z, method, iterations, seconds, message
 
 def solve_equilibrium(scene: SlackScene, *, n_elements: int | None = None,
                       guess: np.ndarray | None = None, max_iter: int = 200,
-                      tol: float = 1e-9) -> tuple[Equilibrium, Discretization]:
+                      tol: float = 1e-9, cache: FunctionCache | None = None) -> tuple[Equilibrium, Discretization]:
     """Minimize the potential energy with CasADi nlpsol('ipopt').
 
     Returns the equilibrium and the discretization. ``guess`` is an initial
@@ -193,22 +205,25 @@ def solve_equilibrium(scene: SlackScene, *, n_elements: int | None = None,
         IPOPT iteration limit.
     tol : float, optional
         IPOPT tolerance.
+    cache : FunctionCache, optional
+        Keeps the NLP and energy functions per element count: pass one cache to solves that
+        repeat an element count (a sweep) so the NLP is built once. Default: a new cache.
 
     Returns
     -------
     tuple of (Equilibrium, Discretization)
         Static shape with element tensions (N), and the element layout.
     """
-    d = discretize(scene, n_elements)
+    d = discretize(scene, n_elements, cache)
     n = d.n_elements
     t0 = time.perf_counter()
-    solver = _nlp_solver(n, int(max_iter), float(tol))
+    solver = _nlp_solver(n, int(max_iter), float(tol), d.functions)
     if guess is not None:
         w0 = np.asarray(guess, float)
     elif int(n_elements or scene.n_elements) > COARSE_LIMIT:
         # two-level start: solve a coarse chain, interpolate its shape in s
         # (its O(h^2)-close) so that IPOPT needs a few Newton steps, not ~90
-        eqc, _ = solve_equilibrium(scene, n_elements=COARSE_LIMIT, max_iter=max_iter, tol=tol)
+        eqc, _ = solve_equilibrium(scene, n_elements=COARSE_LIMIT, max_iter=max_iter, tol=tol, cache=d.functions)
         w0 = np.concatenate([np.interp(d.s[1:-1], eqc.s, eqc.x), np.interp(d.s[1:-1], eqc.s, eqc.z)])
     else:
         w0 = parabola_guess(scene, d)
@@ -289,7 +304,7 @@ def solve_equilibrium_shooting(scene: SlackScene, *, n_elements: int | None = No
 def stiffness_inplane(eq: Equilibrium, d: Discretization):
     """In-plane stiffness: the CasADi Hessian of V at equilibrium (scipy CSC matrix)."""
     n = d.n_elements
-    _, _, _, _, fH = _energy_functions(n)
+    _, _, _, _, fH = _energy_functions(n, d.functions)
     w = np.concatenate([eq.x[1:-1], eq.z[1:-1]])
     K = fH(w, _params(eq.scene, d))
     return _casadi_to_csc(K)
