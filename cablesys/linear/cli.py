@@ -8,6 +8,11 @@ import sys
 import numpy as np
 
 
+# frequency-grid size limit: each frequency is a complex linear solve and, with a one-frequency
+# top motion, a harmonic balance (KINSOL); 1e8 frequencies hung
+MAX_FREQUENCIES = 10_000
+
+
 def register(sub) -> None:
     """Add ``rao SCENE.toml [--out DIR] [--omega-max W] [--n N]`` to the cablesys parser."""
     p = sub.add_parser("rao", help="linearize about the steady state: natural frequencies and RAOs (CSV + plots)",
@@ -24,13 +29,14 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from ..errors import ParameterError
     from ..outputs import OutputDir
+    from ..reader import option_int, option_number
     from ..scene import load_scene
 
+    option_int("--n", args.n, lo=2, hi=MAX_FREQUENCIES, why="the frequency-grid size limit")
+    if args.omega_max is not None:
+        option_number("--omega-max", args.omega_max, lo=0.0, lo_open=True, hi=1e6, unit="rad/s")
     scene = load_scene(args.scene)
-    if args.n < 2:
-        raise ParameterError("--n", args.n, "must be >= 2")
     # --out checked before any work; summary.json says running / success / failed / interrupted
     outdir = OutputDir(args.out, "rao", scene, overwrite=getattr(args, "overwrite", False),
                        owned=("rao_summary.json", "modes.png"))
@@ -39,7 +45,7 @@ def run(args) -> int:
 
 
 def _analyse(args, scene, outdir) -> int:
-    from ..errors import SolverError
+    from ..errors import ParameterError, SolverError
     from ..model import build_model
     from .equivalent import harmonic_response
     from .linearize import linearize
@@ -58,16 +64,22 @@ def _analyse(args, scene, outdir) -> int:
     omega = default_band(md.omega_undamped, forcing.values(), n=args.n, omega_max=args.omega_max)
     w_max = float(omega[-1])
     raos = {"exact linearization": rao(lin, omega)}
+    if not (np.all(np.isfinite(raos["exact linearization"].values)) and np.all(np.isfinite(md.omega_undamped))):
+        raise SolverError("the linearization about the steady state gives non-finite natural frequencies or RAOs "
+                          "(a singular mass or stiffness matrix): check the scene's masses and stiffnesses")
     try:
         w_s, Z = scene_input_amplitude(scene)
-        for k, inp in enumerate(("x_s", "y_s")):
-            if abs(Z[k]) > 0:
-                Zk = np.zeros_like(Z)
-                Zk[k] = abs(Z[k])
-                h = harmonic_response(model, p, omega, Zk)
-                raos[f"describing function, |{inp}| = {abs(Z[k]):.3g} m"] = h.rao(label=inp)
-    except SolverError:
-        pass
+    except ParameterError:      # no one-frequency top motion: the describing-function RAO does not apply
+        Z = None
+    failures = []
+    for k, inp in enumerate(("x_s", "y_s") if Z is not None else ()):
+        if abs(Z[k]) > 0:
+            Zk = np.zeros_like(Z)
+            Zk[k] = abs(Z[k])
+            h = harmonic_response(model, p, omega, Zk)
+            if not h.success:
+                failures.append(f"describing function for {inp}: {h.message}")
+            raos[f"describing function, |{inp}| = {abs(Z[k]):.3g} m"] = h.rao(label=inp)
     out = outdir.path
     natural = {f"omega_{d}": float(w) for d, w in zip(md.dominant, md.omega_undamped) if omega[0] <= w <= w_max}
     written = []
@@ -125,4 +137,8 @@ def _analyse(args, scene, outdir) -> int:
             lines += ["  " + ln for ln in format_table(verdict)]
     lines.append(f"wrote {len(written) + 1} files to {out}")
     sys.stdout.write("\n".join(lines) + "\n")
+    if failures:             # written, but marked failed: a value that did not converge is not a success
+        outdir.finish("failed", message="; ".join(failures))
+        sys.stderr.write("cablesys rao: " + "; ".join(failures) + "\n")
+        return 1
     return 0
