@@ -83,7 +83,7 @@ def complex_xi(model: CableModel, Q, Z, omega) -> np.ndarray:
 # --------------------------------------------------------------------------------------------
 def _hb1_rootfinder(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Function]:
     """KINSOL on (mean residual, first harmonic) = 0 for unknowns (q0, Re Q, Im Q), and that residual."""
-    return model.derive(f"hb1_{n_theta}", lambda: _build_hb1(model, n_theta))
+    return model.cache.get(f"hb1_{n_theta}", lambda: _build_hb1(model, n_theta))
 
 
 def _build_hb1(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Function]:

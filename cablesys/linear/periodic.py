@@ -47,7 +47,7 @@ def trig_interpolate(values: np.ndarray, n_fine: int) -> np.ndarray:
 
 def _collocation_rootfinder(model: CableModel, n: int) -> tuple[ca.Function, ca.Function]:
     """Newton on the collocation residual at n nodes, and that residual (built once per model and n)."""
-    return model.derive(f"colloc_{n}", lambda: _build_collocation(model, n))
+    return model.cache.get(f"colloc_{n}", lambda: _build_collocation(model, n))
 
 
 def _build_collocation(model: CableModel, n: int) -> tuple[ca.Function, ca.Function]:
