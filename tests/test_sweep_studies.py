@@ -21,3 +21,16 @@ def test_operability_quick(run_study):
     assert np.all(np.diff(margin, axis=0) < 1e-9)
     assert 0 < doc["n_allowed"] < doc["n_cases"]          # the chart has a boundary
     assert all(r["allowed"] == (r["min_margin"] >= 0) for r in rows)
+
+
+@pytest.mark.slow
+def test_bench_sweep_quick(run_study):
+    out = run_study("bench_sweep", "--quick")
+    doc = json.loads((out / "bench_sweep.json").read_text())
+    assert (out / "bench_sweep.png").exists()
+    for name, n in (("time_domain", 16), ("rao", 100)):
+        r = doc[name]
+        assert r["cases"] == n and r["parallel_equals_serial"]
+        assert {"loop", "sweep_serial", "sweep_parallel", "dask"} <= set(r["throughput_cases_per_s"])
+        assert all(v > 0 for v in r["throughput_cases_per_s"].values())
+        assert 0 < r["parallel_efficiency"] and "overhead_fraction" in r
