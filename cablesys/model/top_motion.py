@@ -19,6 +19,9 @@ The spline is built from SX operations only, so every model is SX and compilable
 
 The cost is about 25 operations per sample per evaluation.
 
+Smooth start: with ``top_motion.ramp_s`` > 0 the whole top motion (sinusoids and series) is
+multiplied by the cosine ramp :func:`ramp`; 0 (the default) is Wang's abrupt start.
+
 History: this used to call CasADi's MX-only ``bspline`` primitive with the coefficients from
 ``ca.solve(A, samples, "csparse")``. That aborted the process ("double free or corruption",
 exit 134) on scenes with slack: the event locator differentiates the top acceleration once
@@ -146,6 +149,19 @@ def spline_expression(times, y, t):
     return ca.if_else(t < tk[0], y[0], ca.if_else(t > tk[-1], y[-1], inside))
 
 
+def ramp(t, ramp_s):
+    """Smooth-start factor r(t) = u - sin(2 pi u) / (2 pi), u = t / ramp_s, on [0, ramp_s]; 0 before, 1 after.
+
+    A cosine ramp whose *rate* is the raised cosine r' = (1 - cos(2 pi u)) / ramp_s: r, r' and
+    r'' vanish at t = 0, and r' and r'' at t = ramp_s, so the top starts at rest with zero
+    velocity *and acceleration* and joins the full motion without a jump in acceleration (a
+    plain (1 - cos(pi u)) / 2 ramp still jumps in acceleration at t = 0, which rings the
+    undamped stretch mode). Multiplies every top-motion amplitude. ``ramp_s = 0``: r = 1.
+    """
+    u = ca.fmin(ca.fmax(t / ca.fmax(ramp_s, 1e-300), 0.0), 1.0)
+    return ca.if_else(ramp_s > 0, u - ca.sin(2 * np.pi * u) / (2 * np.pi), 1.0)
+
+
 def top_motion_function(scene, layout) -> ca.Function:
     """``top(t, p) -> (t, x_s, y_s, x_s', y_s', x_s'', y_s'')`` for the scene's top motion."""
     t = ca.SX.sym("t")
@@ -163,6 +179,8 @@ def top_motion_function(scene, layout) -> ca.Function:
         for j, axis in enumerate(("x", "y")):
             samples = [sym(f"top_motion.series.{axis}[{k}]") for k in range(len(series.times))]
             pos[j] = pos[j] + spline_expression(series.times, samples, t)
+    if "top_motion.ramp_s" in layout.labels:
+        pos = [ramp(t, sym("top_motion.ramp_s")) * v for v in pos]
     pos = ca.vertcat(*pos)
     vel = ca.jacobian(pos, t)
     acc = ca.jacobian(vel, t)

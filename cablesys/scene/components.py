@@ -223,10 +223,15 @@ class TopMotion:
     spectrum: SeaSpectrum | None = spec("none", "an irregular sea (scene/sea.py SeaSpectrum), realised as sinusoids appended to x and y", None)
     rao: MotionRAO | None = spec("none", "vessel / crane-tip motion RAO turning the sea into top motion (scene/sea.py MotionRAO); "
                                "none: the top heaves with the surface", None)
+    ramp_s: float = spec("time", "smooth start: every top-motion amplitude rises from 0 to full over 0 <= t <= ramp_s "
+                                 "with a cosine-rate ramp u - sin(2 pi u)/(2 pi), u = t/ramp_s (no jump in top velocity "
+                                 "or acceleration; 2-3 forcing periods); 0: abrupt start, as in Wang (1971)", 0.0)
 
     def __post_init__(self):
         object.__setattr__(self, "x", tuple(self.x))
         object.__setattr__(self, "y", tuple(self.y))
+        require_finite("top_motion.ramp_s", self.ramp_s)
+        require_nonnegative("top_motion.ramp_s", self.ramp_s, "s")
         if self.spectrum is not None:          # the sea as sinusoids: the compiled SX path (scene/sea.py)
             from .sea import append_once, sea_sinusoids
             sx, sy = sea_sinusoids(self.spectrum, self.rao)
