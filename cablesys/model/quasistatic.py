@@ -104,7 +104,9 @@ def build_quasistatic(scene: Scene, *, full: CableModel | None = None,
         the quasi-static one, du/dt along the motion without the top jerk); ``kind`` is
         ``"quasi-static"``.
     """
-    full = full or build_model(scene)
+    if full is None:          # always Wang's straight cable, whatever the scene's segments
+        secs = tuple(dataclasses.replace(sec, cable=dataclasses.replace(sec.cable, segments=1)) for sec in scene.sections)
+        full = build_model(dataclasses.replace(scene, sections=secs))
     iterations = iterations or newton_iterations(scene)
     slow, fast = _split(full)
     ns = len(slow)
@@ -134,7 +136,7 @@ def build_quasistatic(scene: Scene, *, full: CableModel | None = None,
     M_t, f_t = dynamics(xs[:ns], xs[ns:], full.top(ts, ps), ps)
     ode = ca.Function("ode", [xs, ts, ps], [ca.vertcat(xs[ns:], ca.solve(M_t, f_t))], ["x", "t", "p"], ["xdot"])
     return dataclasses.replace(full, q_labels=q_labels, dynamics=dynamics, ode=ode, outputs=outputs,
-                               energy=energy, cable_force=cable_force, derived={}, kind="quasi-static")
+                               energy=energy, cable_force=cable_force, kind="quasi-static")
 
 
 def axial_frequencies(scene: Scene) -> tuple:

@@ -1,0 +1,13 @@
+"""The model ladder: model no more than a scene needs, say which model ran, why, and its error.
+
+Rungs, cheapest first (:mod:`.rungs`): ``frequency`` (periodic steady state), ``quasi-static``
+(stretch following the tension), ``wang`` (2-DOF straight cable), ``segmented`` (N elements).
+:func:`choose` decides from the scene's numbers (:mod:`.indicators`) and error estimates
+(:mod:`.estimate`); :func:`simulate_auto` runs the choice and checks it a posteriori (:mod:`.auto`).
+"""
+
+from .auto import run_rung, simulate_auto
+from .choose import Choice, choose, tolerances
+from .rungs import MODEL_CHOICES, RUNGS, build_rung
+
+__all__ = ["Choice", "MODEL_CHOICES", "RUNGS", "build_rung", "choose", "run_rung", "simulate_auto", "tolerances"]

@@ -1,0 +1,141 @@
+"""``simulate_auto(scene)``: run the rung the scene needs, check it afterwards, say which and why.
+
+The choice (:func:`~cablesys.ladder.choose.choose`) is checked a posteriori:
+- quasi-static: the stretch must stay taut (a quasi-static stretch cannot go slack); if the
+  tension falls to the floor, the run is rejected and Wang's model (or the segmented cable) runs;
+- wang: a run that goes slack is outside the straight cable's validity (one stretch makes the whole
+  cable slack at once): rejected for the segmented cable;
+- segmented with N: a second run with N/2 gives the Richardson estimate |y_N - y_N/2| / (2^p - 1);
+  N is doubled while that exceeds the tolerance.
+The result's ``stats["model"]`` holds ``{name, segments, reason, estimated_error}``.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import warnings
+
+import numpy as np
+
+from ..errors import NumericalWarning
+from ..scene import Scene
+from . import estimate as est
+from . import metrics
+from .choose import MAX_SEGMENTS, Choice, choose, forced, tolerances
+from .rungs import build_rung, check_rung, rung_scene
+
+log = logging.getLogger(__name__)
+
+
+def run_rung(scene: Scene, name: str, segments: int = 1, **kw):
+    """One time-domain run of rung ``name`` (``frequency``: the periodic orbit sampled at the output times)."""
+    from ..simulate import simulate
+    if name == "frequency":
+        return _periodic_run(scene)
+    sc = rung_scene(scene, name, segments)
+    model = build_rung(sc, name, segments)
+    return simulate(sc, model=model, **kw)
+
+
+def _periodic_run(scene: Scene):
+    from ..linear import periodic_steady_state
+    from ..linear.periodic import scene_input_amplitude, trig_interpolate  # noqa: F401
+    from ..results import TimeResult
+    sc = rung_scene(scene, "wang")
+    model = build_rung(sc, "wang")
+    p = model.parameters(sc)
+    omega, Z = scene_input_amplitude(sc)
+    per = periodic_steady_state(model, p, omega, input_amplitude=Z)
+    times = sc.output_times
+    data = {}
+    n = len(per.time)
+    k = np.fft.rfftfreq(n, 1.0 / n)
+    for lbl, y in per.outputs.items():
+        c = np.fft.rfft(np.asarray(y, float)) / n
+        ph = 2 * np.pi * (times[:, None] - per.time[0]) / per.period * k[None, :]
+        w = np.where((k == 0) | ((n % 2 == 0) & (k == n // 2)), 1.0, 2.0)
+        data[lbl] = np.real(np.exp(1j * ph) @ (w * c))
+    stats = dict(per.stats, method="periodic collocation", nsteps=0)
+    return TimeResult(time=times, data=data, success=bool(per.success), message=per.message, stats=stats,
+                      scene_name=scene.name)
+
+
+def _went_slack(result, scene: Scene) -> bool:
+    floor = max(s.cable.tension_floor for s in scene.sections)
+    low = min(float(np.min(result[k])) for k in ("tension_bottom", "tension") if k in result.labels)
+    return bool(result.events) or result.time_slack() > 0 or low <= floor
+
+
+def simulate_auto(scene: Scene, *, model: str | None = None, tolerance=None, segments: int | None = None,
+                  **kw):
+    """Simulate ``scene`` with the rung ``model`` ("auto": chosen; default ``scene.numerics.model``).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    model : str, optional
+        "auto" or a rung name (:data:`~cablesys.ladder.rungs.MODEL_CHOICES`).
+    tolerance : float or (float, float), optional
+        Body-motion (and tension) tolerance; default ``numerics.model_tolerance`` or 1 % / 2 %.
+    segments : int, optional
+        Elements per section for a forced segmented rung (default: chosen for the tolerance).
+    **kw
+        Passed to :func:`cablesys.simulate.simulate` (method, rtol, atol, times, jit).
+
+    Returns
+    -------
+    TimeResult
+        ``stats["model"] = {name, segments, reason, estimated_error}``; a rung forced outside its
+        validity warns (:class:`~cablesys.errors.NumericalWarning`) with the reason.
+    """
+    name = check_rung(model or getattr(scene.numerics, "model", "auto"))
+    tol = tolerances(scene, tolerance)
+    if name == "auto":
+        choice = choose(scene, tol)
+    else:
+        choice = forced(scene, name, segments, tol)
+        if not choice.numbers.get("valid", True):
+            warnings.warn(f"model '{name}': {choice.reason}", NumericalWarning, stacklevel=2)
+    result, choice = _run_checked(scene, choice, tol, auto=(name == "auto"), **kw)
+    result.stats["model"] = choice.as_dict()
+    log.info("model %s (N = %d): %s", choice.name, choice.segments, choice.reason)
+    return result
+
+
+def _run_checked(scene: Scene, choice: Choice, tol, *, auto: bool, **kw):
+    result = run_rung(scene, choice.name, choice.segments, **kw)
+    if choice.name in ("quasi-static", "wang") and _went_slack(result, scene):
+        note = (f"the {choice.name} run went slack (least tension {min(np.min(result['tension_bottom']), np.min(result['tension'])):.4g} N): "
+                "a straight cable with one stretch cannot be partly slack")
+        if not auto:
+            warnings.warn(f"model '{choice.name}': {note}", NumericalWarning, stacklevel=3)
+            return result, Choice(choice.name, 1, choice.reason + "; " + note, {"body": math.inf, "tension": math.inf},
+                                  choice.numbers)
+        n = max(choice.segments, 10)
+        log.info("%s rejected (%s); running the segmented cable", choice.name, note)
+        choice = Choice("segmented", n, f"{choice.name} rejected a posteriori: {note}; segmented with N = {n}",
+                        est.segmented_error(choice.numbers["estimates"], n) if "segmented_1" in choice.numbers["estimates"]
+                        else {"body": math.nan, "tension": math.nan}, choice.numbers)
+        return _run_checked(scene, choice, tol, auto=auto, **kw)
+    if choice.name == "segmented" and choice.segments >= 4:
+        return _richardson(scene, choice, tol, result, auto=auto, **kw)
+    return result, choice
+
+
+def _richardson(scene: Scene, choice: Choice, tol, result, *, auto: bool, **kw):
+    period = metrics.forcing_period(scene)
+    n = choice.segments
+    while True:
+        coarse = run_rung(scene, "segmented", n // 2, **kw)
+        if not (coarse.success and result.success):
+            return result, choice
+        diff = metrics.errors(metrics.statistics(coarse, period), metrics.statistics(result, period))
+        factor = 1.0 / (2.0 ** est.ORDER - 1.0)
+        e = {k: v * factor for k, v in diff.items()}
+        if not auto or (e["body"] <= tol[0] and e["tension"] <= tol[1]) or 2 * n > MAX_SEGMENTS:
+            reason = choice.reason + f"; a posteriori (N = {n} vs {n // 2}, order {est.ORDER:g}): body {e['body']:.2g}, tension {e['tension']:.2g}"
+            return result, Choice("segmented", n, reason, e, choice.numbers)
+        n *= 2
+        result = run_rung(scene, "segmented", n, **kw)

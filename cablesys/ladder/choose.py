@@ -1,0 +1,120 @@
+"""``choose(scene, tolerance)``: the cheapest rung whose estimated error is within the tolerance."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from ..errors import ParameterError
+from ..scene import Scene
+from . import estimate as est
+from .indicators import scene_numbers
+from .rungs import RUNGS
+
+DEFAULT_TOLERANCE = 0.01          # body motion; tension extremes get twice this (issue 12)
+MAX_SEGMENTS = 128
+
+
+@dataclasses.dataclass(frozen=True)
+class Choice:
+    """The rung to run, why, and its estimated error against the converged segmented cable."""
+
+    name: str
+    segments: int
+    reason: str
+    estimated_error: dict            # {"body": e, "tension": e}
+    numbers: dict                    # the deciding numbers and every rung's estimate
+
+    def as_dict(self) -> dict:
+        """``{name, segments, reason, estimated_error}`` for summary.json."""
+        return {"name": self.name, "segments": self.segments, "reason": self.reason,
+                "estimated_error": {k: _finite(v) for k, v in self.estimated_error.items()}}
+
+
+def _finite(v):
+    return v if math.isfinite(v) else None
+
+
+def tolerances(scene: Scene, tolerance=None) -> tuple[float, float]:
+    """(body, tension) tolerances: ``tolerance`` (a number: body, tension = 2x; or a pair), else the
+    scene's ``numerics.model_tolerance``, else 1 % / 2 %."""
+    tol = tolerance if tolerance is not None else getattr(scene.numerics, "model_tolerance", DEFAULT_TOLERANCE)
+    body, tension = (tol, 2 * tol) if isinstance(tol, (int, float)) else tuple(tol)
+    for name, v in (("body", body), ("tension", tension)):
+        if not (isinstance(v, (int, float)) and 0 < v < 1):
+            raise ParameterError("numerics.model_tolerance", tol, f"{name} tolerance must be in (0, 1)")
+    return float(body), float(tension)
+
+
+def segments_for(errors: dict, tol: tuple[float, float]) -> int:
+    """Least N with the segmented rung's estimated errors within ``tol`` (N^-ORDER scaling)."""
+    base = errors["segmented_1"]
+    need = max((base["body"] / tol[0]) ** (1 / est.ORDER), (base["tension"] / tol[1]) ** (1 / est.ORDER), 2.0)
+    return int(min(MAX_SEGMENTS, math.ceil(need)))
+
+
+def _within(e: dict, tol) -> bool:
+    return e["body"] <= tol[0] and e["tension"] <= tol[1]
+
+
+def choose(scene: Scene, tolerance=None, *, question: str = "time") -> Choice:
+    """The cheapest rung of :data:`~cablesys.ladder.rungs.RUNGS` within the tolerance.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (its ``cable.segments`` are ignored: the ladder sets them).
+    tolerance : float or (float, float), optional
+        Relative error allowed on body motion (and tension extremes: twice it, or the pair's second).
+    question : {"time", "steady"}
+        "steady" when only the steady periodic amplitude is wanted: the frequency-domain rung is
+        then a candidate (it has no start-up transient).
+
+    Returns
+    -------
+    Choice
+        Rung, elements per section, the reason with its deciding numbers, the estimated errors.
+    """
+    tol = tolerances(scene, tolerance)
+    numbers = scene_numbers(scene)
+    response = est.linear_response(scene, numbers)
+    est.check_response(response)
+    errs = est.estimate_errors(scene, numbers, response)
+    deciding = (f"omega/omega_ax = {numbers.axial_ratio:.3g}, omega/omega_string = {numbers.string_ratio:.3g}, "
+                f"cable/body mass {numbers.mass_ratio:.3g}, weight {numbers.weight_ratio:.3g}, "
+                f"bow/chord static {numbers.static_bow:.2g} dynamic {numbers.dynamic_bow:.2g}, "
+                f"least tension (linear) {response.least_tension:.4g} N vs floor {numbers.tension_floor:.4g} N")
+    info = {"scene": numbers.as_dict(), "linear_response": dataclasses.asdict(response),
+            "estimates": {k: dict(v) for k, v in errs.items()}, "tolerance": {"body": tol[0], "tension": tol[1]}}
+    order = [r for r in RUNGS if r != "segmented" and (question == "steady" or r != "frequency")]
+    for name in order:
+        e = errs[name]
+        if _within(e, tol):
+            reason = (f"{name}: the cheapest rung within {tol[0]:.3g} (body) / {tol[1]:.3g} (tension); "
+                      f"{e['note']}; {deciding}")
+            return Choice(name, 1, reason, {"body": e["body"], "tension": e["tension"]}, info)
+    n = segments_for(errs, tol)
+    e = est.segmented_error(errs, n)
+    why = errs["wang"]["note"] if not _within(errs["wang"], tol) else ""
+    reason = (f"segmented with N = {n}: the straight cable misses the tolerance ({why}, estimated body "
+              f"{errs['wang']['body']:.3g}, tension {errs['wang']['tension']:.3g}); N from its error scaling as "
+              f"N^-{est.ORDER:g}; {deciding}")
+    return Choice("segmented", n, reason, {"body": e["body"], "tension": e["tension"]}, info)
+
+
+def forced(scene: Scene, name: str, segments: int | None = None, tolerance=None) -> Choice:
+    """The Choice for a rung the user named, with its estimate (``validity`` note when it misses)."""
+    tol = tolerances(scene, tolerance)
+    numbers = scene_numbers(scene)
+    response = est.linear_response(scene, numbers)
+    errs = est.estimate_errors(scene, numbers, response)
+    info = {"scene": numbers.as_dict(), "linear_response": dataclasses.asdict(response),
+            "estimates": {k: dict(v) for k, v in errs.items()}, "tolerance": {"body": tol[0], "tension": tol[1]}}
+    if name == "segmented":
+        n = segments or segments_for(errs, tol)
+        e = est.segmented_error(errs, n)
+    else:
+        n, e = 1, errs[name]
+    ok = _within(e, tol)
+    reason = f"{name} requested by the user" + ("" if ok else f"; OUTSIDE its validity at this tolerance: {e['note']}")
+    return Choice(name, n, reason, {"body": e["body"], "tension": e["tension"]}, dict(info, valid=ok))

@@ -1,0 +1,101 @@
+"""The numbers that decide the rung: what the scene and its linearization say about the cable.
+
+All closed forms, cheap (no time integration): forcing frequencies, Wang's axial frequency
+(a spring with the body and a third of the cable, Wang 1971 eq. 22-25), the first string mode of
+the cable under its mean tension, cable-to-body mass and weight ratios, and the bowing of the cable
+under current and under the drag of its own motion against its chord (a uniformly loaded string:
+sag q L^2 / (8 T)).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ..model.quasistatic import axial_frequencies
+from ..scene import Scene
+
+
+@dataclasses.dataclass(frozen=True)
+class SceneNumbers:
+    """Deciding numbers of a scene (SI; ratios dimensionless)."""
+
+    forcing: tuple                 # ((omega rad/s, amplitude m), ...) of the top motion and waves
+    omega_forcing: float           # highest forcing frequency with a non-negligible amplitude
+    single_frequency: bool         # sinusoids at one frequency only (a periodic steady state exists)
+    omega_axial: float             # lowest stretch frequency of the sections (rad/s)
+    axial_ratio: float             # omega_forcing / omega_axial
+    omega_string: float            # first string mode of the longest section (rad/s)
+    string_ratio: float            # omega_forcing / omega_string
+    mass_ratio: float              # cable mass (with added mass) / body virtual mass
+    weight_ratio: float            # cable weight / body weight in water
+    static_bow: float              # current-drag sag / chord
+    dynamic_bow: float             # sag under the drag of the top's motion / chord
+    tension_static: float          # body-end tension hanging at rest (N)
+    tension_floor: float           # least tension the cable supports (N)
+
+    def as_dict(self) -> dict:
+        d = dataclasses.asdict(self)
+        d["forcing"] = [list(f) for f in self.forcing]
+        return d
+
+
+def forcing_components(scene: Scene) -> list[tuple[float, float]]:
+    """(omega, amplitude) of every sinusoid of the top motion, every wave (sigma = sqrt(2 pi g / lambda),
+    Wang 1971 eq. 26) and the sampled series (its spectrum's components above 1 % of the largest)."""
+    top = scene.top_motion
+    comps = [(s.frequency, abs(s.amplitude)) for s in top.x + top.y if s.amplitude != 0.0]
+    g = scene.environment.gravity
+    comps += [(math.sqrt(2 * math.pi * g / w.length), w.amplitude) for w in scene.environment.waves if w.amplitude > 0]
+    if top.series is not None:
+        t = np.asarray(top.series.times)
+        dt = float(np.min(np.diff(t)))
+        grid = np.arange(t[0], t[-1], dt)
+        for y in (top.series.x, top.series.y):
+            v = np.interp(grid, t, y)
+            spec = np.abs(np.fft.rfft(v - v.mean())) * 2 / max(len(v), 1)
+            om = 2 * np.pi * np.fft.rfftfreq(len(v), dt)
+            if spec.size > 1 and spec.max() > 0:
+                keep = spec > 0.01 * spec.max()
+                comps += [(float(o), float(a)) for o, a in zip(om[keep], spec[keep]) if o > 0]
+    return comps
+
+
+def scene_numbers(scene: Scene) -> SceneNumbers:
+    """The deciding numbers of ``scene`` (see the module docstring)."""
+    comps = forcing_components(scene)
+    amp_max = max((a for _, a in comps), default=0.0)
+    significant = [w for w, a in comps if a >= 0.01 * amp_max]
+    w_f = max(significant, default=0.0)
+    single = scene.top_motion.series is None and len({round(w, 12) for w, _ in comps}) == 1
+    env = scene.environment
+    rho = env.density
+    w_ax = min(axial_frequencies(scene))
+    w_str, mass_r, weight_r, bow_s, bow_d = math.inf, 0.0, 0.0, 0.0, 0.0
+    a_top = math.hypot(sum(abs(s.amplitude) for s in scene.top_motion.x), sum(abs(s.amplitude) for s in scene.top_motion.y))
+    below = 0.0
+    t_static = None
+    for sec in reversed(scene.sections):
+        c, b = sec.cable, sec.body
+        t_mean = below + b.weight + 0.5 * c.total_weight
+        if t_static is None:
+            t_static = b.weight
+        m_v = c.mass_per_length + c.added_mass_factor * rho * math.pi * c.diameter**2 / 4
+        if t_mean > 0 and m_v > 0:
+            w_str = min(w_str, math.pi / c.length * math.sqrt(t_mean / m_v))
+        mass_r = max(mass_r, m_v * c.length / b.mass_x)
+        weight_r = max(weight_r, c.total_weight / max(abs(b.weight), 1e-300))
+        u_rel = max(abs(s - env.system_speed) for s in env.current_speeds)
+        q_s = 0.5 * rho * c.cd_normal * c.diameter * u_rel**2
+        q_d = 0.5 * rho * c.cd_normal * c.diameter * (w_f * a_top) ** 2
+        if t_mean > 0:
+            bow_s = max(bow_s, q_s * c.length / (8 * t_mean))
+            bow_d = max(bow_d, q_d * c.length / (8 * t_mean))
+        below += b.weight + c.total_weight
+    floor = max(s.cable.tension_floor for s in scene.sections)
+    return SceneNumbers(forcing=tuple(comps), omega_forcing=w_f, single_frequency=single, omega_axial=w_ax,
+                        axial_ratio=w_f / w_ax, omega_string=w_str, string_ratio=w_f / w_str if w_str > 0 else math.inf,
+                        mass_ratio=mass_r, weight_ratio=weight_r, static_bow=bow_s, dynamic_bow=bow_d,
+                        tension_static=float(t_static), tension_floor=float(floor if math.isfinite(floor) else -1e300))

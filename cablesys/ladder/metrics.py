@@ -1,0 +1,49 @@
+"""How far one run is from another: the errors the model tolerance speaks of.
+
+Over a statistics window (default: the last 5 forcing periods, at most the last half of the run):
+``body``, the largest difference of the body's x and y amplitudes (half peak-to-peak) relative to
+the larger reference amplitude; ``tension``, the largest difference of the top and body-end tension
+extremes relative to the largest reference tension.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+BODY = ("x_b", "y_b")
+TENSIONS = ("tension_top", "tension_bottom")
+
+
+def window(time: np.ndarray, period: float | None, n_periods: int = 5) -> np.ndarray:
+    """Boolean mask of the statistics window: the last ``n_periods`` periods, at most the last half."""
+    t0, t1 = float(time[0]), float(time[-1])
+    span = 0.5 * (t1 - t0) if period is None else min(n_periods * period, 0.5 * (t1 - t0))
+    return time >= t1 - span - 1e-12
+
+
+def statistics(result, period: float | None) -> dict:
+    """Body amplitudes and tension extremes of ``result`` (a TimeResult) over the window."""
+    w = window(np.asarray(result.time), period)
+    out = {}
+    for k in BODY:
+        y = np.asarray(result[k])[w]
+        out[f"{k}_amplitude"] = 0.5 * float(y.max() - y.min())
+    for k in TENSIONS:
+        y = np.asarray(result[k])[w]
+        out[f"{k}_max"], out[f"{k}_min"] = float(y.max()), float(y.min())
+    return out
+
+
+def errors(stats: dict, reference: dict) -> dict:
+    """{"body": e, "tension": e} of ``stats`` against ``reference`` (both from :func:`statistics`)."""
+    a_ref = max(reference[f"{k}_amplitude"] for k in BODY)
+    t_ref = max(reference[f"{k}_max"] for k in TENSIONS)
+    body = max(abs(stats[f"{k}_amplitude"] - reference[f"{k}_amplitude"]) for k in BODY) / max(a_ref, 1e-300)
+    tension = max(abs(stats[f"{k}_{e}"] - reference[f"{k}_{e}"]) for k in TENSIONS for e in ("max", "min")) / max(t_ref, 1e-300)
+    return {"body": float(body), "tension": float(tension)}
+
+
+def forcing_period(scene) -> float | None:
+    """The longest period of the top-motion sinusoids (None without sinusoids)."""
+    freqs = [s.frequency for s in scene.top_motion.x + scene.top_motion.y if s.amplitude != 0.0]
+    return 2 * np.pi / min(freqs) if freqs else None
