@@ -14,6 +14,7 @@ import signal
 import sys
 
 from .errors import CablesysError
+from .messages import casadi_messages_to_log
 
 # module -> provides register(subparsers); order is the order in --help
 COMMAND_MODULES = (
@@ -46,7 +47,8 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return 2
     try:
-        with _sigterm_as_interrupt():
+        # CasADi's solver warnings (KINSOL retries of a run that succeeds) go to the log unless -v
+        with _sigterm_as_interrupt(), casadi_messages_to_log(args.verbose):
             return int(args.func(args) or 0)
     except CablesysError as err:
         print(f"cablesys {args.command}: error: {err}", file=sys.stderr)
