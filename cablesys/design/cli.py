@@ -31,7 +31,52 @@ def load(path) -> tuple:
     if table is None:
         raise located(ParameterError("design", "missing", "the scene file needs a [design] table with ae_bounds "
                                      "and damping_bounds"), source)
-    return scene_from_dict(data, source), settings_from_dict(table, source)
+    scene = scene_from_dict(data, source)
+    sea = scene.top_motion.spectrum
+    if sea is not None:          # the scene's sea is the design sea unless [design] names another
+        table = dict(table)
+        for key, value in (("hs", sea.hs), ("tp", sea.tp), ("gamma", sea.gamma if sea.kind == "jonswap" else 1.0)):
+            table.setdefault(key, value)
+    return scene, settings_from_dict(table, source)
+
+
+_WHY = {
+    "Maximum_Iterations_Exceeded": "hit the iteration limit (raise [design] max_iter, or loosen tol)",
+    "Infeasible_Problem_Detected": "found no point meeting the constraints from this start",
+    "Restoration_Failed": "lost feasibility and could not restore it (a start too far from the feasible set)",
+    "Search_Direction_Becomes_Too_Small": "stalled: the objective is flat along the bounds",
+    "Invalid_Number_Detected": "met a non-finite objective or constraint (AE at or below the reference tension?)",
+    "Error_In_Step_Computation": "could not compute a step (ill-conditioned near a bound)",
+}
+
+
+def failed_starts(result) -> list[dict]:
+    """The IPOPT solves that did not converge: start, outer pass, status and why."""
+    from .solve import OK_STATUS
+    out = []
+    for k, r in enumerate(result.runs):
+        if r["status"] not in OK_STATUS:
+            out.append({"solve": k + 1, "outer": r["outer"], "status": r["status"], "iterations": r["iterations"],
+                        "objective": r["objective"], "max_violation": r["max_violation"],
+                        "why": _WHY.get(r["status"], "IPOPT did not converge")})
+    return out
+
+
+def write_figures(scene, settings, result, outdir) -> list[str]:
+    """design_rao.png (before/after), design_objective.png, design_margins.png."""
+    from ..model import build_model
+    from .plots import plot_constraint_margins, plot_objective_history, plot_rao_before_after
+    model = build_model(scene)
+    written = []
+    for name, fn in (("design_rao.png", lambda f: plot_rao_before_after(
+                          model, model.parameters(scene), result.parameters, settings, f,
+                          title=f"{scene.name}: RAOs before and after the design")),
+                     ("design_objective.png", lambda f: plot_objective_history(result, f)),
+                     ("design_margins.png", lambda f: plot_constraint_margins(result, f))):
+        with outdir.writing(name) as tmp:
+            fn(tmp)
+        written.append(name)
+    return written
 
 
 def run(args) -> int:
@@ -45,15 +90,23 @@ def run(args) -> int:
     with outdir.start(scene=scene.name):
         result = design(scene, settings)
         out = outdir.path
-        doc = {"scene": scene.name, **result.to_dict()}
+        failed = failed_starts(result)
+        doc = {"scene": scene.name, **result.to_dict(), "failed_starts": failed}
         outdir.write_text("design.json", json.dumps(doc, indent=2, default=float) + "\n")
+        figures = write_figures(scene, settings, result, outdir)
         outdir.finish("success" if result.converged else "failed", message=str(result.status))
     w = sys.stdout.write
-    w(f"{scene.name}\n{'converged' if result.converged else 'NOT converged'} ({result.status}); "
+    w(f"{scene.name}\n{'converged' if result.converged else 'NOT converged'} (best solve: {result.status}); "
       f"{result.nlp_iterations} IPOPT iterations in {result.nlp_wall_s:.2f} s (total {result.total_wall_s:.2f} s)\n")
+    w(f"sea: JONSWAP Hs {settings.hs:g} m, Tp {settings.tp:g} s, gamma {settings.gamma:g}\n")
+    if failed:
+        w(f"{len(failed)} of {len(result.runs)} solves failed:\n")
+        for f in failed:
+            w(f"  solve {f['solve']} (outer pass {f['outer'] + 1}): {f['status']} after {f['iterations']} "
+              f"iterations, objective {f['objective']:.5g}: {f['why']}\n")
     w(f"objective ({result.objective_kind}): {result.objective:.6g}\n")
     for name, v, lo, hi in zip(result.variable_names, result.values, result.lower, result.upper):
         w(f"  {name:<20s} {v:12.5g}   [{lo:.4g}, {hi:.4g}]\n")
     w("constraint margins (>= 0 met): " + ", ".join(f"{k} {v:+.3g}" for k, v in result.margins.items()) + "\n")
-    w(f"active: {', '.join(result.active) or 'none'}\nwrote {out / 'design.json'}\n")
+    w(f"active: {', '.join(result.active) or 'none'}\nwrote {out / 'design.json'} and {', '.join(figures)}\n")
     return 0 if result.converged else 1

@@ -94,3 +94,63 @@ def example_settings(**changes) -> DesignSettings:
                 strain_limit=(0.10, 0.10), working_load=(1.5e4, 1.5e4), n_sigma=3.0, n_starts=4)
     base.update(changes)
     return DesignSettings(**base)
+
+
+def design_template(scene=None) -> str:
+    """A commented ``[design]`` table for ``cablesys scene --example --design``, sized to ``scene``
+    (default: the Dale scene): AE bounds 0.1-10 x the scene's AE (above 2 x its reference tension),
+    C_I bounds 1e-4-0.1 s x AE, working load 5 x the static top tension, and the scene's sea, or a
+    sea scaled to it (Hs = 5 % of the cable length up to 2.5 m, Tp the forcing period)."""
+    import math
+
+    from ..scene import default_scene
+    scene = scene or default_scene()
+    secs = scene.sections
+    n = len(secs)
+    below, top_tension = 0.0, []
+    for s in reversed(secs):
+        below += s.body.weight + s.cable.total_weight
+        top_tension.insert(0, below)
+    sea = scene.top_motion.spectrum
+    freqs = [t.frequency for t in scene.top_motion.x + scene.top_motion.y]
+    if sea is not None:
+        hs, tp, gamma = sea.hs, sea.tp, sea.gamma
+    else:
+        hs = min(2.5, 0.05 * sum(s.cable.length for s in secs))
+        tp = 2 * math.pi / min(freqs) if freqs else 8.0
+        gamma = 3.3
+    wp = 2 * math.pi / tp
+
+    def pairs(f):
+        return "[" + ", ".join(f"[{a:.3g}, {b:.3g}]" for a, b in (f(s) for s in secs)) + "]"
+
+    ae = pairs(lambda s: (max(0.1 * s.cable.ae, 2 * s.cable.tension_ref), 10 * s.cable.ae))
+    ci = pairs(lambda s: (1e-4 * s.cable.ae, 0.1 * s.cable.ae))
+    wl = "[" + ", ".join(f"{5 * t:.4g}" for t in top_tension) + "]"
+    lines = [
+        "",
+        "# ---- isolation design: `cablesys design this.toml --out design/` --------------------------",
+        "# Minimizes the lower body's heave in the sea below over each section's AE and C_I within the",
+        "# bounds, with no-slack, working-load and static-strain constraints (Wang 1971 p. 33; IPOPT).",
+        "# Writes design.json and figures (RAOs before/after, objective history, constraint margins).",
+        "[design]",
+        f"ae_bounds = {ae}   # [N] (AE)_r of each section, [lower, upper], top first",
+        f"damping_bounds = {ci}   # [N s] Voigt damping C_I of each section (eq. 46)",
+        'objective = "significant"   # significant: 2 sigma of y_b in the sea | rao_band: mean |y_b/y_s| over band',
+        f"hs = {hs:.4g}   # [m] JONSWAP significant wave height (default: the scene's [top_motion.spectrum])",
+        f"tp = {tp:.4g}   # [s] peak period",
+        f"gamma = {gamma:g}   # peak enhancement (1: Pierson-Moskowitz)",
+        f"omega_min = {0.3 * wp:.3g}   # [rad/s] frequency grid of the spectral integrals",
+        f"omega_max = {4 * wp:.3g}",
+        "n_omega = 60",
+        f"band = [{0.6 * wp:.3g}, {1.6 * wp:.3g}]   # [rad/s] band of the rao_band objective",
+        f"strain_limit = [{', '.join(['0.1'] * n)}]   # static stretch u_0 / l_0 of each section",
+        f"working_load = {wl}   # [N] mean + n_sigma std of the tension of each section (5 x static here)",
+        "n_sigma = 3.0   # slack: mean - n_sigma std > tension floor; peak: mean + n_sigma std < working load",
+        "n_starts = 4   # IPOPT starts (the scene's values + a Latin hypercube)",
+        "outer_iterations = 6   # passes of the drag-linearization fixed point",
+        "max_iter = 300   # IPOPT iterations per start",
+        "tol = 1e-8   # IPOPT tolerance",
+        "# intermediate_mass_bounds = [500.0, 3000.0]   # [kg] also tune body 1's heave virtual mass (dual isolation)",
+    ]
+    return "\n".join(lines) + "\n"
