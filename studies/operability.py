@@ -75,8 +75,7 @@ def plot(rows, hs, tp, path, title):
     G = np.array([r["governing"] for r in rows], dtype=object).reshape(len(hs), len(tp))
     fig, ax = plt.subplots(figsize=(max(7.5, 2.6 + 0.8 * len(tp)), max(4.2, 1.6 + 0.45 * len(hs))))
     lim = max(0.05, float(np.nanmax(np.abs(M))) if np.isfinite(M).any() else 1.0)
-    cmap = plt.get_cmap("RdYlGn").copy()
-    cmap.set_bad("0.8")
+    cmap = plt.get_cmap("RdYlGn").with_extremes(bad="0.8")
     im = ax.pcolormesh(np.ma.masked_invalid(M), cmap=cmap, norm=TwoSlopeNorm(0.0, -lim, lim))
     for (i, j), m in np.ndenumerate(M):
         txt = ("PASS" if A[i, j] else "FAIL") + (f"\n{G[i, j]}" if not A[i, j] and G[i, j] else "")

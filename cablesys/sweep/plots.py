@@ -46,14 +46,31 @@ def _ticks(ax, axis: str, values, n_max: int = 8, offset: float = 0.0):
 
 
 def plot_metric(ds, name: str, path) -> Path:
-    """One metric of a sweep: line(s) for one dimension, heat map(s) for two or more."""
+    """Write :func:`figure_metric` of ``name`` to ``path`` (PNG)."""
+    return save_figure(figure_metric(ds, name), path)
+
+
+def figure_metric(ds, name: str):
+    """One metric of a sweep as a matplotlib figure: a line for one dimension, heat map(s) for two or more.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep result (:func:`cablesys.sweep`).
+    name : str
+        A numeric metric of ``ds``.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     import matplotlib.pyplot as plt
     da = ds[name].where(ds["status"] == "ok")
     dims = list(da.dims)
     held = {d: 0 for d in dims[3:]}
     if held:
         da = da.isel(held)
-    title = f"{ds.attrs.get('scene', '')}: {name} ({ds.attrs.get('analysis', '')})"
+    title = f"{ds.attrs.get('scene', '')}\n{name} ({ds.attrs.get('analysis', '')} sweep)"
     if held:
         title += " at " + ", ".join(f"{d} = {ds[d].values[0]:.3g}" for d in held)
     if len(dims) == 1:
@@ -66,9 +83,11 @@ def plot_metric(ds, name: str, path) -> Path:
             ax.set_xscale("log")
         if x.dtype.kind != "f":
             _ticks(ax, "x", x)
-        ax.set(xlabel=_label(ds, d), ylabel=_label(ds, name), title=title)
+        ax.set(xlabel=_label(ds, d), ylabel=_label(ds, name))
+        ax.set_title(title, fontsize=9)
         ax.grid(alpha=0.3)
-        return save_figure(fig, path)
+        fig.tight_layout()
+        return fig
     panels = [None] if len(dims) == 2 else list(range(min(6, da.sizes[dims[2]])))
     ncol = min(3, len(panels))
     nrow = -(-len(panels) // ncol)
@@ -77,8 +96,7 @@ def plot_metric(ds, name: str, path) -> Path:
     axes, cbar_axes = grid_axes[:, :ncol], grid_axes[:, ncol]
     vals = da.values[np.isfinite(da.values)]
     vmin, vmax = (float(vals.min()), float(vals.max())) if vals.size else (0.0, 1.0)
-    cmap = plt.get_cmap("viridis").copy()
-    cmap.set_bad("0.85")
+    cmap = plt.get_cmap("viridis").with_extremes(bad="0.85")
     yd, xd = dims[0], dims[1]
     for ax, k in zip(axes.ravel(), panels):
         z = da.values if k is None else da.isel({dims[2]: k}).values
@@ -99,12 +117,28 @@ def plot_metric(ds, name: str, path) -> Path:
     fig.colorbar(im, cax=cbar_axes[0], label=_label(ds, name))
     for ax in cbar_axes[1:]:
         ax.set_visible(False)
-    fig.suptitle(title, fontsize=10)
-    return save_figure(fig, path)
+    fig.suptitle(title, fontsize=9)
+    fig.tight_layout()
+    return fig
 
 
 def plot_sweep(ds, out, metrics=None) -> list:
-    """A PNG per metric in ``out`` (default: every plottable metric); returns the paths."""
+    """A PNG per metric in ``out``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep result.
+    out : path
+        Folder for the figures (created).
+    metrics : list of str, optional
+        Metrics to plot (default: :func:`plottable`).
+
+    Returns
+    -------
+    list of Path
+        The PNG files written.
+    """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     names = metrics or plottable(ds)
