@@ -31,7 +31,7 @@ LAYERS = [
     ("model", ("cablesys.model",)),
     ("statics", ("cablesys.statics",)),
     ("analyses", ("cablesys.simulate", "cablesys.linear", "cablesys.slack", "cablesys.towed")),
-    ("design", ("cablesys.design", "cablesys.ladder", "cablesys.verdict", "cablesys.examples")),
+    ("design", ("cablesys.design", "cablesys.ladder", "cablesys.verdict", "cablesys.examples", "cablesys.export")),
     ("workflows", ("cablesys.sweep",)),
     ("plots", ("cablesys.plots",)),
     ("cli", ("cablesys.cli", "cablesys.__main__")),
