@@ -20,3 +20,32 @@ TO_SI = {
     "s": 1.0, "rad": 1.0,
     "knot": KNOT,
 }
+
+UNIT_SYSTEMS = ("SI", "fps")
+
+# output units: SI unit -> (factor multiplying the SI value, unit name) in the report's ft/lb/slug system
+FPS_OUT = {
+    "m": (1 / FT, "ft"), "N": (1 / LBF, "lbf"), "m/s": (1 / FT, "ft/s"), "m/s^2": (1 / FT, "ft/s^2"),
+    "kg": (1 / SLUG, "slug"), "N/m": (FT / LBF, "lbf/ft"), "m^2": (1 / FT**2, "ft^2"), "N s": (1 / LBF, "lbf s"),
+    "m/m": (1.0, "ft/ft"), "N^2 s/rad": (1 / LBF**2, "lbf^2 s/rad"), "m^2 s/rad": (1 / FT**2, "ft^2 s/rad"),
+}
+
+
+def output_unit(si_unit: str, system: str = "SI") -> tuple[float, str]:
+    """(factor, unit name) to show an SI quantity in ``system``: shown value = SI value x factor.
+
+    Parameters
+    ----------
+    si_unit : str
+        The SI unit of the quantity ("m", "N", "rad", "-", ...).
+    system : str
+        "SI" or "fps" (ft, lbf, slug, s; angles stay in rad).
+
+    Returns
+    -------
+    tuple of (float, str)
+        Units without an fps counterpart (rad, s, rad/s, dimensionless) keep factor 1.
+    """
+    if system == "fps" and si_unit in FPS_OUT:
+        return FPS_OUT[si_unit]
+    return 1.0, si_unit

@@ -1,0 +1,69 @@
+"""Time series out in the user's units (CSV) and self-describing netCDF (SI, conventions, the scene).
+
+A scene written in ft/lb/slug gets its CSV in those units; every column name carries its
+unit. The netCDF file stays SI (CF-style ``units`` and ``long_name`` on every variable) and
+stores the sign conventions and the whole scene as TOML text, so a run can be reproduced
+from its file alone (``cablesys.scene.scene_from_dict(tomllib.loads(ds.attrs["scene_toml"]))``).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .results import long_name_of, unit_of
+from .units import output_unit
+
+CONVENTIONS = {
+    "axes": "x horizontal, + to the right (the direction of +current and of wave travel); "
+            "y vertical, + downwards from the still surface (Wang 1971, Fig. 1)",
+    "phi": "cable angle from the vertical (rad); the cable's unit tangent is (-sin phi, cos phi), so a positive "
+           "phi puts the lower end at -x of the top",
+    "u": "stretch of the cable beyond its zero-tension length (m)",
+    "tension": "cable tension, + in tension (N); tension_top at the top end, tension_bottom at the body",
+    "top_motion": "x_s, y_s: prescribed top (ship / crane-tip) motion in the same axes",
+}
+
+
+def si_unit(label: str) -> str:
+    """The SI unit of a series label ("" when unknown); tension outputs in N."""
+    return unit_of(label) or ("N" if label.startswith("tension") else "")
+
+
+def series_table(result, system: str = "SI") -> tuple[list[str], np.ndarray]:
+    """(header, rows) of time and every series, converted to ``system``, ``name [unit]`` columns."""
+    head, cols = ["time [s]"], [np.asarray(result.time, float)]
+    for lbl in result.labels:
+        f, u = output_unit(si_unit(lbl), system)
+        head.append(f"{lbl} [{u or '-'}]")
+        cols.append(np.asarray(result[lbl], float) * f)
+    return head, np.column_stack(cols)
+
+
+def write_csv(result, path, system: str = "SI") -> Path:
+    """Write the series as CSV in ``system`` ("SI" or "fps"), the unit in every column name."""
+    head, rows = series_table(result, system)
+    np.savetxt(path, rows, delimiter=",", header=",".join(head), comments="", fmt="%.10g")
+    return Path(path)
+
+
+def to_dataset(result, *, scene_toml: str = "", scene_units: str = "SI"):
+    """The run as an ``xarray.Dataset`` (SI) with units, long names, conventions and the scene."""
+    ds = result.to_xarray()
+    for lbl in ds.data_vars:
+        ds[lbl].attrs.setdefault("units", si_unit(lbl))
+        if not ds[lbl].attrs.get("units"):
+            ds[lbl].attrs["units"] = si_unit(lbl) or "1"
+        ds[lbl].attrs.setdefault("long_name", long_name_of(lbl))
+    ds.attrs.update({f"convention_{k}": v for k, v in CONVENTIONS.items()})
+    if scene_toml:
+        ds.attrs["scene_toml"] = scene_toml
+        ds.attrs["scene_units_of_input"] = scene_units
+    return ds
+
+
+def write_netcdf(result, path, *, scene_toml: str = "", scene_units: str = "SI") -> Path:
+    """Write :func:`to_dataset` as netCDF3 (scipy backend: no netCDF C library needed)."""
+    to_dataset(result, scene_toml=scene_toml, scene_units=scene_units).to_netcdf(path, engine="scipy")
+    return Path(path)
