@@ -169,6 +169,19 @@ class CsvStream:
         self._fh.flush()
         self.rows += block.shape[0]
 
+    def discard(self) -> None:
+        """Close and remove the partial file (its rows are written again from a complete result).
+
+        Returns
+        -------
+        None
+        """
+        if self._fh is not None:
+            self._fh.close()
+            self._fh = None
+        with contextlib.suppress(FileNotFoundError):
+            self.partial.unlink()
+
     def close(self) -> Path | None:
         """Close and rename the stream to its final name; the final path (None if nothing was written).
 
@@ -280,6 +293,11 @@ class OutputDir:
             self.path.mkdir(parents=True, exist_ok=True)
         except OSError as err:
             raise ParameterError("--out", str(self.path), f"cannot be created ({err.strerror})") from None
+        old = self._read_manifest() or {}
+        stale = [*old.get("files", []), old.get("streaming"), *self.owned] if isinstance(old, dict) else list(self.owned)
+        for name in {n for n in stale if isinstance(n, str) and n and "/" not in n and n != MANIFEST}:
+            with contextlib.suppress(OSError):     # the previous set goes: no mix of old and new files
+                (self.path / name).unlink()
         self.manifest = {"command": self.command, "status": "running", "scene_hash": self.hash,
                          "started": _now(), "pid": os.getpid(), **info, "files": []}
         self._write_manifest()

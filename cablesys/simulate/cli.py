@@ -113,7 +113,7 @@ def _run(args) -> int:
     outdir = OutputDir(out, "run", scene, overwrite=args.overwrite, owned=RUN_FILES)   # --out checked here
     with outdir.start(scene=scene.name, scene_file=str(args.scene)):
         result = _simulate_into(outdir, scene, method=args.method, jit=args.jit, max_num_steps=args.max_steps)
-        summary = write_run(scene, result, outdir)
+        summary = write_run(scene, result, outdir, series_on_disk=True)
         outdir.finish(result.status, **summary)
     _print_summary(summary)
     print(f"wrote {out}/ ({', '.join(outdir.files)}, summary.json)")
@@ -134,7 +134,7 @@ def _simulate_into(outdir, scene, label: str = "", **kw):
     try:
         result = simulate(scene, on_block=stream.append, progress=_Progress(label), **kw)
     except RunInterrupted as err:
-        stream.close()
+        stream.discard()        # the interrupt may have cut a block short: write the record whole
         summary = write_run(scene, err.result, outdir, plot=False)
         outdir.finish("interrupted", **summary)
         print(f"interrupted: {err.result.message}; wrote {outdir.path}/ ({', '.join(outdir.files)})", file=sys.stderr)
@@ -143,7 +143,7 @@ def _simulate_into(outdir, scene, label: str = "", **kw):
     return result
 
 
-def write_run(scene, result, out, *, plot: bool = True) -> dict:
+def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = False) -> dict:
     """Write time series (CSV, netCDF) and the figure for one run; return its summary.
 
     Parameters
@@ -157,6 +157,8 @@ def write_run(scene, result, out, *, plot: bool = True) -> dict:
         manifest ``summary.json`` is finished here; with an ``OutputDir`` the caller finishes it.
     plot : bool
         Also draw ``timeseries.png``.
+    series_on_disk : bool
+        ``timeseries.csv`` was already streamed complete (do not write it again).
 
     Returns
     -------
@@ -169,7 +171,7 @@ def write_run(scene, result, out, *, plot: bool = True) -> dict:
             summary = write_run(scene, result, od, plot=plot)
             od.finish(getattr(result, "status", "success" if result.success else "failed"), **summary)
         return summary
-    if "timeseries.csv" not in out.files or not out.file("timeseries.csv").exists():
+    if not series_on_disk:
         with out.writing("timeseries.csv") as tmp:
             result.to_csv(tmp)
     with out.writing("timeseries.nc") as tmp:
@@ -242,7 +244,7 @@ def _run_dale_table(args, out: Path) -> int:
                 tag = f" (omega/omega_n = {ratio:g})"
                 if ratio == 1.0:     # the run whose series, summary and plot go to --out
                     r = _simulate_into(outdir, scene, tag, simulator=sim)
-                    summary = write_run(scene, r, outdir)
+                    summary = write_run(scene, r, outdir, series_on_disk=True)
                     outdir.manifest.update(summary)
                 else:
                     r = simulate(scene, simulator=sim, progress=_Progress(tag))

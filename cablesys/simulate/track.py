@@ -39,6 +39,9 @@ class Track:
         self.n += X.shape[1]
 
     def flush(self, force: bool = False) -> None:
+        if not force and getattr(self.sim, "_flag", None) is not None and self.sim._flag.hit:
+            # the signal came while CasADi evaluated a plain function, which swallows the exception
+            raise KeyboardInterrupt("interrupt noted during a CasADi call")
         now = _time.perf_counter()
         if not force and now - self.t_flush < self.FLUSH_S:
             return
