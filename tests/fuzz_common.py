@@ -11,6 +11,7 @@ allowed outcomes of reading it are a valid object or a named :class:`CablesysErr
 
 from __future__ import annotations
 
+import atexit
 import dataclasses
 import json
 import math
@@ -21,6 +22,27 @@ from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 
 SCALE = float(os.environ.get("CABLESYS_FUZZ_EXAMPLES", "1"))
+# measurement mode (CABLESYS_FUZZ_REPORT=file.json): tally outcomes per entry point instead of
+# stopping at the first raw exception, and write the counts and the slowest example at exit
+REPORT = os.environ.get("CABLESYS_FUZZ_REPORT")
+TALLY: dict = {}
+
+
+def tally(entry: str, outcome: str, seconds: float) -> None:
+    """Count one outcome ('result', 'named error', 'raw: <type>', ...) of an entry point."""
+    t = TALLY.setdefault(entry, {"examples": 0, "outcomes": {}, "max_seconds": 0.0})
+    t["examples"] += 1
+    t["outcomes"][outcome] = t["outcomes"].get(outcome, 0) + 1
+    t["max_seconds"] = max(t["max_seconds"], round(seconds, 2))
+
+
+def _write_report():
+    if REPORT and TALLY:
+        with open(REPORT, "w") as f:
+            json.dump(TALLY, f, indent=1, sort_keys=True)
+
+
+atexit.register(_write_report)
 
 
 def fuzz_settings(n: int):

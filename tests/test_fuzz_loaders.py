@@ -7,11 +7,12 @@ exception, and nothing non-finite accepted as a valid input.
 
 import math
 import tempfile
+import time
 import tomllib
 from pathlib import Path
 
 import pytest
-from fuzz_common import dumps, encoded, fuzz_settings, mutated, nonfinite_fields
+from fuzz_common import REPORT, dumps, encoded, fuzz_settings, mutated, nonfinite_fields, tally
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -86,11 +87,20 @@ def _write(data: bytes, suffix: str) -> Path:
 def _load(loader, data: bytes, suffix: str):
     """loader(file) or None for a named error; any other exception fails the test."""
     path = _write(data, suffix)
+    entry, t0 = f"load {loader.__module__}", time.perf_counter()
     try:
-        return loader(path)
+        out = loader(path)
+        tally(entry, "result", time.perf_counter() - t0)
+        return out
     except CablesysError as err:
         assert str(err), "a named error has a message"
+        tally(entry, "named error", time.perf_counter() - t0)
         return None
+    except Exception as err:
+        tally(entry, f"raw {type(err).__name__}", time.perf_counter() - t0)
+        if REPORT:
+            return None
+        raise
     finally:
         path.unlink()
 
