@@ -23,9 +23,9 @@ Conventions (stated once, used by ``rao``, the statistics and the tests):
 from __future__ import annotations
 
 import csv
+import io
 import dataclasses
 import math
-from pathlib import Path
 
 import numpy as np
 
@@ -169,11 +169,11 @@ class MotionRAO:
 
 
 def _read_rao_csv(path) -> dict:
+    from ..reader import read_text          # UTF-8 (BOM accepted), named decode errors
     try:
-        with Path(path).open(newline="") as fh:
-            rows = list(csv.DictReader(fh))
-    except OSError as err:
-        raise ParameterError("top_motion.rao.file", str(path), f"cannot be read ({err.strerror})") from None
+        rows = list(csv.DictReader(io.StringIO(read_text(path, "top_motion.rao.file"), newline="")))
+    except csv.Error as err:
+        raise ParameterError("top_motion.rao.file", str(path), f"cannot be parsed as CSV ({err})") from None
     cols = MotionRAO._COLUMNS
     if not rows or any(c not in rows[0] for c in ("omega", "heave_amplitude")):
         raise ParameterError("top_motion.rao.file", str(path), f"needs a header with columns {', '.join(cols)}")
