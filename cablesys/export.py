@@ -25,6 +25,9 @@ CONVENTIONS = {
     "top_motion": "x_s, y_s: prescribed top (ship / crane-tip) motion in the same axes",
 }
 
+LONG_NAMES = {"tension_top": "cable tension at the top (ship) end of the section",
+              "tension_bottom": "cable tension at the body end of the section"}
+
 
 def si_unit(label: str) -> str:
     """The SI unit of a series label ("" when unknown); tension outputs in N."""
@@ -55,7 +58,8 @@ def to_dataset(result, *, scene_toml: str = "", scene_units: str = "SI"):
         ds[lbl].attrs.setdefault("units", si_unit(lbl))
         if not ds[lbl].attrs.get("units"):
             ds[lbl].attrs["units"] = si_unit(lbl) or "1"
-        ds[lbl].attrs.setdefault("long_name", long_name_of(lbl))
+        ds[lbl].attrs["long_name"] = LONG_NAMES.get(lbl.rstrip("_0123456789"), None) or ds[lbl].attrs.get(
+            "long_name") or long_name_of(lbl)
     ds.attrs.update({f"convention_{k}": v for k, v in CONVENTIONS.items()})
     if scene_toml:
         ds.attrs["scene_toml"] = scene_toml
@@ -67,3 +71,13 @@ def write_netcdf(result, path, *, scene_toml: str = "", scene_units: str = "SI")
     """Write :func:`to_dataset` as netCDF3 (scipy backend: no netCDF C library needed)."""
     to_dataset(result, scene_toml=scene_toml, scene_units=scene_units).to_netcdf(path, engine="scipy")
     return Path(path)
+
+
+def units_of_file(path) -> str:
+    """The ``units`` a scene file is written in ("SI" when absent or unreadable)."""
+    import tomllib
+    try:
+        units = tomllib.loads(Path(path).read_text(encoding="utf-8-sig")).get("units", "SI")
+    except (OSError, ValueError):
+        return "SI"
+    return units if units in ("SI", "fps") else "SI"

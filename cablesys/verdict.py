@@ -143,14 +143,14 @@ def passed(verdict: dict) -> bool:
 
 def format_table(verdict: dict, scale=None) -> list[str]:
     """Console lines: criterion, value, limit, margin and PASS/FAIL. ``scale(unit) -> (factor, name)``
-    converts SI values for display."""
+    converts SI values for display (shown = SI x factor, e.g. :func:`cablesys.units.output_unit`)."""
     if not verdict:
         return ["verdict: no [limits] given"]
     lines = [f"{'criterion':<14} {'value':>12} {'limit':>12} {'margin':>8}  result"]
     for name, v in verdict.items():
         f, u = scale(v["unit"]) if scale else (1.0, v["unit"])
         unit = "" if u == "-" else f" {u}"
-        val, lim = v["value"] / f, v["limit"] / f
+        val, lim = v["value"] * f, v["limit"] * f
         lines.append(f"{name:<14} {val:>12.5g} {lim:>12.5g} {v['margin']:>+8.1%}  {'PASS' if v['pass'] else 'FAIL'}"
                      f"{unit and '  [' + unit.strip() + ']'}")
     lines.append("verdict: " + ("PASS" if passed(verdict) else "FAIL"))
@@ -166,14 +166,20 @@ def _unit(label: str) -> str:
     return unit_of(label) or ("N" if label.startswith("tension") else "-")
 
 
+def group_by_quantity(stats: dict) -> dict:
+    """{"force_N": {label: ...}, "length_m": {...}}: per-label entries grouped by SI quantity."""
+    grouped: dict = {}
+    for lbl, s in stats.items():
+        grouped.setdefault(QUANTITY.get(_unit(lbl), "other"), {})[lbl] = s
+    return grouped
+
+
 def report(scene, result) -> dict:
     """``summary.json`` entries of a run: ``statistics`` grouped by quantity (SI units in the group
     names), ``verdict`` against ``scene.limits`` and the slack/snap ``warnings``."""
     limits = getattr(scene, "limits", None)
     stats = run_statistics(result, limits)
-    grouped: dict = {}
-    for lbl, s in stats.items():
-        grouped.setdefault(QUANTITY.get(_unit(lbl), "other"), {})[lbl] = s
+    grouped = group_by_quantity(stats)
     mask = statistics_window(result.time, limits)
     window = [float(result.time[mask][0]), float(result.time[mask][-1])]
     return {"statistics": {"window_s": window, "exposure_s": getattr(limits, "exposure", None) or window[1] - window[0],
@@ -181,19 +187,21 @@ def report(scene, result) -> dict:
             "verdict": evaluate(limits, stats), "warnings": warnings_of(result)}
 
 
-def format_statistics(statistics: dict) -> list[str]:
-    """Console lines of the ``statistics`` entry of :func:`report` (SI)."""
+def format_statistics(statistics: dict, system: str = "SI") -> list[str]:
+    """Console lines of the ``statistics`` entry of :func:`report`, shown in ``system`` (SI or fps)."""
+    from .units import output_unit
     lines = []
     if "window_s" in statistics:
         w = statistics["window_s"]
         lines.append(f"statistics over t = {w[0]:.4g} .. {w[1]:.4g} s; most probable extremes for "
                      f"{statistics['exposure_s']:.5g} s")
-    lines.append(f"{'output':<16} {'mean':>11} {'std':>10} {'min':>11} {'max':>11} {'MPM max':>11} {'Tz s':>7}")
+    lines.append(f"{'output':<18} {'mean':>11} {'std':>10} {'min':>11} {'max':>11} {'MPM max':>11} {'Tz s':>7}")
     for group, rows in statistics.items():
         if not isinstance(rows, dict):
             continue
-        unit = group.split("_", 1)[1].replace("_", "/") if "_" in group else ""
+        f, unit = output_unit(group.split("_", 1)[1].replace("_", "/") if "_" in group else "", system)
         for lbl, s in rows.items():
-            lines.append(f"{lbl + ' [' + unit + ']':<16} {s['mean']:>11.5g} {s['std']:>10.4g} {s['min']:>11.5g} "
-                         f"{s['max']:>11.5g} {s['most_probable_max']:>11.5g} {s['zero_upcrossing_period_s']:>7.3g}")
+            lines.append(f"{lbl + ' [' + unit + ']':<18} {s['mean'] * f:>11.5g} {s['std'] * f:>10.4g} "
+                         f"{s['min'] * f:>11.5g} {s['max'] * f:>11.5g} {s['most_probable_max'] * f:>11.5g} "
+                         f"{s['zero_upcrossing_period_s']:>7.3g}")
     return lines

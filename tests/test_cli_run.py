@@ -31,7 +31,7 @@ def test_run_scene_writes_series_summary_and_plot(tmp_path):
     assert summary["amplitudes_m"]["y_b"] == pytest.approx(2.5 * 0.0254, rel=0.02)
     assert summary["tension_min_N"] > 0
     header = (out / "timeseries.csv").read_text().splitlines()[0]
-    assert header.startswith("time [s],phi [rad],phi_rate [rad/s],u [m]")
+    assert header.startswith("time [s],phi [rad],phi_rate [rad/s],u [ft]")    # units out as in: an fps scene
     import xarray as xr
     ds = xr.open_dataset(out / "timeseries.nc", engine="scipy")
     assert ds["x_b"].attrs["units"] == "m" and ds.sizes["time"] == 401

@@ -25,6 +25,8 @@ def register(sub) -> None:
     p.add_argument("--duration", type=float, default=None, help="simulated time in s (overrides the scene)")
     p.add_argument("--jit", action="store_true", help="compile the model with the C compiler (faster long runs, ~2 s build)")
     p.add_argument("--strict", action="store_true", help="exit with status 3 when a criterion of the scene's [limits] fails")
+    p.add_argument("--units", default=None, choices=("SI", "fps"),
+                   help="units of the console, CSV and figure (default: those of the scene file)")
     p.add_argument("--overwrite", action="store_true", help="replace results of another scene in --out")
     p.add_argument("--max-steps", type=int, default=None,
                    help="integrator step budget per output interval (default 100000); a run that needs more fails with a named message")
@@ -113,9 +115,11 @@ def _run(args) -> int:
     outdir = OutputDir(out, "run", scene, overwrite=args.overwrite, owned=RUN_FILES)   # --out checked here
     with outdir.start(scene=scene.name, scene_file=str(args.scene)):
         result = _simulate_into(outdir, scene, method=args.method, jit=args.jit, max_num_steps=args.max_steps)
-        summary = write_run(scene, result, outdir, series_on_disk=True)
+        from ..export import units_of_file
+        units = args.units or units_of_file(args.scene)
+        summary = write_run(scene, result, outdir, series_on_disk=units == "SI", units=units)
         outdir.finish(result.status, **summary)
-    _print_summary(summary)
+    _print_summary(summary, units)
     print(f"wrote {out}/ ({', '.join(outdir.files)}, summary.json)")
     if not result.success:
         print(f"error: {result.message}")
@@ -143,7 +147,7 @@ def _simulate_into(outdir, scene, label: str = "", **kw):
     return result
 
 
-def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = False) -> dict:
+def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = False, units: str = "SI") -> dict:
     """Write time series (CSV, netCDF) and the figure for one run; return its summary.
 
     Parameters
@@ -159,6 +163,8 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
         Also draw ``timeseries.png``.
     series_on_disk : bool
         ``timeseries.csv`` was already streamed complete (do not write it again).
+    units : str
+        "SI" or "fps": units of the CSV columns and the figure (netCDF and summary.json stay SI).
 
     Returns
     -------
@@ -171,11 +177,13 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
             summary = write_run(scene, result, od, plot=plot)
             od.finish(getattr(result, "status", "success" if result.success else "failed"), **summary)
         return summary
+    from ..export import write_csv, write_netcdf
+    from ..scene import dump_scene
     if not series_on_disk:
         with out.writing("timeseries.csv") as tmp:
-            result.to_csv(tmp)
-    with out.writing("timeseries.nc") as tmp:
-        result.to_netcdf(tmp)
+            write_csv(result, tmp, units)
+    with out.writing("timeseries.nc") as tmp:       # SI, conventions and the scene to reproduce the run
+        write_netcdf(result, tmp, scene_toml=dump_scene(scene), scene_units=units)
     summary = result.summary()
     summary.pop("status", None)
     st = result.stats
@@ -197,11 +205,12 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
     if plot and result.time.size > 1:
         from ..plots.time_domain import plot_time_series
         with out.writing("timeseries.png") as tmp:
-            plot_time_series(result, tmp)
+            plot_time_series(result, tmp, units=units, limits=scene.limits,
+                             window_start=summary["statistics"]["window_s"][0])
     return summary
 
 
-def _print_summary(summary: dict) -> None:
+def _print_summary(summary: dict, units: str = "SI") -> None:
     print(f"scene: {summary['scene']}")
     st = summary["stats"]
     print(f"integrator {st['method']}: {st.get('nsteps', '-')} steps, {st.get('nfevals', st.get('nresevals', '-'))} "
@@ -212,8 +221,10 @@ def _print_summary(summary: dict) -> None:
     print(f"  tension min/max {summary.get('tension_min_N', float('nan')):.4g} / {summary.get('tension_max_N', float('nan')):.4g} N,"
           f" time slack {summary['time_slack_s']:.3g} s")
     from ..verdict import format_statistics, format_table
-    for line in (format_statistics(summary["statistics"]) if "statistics" in summary else []) + \
-            summary.get("warnings", []) + (format_table(summary["verdict"]) if summary.get("verdict") else []):
+    from ..units import output_unit
+    for line in (format_statistics(summary["statistics"], units) if "statistics" in summary else []) + \
+            summary.get("warnings", []) + (format_table(summary["verdict"], lambda u: output_unit(u, units))
+                                           if summary.get("verdict") else []):
         print("  " + line)
 
 
