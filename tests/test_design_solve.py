@@ -26,7 +26,6 @@ def test_example_design_converges_to_a_constrained_optimum(example):
     # every solve well inside IPOPT's budget; the whole multistart + outer loop in a few hundred
     assert max(run["iterations"] for run in r.runs) < 60
     assert r.nlp_iterations < 200
-    assert r.nlp_wall_s < 4.0                      # the benchmark measures < 2 s; slack for loaded CI machines
     # the softest first rope the 10 % static strain allows, the second at its softest bound
     assert "static_strain_1" in r.active and "ae_2 at lower bound" in r.active
     assert r.margins["static_strain_1"] == pytest.approx(0.0, abs=1e-6)
@@ -132,7 +131,10 @@ def test_cli_design_writes_json(tmp_path, capsys):
     assert _cli(["design", str(path), "--out", str(tmp_path / "out")]) == 0
     doc = json.loads((tmp_path / "out" / "design.json").read_text())
     assert doc["converged"] and "static_strain_1" in doc["active"]
-    assert doc["variables"]["ae_1"]["value"] == pytest.approx(5.98e4, rel=0.01)
+    # the active 10 % strain limit fixes AE_1 in closed form: u_0 = T_1 l_r / AE (eq. 54 at rest),
+    # l_0 = l_r (1 - T_r / AE) (Wang 1971 eq. 1), so u_0 / l_0 = T_1 / (AE - T_r) = 0.10
+    t_1, t_r = doc["mean_tension_N"][0], dual_scene().sections[0].cable.tension_ref
+    assert doc["variables"]["ae_1"]["value"] == pytest.approx(t_1 / 0.10 + t_r, rel=1e-5)
     assert "active: " in capsys.readouterr().out
 
 
