@@ -3,7 +3,8 @@
 - ``cvodes``        CVODES, BDF (variable order 1-5), Newton iterations: stiff-safe default;
 - ``cvodes-adams``  CVODES, Adams-Moulton: cheaper per step on non-stiff scenes;
 - ``idas``          IDAS on the implicit residual M(q) q'' - f = 0 (q'' algebraic; M never inverted);
-- ``rk``            classical fixed-step Runge-Kutta 4, for comparison;
+- ``rk``            classical fixed-step Runge-Kutta 4 (compiled loop, :func:`rk4_interval`): the
+                    fastest choice when the step is below the stability limit (no error control);
 - ``collocation``   fixed-step Radau collocation (implicit), for comparison.
 
 Every integrator runs in relative time s with the parameter vector extended by (t_0, h):
@@ -94,8 +95,59 @@ def compiled_dae(model: CableModel, settings: IntegratorSettings) -> Compiled:
     return dae_function(model, settings.method == "idas", settings.compiled or settings.jit)
 
 
+def compiled_functions(model: CableModel, settings: IntegratorSettings, functions) -> list:
+    """``functions`` of this model (SX, distinct names) as compiled code, one library, built once
+    per model and set of names; the originals when ``settings`` ask for the virtual machine."""
+    functions = list(functions)
+    enabled = settings.compiled or settings.jit
+    key = "fns:" + ",".join(f.name() for f in functions) + (":compiled" if enabled else ":vm")
+    comp = model.derive(key, lambda: compile_functions(functions, jacobians=False, enabled=enabled))
+    return [comp.functions[f.name()] for f in functions]
+
+
+def rk4_interval(model: CableModel, n_sub: int, compiled: bool = True) -> Compiled:
+    """One output interval of classical RK4 as one (compiled) function, built once per model.
+
+    ``cablesys_rk4_interval(x, s0, ds, p) -> x(s0 + ds)`` takes ``n_sub`` equal RK4 steps of
+    the relative-time DAE (:func:`_dae_function`); the step loop is a CasADi ``mapaccum``, so
+    the generated C is one RK4 step inside a loop (CasADi's own ``rk`` plugin cannot be code
+    generated, and evaluating it in the virtual machine costs one function call per stage).
+    """
+    def build():
+        nx, npx = 2 * model.nq, len(model.layout) + 2
+        x, s, hs, p = ca.SX.sym("x", nx), ca.SX.sym("s"), ca.SX.sym("hs"), ca.SX.sym("p", npx)
+
+        def f(xx, ss):
+            return p[-1] * model.ode(xx, p[-2] + p[-1] * ss, p[:-2])
+        k1 = f(x, s)
+        k2 = f(x + 0.5 * hs * k1, s + 0.5 * hs)
+        k3 = f(x + 0.5 * hs * k2, s + 0.5 * hs)
+        k4 = f(x + hs * k3, s + hs)
+        step = ca.Function("cablesys_rk4_step", [x, s, hs, p], [x + hs / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4), s + hs])
+        loop = step.mapaccum("cablesys_rk4_loop", n_sub, [0, 1], [0, 1])
+        xm, s0, ds, pm = ca.MX.sym("x", nx), ca.MX.sym("s0"), ca.MX.sym("ds"), ca.MX.sym("p", npx)
+        X, _ = loop(xm, s0, ca.repmat(ds / n_sub, 1, n_sub), ca.repmat(pm, 1, n_sub))
+        interval = ca.Function("cablesys_rk4_interval", [xm, s0, ds, pm], [X[:, -1]])
+        return compile_functions([interval], jacobians=False, enabled=compiled)
+    return model.derive(f"rk4:{n_sub}:{'compiled' if compiled else 'vm'}", build)
+
+
+def _rk4_integrator(model: CableModel, settings: IntegratorSettings, grid, name: str) -> ca.Function:
+    """``name(x0, p) -> xf``: RK4 over the output intervals of ``grid`` (``steps_per_output`` each),
+    with the same inputs/outputs as a CasADi integrator."""
+    comp = rk4_interval(model, int(settings.steps_per_output), settings.compiled or settings.jit)
+    interval = comp.functions["cablesys_rk4_interval"]
+    n = len(grid) - 1
+    over = interval.mapaccum(f"{name}_intervals", n, [0], [0])
+    x0, p = ca.MX.sym("x0", 2 * model.nq), ca.MX.sym("p", len(model.layout) + 2)
+    X = over(x0, ca.DM(grid[:-1]).T, ca.DM(np.diff(grid)).T, ca.repmat(p, 1, n))
+    return ca.Function(name, [x0, p], [X], ["x0", "p"], ["xf"])
+
+
 def make_integrator(model: CableModel, settings: IntegratorSettings, grid, name: str = "F") -> ca.Function:
     """A CasADi integrator over the relative ``grid`` (first entry 0 excluded from outputs)."""
+    if settings.method == "rk":
+        return _rk4_integrator(model, settings, np.asarray(grid, dtype=float), name)
     plugin, opts = METHODS[settings.method]
     opts = dict(opts)
     grid = np.asarray(grid, dtype=float)

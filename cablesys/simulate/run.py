@@ -24,7 +24,7 @@ from ..model import CableModel, build_model
 from ..results import SlackEvent
 from ..scene import Scene
 from . import events as ev
-from .integrators import ADAPTIVE, IntegratorSettings, compiled_dae, make_integrator
+from .integrators import ADAPTIVE, IntegratorSettings, compiled_dae, compiled_functions, make_integrator
 from .record import (
     InterruptFlag,
     RunInterrupted,
@@ -90,6 +90,8 @@ class Simulator(ev.EventLocator):
         self._gap_and_rate = ca.Function("gap_rate", [x, t, p], [g, g1])
         self._gap_rates = ca.Function("gap_rates", [x, t, p], [g, g1, g2])
         self._jac = ca.Function("ode_jacobian", [x, t, p], [ca.jacobian(xdot, x)])
+        self._gap_and_rate, self._gap_rates, self._jac = compiled_functions(      # compiled and cached
+            model, self.settings, [self._gap_and_rate, self._gap_rates, self._jac])
         self.build_s = _time.perf_counter() - t_build
         self.compiled = compiled_dae(model, self.settings)   # compiled/cached DAE: build and load times
         self._stats = {}
@@ -320,8 +322,9 @@ class Simulator(ev.EventLocator):
         n = T.size
         P = np.tile(np.asarray(p, float)[:, None], (1, n))
         P[list(self.model.slack_index), :] = modes
-        E = np.array(self.model.top(T[None, :], P)).reshape(-1, n)     # CasADi maps over columns
-        Y = np.array(self.model.outputs(np.asarray(X, float), E, P)).reshape(-1, n)
+        top, outputs = compiled_functions(self.model, self.settings, [self.model.top, self.model.outputs])
+        E = np.array(top(T[None, :], P)).reshape(-1, n)     # CasADi maps over columns
+        Y = np.array(outputs(np.asarray(X, float), E, P)).reshape(-1, n)
         data = {lbl: Y[i] for i, lbl in enumerate(self.model.output_labels)}
         data["x_s"], data["y_s"] = E[1], E[2]
         return data
