@@ -8,7 +8,7 @@ __all__ = ["plot_time_series", "save_figure"]
 
 
 def save_figure(fig, path, **savefig_kw) -> Path:
-    """Lay out, write and close a figure (every plot of the package and the studies ends here).
+    """Lay out (tight, unless the figure has its own layout engine), write and close a figure.
 
     Parameters
     ----------
@@ -26,7 +26,8 @@ def save_figure(fig, path, **savefig_kw) -> Path:
     """
     import matplotlib.pyplot as plt
     savefig_kw.setdefault("dpi", 120)
-    fig.tight_layout()
+    if fig.get_layout_engine() is None:      # keep a figure's own engine (constrained_layout=True)
+        fig.tight_layout()
     fig.savefig(path, **savefig_kw)
     plt.close(fig)
     return Path(path)

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..plots import save_figure
 from .results import MODE_TYPES, Equilibrium, ModeSet
 
 COLORS = {"O": "0.45", "A": "tab:red", "S": "tab:blue", "H": "tab:purple"}
@@ -53,9 +54,7 @@ def plot_equilibrium(eq: Equilibrium, path: str | Path) -> Path:
     a2.set_xlabel("unstretched arc length s from support A (m)")
     a2.set_ylabel("tension (N)")
     a2.legend(loc="best")
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return Path(path)
+    return save_figure(fig, path, dpi=110)
 
 
 def _mass_nodes(eq: Equilibrium):
@@ -103,6 +102,4 @@ def plot_mode_shapes(eq: Equilibrium, modes: ModeSet, path: str | Path, n: int =
         ax.set_title(f"mode {k + 1}: {MODE_TYPES[t]}, omega = {modes.omega[k]:.4g} rad/s", fontsize=9)
         ax.legend(loc="upper right", fontsize=7)
     axes[-1].set_xlabel("unstretched arc length s from support A (m)")
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return Path(path)
+    return save_figure(fig, path, dpi=110)
