@@ -84,7 +84,10 @@ def test_dale_ae_changes_amplitudes_by_less_than_a_hundredth_of_a_foot(dale):
 def test_dale_drag_sensitivity(dale):
     rows = {(r["sphere_cd"], r["cable_cd"]): r for r in dale["drag_sensitivity"]}
     nominal = rows[(0.5, 1.4)]
-    assert nominal["xbA_ft"] == dale["xbA_ft"]
+    # a stiff cable (AE 1000 lb) is a rigid link in the vertical: every drag variant carries
+    # the 2.5 in vertical top motion to the body (drag changes the swing, not the heave)
+    for row in rows.values():
+        assert row["ybA_ft"] == pytest.approx([TOP_AMPLITUDE_FT] * 4, rel=0.03)
     # more drag, less swing at resonance
     assert rows[(0.7, 1.4)]["xbA_ft"][1] < nominal["xbA_ft"][1]
     assert rows[(0.5, 1.8)]["xbA_ft"][1] < nominal["xbA_ft"][1]
