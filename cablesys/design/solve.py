@@ -22,7 +22,7 @@ import numpy as np
 from scipy.stats import qmc
 
 from ..errors import SolverError
-from ..linear.linearize import linearize, xi_blocks
+from ..linear.linearize import linearize, residual_jacobian, xi_blocks
 from ..linear.spectra import jonswap
 from ..linear.steady import steady_state
 from ..linear.stochastic import stochastic_response
@@ -44,17 +44,12 @@ class DesignInfeasible(SolverError):
         self.constraint, self.violation = constraint, violation
 
 
-def _jacobian_of(lin) -> np.ndarray:
-    """dr/dxi of a LinearModel, xi = (q, q', q'', z, z', z'', w) (inverse of ``from_jacobian``)."""
-    return np.hstack([-lin.K, -lin.C, -lin.M, lin.F0[:, :2], lin.F1[:, :2], lin.F2[:, :2], lin.F0[:, 2:]]).real
-
-
 def equivalent_jacobian_shift(model, p, settings: DesignSettings, *, n_log2: int | None = None):
     """dJ = E[dr/dxi] - dr/dxi(q_0): what the Gaussian equivalent linearization adds (mostly drag)."""
     omega = settings.omega
     st = stochastic_response(model, p, omega, jonswap(omega, settings.hs, settings.tp, settings.gamma),
                              n_log2=n_log2 or settings.quadrature_log2, tol=settings.equivalent_tol)
-    return _jacobian_of(st.linear) - _jacobian_of(linearize(model, p)), st
+    return (residual_jacobian(st.linear) - residual_jacobian(linearize(model, p))).real, st
 
 
 def _starts(x_scene: np.ndarray, n: int) -> list:

@@ -202,6 +202,23 @@ def from_jacobian(model: CableModel, J, Jy, q0, y0, *, kind: str, omega=None) ->
         q0=np.asarray(q0, float), y0=np.asarray(y0, float), kind=kind, omega=omega)
 
 
+def residual_jacobian(lin: LinearModel) -> np.ndarray:
+    """dr/dxi of a linear model, xi = (q, q', q'', z, z', z'', w): the inverse of :func:`from_jacobian`.
+
+    Parameters
+    ----------
+    lin : LinearModel
+        A linear model (exact, harmonic or stochastic).
+
+    Returns
+    -------
+    ndarray
+        (nq, len(xi)) with blocks -K, -C, -M, F0, F1, F2 of the top inputs and F0 of the waves.
+    """
+    nz = len(TOP_INPUTS)
+    return np.hstack([-lin.K, -lin.C, -lin.M, lin.F0[:, :nz], lin.F1[:, :nz], lin.F2[:, :nz], lin.F0[:, nz:]])
+
+
 def static_parameters(model: CableModel, p) -> np.ndarray:
     """p with the slack switches cleared (a linear model is about a taut state)."""
     p = np.array(p, dtype=float)
