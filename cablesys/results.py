@@ -40,6 +40,7 @@ QUANTITIES = {
     "x_b": ("m", "body horizontal position"), "x_b_rate": ("m/s", "body horizontal velocity"),
     "y_b": ("m", "body vertical position"), "y_b_rate": ("m/s", "body vertical velocity"),
     "tension": ("N", "cable tension"), "x_s": ("m", "top (ship) horizontal motion"),
+    "tension_top": ("N", "cable tension at the top end"), "tension_bottom": ("N", "cable tension at the body end"),
     "y_s": ("m", "top (ship) vertical motion"),
 }
 UNITS = {k: v[0] for k, v in QUANTITIES.items()}
