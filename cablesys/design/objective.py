@@ -87,15 +87,6 @@ def complex_solve(A, B, fr, fi):
     return ca.vertcat(*xr), ca.vertcat(*xi)
 
 
-def _output_index(model: CableModel, name: str, i: int) -> int:
-    n = model.n_sections
-    return model.output_labels.index(name if n == 1 else f"{name}_{i + 1}")
-
-
-def _q_index(model: CableModel, i: int) -> int:
-    return model.q_labels.index("u" if model.n_sections == 1 else f"u_{i + 1}")
-
-
 def parameter_map(model: CableModel, variables: tuple):
     """(x -> p) as an SX Function of (x, p_base): the variables replace their parameters."""
     x = ca.SX.sym("x", len(variables))
@@ -131,7 +122,7 @@ def response_functions(model: CableModel, settings: DesignSettings) -> ca.Functi
     y0, Jy = fns["out_jac"](xi, p)
     M, C, K = -J[:, b["qdd"]], -J[:, b["qd"]], -J[:, b["q"]]
     F0, F1, F2 = J[:, b["z"]], J[:, b["zd"]], J[:, b["zdd"]]
-    rows = [_output_index(model, "y_b", n - 1)] + [_output_index(model, "tension", i) for i in range(n)]
+    rows = [model.output_index("y_b", n - 1)] + [model.output_index("tension", i) for i in range(n)]
     Cq, Cv = Jy[rows, b["q"]], Jy[rows, b["qd"]]
     D0, D1, D2 = Jy[rows, b["z"]], Jy[rows, b["zd"]], Jy[rows, b["zdd"]]
     dr, di = np.real(BUOY), np.imag(BUOY)
@@ -155,13 +146,12 @@ def response_functions(model: CableModel, settings: DesignSettings) -> ca.Functi
         band_ms += wband[k] * mag2[0]
     sigma = ca.sqrt(var)
     objective = 2.0 * sigma[0] if settings.objective == "significant" else ca.sqrt(band_ms)
-    mean_t = ca.vertcat(*[y0[_output_index(model, "tension", i)] for i in range(n)])
+    mean_t = ca.vertcat(*[y0[model.output_index("tension", i)] for i in range(n)])
     strain = []
     for i in range(n):
-        pre = "" if n == 1 else f"sections[{i}]."
-        ps = lambda name: p[model.layout.index(f"{pre}cable.{name}")]
-        l_0 = ps("length") - ps("tension_ref") * ps("length") / ps("ae")          # eq. 1
-        strain.append(q0[_q_index(model, i)] / l_0)
+        l_r, t_r, ae = (p[model.layout.section_index(i, f"cable.{name}")] for name in ("length", "tension_ref", "ae"))
+        l_0 = l_r - t_r * l_r / ae                                                # eq. 1
+        strain.append(q0[model.q_index("u", i)] / l_0)
     return ca.Function("design_response", [q0, p, d_jac], [objective, sigma, mean_t, ca.vertcat(*strain)],
                        ["q0", "p", "dJ"], ["objective", "sigma", "mean_tension", "static_strain"])
 
@@ -192,8 +182,7 @@ def nlp_functions(model: CableModel, settings: DesignSettings, variables: tuple,
     p = pmap(x, ca.DM(p_base))
     q0 = rf(q_guess, p)
     obj, sigma, mean_t, strain = resp(q0, p, ca.reshape(dj_flat, nq, n_xi))
-    pre = (lambda i: "") if n == 1 else (lambda i: f"sections[{i}].")
-    tens = [float(p_base[model.layout.index(f"{pre(i)}cable.tension_floor")]) for i in range(n)]
+    tens = [float(p_base[k]) for k in model.layout.section_indices("cable.tension_floor")]
     g = ([(tens[i] - (mean_t[i] - settings.n_sigma * sigma[1 + i])) / mean_t[i] for i in range(n)]
          + [(mean_t[i] + settings.n_sigma * sigma[1 + i]) / settings.working_load[i] - 1 for i in range(n)]
          + [strain[i] / settings.strain_limit[i] - 1 for i in range(n)])

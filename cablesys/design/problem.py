@@ -21,6 +21,7 @@ import math
 import numpy as np
 
 from ..errors import ParameterError, require_positive, require_range
+from ..model.params import section_prefix
 from ..reader import build, located
 
 OBJECTIVES = ("significant", "rao_band")
@@ -212,7 +213,6 @@ def variables(scene, settings: DesignSettings) -> tuple:
     if n != settings.n_sections:
         raise ParameterError("design.ae_bounds", f"{settings.n_sections} pairs",
                              f"the scene has {n} sections; give one pair per section")
-    pre = (lambda i: "") if n == 1 else (lambda i: f"sections[{i}].")
     out = []
     for i in range(n):
         t_ref = scene.sections[i].cable.tension_ref
@@ -220,9 +220,9 @@ def variables(scene, settings: DesignSettings) -> tuple:
             raise ParameterError(f"design.ae_bounds[{i}] lower", settings.ae_bounds[i][0],
                                  f"must exceed the section's reference tension {t_ref:.6g} N so that the zero-tension "
                                  "length l_0 = l_r (1 - T_r / AE) stays positive (Wang 1971 eq. 1)")
-        out.append(Variable(f"ae_{i + 1}", *settings.ae_bounds[i], ((f"{pre(i)}cable.ae", 1.0),)))
+        out.append(Variable(f"ae_{i + 1}", *settings.ae_bounds[i], ((f"{section_prefix(n, i)}cable.ae", 1.0),)))
         out.append(Variable(f"internal_damping_{i + 1}", *settings.damping_bounds[i],
-                            ((f"{pre(i)}cable.internal_damping", 1.0),)))
+                            ((f"{section_prefix(n, i)}cable.internal_damping", 1.0),)))
     if settings.intermediate_mass_bounds is not None:
         if n < 2:
             raise ParameterError("design.intermediate_mass_bounds", settings.intermediate_mass_bounds,

@@ -169,7 +169,7 @@ def design(scene, settings: DesignSettings, *, model=None) -> DesignResult:
         jacobian_shift=dJ, status=run["status"], success=bool(converged), runs=tuple(runs), outer_history=tuple(history),
         nlp_iterations=int(sum(r["iterations"] for r in runs)), nlp_wall_s=float(sum(r["wall_s"] for r in runs)),
         total_wall_s=time.perf_counter() - t_start, stochastic_sig_y_b=st.significant_amplitude(
-            "y_b" if model.n_sections == 1 else f"y_b_{model.n_sections}"),
+            model.label("y_b", model.n_sections - 1)),
         message="" if converged else (f"IPOPT status {run['status']}" if run["status"] not in OK_STATUS else
                                       f"the outer drag iteration did not settle in {settings.outer_iterations} passes"),
         stats={"wall_time_s": time.perf_counter() - t_start, "iterations": int(sum(r["iterations"] for r in runs)),

@@ -33,8 +33,7 @@ TOP_INPUTS = ("x_s", "y_s")
 
 def wave_amplitude_indices(model: CableModel) -> list[int]:
     """Positions in p of the wave amplitudes (Wang 1971 eq. 26 'a'), in wave order."""
-    return [i for i, lbl in enumerate(model.layout.labels)
-            if lbl.startswith("environment.waves[") and lbl.endswith(".amplitude")]
+    return model.layout.wave_amplitude_indices()
 
 
 def xi_blocks(model: CableModel) -> dict:

@@ -177,7 +177,7 @@ def periodic_steady_state(model: CableModel, p, omega: float, *, n_harmonics: in
     msg = "" if ok else (f"collocation residual {res:.3g} > 1e-8: Newton did not converge; try more harmonics, a guess "
                          "from a neighbouring frequency, or simulate()")
     tens_min = float(np.min([v.min() for k, v in outputs.items() if k.startswith("tension")]))
-    floors = [p[model.layout.index(l)] for l in model.layout.labels if l.endswith("cable.tension_floor")]
+    floors = [p[k] for k in model.layout.section_indices("cable.tension_floor")]
     if ok and tens_min <= max(floors):
         ok, msg = False, (f"the cable goes slack on the orbit (min tension {tens_min:.4g} N): the smooth periodic "
                           "solve does not apply; use simulate()")

@@ -181,7 +181,7 @@ def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY
     _, Yw = lin.transfer(omega)
     Y = np.einsum("kyi,ki->ky", Yw, D)
     std = np.sqrt(np.trapezoid(np.abs(Y) ** 2 * S[:, None], omega, axis=0))
-    floors = [p[model.layout.index(l)] for l in model.layout.labels if l.endswith("cable.tension_floor")]
+    floors = [p[k] for k in model.layout.section_indices("cable.tension_floor")]
     return StochasticResponse(omega=omega, spectrum=S, linear=lin, output_labels=model.output_labels, transfer=Y,
                               output_mean=lin.y0, output_std=std, tension_floor=float(max(floors)),
                               success=converged, stats={"iterations": it, "samples": n},

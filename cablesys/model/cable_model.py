@@ -19,7 +19,7 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from .params import ParameterLayout
+from .params import ParameterLayout, section_suffix
 
 
 class FunctionCache:
@@ -130,6 +130,19 @@ class CableModel:
             The cached function.
         """
         return self.cache.get(key, build)
+
+    def label(self, name: str, i: int) -> str:
+        """Coordinate or output label of section ``i``: ``tension`` (one section) or ``tension_2``."""
+        return f"{name}{section_suffix(self.n_sections, i)}"
+
+    def output_index(self, name: str, i: int) -> int:
+        """Position of output ``name`` of section ``i`` in ``output_labels``."""
+        return self.output_labels.index(self.label(name, i))
+
+    def q_index(self, name: str, i: int) -> int:
+        """Position of coordinate ``name`` (``phi`` or ``u``) of section ``i``; a shared ``phi`` has one."""
+        label = self.label(name, i)
+        return self.q_labels.index(label if label in self.q_labels else name)
 
     def sym(self, name: str, n: int = 1):
         """A symbol of the model's symbolic type, for composing its functions."""

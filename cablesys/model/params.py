@@ -29,8 +29,41 @@ TENSION_FLOOR_NONE = -1e300   # stands for -inf (a rod that never goes slack)
 
 
 def section_prefix(scene_or_n, i: int) -> str:
+    """Prefix of section ``i``'s parameter labels: "" for one section, else ``sections[i].``.
+
+    Parameters
+    ----------
+    scene_or_n : Scene or int
+        The scene, or its number of sections.
+    i : int
+        Section index, 0 at the top.
+
+    Returns
+    -------
+    str
+        The prefix (``sections[1].`` in ``sections[1].cable.ae``).
+    """
     n = scene_or_n if isinstance(scene_or_n, int) else len(scene_or_n.sections)
     return "" if n == 1 else f"sections[{i}]."
+
+
+def section_suffix(scene_or_n, i: int) -> str:
+    """Suffix of section ``i``'s coordinate and output labels: "" for one section, else ``_{i+1}``.
+
+    Parameters
+    ----------
+    scene_or_n : Scene or int
+        The scene, or its number of sections.
+    i : int
+        Section index, 0 at the top.
+
+    Returns
+    -------
+    str
+        The suffix (``_2`` in ``tension_2``, ``u_2``).
+    """
+    n = scene_or_n if isinstance(scene_or_n, int) else len(scene_or_n.sections)
+    return "" if n == 1 else f"_{i + 1}"
 
 
 def structure_of(scene: Scene) -> tuple:
@@ -122,6 +155,25 @@ class ParameterLayout:
 
     def sym(self, label: str) -> ca.SX:
         return self.symbol[self.index(label)]
+
+    # -- the one owner of label arithmetic: sections, waves, tension floors --------------------
+    @property
+    def n_sections(self) -> int:
+        """Number of sections of the scene structure."""
+        return self.structure[0]
+
+    def section_index(self, i: int, name: str) -> int:
+        """Position of section ``i``'s entry ``name`` (``cable.ae``, ``body.weight``, ``slack``)."""
+        return self.index(f"{section_prefix(self.n_sections, i)}{name}")
+
+    def section_indices(self, name: str) -> list[int]:
+        """Positions of ``name`` for every section, top first (e.g. ``cable.tension_floor``)."""
+        return [self.section_index(i, name) for i in range(self.n_sections)]
+
+    def wave_amplitude_indices(self) -> list[int]:
+        """Positions of the wave amplitudes (Wang 1971 eq. 26 'a'), in wave order."""
+        return [k for k, lbl in enumerate(self.labels)
+                if lbl.startswith("environment.waves[") and lbl.endswith(".amplitude")]
 
     def values(self, scene: Scene) -> np.ndarray:
         """The numeric vector of ``scene``; the scene must have this layout's structure."""
