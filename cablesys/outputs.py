@@ -18,6 +18,7 @@ import contextlib
 import dataclasses
 import datetime as _dt
 import hashlib
+import io
 import json
 import os
 import tempfile
@@ -162,12 +163,18 @@ class CsvStream:
         """
         if self._fh is None:
             self._labels = list(data)
-            self._fh = open(self.partial, "w", encoding="utf-8", newline="")   # noqa: SIM115 (open across blocks)
-            self._fh.write(",".join(["time [s]"] + [f"{c} [{unit_of(c) or 's'}]" for c in self._labels]) + "\n")
+            self._fh = open(self.partial, "wb", buffering=0)   # noqa: SIM115 (open across blocks; unbuffered)
+            self._write(",".join(["time [s]"] + [f"{c} [{unit_of(c) or 's'}]" for c in self._labels]) + "\n")
         block = np.column_stack([np.asarray(time, float)] + [np.asarray(data[c], float) for c in self._labels])
-        np.savetxt(self._fh, block, delimiter=",", fmt="%.10g")
-        self._fh.flush()
+        text = io.StringIO()
+        np.savetxt(text, block, delimiter=",", fmt="%.10g")
+        self._write(text.getvalue())      # whole lines in one write: a killed run leaves no torn row
         self.rows += block.shape[0]
+
+    def _write(self, text: str) -> None:
+        data = memoryview(text.encode("utf-8"))
+        while data:
+            data = data[self._fh.write(data):]
 
     def discard(self) -> None:
         """Close and remove the partial file (its rows are written again from a complete result).
