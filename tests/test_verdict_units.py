@@ -37,6 +37,7 @@ def test_fps_in_fps_out_equals_si_converted(tmp_path):
     assert _csv(tmp_path / "SI2" / "timeseries.csv")[0] == h_fps
 
 
+@pytest.mark.slow
 def test_netcdf_carries_units_conventions_and_the_scene(tmp_path):
     import xarray as xr
     from cablesys.examples import example_text
