@@ -263,6 +263,7 @@ class Initial:
         require_finite("initial.u_rate", self.u_rate)
 
 
+MODEL_CHOICES = ("auto", "frequency", "quasi-static", "wang", "segmented")   # cablesys.ladder.rungs
 INTEGRATORS = ("cvodes", "cvodes-adams", "idas", "rk", "collocation")
 
 
@@ -277,6 +278,10 @@ class Numerics:
     duration: float = spec("time", "simulated time", 60.0)
     output_step: float = spec("time", "spacing of output times", 0.05)
     steps_per_output: int = spec("none", "fixed-step methods (rk, collocation): steps per output interval", 10)
+    model: str = spec("none", "model ladder rung: auto (the cheapest within model_tolerance) | frequency | quasi-static | "
+                              "wang | segmented (cablesys.ladder)", "auto")
+    model_tolerance: float = spec("none", "relative error allowed on body motion for model = auto; tension extremes "
+                                          "get twice it", 0.01)
 
     def __post_init__(self):
         if not isinstance(self.drag_segments, int) or isinstance(self.drag_segments, bool) or not 1 <= self.drag_segments <= 1000:
@@ -291,3 +296,6 @@ class Numerics:
             raise ParameterError("numerics.output_step", self.output_step, f"must be <= numerics.duration = {self.duration}")
         if not isinstance(self.steps_per_output, int) or not 1 <= self.steps_per_output <= 100000:
             raise ParameterError("numerics.steps_per_output", self.steps_per_output, "must be an integer in [1, 100000]")
+        if self.model not in MODEL_CHOICES:
+            raise ParameterError("numerics.model", self.model, f"must be one of {MODEL_CHOICES}")
+        require_range("numerics.model_tolerance", self.model_tolerance, 1e-6, 0.5)
