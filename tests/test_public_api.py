@@ -6,11 +6,13 @@ exported class has a docstring; every result class (a subclass of ``ResultBase``
 ``success``, ``message``, ``stats``, ``summary`` and ``to_xarray``.
 """
 
+import ast
 import dataclasses
 import importlib
 import inspect
 import pkgutil
 import re
+from pathlib import Path
 
 import pytest
 
@@ -149,3 +151,34 @@ def test_results_are_short_json_and_labelled():
         for name, var in list(ds.data_vars.items()) + list(ds.coords.items()):
             assert var.attrs.get("units") and var.attrs.get("long_name"), name
         assert ds.attrs["success"] == 1
+
+
+def _readme_python_block() -> str:
+    text = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    blocks = re.findall(r"```python\n(.*?)```", text, re.S)
+    assert len(blocks) == 1, "the README has one Python section"
+    return blocks[0]
+
+
+def test_readme_python_section_uses_only_the_public_api():
+    """Every ``cablesys.x.y`` in the README's Python section is exported by the package that holds it."""
+    tree = ast.parse(_readme_python_block())
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.Import, ast.ImportFrom)):
+            names = [a.name for a in node.names] if isinstance(node, ast.Import) else [node.module]
+            assert all(not n.startswith("cablesys.") for n in names), "import only cablesys itself"
+        if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id == "cablesys":
+            assert node.attr in cablesys.__all__, node.attr
+        if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Attribute) \
+                and isinstance(node.value.value, ast.Name) and node.value.value.id == "cablesys":
+            sub = importlib.import_module(f"cablesys.{node.value.attr}")
+            assert node.attr in sub.__all__, f"cablesys.{node.value.attr}.{node.attr}"
+
+
+@pytest.mark.slow
+def test_readme_python_section_runs(tmp_path, monkeypatch):
+    from cablesys.slack.scene import EXAMPLE_TOML
+
+    (tmp_path / "cable.toml").write_text(EXAMPLE_TOML)
+    monkeypatch.chdir(tmp_path)
+    exec(compile(_readme_python_block(), "README.md", "exec"), {})

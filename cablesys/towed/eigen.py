@@ -82,6 +82,20 @@ class Eigenfrequencies(ResultBase):
         "ratio_slow": ("1", "eq. 20b measure 2 beta |omega| / (b p), slow"),
         "ratio_fast": ("1", "eq. 20b measure 2 beta |omega| / (b p), fast"), "mode": ("1", "mode number")}
 
+    def summary(self) -> dict:
+        """Eigenfrequencies (nondimensional, omega L / U; complex as real/imag) with their eq. 20b test.
+
+        Returns
+        -------
+        dict
+            JSON-able.
+        """
+        def c(w):
+            return {"real": float(w.real), "imag": float(w.imag)}
+        return {**super().summary(), "modes": [
+            {"delta": float(d), "slow": c(ws), "fast": c(wf), "valid_slow": bool(vs), "valid_fast": bool(vf)}
+            for d, ws, wf, vs, vf in zip(self.delta, self.slow, self.fast, self.valid_slow, self.valid_fast)]}
+
     def to_xarray(self):
         """Eigenfrequencies and validity measures on dimension ``mode`` (complex frequencies kept complex).
 
