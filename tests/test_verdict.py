@@ -99,3 +99,25 @@ def test_run_strict_exits_nonzero_on_a_failed_criterion(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "peak_tension" in out and "FAIL" in out
     assert main(["run", str(bad), "--out", str(tmp_path / "c")]) == 0
+
+
+def test_slack_and_snap_warnings_are_printed():
+    from cablesys.results import SlackEvent, SnapLoad
+    r = _run()
+    r.events = (SlackEvent(time=3.0, section=0, kind="slack", rate=-5.0), SlackEvent(time=3.2, section=0, kind="taut", rate=4.0))
+    r.snaps = (SnapLoad(time=3.3, section=0, tension=5000.0),)
+    r.time_slack = lambda: 0.2
+    w = vd.warnings_of(r)
+    assert "went slack 1 times" in w[0] and "0.2 s" in w[0]
+    assert "1 snap loads" in w[1] and "5000" in w[1]
+
+
+def test_design_failed_starts_are_named_with_the_reason():
+    from types import SimpleNamespace
+    from cablesys.design.cli import failed_starts
+    runs = ({"outer": 0, "status": "Maximum_Iterations_Exceeded", "iterations": 100, "objective": 1.0, "max_violation": 0.0},
+            {"outer": 0, "status": "Solve_Succeeded", "iterations": 12, "objective": 0.9, "max_violation": 0.0},
+            {"outer": 0, "status": "Infeasible_Problem_Detected", "iterations": 30, "objective": 2.0, "max_violation": 0.5})
+    f = failed_starts(SimpleNamespace(runs=runs))
+    assert [x["solve"] for x in f] == [1, 3]
+    assert "iteration limit" in f[0]["why"] and "constraints" in f[1]["why"]

@@ -21,7 +21,8 @@ class Limits:
     least_tension: float | None = spec("force", "least allowed tension anywhere in the rope", None)
     slack_fraction: float | None = spec(
         "none", "least tension as a fraction of the static (mean) tension; 0.1 is the slack-sling criterion "
-                "dynamic load <= 0.9 x static load of DNV-RP-H103 (2011) for lifts through the splash zone", None)
+                "dynamic load <= 0.9 x static load of DNV-RP-H103 (2011) for lifts through the splash zone "
+                "(as commonly cited; the text itself was not available to check)", None)
     max_excursion: float | None = spec("length", "largest allowed excursion of the (lowest) body from its mean position, "
                                                  "horizontal or vertical", None)
     max_daf: float | None = spec("none", "largest allowed dynamic amplification factor peak / static (mean) tension", None)
