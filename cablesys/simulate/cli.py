@@ -214,7 +214,8 @@ def _print_summary(summary: dict, units: str = "SI") -> None:
     print(f"scene: {summary['scene']}")
     st = summary["stats"]
     print(f"integrator {st['method']}: {st.get('nsteps', '-')} steps, {st.get('nfevals', st.get('nresevals', '-'))} "
-          f"rhs evaluations, {st['wall_s'] * 1e3:.0f} ms (+ {st['build_s'] * 1e3:.0f} ms build)")
+          f"rhs evaluations, {st['wall_s'] * 1e3:.0f} ms (+ {st['build_s'] * 1e3:.0f} ms build)"
+          + (f"; step budget {st['max_num_steps']} per output interval" if "max_num_steps" in st else ""))
     for unit in ("m", "rad", "N"):
         for k, v in summary.get(f"amplitudes_{unit}", {}).items():
             print(f"  amplitude {k:14s} {v:.6g} {unit}")
