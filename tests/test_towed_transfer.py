@@ -78,3 +78,21 @@ def test_bad_inputs():
         transfer_function(SEA, 0.5, 1.0, method="magic")
     with pytest.raises(ParameterError, match="xi"):
         transfer_function(SEA, 1.5, 1.0, method="bvp")          # beyond the zero-tension point
+
+
+def test_a_user_solution_route_is_a_callable():
+    """As solve_ivp takes an OdeSolver class, method= takes any v(coef, xi, omega) with v(0) = 1."""
+    from cablesys.towed.bessel import real_order_solution
+
+    calls = []
+
+    def mine(coef, xi, omega):
+        calls.append(np.shape(xi))
+        return real_order_solution(coef, xi, omega)
+
+    xi, om = np.linspace(0.0, 1.0, 65), np.array([0.5, 2.0])
+    assert transfer_function(SEA, 0.7, 2.0, method=mine) == transfer_function(SEA, 0.7, 2.0, method="real")
+    g = transfer_grid(SEA, xi, om, method=mine)
+    assert calls and g.method == "mine"
+    with pytest.raises(ParameterError, match="callable"):
+        transfer_function(SEA, 0.5, 1.0, method=3)

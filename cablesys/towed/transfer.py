@@ -20,7 +20,7 @@ from .bessel import exact_solution, mpmath_solution, real_order_solution
 from .equation import Coefficients
 
 __all__ = [
-    "METHODS",
+    "SOLUTIONS",
     "TransferGrid",
     "c_star",
     "fine_xi",
@@ -37,20 +37,26 @@ def _bvp(coef, xi, omega):
     return bvp_solution(coef, xi, omega)
 
 
-# name -> v(coef, xi, omega) with v(0) = 1; one protocol whatever the route
-METHODS = {
+# The solution routes of eq. 3 (one protocol whatever the route): name -> v(coef, xi, omega),
+# the complex amplitude along the cable with v(0) = 1, broadcasting xi and omega (nondimensional).
+# A user route is any callable with that signature, passed as ``method=`` (as scipy's solve_ivp
+# takes an OdeSolver class): no registration, no global state.
+SOLUTIONS = {
     "exact": exact_solution,            # complex order, 0F1 series (+ mpmath where lossy)
     "real": real_order_solution,        # report's eq. 16, real order p
     "mpmath": mpmath_solution,          # complex order, arbitrary precision, slow
-    "bvp": _bvp,                        # independent collocation solution of the ODE
+    "bvp": _bvp,                        # independent shooting solution of the ODE
 }
 
 
-def _method(name):
+def _method(method):
+    if callable(method):
+        return method
     try:
-        return METHODS[name]
-    except KeyError:
-        raise ParameterError("method", name, f"must be one of {sorted(METHODS)}") from None
+        return SOLUTIONS[method]
+    except (KeyError, TypeError):
+        raise ParameterError("method", method, f"must be one of {sorted(SOLUTIONS)} or a callable "
+                             "v(coef, xi, omega) with v(0) = 1") from None
 
 
 def _check_xi(xi):
@@ -78,9 +84,10 @@ def transfer_function(coef: Coefficients, xi, omega, method: str = "exact"):
         Position along the cable, x / L (0 at the tow point).
     omega : array_like
         Nondimensional angular frequency, omega L / U (> 0).
-    method : str, optional
-        Route to the solution (:data:`METHODS`): 'exact' (complex order, 0F1 series), 'real'
-        (the report's real order, eq. 16), 'mpmath' (arbitrary precision) or 'bvp' (shooting).
+    method : str or callable, optional
+        Route to the solution (:data:`SOLUTIONS`): 'exact' (complex order, 0F1 series), 'real'
+        (the report's real order, eq. 16), 'mpmath' (arbitrary precision), 'bvp' (shooting),
+        or a callable ``v(coef, xi, omega)`` with ``v(0) = 1``.
 
     Returns
     -------
@@ -110,9 +117,10 @@ def phase_lag(coef: Coefficients, xi, omega, method: str = "exact", n_min: int =
         Position along the cable, x / L (0 at the tow point).
     omega : array_like
         Nondimensional angular frequency, omega L / U (> 0).
-    method : str, optional
-        Route to the solution (:data:`METHODS`): 'exact' (complex order, 0F1 series), 'real'
-        (the report's real order, eq. 16), 'mpmath' (arbitrary precision) or 'bvp' (shooting).
+    method : str or callable, optional
+        Route to the solution (:data:`SOLUTIONS`): 'exact' (complex order, 0F1 series), 'real'
+        (the report's real order, eq. 16), 'mpmath' (arbitrary precision), 'bvp' (shooting),
+        or a callable ``v(coef, xi, omega)`` with ``v(0) = 1``.
     n_min : int, optional
         Least number of points of the fine unwrapping grid.
 
@@ -143,9 +151,10 @@ def c_star(coef: Coefficients, xi, omega, method: str = "exact"):
         Position along the cable, x / L (0 at the tow point).
     omega : array_like
         Nondimensional angular frequency, omega L / U (> 0).
-    method : str, optional
-        Route to the solution (:data:`METHODS`): 'exact' (complex order, 0F1 series), 'real'
-        (the report's real order, eq. 16), 'mpmath' (arbitrary precision) or 'bvp' (shooting).
+    method : str or callable, optional
+        Route to the solution (:data:`SOLUTIONS`): 'exact' (complex order, 0F1 series), 'real'
+        (the report's real order, eq. 16), 'mpmath' (arbitrary precision), 'bvp' (shooting),
+        or a callable ``v(coef, xi, omega)`` with ``v(0) = 1``.
 
     Returns
     -------
@@ -250,9 +259,10 @@ def transfer_grid(coef: Coefficients, xi, omega, method: str = "exact") -> Trans
         Increasing positions x / L starting at 0.
     omega : array_like
         Nondimensional angular frequency, omega L / U (> 0).
-    method : str, optional
-        Route to the solution (:data:`METHODS`): 'exact' (complex order, 0F1 series), 'real'
-        (the report's real order, eq. 16), 'mpmath' (arbitrary precision) or 'bvp' (shooting).
+    method : str or callable, optional
+        Route to the solution (:data:`SOLUTIONS`): 'exact' (complex order, 0F1 series), 'real'
+        (the report's real order, eq. 16), 'mpmath' (arbitrary precision), 'bvp' (shooting),
+        or a callable ``v(coef, xi, omega)`` with ``v(0) = 1``.
 
     Returns
     -------
@@ -268,4 +278,5 @@ def transfer_grid(coef: Coefficients, xi, omega, method: str = "exact") -> Trans
     with np.errstate(divide="ignore", invalid="ignore"):
         cs = omega[None, :] * xi[:, None] / psi
     cs[0] = phase_velocity(coef, 0.0, omega)
-    return TransferGrid(xi=xi, omega=omega, H=H, c_star=cs, method=method)
+    return TransferGrid(xi=xi, omega=omega, H=H, c_star=cs,
+                        method=method if isinstance(method, str) else getattr(method, "__name__", repr(method)))
