@@ -106,18 +106,9 @@ def simulate_auto(scene: Scene, *, model: str | None = None, tolerance=None, seg
 
 def _run_checked(scene: Scene, choice: Choice, tol, *, auto: bool, **kw):
     result = run_rung(scene, choice.name, choice.segments, **kw)
-    if choice.name in ("quasi-static", "wang") and _went_slack(result, scene):
-        note = (f"the {choice.name} run went slack (least tension {min(np.min(result['tension_bottom']), np.min(result['tension'])):.4g} N): "
-                "a straight cable with one stretch cannot be partly slack")
-        if not auto:
-            warnings.warn(f"model '{choice.name}': {note}", NumericalWarning, stacklevel=3)
-            return result, Choice(choice.name, 1, choice.reason + "; " + note, {"body": math.inf, "tension": math.inf},
-                                  choice.numbers)
-        n = max(choice.segments, 10)
-        log.info("%s rejected (%s); running the segmented cable", choice.name, note)
-        choice = Choice("segmented", n, f"{choice.name} rejected a posteriori: {note}; segmented with N = {n}",
-                        est.segmented_error(choice.numbers["estimates"], n) if "segmented_1" in choice.numbers["estimates"]
-                        else {"body": math.nan, "tension": math.nan}, choice.numbers)
+    choice, again = after_run(scene, choice, result, auto=auto)
+    if again:
+        log.info("rejected a posteriori; running %s with N = %d", choice.name, choice.segments)
         return _run_checked(scene, choice, tol, auto=auto, **kw)
     if choice.name == "segmented" and choice.segments >= 4:
         return _richardson(scene, choice, tol, result, auto=auto, **kw)
@@ -139,3 +130,48 @@ def _richardson(scene: Scene, choice: Choice, tol, result, *, auto: bool, **kw):
             return result, Choice("segmented", n, reason, e, choice.numbers)
         n *= 2
         result = run_rung(scene, "segmented", n, **kw)
+
+
+def plan_run(scene: Scene, model: str | None = None, tolerance=None):
+    """(scene to run, its CasADi model, Choice) for a caller that runs the simulation itself
+    (the ``run`` command streams its output). Warns when a forced rung is outside its validity.
+    The ``frequency`` rung is not a time-domain model: callers use :func:`simulate_auto` for it."""
+    name = check_rung(model or getattr(scene.numerics, "model", "auto"))
+    tol = tolerances(scene, tolerance)
+    if name == "auto":
+        choice = choose(scene, tol)
+    else:
+        choice = forced(scene, name, None, tol)
+        if not choice.numbers.get("valid", True):
+            warnings.warn(f"model '{name}': {choice.reason}", NumericalWarning, stacklevel=2)
+    if choice.name == "frequency":
+        return None, None, choice
+    sc = rung_scene(scene, choice.name, choice.segments)
+    return sc, build_rung(sc, choice.name, choice.segments), choice
+
+
+def after_run(scene: Scene, choice: Choice, result, *, auto: bool) -> tuple[Choice, bool]:
+    """A posteriori check of one run: (updated Choice, whether to run again with it).
+
+    A straight-cable run (quasi-static or wang) that went slack is outside its validity: under
+    "auto" the segmented cable is chosen instead (run again); a forced rung keeps its result with
+    a warning and an infinite estimated error."""
+    if choice.name not in ("quasi-static", "wang") or not _went_slack(result, scene):
+        return choice, False
+    note = f"the {choice.name} run went slack: a straight cable with one stretch cannot be partly slack"
+    if not auto:
+        warnings.warn(f"model '{choice.name}': {note}", NumericalWarning, stacklevel=2)
+        return Choice(choice.name, 1, choice.reason + "; " + note, {"body": math.inf, "tension": math.inf},
+                      choice.numbers), False
+    n = max(choice.segments, 10)
+    return Choice("segmented", n, f"{choice.name} rejected a posteriori: {note}; segmented with N = {n}",
+                  est.segmented_error(choice.numbers["estimates"], n), choice.numbers), True
+
+
+def describe(choice_dict: dict) -> str:
+    """One console line: which model ran, why, and its estimated error."""
+    e = choice_dict.get("estimated_error", {})
+    fmt = lambda v: "n/a" if v is None else f"{100 * v:.2g} %"
+    seg = f", N = {choice_dict['segments']}" if choice_dict.get("name") == "segmented" else ""
+    return (f"model {choice_dict.get('name')}{seg}: estimated error body {fmt(e.get('body'))}, tension "
+            f"{fmt(e.get('tension'))}; {choice_dict.get('reason', '')}")

@@ -22,6 +22,8 @@ def register(sub) -> None:
     p.add_argument("scene", nargs="?", type=Path, help="scene TOML file (see `cablesys scene --example`)")
     p.add_argument("--out", type=Path, default=None, help="output folder (default: cablesys-out)")
     p.add_argument("--method", default=None, help="cvodes | cvodes-adams | idas | rk | collocation")
+    p.add_argument("--model", default=None, help="auto (default: the scene's numerics.model) | frequency | quasi-static | "
+                                                "wang | segmented: the model ladder rung (cablesys.ladder)")
     p.add_argument("--duration", type=float, default=None, help="simulated time in s (overrides the scene)")
     p.add_argument("--jit", action="store_true", help="compile the model with the C compiler (faster long runs, ~2 s build)")
     p.add_argument("--strict", action="store_true", help="exit with status 3 when a criterion of the scene's [limits] fails")
@@ -96,6 +98,9 @@ def _check_options(args) -> None:
     from ..errors import ParameterError, require_positive
     if args.duration is not None:
         require_positive("--duration", args.duration, "s")
+    if getattr(args, "model", None) is not None:
+        from ..ladder.rungs import check_rung
+        check_rung(args.model)
     if args.max_steps is not None and not 100 <= args.max_steps <= 10**9:
         raise ParameterError("--max-steps", args.max_steps, "must be an integer in [100, 1e9] (steps per output interval)")
 
@@ -114,10 +119,26 @@ def _run(args) -> int:
     check_scene_run_size(scene)                       # limits, before anything is built
     outdir = OutputDir(out, "run", scene, overwrite=args.overwrite, owned=RUN_FILES)   # --out checked here
     with outdir.start(scene=scene.name, scene_file=str(args.scene)):
-        result = _simulate_into(outdir, scene, method=args.method, jit=args.jit, max_num_steps=args.max_steps)
+        from ..ladder.auto import after_run, plan_run, simulate_auto     # the model ladder (issue 12)
+        auto = (getattr(args, "model", None) or scene.numerics.model) == "auto"
+        scene_run, model, choice = plan_run(scene, getattr(args, "model", None))
+        while True:
+            if model is None:          # the frequency rung: no time-domain model to stream
+                result = simulate_auto(scene, model="frequency", method=args.method)
+                break
+            result = _simulate_into(outdir, scene_run, model=model, method=args.method, jit=args.jit,
+                                    max_num_steps=args.max_steps)
+            choice, again = after_run(scene, choice, result, auto=auto)
+            if not again:
+                break
+            from ..ladder.rungs import build_rung, rung_scene
+            scene_run = rung_scene(scene, choice.name, choice.segments)
+            model = build_rung(scene_run, choice.name, choice.segments)
         from ..export import units_of_file
         units = args.units or units_of_file(args.scene)
-        summary = write_run(scene, result, outdir, series_on_disk=units == "SI", units=units)
+        summary = write_run(scene_run or scene, result, outdir, series_on_disk=units == "SI" and model is not None,
+                            units=units)
+        summary["model"] = result.stats.get("model") or choice.as_dict()
         outdir.finish(result.status, **summary)
     _print_summary(summary, units)
     print(f"wrote {out}/ ({', '.join(outdir.files)}, summary.json)")
@@ -212,6 +233,9 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
 
 def _print_summary(summary: dict, units: str = "SI") -> None:
     print(f"scene: {summary['scene']}")
+    if "model" in summary:
+        from ..ladder.auto import describe
+        print(describe(summary["model"]))
     st = summary["stats"]
     print(f"integrator {st['method']}: {st.get('nsteps', '-')} steps, {st.get('nfevals', st.get('nresevals', '-'))} "
           f"rhs evaluations, {st['wall_s'] * 1e3:.0f} ms (+ {st['build_s'] * 1e3:.0f} ms build)"
