@@ -3,7 +3,7 @@
 import numpy as np
 
 from cablesys.linear import linearize
-from cablesys.linear.linearize import from_jacobian, functions, operating_xi, residual_jacobian, static_parameters
+from cablesys.linear.linearize import from_jacobian, functions, operating_xi, residual_jacobian, taut_parameters
 from cablesys.model import build_model
 from cablesys.scene import dale_scene
 
@@ -11,7 +11,7 @@ from cablesys.scene import dale_scene
 def test_residual_jacobian_is_the_model_jacobian_and_inverts_from_jacobian():
     scene = dale_scene()
     model = build_model(scene)
-    p = static_parameters(model, model.parameters(scene))
+    p = taut_parameters(model, model.parameters(scene))
     lin = linearize(model, p)
     J = residual_jacobian(lin)
     # the CasADi Jacobian dr/dxi at the operating point, taken directly

@@ -37,15 +37,15 @@ import numpy as np
 from ..errors import ParameterError
 from ..model import CableModel
 from ..results import ResultBase, timed
+from .frequency_response import RAO
 from .linearize import (
     from_jacobian,
     functions,
     linearize,
     operating_xi,
-    static_parameters,
+    taut_parameters,
     xi_blocks,
 )
-from .frequency_response import RAO
 from .steady import steady_state
 
 
@@ -194,7 +194,7 @@ def harmonic_response(model: CableModel, p, omega, input_amplitude, *, n_theta: 
     HarmonicResponse
         ``success`` is False when a frequency's harmonic-balance residual stays above 1e-8.
     """
-    p = static_parameters(model, p)
+    p = taut_parameters(model, p)
     st = steady_state(model, p)
     lin0 = linearize(model, p, steady=st)
     omega = np.atleast_1d(np.asarray(omega, float))

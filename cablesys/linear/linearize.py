@@ -218,8 +218,12 @@ def residual_jacobian(lin: LinearModel) -> np.ndarray:
     return np.hstack([-lin.K, -lin.C, -lin.M, lin.F0[:, :nz], lin.F1[:, :nz], lin.F2[:, :nz], lin.F0[:, nz:]])
 
 
-def static_parameters(model: CableModel, p) -> np.ndarray:
-    """p with the slack switches cleared (a linear model is about a taut state)."""
+def taut_parameters(model: CableModel, p) -> np.ndarray:
+    """p with the slack switches cleared (a linear model is about a taut state); waves stay.
+
+    Not the statics' parameters (:mod:`cablesys.statics.steady` also zeroes the wave
+    amplitudes: a steady state has no waves), hence the different name.
+    """
     p = np.array(p, dtype=float)
     p[list(model.slack_index)] = 0.0
     return p
@@ -247,7 +251,7 @@ def linearize(model: CableModel, p, *, steady: SteadyState | None = None) -> Lin
     LinearModel
         M, C, K, input and output matrices about the steady state (SI units of the labels).
     """
-    p = static_parameters(model, p)
+    p = taut_parameters(model, p)
     steady = steady or steady_state(model, p)
     fns = functions(model)
     xi0 = operating_xi(model, steady.q)

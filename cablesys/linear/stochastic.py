@@ -30,7 +30,7 @@ from .linearize import (
     functions,
     linearize,
     operating_xi,
-    static_parameters,
+    taut_parameters,
     xi_blocks,
 )
 from .spectra import significant_amplitude, slack_probability
@@ -140,7 +140,7 @@ def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY
     ParameterError
         If ``omega`` and ``spectrum`` are not 1-D arrays of the same length (>= 8).
     """
-    p = static_parameters(model, p)
+    p = taut_parameters(model, p)
     omega = np.asarray(omega, float)
     S = np.asarray(spectrum, float)
     if omega.shape != S.shape or omega.ndim != 1 or omega.size < 8:
