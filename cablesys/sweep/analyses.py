@@ -59,7 +59,7 @@ def forcing_frequency(scene) -> float | None:
 
 
 def _outputs(labels) -> list:
-    return [lbl for lbl in labels if not lbl.endswith("rate") and lbl not in ("x_s", "y_s")]
+    return [lbl for lbl in labels if "_rate" not in lbl and lbl not in ("x_s", "y_s")]
 
 
 def run(scene, options, cache):
@@ -143,19 +143,23 @@ def periodic(scene, options, cache):
 
 
 def stochastic(scene, options, cache):
-    """Gaussian equivalent linearization in a JONSWAP sea (``hs``, ``tp``, ``gamma`` options)."""
+    """Gaussian equivalent linearization in a JONSWAP sea (options ``hs``, ``tp``, ``gamma``, the band
+    ``omega_min``/``omega_max``/``n_omega`` and the top's ``direction`` per unit sea amplitude, default the
+    surface orbit of :mod:`cablesys.linear.stochastic`)."""
     from ..linear.spectra import jonswap
     from ..linear.stochastic import stochastic_response
     model = cache.model(scene)
     hs, tp = float(options.get("hs", 2.0)), float(options.get("tp", 8.0))
     omega = np.linspace(float(options.get("omega_min", 0.25)), float(options.get("omega_max", 3.0)),
                         int(options.get("n_omega", 60)))
+    kw = {"direction": np.asarray(options["direction"], complex)} if "direction" in options else {}
     st = stochastic_response(model, model.parameters(scene), omega, jonswap(omega, hs, tp, float(options.get("gamma", 3.3))),
-                             n_log2=int(options.get("n_log2", 8)))
+                             n_log2=int(options.get("n_log2", 8)), **kw)
     outs = _outputs(st.output_labels)
     s = {"mean": {o: float(st.output_mean[st.output_labels.index(o)]) for o in outs},
          "std": {o: st.std(o) for o in outs},
-         "slack_probability": st.slack_probability(), "iterations": st.iterations, "converged": st.converged}
+         "slack_probability": {o: st.slack_probability(o) for o in outs if o.startswith("tension")},
+         "iterations": st.iterations, "converged": st.converged}
     if hasattr(st, "summary"):               # the result's own headline numbers (statistics, verdicts) on top
         s.update(st.summary())
     return s, bool(st.converged), "" if st.converged else "the Gaussian linearization did not converge"
