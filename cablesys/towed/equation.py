@@ -54,7 +54,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError, require_positive, require_range, require_nonnegative
+from ..errors import ParameterError, require_nonnegative, require_positive, require_range
+from ..scene.fields import spec
 
 __all__ = ["TowedCable", "Coefficients", "REPORT_SEA_TRIAL", "REPORT_TYPICAL"]
 
@@ -126,13 +127,18 @@ class TowedCable:
     depressed cable), c_t_drogue the drogue term c_t', beta = M/(M+m).
     """
 
-    length: float
-    speed: float
-    diameter: float = 0.016
-    c_t: float = 0.0101
-    c_n: float = 0.16
-    c_t_drogue: float = 228.0
-    beta: float = 0.5
+    # unit (dimension) and the report's symbol of every field, as the Wang scene's fields carry them.
+    # c_t and c_n keep the report's names: c_t is referred to pi d_c (F_t = rho/2 pi d_c c_t U^2),
+    # Wang's ct_tangential to d (eq. 44), so c_t = ct_tangential / pi; c_n is Wang's cd_normal.
+    length: float = spec("length", "cable length L")
+    speed: float = spec("velocity", "tow speed U")
+    diameter: float = spec("length", "cable diameter d_c", 0.016)
+    c_t: float = spec("none", "tangential drag coefficient c_t, referred to pi d_c (= Wang's C_t / pi)", 0.0101)
+    c_n: float = spec("none", "normal drag coefficient c_n (effective c_n* = A c_n for a depressed cable, "
+                      "eq. 39; Wang's C_D)", 0.16)
+    c_t_drogue: float = spec("none", "drogue term c_t' (drogue drag 2 c_t' M U^2)", 228.0)
+    beta: float = spec("none", "mass ratio beta = M / (M + m): fluid mass M = rho pi d_c^2 / 4 over fluid plus "
+                       "cable mass per length", 0.5)
 
     def __post_init__(self):
         require_positive("length", self.length, "m")
