@@ -19,7 +19,7 @@ import casadi as ca
 import numpy as np
 
 from ..errors import NumericalWarning, ParameterError
-from ..linear.steady import steady_state
+from ..statics.steady import steady_state
 from ..model import CableModel, build_model
 from ..results import SlackEvent
 from ..scene import Scene
@@ -143,7 +143,7 @@ class Simulator(ev.EventLocator):
         """For 'rk': warn when h |lambda|_max at the start exceeds RK4's stability limit."""
         if self.settings.method != "rk":
             return ""
-        lam = np.linalg.eigvals(np.array(self._jac(x0, self.times[0], self._with_mode(p, np.zeros(self.model.n_sections)))))
+        lam = np.linalg.eigvals(np.array(self._jac(x0, self.times[0], self._with_mode(p, np.zeros(len(self.model.slack_index))))))
         h = float(np.min(np.diff(self.times))) / self.settings.steps_per_output
         ratio = h * float(np.max(np.abs(lam)))
         if ratio <= self.RK4_LIMIT:
@@ -195,7 +195,7 @@ class Simulator(ev.EventLocator):
         self._stats = {}
         stability_note = self._check_fixed_step(x0, p)
         wall = _time.perf_counter()
-        g0, _ = self._gap_and_rate(x0, self.times[0], self._with_mode(p, np.zeros(self.model.n_sections)))
+        g0, _ = self._gap_and_rate(x0, self.times[0], self._with_mode(p, np.zeros(len(self.model.slack_index))))
         mode = (np.array(g0).ravel() < 0).astype(float)
         track = Track(self, p, x0, mode, on_block, progress)
         interrupted = False
@@ -349,6 +349,9 @@ class Simulator(ev.EventLocator):
 
 def initial_state(scene: Scene, model: CableModel, p) -> np.ndarray:
     """x0 from ``scene.initial``; unset angle/stretch come from the steady state."""
+    if getattr(model, "segments", None):      # node coordinates: the segmented cable
+        from ..statics.catenary import segmented_initial_state
+        return segmented_initial_state(scene, model, p)
     ini = scene.initial
     q = steady_state(model, p).q if (ini.phi is None or ini.u is None) else None
     q0 = np.array([(ini.phi if ini.phi is not None else q[i]) if lbl.startswith("phi")

@@ -1,0 +1,12 @@
+"""Statics: equilibria of every model (the layer below both :mod:`cablesys.simulate` and :mod:`cablesys.linear`).
+
+- :func:`steady_state` the equilibrium of any model (2-DOF: KINSOL on (phi, u); segmented:
+  the elastic catenary of :mod:`.catenary`);
+- :func:`elastic_catenary` the closed-form elastic catenary used to check it.
+"""
+
+from .catenary import elastic_catenary, hanging_guess, segmented_equilibrium
+from .steady import SteadyState, static_residual, steady_state
+
+__all__ = ["SteadyState", "elastic_catenary", "hanging_guess", "segmented_equilibrium", "static_residual",
+           "steady_state"]

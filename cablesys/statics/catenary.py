@@ -1,0 +1,265 @@
+"""Equilibrium of the segmented cable: the elastic catenary under weight, current and tow.
+
+The static residual is the segmented model's own right-hand side with every rate zero and the
+top at rest (:func:`cablesys.statics.steady.static_residual`: waves off, forces scaled by the
+total weight). KINSOL solves it with a sparse direct linear solver (the Jacobian is banded),
+starting from the straight hanging cable stretched by the weight below each element (exact
+without current: the lumped weights give each element the tension of its mid-point). A current
+or tow speed that KINSOL cannot reach in one solve is approached by continuation in the flow
+speed (each solution the next guess).
+
+Closed forms for checks: :func:`elastic_catenary` (Irvine 1981, eq. 2.17-2.18 form with the
+body's weight and a horizontal force at the lower end).
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+import numpy as np
+
+from ..errors import SolverError
+
+TOLERANCE = 1e-10     # largest static force residual over the total weight
+
+
+
+def _flow_indices(model) -> list[int]:
+    """Entries of p that carry the flow: current speeds and the system (tow) speed."""
+    return [i for i, lb in enumerate(model.layout.labels)
+            if lb.startswith("environment.current_speeds[") or lb == "environment.system_speed"]
+
+
+def hanging_guess(model, p) -> np.ndarray:
+    """Node positions of the straight vertical cable stretched by the weight below each element.
+
+    Parameters
+    ----------
+    model : SegmentedModel
+    p : array
+        Parameter vector.
+
+    Returns
+    -------
+    numpy.ndarray
+        q = (x_1, y_1, x_2, y_2, ...) in m (y down from the top).
+    """
+    lab = model.layout.labels
+    val = lambda lbl: p[lab.index(lbl)]
+    n = model.n_sections
+    pre = (lambda i: "") if n == 1 else (lambda i: f"sections[{i}].")
+    # tension at the bottom of each section: bodies and cables below
+    bottom, below = [0.0] * n, 0.0
+    for i in reversed(range(n)):
+        below += val(f"{pre(i)}body.weight")
+        bottom[i] = below
+        below += val(f"{pre(i)}cable.weight_per_length") * val(f"{pre(i)}cable.length")
+    ys, y = [], 0.0
+    for i, n_el in enumerate(model.segments):
+        l_r, ae = val(f"{pre(i)}cable.length"), val(f"{pre(i)}cable.ae")
+        t_r, w = val(f"{pre(i)}cable.tension_ref"), val(f"{pre(i)}cable.weight_per_length")
+        h_r, h_0 = l_r / n_el, (l_r - t_r * l_r / ae) / n_el
+        for k in range(n_el):
+            tension = bottom[i] + w * h_r * (n_el - k - 0.5)        # weight below the element mid-point
+            y += h_0 + max(tension, 0.0) * h_r / ae                 # l = h_0 + T h_r / AE (eq. 1 per element)
+            ys.append(y)
+    return np.column_stack([np.zeros(len(ys)), ys]).ravel()
+
+
+def _polar(model):
+    """q as a function of element angles and lengths, v = (theta_1.., l_1..): r_j = sum_e l_e e_t(theta_e)
+    with e_t = (-sin theta, cos theta) (Wang 1971 eq. 10). A rotation is linear in these variables,
+    which is what Newton needs to swing a hanging cable into a current (in node coordinates it
+    sees a sideways step as a stretch). The Jacobian is dense: the solution is polished in node
+    coordinates (sparse)."""
+    def build():
+        n = model.n_elements
+        v = ca.SX.sym("v", 2 * n)
+        th, ln = v[:n], v[n:]
+        q = ca.vec(ca.horzcat(ca.cumsum(-ln * ca.sin(th)), ca.cumsum(ln * ca.cos(th))).T)
+        return ca.Function("polar_to_nodes", [v], [q])
+    return model.derive("catenary_polar", build)
+
+
+def _rootfinders(model):
+    from .steady import static_residual
+
+    def build():
+        resid = static_residual(model)
+        to_q = _polar(model)
+        v, p = ca.SX.sym("v", 2 * model.n_elements), ca.SX.sym("p", len(model.layout))
+        G = ca.Function("polar_residual", [v, p], [resid(to_q(v), p)])
+        opts = {"strategy": "linesearch", "abstol": 1e-13, "error_on_fail": False, "print_level": 0,
+                "disable_internal_warnings": True, "max_iter": 200}
+        polar = ca.rootfinder("catenary_polar", "kinsol", G, opts)
+        nodes = ca.rootfinder("catenary_nodes", "kinsol", resid,
+                              dict(opts, linear_solver_type="user_defined", linear_solver="csparse"))
+        return polar, nodes
+    return model.derive("catenary_rootfinders", build)
+
+
+def _tolerance(model, p) -> float:
+    """TOLERANCE, or the round-off floor of the scaled residual when stiff elements set it: a node
+    position known to eps x (cable length) gives an element force error k_e eps L."""
+    lab = model.layout.labels
+    val = lambda lbl: p[lab.index(lbl)]
+    pre = (lambda i: "") if model.n_sections == 1 else (lambda i: f"sections[{i}].")
+    total_l = sum(val(f"{pre(i)}cable.length") for i in range(model.n_sections))
+    k_max = max(val(f"{pre(i)}cable.ae") * n / val(f"{pre(i)}cable.length") for i, n in enumerate(model.segments))
+    weight = sum(abs(val(f"{pre(i)}body.weight")) + abs(val(f"{pre(i)}cable.weight_per_length")) * val(f"{pre(i)}cable.length")
+                 for i in range(model.n_sections))
+    return max(TOLERANCE, 1e3 * np.finfo(float).eps * k_max * total_l / weight)
+
+
+def _to_polar(q):
+    d = np.diff(np.concatenate([[0.0, 0.0], q]).reshape(-1, 2), axis=0)
+    return np.concatenate([np.arctan2(-d[:, 0], d[:, 1]), np.hypot(d[:, 0], d[:, 1])])
+
+
+def segmented_equilibrium(model, p, *, guess=None):
+    """Equilibrium node positions of a segmented model (waves off, top at rest).
+
+    Parameters
+    ----------
+    model : SegmentedModel
+    p : array
+        Parameter vector (wave amplitudes are ignored).
+    guess : array, optional
+        Starting node positions; default the stretched vertical cable.
+
+    Returns
+    -------
+    (numpy.ndarray, float)
+        q and the largest scaled residual (forces over the total weight).
+
+    Raises
+    ------
+    SolverError
+        When neither the direct solve nor the continuation in flow speed converges.
+    """
+    from .steady import _static_parameters, static_residual
+    p = _static_parameters(model, p)
+    polar, nodes = _rootfinders(model)
+    resid, to_q = static_residual(model), _polar(model)
+    g0 = hanging_guess(model, p) if guess is None else np.asarray(guess, float)
+
+    tol = _tolerance(model, p)
+
+    def residual(q, pp):
+        return float(np.max(np.abs(np.array(resid(q, pp))))) if np.all(np.isfinite(q)) else np.inf
+
+    def solve(q0, pp):
+        """Polar Newton from q0, then node-coordinate Newton to polish; (q, residual)."""
+        r0 = residual(q0, pp)
+        if r0 < tol:
+            return q0, r0
+        v = np.array(polar(_to_polar(q0), pp)).ravel()
+        q = np.array(to_q(v)).ravel() if np.all(np.isfinite(v)) else q0
+        q_pol = np.array(nodes(q, pp)).ravel()
+        return min(((q, residual(q, pp)), (q_pol, residual(q_pol, pp))), key=lambda a: a[1])
+
+    q, r = solve(g0, p)
+    if not r < tol:                   # continuation in flow speed, adaptive steps
+        flow = _flow_indices(model)
+        lam, step = 0.0, 0.25
+        q = hanging_guess(model, p)
+        while lam < 1.0 and step > 1.0 / 1024:
+            pp = p.copy()
+            pp[flow] *= min(1.0, lam + step)
+            q_try, r = solve(q, pp)
+            if r < tol:
+                q, lam, step = q_try, min(1.0, lam + step), 2.0 * step
+            else:
+                step *= 0.5
+        if lam < 1.0:
+            r = np.inf
+    if not r < tol:
+        raise SolverError(f"segmented cable equilibrium not found (best scaled residual {r:.3g}): KINSOL failed from "
+                          "the hanging cable and along the flow-speed continuation; a very strong current or tow "
+                          "streams the cable horizontally: check weights and speeds, or give a guess")
+    return q, r
+
+
+def elastic_catenary(s, *, weight_per_length, ea, horizontal, bottom_weight):
+    """Elastic catenary hanging from its top, loaded at its lower end (closed form).
+
+    Arc length ``s`` (unstretched) is measured up from the lower end, where the cable carries a
+    vertical force ``bottom_weight`` and a horizontal force ``horizontal`` (H > 0). With V(s) =
+    W_b + w s and T = sqrt(H^2 + V^2) (Irvine 1981, Cable Structures, eq. 2.17-2.18 rearranged):
+
+        x(s) = H s / EA + (H / w) [asinh(V(s)/H) - asinh(W_b/H)],
+        z(s) = (W_b s + w s^2 / 2) / EA + (1 / w) [T(s) - T(0)],
+
+    the horizontal and vertical offsets of the point at s from the lower end.
+
+    Parameters
+    ----------
+    s : array
+        Unstretched arc length from the lower end (m).
+    weight_per_length, ea, horizontal, bottom_weight : float
+        w (N/m), EA (N, per unstretched length), H (N), W_b (N).
+
+    Returns
+    -------
+    (numpy.ndarray, numpy.ndarray, numpy.ndarray)
+        x(s), z(s) (m) and the tension T(s) (N).
+    """
+    s = np.asarray(s, float)
+    w, H, Wb = weight_per_length, horizontal, bottom_weight
+    V = Wb + w * s
+    T = np.hypot(H, V)
+    x = H * s / ea + H / w * (np.arcsinh(V / H) - np.arcsinh(Wb / H))
+    zz = (Wb * s + 0.5 * w * s**2) / ea + (T - np.hypot(H, Wb)) / w
+    return x, zz, T
+
+
+def segmented_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
+    """x0 = (node positions, node velocities) of a segmented model at time ``t0``.
+
+    As for the 2-DOF model (whose coordinates are relative to the top): ``scene.initial.phi`` and
+    ``u`` unset give the equilibrium shape; set, every section is straight at angle phi with
+    stretch u (Wang 1971 eq. 10), its elements equally long. The shape moves with the top: it is
+    translated by the top position at t0 and every node starts with the top's velocity plus
+    the rates ``phi_rate``/``u_rate`` (the analogue of phi' = u' = 0 relative to the top).
+
+    Parameters
+    ----------
+    scene : Scene
+    model : SegmentedModel
+    p : array
+    t0 : float
+        Start time (s).
+
+    Returns
+    -------
+    numpy.ndarray
+        The state vector (2 x number of free nodes positions, then velocities).
+    """
+    ini = scene.initial
+    e = np.array(model.top(t0, p)).ravel()
+    z, zd = e[1:3], e[3:5]
+    if ini.phi is None and ini.u is None:
+        from .steady import steady_state
+        q = steady_state(model, p).q.reshape(-1, 2)
+        v = np.zeros_like(q)
+    else:
+        if ini.phi is None or ini.u is None:
+            from .steady import steady_state
+            y = steady_state(model, p).outputs
+        pos, vel = [], []
+        r0, v0 = np.zeros(2), np.zeros(2)
+        sfx = (lambda i: "") if model.n_sections == 1 else (lambda i: f"_{i + 1}")
+        for i, n_el in enumerate(model.segments):
+            pre = "" if model.n_sections == 1 else f"sections[{i}]."
+            val = lambda lbl: p[model.layout.index(pre + lbl)]
+            l_0 = val("cable.length") * (1 - val("cable.tension_ref") / val("cable.ae"))
+            phi = ini.phi if ini.phi is not None else y[f"phi{sfx(i)}"]
+            u = ini.u if ini.u is not None else y[f"u{sfx(i)}"]
+            et, en = np.array([-np.sin(phi), np.cos(phi)]), np.array([-np.cos(phi), -np.sin(phi)])
+            length = l_0 + u
+            for k in range(1, n_el + 1):
+                s = k / n_el
+                pos.append(r0 + s * length * et)
+                vel.append(v0 + s * (ini.u_rate * et + length * ini.phi_rate * en))
+            r0, v0 = pos[-1], vel[-1]
+        q, v = np.array(pos), np.array(vel)
+    return np.concatenate([(q + z).ravel(), (v + zd).ravel()])

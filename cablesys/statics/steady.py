@@ -1,0 +1,148 @@
+"""Steady state: the equilibrium of a scene with its top at rest ((phi_0, u_0) of the 2-DOF model).
+
+Solves f(q, q' = 0, e = 0, p) = 0 from the same CasADi model used in the time domain
+(Wang 1971 eq. 47-48 with all rates zero), with CasADi's KINSOL rootfinder (line search).
+Waves are switched off (a steady state has none); current and tow speed stay.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import casadi as ca
+import numpy as np
+
+from ..errors import SolverError
+from ..model import EXO_LABELS, CableModel
+
+
+@dataclasses.dataclass(frozen=True)
+class SteadyState:
+    """An equilibrium: coordinates, outputs (labelled), the relative residual reached
+    (forces over total weight, moments over weight x length; see :func:`static_residual`)."""
+
+    q: np.ndarray
+    q_labels: tuple
+    outputs: dict
+    residual: float
+
+    @property
+    def x(self) -> np.ndarray:
+        """Full state (q, q' = 0)."""
+        return np.concatenate([self.q, np.zeros_like(self.q)])
+
+
+def _static_parameters(model: CableModel, p) -> np.ndarray:
+    p = np.array(p, dtype=float)
+    p[_static_zeroed(model)] = 0.0
+    return p
+
+
+def _static_zeroed(model: CableModel) -> list[int]:
+    """Parameter entries a steady state ignores: wave amplitudes and the slack switches."""
+    waves = [i for i, lbl in enumerate(model.layout.labels)
+             if lbl.startswith("environment.waves[") and lbl.endswith(".amplitude")]
+    return waves + list(model.slack_index)
+
+
+def static_residual(model: CableModel) -> ca.Function:
+    """``(q, p) -> r``: the static residual f(q, q' = 0, e = 0, p) with waves and slack off,
+    scaled to O(1) (built once per model; shared by :func:`steady_state` and the design NLP).
+
+    u-rows (forces) are divided by the total weight, phi-rows (moments) by weight x length,
+    so that solver tolerances are relative and not below round-off for heavy, long systems.
+    """
+    def build():
+        q = ca.SX.sym("q", model.nq)
+        p = ca.SX.sym("p", len(model.layout))
+        zeroed = set(_static_zeroed(model))
+        ps = ca.vertcat(*[0.0 if i in zeroed else p[i] for i in range(len(model.layout))])
+        _, f = model.dynamics(q, ca.SX.zeros(model.nq), ca.SX.zeros(len(EXO_LABELS)), ps)
+        lab = model.layout.labels
+        weight = sum(ca.fabs(p[i]) for i, lb in enumerate(lab) if lb.endswith("body.weight")) + sum(
+            ca.fabs(p[i] * p[lab.index(lb.replace("weight_per_length", "length"))])
+            for i, lb in enumerate(lab) if lb.endswith("cable.weight_per_length"))
+        length = sum(p[i] for i, lb in enumerate(lab) if lb.endswith("cable.length"))
+        scale = ca.vertcat(*[weight * length if lbl.startswith("phi") else weight for lbl in model.q_labels])
+        return ca.Function("static_residual", [q, p], [f / scale], ["q", "p"], ["r"])
+    return model.derive("static_residual", build)
+
+
+def _rootfinder(model: CableModel) -> ca.Function:
+    return model.derive("steady_kinsol", lambda: ca.rootfinder(
+        "steady", "kinsol", static_residual(model),
+        {"strategy": "linesearch", "abstol": 1e-12, "error_on_fail": False, "print_level": 0,
+         # failed starting guesses are expected and retried: keep KINSOL's messages off stderr
+         "disable_internal_warnings": True}))
+
+
+def _guesses(model: CableModel, p):
+    """Hanging stretch u = (weight below + W_c/2)/k for every section, several angles."""
+    lay = model.layout
+    n = model.n_sections
+    pre = (lambda i: "") if n == 1 else (lambda i: f"sections[{i}].")
+    val = lambda lbl: p[lay.index(lbl)]
+    u, below = [0.0] * n, 0.0
+    for i in reversed(range(n)):
+        k = val(f"{pre(i)}cable.ae") / val(f"{pre(i)}cable.length")
+        w_c = val(f"{pre(i)}cable.weight_per_length") * val(f"{pre(i)}cable.length")
+        u[i] = (below + val(f"{pre(i)}body.weight") + 0.5 * w_c) / k
+        below += val(f"{pre(i)}body.weight") + w_c
+    for phi in (0.0, 0.3, -0.3, 0.8, -0.8, 1.2, -1.2, 1.45, -1.45):
+        q = []
+        for lbl in model.q_labels:
+            if lbl.startswith("phi"):
+                q.append(phi)
+            else:
+                i = 0 if lbl == "u" else int(lbl.split("_")[-1]) - 1
+                q.append(u[i])
+        yield np.array(q)
+
+
+def steady_state(model: CableModel, p, *, guess=None, solver: ca.Function | None = None) -> SteadyState:
+    """Equilibrium of the scene with parameters ``p`` (top at rest, no waves).
+
+    Raises :class:`SolverError` if no equilibrium is found from any starting guess. A segmented
+    model (node coordinates) gets its elastic catenary (:mod:`cablesys.statics.catenary`).
+    """
+    if getattr(model, "segments", None):
+        return _segmented_steady(model, p, guess)
+    p = _static_parameters(model, p)
+    rf = solver or _rootfinder(model)
+    resid_fn = static_residual(model)
+    guesses = ([np.asarray(guess, float)] if guess is not None else []) + list(_guesses(model, p))
+    gap_fn = model.cable_force
+    best = None
+    for g0 in guesses:
+        q = np.array(rf(g0, p)).ravel()
+        if not np.all(np.isfinite(q)):
+            continue
+        r = float(np.max(np.abs(np.array(resid_fn(q, p)))))
+        phis = [q[i] for i, lbl in enumerate(model.q_labels) if lbl.startswith("phi")]
+        taut = np.all(np.array(gap_fn(np.concatenate([q, np.zeros_like(q)]), p)) > 0)
+        if not (taut and all(abs(a) < math.pi / 2 for a in phis)):
+            continue          # a root of the equations, but an inverted or compressed cable
+        if best is None or r < best[1]:
+            best = (q, r)
+        if r < 1e-10:
+            break
+    if best is None or best[1] > 1e-9:
+        raise SolverError("steady state not found: the equilibrium rootfinder (KINSOL) found no hanging "
+                          "equilibrium (every |phi| < 90 deg, every section's tension above its floor; best residual "
+                          f"{best[1] if best else float('nan'):.3g}); a buoyant body on a rod only balances inverted, "
+                          "and a very strong current or tow speed streams the cable horizontally: check weights and "
+                          "speeds, or give an initial guess")
+    q = best[0]
+    x = np.concatenate([q, np.zeros_like(q)])
+    y = np.array(model.outputs(x, np.zeros(len(EXO_LABELS)), p)).ravel()
+    return SteadyState(q=q, q_labels=model.q_labels, outputs=dict(zip(model.output_labels, y)), residual=best[1])
+
+
+def _segmented_steady(model, p, guess) -> SteadyState:
+    from .catenary import segmented_equilibrium
+    p = _static_parameters(model, p)
+    q, r = segmented_equilibrium(model, p, guess=guess)
+    x = np.concatenate([q, np.zeros_like(q)])
+    y = np.array(model.outputs(x, np.zeros(len(EXO_LABELS)), p)).ravel()
+    return SteadyState(q=q, q_labels=model.q_labels, outputs=dict(zip(model.output_labels, y)), residual=r)

@@ -1,0 +1,67 @@
+"""The segmented cable (cablesys.model.segmented): N = 1 against Wang's 2-DOF model, scene input,
+sparsity and the hanging equilibrium."""
+
+import numpy as np
+import pytest
+
+from cablesys.errors import ParameterError
+from cablesys.model import build_model
+from cablesys.model.segmented import SegmentedModel, build_segmented_model
+from cablesys.scene import dale_scene
+from cablesys.simulate import simulate
+from cablesys.statics import steady_state
+
+PERIOD = 2 * np.pi / 1.71
+
+
+def test_segments_field_is_validated():
+    scene = dale_scene()
+    for bad in (0, 2001, 2.5, True):
+        with pytest.raises(ParameterError, match="cable.segments"):
+            scene.replace_section(0, cable={"segments": bad})
+    assert isinstance(build_model(scene.replace_section(0, cable={"segments": 3})), SegmentedModel)
+    assert not isinstance(build_model(scene), SegmentedModel)          # N = 1: Wang's model itself
+
+
+def test_one_element_is_wangs_model():
+    """One straight element with Wang's (massless-cable) terms and no tangential drag is the 2-DOF model
+    in other coordinates: same body path to the integrator tolerance. (Wang's cable mass is distributed
+    along the straight cable, eq. 16-25; the element lumps it at its ends, see the next test.)"""
+    scene = dale_scene(omega_ratio=1.5, duration=12.0).replace_section(
+        0, cable={"cable_mass_switch": -1.0, "ct_tangential": 0.0})
+    wang = simulate(scene, rtol=1e-10, atol=1e-12)
+    seg = simulate(scene, model=build_segmented_model(scene), rtol=1e-10, atol=1e-12)
+    assert seg.success and wang.success
+    for lbl in ("x_b", "y_b", "phi", "u"):
+        assert np.max(np.abs(seg[lbl] - wang[lbl])) < 1e-8, lbl
+    # tension = k u: the stretch agrees to the position tolerance, times k
+    assert np.max(np.abs(seg["tension"] - wang["tension"])) < 1e-8 * scene.cable.spring_constant
+
+
+def test_one_element_lumped_mass_difference_is_bounded():
+    """With the cable mass (m_c / m_b = 0.07 on the Dale scene) the lumped element differs from Wang's
+    consistent mass by less than that ratio in body amplitude."""
+    scene = dale_scene(omega_ratio=1.5, duration=12.0)
+    wang = simulate(scene)
+    seg = simulate(scene, model=build_segmented_model(scene))
+    a_w, a_s = wang.steady_amplitude("x_b", PERIOD), seg.steady_amplitude("x_b", PERIOD)
+    ratio = scene.cable.total_mass / scene.body.mass_x
+    assert abs(a_s / a_w - 1) < ratio
+
+
+def test_hanging_equilibrium_tensions_and_sparsity():
+    """At rest the elements carry the weight below their mid-points (exact for lumped weights), the top
+    carries W_b + W_c and the body W_b; the ODE Jacobian is banded (O(N) nonzeros)."""
+    n = 40
+    scene = dale_scene().replace_section(0, cable={"segments": n})
+    model = build_model(scene)
+    st = steady_state(model, model.parameters(scene))
+    c, b = scene.cable, scene.body
+    w = c.weight_per_length * c.length / n
+    expect = b.weight + w * (n - np.arange(n) - 0.5)
+    got = np.array([st.outputs[f"element_tension[{k}]"] for k in range(n)])
+    np.testing.assert_allclose(got, expect, rtol=1e-9)
+    assert st.outputs["tension_top"] == pytest.approx(b.weight + c.total_weight, rel=1e-9)
+    assert st.outputs["tension_bottom"] == pytest.approx(b.weight, rel=1e-9)
+    nnz = model.ode.sparsity_jac(0, 0).nnz()
+    assert nnz < 40 * model.nq                       # banded: a few entries per state, not (4N)^2
