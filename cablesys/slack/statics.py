@@ -240,8 +240,7 @@ def solve_equilibrium(scene: SlackScene, *, n_elements: int | None = None,
     x = np.concatenate([[0.0], w[: n - 1], [scene.span]])
     z = np.concatenate([[0.0], w[n - 1:], [scene.rise]])
     log.info("statics NLP: %d elements, %d iterations, %.3f s", n, stats.get("iter_count", -1), dt)
-    return _equilibrium_from_nodes(scene, d, x, z, "nlp-ipopt", int(stats.get("iter_count", -1)),
-                                   dt, str(stats.get("return_status"))), d
+    return _equilibrium_from_nodes(scene, d, x, z, "nlp-ipopt", int(stats.get("iter_count", -1)), dt, ""), d
 
 
 def _chain_ends(HV: np.ndarray, d: Discretization, EA: float):
@@ -298,7 +297,7 @@ def solve_equilibrium_shooting(scene: SlackScene, *, n_elements: int | None = No
     x = np.concatenate([[0.0], X[:-1], [scene.span]])
     z = np.concatenate([[0.0], Z[:-1], [scene.rise]])
     return _equilibrium_from_nodes(scene, d, x, z, "shooting", int(sol.nfev),
-                                   time.perf_counter() - t0, str(sol.message)), d
+                                   time.perf_counter() - t0, ""), d
 
 
 def stiffness_inplane(eq: Equilibrium, d: Discretization):
