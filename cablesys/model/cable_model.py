@@ -115,20 +115,7 @@ class CableModel:
         object.__setattr__(self, "cache", FunctionCache())
 
     def derive(self, key: str, build):
-        """``self.cache.get(key, build)``: a function derived from this model, built once.
-
-        Parameters
-        ----------
-        key : str
-            Name of the derived function and its structural options.
-        build : callable
-            No-argument function that builds it.
-
-        Returns
-        -------
-        object
-            The cached function.
-        """
+        """``self.cache.get(key, build)`` (see :meth:`FunctionCache.get`): a derived function, built once."""
         return self.cache.get(key, build)
 
     def label(self, name: str, i: int) -> str:
