@@ -17,6 +17,7 @@ cycle half-heights, and the most probable maximum with the counted T_z.
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -79,7 +80,7 @@ def time_domain(t, y, duration: float | None = None) -> dict:
         tz = float(t[idx[-1]] - t[idx[0]]) / (len(idx) - 1)
     else:
         tz = span / len(idx) if len(idx) else math.inf
-    halves = [0.5 * (y[a:b + 1].max() - y[a:b + 1].min()) for a, b in zip(idx[:-1], idx[1:])]
+    halves = [0.5 * (y[a:b + 1].max() - y[a:b + 1].min()) for a, b in itertools.pairwise(idx)]
     if halves:
         h = np.sort(halves)[::-1]
         sig = float(np.mean(h[:max(1, len(h) // 3)]))

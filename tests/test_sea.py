@@ -34,7 +34,7 @@ def test_realised_sea_matches_target_hs_and_tp():
     assert abs(w[k] - 2 * np.pi / 10.0) <= 1.5 * dw    # the largest component sits in the peak bin
     omega, S = _periodogram(t, eta)
     # smoothed periodogram: its peak within one design bin of omega_p, its area = m0
-    win = max(1, int(round(dw / (omega[1] - omega[0]))))
+    win = max(1, round(dw / (omega[1] - omega[0])))
     Ss = np.convolve(S, np.ones(win) / win, mode="same")
     assert abs(omega[np.argmax(Ss)] - 2 * np.pi / 10.0) <= dw
     assert np.trapezoid(S, omega) == pytest.approx(sea.hs**2 / 16, rel=0.02)
@@ -62,7 +62,7 @@ def test_pure_heave_rao_phase_convention():
     w, a, e = sea.components()
     expected = -0.5 * sum(ak * np.sin(wk * t + ek + np.radians(30.0)) for wk, ak, ek in zip(w, a, e))
     np.testing.assert_allclose(y, expected, atol=1e-12)
-    X, Y = top_transfer(rao, [w0])
+    _, Y = top_transfer(rao, [w0])
     assert Y[0] == pytest.approx(-0.5 * np.exp(1j * np.radians(30.0)))
 
 

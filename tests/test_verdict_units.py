@@ -40,6 +40,7 @@ def test_fps_in_fps_out_equals_si_converted(tmp_path):
 @pytest.mark.slow
 def test_netcdf_carries_units_conventions_and_the_scene(tmp_path):
     import xarray as xr
+
     from cablesys.examples import example_text
     from cablesys.export import write_netcdf
     from cablesys.simulate import simulate

@@ -65,7 +65,11 @@ def failed_starts(result) -> list[dict]:
 def write_figures(scene, settings, result, outdir) -> list[str]:
     """design_rao.png (before/after), design_objective.png, design_margins.png."""
     from ..model import build_model
-    from .plots import plot_constraint_margins, plot_objective_history, plot_rao_before_after
+    from .plots import (
+        plot_constraint_margins,
+        plot_objective_history,
+        plot_rao_before_after,
+    )
     model = build_model(scene)
     written = []
     for name, fn in (("design_rao.png", lambda f: plot_rao_before_after(

@@ -7,7 +7,6 @@ import sys
 
 import numpy as np
 
-
 # frequency-grid size limit: each frequency is a complex linear solve and, with a one-frequency
 # top motion, a harmonic balance (KINSOL); 1e8 frequencies hung
 MAX_FREQUENCIES = 10_000
@@ -47,14 +46,20 @@ def run(args) -> int:
 def _analyse(args, scene, outdir) -> int:
     from ..errors import ParameterError, SolverError
     from ..model import build_model
+    from .band import default_band, forcing_frequencies
     from .equivalent import harmonic_response
+    from .frequency_response import rao
     from .linearize import linearize
     from .modal import modes as modes_of
     from .periodic import scene_input_amplitude
-    from .band import default_band, forcing_frequencies
-    from .plots import noise_floor, is_noise, plot_modes, plot_rao_bode, plot_sea_response
+    from .plots import (
+        is_noise,
+        noise_floor,
+        plot_modes,
+        plot_rao_bode,
+        plot_sea_response,
+    )
     from .sea_response import sea_response
-    from .frequency_response import rao
 
     model = build_model(scene)
     p = model.parameters(scene)

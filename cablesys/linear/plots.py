@@ -6,8 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..results import unit_of
 from ..plots import save_figure
+from ..results import unit_of
 
 
 def _plt():

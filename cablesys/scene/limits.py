@@ -7,7 +7,12 @@ from __future__ import annotations
 
 import dataclasses
 
-from ..errors import ParameterError, require_nonnegative, require_positive, require_range
+from ..errors import (
+    ParameterError,
+    require_nonnegative,
+    require_positive,
+    require_range,
+)
 from .fields import spec
 
 

@@ -23,13 +23,19 @@ Conventions (stated once, used by ``rao``, the statistics and the tests):
 from __future__ import annotations
 
 import csv
-import io
 import dataclasses
+import io
 import math
 
 import numpy as np
 
-from ..errors import ParameterError, require_finite, require_nonnegative, require_positive, require_range
+from ..errors import (
+    ParameterError,
+    require_finite,
+    require_nonnegative,
+    require_positive,
+    require_range,
+)
 from .fields import spec
 
 SPECTRA = ("jonswap", "pierson-moskowitz")
@@ -169,7 +175,7 @@ class MotionRAO:
 
 
 def _read_rao_csv(path) -> dict:
-    from ..reader import read_text          # UTF-8 (BOM accepted), named decode errors
+    from ..reader import read_text  # UTF-8 (BOM accepted), named decode errors
     try:
         rows = list(csv.DictReader(io.StringIO(read_text(path, "top_motion.rao.file"), newline="")))
     except csv.Error as err:
