@@ -21,8 +21,8 @@ __all__ = ["register", "run"]
 
 # (flag, attribute, lower, upper, lower bound excluded)
 OPTION_RANGES = (("--c-n", "c_n", 1e-3, 10.0, False), ("--c-t", "c_t", 1e-4, 1.0, False),
-                 ("--c-t-drogue", "c_t_drogue", 0.0, 1e5, False), ("--beta", "beta", 0.0, 1.0, True),
-                 ("--diameter", "diameter", 0.0, 1.0, True))
+                 ("--c-t-drogue", "c_t_drogue", 0.0, 1e5, False), ("--beta", "beta", 1e-3, 1.0, False),
+                 ("--diameter", "diameter", 1e-4, 1.0, False))
 
 
 def register(sub) -> None:
@@ -45,9 +45,9 @@ def register(sub) -> None:
     p.add_argument("--c-t-drogue", type=float, default=d["c_t_drogue"],
                    help=f"drogue term c_t', in [0, 1e5] (default {d['c_t_drogue']})")
     p.add_argument("--beta", type=float, default=d["beta"],
-                   help=f"added-mass ratio beta = M/(M+m), in (0, 1] (default {d['beta']})")
+                   help=f"added-mass ratio beta = M/(M+m), in [0.001, 1] (default {d['beta']})")
     p.add_argument("--diameter", type=float, default=d["diameter"],
-                   help=f"cable diameter d_c in m, in (0, 1] (default {d['diameter']})")
+                   help=f"cable diameter d_c in m, in [0.0001, 1] (default {d['diameter']})")
     p.set_defaults(func=run)
 
 

@@ -121,10 +121,17 @@ def model_runs(runs, **coefficients):
     for r in runs:
         cable = TowedCable(length=r.length, speed=r.speed, **kw)
         w = float(cable.omega(r.frequency))
-        # one pass along the cable gives both H(1) and the unwrapped phase lag psi(1)
-        g = transfer_grid(cable.coefficients(), fine_xi(1.0, w), np.array([w]))
-        H.append(abs(complex(g.H[-1, 0])))
-        cs.append(float(g.c_star[-1, 0]))
+        # one pass along the cable gives both H(1) and the unwrapped phase lag psi(1); an
+        # overflow or invalid operation on the way is a numerical failure, named per run
+        try:
+            with np.errstate(over="raise", invalid="raise", divide="raise"):
+                g = transfer_grid(cable.coefficients(), fine_xi(1.0, w), np.array([w]))
+                H.append(abs(complex(g.H[-1, 0])))
+                cs.append(float(g.c_star[-1, 0]))
+        except (FloatingPointError, OverflowError) as err:
+            raise SolverError(f"run {r.label}: the transfer function at xi = 1, omega = {w:.6g} cannot be evaluated "
+                              f"({err}) with the coefficients {kw}: they lie outside the range where the "
+                              "complex-order solution is computable") from None
         if not (math.isfinite(H[-1]) and math.isfinite(cs[-1])):
             raise SolverError(f"run {r.label}: the transfer function at xi = 1 is not finite (|H| = {H[-1]}, "
                               f"c* = {cs[-1]}) at omega = {w:.6g}; the coefficients {kw} are outside the range "
