@@ -120,11 +120,12 @@ def model_runs(runs, **coefficients):
     H, cs, om = [], [], []
     for r in runs:
         cable = TowedCable(length=r.length, speed=r.speed, **kw)
-        w = float(cable.omega(r.frequency))
+        w = math.nan
         # one pass along the cable gives both H(1) and the unwrapped phase lag psi(1); an
         # overflow or invalid operation on the way is a numerical failure, named per run
         try:
             with np.errstate(over="raise", invalid="raise", divide="raise"):
+                w = float(cable.omega(r.frequency))
                 g = transfer_grid(cable.coefficients(), fine_xi(1.0, w), np.array([w]))
                 H.append(abs(complex(g.H[-1, 0])))
                 cs.append(float(g.c_star[-1, 0]))
