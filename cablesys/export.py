@@ -81,3 +81,20 @@ def units_of_file(path) -> str:
     except (OSError, ValueError):
         return "SI"
     return units if units in ("SI", "fps") else "SI"
+
+
+def convert_rao_table(head: list[str], rows: np.ndarray, system: str = "SI") -> tuple[list[str], np.ndarray]:
+    """An RAO table (columns ``name [unit/m]`` per unit top motion, ``[deg]``, ``[rad/s]``) in ``system``."""
+    from .units import per_input_unit
+    if system == "SI":
+        return head, rows
+    rows = np.array(rows, float, copy=True)
+    out = []
+    for k, h in enumerate(head):
+        name, _, unit = h.partition(" [")
+        unit = unit.rstrip("]")
+        if unit.endswith("/m"):
+            f, unit = per_input_unit(unit[:-2], system)
+            rows[:, k] *= f
+        out.append(f"{name} [{unit}]")
+    return out, rows

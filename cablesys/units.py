@@ -49,3 +49,11 @@ def output_unit(si_unit: str, system: str = "SI") -> tuple[float, str]:
     if system == "fps" and si_unit in FPS_OUT:
         return FPS_OUT[si_unit]
     return 1.0, si_unit
+
+
+def per_input_unit(si_output_unit: str, system: str = "SI") -> tuple[float, str]:
+    """(factor, unit name) of a response per unit top motion (SI: unit/m) shown in ``system``."""
+    f, name = output_unit(si_output_unit, system)
+    if system == "fps":
+        return f * FT, f"{name or '-'}/ft"
+    return f, f"{name or '-'}/m"

@@ -24,6 +24,8 @@ def register(sub) -> None:
                    help="largest frequency in rad/s (default: 3 x the largest natural or forcing frequency)")
     p.add_argument("--n", type=int, default=400, help="number of frequencies (default: 400)")
     p.add_argument("--overwrite", action="store_true", help="replace results of another scene in --out")
+    p.add_argument("--units", default=None, choices=("SI", "fps"),
+                   help="units of the console, tables and figures (default: those of the scene file)")
     p.set_defaults(func=run)
 
 
@@ -61,6 +63,9 @@ def _analyse(args, scene, outdir) -> int:
     )
     from .sea_response import sea_response
 
+    from ..export import convert_rao_table, units_of_file
+    from ..units import output_unit
+    units = getattr(args, "units", None) or units_of_file(args.scene)
     model = build_model(scene)
     p = model.parameters(scene)
     lin = linearize(model, p)
@@ -91,7 +96,7 @@ def _analyse(args, scene, outdir) -> int:
     for name, r in raos.items():
         tag = "exact" if name.startswith("exact") else "describing"
         for inp in r.input_labels[:2]:
-            head, rows = r.table(inp)
+            head, rows = convert_rao_table(*r.table(inp), units)
             f = f"rao_{tag}_{inp}.csv"
             with outdir.writing(f) as tmp:
                 np.savetxt(tmp, rows, delimiter=",", header=",".join(head), comments="", fmt="%.8g")
@@ -106,12 +111,14 @@ def _analyse(args, scene, outdir) -> int:
                 zero.append(f"{o} per unit {inp}")
                 continue
             with outdir.writing(f"rao_{o}_{inp}.png") as tmp:
-                plot_rao_bode(sel, o, inp, natural, tmp, title=f"{scene.name}: {o} per unit {inp}", forcing=forcing)
+                plot_rao_bode(sel, o, inp, natural, tmp, title=f"{scene.name}: {o} per unit {inp}", forcing=forcing,
+                              units=units)
             written.append(f"rao_{o}_{inp}.png")
     resp = sea_response(scene, lin)
     if resp is not None:
         with outdir.writing("sea_response.png") as tmp:
-            plot_sea_response(resp, natural, tmp, title=f"{scene.name}: response spectra in the sea", forcing=forcing)
+            plot_sea_response(resp, natural, tmp, title=f"{scene.name}: response spectra in the sea", forcing=forcing,
+                              units=units)
         written.append("sea_response.png")
     with outdir.writing("modes.png") as tmp:
         plot_modes(md, float(lin.y0[model.output_labels.index("y_b")]), tmp)
@@ -137,9 +144,9 @@ def _analyse(args, scene, outdir) -> int:
     if resp is not None:
         from ..verdict import format_statistics, format_table, group_by_quantity
         lines.append(f"frequency domain, the scene's sea (linear, exposure {resp.exposure:.5g} s):")
-        lines += ["  " + ln for ln in format_statistics(group_by_quantity(resp.statistics))]
+        lines += ["  " + ln for ln in format_statistics(group_by_quantity(resp.statistics), units)]
         if verdict:
-            lines += ["  " + ln for ln in format_table(verdict)]
+            lines += ["  " + ln for ln in format_table(verdict, lambda u: output_unit(u, units))]
     lines.append(f"wrote {len(written) + 1} files to {out}")
     sys.stdout.write("\n".join(lines) + "\n")
     if failures:             # written, but marked failed: a value that did not converge is not a success

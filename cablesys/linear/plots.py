@@ -50,20 +50,23 @@ def _wrap(title: str, width: int = 70) -> str:
 
 
 def plot_rao_bode(raos: dict, output: str, input: str, natural: dict, path, title: str = "",
-                  forcing: dict | None = None) -> Path:
+                  forcing: dict | None = None, units: str = "SI") -> Path:
     """Magnitude and unwrapped phase (deg) of ``output`` per unit ``input`` for several RAOs ({legend: RAO}).
 
     Curves that are numerical zero (below :data:`NOISE` of the largest response per unit input)
     are not drawn but named in the figure; points of a drawn curve below that floor are blanked
     (with their phase). Log frequency axis when the band spans a decade or more; natural and
-    forcing frequencies are marked and labelled in distinct styles.
+    forcing frequencies are marked and labelled in distinct styles. ``units`` "fps" shows the
+    amplitude per ft of top motion in ft/lbf.
     """
+    from ..units import per_input_unit
     plt = _plt()
+    fu, u = per_input_unit(unit_of(output) or ("N" if output.startswith("tension") else "-"), units)
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
     curves = {}
     for name, r in raos.items():
         inp = input if input in r.input_labels else r.input_labels[0]
-        curves[name] = (r, inp, r.amplitude(output, inp))
+        curves[name] = (r, inp, r.amplitude(output, inp) * fu)
     floor = noise_floor([c[2] for c in curves.values()])
     zero, drawn = [], []
     for k, (name, (r, inp, amp)) in enumerate(curves.items()):
@@ -93,8 +96,7 @@ def plot_rao_bode(raos: dict, output: str, input: str, natural: dict, path, titl
     _mark(a1, natural, forcing=forcing)
     _mark(a2, natural, label=False, forcing=forcing)
     a1.set_xlim(omega[0], omega[-1])
-    u = unit_of(output) or ("N" if output.startswith("tension") else "-")
-    a1.set_ylabel(f"|{output}| per unit {input} [{u}/m]")
+    a1.set_ylabel(f"|{output}| per unit {input} [{u}]")
     a2.set_ylabel("phase, unwrapped [deg]")
     a2.set_xlabel("forcing frequency omega [rad/s]")
     if zero:
@@ -170,30 +172,33 @@ def plot_response_spectrum(stoch, output: str, natural: dict, path, title: str =
     return Path(path)
 
 
-def plot_sea_response(resp, natural: dict, path, title: str = "", forcing: dict | None = None) -> Path:
+def plot_sea_response(resp, natural: dict, path, title: str = "", forcing: dict | None = None,
+                      units: str = "SI") -> Path:
     """The sea spectrum with the motion response spectra (top) and the tension response spectra (bottom)
     of a :class:`~cablesys.linear.sea_response.SeaResponse`; legends give sigma and the most probable
     maximum over the exposure. Responses below 1e-9 of the largest are listed, not drawn."""
+    from ..units import output_unit
     plt = _plt()
+    fm, um = output_unit("m", units)
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
-    a1.plot(resp.omega, resp.sea, "k", lw=1.5, label="sea elevation S(omega)")
+    a1.plot(resp.omega, resp.sea * fm**2, "k", lw=1.5, label="sea elevation S(omega)")
     peak = max(float(np.max(v)) for v in resp.spectra.values()) if resp.spectra else 0.0
     zero = []
     for k, (o, S) in enumerate(resp.spectra.items()):
         s = resp.statistics[o]
         tension = o.startswith("tension")
-        u = "N" if tension else (unit_of(o) or "-")
+        f, u = output_unit("N" if tension else (unit_of(o) or "-"), units)
         if is_noise(S, NOISE * peak if tension else NOISE * float(np.max(resp.sea))):
             zero.append(o)
             continue
-        (a2 if tension else a1).plot(resp.omega, S, color=f"C{k}", label=f"{o}: sigma {s['std']:.3g} {u}, "
-                                     f"MPM {s['most_probable_max'] - s['mean']:+.3g} {u} over {resp.exposure:.4g} s")
+        (a2 if tension else a1).plot(resp.omega, S * f**2, color=f"C{k}", label=f"{o}: sigma {s['std'] * f:.3g} {u}, "
+                                     f"MPM {(s['most_probable_max'] - s['mean']) * f:+.3g} {u} over {resp.exposure:.4g} s")
     for ax in (a1, a2):
         _mark(ax, {k: w for k, w in natural.items() if resp.omega[0] <= w <= resp.omega[-1]}, label=ax is a1,
               forcing={k: w for k, w in (forcing or {}).items() if not k.startswith("sea band")})
         ax.grid(True, alpha=0.3)
-    a1.set_ylabel("spectral density [m^2 s/rad]")
-    a2.set_ylabel("tension spectral density [N^2 s/rad]")
+    a1.set_ylabel(f"spectral density [{um}^2 s/rad]")
+    a2.set_ylabel(f"tension spectral density [{output_unit('N', units)[1]}^2 s/rad]")
     a2.set_xlabel("omega [rad/s]")
     a1.legend(fontsize=7)
     if a2.lines:
