@@ -51,7 +51,8 @@ def test_sweep_equals_the_cases_run_one_by_one():
                 np.testing.assert_allclose(float(ds[name][i, j]), ref[name], rtol=1e-10, err_msg=name)
 
 
-def test_one_model_per_structure_values_only_through_p():
+def test_one_model_per_structure_values_only_through_p(monkeypatch):
+    monkeypatch.setenv("CABLESYS_COMPILE", "0")      # counting model builds: no need to compile each structure to C
     cache = process_cache()
     n0 = cache.builds
     ds = cablesys.sweep(dale_scene(duration=1.0), {"cable.ae": [20.0, 40.0, 80.0], "body.weight": [0.2, 0.3]},
@@ -158,3 +159,17 @@ def test_rao_and_periodic_sweeps_give_the_physics():
     per = cablesys.sweep(scene, {"top_motion.x[0].frequency": [2.5], "top_motion.y[0].frequency": [2.5]}, "periodic",
                          zip=True, workers=1, progress=False)
     assert per["status"].values[0] == "ok" and 0 < float(per["amplitude_x_b"][0]) < 0.1
+
+
+@pytest.mark.slow
+def test_the_model_chosen_is_recorded():
+    """As built (like simulate): Wang's 2-DOF model; under the model ladder: its choice for each case."""
+    from cablesys.ladder import choose
+    scene = dale_scene(duration=2.0)
+    vary = {"cable.ae": [20.0, 2e3]}
+    built = cablesys.sweep(scene, vary, "run", metrics=["model_*"], workers=1, progress=False)
+    assert list(built["model_name"].values) == ["wang", "wang"]
+    auto = cablesys.sweep(scene, vary, "run", metrics=["model_*"], workers=1, progress=False, options={"model": "auto"})
+    for i, ae in enumerate(vary["cable.ae"]):
+        choice = choose(scene.replace_section(0, cable={"ae": ae}))
+        assert auto["model_name"].values[i] == choice.name and float(auto["model_segments"][i]) == choice.segments

@@ -51,6 +51,17 @@ class ModelCache:
         key = (structure_of(scene), num, jit)
         return self._get(self._sims, key, lambda: Simulator(self.model(scene), scene.output_times, settings))
 
+    def rung_simulator(self, scene, name: str, segments: int):
+        """Simulator of a model-ladder rung for ``scene`` (the rung's scene), built once per structure."""
+        from ..ladder.rungs import build_rung
+        from ..simulate import IntegratorSettings, Simulator
+        num = scene.numerics
+        settings = IntegratorSettings(method=num.integrator, rtol=num.rtol, atol=num.atol,
+                                      steps_per_output=num.steps_per_output)
+        key = ("rung", name, segments, structure_of(scene), num)
+        return self._get(self._sims, key, lambda: Simulator(build_rung(scene, name, segments), scene.output_times,
+                                                            settings))
+
 
 def forcing_frequency(scene) -> float | None:
     """Lowest frequency of the top-motion sinusoids with a non-zero amplitude (rad/s)."""
@@ -62,11 +73,47 @@ def _outputs(labels) -> list:
     return [lbl for lbl in labels if "_rate" not in lbl and lbl not in ("x_s", "y_s")]
 
 
-def run(scene, options, cache):
-    """Time-domain run (Wang 1971 eq. 47-48 integrated); amplitudes over the last ``periods`` forcing periods."""
+def _ladder_run(scene, name: str, cache):
+    """The model ladder's choice for ``scene`` (``name``: "auto" or a rung), run with a cached simulator
+    and checked a posteriori (:mod:`cablesys.ladder.auto`); returns (result, choice dict)."""
+    from ..ladder.auto import after_run, simulate_auto
+    from ..ladder.choose import choose, forced
+    from ..ladder.rungs import check_rung, rung_scene
     from ..simulate import simulate
-    r = simulate(scene, simulator=cache.simulator(scene, jit=bool(options.get("jit", False))))
+    name = check_rung(name)
+    choice = choose(scene) if name == "auto" else forced(scene, name)
+    if choice.name == "frequency":
+        r = simulate_auto(scene, model="frequency")
+        return r, r.stats.get("model", choice.as_dict())
+    sc = rung_scene(scene, choice.name, choice.segments)
+    r = simulate(sc, simulator=cache.rung_simulator(sc, choice.name, choice.segments))
+    choice, again = after_run(scene, choice, r, auto=(name == "auto"))
+    if again:                      # rejected a posteriori (went slack): the ladder reruns it its way
+        r = simulate_auto(scene, model=name)
+        return r, r.stats["model"]
+    return r, choice.as_dict()
+
+
+def run(scene, options, cache):
+    """Time-domain run (Wang 1971 eq. 47-48 integrated); amplitudes over the last ``periods`` forcing periods.
+
+    Option ``model``: None (default) runs the scene's model as built, like :func:`cablesys.simulate.simulate`;
+    ``"auto"`` or a rung name runs the model ladder's choice (:mod:`cablesys.ladder`), ``"scene"`` the
+    scene's ``numerics.model``. The model that ran is reported (``model_name``, its reason and estimated error).
+    """
+    from ..simulate import simulate
+    ladder = options.get("model")
+    if ladder == "scene":
+        ladder = getattr(scene.numerics, "model", None)
+    if ladder is not None:
+        r, choice = _ladder_run(scene, ladder, cache)
+    else:
+        sim = cache.simulator(scene, jit=bool(options.get("jit", False)))
+        r = simulate(scene, simulator=sim)
+        choice = {"name": getattr(sim.model, "kind", "wang"),
+                  "segments": max(int(getattr(sec.cable, "segments", 1)) for sec in scene.sections)}
     s = dict(r.summary())
+    s["model"] = choice
     s.pop("warnings", None)
     w = forcing_frequency(scene)
     n = int(options.get("periods", 3))

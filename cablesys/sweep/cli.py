@@ -22,6 +22,9 @@ def register(sub) -> None:
                    help="run (time domain), rao (linearization), periodic (harmonic balance), stochastic (JONSWAP sea)")
     p.add_argument("--metric", action="append", default=None, metavar="PATTERN",
                    help="keep metrics matching this glob (repeatable; default all, e.g. 'tension_*')")
+    p.add_argument("--model", default="scene",
+                   help="run analysis: the model ladder rung, as for `cablesys run` (default: the scene's "
+                        "numerics.model; 'auto', a rung name, or 'built' for the scene's model as built)")
     p.add_argument("--zip", action="store_true", help="advance all --vary lists in step (one dimension)")
     p.add_argument("--out", type=Path, default=Path("sweep-out"), help="output folder (default: sweep-out)")
     p.add_argument("--workers", type=int, default=None, help="local processes (default: all cores)")
@@ -39,8 +42,9 @@ def run(args) -> int:
     scene = load_scene(args.scene)
     if args.duration:
         scene = scene.with_numerics(duration=args.duration)
+    options = {"model": None if args.model == "built" else args.model} if args.analysis == "run" else {}
     ds = sweep(scene, parse_vary(args.vary), args.analysis, metrics=args.metric, zip=args.zip, out=args.out,
-               workers=args.workers, scheduler=args.scheduler, progress=sys.stderr.isatty())
+               workers=args.workers, scheduler=args.scheduler, progress=sys.stderr.isatty(), options=options)
     ds.to_dataframe().to_csv(args.out / "sweep.csv")
     figs = [] if args.no_plots else plot_sweep(ds, args.out / "plots")
     status = ds["status"].values.ravel()
