@@ -67,17 +67,18 @@ def test_amplitude_and_drift_of_a_known_signal():
 
 # -- chunked integration and streaming -------------------------------------------------------
 def test_chunks_do_not_change_the_answer_and_blocks_stream_the_whole_series(dale):
-    """Chunks of 7 output intervals (with a remainder) agree with chunks of 256 to integrator
+    """Chunks of 7 and 19 output intervals (and a remainder) agree with the default chunks to integrator
     tolerance, and the streamed blocks concatenate to exactly the returned series."""
     scene, model, p, x0 = dale
     settings = IntegratorSettings(rtol=1e-10, atol=1e-12)
     ref = Simulator(model, scene.output_times, settings).run(p, x0)
 
     class Small(Simulator):
-        CHUNK = 7
+        CHUNKS = (7, 19)
+        CHUNK_GROW_S = 1e9        # 7, then 19 at a time, then a remainder
     blocks = []
     r = Small(model, scene.output_times, settings).run(p, x0, on_block=lambda t, d: blocks.append((t, d)))
-    assert r.success and (scene.output_times.size - 1) % 7 != 0
+    assert r.success and (scene.output_times.size - 1 - 7) % 19 != 0
     np.testing.assert_allclose(r.states[:2], ref.states[:2], rtol=0, atol=1e-7)
     t = np.concatenate([b[0] for b in blocks])
     np.testing.assert_array_equal(t, r.time)
@@ -96,7 +97,7 @@ def test_interrupt_between_integrator_calls_keeps_the_partial_record(dale, monke
     monkeypatch.setattr(track.Track, "FLUSH_S", 0.0)          # hand over every chunk
 
     class Small(Simulator):
-        CHUNK = 16
+        CHUNKS = (16,)
 
     calls = []
 

@@ -1,7 +1,7 @@
 """Time-domain runs: ``simulate(scene)`` and the reusable :class:`Simulator`.
 
 Between events the integration runs in compiled CasADi integrator calls over chunks of
-:attr:`Simulator.CHUNK` output intervals (no Python per step; chunks give progress, streaming
+:attr:`Simulator.CHUNKS` output intervals (no Python per step; chunks give progress, streaming
 and interrupts). Slack switches are located as described in :mod:`.events`. The integrator's
 step budget is ``max_num_steps`` per output interval: exhausting it fails the run with a named
 message (it is not silently multiplied).
@@ -62,7 +62,10 @@ class Simulator(ev.EventLocator):
     """Integrators and helper functions for one model, output grid and method; reusable for sweeps."""
 
     MAX_EVENTS_PER_INTERVAL = 50   # more switches than this in one output interval is a failure
-    CHUNK = 256    # output intervals per whole-horizon integrator call (uniform output grids)
+    # output intervals per whole-horizon integrator call (uniform output grids): the next size is
+    # used while a call takes less than CHUNK_GROW_S (each restart of CVODES costs ~300 steps)
+    CHUNKS = (256, 1024, 4096)
+    CHUNK_GROW_S = 0.25
 
     def __init__(self, model: CableModel, times, settings: IntegratorSettings | None = None):
         self.model = model
@@ -75,7 +78,7 @@ class Simulator(ev.EventLocator):
         steps = np.diff(self.times)
         n_int = self.times.size - 1
         self._uniform = bool(np.allclose(steps, steps[0], rtol=1e-9, atol=0.0))
-        self._chunk = min(n_int, self.CHUNK) if self._uniform else n_int
+        self._chunk = min(n_int, self.CHUNKS[0]) if self._uniform else n_int
         self._chunks = {}                        # chunk length -> integrator over that many output intervals
         self._flag = InterruptFlag()
         self._chunk_integrator(self._chunk)
@@ -225,16 +228,19 @@ class Simulator(ev.EventLocator):
         """Fill ``track``: whole chunks of output intervals while nothing switches, then interval by interval."""
         times, events = self.times, track.events
         n_int = times.size - 1
-        k = 0
+        k, size = 0, self._chunk
         # 1) one compiled call per chunk of output times (no Python per step)
         while k < n_int:
-            m = min(self._chunk, n_int - k)
+            m = min(size, n_int - k)
             x, pm = track.x_last, self._with_mode(p, mode)
+            t_call = _time.perf_counter()
             try:
                 Xs = np.array(self._call(self._chunk_integrator(m), x0=x, p=np.concatenate([pm, [times[k], 1.0]]))["xf"])
             except RuntimeError as err:
                 log.info("chunk integration failed (%s); stepping interval by interval", _reason(err)[0])
                 break
+            if self._uniform and _time.perf_counter() - t_call < self.CHUNK_GROW_S:
+                size = next((c for c in self.CHUNKS if c > size), size)
             cols = np.column_stack([x, Xs])
             finite = np.all(np.isfinite(cols), axis=0)
             n_ok = int(np.argmin(finite)) if not finite.all() else m + 1
@@ -293,7 +299,7 @@ class Simulator(ev.EventLocator):
         if "TOO_MUCH_WORK" in flag:
             return (f"step budget exhausted: {method} used all max_num_steps = {self.settings.max_num_steps} steps "
                     f"between t = {t_a:.6g} s and {t_b:.6g} s{at} without reaching {t_b:.6g} s "
-                    f"({self._stats.get('nsteps', 0)} steps in the run so far). {REMEDIES['TOO_MUCH_WORK']}. "
+                    f"(besides {self._stats.get('nsteps', 0)} steps in the intervals before). {REMEDIES['TOO_MUCH_WORK']}. "
                     f"Results up to t = {t_kept:.6g} s are kept.")
         key = next((kk for kk in REMEDIES if kk in flag), None)
         return (f"{method} failed between t = {t_a:.6g} s and {t_b:.6g} s{at}: {flag}. "
