@@ -2,9 +2,9 @@
 
 1. Imports point down the ladder (the table ``LAYERS`` below is the one place it is written):
    foundation (units, errors, results, reader, statistics, outputs, compiled,
-   messages) < scene < model < statics
+   messages, integration, profiles) < scene < model < statics
    < analyses (simulate, linear, and the slack and towed models) < design (design, ladder,
-   verdict, ...) < workflows over any analysis (sweep) < plots < cli. A module may import its
+   verdict, export, ...) < workflows over any analysis (sweep) < plots < cli. A module may import its
    own layer only inside its own subpackage (``simulate`` does not import ``linear``: what
    both need lives in ``statics``). Lazy imports inside functions count: a dependency is a
    dependency. A subpackage's ``__init__`` is its facade and may re-export any module of its
@@ -26,7 +26,8 @@ PKG = Path(__file__).resolve().parents[1] / "cablesys"
 # cli layers. New packages: add them here.
 LAYERS = [
     ("foundation", ("cablesys.units", "cablesys.errors", "cablesys.results", "cablesys.reader",
-                    "cablesys.statistics", "cablesys.outputs", "cablesys.compiled", "cablesys.messages")),
+                    "cablesys.statistics", "cablesys.outputs", "cablesys.compiled", "cablesys.messages",
+                    "cablesys.integration", "cablesys.profiles")),
     ("scene", ("cablesys.scene",)),
     ("model", ("cablesys.model",)),
     ("statics", ("cablesys.statics",)),

@@ -12,6 +12,7 @@ import math
 
 from ..errors import (ParameterError, require_finite, require_nonnegative,
                       require_positive, require_range)
+from ..integration import METHODS as INTEGRATION_METHODS
 from .fields import spec
 from .sea import MotionRAO, SeaSpectrum
 
@@ -264,7 +265,7 @@ class Initial:
 
 
 MODEL_CHOICES = ("auto", "frequency", "quasi-static", "wang", "segmented")   # cablesys.ladder.rungs
-INTEGRATORS = ("cvodes", "cvodes-adams", "idas", "rk", "collocation")
+INTEGRATORS = tuple(INTEGRATION_METHODS)      # the names of the one registry (cablesys.integration)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

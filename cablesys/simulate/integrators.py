@@ -25,34 +25,44 @@ import casadi as ca
 import numpy as np
 
 from ..compiled import Compiled, compile_functions
-from ..errors import ParameterError
+from ..integration import METHODS, IntegratorMethod, resolve
 from ..model import CableModel
 
-METHODS = {
-    "cvodes": ("cvodes", {"linear_multistep_method": "bdf", "nonlinear_solver_iteration": "newton"}),
-    "cvodes-adams": ("cvodes", {"linear_multistep_method": "adams", "nonlinear_solver_iteration": "newton"}),
-    "idas": ("idas", {}),
-    "rk": ("rk", {}),
-    "collocation": ("collocation", {"collocation_scheme": "radau", "interpolation_order": 3}),
-}
-ADAPTIVE = ("cvodes", "cvodes-adams", "idas")
+# the registry and the protocol of a user method live in cablesys.integration (the scene checks names there)
+ADAPTIVE = tuple(name for name, m in METHODS.items() if m.adaptive)
 
 
 @dataclasses.dataclass(frozen=True)
 class IntegratorSettings:
-    """Method and accuracy settings (immutable)."""
+    """Method and accuracy settings (immutable).
 
-    method: str = "cvodes"
+    ``method`` is a name in :data:`~cablesys.integration.METHODS` or a user
+    :class:`~cablesys.integration.IntegratorMethod`; after construction ``method`` is always the
+    name (for results and messages) and :attr:`integrator_method` the method itself.
+    """
+
+    method: str | IntegratorMethod = "cvodes"
     rtol: float = 1e-8
     atol: float = 1e-10
     steps_per_output: int = 10        # fixed-step methods only
     max_num_steps: int = 20000        # step budget per output interval (typical runs use < 100); more fails by name
     compiled: bool = True             # the DAE as cached compiled C (see cablesys.compiled); False: CasADi VM
     jit: bool = False                 # former opt-in compilation; now an alias of ``compiled``
+    custom: IntegratorMethod | None = dataclasses.field(default=None, repr=False)   # set from ``method``
 
     def __post_init__(self):
-        if self.method not in METHODS:
-            raise ParameterError("method", self.method, f"must be one of {tuple(METHODS)}")
+        if isinstance(self.method, IntegratorMethod):
+            object.__setattr__(self, "custom", self.method)
+            object.__setattr__(self, "method", self.method.name)
+        elif self.custom is not None and self.custom.name != self.method:
+            object.__setattr__(self, "custom", None)     # dataclasses.replace(method=<another name>)
+        if self.custom is None:
+            resolve(self.method)
+
+    @property
+    def integrator_method(self) -> IntegratorMethod:
+        """The :class:`~cablesys.integration.IntegratorMethod` these settings run."""
+        return self.custom if self.custom is not None else resolve(self.method)
 
 
 def _dae_function(model: CableModel, implicit: bool) -> ca.Function:
@@ -91,8 +101,11 @@ def dae_function(model: CableModel, implicit: bool, compiled: bool = True) -> Co
 
 
 def compiled_dae(model: CableModel, settings: IntegratorSettings) -> Compiled:
-    """The DAE that :func:`make_integrator` uses for ``settings`` (with its first build/load times)."""
-    return dae_function(model, settings.method == "idas", settings.compiled or settings.jit)
+    """The compiled model code :func:`make_integrator` uses for ``settings`` (the DAE, or the RK4
+    interval for ``rk``), with its first build/load times."""
+    if settings.method == "rk" and settings.custom is None:
+        return rk4_interval(model, int(settings.steps_per_output), settings.compiled or settings.jit)
+    return dae_function(model, settings.integrator_method.implicit, settings.compiled or settings.jit)
 
 
 def compiled_functions(model: CableModel, settings: IntegratorSettings, functions) -> list:
@@ -146,19 +159,19 @@ def _rk4_integrator(model: CableModel, settings: IntegratorSettings, grid, name:
 
 def make_integrator(model: CableModel, settings: IntegratorSettings, grid, name: str = "F") -> ca.Function:
     """A CasADi integrator over the relative ``grid`` (first entry 0 excluded from outputs)."""
-    if settings.method == "rk":
+    if settings.method == "rk" and settings.custom is None:
         return _rk4_integrator(model, settings, np.asarray(grid, dtype=float), name)
-    plugin, opts = METHODS[settings.method]
-    opts = dict(opts)
+    method = settings.integrator_method
+    plugin, opts = method.plugin, method.plugin_options()
     grid = np.asarray(grid, dtype=float)
-    if settings.method in ADAPTIVE:
+    if method.adaptive:
         opts.update(reltol=settings.rtol, abstol=settings.atol, max_num_steps=settings.max_num_steps)
-        if settings.method == "idas":
+        if method.implicit:
             # q'' is algebraic (index 1): its accuracy follows from q', so keep it out of the error test
             opts.update(calc_ic=True, suppress_algebraic=True)
     else:
         opts["number_of_finite_elements"] = int(settings.steps_per_output * (len(grid) - 1))
-        if settings.method == "collocation":
+        if plugin == "collocation":
             opts["rootfinder"] = "newton"   # the q'' system is small and dense
     opts["print_stats"] = False
     comp = compiled_dae(model, settings)
