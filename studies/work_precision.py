@@ -37,9 +37,10 @@ from cablesys.simulate.run import initial_state  # noqa: E402
 from cablesys.linear.linearize import linearize  # noqa: E402
 from cablesys.linear import modes  # noqa: E402
 from cablesys.plots import save_figure  # noqa: E402
+from cablesys.integration import METHODS  # noqa: E402
 
-ADAPTIVE = ("cvodes", "cvodes-adams", "idas")
-FIXED = ("rk", "collocation")
+ADAPTIVE = tuple(name for name, m in METHODS.items() if m.adaptive)       # the one registry
+FIXED = tuple(name for name, m in METHODS.items() if not m.adaptive)
 RK4_REAL_LIMIT = 2.785293563405282      # |1 + z + z^2/2 + z^3/6 + z^4/24| = 1 on the negative real axis
 RK4_IMAG_LIMIT = 2.0 * math.sqrt(2.0)   # ... on the imaginary axis
 N_STABILITY_STEPS = 2000
