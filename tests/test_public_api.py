@@ -41,10 +41,8 @@ EXPORTED = _exported()
 # Exported functions whose modules were being rewritten by other work when this test was
 # written: their numpydoc sections are owed. Strict xfail: once documented, the entry must go.
 PENDING = {
-    "cablesys.build_model", "cablesys.dump_scene", "cablesys.simulate.initial_state",
-    "cablesys.simulate.make_integrator", "cablesys.simulate.simulate", "cablesys.statics.elastic_catenary",
-    "cablesys.statics.static_residual", "cablesys.steady_state", "cablesys.sweep.parse_values",
-    "cablesys.sweep.parse_vary", "cablesys.towed.fit_normal_drag", "cablesys.towed.model_runs",
+    "cablesys.build_model", "cablesys.statics.static_residual",
+    "cablesys.steady_state", "cablesys.sweep.parse_values", "cablesys.sweep.parse_vary",
 }
 FUNCTIONS = [pytest.param(n, o, id=n, marks=[pytest.mark.xfail(strict=True, reason="docstring owed")]
                           if n in PENDING else []) for n, o in EXPORTED if inspect.isfunction(o)]
@@ -77,8 +75,8 @@ def test_exported_function_docstring(name, func):
     if params:
         section = _section(doc, "Parameters")
         assert section, f"{name}: docstring has no 'Parameters' section"
-        documented = set(re.findall(r"^(\w+)(?:\s*,\s*(\w+))*\s*:", section, re.MULTILINE))
-        names = {n for group in documented for n in group if n}
+        heads = re.findall(r"^(\w+(?:\s*,\s*\w+)*)\s*:", section, re.MULTILINE)    # "a, b : type" names both
+        names = {n.strip() for head in heads for n in head.split(",")}
         missing = [p.name for p in params if p.name not in names]
         assert not missing, f"{name}: parameters {missing} not documented"
     assert _section(doc, "Returns") or _section(doc, "Yields"), f"{name}: docstring has no 'Returns' section"

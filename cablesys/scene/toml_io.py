@@ -168,7 +168,22 @@ def _table_lines(obj, header: str, units: str, annotate: bool) -> list[str]:
 
 
 def dump_scene(scene: Scene, *, units: str = "SI", annotate: bool = False) -> str:
-    """Write a scene as TOML text (loadable by :func:`load_scene`)."""
+    """Write a scene as TOML text (loadable by :func:`load_scene`).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (SI inside).
+    units : str, optional
+        'SI' or 'fps' (the report's ft/lb/slug); values are converted on the way out.
+    annotate : bool, optional
+        Add each field's unit and meaning as comments.
+
+    Returns
+    -------
+    str
+        TOML text.
+    """
     if units not in UNIT_SYSTEMS:
         raise ParameterError("units", units, f"must be one of {UNIT_SYSTEMS}")
     out = []

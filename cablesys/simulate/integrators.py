@@ -158,7 +158,24 @@ def _rk4_integrator(model: CableModel, settings: IntegratorSettings, grid, name:
 
 
 def make_integrator(model: CableModel, settings: IntegratorSettings, grid, name: str = "F") -> ca.Function:
-    """A CasADi integrator over the relative ``grid`` (first entry 0 excluded from outputs)."""
+    """A CasADi integrator over the relative ``grid`` (first entry 0 excluded from outputs).
+
+    Parameters
+    ----------
+    model : CableModel
+        The model.
+    settings : IntegratorSettings
+        Method (:mod:`cablesys.integration`), tolerances, steps per output.
+    grid : array_like
+        Relative output grid s (time t = t_0 + h s, with (t_0, h) appended to p).
+    name : str, optional
+        Name of the CasADi function.
+
+    Returns
+    -------
+    casadi.Function
+        The integrator (``casadi.integrator`` or the compiled RK4 loop).
+    """
     if settings.method == "rk" and settings.custom is None:
         return _rk4_integrator(model, settings, np.asarray(grid, dtype=float), name)
     method = settings.integrator_method

@@ -354,7 +354,22 @@ class Simulator(ev.EventLocator):
 
 
 def initial_state(scene: Scene, model: CableModel, p) -> np.ndarray:
-    """x0 from ``scene.initial``; unset angle/stretch come from the steady state."""
+    """x0 from ``scene.initial``; unset angle/stretch come from the steady state.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (its ``initial`` table).
+    model : CableModel
+        The model of the scene.
+    p : array_like
+        Parameter vector.
+
+    Returns
+    -------
+    ndarray
+        x0 = (q, q') in SI.
+    """
     if getattr(model, "segments", None):      # node coordinates: the segmented cable
         from ..statics.catenary import segmented_initial_state
         return segmented_initial_state(scene, model, p)

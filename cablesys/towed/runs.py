@@ -115,6 +115,18 @@ def model_runs(runs, **coefficients):
 
     ``coefficients`` override the report's sea-trial values ``REPORT_SEA_TRIAL``
     (diameter, c_t, c_n, c_t_drogue, beta).  Returns ``(H_abs, c_star, omega)`` arrays.
+
+    Parameters
+    ----------
+    runs : sequence of Run
+        Sea-trial runs (length m, speed m/s, frequency Hz), e.g. from :func:`read_runs`.
+    **coefficients
+        Overrides of ``REPORT_SEA_TRIAL`` (diameter in m; c_t, c_n, c_t_drogue, beta).
+
+    Returns
+    -------
+    tuple of ndarray
+        ``(H_abs, c_star, omega)``: |H(1)| (1), c*(1) in units of U, omega L / U per run.
     """
     kw = {**REPORT_SEA_TRIAL, **coefficients}
     H, cs, om = [], [], []
@@ -171,6 +183,28 @@ def fit_normal_drag(runs, H_data, c_data, targets=("amplitude", "phase", "both")
 
     One log-spaced scan of c_n brackets each target's global minimum; ``minimize_scalar``
     (bounded) refines it.  Returns ``{target: CnFit}``.
+
+    Parameters
+    ----------
+    runs : sequence of Run
+        Sea-trial runs.
+    H_data, c_data : array_like
+        Measured |H| and c* (units of U) per run.
+    targets : tuple of str, optional
+        Any of 'amplitude', 'phase', 'both'.
+    bounds : tuple of float, optional
+        Search interval of c_n.
+    n_scan : int, optional
+        Points of the log-spaced scan.
+    xatol : float, optional
+        Absolute tolerance of the refined log10 c_n.
+    **coefficients
+        Overrides of ``REPORT_SEA_TRIAL`` other than c_n.
+
+    Returns
+    -------
+    dict
+        ``{target: CnFit}``.
     """
     for t in targets:
         if t not in ("amplitude", "phase", "both"):
