@@ -193,3 +193,13 @@ def test_casadi_warnings_are_quiet_unless_verbose(capsys):
     with casadi_messages_to_log(verbose=True):
         rf(0.5)
     assert "KINSol" in capsys.readouterr().err
+
+
+def test_rao_grid_size_and_band_are_checked_before_any_work(tmp_path):
+    (tmp_path / "s.toml").write_text(dumps(TINY))
+    for opts, msg in ((["--n", "100000000"], "--n = 100000000: must be an integer in [2, 10000]"),
+                      (["--omega-max", "nan"], "--omega-max = nan: must be a finite number in (0, 1e+06]"),
+                      (["--omega-max", "-1"], "--omega-max = -1.0: must be")):
+        rc, _, err = _cli(["rao", tmp_path / "s.toml", "--out", tmp_path / "o", *opts])
+        assert rc == 2 and msg in err
+        assert not (tmp_path / "o").exists()

@@ -257,3 +257,15 @@ def test_towed_rows_with_extra_or_missing_fields_are_named(tmp_path):
     c.write_text("run,L_m,U_mps,f_mHz\n1,1000,4\n")
     with pytest.raises(ParameterError, match=r"row 1 \(line 2\).*has 3 fields"):
         read_runs(c)
+
+
+def test_requested_size_limits_are_named(tmp_path, monkeypatch):
+    import cablesys.reader as reader
+    f = tmp_path / "s.toml"
+    f.write_text(dumps({**SLACK, "scene": {**SLACK["scene"], "n_elements": 1e6}}))
+    with pytest.raises(ParameterError, match=r"scene\.n_elements = 1000000: must be an integer in \[4, 5000\]"):
+        load_slack(f)
+    monkeypatch.setattr(reader, "MAX_INPUT_BYTES", 100)
+    f.write_text(EXAMPLE_TOML)
+    with pytest.raises(ParameterError, match=r"is \d+ bytes; the limit for an input file is 100"):
+        load_slack(f)
