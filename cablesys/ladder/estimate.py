@@ -33,7 +33,8 @@ from .rungs import build_rung, rung_scene
 
 BOW_GAIN = 3.0      # body-error per unit relative sag (closed-form estimate; see studies/model_ladder.py)
 ORDER = 2.0         # convergence order of the segmented cable in N
-SLACK_MARGIN = 0.05  # a least tension within 5 % of the static tension of the floor counts as slack
+SLACK_MARGIN = 0.05
+SWING_AMPLIFICATION = 10.0  # a least tension within 5 % of the static tension of the floor counts as slack
 
 
 @dataclasses.dataclass(frozen=True)
@@ -62,7 +63,7 @@ def linear_response(scene: Scene, numbers: SceneNumbers) -> LinearResponse:
     sc = rung_scene(scene, "wang")
     model = build_rung(sc, "wang")
     p = model.parameters(sc)
-    keys = ("tension_top", "tension_bottom")
+    keys = ("tension_top", "tension_bottom", "tension")      # "tension": Wang's F_bc, the slack switch (eq. 54)
     if numbers.single_frequency and not scene.environment.waves:
         omega, Z = scene_input_amplitude(sc)
         h = harmonic_response(model, p, [omega], Z)
@@ -95,9 +96,20 @@ def axial_factor(scene: Scene, numbers: SceneNumbers) -> float:
 
 
 def straight_cable_error(numbers: SceneNumbers) -> float:
-    """Relative body-amplitude error of one straight cable vs the converged segmented one."""
-    string = numbers.mass_ratio * numbers.string_ratio**2 if math.isfinite(numbers.string_ratio) else 0.0
-    return BOW_GAIN * (numbers.static_bow + numbers.dynamic_bow + string)
+    """Relative body-amplitude error of one straight cable vs the converged segmented one.
+
+    Two parts: the drag bowing, BOW_GAIN (static + dynamic sag / chord); and the string inertia. A
+    string of tension T driven at its end has the dynamic stiffness (T/L) kL cot kL =
+    (T/L) (1 - (kL)^2/3 - (kL)^4/45 - ...), kL = pi omega / omega_string; the straight cable (a
+    linear shape) keeps the first two terms exactly (Wang 1971 eq. 22-25), so it misses
+    (pi^4/45) (omega/omega_string)^4 of T/L, amplified near the swing resonance by
+    1 / |1 - (omega/omega_swing)^2| (at most SWING_AMPLIFICATION: drag bounds it).
+    """
+    sr = numbers.string_ratio if math.isfinite(numbers.string_ratio) else 0.0
+    detune = abs(1.0 - (numbers.omega_forcing / numbers.omega_swing) ** 2) if numbers.omega_swing > 0 else 1.0
+    amp = min(SWING_AMPLIFICATION, 1.0 / max(detune, 1e-12))
+    string = math.pi**4 / 45.0 * sr**4 * amp
+    return BOW_GAIN * (numbers.static_bow + numbers.dynamic_bow) + string
 
 
 def estimate_errors(scene: Scene, numbers: SceneNumbers, response: LinearResponse) -> dict:
@@ -130,7 +142,7 @@ def estimate_errors(scene: Scene, numbers: SceneNumbers, response: LinearRespons
     if not numbers.single_frequency:
         freq.update(body=math.inf, tension=math.inf, note="no single forcing frequency: no periodic steady state")
     seg = {"body": e_wang if not slack else 1.0, "tension": wang["tension"] if not slack else 1.0,
-           "note": "error of one straight element, scaled by N^-%g" % ORDER}
+           "note": f"error of one straight element, scaled by N^-{ORDER:g}"}
     return {"frequency": freq, "quasi-static": qs, "wang": wang, "segmented_1": seg}
 
 

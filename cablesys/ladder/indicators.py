@@ -28,6 +28,7 @@ class SceneNumbers:
     omega_axial: float             # lowest stretch frequency of the sections (rad/s)
     axial_ratio: float             # omega_forcing / omega_axial
     omega_string: float            # first string mode of the longest section (rad/s)
+    omega_swing: float             # compound-pendulum frequency of the (first) section (rad/s)
     string_ratio: float            # omega_forcing / omega_string
     mass_ratio: float              # cable mass (with added mass) / body virtual mass
     weight_ratio: float            # cable weight / body weight in water
@@ -63,6 +64,13 @@ def forcing_components(scene: Scene) -> list[tuple[float, float]]:
     return comps
 
 
+def below_mass(scene: Scene, section) -> float:
+    """Mass of the sections and bodies hanging below ``section`` (kg)."""
+    secs = list(scene.sections)
+    i = next(k for k, s in enumerate(secs) if s is section)
+    return sum(s.body.mass_x + s.cable.total_mass for s in secs[i + 1:])
+
+
 def scene_numbers(scene: Scene) -> SceneNumbers:
     """The deciding numbers of ``scene`` (see the module docstring)."""
     comps = forcing_components(scene)
@@ -73,7 +81,7 @@ def scene_numbers(scene: Scene) -> SceneNumbers:
     env = scene.environment
     rho = env.density
     w_ax = min(axial_frequencies(scene))
-    w_str, mass_r, weight_r, bow_s, bow_d = math.inf, 0.0, 0.0, 0.0, 0.0
+    w_str, mass_r, weight_r, bow_s, bow_d, w_sw = math.inf, 0.0, 0.0, 0.0, 0.0, 0.0
     a_top = math.hypot(sum(abs(s.amplitude) for s in scene.top_motion.x), sum(abs(s.amplitude) for s in scene.top_motion.y))
     below = 0.0
     t_static = None
@@ -86,6 +94,8 @@ def scene_numbers(scene: Scene) -> SceneNumbers:
         if t_mean > 0 and m_v > 0:
             w_str = min(w_str, math.pi / c.length * math.sqrt(t_mean / m_v))
         mass_r = max(mass_r, m_v * c.length / b.mass_x)
+        # compound pendulum, omega^2 = (W_b + W_c/2) / (L (M_bvx + M_cv/3)) (Wang 1971 eq. 22-25)
+        w_sw = math.sqrt(max(t_mean, 0.0) / (c.length * (b.mass_x + below_mass(scene, sec) + m_v * c.length / 3)))
         weight_r = max(weight_r, c.total_weight / max(abs(b.weight), 1e-300))
         u_rel = max(abs(s - env.system_speed) for s in env.current_speeds)
         q_s = 0.5 * rho * c.cd_normal * c.diameter * u_rel**2
@@ -96,6 +106,6 @@ def scene_numbers(scene: Scene) -> SceneNumbers:
         below += b.weight + c.total_weight
     floor = max(s.cable.tension_floor for s in scene.sections)
     return SceneNumbers(forcing=tuple(comps), omega_forcing=w_f, single_frequency=single, omega_axial=w_ax,
-                        axial_ratio=w_f / w_ax, omega_string=w_str, string_ratio=w_f / w_str if w_str > 0 else math.inf,
+                        axial_ratio=w_f / w_ax, omega_string=w_str, omega_swing=w_sw, string_ratio=w_f / w_str if w_str > 0 else math.inf,
                         mass_ratio=mass_r, weight_ratio=weight_r, static_bow=bow_s, dynamic_bow=bow_d,
                         tension_static=float(t_static), tension_floor=float(floor if math.isfinite(floor) else -1e300))

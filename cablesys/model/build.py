@@ -49,6 +49,8 @@ def _end_forces(momenta, ext, M, f, q, qd, z, zd, zdd):
       weights in water (eq. 12, 15), drag (eq. 32-35, 42, 44) and momenta of the virtual masses of
       the kinetic energy (eq. 16, 22-25). Spring, Voigt damper and slack rule (eq. 46, 54) are
       internal and cancel. Hanging at rest it is W_b + W_c.
+    The outputs are the magnitudes, signed by the axial component (negative: the straight cable
+    pushes, i.e. a real cable would be slack there).
     """
     qdd = ca.solve(M, f)
 
@@ -89,7 +91,7 @@ def build_model(scene: Scene) -> CableModel:
     top_r, top_v = (z[0], depth0 + z[1]), (zd[0], zd[1])
     K = V = 0
     forces, Q_direct = [], ca.SX.zeros(len(q_labels))
-    out, gaps, momenta, ext = [], [], [], []
+    out, gaps, momenta, ext, axes = [], [], [], [], []
     for i, sec in enumerate(scene.sections):
         P = SectionParameters.from_layout(layout, section_prefix(n, i), sec.body.is_sphere)
         phi, u = pick(q, i)
@@ -101,6 +103,7 @@ def build_model(scene: Scene) -> CableModel:
         Q_direct += ca.jacobian(u, q).T * T["Q_u"]      # eq. 46 acts on this section's stretch
         out.append([phi, phid, u, ud, T["r_b"][0], T["v_b"][0], T["r_b"][1] - depth0, T["v_b"][1], T["tension"]])
         momenta.append((T["momentum"], T["body_momentum"]))
+        axes.append(T["e_t"])
         ext.append((T["external_force"], T["body_external_force"]))
         gaps.append(T["F_bc"] - P.tens)
         top_r, top_v = T["r_b"], T["v_b"]
@@ -108,7 +111,12 @@ def build_model(scene: Scene) -> CableModel:
     Q = virtual_work(forces, qd) + Q_direct
     M, f = lagrange_equations(K - V, Q, q, qd, z, zd, zdd)
     for i, (bottom, top_force) in enumerate(_end_forces(momenta, ext, M, f, q, qd, z, zd, zdd)):
-        out[i] += [ca.sqrt(bottom[0] ** 2 + bottom[1] ** 2), ca.sqrt(top_force[0] ** 2 + top_force[1] ** 2)]
+        # magnitudes, negative when the force pushes along the cable (compression: slack, eq. 54)
+        e_t = axes[i]
+        pull_body = -(bottom[0] * e_t[0] + bottom[1] * e_t[1])
+        pull_top = top_force[0] * e_t[0] + top_force[1] * e_t[1]
+        out[i] += [ca.sign(pull_body) * ca.sqrt(bottom[0] ** 2 + bottom[1] ** 2),
+                   ca.sign(pull_top) * ca.sqrt(top_force[0] ** 2 + top_force[1] ** 2)]
     out = [y for row in out for y in row]
     x = ca.vertcat(q, qd)
     dynamics = ca.Function("dynamics", [q, qd, e, p], [M, f], ["q", "qd", "e", "p"], ["M", "f"])

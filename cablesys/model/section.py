@@ -171,4 +171,4 @@ def section_terms(P: SectionParameters, top_r, top_v, phi, u, phid, ud, *, t, en
     return dict(K=K, V=V, point_forces=point_forces, Q_u=Q_u, r_b=r_b, v_b=v_b, F_bc=F_bc,
                 tension=F_bc + P.slack * (P.tens - F_bc), l=l, m_cv=m_cv,
                 momentum=momentum, external_force=(fx_ext, fy_ext),
-                body_momentum=body_momentum, body_external_force=(d_b[0], d_b[1] + P.w_b))
+                body_momentum=body_momentum, body_external_force=(d_b[0], d_b[1] + P.w_b), e_t=e_t)

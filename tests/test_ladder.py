@@ -1,0 +1,115 @@
+"""The model ladder: rung choice from the scene's numbers, validity warnings, estimates vs actual errors."""
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from cablesys.errors import NumericalWarning, ParameterError
+from cablesys.ladder import choose, metrics, run_rung, simulate_auto
+from cablesys.ladder.auto import plan_run
+from cablesys.ladder.estimate import axial_factor
+from cablesys.ladder.indicators import scene_numbers
+from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMotion, dale_scene
+from cablesys.scene.scene import single_section_scene
+
+
+def _stiff_pendulum(period=8.0, ae=1e9, amplitude=0.3):
+    """A short, stiff, drag-free-cable pendulum: nothing bows, the stretch is far above the forcing."""
+    cable = Cable(length=20.0, tension_ref=1540.0, ae=ae, diameter=0.01, mass_per_length=0.5,
+                  weight_per_length=4.0, cd_normal=0.0, ct_tangential=0.0)
+    body = Body(weight=1500.0, mass_x=260.0, mass_y=240.0, drag_area_normal=0.5, drag_area_tangential=0.5)
+    w = 2 * math.pi / period
+    top = TopMotion(x=(Sinusoid(amplitude=amplitude, frequency=w),), y=(Sinusoid(amplitude=amplitude, frequency=w),))
+    return single_section_scene(cable=cable, body=body, environment=Environment(density=1025.0), top_motion=top,
+                                numerics=Numerics(duration=10 * period, output_step=period / 40))
+
+
+def _wire_300m(period):
+    cable = Cable(length=300.0, tension_ref=4877.0, ae=4.0e7, diameter=0.025, mass_per_length=2.5,
+                  weight_per_length=19.6, cd_normal=1.2, ct_tangential=0.01, tension_floor=0.0)
+    body = Body(weight=1937.0, mass_x=3100.0, mass_y=3100.0, drag_area_normal=1.0, drag_area_tangential=1.0)
+    top = TopMotion(y=(Sinusoid(amplitude=1.0, frequency=2 * math.pi / period),))
+    return single_section_scene(cable=cable, body=body, environment=Environment(density=1025.0), top_motion=top,
+                                numerics=Numerics(duration=60.0, output_step=0.05))
+
+
+def test_numbers_are_closed_forms():
+    """Axial frequency sqrt(k / (M_bvy + M_c/3)), first string mode (pi / L) sqrt(T / m_v)."""
+    scene = _stiff_pendulum()
+    n = scene_numbers(scene)
+    c, b = scene.cable, scene.body
+    assert n.omega_axial == pytest.approx(math.sqrt(c.spring_constant / (b.mass_y + c.total_mass / 3)), rel=1e-12)
+    m_v = c.mass_per_length + 1025.0 * math.pi * c.diameter**2 / 4
+    assert n.omega_string == pytest.approx(math.pi / c.length * math.sqrt((b.weight + c.total_weight / 2) / m_v))
+    assert n.omega_forcing == pytest.approx(2 * math.pi / 8.0)
+    assert n.static_bow == 0.0 and n.dynamic_bow == 0.0
+
+
+def test_stiff_straight_cable_gets_the_quasi_static_rung():
+    choice = choose(_stiff_pendulum())
+    assert choice.name == "quasi-static"
+    assert choice.estimated_error["body"] < 0.01 and choice.estimated_error["tension"] < 0.02
+    assert "omega/omega_ax" in choice.reason
+
+
+def test_predicted_partial_slack_rejects_the_straight_cable_and_a_forced_wang_warns():
+    """300 m wire, 2 t sphere, 1 m heave at T = 6 s: the linear response dips below zero tension."""
+    scene = _wire_300m(6.0)
+    choice = choose(scene)
+    assert choice.name == "segmented" and choice.segments >= 4
+    assert "partial slack" in choice.reason
+    with pytest.warns(NumericalWarning, match="partial slack"):
+        plan_run(scene, "wang")
+
+
+def test_taut_300m_case_is_not_called_slack():
+    choice = choose(_wire_300m(10.0))
+    assert "partial slack" not in choice.numbers["estimates"]["wang"]["note"]
+
+
+def test_unknown_rung_is_a_parameter_error():
+    with pytest.raises(ParameterError, match="numerics.model"):
+        dale_scene().with_numerics(model="lumped")
+    with pytest.raises(ParameterError):
+        simulate_auto(dale_scene(duration=1.0), model="lumped")
+
+
+def test_quasi_static_estimate_matches_its_actual_difference_from_wang():
+    """The quasi-static part of the estimate, r^2 / |1 - r^2| of the dynamic tension, within a factor 2 of
+    the actual tension-extreme difference between the quasi-static and 2-DOF runs (soft cable, heave)."""
+    scene = _stiff_pendulum(period=2.0, ae=1.5e6, amplitude=0.05)
+    scene = scene.replace(top_motion=TopMotion(y=(Sinusoid(amplitude=0.05, frequency=math.pi),)))
+    scene = scene.replace_section(0, cable={"internal_damping": 2e4})
+    n = scene_numbers(scene)
+    assert 0.1 < n.axial_ratio < 0.4
+    period = 2.0
+    runs = {k: run_rung(scene, k) for k in ("quasi-static", "wang")}
+    actual = metrics.errors(metrics.statistics(runs["quasi-static"], period), metrics.statistics(runs["wang"], period))
+    from cablesys.ladder.estimate import linear_response
+    resp = linear_response(scene, n)
+    est = axial_factor(scene, n) * max(resp.tension_amplitude.values()) / resp.largest_tension
+    assert 0.5 < est / actual["tension"] < 2.0
+
+
+def test_frequency_rung_is_the_steady_state_of_the_time_domain():
+    """The periodic orbit (Fourier collocation) equals the settled 2-DOF run's last periods."""
+    scene = _stiff_pendulum(period=4.0)
+    scene = scene.with_numerics(duration=200.0, output_step=0.1)
+    per = run_rung(scene, "frequency")
+    td = run_rung(scene, "wang")
+    s_p, s_t = (metrics.statistics(r, 4.0) for r in (per, td))
+    err = metrics.errors(s_p, s_t)
+    assert err["body"] < 2e-3 and err["tension"] < 2e-3
+
+
+def test_auto_result_says_which_model_why_and_its_error():
+    scene = _stiff_pendulum().with_numerics(duration=16.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", NumericalWarning)      # auto within validity: no warning
+        r = simulate_auto(scene)
+    m = r.stats["model"]
+    assert m["name"] == "quasi-static" and m["segments"] == 1
+    assert set(m["estimated_error"]) == {"body", "tension"} and m["reason"]
+    assert np.all(np.isfinite(r["tension_top"]))
