@@ -41,7 +41,7 @@ from .top_motion import symbolic_type, top_motion_function
 
 SECTION_OUTPUTS = ("phi", "phi_rate", "u", "u_rate", "x_b", "x_b_rate", "y_b", "y_b_rate", "tension",
                    "tension_bottom", "tension_top")
-ELEMENT_PROFILES = ("element_tension", "element_tension_rate", "element_strain")
+ELEMENT_PROFILES = ("element_tension", "element_tension_rate", "element_strain", "element_slack")
 NODE_PROFILES = ("node_x", "node_y")
 
 
@@ -52,7 +52,8 @@ class SegmentedModel(CableModel):
     Same functions as the 2-DOF model; ``cable_force`` is empty (the tension law max(TENS, ...)
     is integrated directly, element by element: no switch is located, see :mod:`.segmented_post`).
     ``segments`` holds the elements per section; ``outputs`` adds the profiles
-    ``element_tension[k]``, ``element_tension_rate[k]``, ``element_strain[k]`` (k = 0.. over
+    ``element_tension[k]``, ``element_tension_rate[k]``, ``element_strain[k]``, ``element_slack[k]``
+    (1 while the element's law is at or below its floor; k = 0.. over
     all elements, top to bottom), ``node_x[j]``, ``node_y[j]`` (j = 0 is the top) and their
     unstretched arc lengths ``element_s[k]`` (element mid-points) and ``node_s[j]``.
     """
@@ -118,6 +119,7 @@ def _element(P: SectionParameters, n_el: int, ra, va, rb, vb, *, rho, t, env, de
             fa[i] = fa[i] + (1 - s) * F[i]
             fb[i] = fb[i] + s * F[i]
     return dict(length=length, et=et, en=en, rate=rate, strain=strain, tension=tension, mass=mass,
+                slack=ca.if_else(law <= P.tens, 1.0, 0.0),
                 added=added, weight=weight, strain_energy=strain_energy, drag_a=fa, drag_b=fb)
 
 
@@ -258,6 +260,7 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
     T_rate = ca.jtimes(T, x, xdot) + ca.jacobian(T, e) @ ca.vertcat(1.0, zd, zdd, 0.0, 0.0)
     prof = {"element_tension": T, "element_tension_rate": T_rate,
             "element_strain": ca.vertcat(*[el["strain"] for el in elements]),
+            "element_slack": ca.vertcat(*[el["slack"] for el in elements]),
             "node_x": ca.vertcat(*[r[0] for r in node_r]), "node_y": ca.vertcat(*[r[1] for r in node_r])}
     s_el, s_node, s0 = [], [0.0], 0.0
     for s in sections:
