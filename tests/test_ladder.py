@@ -11,9 +11,16 @@ from cablesys.ladder import choose, metrics, run_rung, simulate_auto
 from cablesys.ladder.auto import plan_run
 from cablesys.ladder.estimate import axial_factor
 from cablesys.ladder.indicators import scene_numbers
-from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMotion, dale_scene
+from cablesys.scene import (
+    Body,
+    Cable,
+    Environment,
+    Numerics,
+    Sinusoid,
+    TopMotion,
+    dale_scene,
+)
 from cablesys.scene.scene import single_section_scene
-
 
 
 @pytest.fixture(autouse=True)

@@ -8,10 +8,17 @@ import pytest
 from cablesys.linear import linearize, modes, steady_state
 from cablesys.model import build_model
 from cablesys.model.quasistatic import axial_frequencies, build_quasistatic
-from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMotion, dale_scene
+from cablesys.scene import (
+    Body,
+    Cable,
+    Environment,
+    Numerics,
+    Sinusoid,
+    TopMotion,
+    dale_scene,
+)
 from cablesys.scene.scene import single_section_scene
 from cablesys.simulate import simulate
-
 
 
 @pytest.fixture(autouse=True)

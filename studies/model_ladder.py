@@ -1,0 +1,213 @@
+"""The model ladder: error against a converged segmented reference versus wall time, per rung and integrator.
+
+Scenes (issue 12):
+- the Dale et al. water-channel model (Wang 1971 Table 1) at omega = 2 omega_n, where the straight
+  cable is worst (cable drag bows it);
+- 300 m steel wire (25 mm, AE 4e7 N, 2.5 kg/m) with a 2 t sphere (virtual mass 3100 kg), 1 m heave
+  at T = 10 s (taut) and T = 6 s (slack each cycle, snap loads);
+- 1000 m of 16 mm steel wire rope with a 300 kg sphere (the cable weighs 4x the body), 1 m heave
+  and 1 m surge at T = 10 s: forcing above the cable's first string mode.
+
+For each scene the reference is the segmented cable at N_ref elements (its own convergence is
+reported: the difference to N_ref / 2). Every rung (frequency-domain periodic orbit, quasi-static
+stretch, Wang's 2-DOF, segmented at several N) runs with every integrator; errors are those of
+:mod:`cablesys.ladder.metrics` (body amplitudes, tension extremes over the last 5 forcing periods).
+Wall time is the integration alone (``stats["wall_s"]``), build and compile apart. A run that
+fails (step budget, unstable fixed step, non-finite state) is marked with an x at the top of the
+chart with its reason in the JSON. Auto's choice (:func:`cablesys.ladder.choose`) is marked by a
+star, with its estimated error next to the actual one.
+
+Usage: python studies/model_ladder.py --out DIR [--quick]
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+import warnings
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _common import parse_args, setup_matplotlib, write_json
+
+from cablesys import units as U
+from cablesys.errors import NumericalWarning
+from cablesys.ladder import choose, metrics, run_rung
+from cablesys.scene import (
+    Body,
+    Cable,
+    Environment,
+    Numerics,
+    Sinusoid,
+    TopMotion,
+    dale_scene,
+)
+from cablesys.scene.scene import single_section_scene
+
+INTEGRATORS = ("cvodes", "cvodes-adams", "idas", "rk")
+RUNG_COLOURS = {"frequency": "tab:purple", "quasi-static": "tab:green", "wang": "tab:blue", "segmented": "tab:orange"}
+MARKERS = {"cvodes": "o", "cvodes-adams": "s", "idas": "D", "rk": "^", "collocation": "v", "periodic": "P"}
+
+
+def wire_300m(period: float, duration: float) -> object:
+    """300 m steel wire, 2 t sphere, 1 m heave at ``period`` (the scene of issue 11)."""
+    cable = Cable(length=300.0, tension_ref=4877.0, ae=4.0e7, diameter=0.025, mass_per_length=2.5,
+                  weight_per_length=19.6, cd_normal=1.2, ct_tangential=0.01, tension_floor=0.0)
+    body = Body(weight=1937.0, mass_x=3100.0, mass_y=3100.0, drag_area_normal=1.0, drag_area_tangential=1.0)
+    top = TopMotion(y=(Sinusoid(amplitude=1.0, frequency=2 * math.pi / period),))
+    return single_section_scene(cable=cable, body=body, name=f"300 m wire, 2 t sphere, heave T = {period:g} s",
+                                environment=Environment(density=1025.0), top_motion=top,
+                                numerics=Numerics(duration=duration, output_step=0.05, rtol=1e-7, atol=1e-9))
+
+
+def heavy_cable(duration: float) -> object:
+    """1000 m of 16 mm steel wire rope (9.4 N/m in water, AE 1.2e7 N) and a 300 kg sphere of 0.5 m."""
+    rho, g = U.RHO_SEA, U.G_STANDARD
+    vol = math.pi / 6 * 0.5**3
+    w_b = 300.0 * g - rho * g * vol
+    cable = Cable(length=1000.0, tension_ref=w_b + 0.5 * 9.4 * 1000.0, ae=1.2e7, diameter=0.016,
+                  mass_per_length=1.1, weight_per_length=9.4, cd_normal=1.2, ct_tangential=0.01)
+    body = Body(weight=w_b, mass_x=300.0 + 0.5 * rho * vol, mass_y=300.0 + 0.5 * rho * vol,
+                drag_area_normal=0.5 * math.pi / 4 * 0.25, drag_area_tangential=0.5 * math.pi / 4 * 0.25)
+    w = 2 * math.pi / 10.0
+    top = TopMotion(x=(Sinusoid(amplitude=1.0, frequency=w, phase=math.pi / 2),), y=(Sinusoid(amplitude=1.0, frequency=w),))
+    return single_section_scene(cable=cable, body=body, name="1000 m steel wire, 300 kg sphere, T = 10 s",
+                                environment=Environment(density=rho, gravity=g), top_motion=top,
+                                numerics=Numerics(duration=duration, output_step=0.1, rtol=1e-7, atol=1e-9))
+
+
+def cases(quick: bool) -> list[dict]:
+    """Scenes with their segment counts and reference N (quick: one short Dale run, coarse N)."""
+    if quick:
+        return [{"key": "dale", "scene": dale_scene(omega_ratio=2.0, duration=12.0), "segments": (2, 4), "n_ref": 8,
+                 "integrators": ("cvodes", "rk")}]
+    return [
+        {"key": "dale", "scene": dale_scene(omega_ratio=2.0, duration=40.0), "segments": (2, 4, 8), "n_ref": 16,
+         "integrators": INTEGRATORS},
+        {"key": "wire300_T10", "scene": wire_300m(10.0, 60.0), "segments": (5, 10, 20), "n_ref": 40,
+         "integrators": INTEGRATORS},
+        {"key": "wire300_T6", "scene": wire_300m(6.0, 36.0), "segments": (5, 10, 20), "n_ref": 40,
+         "integrators": INTEGRATORS},
+        {"key": "heavy1000", "scene": heavy_cable(60.0), "segments": (5, 10, 20), "n_ref": 40,
+         "integrators": INTEGRATORS},
+    ]
+
+
+def _run(scene, rung: str, n: int, method: str | None) -> tuple:
+    """(result or None, row) with wall time, steps and failure."""
+    row = {"rung": rung, "segments": n, "integrator": method or "periodic"}
+    t0 = time.perf_counter()
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", NumericalWarning)
+            r = run_rung(scene, rung, n) if rung == "frequency" else run_rung(scene, rung, n, method=method)
+    except (RuntimeError, ValueError, FloatingPointError) as err:   # rejected model / solver failure: marked
+        row.update(success=False, failure=f"{type(err).__name__}: {str(err)[:300]}", wall_s=time.perf_counter() - t0)
+        return None, row
+    row.update(success=bool(r.success), failure="" if r.success else r.message[:300],
+               wall_s=float(r.stats.get("wall_s", r.stats.get("wall_time_s", time.perf_counter() - t0))),
+               total_s=time.perf_counter() - t0, nsteps=int(r.stats.get("nsteps", 0) or 0))
+    return r, row
+
+
+def study_case(case: dict) -> dict:
+    scene = case["scene"]
+    period = metrics.forcing_period(scene)
+    ref, ref_row = _run(scene, "segmented", case["n_ref"], "cvodes")
+    half, _ = _run(scene, "segmented", case["n_ref"] // 2, "cvodes")
+    if ref is None or not ref.success:
+        return {"scene": scene.name, "reference": ref_row, "rows": [], "error": "reference run failed"}
+    ref_stats = metrics.statistics(ref, period)
+    ref_conv = metrics.errors(metrics.statistics(half, period), ref_stats) if half is not None and half.success else None
+    rows = []
+    plan = [("frequency", 1, None)] + [(rung, 1, m) for rung in ("quasi-static", "wang") for m in case["integrators"]]
+    plan += [("segmented", n, m) for n in case["segments"] for m in case["integrators"]]
+    for rung, n, method in plan:
+        r, row = _run(scene, rung, n, method)
+        if r is not None and r.success and r.time[-1] >= scene.output_times[-1] - 1e-9:
+            row.update(metrics.errors(metrics.statistics(r, period), ref_stats))
+            row["error_body"], row["error_tension"] = row.pop("body"), row.pop("tension")
+        else:
+            row["success"] = False
+            row.setdefault("failure", "did not reach the end")
+        rows.append(row)
+    t0 = time.perf_counter()
+    choice = choose(scene)
+    choose_s = time.perf_counter() - t0
+    match = [r for r in rows if r["rung"] == choice.name and (choice.name != "segmented" or r["segments"] == choice.segments)
+             and r["integrator"] in (scene.numerics.integrator, "periodic")]
+    if not match:
+        r, row = _run(scene, choice.name, choice.segments, scene.numerics.integrator)
+        if r is not None and r.success:
+            row.update(metrics.errors(metrics.statistics(r, period), ref_stats))
+            row["error_body"], row["error_tension"] = row.pop("body"), row.pop("tension")
+        rows.append(row)
+        match = [row]
+    actual = match[0]
+    return {"scene": scene.name, "period_s": period, "reference": dict(ref_row, convergence_vs_half=ref_conv),
+            "reference_statistics": ref_stats, "rows": rows,
+            "auto": {"name": choice.name, "segments": choice.segments, "reason": choice.reason,
+                     "estimated_error": choice.estimated_error, "choose_s": choose_s,
+                     "actual_error": {"body": actual.get("error_body"), "tension": actual.get("error_tension")},
+                     "estimates": choice.numbers["estimates"], "tolerance": choice.numbers["tolerance"]}}
+
+
+def plot_case(res: dict, path: Path):
+    plt = setup_matplotlib()
+    from cablesys.plots import save_figure
+    fig, axes = plt.subplots(1, 2, figsize=(12, 5), sharex=True)
+    ok = [r for r in res["rows"] if r.get("success") and r.get("error_body") is not None]
+    bad = [r for r in res["rows"] if not r.get("success")]
+    tol = res["auto"]["tolerance"]
+    floor = 1e-7
+    for ax, key, tl, title in ((axes[0], "error_body", tol["body"], "body amplitude error"),
+                               (axes[1], "error_tension", tol["tension"], "tension-extremes error")):
+        for r in ok:
+            lab = r["rung"] + (f" N={r['segments']}" if r["rung"] == "segmented" else "")
+            ax.loglog(max(r["wall_s"], 1e-4), max(r[key], floor), MARKERS.get(r["integrator"], "o"),
+                      color=RUNG_COLOURS[r["rung"]], ms=8, alpha=0.85)
+            if r["integrator"] in ("cvodes", "periodic"):
+                ax.annotate(lab, (max(r["wall_s"], 1e-4), max(r[key], floor)), textcoords="offset points",
+                            xytext=(5, 4), fontsize=7)
+        for r in bad:
+            ax.plot(max(r["wall_s"], 1e-4), 1.0, "x", color=RUNG_COLOURS[r["rung"]], ms=10, mew=2)
+        a = res["auto"]
+        hit = [r for r in ok if r["rung"] == a["name"] and (a["name"] != "segmented" or r["segments"] == a["segments"])]
+        if hit:
+            ax.loglog(max(hit[0]["wall_s"], 1e-4), max(hit[0][key], floor), "*", color="k", ms=18, mfc="none", mew=1.5)
+        ax.axhline(tl, ls="--", color="grey", lw=1)
+        ax.text(ax.get_xlim()[0] if ok else 1e-3, tl * 1.1, f"tolerance {tl:.0%}", fontsize=8, color="grey")
+        ax.axhline(1.0, ls=":", color="red", lw=0.8)
+        ax.set_title(title)
+        ax.set_xlabel("wall time of the integration [s]")
+        ax.set_ylabel("relative error vs converged segmented")
+        ax.grid(True, which="both", alpha=0.3)
+    from matplotlib.lines import Line2D
+    handles = [Line2D([], [], color=c, marker="o", ls="", label=k) for k, c in RUNG_COLOURS.items()]
+    handles += [Line2D([], [], color="k", marker=m, ls="", label=k) for k, m in MARKERS.items()
+                if any(r["integrator"] == k for r in res["rows"])]
+    handles += [Line2D([], [], color="k", marker="*", mfc="none", ls="", ms=12, label="auto's choice"),
+                Line2D([], [], color="k", marker="x", ls="", label="failed (at error = 1)")]
+    axes[1].legend(handles=handles, fontsize=8, loc="lower left")
+    fig.suptitle(f"{res['scene']}: model ladder work-precision (reference: segmented N = {res['reference']['segments']})")
+    return save_figure(fig, path, dpi=110)
+
+
+def main(argv=None) -> int:
+    args = parse_args(__doc__.splitlines()[0], argv)
+    out = {}
+    for case in cases(args.quick):
+        res = study_case(case)
+        out[case["key"]] = res
+        if res["rows"]:
+            plot_case(res, args.out / f"model_ladder_{case['key']}.png")
+        a = res.get("auto", {})
+        print(f"{case['key']}: auto -> {a.get('name')} N={a.get('segments')} estimated {a.get('estimated_error')} "
+              f"actual {a.get('actual_error')}")
+    write_json(args.out / "model_ladder.json", out)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
