@@ -1,0 +1,190 @@
+"""MoorDyn v2 (the ``moordyn`` wheel, optional ``bench`` extra) as a side-by-side peer.
+
+Translates a one-section cablesys scene (Wang 1971 notation, SI) into a MoorDyn v2 input
+file: one line of ``N`` segments between a coupled top point (the ship, moved by the scene's
+sinusoids) and a free point (the body), and runs it. MoorDyn is a benchmark and a sanity
+check, not the truth (our truth is convergence, closed forms and published data).
+
+The mapping of the cable's numbers (MoorDyn's line is described per *unstretched* length l_0,
+Wang's at the reference tension, eq. 1-7):
+- EA_md = (AE)_r l_0 / l_r, so that the spring constant EA_md / l_0 equals k = (AE)_r / l_r;
+- mass per unstretched length m_r l_r / l_0 (the same total mass, eq. 5);
+- MoorDyn's buoyancy comes from its "volume-equivalent" diameter d_v: we choose d_v so that the
+  weight in water equals Wang's W_c = w_r l_r (eq. 12), then rescale the coefficients that
+  MoorDyn multiplies by d_v: C_dn = C_D d_r / d_v (eq. 42), C_a = gamma d_r^2 / d_v^2 (eq. 23),
+  C_dt = C_t d_r / (pi d_v) (MoorDyn's tangential drag uses the circumference pi d; eq. 44
+  uses d);
+- internal damping BA = C_I l_0 / l_r (force = BA * strain rate; Wang eq. 46: (C_I/l_r) du/dt);
+- the body is a free point with volume V, mass m and added-mass coefficient 1/2 chosen so that
+  its weight in water is W_b and its virtual mass M_bv; drag 1/2 rho CdA |v| v (eq. 32).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import os
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+
+@contextlib.contextmanager
+def _quiet():
+    """MoorDyn writes progress to the C stdout/stderr at every step: send them to /dev/null."""
+    saved = [os.dup(1), os.dup(2)]
+    null = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(null, 1)
+        os.dup2(null, 2)
+        yield
+    finally:
+        os.dup2(saved[0], 1)
+        os.dup2(saved[1], 2)
+        for fd in saved + [null]:
+            os.close(fd)
+
+
+def moordyn_input(scene, n_segments: int, dt: float) -> str:
+    """The MoorDyn v2 input text for a one-section ``scene`` (sphere body, no current)."""
+    if len(scene.sections) != 1:
+        raise ValueError("the MoorDyn peer handles one cable section")
+    sec = scene.sections[0]
+    c, b, env = sec.cable, sec.body, scene.environment
+    rho, g = env.density, env.gravity
+    l_r, k = c.length, c.ae / c.length
+    l_0 = l_r - c.tension_ref / k
+    mass = c.mass_per_length * l_r / l_0
+    buoy_mass = mass - c.weight_per_length * l_r / (g * l_0)        # rho * pi d_v^2 / 4
+    if buoy_mass <= 0:
+        raise ValueError("the cable's weight in water exceeds its mass times g: no MoorDyn diameter fits")
+    d_v = math.sqrt(4 * buoy_mass / (rho * math.pi))
+    d_r = c.diameter
+    cdn = c.cd_normal * d_r / d_v
+    can = c.added_mass_factor * d_r**2 / d_v**2
+    cdt = c.ct_tangential * d_r / (math.pi * d_v)
+    ea = c.ae * l_0 / l_r
+    ba = c.internal_damping * l_0 / l_r
+    vol = (b.mass_x - b.weight / g) / (1.5 * rho)
+    m_b = b.weight / g + rho * vol
+    (x0, _, z_top), _ = _top(scene, 0.0)
+    return f"""--------------------- MoorDyn Input File (written by cablesys studies/_moordyn.py) -----
+{scene.name}
+---------------------- LINE TYPES --------------------------------------------------
+TypeName   Diam     Mass/m     EA     BA/-zeta    EI    Cd     Ca     CdAx    CaAx
+(name)     (m)      (kg/m)     (N)    (N-s/-)     (-)   (-)    (-)    (-)     (-)
+cable     {d_v:.10g}   {mass:.10g}   {ea:.10g}   {ba:.10g}   0   {cdn:.10g}   {can:.10g}   {cdt:.10g}   0.0
+---------------------- POINTS --------------------------------------------------------
+ID    Attachment     X       Y     Z      Mass    Volume   CdA     Ca
+(#)   (word/ID)      (m)     (m)   (m)    (kg)    (m^3)    (m^2)  (-)
+1     Coupled   {x0:.10g}   0   {z_top:.10g}   0   0   0   0
+2     Free      {x0:.10g}   0   {z_top - l_r:.10g}   {m_b:.10g}   {vol:.10g}   {b.drag_area_normal:.10g}   0.5
+---------------------- LINES ----------------------------------------------
+ID    LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
+(#)   (name)     (#)      (#)      (m)       (-)      (-)
+1     cable      2        1        {l_0:.10g}   {n_segments}   -
+---------------------- OPTIONS -----------------------------------------
+{dt:.10g}   dtM
+{g:.10g}  g
+{rho:.10g}     WtrDnsty
+{10 * l_r + 100:.10g}      WtrDpth
+1.0      dtIC
+{max(30.0, 20 * math.sqrt(l_r / g)):.6g}       TmaxIC
+0.0001    threshIC
+0        writeLog
+------------------------- need this line --------------------------------------
+"""
+
+
+def _top(scene, t):
+    """Top position (MoorDyn frame: z up) and velocity at time t from the scene's sinusoids,
+    times cablesys's smooth-start ramp r = u - sin(2 pi u)/(2 pi), u = t / ramp_s
+    (``cablesys.model.top_motion.ramp``), so both codes are driven by the same motion."""
+    ramp = float(scene.top_motion.ramp_s)
+    r, dr = 1.0, 0.0
+    if ramp > 0 and t < ramp:
+        u = t / ramp
+        r, dr = u - math.sin(2 * math.pi * u) / (2 * math.pi), (1 - math.cos(2 * math.pi * u)) / ramp
+
+    def axis(sines):
+        pos = sum(s.amplitude * math.sin(s.frequency * t + s.phase) for s in sines)
+        vel = sum(s.amplitude * s.frequency * math.cos(s.frequency * t + s.phase) for s in sines)
+        return r * pos, r * vel + dr * pos
+    xs, vx = axis(scene.top_motion.x)
+    ys, vy = axis(scene.top_motion.y)
+    return [xs, 0.0, -(scene.environment.top_depth + ys)], [vx, 0.0, -vy]
+
+
+def run_moordyn(scene, n_segments: int, dt: float, *, duration: float | None = None,
+                output_step: float | None = None, scheme: str = "RK4") -> dict:
+    """Run MoorDyn on ``scene``; returns time, body x/y (Wang frame: y down from the top's mean
+    depth), top and body-end tension, per-segment slack fraction, wall time and whether it stayed
+    finite and bounded."""
+    import moordyn
+    duration = duration or scene.numerics.duration
+    h = output_step or scene.numerics.output_step
+    n_out = int(round(duration / h))
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "lines.txt"
+        path.write_text(moordyn_input(scene, n_segments, dt))
+        with _quiet():
+            s = moordyn.Create(str(path))
+            moordyn.SetDt(s, dt)
+            moordyn.SetTimeScheme(s, scheme)
+            x, v = _top(scene, 0.0)
+            moordyn.Init(s, x, [0.0, 0.0, 0.0])     # equilibrium with the top at rest (a moving top would be extrapolated)
+        line, body = moordyn.GetLine(s, 1), moordyn.GetPoint(s, 2)
+        T = np.zeros(n_out + 1)
+        XB, YB, TT, TB = (np.zeros(n_out + 1) for _ in range(4))
+        seg_slack = np.zeros(n_segments)
+        ok = True
+        wall = time.perf_counter()
+        with _quiet():
+            for k in range(n_out + 1):
+                t = k * h
+                if k > 0:
+                    x, v = _top(scene, t)
+                    try:
+                        moordyn.Step(s, x, v, t - h, h)
+                    except RuntimeError:          # MoorDyn's own NaN check: the step is unstable
+                        ok = False
+                        break
+                pos = moordyn.GetPointPos(body)
+                T[k], XB[k], YB[k] = t, pos[0], -pos[2] - scene.environment.top_depth
+                TT[k] = moordyn.GetLineFairTen(line)
+                ten = [np.linalg.norm(moordyn.GetLineNodeTen(line, i)) for i in range(n_segments + 1)]
+                TB[k] = ten[0]
+                seg_slack += np.array(ten[:-1]) <= 0.0
+                if not (np.all(np.isfinite(pos)) and abs(pos[2]) < 10 * scene.sections[0].cable.length + 100):
+                    ok = False
+                    break
+            wall = time.perf_counter() - wall
+            moordyn.Close(s)
+    n = k + 1
+    return {"time": T[:n], "x_b": XB[:n], "y_b": YB[:n], "tension_top": TT[:n], "tension_bottom": TB[:n],
+            "slack_fraction_per_segment": seg_slack / n, "wall_s": wall, "stable": ok and n == n_out + 1,
+            "dt": dt, "scheme": scheme, "n_segments": n_segments}
+
+
+def axial_step_estimate(scene, n_segments: int) -> float:
+    """2.8 / omega_max for the stiffest segment mode (omega_max = 2 sqrt(k_seg / m_node)), the
+    explicit RK4 limit on the imaginary axis: where the search for MoorDyn's step starts."""
+    c = scene.sections[0].cable
+    l_seg = c.length / n_segments
+    m_node = (c.mass_per_length + c.added_mass_factor * scene.environment.density * math.pi * c.diameter**2 / 4) * l_seg
+    k_seg = c.ae / l_seg
+    return 2.8 / (2 * math.sqrt(k_seg / m_node))
+
+
+def largest_stable_dt(scene, n_segments: int, *, probe_s: float = 10.0, scheme: str = "RK4",
+                      start: float | None = None, floor: float = 1e-7) -> float:
+    """The largest MoorDyn step (halving from ``start``, default 4x the axial estimate) that stays
+    finite and bounded (MoorDyn's own NaN check included) over ``probe_s`` seconds."""
+    dt = start or min(4 * axial_step_estimate(scene, n_segments), 0.05)
+    while dt >= floor:
+        if run_moordyn(scene, n_segments, dt, duration=probe_s, scheme=scheme)["stable"]:
+            return dt
+        dt /= 2
+    raise RuntimeError(f"MoorDyn found no stable step above {floor} s")
