@@ -263,10 +263,10 @@ def per_call_us(fn, n=2000) -> float:
 def plot(path, res, times, Xs, X, Xref, pos_ref, model, p):
     plt = setup_matplotlib()
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 4.8))
-    names = ["SciPy LSODA\n+ NumPy RHS", "cablesys CVODES\nvirtual machine", "cablesys CVODES\n(shipped, compiled)"]
+    names = ["SciPy LSODA\n+ NumPy", "CVODES\nvirtual\nmachine", "CVODES\ncompiled\n(shipped)"]
     vals = [res["scipy_ms"], res["vm"]["ms"], res["cablesys_ms"]]
     for k, v in res["compiled"].items():
-        names.append(f"cablesys {k}\n(compiled)")
+        names.append(("Adams" if k == "cvodes-adams" else k.upper()) + "\ncompiled")
         vals.append(v["ms"])
     bars = ax1.bar(range(len(vals)), vals,
                    color=["tab:gray", "tab:purple", "tab:blue", "tab:green", "tab:olive"][: len(vals)])

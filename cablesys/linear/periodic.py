@@ -7,9 +7,19 @@ trigonometric polynomials of degree H through the Fourier differentiation matrix
 
     M(q_j) (D^2 q)_j - f(q_j, (D q)_j, e(t_j), p) = 0
 
-are solved with a CasADi rootfinder (Newton, dense AD Jacobian) from the describing-function
-orbit of :mod:`.equivalent`. This is the pseudo-spectral (AFT) harmonic balance: no drag
-linearization, every harmonic up to H. The cable must stay taut (no slack switches).
+are solved by Newton's method with the exact Jacobian assembled from per-node blocks,
+
+    dr_j/dq_k = delta_jk dr_j/dq_j + D_jk dr_j/dq'_j + (D^2)_jk M(q_j),
+
+the three n-by-n-free pieces evaluated by one mapped CasADi function (AD of the node
+residual), so a Newton step costs one pass over the nodes and one dense (N nq) solve instead
+of differentiating the whole collocation graph (whose symbolic Jacobian has ~2e6 operations).
+Starting guess: the linear response at omega about the steady state (one complex solve), or
+the describing-function orbit of :mod:`.equivalent` when that does not converge; along a
+frequency sweep (:func:`periodic_sweep`) each solution starts from its neighbour's
+(continuation). This is the pseudo-spectral (AFT) harmonic balance: no drag linearization,
+every harmonic up to H. The cable must stay taut (no slack switches). A smooth start
+(``top_motion.ramp_s``) is switched off: the periodic state is the one after any ramp.
 """
 
 from __future__ import annotations
@@ -19,6 +29,7 @@ import dataclasses
 import casadi as ca
 import numpy as np
 
+from ..compiled import compile_functions
 from ..errors import ParameterError
 from ..model import CableModel
 from ..results import ResultBase, timed
@@ -45,32 +56,74 @@ def trig_interpolate(values: np.ndarray, n_fine: int) -> np.ndarray:
     return out
 
 
-def _collocation_rootfinder(model: CableModel, n: int) -> tuple[ca.Function, ca.Function]:
-    """Newton on the collocation residual at n nodes, and that residual (built once per model and n)."""
-    return model.cache.get(f"colloc_{n}", lambda: _build_collocation(model, n))
+def _node_function(model: CableModel, n: int) -> ca.Function:
+    """Residual r = M(q) q'' - f(q, q', e, p) at n nodes and its blocks dr/dq, dr/dq', M (mapped)."""
+    def build():
+        nq = model.nq
+        q, qd, qdd = ca.SX.sym("q", nq), ca.SX.sym("qd", nq), ca.SX.sym("qdd", nq)
+        e = ca.SX.sym("e", model.top.size1_out(0))
+        p = ca.SX.sym("p", len(model.layout))
+        M, f = model.dynamics(q, qd, e, p)
+        r = ca.mtimes(M, qdd) - f
+        node = ca.Function("colloc_node", [q, qd, qdd, e, p], [r, ca.jacobian(r, q), ca.jacobian(r, qd), M])
+        mapped = node.map(n)
+        return compile_functions([mapped], jacobians=False).functions[mapped.name()]   # C, cached on disk
+    return model.cache.get(f"colloc_node_{n}", build)
 
 
-def _build_collocation(model: CableModel, n: int) -> tuple[ca.Function, ca.Function]:
-    nq = model.nq
-    Q = ca.SX.sym("Q", nq, n)
-    T = ca.SX.sym("T")
-    t0 = ca.SX.sym("t0")
-    p = ca.SX.sym("p", len(model.layout))
-    D = fourier_differentiation(n, 1.0) / T            # D scales as 1/T
-    Qd = ca.mtimes(Q, D.T)
-    Qdd = ca.mtimes(Qd, D.T)
-    times = t0 + T * np.arange(n) / n
-    E = model.top.map(n)(ca.transpose(times), p)
-    Mf = model.dynamics.map(n)
-    M, f = Mf(Q, Qd, E, p)
-    res = []
-    for j in range(n):
-        Mj = M[:, j * nq:(j + 1) * nq]
-        res.append(ca.mtimes(Mj, Qdd[:, j]) - f[:, j])
-    g = ca.vec(ca.horzcat(*res))
-    G = ca.Function("colloc", [ca.vec(Q), ca.vertcat(T, t0, p)], [g])
-    rf = ca.rootfinder("colloc_solve", "newton", G, {"abstol": 1e-12, "max_iter": 50, "error_on_fail": False})
-    return rf, G
+def _without_ramp(model: CableModel, p) -> np.ndarray:
+    """``p`` with the smooth start off (the periodic state is the one after any ramp)."""
+    p = np.array(p, dtype=float)
+    if "top_motion.ramp_s" in model.layout.labels:
+        p[model.layout.index("top_motion.ramp_s")] = 0.0
+    return p
+
+
+def _newton(model: CableModel, p, times, T, Q, *, tol: float = 1e-8, max_iter: int = 50):
+    """Newton on the collocation equations from node values ``Q`` (nq, n); exact block Jacobian,
+    step halving when the residual does not decrease. Returns (Q, max |r|, iterations)."""
+    nq, n = Q.shape
+    D = fourier_differentiation(n, T)
+    D2 = D @ D
+    node = _node_function(model, n)
+    E = np.array(model.top.map(n)(times[None, :], p))
+    idx = np.arange(n)
+
+    def evaluate(Qv):
+        out = node(Qv, Qv @ D.T, Qv @ D2.T, E, p)
+        return [np.array(o) for o in out]
+
+    R, A, B, C = evaluate(Q)
+    res = float(np.max(np.abs(R)))
+    it = 0
+    while res > tol and it < max_iter and np.isfinite(res):
+        it += 1
+        # J[j a, k b] = delta_jk A_j[a, b] + D[j, k] B_j[a, b] + D2[j, k] C_j[a, b]  (node-major ordering)
+        Aj, Bj, Cj = (X.reshape(nq, n, nq).transpose(1, 0, 2) for X in (A, B, C))
+        J4 = np.einsum("jk,jab->jakb", D, Bj) + np.einsum("jk,jab->jakb", D2, Cj)
+        J4[idx, :, idx, :] += Aj
+        J = J4.reshape(n * nq, n * nq)
+        step = np.linalg.solve(J, R.T.ravel()).reshape(n, nq).T
+        lam = 1.0
+        while True:
+            Qn = Q - lam * step
+            Rn, An, Bn, Cn = evaluate(Qn)
+            rn = float(np.max(np.abs(Rn)))
+            if (np.isfinite(rn) and rn < res) or lam < 1e-3:
+                break
+            lam *= 0.5
+        Q, R, A, B, C, res = Qn, Rn, An, Bn, Cn, rn
+    return Q, res, it
+
+
+def _linear_guess(model: CableModel, p, omega: float, input_amplitude, times) -> np.ndarray:
+    """Node values of the linear response about the steady state (one complex solve)."""
+    from .linearize import linearize
+    from .steady import steady_state
+    st = steady_state(model, p)
+    Qc, _ = linearize(model, p, steady=st).transfer([omega])
+    Q = Qc[0] @ np.asarray(input_amplitude, complex)
+    return st.q[:, None] + np.real(Q[:, None] * np.exp(1j * omega * times)[None, :])
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -155,20 +208,22 @@ def periodic_steady_state(model: CableModel, p, omega: float, *, n_harmonics: in
     n = 2 * n_harmonics + 1
     T = 2 * np.pi / omega
     times = t0 + T * np.arange(n) / n
-    p = np.asarray(p, float)
-    if guess is None:
-        if input_amplitude is None:
-            raise ParameterError("input_amplitude", None, "periodic_steady_state needs input_amplitude "
-                                 "(complex x_s, y_s) or a guess")
-        h = harmonic_response(model, p, [omega], input_amplitude, n_theta=32, ladder=4)
-        Q = h.q_amplitude[0]
-        guess = h.q_mean[0][:, None] + np.real(Q[:, None] * np.exp(1j * omega * times)[None, :])
-    rf, G = _collocation_rootfinder(model, n)
-    par = np.concatenate([[T, t0], p])
-    sol = np.array(rf(np.asarray(guess, float).ravel(order="F"), par)).ravel()
-    res = float(np.max(np.abs(np.array(G(sol, par))))) if np.all(np.isfinite(sol)) else np.inf
+    p = _without_ramp(model, p)
+    if guess is None and input_amplitude is None:
+        raise ParameterError("input_amplitude", None, "periodic_steady_state needs input_amplitude "
+                             "(complex x_s, y_s) or a guess")
+    starts = [] if guess is None else [("given", lambda: np.asarray(guess, float))]
+    if input_amplitude is not None:
+        starts += [("linear", lambda: _linear_guess(model, p, omega, input_amplitude, times)),
+                   ("describing function", lambda: _describing_guess(model, p, omega, input_amplitude, times))]
+    iterations, tried = 0, []
+    for name, make in starts:
+        q, res, it = _newton(model, p, times, T, np.array(make(), dtype=float).reshape(model.nq, n))
+        iterations += it
+        tried.append(name)
+        if res < 1e-8:
+            break
     ok = res < 1e-8
-    q = sol.reshape(model.nq, n, order="F")
     qd = q @ fourier_differentiation(n, T).T
     X = np.vstack([q, qd])
     E = np.array(model.top.map(n)(times[None, :], p))
@@ -182,4 +237,69 @@ def periodic_steady_state(model: CableModel, p, omega: float, *, n_harmonics: in
         ok, msg = False, (f"the cable goes slack on the orbit (min tension {tens_min:.4g} N): the smooth periodic "
                           "solve does not apply; use simulate()")
     return PeriodicSolution(period=T, time=times, q=q, qd=qd, outputs=outputs, residual=res, success=ok, message=msg,
-                            stats={"n_harmonics": n_harmonics, "nodes": n})
+                            stats={"n_harmonics": n_harmonics, "nodes": n, "newton_iterations": iterations,
+                                   "starts": tried})
+
+
+def _describing_guess(model: CableModel, p, omega: float, input_amplitude, times) -> np.ndarray:
+    """Node values of the describing-function orbit (:func:`.equivalent.harmonic_response`)."""
+    h = harmonic_response(model, p, [omega], input_amplitude, n_theta=32, ladder=4)
+    Q = h.q_amplitude[0]
+    return h.q_mean[0][:, None] + np.real(Q[:, None] * np.exp(1j * omega * times)[None, :])
+
+
+def periodic_sweep(model: CableModel, p, omegas, input_amplitude, *, n_harmonics: int = 20) -> list:
+    """Periodic steady states along a frequency sweep by continuation.
+
+    The top motion in ``p`` is replaced at each omega by Re(Z e^{i omega t}) with Z =
+    ``input_amplitude`` (complex x_s, y_s), i.e. the scene's sinusoids get the frequency omega.
+    Each solution starts from its neighbour's node values (the nodes sit at the same phases of
+    the period), so a step costs a few Newton iterations; a failed step restarts from the
+    linear guess.
+
+    Parameters
+    ----------
+    model : CableModel
+        The Wang (1971) model.
+    p : array_like
+        Parameter vector with sinusoidal top motion (amplitudes and phases are replaced by Z).
+    omegas : array_like
+        Angular frequencies [rad/s], solved in the given order (sorted sweeps continue best).
+    input_amplitude : array_like of complex
+        Complex x_s, y_s [m].
+    n_harmonics : int, optional
+        Harmonics kept in the collocation.
+
+    Returns
+    -------
+    list of PeriodicSolution
+        One per omega.
+    """
+    p = _without_ramp(model, p)
+    Z = np.asarray(input_amplitude, complex)
+    out, guess = [], None
+    for w in np.atleast_1d(np.asarray(omegas, float)):
+        pw = _with_sinusoids(model, p, w, Z)
+        sol = periodic_steady_state(model, pw, w, n_harmonics=n_harmonics, input_amplitude=Z, guess=guess)
+        out.append(sol)
+        guess = sol.q if sol.success else None
+    return out
+
+
+def _with_sinusoids(model: CableModel, p, omega: float, Z) -> np.ndarray:
+    """``p`` with the first sinusoid of x and of y set to Re(Z e^{i omega t}) = |Z| sin(omega t + arg(iZ))
+    and every other sinusoid silenced."""
+    p = np.array(p, dtype=float)
+    labels = model.layout.labels
+    for ax, z in zip(("x", "y"), Z[:2]):
+        ks = sorted({int(lb.split("[")[1].split("]")[0]) for lb in labels if lb.startswith(f"top_motion.{ax}[")})
+        if not ks:
+            if abs(z) > 0:
+                raise ParameterError("input_amplitude", Z, f"the scene has no {ax} sinusoid to carry a {ax} motion")
+            continue
+        for k in ks:
+            pre = f"top_motion.{ax}[{k}]."
+            p[model.layout.index(pre + "amplitude")] = abs(z) if k == ks[0] else 0.0
+            p[model.layout.index(pre + "frequency")] = omega
+            p[model.layout.index(pre + "phase")] = float(np.angle(1j * z)) if k == ks[0] else 0.0
+    return p
