@@ -13,7 +13,8 @@ NOTEBOOKS = sorted((Path(__file__).resolve().parents[1] / "notebooks").glob("*.i
 
 
 def test_there_are_notebooks():
-    assert {p.name for p in NOTEBOOKS} >= {"parameter_sweep.ipynb", "isolation_design.ipynb", "operability.ipynb"}
+    assert {p.name for p in NOTEBOOKS} >= {"parameter_sweep.ipynb", "isolation_design.ipynb", "operability.ipynb",
+                                           "model_ladder.ipynb"}
 
 
 @pytest.mark.slow

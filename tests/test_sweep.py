@@ -173,3 +173,18 @@ def test_the_model_chosen_is_recorded():
     for i, ae in enumerate(vary["cable.ae"]):
         choice = choose(scene.replace_section(0, cable={"ae": ae}))
         assert auto["model_name"].values[i] == choice.name and float(auto["model_segments"][i]) == choice.segments
+
+
+def test_ladder_sweep_maps_the_choice_without_running():
+    """The ladder analysis equals cablesys.ladder.choose case by case (a cheap map of which model when)."""
+    from cablesys.ladder import choose
+    scene = dale_scene()
+    w = [0.3 * OMEGA_N_MEASURED, 3.0 * OMEGA_N_MEASURED]
+    ds = cablesys.sweep(scene, {FX: w, FY: w}, "ladder", zip=True, workers=1, progress=False)
+    for i, wi in enumerate(w):
+        c = choose(dale_scene(omega_ratio=wi / OMEGA_N_MEASURED))
+        assert ds["model_name"].values[i] == c.name and float(ds["model_segments"][i]) == c.segments
+    assert ds["model_name"].values[0] != ds["model_name"].values[1]     # slow forcing needs less model
+
+
+FX, FY = "top_motion.x[0].frequency", "top_motion.y[0].frequency"

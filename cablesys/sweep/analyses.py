@@ -225,4 +225,14 @@ def design(scene, options, cache):
     return res.to_dict(), bool(res.converged), "" if res.converged else f"not converged: {res.status}"
 
 
-ANALYSIS = {"run": run, "rao": rao, "periodic": periodic, "stochastic": stochastic, "design": design}
+def ladder(scene, options, cache):
+    """The model ladder's choice for the scene, without running it (:func:`cablesys.ladder.choose`): the rung,
+    its elements, the deciding numbers and every rung's estimated error (option ``tolerance``)."""
+    from ..ladder import choose
+    c = choose(scene, options.get("tolerance"), question=options.get("question", "time"))
+    est = {k: {q: v for q, v in e.items() if q in ("body", "tension")} for k, e in c.numbers.get("estimates", {}).items()}
+    numbers = {k: v for k, v in c.numbers.get("scene", {}).items() if isinstance(v, (int, float))}
+    return {"model": c.as_dict(), "numbers": numbers, "estimates": est}, True, ""
+
+
+ANALYSIS = {"run": run, "rao": rao, "periodic": periodic, "stochastic": stochastic, "design": design, "ladder": ladder}

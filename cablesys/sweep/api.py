@@ -34,7 +34,8 @@ def sweep(scene: Scene, vary: dict, analysis: str = "run", *, metrics=None, zip=
     analysis : str
         ``run`` (time domain, Wang 1971 eq. 47-48), ``rao`` (linearization: natural frequencies,
         RAOs), ``periodic`` (harmonic balance), ``stochastic`` (Gaussian linearization in a JONSWAP
-        sea) or ``design`` (isolation NLP; ``options={"settings": DesignSettings(...)}``).
+        sea), ``design`` (isolation NLP; ``options={"settings": DesignSettings(...)}``) or ``ladder``
+        (which model the scene needs, :func:`cablesys.ladder.choose`, without running it).
     metrics : list of str, optional
         Glob patterns of the metric names to keep (``["tension_*", "amplitude_x_b"]``); default all
         numbers and strings of the result's ``summary()`` (flattened, see :mod:`.metrics`).
@@ -42,7 +43,9 @@ def sweep(scene: Scene, vary: dict, analysis: str = "run", *, metrics=None, zip=
         False: outer product, one dimension per label. True: all lists in step (one dimension).
         A list of label groups: each group advances in step, groups and other labels are crossed.
     options : dict, optional
-        Analysis options (``periods``, ``omega_max``, ``n_harmonics``, ``hs``, ``tp``, ``settings``).
+        Analysis options: run ``model`` (None: as built; "auto" or a rung: the model ladder), ``periods``;
+        rao ``omega_max``, ``n_omega``; periodic ``n_harmonics``; stochastic ``hs``, ``tp``, ``gamma``,
+        ``direction``; design ``settings``; ladder ``tolerance``.
     out : path, optional
         Folder for finished cases (netCDF per chunk, written as they finish) and ``sweep.nc``.
         Calling again with the same sweep and folder computes only the missing cases.

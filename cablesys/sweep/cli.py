@@ -18,8 +18,9 @@ def register(sub) -> None:
     p.add_argument("--vary", action="append", required=True, metavar="NAME=VALUES",
                    help="a labelled value and its values: a list (body.weight=2000,3000,4000) or a range "
                         "start:stop:lin|log:count (cable.ae=1e5:1e7:log:20); repeat for more dimensions")
-    p.add_argument("--analysis", default="run", choices=("run", "rao", "periodic", "stochastic"),
-                   help="run (time domain), rao (linearization), periodic (harmonic balance), stochastic (JONSWAP sea)")
+    p.add_argument("--analysis", default="run", choices=("run", "rao", "periodic", "stochastic", "ladder"),
+                   help="run (time domain), rao (linearization), periodic (harmonic balance), stochastic (JONSWAP "
+                        "sea), ladder (which model each case needs, without running it)")
     p.add_argument("--metric", action="append", default=None, metavar="PATTERN",
                    help="keep metrics matching this glob (repeatable; default all, e.g. 'tension_*')")
     p.add_argument("--model", default="scene",

@@ -23,7 +23,7 @@ def flatten(summary: dict, prefix: str = "") -> dict:
     """{name: int | float | str | 1-D array} from a nested summary dict."""
     out = {}
     for key, val in summary.items():
-        name = f"{prefix}{key}".replace(".", "_").replace(" ", "_")
+        name = f"{prefix}{key}".replace(".", "_").replace(" ", "_").replace("-", "_")
         if not prefix and key in SKIP:
             continue
         if name in RESERVED:

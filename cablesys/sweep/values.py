@@ -18,7 +18,7 @@ from ..errors import ParameterError
 from ..scene.fields import SI_UNIT
 
 _TOKEN = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?$")
-ANALYSES = ("run", "rao", "periodic", "stochastic", "design")
+ANALYSES = ("run", "rao", "periodic", "stochastic", "design", "ladder")
 # units of analysis options that can be varied (others are dimensionless)
 OPTION_UNITS = {"hs": "m", "tp": "s", "omega_min": "rad/s", "omega_max": "rad/s", "periods": "-", "gamma": "-"}
 
