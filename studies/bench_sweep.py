@@ -33,16 +33,16 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
+from _common import parse_args, setup_matplotlib, write_json
 
-import cablesys  # noqa: E402
-from cablesys import units as U  # noqa: E402
-from cablesys.linear import linearize, modes, rao  # noqa: E402
-from cablesys.model import build_model  # noqa: E402
-from cablesys.plots import save_figure  # noqa: E402
-from cablesys.scene import OMEGA_N_MEASURED, dale_scene  # noqa: E402
-from cablesys.simulate import IntegratorSettings, Simulator, initial_state  # noqa: E402
-from cablesys.sweep.backends import local_cores  # noqa: E402
+import cablesys
+from cablesys import units as U
+from cablesys.linear import linearize, modes, rao
+from cablesys.model import build_model
+from cablesys.plots import save_figure
+from cablesys.scene import OMEGA_N_MEASURED, dale_scene
+from cablesys.simulate import IntegratorSettings, Simulator, initial_state
+from cablesys.sweep.backends import local_cores
 
 FX, FY = "top_motion.x[0].frequency", "top_motion.y[0].frequency"
 

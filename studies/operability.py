@@ -30,13 +30,13 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
+from _common import parse_args, setup_matplotlib, write_json
 
-import cablesys  # noqa: E402
-from cablesys import units as U  # noqa: E402
-from cablesys.examples import example_path  # noqa: E402
-from cablesys.plots import save_figure  # noqa: E402
-from cablesys.scene import load_scene  # noqa: E402
+import cablesys
+from cablesys import units as U
+from cablesys.examples import example_path
+from cablesys.plots import save_figure
+from cablesys.scene import load_scene
 
 STEEPNESS_LIMIT = 1.0 / 15.0
 

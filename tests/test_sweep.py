@@ -10,8 +10,7 @@ from cablesys import units as U
 from cablesys.errors import ParameterError
 from cablesys.scene import OMEGA_N_MEASURED, dale_scene
 from cablesys.simulate import simulate
-from cablesys.sweep import Grid, parse_values, parse_vary
-from cablesys.sweep import backends
+from cablesys.sweep import Grid, backends, parse_values, parse_vary
 from cablesys.sweep.worker import process_cache
 
 DURATION = 19.0          # 6 periods at 1.8 omega_n: amplitudes over the last 3
@@ -102,7 +101,7 @@ def _interrupt_after(n, monkeypatch):
 
 def test_an_interrupted_sweep_resumes_with_the_missing_cases_only(tmp_path, monkeypatch):
     scene, vary = dale_scene(duration=1.0), {"cable.ae": [20.0, 40.0, 80.0], "body.weight": [0.2, 0.3]}
-    kw = dict(metrics=["tension_max_N"], workers=1, progress=False, out=tmp_path, chunk_size=1)
+    kw = {"metrics": ["tension_max_N"], "workers": 1, "progress": False, "out": tmp_path, "chunk_size": 1}
     _interrupt_after(4, monkeypatch)
     with pytest.raises(KeyboardInterrupt):
         cablesys.sweep(scene, vary, "run", **kw)

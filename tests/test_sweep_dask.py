@@ -13,7 +13,7 @@ distributed = pytest.importorskip("distributed", reason="install the sweep extra
 def test_dask_local_cluster_equals_local_processes(tmp_path):
     scene = dale_scene(duration=2.0)
     vary = {"cable.ae": [20.0, 200.0], "body.weight": [0.2, 0.3, -1.0]}     # -1 N: an invalid case, recorded
-    kw = dict(metrics=["tension_*"], progress=False)
+    kw = {"metrics": ["tension_*"], "progress": False}
     local = cablesys.sweep(scene, vary, "run", workers=2, **kw)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
             distributed.Client(cluster) as client:

@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from ..errors import ParameterError
+from ..errors import ParameterError, SolverError
 from ..model import build_model, structure_of
 
 
@@ -118,7 +118,10 @@ def run(scene, options, cache):
     w = forcing_frequency(scene)
     n = int(options.get("periods", 3))
     try:
-        from ..verdict import passed, report     # statistics and the verdict against scene.limits
+        from ..verdict import (  # statistics and the verdict against scene.limits
+            passed,
+            report,
+        )
     except ImportError:          # pragma: no cover
         report = None
     if report is not None and r.time.size > 2:
@@ -134,8 +137,8 @@ def run(scene, options, cache):
 
 def rao(scene, options, cache):
     """Linearization about the steady state: natural frequencies, |RAO| at the forcing frequency and peaks."""
-    from ..linear.linearize import linearize
     from ..linear import modes
+    from ..linear.linearize import linearize
     from ..linear.periodic import scene_input_amplitude
     model = cache.model(scene)
     lin = linearize(model, model.parameters(scene))
@@ -163,7 +166,7 @@ def rao(scene, options, cache):
         _, Yf = lin.transfer([w])
         try:
             _, Z = scene_input_amplitude(scene)
-        except Exception:          # several frequencies: per-unit RAOs only
+        except SolverError:        # several frequencies: per-unit RAOs only
             Z = None
         for o in outs:
             i = lin.output_labels.index(o)
@@ -214,7 +217,8 @@ def stochastic(scene, options, cache):
 
 def design(scene, options, cache):
     """The isolation design NLP (Wang 1971 p. 33) with ``options['settings']`` (fields variable as ``design.<field>``)."""
-    from ..design import design as solve, DesignSettings
+    from ..design import DesignSettings
+    from ..design import design as solve
     settings = options.get("settings")
     if not isinstance(settings, DesignSettings):
         raise ParameterError("options['settings']", settings, "a design sweep needs a DesignSettings")

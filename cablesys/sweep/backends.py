@@ -14,7 +14,7 @@ import concurrent.futures as cf
 import multiprocessing
 import os
 
-from .worker import process_cache, run_chunk, run_case
+from .worker import process_cache, run_case, run_chunk
 
 
 def local_cores() -> int:
@@ -55,7 +55,7 @@ def run_processes(spec, parts, n_workers: int):
 def _result(fut, part):
     try:
         return fut.result()
-    except Exception as err:       # the worker died (memory, signal): the chunk is reported, not stored
+    except Exception as err:  # noqa: BLE001 -- a dead worker, a pickling or cluster error: report the chunk, do not store it
         return [{"case": int(k), "status": "error", "message": f"worker failed: {type(err).__name__}: {err}",
                  "wall_s": float("nan"), "metrics": {}, "transient": True} for k in part]
 

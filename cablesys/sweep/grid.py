@@ -31,7 +31,7 @@ class Grid:
     values: tuple         # ((list, ...), ...) per dimension, same nesting as names
 
     @classmethod
-    def build(cls, vary: dict, zip=False) -> "Grid":
+    def build(cls, vary: dict, zip=False) -> Grid:
         """From ``vary`` {name: values}; ``zip`` False (outer product), True (all in step) or a
         list of name groups that advance in step (the other names are crossed with them)."""
         if not isinstance(vary, dict) or not vary:

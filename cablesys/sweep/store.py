@@ -61,7 +61,7 @@ class CaseStore:
             try:
                 with xr.open_dataset(f, engine="scipy") as ds:
                     done.update({r["case"]: r for r in records_of(ds.load())})
-            except Exception as err:       # a damaged file: its cases are computed again
+            except Exception as err:  # noqa: BLE001 -- any damaged file (torn write, not netCDF): recompute its cases
                 log.warning("ignoring unreadable %s (%s)", f, err)
         return done
 
