@@ -4,8 +4,10 @@ The problem is not convex (resonances move through the sea spectrum as AE change
 first solve runs from ``n_starts`` points: the scene's own design and a Latin hypercube in
 the log-scaled box. The equivalent linearization (the Jacobian shift dJ) is then updated from the Gaussian
 equivalent linearization at the optimum (:mod:`cablesys.linear.stochastic`) and the NLP is
-warm-started from the best point, until the objective changes by less than ``outer_tol``
-(see :mod:`.objective` for why dJ is held during a solve). IPOPT uses a limited-memory
+warm-started from the best point (primal and dual, small barrier parameter), until the
+objective changes by less than ``outer_tol`` (see :mod:`.objective` for why dJ is held during
+a solve). The multistart pass uses a looser tolerance (``SCOUT_TOL``) when later passes
+polish the optimum. IPOPT uses a limited-memory
 quasi-Newton Hessian; its gradients and constraint Jacobians are exact (CasADi AD).
 
 IPOPT's status is translated: infeasibility names the constraint (or bound) that cannot be
@@ -34,6 +36,7 @@ from .results import DesignResult, describe_constraint
 log = logging.getLogger(__name__)
 OK_STATUS = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
 FEASIBILITY_TOL = 1e-6
+SCOUT_TOL = 1e-3       # IPOPT tolerance of the multistart pass when later passes polish the optimum
 
 
 class DesignInfeasible(SolverError):
@@ -97,10 +100,19 @@ def design(scene, settings: DesignSettings, *, model=None) -> DesignResult:
     vars_ = variables(scene, settings)
     p_base = model.parameters(scene)
     x_sym, par, f, g, report = nlp_functions(model, settings, vars_, p_base)
-    solver = ca.nlpsol("isolation_design", "ipopt", {"x": x_sym, "p": par, "f": f, "g": g},
-                       {"print_time": False, "ipopt": {"print_level": 0, "sb": "yes", "max_iter": settings.max_iter,
-                                                       "tol": settings.tol, "hessian_approximation": "limited-memory",
-                                                       "acceptable_tol": 1e-6}})
+    nlp = {"x": x_sym, "p": par, "f": f, "g": g}
+    base = {"print_level": 0, "sb": "yes", "max_iter": settings.max_iter, "tol": settings.tol,
+            "hessian_approximation": "limited-memory", "acceptable_tol": 1e-6}
+    # the first pass only has to find the basin (dJ is still the scene's, not the optimum's):
+    # scout with a looser tolerance when later passes polish the result
+    scout_tol = settings.tol if settings.outer_iterations == 1 else max(settings.tol, SCOUT_TOL)
+    scout = ca.nlpsol("isolation_design_scout", "ipopt", nlp, {"print_time": False, "ipopt": {**base, "tol": scout_tol}})
+    # later passes move the optimum a little (dJ changes by a few %): warm start from the previous
+    # primal-dual point with a small barrier parameter
+    warm = ca.nlpsol("isolation_design_warm", "ipopt", nlp, {"print_time": False, "ipopt": {
+        **base, "warm_start_init_point": "yes", "mu_init": 1e-6, "warm_start_bound_push": 1e-9,
+        "warm_start_bound_frac": 1e-9, "warm_start_slack_bound_push": 1e-9, "warm_start_slack_bound_frac": 1e-9,
+        "warm_start_mult_bound_push": 1e-9}})
     names = constraint_names(model.n_sections)
     ng = len(names)
     x_scene = np.array([v.normalized(np.clip(val, v.lower, v.upper)) for v, val in zip(vars_, current_values(scene, vars_))])
@@ -117,9 +129,11 @@ def design(scene, settings: DesignSettings, *, model=None) -> DesignResult:
     for outer in range(settings.outer_iterations):
         par_val = np.r_[dJ.ravel(order="F"), q_guess]
         candidates = []
+        solver = scout if outer == 0 else warm
         for x0 in starts:
             t0 = time.perf_counter()
-            sol = solver(x0=x0, lbx=0.0, ubx=1.0, lbg=-np.inf, ubg=0.0, p=par_val)
+            duals = {} if outer == 0 else {"lam_x0": best[3], "lam_g0": best[4]}
+            sol = solver(x0=x0, lbx=0.0, ubx=1.0, lbg=-np.inf, ubg=0.0, p=par_val, **duals)
             wall = time.perf_counter() - t0
             s = solver.stats()
             xv = np.array(sol["x"]).ravel()
