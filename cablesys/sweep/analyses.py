@@ -136,12 +136,19 @@ def run(scene, options, cache):
 
 
 def rao(scene, options, cache):
-    """Linearization about the steady state: natural frequencies, |RAO| at the forcing frequency and peaks."""
-    from ..linear import modes
+    """Linearization about the steady state: natural frequencies, |RAO| at the forcing frequency and peaks.
+
+    A chunk of RAO cases is linearized in one mapped call instead (:mod:`.batched`); both end here."""
     from ..linear.linearize import linearize
-    from ..linear.periodic import scene_input_amplitude
     model = cache.model(scene)
-    lin = linearize(model, model.parameters(scene))
+    return rao_summary(scene, linearize(model, model.parameters(scene)), options)
+
+
+def rao_summary(scene, lin, options):
+    """(summary, success, message) of one linear model: natural frequencies, RAO peaks on a grid
+    (options ``omega_min``, ``omega_max``, ``n_omega``) and |RAO| and amplitudes at the forcing frequency."""
+    from ..linear import modes
+    from ..linear.periodic import scene_input_amplitude
     md = modes(lin)
     s = {"omega_n": {f"{k}_rad_s": float(w) for k, w in enumerate(md.omega_undamped)},
          "damping_ratio": {str(k): float(z) for k, z in enumerate(md.damping_ratio)},

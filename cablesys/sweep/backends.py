@@ -36,7 +36,10 @@ def run_serial(spec, parts):
     """In this process (its model cache persists across calls)."""
     cache = process_cache()
     for part in parts:
-        yield part, [run_case(spec, int(k), cache) for k in part]
+        if spec.analysis == "rao":          # one mapped linearization per chunk
+            yield part, run_chunk(spec, part)
+        else:
+            yield part, [run_case(spec, int(k), cache) for k in part]
 
 
 def run_processes(spec, parts, n_workers: int):
