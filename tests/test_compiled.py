@@ -93,3 +93,17 @@ def test_simulation_compiled_agrees_with_virtual_machine(cache, method):
         assert np.max(np.abs(a - b)) < 1e-6 * (1e-3 + np.max(np.abs(b)))
     st = res[True].stats
     assert {"build_s", "load_s", "run_s"} <= set(st) and st["load_s"] >= 0.0
+
+
+def test_run_summary_reports_build_load_and_run_time(cache, tmp_path):
+    import json
+
+    from cablesys.cli import main
+    from cablesys.scene import dale_scene, dump_scene
+    f = tmp_path / "dale.toml"
+    f.write_text(dump_scene(dale_scene(duration=2.0, output_step=0.1)))
+    for out in (tmp_path / "first", tmp_path / "second"):          # the second run loads the cached library
+        assert main(["run", str(f), "--out", str(out)]) == 0
+        timing = json.loads((out / "summary.json").read_text())["timing"]
+        assert set(timing) == {"build_s", "load_s", "run_s"} and all(v >= 0.0 for v in timing.values())
+    assert len(list(cache_dir().glob("*.so"))) >= 1
