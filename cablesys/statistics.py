@@ -33,8 +33,8 @@ def rayleigh_mpm(sigma: float, tz: float, duration: float) -> float:
     ----------
     sigma : float
         Standard deviation of the process (its unit).
-    tz : float
-        Mean zero-up-crossing period (s).
+    tz : float or None
+        Mean zero-up-crossing period (s); None when undefined (no crossing).
     duration : float
         Duration D of the exposure (s).
 
@@ -43,7 +43,7 @@ def rayleigh_mpm(sigma: float, tz: float, duration: float) -> float:
     float
         The mode of the largest of N = D / T_z Rayleigh peaks (0 when N <= 1).
     """
-    if not (sigma > 0 and tz > 0 and duration > 0) or not math.isfinite(tz):
+    if tz is None or not (sigma > 0 and tz > 0 and duration > 0) or not math.isfinite(tz):
         return 0.0
     n = duration / tz
     return sigma * math.sqrt(2.0 * math.log(n)) if n > 1 else 0.0
@@ -70,7 +70,7 @@ def time_domain(t, y, duration: float | None = None) -> dict:
     dict
         ``max, min, mean, std, significant_amplitude`` (mean of the highest third of the
         cycle half-heights), ``zero_upcrossing_period_s`` (mean time between up-crossings of
-        the mean), ``most_probable_max`` and ``most_probable_min`` (mean +- sigma sqrt(2 ln N)).
+        the mean; None without two crossings), ``most_probable_max`` and ``most_probable_min`` (mean +- sigma sqrt(2 ln N)).
     """
     t, y = np.asarray(t, float), np.asarray(y, float)
     mean, std = float(np.mean(y)), float(np.std(y))
@@ -79,7 +79,7 @@ def time_domain(t, y, duration: float | None = None) -> dict:
     if len(idx) >= 2:          # between the first and last up-crossing: whole cycles only
         tz = float(t[idx[-1]] - t[idx[0]]) / (len(idx) - 1)
     else:
-        tz = span / len(idx) if len(idx) else math.inf
+        tz = span / len(idx) if len(idx) else None      # no crossing: undefined (JSON null)
     halves = [0.5 * (y[a:b + 1].max() - y[a:b + 1].min()) for a, b in itertools.pairwise(idx)]
     if halves:
         h = np.sort(halves)[::-1]
@@ -120,7 +120,7 @@ def frequency_domain(omega, S, duration: float, mean: float = 0.0) -> dict:
     """
     m0, m2 = moment(omega, S, 0), moment(omega, S, 2)
     std = math.sqrt(max(m0, 0.0))
-    tz = 2 * math.pi * math.sqrt(m0 / m2) if m2 > 0 else math.inf
+    tz = 2 * math.pi * math.sqrt(m0 / m2) if m2 > 0 else None
     mpm = rayleigh_mpm(std, tz, duration)
     return {"max": mean + mpm, "min": mean - mpm, "mean": mean, "std": std, "significant_amplitude": 2 * std,
             "zero_upcrossing_period_s": tz, "most_probable_max": mean + mpm, "most_probable_min": mean - mpm}

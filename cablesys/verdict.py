@@ -203,5 +203,9 @@ def format_statistics(statistics: dict, system: str = "SI") -> list[str]:
         for lbl, s in rows.items():
             lines.append(f"{lbl + ' [' + unit + ']':<18} {s['mean'] * f:>11.5g} {s['std'] * f:>10.4g} "
                          f"{s['min'] * f:>11.5g} {s['max'] * f:>11.5g} {s['most_probable_max'] * f:>11.5g} "
-                         f"{s['zero_upcrossing_period_s']:>7.3g}")
+                         f"{_num(s['zero_upcrossing_period_s']):>7}")
     return lines
+
+
+def _num(v) -> str:
+    return "-" if v is None else f"{v:.3g}"
