@@ -103,6 +103,9 @@ def run(args) -> int:
     w(f"{scene.name}\n{'converged' if result.converged else 'NOT converged'} (best solve: {result.status}); "
       f"{result.nlp_iterations} IPOPT iterations in {result.nlp_wall_s:.2f} s (total {result.total_wall_s:.2f} s)\n")
     w(f"sea: JONSWAP Hs {settings.hs:g} m, Tp {settings.tp:g} s, gamma {settings.gamma:g}\n")
+    if scene.top_motion.rao is not None:
+        w("note: the design's objective moves the top with the surface orbit (Wang 1971 eq. 26 at x = 0); "
+          "the scene's [top_motion.rao] is used by run and rao, not by the design\n")
     if failed:
         w(f"{len(failed)} of {len(result.runs)} solves failed:\n")
         for f in failed:
