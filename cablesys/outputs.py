@@ -140,8 +140,9 @@ class CsvStream:
     readable prefix of the run at any time.
     """
 
-    def __init__(self, path):
+    def __init__(self, path, table=None):
         self.path = Path(path)
+        self.table = table            # (time, data) -> (header, rows); default: SI columns as below
         self.partial = self.path.with_name(self.path.stem + ".partial" + self.path.suffix)
         self._fh = None
         self._labels = None
@@ -161,11 +162,17 @@ class CsvStream:
         -------
         None
         """
+        if self.table is not None:
+            head, block = self.table(time, data)
+        else:
+            head = ["time [s]"] + [f"{c} [{unit_of(c) or '-'}]" for c in data]
+            block = np.column_stack([np.asarray(time, float)] + [np.asarray(v, float) for v in data.values()])
         if self._fh is None:
-            self._labels = list(data)
+            self._labels = list(head)
             self._fh = open(self.partial, "wb", buffering=0)   # noqa: SIM115 (open across blocks; unbuffered)
-            self._write(",".join(["time [s]"] + [f"{c} [{unit_of(c) or 's'}]" for c in self._labels]) + "\n")
-        block = np.column_stack([np.asarray(time, float)] + [np.asarray(data[c], float) for c in self._labels])
+            self._write(",".join(head) + "\n")
+        elif list(head) != self._labels:
+            raise ValueError(f"a block with other columns ({head}) than the first ({self._labels})")
         text = io.StringIO()
         np.savetxt(text, block, delimiter=",", fmt="%.10g")
         self._write(text.getvalue())      # whole lines in one write: a killed run leaves no torn row
@@ -421,19 +428,21 @@ class OutputDir:
         """
         return self.write_text(name, _dumps(doc, indent=2) + "\n")
 
-    def stream_csv(self, name: str) -> CsvStream:
+    def stream_csv(self, name: str, table=None) -> CsvStream:
         """A :class:`CsvStream` for ``name`` (written as ``<stem>.partial.csv`` until closed).
 
         Parameters
         ----------
         name : str
             Final file name.
+        table : callable, optional
+            ``table(time, data) -> (header, rows)`` for each block (e.g. converted units).
 
         Returns
         -------
         CsvStream
         """
-        stream = CsvStream(self.file(name))
+        stream = CsvStream(self.file(name), table)
         self.manifest["streaming"] = stream.partial.name
         self._write_manifest()
         return stream

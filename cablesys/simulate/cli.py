@@ -118,15 +118,21 @@ def _run(args) -> int:
         scene = scene.with_numerics(duration=args.duration)
     check_scene_run_size(scene)                       # limits, before anything is built
     outdir = OutputDir(out, "run", scene, overwrite=args.overwrite, owned=RUN_FILES)   # --out checked here
+    from ..export import units_of_file
+    units = args.units or units_of_file(args.scene)
     with outdir.start(scene=scene.name, scene_file=str(args.scene)):
-        from ..ladder.auto import after_run, plan_run, simulate_auto     # the model ladder (issue 12)
+        from ..ladder.auto import (  # the model ladder (issue 12)
+            after_run,
+            plan_run,
+            simulate_auto,
+        )
         auto = (getattr(args, "model", None) or scene.numerics.model) == "auto"
         scene_run, model, choice = plan_run(scene, getattr(args, "model", None))
         while True:
             if model is None:          # the frequency rung: no time-domain model to stream
                 result = simulate_auto(scene, model="frequency", method=args.method)
                 break
-            result = _simulate_into(outdir, scene_run, model=model, method=args.method, jit=args.jit,
+            result = _simulate_into(outdir, scene_run, units=units, model=model, method=args.method, jit=args.jit,
                                     max_num_steps=args.max_steps)
             choice, again = after_run(scene, choice, result, auto=auto)
             if not again:
@@ -134,10 +140,7 @@ def _run(args) -> int:
             from ..ladder.rungs import build_rung, rung_scene
             scene_run = rung_scene(scene, choice.name, choice.segments)
             model = build_rung(scene_run, choice.name, choice.segments)
-        from ..export import units_of_file
-        units = args.units or units_of_file(args.scene)
-        summary = write_run(scene_run or scene, result, outdir, series_on_disk=units == "SI" and model is not None,
-                            units=units)
+        summary = write_run(scene_run or scene, result, outdir, series_on_disk=model is not None, units=units)
         summary["model"] = result.stats.get("model") or choice.as_dict()
         outdir.finish(result.status, **summary)
     _print_summary(summary, units)
@@ -150,17 +153,18 @@ def _run(args) -> int:
     return 0
 
 
-def _simulate_into(outdir, scene, label: str = "", **kw):
-    """Run ``scene`` with its series streamed to ``outdir``; on an interrupt write what was computed
-    (manifest status ``interrupted``) and re-raise."""
-    from .record import RunInterrupted
+def _simulate_into(outdir, scene, label: str = "", units: str = "SI", **kw):
+    """Run ``scene`` with its series streamed to ``outdir`` (CSV in ``units``); on an interrupt write
+    what was computed (manifest status ``interrupted``) and re-raise."""
+    from ..export import series_table
+    from .record import RunInterrupted, RunRecord
     from .run import simulate
-    stream = outdir.stream_csv("timeseries.csv")
+    stream = outdir.stream_csv("timeseries.csv", lambda t, d: series_table(RunRecord(time=t, data=d), units))
     try:
         result = simulate(scene, on_block=stream.append, progress=_Progress(label), **kw)
     except RunInterrupted as err:
         stream.discard()        # the interrupt may have cut a block short: write the record whole
-        summary = write_run(scene, err.result, outdir, plot=False)
+        summary = write_run(scene, err.result, outdir, plot=False, units=units)
         outdir.finish("interrupted", **summary)
         print(f"interrupted: {err.result.message}; wrote {outdir.path}/ ({', '.join(outdir.files)})", file=sys.stderr)
         raise
@@ -245,8 +249,8 @@ def _print_summary(summary: dict, units: str = "SI") -> None:
             print(f"  amplitude {k:14s} {v:.6g} {unit}")
     print(f"  tension min/max {summary.get('tension_min_N', float('nan')):.4g} / {summary.get('tension_max_N', float('nan')):.4g} N,"
           f" time slack {summary['time_slack_s']:.3g} s")
-    from ..verdict import format_statistics, format_table
     from ..units import output_unit
+    from ..verdict import format_statistics, format_table
     for line in (format_statistics(summary["statistics"], units) if "statistics" in summary else []) + \
             summary.get("warnings", []) + (format_table(summary["verdict"], lambda u: output_unit(u, units))
                                            if summary.get("verdict") else []):
