@@ -58,6 +58,7 @@ def _read_series(path):
     return np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
 def test_signal_stops_the_run_writes_what_was_computed_and_exits_130(tmp_path, sig):
     proc, out = _start_and_wait_for_streaming(tmp_path)
@@ -78,6 +79,7 @@ def test_signal_stops_the_run_writes_what_was_computed_and_exits_130(tmp_path, s
     assert "timeseries.nc" in doc["files"] and (out / "timeseries.nc").exists()
 
 
+@pytest.mark.slow
 def test_killed_run_leaves_a_running_manifest_and_a_readable_prefix(tmp_path):
     """SIGKILL cannot be caught: the manifest still says running, the streamed rows are readable."""
     proc, out = _start_and_wait_for_streaming(tmp_path)
