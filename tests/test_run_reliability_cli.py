@@ -162,3 +162,16 @@ def test_progress_line_only_for_long_runs(capsys):
     p(10.0, 10.0, 4.0)
     err = capsys.readouterr().err
     assert "t = 3 of 10 s (30 %)" in err and "about 8 s left" in err and "t = 10 of 10 s (100 %)" in err
+
+
+def test_an_interrupted_analysis_is_marked_and_exits_130(tmp_path, capsys, monkeypatch):
+    """Any sub-command: an interrupt during the analysis leaves status interrupted, exit 130."""
+    from cablesys.linear import linearize as lin
+
+    def interrupted(*a, **k):
+        raise KeyboardInterrupt
+    monkeypatch.setattr(lin, "linearize", interrupted)
+    scene = _scene_file(tmp_path, duration=2.0)
+    assert main(["rao", str(scene), "--out", str(tmp_path / "rao")]) == 130
+    assert "interrupted" in capsys.readouterr().err
+    assert json.loads((tmp_path / "rao" / "summary.json").read_text())["status"] == "interrupted"
