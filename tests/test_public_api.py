@@ -180,3 +180,57 @@ def test_readme_python_section_runs(tmp_path, monkeypatch):
     (tmp_path / "cable.toml").write_text(EXAMPLE_TOML)
     monkeypatch.chdir(tmp_path)
     exec(compile(_readme_python_block(), "README.md", "exec"), {})
+
+
+def _check_protocol(res):
+    import json
+
+    assert isinstance(res, AnalysisResult), type(res).__name__
+    assert isinstance(res.success, bool) and isinstance(res.message, str) and isinstance(res.stats, dict)
+    assert res.success == (res.message == ""), (type(res).__name__, res.message)
+    json.dumps(res.summary())
+    assert len(repr(res)) < 600 and "array([" not in repr(res)
+    ds = res.to_xarray()
+    items = list(ds.coords.items()) + (list(ds.data_vars.items()) if hasattr(ds, "data_vars") else [(ds.name, ds)])
+    unlabelled = [str(n) for n, v in items if not (v.attrs.get("units") and v.attrs.get("long_name"))]
+    assert not unlabelled, (type(res).__name__, unlabelled)
+    assert ds.attrs["success"] == int(res.success)
+
+
+def test_real_results_of_every_wang_analysis_keep_the_protocol():
+    """One of each result of the Wang model, computed (a few seconds): the protocol holds on values."""
+    import numpy as np
+
+    from cablesys.linear import (
+        harmonic_response,
+        jonswap,
+        periodic_steady_state,
+        stochastic_response,
+    )
+    from cablesys.linear.periodic import scene_input_amplitude
+
+    scene = cablesys.dale_scene(omega_ratio=1.0, duration=2.0)
+    model = cablesys.build_model(scene)
+    p = model.parameters(scene)
+    lin = cablesys.linearize(model, p)
+    w, z = scene_input_amplitude(scene)
+    om = np.linspace(0.3, 3.0, 40)
+    results = [cablesys.simulate.simulate(scene, model=model), lin, cablesys.modes(lin),
+               cablesys.rao(lin, np.linspace(0.5, 2.0, 20)), harmonic_response(model, p, [w], z),
+               periodic_steady_state(model, p, w, input_amplitude=z, n_harmonics=8),
+               stochastic_response(model, p, om, jonswap(om, 0.01, 5.0), n_log2=6)]
+    for res in results:
+        _check_protocol(res)
+    for res in results[1:]:
+        assert res.stats["wall_time_s"] >= 0.0
+
+
+def test_real_slack_results_keep_the_protocol():
+    import tomllib
+
+    from cablesys.slack.scene import EXAMPLE_TOML, scene_from_dict
+
+    scene, _ = scene_from_dict(tomllib.loads(EXAMPLE_TOML))
+    eq, modes = cablesys.slack.analyze(scene, 4, n_elements=40)
+    for res in (eq, modes):
+        _check_protocol(res)
