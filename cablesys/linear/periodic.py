@@ -90,8 +90,7 @@ def _newton(model: CableModel, p, times, T, Q, *, tol: float = 1e-8, max_iter: i
     idx = np.arange(n)
 
     def evaluate(Qv):
-        out = node(Qv, Qv @ D.T, Qv @ D2.T, E, p)
-        return [np.array(o) for o in out]
+        return [o.full() for o in node(Qv, Qv @ D.T, Qv @ D2.T, E, p)]
 
     R, A, B, C = evaluate(Q)
     res = float(np.max(np.abs(R)))
@@ -100,7 +99,7 @@ def _newton(model: CableModel, p, times, T, Q, *, tol: float = 1e-8, max_iter: i
         it += 1
         # J[j a, k b] = delta_jk A_j[a, b] + D[j, k] B_j[a, b] + D2[j, k] C_j[a, b]  (node-major ordering)
         Aj, Bj, Cj = (X.reshape(nq, n, nq).transpose(1, 0, 2) for X in (A, B, C))
-        J4 = np.einsum("jk,jab->jakb", D, Bj) + np.einsum("jk,jab->jakb", D2, Cj)
+        J4 = D[:, None, :, None] * Bj[:, :, None, :] + D2[:, None, :, None] * Cj[:, :, None, :]
         J4[idx, :, idx, :] += Aj
         J = J4.reshape(n * nq, n * nq)
         step = np.linalg.solve(J, R.T.ravel()).reshape(n, nq).T
