@@ -161,7 +161,7 @@ class InterruptFlag:
 
 
 def check_run_size(n_outputs: int, n_sections: int, *, field: str = "numerics.output_step",
-                   asked: str = "") -> None:
+                   asked: str = "", per_output: int | None = None) -> None:
     """Refuse a run whose output count or memory estimate exceeds the limits.
 
     Parameters
@@ -172,6 +172,9 @@ def check_run_size(n_outputs: int, n_sections: int, *, field: str = "numerics.ou
         Cable sections of the scene (each has 4 states, 1 slack switch and 11 output series).
     field, asked : str
         The input named in the error and how it was asked (e.g. ``"duration 1e12 s / step 0.05 s"``).
+    per_output : int, optional
+        Numbers kept per output time when the model is known (states, switches, series);
+        default: an estimate from ``n_sections``.
 
     Returns
     -------
@@ -182,13 +185,13 @@ def check_run_size(n_outputs: int, n_sections: int, *, field: str = "numerics.ou
     if not np.isfinite(n_outputs) or n_outputs > MAX_OUTPUTS:
         raise ParameterError(field, asked, f"gives {n_outputs:.4g} output times; at most {MAX_OUTPUTS:.0e} per run",
                              "raise numerics.output_step or shorten numerics.duration")
-    need = run_memory_bytes(n_outputs, n_sections)
+    need = run_memory_bytes(n_outputs, n_sections, per_output)
     if need > MAX_MEMORY_BYTES:
         raise ParameterError(field, asked, f"needs about {need / 1024 ** 3:.3g} GiB for the series; the limit is "
                              f"{MAX_MEMORY_BYTES / 1024 ** 3:.3g} GiB", "raise numerics.output_step or shorten numerics.duration")
 
 
-def run_memory_bytes(n_outputs: float, n_sections: int) -> float:
+def run_memory_bytes(n_outputs: float, n_sections: int, per_output: int | None = None) -> float:
     """Estimated bytes held for ``n_outputs`` output times (states, modes, series, top motion).
 
     Parameters
@@ -197,13 +200,16 @@ def run_memory_bytes(n_outputs: float, n_sections: int) -> float:
         Number of output times.
     n_sections : int
         Cable sections.
+    per_output : int, optional
+        Numbers per output time, when known (default: 16 per section + 3).
 
     Returns
     -------
     float
         Bytes (8 per number, :data:`_COPIES` copies).
     """
-    per_output = 4 * n_sections + n_sections + 11 * n_sections + 3
+    if per_output is None:
+        per_output = 4 * n_sections + n_sections + 11 * n_sections + 3
     return 8.0 * _COPIES * per_output * float(n_outputs)
 
 

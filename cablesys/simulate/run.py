@@ -19,12 +19,18 @@ import casadi as ca
 import numpy as np
 
 from ..errors import NumericalWarning, ParameterError
-from ..statics.steady import steady_state
 from ..model import CableModel, build_model
 from ..results import SlackEvent
 from ..scene import Scene
+from ..statics.steady import steady_state
 from . import events as ev
-from .integrators import ADAPTIVE, IntegratorSettings, compiled_dae, compiled_functions, make_integrator
+from .integrators import (
+    ADAPTIVE,
+    IntegratorSettings,
+    compiled_dae,
+    compiled_functions,
+    make_integrator,
+)
 from .record import (
     InterruptFlag,
     RunInterrupted,
@@ -72,7 +78,8 @@ class Simulator(ev.EventLocator):
         self.times = np.asarray(times, dtype=float)
         if self.times.ndim != 1 or self.times.size < 2 or np.any(np.diff(self.times) <= 0):
             raise ParameterError("times", f"{self.times.size} values", "must be >= 2 strictly increasing output times")
-        check_run_size(self.times.size, model.n_sections, field="times")
+        check_run_size(self.times.size, model.n_sections, field="times",
+                       per_output=2 * model.nq + len(model.slack_index) + len(model.output_labels) + 2)
         self.settings = settings or IntegratorSettings()
         t_build = _time.perf_counter()
         steps = np.diff(self.times)
