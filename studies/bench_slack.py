@@ -28,7 +28,7 @@ def bench_scene(n_elements: int) -> SlackScene:
     L = 22.9 / 0.962
     masses = tuple(PointMass(position=L * (k + 1) / 6, mass=4.5 if c == "H" else 2.0)
                    for k, c in enumerate("HLHLH"))
-    return SlackScene(cable=Cable(length=L, mass_per_length=1.14, axial_stiffness=8.9e5),
+    return SlackScene(cable=Cable(length=L, mass_per_length=1.14, ae=8.9e5),
                       span=22.9, masses=masses, n_elements=n_elements)
 
 

@@ -40,7 +40,7 @@ T1 = dict(L=330.0, EA=7.07e-4 * 15e10, m=5.56, w=47.6, ca=0.128, depth=130.0, H=
 
 
 def cable6(l_over_L: float) -> Cable:
-    return Cable(length=SPAN6 / l_over_L, mass_per_length=M6, axial_stiffness=EA6)
+    return Cable(length=SPAN6 / l_over_L, mass_per_length=M6, ae=EA6)
 
 
 def scene6(l_over_L: float, masses=()) -> SlackScene:
@@ -63,7 +63,7 @@ def read_reference():
 
 def table1_scene(n_elements=120) -> SlackScene:
     """Inclined cable in water; span found so that H = 76300 N with the depth 130 m."""
-    cab = Cable(length=T1["L"], mass_per_length=T1["m"], axial_stiffness=T1["EA"],
+    cab = Cable(length=T1["L"], mass_per_length=T1["m"], ae=T1["EA"],
                 submerged_weight_per_length=T1["w"], added_mass_per_length=T1["ca"] * T1["m"],
                 specific_gravity=1.0 / (1.0 - T1["w"] / (T1["m"] * 9.80665)))
 
@@ -143,7 +143,7 @@ def five_mass_sensitivity(L, levels):
 
 def air_cable_T1() -> Cable:
     """The Table 1 cable in air (Figs. 6-8: 'cable properties as in Table 1')."""
-    return Cable(length=T1["L"], mass_per_length=T1["m"], axial_stiffness=T1["EA"])
+    return Cable(length=T1["L"], mass_per_length=T1["m"], ae=T1["EA"])
 
 
 def sweep(theta_deg, n_points, n_modes=18, n_el=90):

@@ -56,9 +56,9 @@ def test_lambda2_consistency_inclined_reduces_to_horizontal():
 def test_added_mass_roundtrip():
     S, C = 7.8, 1.0
     wa = 3.0
-    ww = irvine.omega_in_water(wa, added_mass_coefficient=C, specific_gravity=S)
+    ww = irvine.omega_in_water(wa, added_mass_factor=C, specific_gravity=S)
     assert ww == pytest.approx(wa / math.sqrt(1 + C / S))
-    assert irvine.added_mass_coefficient(omega_air=wa, omega_water=ww, specific_gravity=S) == pytest.approx(C)
+    assert irvine.added_mass_factor(omega_air=wa, omega_water=ww, specific_gravity=S) == pytest.approx(C)
 
 
 def test_irvine_modes_ordering_and_types():

@@ -15,7 +15,7 @@ SPAN, M, EA = 22.9, 1.14, 8.9e5
 
 
 def scene(l_over_L=0.987, masses=(), n=96, **kw):
-    return SlackScene(cable=Cable(length=SPAN / l_over_L, mass_per_length=M, axial_stiffness=EA),
+    return SlackScene(cable=Cable(length=SPAN / l_over_L, mass_per_length=M, ae=EA),
                       span=SPAN, masses=tuple(masses), n_elements=n, **kw)
 
 
@@ -91,7 +91,7 @@ def test_symmetry_classification_and_eq25_normalization():
 
 
 def test_inclined_cable_has_hybrid_modes_horizontal_does_not():
-    cab = Cable(length=330.0, mass_per_length=5.56, axial_stiffness=1.06e8)
+    cab = Cable(length=330.0, mass_per_length=5.56, ae=1.06e8)
     for th, expect_hybrid in ((0.0, False), (60.0, True)):
         sc = SlackScene.from_chord(cable=cab, chord=330 * 0.99966, theta_deg=th, n_elements=60)
         eq, d = solve_equilibrium_shooting(sc)
@@ -101,12 +101,12 @@ def test_inclined_cable_has_hybrid_modes_horizontal_does_not():
 
 def test_water_added_mass_lowers_transverse_frequencies_by_eq27():
     # taut-ish horizontal cable: out-of-plane modes scale by sqrt(m_W/m_A) at equal weight
-    cab_air = Cable(length=100.0, mass_per_length=2.0, axial_stiffness=1e7)
-    cab_w = Cable(length=100.0, mass_per_length=2.0, axial_stiffness=1e7, specific_gravity=4.0,
-                  added_mass_coefficient=1.0, submerged_weight_per_length=2.0 * 9.80665)
+    cab_air = Cable(length=100.0, mass_per_length=2.0, ae=1e7)
+    cab_w = Cable(length=100.0, mass_per_length=2.0, ae=1e7, specific_gravity=4.0,
+                  added_mass_factor=1.0, submerged_weight_per_length=2.0 * 9.80665)
     a = compute_modes(*solve_equilibrium(SlackScene(cable=cab_air, span=99.9, n_elements=60)), 4)
     w = compute_modes(*solve_equilibrium(SlackScene(cable=cab_w, span=99.9, medium="water", n_elements=60)), 4)
-    ratio = irvine.virtual_mass_ratio(added_mass_coefficient=1.0, specific_gravity=4.0)
+    ratio = irvine.virtual_mass_ratio(added_mass_factor=1.0, specific_gravity=4.0)
     assert a.of_type("O")[0] / w.of_type("O")[0] == pytest.approx(math.sqrt(ratio), rel=1e-6)
 
 
@@ -126,7 +126,7 @@ def test_sparse_equals_dense():
     (dict(medium="oil"), "scene.medium"),
 ])
 def test_bad_scene_names_the_field(kw, field):
-    base = dict(cable=Cable(length=23.8, mass_per_length=M, axial_stiffness=EA), span=22.9)
+    base = dict(cable=Cable(length=23.8, mass_per_length=M, ae=EA), span=22.9)
     base.update(kw)
     with pytest.raises(ParameterError) as err:
         SlackScene(**base)
@@ -136,7 +136,7 @@ def test_bad_scene_names_the_field(kw, field):
 @pytest.mark.parametrize("kw, field", [(dict(length=0.0), "cable.length"),
                                        (dict(mass_per_length=-1.0), "cable.mass_per_length")])
 def test_bad_cable(kw, field):
-    base = dict(length=23.8, mass_per_length=M, axial_stiffness=EA)
+    base = dict(length=23.8, mass_per_length=M, ae=EA)
     base.update(kw)
     with pytest.raises(ParameterError) as err:
         Cable(**base)

@@ -245,20 +245,20 @@ def inclined_validity(*, sag: float, span: float, theta: float) -> float:
 
 # --- added mass in water (section 7) ---------------------------------------
 
-def virtual_mass_ratio(*, added_mass_coefficient: float, specific_gravity: float) -> float:
+def virtual_mass_ratio(*, added_mass_factor: float, specific_gravity: float) -> float:
     """m_W / m_A = 1 + C_am / S, Griffin & Rosenthal (1985) eq. 26."""
-    c = require_nonnegative("added_mass_coefficient", added_mass_coefficient)
+    c = require_nonnegative("added_mass_factor", added_mass_factor)
     S = require_positive("specific_gravity", specific_gravity)
     return 1.0 + c / S
 
 
-def omega_in_water(omega_air: float, *, added_mass_coefficient: float, specific_gravity: float) -> float:
+def omega_in_water(omega_air: float, *, added_mass_factor: float, specific_gravity: float) -> float:
     """omega_W = omega_A / sqrt(m_W / m_A) for transverse modes, eq. 27."""
     return omega_air / math.sqrt(virtual_mass_ratio(
-        added_mass_coefficient=added_mass_coefficient, specific_gravity=specific_gravity))
+        added_mass_factor=added_mass_factor, specific_gravity=specific_gravity))
 
 
-def added_mass_coefficient(*, omega_air: float, omega_water: float, specific_gravity: float) -> float:
+def added_mass_factor(*, omega_air: float, omega_water: float, specific_gravity: float) -> float:
     """C_am = S ((omega_A / omega_W)^2 - 1), Griffin & Rosenthal (1985) eq. 28.
 
     Derived from eqs. 26-27 (the OCR of eq. 28 drops the bracket).

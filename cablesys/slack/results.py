@@ -110,7 +110,7 @@ class Equilibrium(ResultBase):
         th = sc.inclination
         H1 = self.chord_tension
         return (w * math.cos(th) * sc.chord / H1) ** 2 * sc.chord / (
-            H1 * self.virtual_length / sc.cable.axial_stiffness)
+            H1 * self.virtual_length / sc.cable.ae)
 
     def to_dict(self) -> dict:
         return {"method": self.method, "iterations": self.iterations, "seconds": self.seconds,

@@ -9,6 +9,7 @@ read by :func:`load_scene` is documented in :data:`EXAMPLE_TOML`.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -41,8 +42,8 @@ class Cable:
     """A uniform extensible cable.
 
     length: unstretched length L (m); mass_per_length: m in air (kg/m);
-    axial_stiffness: EA (N); specific_gravity: S, needed in water;
-    added_mass_coefficient: C_am of eq. 26 (water only);
+    ae: axial stiffness EA (N; Wang's (AE)); specific_gravity: S, needed in water;
+    added_mass_factor: C_am of eq. 26 (water only; Wang's added-mass factor gamma);
     submerged_weight_per_length / added_mass_per_length: optional explicit
     values (N/m, kg/m) that override the ones derived from S and C_am;
     max_strain: the largest strain the cable may take, which fixes how far it
@@ -51,9 +52,9 @@ class Cable:
 
     length: float
     mass_per_length: float
-    axial_stiffness: float
+    ae: float
     specific_gravity: float | None = None
-    added_mass_coefficient: float = 1.0
+    added_mass_factor: float = 1.0
     submerged_weight_per_length: float | None = None
     added_mass_per_length: float | None = None
     max_strain: float = 0.02
@@ -61,12 +62,12 @@ class Cable:
     def __post_init__(self):
         require_positive("cable.length", self.length, "m")
         require_positive("cable.mass_per_length", self.mass_per_length, "kg/m")
-        require_positive("cable.axial_stiffness", self.axial_stiffness, "N")
+        require_positive("cable.ae", self.ae, "N")
         if self.specific_gravity is not None and require_positive(
                 "cable.specific_gravity", self.specific_gravity) <= 1.0:
             raise ParameterError("cable.specific_gravity", self.specific_gravity,
                                  "must be > 1 (a cable that floats cannot hang as a catenary)")
-        require_nonnegative("cable.added_mass_coefficient", self.added_mass_coefficient)
+        require_nonnegative("cable.added_mass_factor", self.added_mass_factor)
         if self.submerged_weight_per_length is not None:
             require_positive("cable.submerged_weight_per_length", self.submerged_weight_per_length, "N/m")
         if self.added_mass_per_length is not None:
@@ -81,7 +82,7 @@ class Cable:
                 and self.added_mass_per_length is not None:
             return self.submerged_weight_per_length, self.added_mass_per_length
         w, ma = _buoyancy_and_added(self.mass_per_length, self.specific_gravity,
-                                    self.added_mass_coefficient, medium, g, "cable")
+                                    self.added_mass_factor, medium, g, "cable")
         if medium == "water":
             w = self.submerged_weight_per_length if self.submerged_weight_per_length is not None else w
             ma = self.added_mass_per_length if self.added_mass_per_length is not None else ma
@@ -92,7 +93,7 @@ class Cable:
 class PointMass:
     """A point mass at unstretched arc length ``position`` (m) from support A.
 
-    mass in air (kg); specific_gravity S and added_mass_coefficient C_am as
+    mass in air (kg); specific_gravity S and added_mass_factor C_am as
     for the cable (eq. 26; added mass is taken isotropic for a compact body);
     name is a label for outputs.
     """
@@ -100,7 +101,7 @@ class PointMass:
     position: float
     mass: float
     specific_gravity: float | None = None
-    added_mass_coefficient: float = 1.0
+    added_mass_factor: float = 1.0
     name: str = ""
 
     def __post_init__(self):
@@ -108,7 +109,7 @@ class PointMass:
         require_positive("mass.mass", self.mass, "kg")
         if self.specific_gravity is not None:
             require_positive("mass.specific_gravity", self.specific_gravity)
-        require_nonnegative("mass.added_mass_coefficient", self.added_mass_coefficient)
+        require_nonnegative("mass.added_mass_factor", self.added_mass_factor)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -198,9 +199,9 @@ n_modes = 12          # modes to report
 [cable]
 length = 23.80        # unstretched length L, m (chord < L (1 + max_strain))
 mass_per_length = 1.14    # kg/m, in air
-axial_stiffness = 8.9e5   # EA, N
+ae = 8.9e5                # axial stiffness EA, N
 # specific_gravity = 7.8        # needed in water: buoyancy and added mass (eq. 26)
-# added_mass_coefficient = 1.0  # C_am
+# added_mass_factor = 1.0       # C_am
 # submerged_weight_per_length = 47.6   # N/m, overrides the value from S
 # added_mass_per_length = 0.71         # kg/m, overrides C_am m / S
 # max_strain = 0.02
@@ -246,6 +247,24 @@ def scene_from_dict(doc: dict, source=None) -> tuple[SlackScene, int]:
         raise located(err, source) from None
 
 
+# keys renamed to the Wang scene's vocabulary (one name per quantity); the old ones still load
+DEPRECATED_KEYS = {"axial_stiffness": "ae", "added_mass_coefficient": "added_mass_factor"}
+
+
+def _renamed(table, where: str):
+    """``table`` with deprecated keys renamed (a DeprecationWarning names each); both spellings is an error."""
+    if not isinstance(table, dict):
+        return table
+    out = dict(table)
+    for old, new in DEPRECATED_KEYS.items():
+        if old in out:
+            if new in out:
+                raise ParameterError(f"{where}.{old}", out[old], f"is the old name of {where}.{new}; give one of them")
+            warnings.warn(f"{where}.{old} is deprecated: write {new}", DeprecationWarning, stacklevel=4)
+            out[new] = out.pop(old)
+    return out
+
+
 def _scene_from_dict(doc: dict) -> tuple[SlackScene, int]:
     if not isinstance(doc, dict):
         raise ParameterError("document", doc, "must be a TOML document (a table)")
@@ -254,13 +273,13 @@ def _scene_from_dict(doc: dict) -> tuple[SlackScene, int]:
             raise ParameterError(k, doc[k], "unknown table; allowed: scene, cable, masses")
     if "cable" not in doc:
         raise ParameterError("cable", None, "a [cable] table is required")
-    cable = build(Cable, doc["cable"], "cable")
+    cable = build(Cable, _renamed(doc["cable"], "cable"), "cable")
     masses = doc.get("masses", [])
     if isinstance(masses, dict):
         raise ParameterError("masses", "one table", "must be an array of tables: write [[masses]] per point mass")
     if not isinstance(masses, list) or not all(isinstance(m, dict) for m in masses):
         raise ParameterError("masses", masses, "must be an array of tables [[masses]]")
-    masses = tuple(build(PointMass, m, f"masses[{i}]") for i, m in enumerate(masses))
+    masses = tuple(build(PointMass, _renamed(m, f"masses[{i}]"), f"masses[{i}]") for i, m in enumerate(masses))
     sc = doc.get("scene", {})
     if isinstance(sc, dict):
         sc = dict(sc)

@@ -95,7 +95,7 @@ def discretize(scene: SlackScene, n_elements: int | None = None, cache: Function
     for pm in scene.masses:
         i = int(np.argmin(np.abs(s - pm.position)))
         nodes.append(i)
-        wp, ap = _buoyancy_and_added(pm.mass, pm.specific_gravity, pm.added_mass_coefficient,
+        wp, ap = _buoyancy_and_added(pm.mass, pm.specific_gravity, pm.added_mass_factor,
                                      scene.medium, g, "mass")
         weight[i] += wp
         mass[i] += pm.mass
@@ -147,7 +147,7 @@ def _build_nlp(n: int, max_iter: int, tol: float, cache: FunctionCache):
 
 
 def _params(scene: SlackScene, d: Discretization) -> np.ndarray:
-    return np.concatenate([[scene.cable.axial_stiffness, scene.span, scene.rise], d.L0, d.weight[1:-1]])
+    return np.concatenate([[scene.cable.ae, scene.span, scene.rise], d.L0, d.weight[1:-1]])
 
 
 def parabola_guess(scene: SlackScene, d: Discretization) -> np.ndarray:
@@ -174,7 +174,7 @@ def parabola_guess(scene: SlackScene, d: Discretization) -> np.ndarray:
 def _equilibrium_from_nodes(scene, d, x, z, method, iterations, seconds, message) -> Equilibrium:
     dx, dz = np.diff(x), np.diff(z)
     le = np.hypot(dx, dz)
-    tension = scene.cable.axial_stiffness * (le - d.L0) / d.L0
+    tension = scene.cable.ae * (le - d.L0) / d.L0
     if np.any(tension <= 0.0):
         i = int(np.argmin(tension))
         raise SolverError(f"statics ({method}): element {i} is in compression "
@@ -276,7 +276,7 @@ def solve_equilibrium_shooting(scene: SlackScene, *, n_elements: int | None = No
     the chord. Used as an independent check of the NLP and for fast sweeps.
     """
     d = discretize(scene, n_elements)
-    EA = scene.cable.axial_stiffness
+    EA = scene.cable.ae
     t0 = time.perf_counter()
     Wtot = float(np.sum(d.weight[1:-1]))
     c, L = scene.chord, scene.cable.length
