@@ -176,3 +176,27 @@ def test_an_interrupted_analysis_is_marked_and_exits_130(tmp_path, capsys, monke
     assert main(["rao", str(scene), "--out", str(tmp_path / "rao")]) == 130
     assert "interrupted" in capsys.readouterr().err
     assert json.loads((tmp_path / "rao" / "summary.json").read_text())["status"] == "interrupted"
+
+
+def test_interrupted_dale_table_keeps_the_rows_and_the_main_run(tmp_path, capsys, monkeypatch):
+    """`cablesys run` (the Dale table) interrupted in its third frequency: the two rows computed and
+    the omega = omega_n run's files are written, the manifest says interrupted, exit 130."""
+    from cablesys.simulate import run as run_module
+    calls = []
+    real = run_module.simulate
+
+    def third_interrupted(scene, **kw):
+        calls.append(scene.name)
+        if len(calls) == 3:
+            raise KeyboardInterrupt
+        return real(scene, **kw)
+    monkeypatch.setattr(run_module, "simulate", third_interrupted)
+    out = tmp_path / "dale"
+    assert main(["run", "--out", str(out), "--duration", "10"]) == 2       # too short for 3 periods
+    assert "--duration" in capsys.readouterr().err and not out.exists()
+    assert main(["run", "--out", str(out), "--duration", "40"]) == 130
+    rows = json.loads((out / "dale_amplitudes.json").read_text())
+    assert [r["omega_over_omega_n"] for r in rows] == [0.5, 1.0]
+    doc = json.loads((out / "summary.json").read_text())
+    assert doc["status"] == "interrupted" and doc["t_end_s"] == 40.0        # the omega_n run is complete
+    assert _read_series(out / "timeseries.csv").shape[0] == 801

@@ -265,6 +265,11 @@ def _run_dale_table(args, out: Path) -> int:
     from .record import check_scene_run_size
     from .run import Simulator, simulate
     ratios = (0.5, 1.0, 1.5, 2.0)
+    shortest = 3 * 2 * math.pi / (min(ratios) * OMEGA_N_MEASURED)     # the amplitudes need 3 periods
+    if args.duration is not None and args.duration < shortest:
+        from ..errors import ParameterError
+        raise ParameterError("--duration", args.duration, f"must be >= {shortest:.4g} s for the Dale table "
+                             "(3 periods at omega/omega_n = 0.5)")
     scenes = [dale_scene(omega_ratio=r, duration=args.duration or 150.0) for r in ratios]
     check_scene_run_size(scenes[0])
     outdir = OutputDir(out, "run", {"dale_table": scenes}, overwrite=args.overwrite,
