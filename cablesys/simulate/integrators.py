@@ -13,7 +13,7 @@ output times); with the grid (0, 1) the same integrator steps one interval of an
 which the slack-event location and the failure fallback use.
 
 The DAE is one SX function of the model (built once per model and form, kept in
-``model.derived``), compiled to C with its Jacobian and cached on disk by
+``model.cache``), compiled to C with its Jacobian and cached on disk by
 :mod:`cablesys.compiled` unless ``compiled=False`` (then CasADi's virtual machine runs it).
 """
 
