@@ -56,6 +56,16 @@ def test_no_compiler_falls_back_with_one_warning(cache, monkeypatch, caplog):
     assert len(notes) == 1 and "virtual machine" in notes[0].getMessage()
 
 
+def test_failing_compiler_falls_back_and_leaves_no_library(cache, monkeypatch, caplog):
+    monkeypatch.setenv("CABLESYS_CC", "false")          # a compiler that exists and always fails
+    f = _pendulum()
+    with caplog.at_level(logging.WARNING, logger="cablesys.compiled"):
+        out = compile_functions([f])
+    assert not out.compiled and out.functions["pendulum_rhs"] is f
+    assert any("compilation failed" in r.getMessage() for r in caplog.records)
+    assert not list(cache_dir().glob("*.so")) and not list(cache_dir().glob(".build-*"))
+
+
 def test_concurrent_builds_share_one_library(cache):
     code = textwrap.dedent("""
         import casadi as ca, numpy as np
