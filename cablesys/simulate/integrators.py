@@ -15,6 +15,12 @@ which the slack-event location and the failure fallback use.
 The DAE is one SX function of the model (built once per model and form, kept in
 ``model.cache``), compiled to C with its Jacobian and cached on disk by
 :mod:`cablesys.compiled` unless ``compiled=False`` (then CasADi's virtual machine runs it).
+
+Tolerances: CasADi (3.8) gives CVODES and IDAS one scalar ``abstol`` (no per-state vector), so
+``atol`` applies to angles, stretches and their rates alike. Undamped stretch modes limit BDF
+orders 3-5 to steps of about 0.6/omega_stretch whatever the tolerance; a smooth start
+(``top_motion.ramp_s``) removes the ringing that an abrupt start adds, and the compiled ``rk``
+loop is the fastest option when its fixed step is inside RK4's stability limit.
 """
 
 from __future__ import annotations
