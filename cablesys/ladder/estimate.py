@@ -10,7 +10,7 @@ the largest body amplitude) and ``tension`` (tension extremes relative to the la
   amplitude come from Wang's own equivalent-linear response, :func:`linear_response`);
 - Wang vs segmented: a straight chord cannot bow. The error grows with the sag the normal drag
   (current, and the motion's own drag) and the cable's inertia near its first string mode would
-  give the real cable, relative to its chord: BOW_GAIN (bow + mass_ratio * string_ratio^2).
+  give the real cable, relative to its chord (:func:`straight_cable_error`).
   Partial slack (least tension of the linear response below the floor) puts the straight cable
   outside its validity: infinite error;
 - segmented with N elements: each element is a straight cable of length L / N, so the straight
@@ -31,7 +31,7 @@ from ..scene import Scene
 from .indicators import SceneNumbers
 from .rungs import build_rung, rung_scene
 
-BOW_GAIN = 3.0      # body-error per unit relative sag (closed-form estimate; see studies/model_ladder.py)
+DYNAMIC_BOW_GAIN = 2.0   # body-amplitude error per unit dynamic sag / chord (see straight_cable_error)
 ORDER = 2.0         # convergence order of the segmented cable in N
 SLACK_MARGIN = 0.05
 SWING_AMPLIFICATION = 10.0  # a least tension within 5 % of the static tension of the floor counts as slack
@@ -98,18 +98,21 @@ def axial_factor(scene: Scene, numbers: SceneNumbers) -> float:
 def straight_cable_error(numbers: SceneNumbers) -> float:
     """Relative body-amplitude error of one straight cable vs the converged segmented one.
 
-    Two parts: the drag bowing, BOW_GAIN (static + dynamic sag / chord); and the string inertia. A
-    string of tension T driven at its end has the dynamic stiffness (T/L) kL cot kL =
-    (T/L) (1 - (kL)^2/3 - (kL)^4/45 - ...), kL = pi omega / omega_string; the straight cable (a
-    linear shape) keeps the first two terms exactly (Wang 1971 eq. 22-25), so it misses
-    (pi^4/45) (omega/omega_string)^4 of T/L, amplified near the swing resonance by
-    1 / |1 - (omega/omega_swing)^2| (at most SWING_AMPLIFICATION: drag bounds it).
+    - static bowing under current (sag / chord of a uniformly loaded string, q L / 8 T), amplified
+      like the body's swing near its resonance, 1 / |1 - (omega/omega_swing)^2| (at most
+      SWING_AMPLIFICATION: drag bounds it);
+    - dynamic bowing under the drag of the motion itself: DYNAMIC_BOW_GAIN x its sag / chord;
+    - string inertia: a string of tension T driven at its end has the dynamic stiffness
+      (T/L) kL cot kL = (T/L) (1 - (kL)^2/3 - (kL)^4/45 - ...), kL = pi omega / omega_string; the
+      straight cable (a linear shape, Wang 1971 eq. 22-25) keeps the first two terms exactly and
+      misses (pi^4/45) (omega/omega_string)^4.
+    The two gains were set on the Dale scene and six random short-cable scenes against the
+    segmented cable (tests/test_ladder_random.py, studies/model_ladder.py); they are estimates.
     """
     sr = numbers.string_ratio if math.isfinite(numbers.string_ratio) else 0.0
     detune = abs(1.0 - (numbers.omega_forcing / numbers.omega_swing) ** 2) if numbers.omega_swing > 0 else 1.0
     amp = min(SWING_AMPLIFICATION, 1.0 / max(detune, 1e-12))
-    string = math.pi**4 / 45.0 * sr**4 * amp
-    return BOW_GAIN * (numbers.static_bow + numbers.dynamic_bow) + string
+    return amp * numbers.static_bow + DYNAMIC_BOW_GAIN * numbers.dynamic_bow + math.pi**4 / 45.0 * sr**4
 
 
 def estimate_errors(scene: Scene, numbers: SceneNumbers, response: LinearResponse) -> dict:

@@ -1,0 +1,27 @@
+"""studies/model_ladder.py in quick mode: every rung and integrator charted against the segmented reference."""
+
+import json
+
+import pytest
+
+
+@pytest.mark.slow
+def test_model_ladder_quick(run_study):
+    out = run_study("model_ladder", "--quick")
+    data = json.loads((out / "model_ladder.json").read_text())
+    dale = data["dale"]
+    assert (out / "model_ladder_dale.png").stat().st_size > 20_000
+    rows = {(r["rung"], r["segments"], r["integrator"]): r for r in dale["rows"]}
+    for key in (("frequency", 1, "periodic"), ("quasi-static", 1, "cvodes"), ("wang", 1, "cvodes"),
+                ("segmented", 2, "cvodes")):
+        assert rows[key]["success"], key
+        assert rows[key]["error_body"] >= 0 and rows[key]["wall_s"] > 0
+    # explicit RK4 at the output step cannot step the segmented cable's axial modes: marked as a failure
+    assert not rows[("segmented", 2, "rk")]["success"] and "nonfinite" in rows[("segmented", 2, "rk")]["failure"]
+    # the reference is converged far below the tolerance
+    assert dale["reference"]["convergence_vs_half"]["body"] < 0.2 * dale["auto"]["tolerance"]["body"]
+    # the straight cable misses 1 % on body motion at 2 omega_n (the cable bows under its drag)
+    assert rows[("wang", 1, "cvodes")]["error_body"] > 0.01
+    auto = dale["auto"]
+    tol = auto["tolerance"]
+    assert auto["actual_error"]["body"] <= tol["body"] and auto["actual_error"]["tension"] <= tol["tension"]
