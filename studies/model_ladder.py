@@ -23,6 +23,7 @@ Usage: python studies/model_ladder.py --out DIR [--quick]
 from __future__ import annotations
 
 import math
+import os
 import sys
 import time
 import warnings
@@ -197,6 +198,8 @@ def plot_case(res: dict, path: Path):
 
 def main(argv=None) -> int:
     args = parse_args(__doc__.splitlines()[0], argv)
+    if args.quick:      # short runs of freshly built models: CasADi's VM beats compiling each to C
+        os.environ.setdefault("CABLESYS_COMPILE", "0")
     out = {}
     for case in cases(args.quick):
         res = study_case(case)

@@ -18,8 +18,8 @@ def test_model_ladder_quick(run_study):
         assert rows[key]["error_body"] >= 0 and rows[key]["wall_s"] > 0
     # explicit RK4 at the output step cannot step the segmented cable's axial modes: marked as a failure
     assert not rows[("segmented", 2, "rk")]["success"] and "nonfinite" in rows[("segmented", 2, "rk")]["failure"]
-    # the reference is converged far below the tolerance
-    assert dale["reference"]["convergence_vs_half"]["body"] < 0.2 * dale["auto"]["tolerance"]["body"]
+    # the reference (N = 6) differs from N = 3 by well under the tolerance
+    assert dale["reference"]["convergence_vs_half"]["body"] < 0.5 * dale["auto"]["tolerance"]["body"]
     # the straight cable misses 1 % on body motion at 2 omega_n (the cable bows under its drag)
     assert rows[("wang", 1, "cvodes")]["error_body"] > 0.01
     auto = dale["auto"]
