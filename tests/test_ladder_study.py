@@ -25,3 +25,14 @@ def test_model_ladder_quick(run_study):
     auto = dale["auto"]
     tol = auto["tolerance"]
     assert auto["actual_error"]["body"] <= tol["body"] and auto["actual_error"]["tension"] <= tol["tension"]
+    # auto never picks a rung that a cheaper one beats clearly (actual errors under half the tolerance)
+    order = ["quasi-static", "wang"] + [f"segmented {n}" for n in sorted({r["segments"] for r in dale["rows"]
+                                                                          if r["rung"] == "segmented"})]
+    chosen = auto["name"] if auto["name"] != "segmented" else f"segmented {auto['segments']}"
+    for r in dale["rows"]:
+        name = r["rung"] if r["rung"] != "segmented" else f"segmented {r['segments']}"
+        if r["integrator"] != "cvodes" or not r["success"] or name not in order:
+            continue
+        cheaper = chosen not in order or order.index(name) < order.index(chosen)
+        if cheaper:
+            assert not (r["error_body"] < 0.5 * tol["body"] and r["error_tension"] < 0.5 * tol["tension"]), name
