@@ -78,6 +78,11 @@ METHODS = {m.name: m for m in (
     # CVODES, BDF (variable order 1-5), Newton iterations: stiff-safe default
     IntegratorMethod(name="cvodes", plugin="cvodes",
                      options={"linear_multistep_method": "bdf", "nonlinear_solver_iteration": "newton"}),
+    # CVODES, BDF of order <= 2 (A-stable): steps over undamped stiff oscillatory modes (the stretch
+    # mode when C_I = 0) that orders 3-5 must resolve; cheapest at engineering tolerances (rtol >= 1e-5)
+    IntegratorMethod(name="cvodes-bdf2", plugin="cvodes",
+                     options={"linear_multistep_method": "bdf", "nonlinear_solver_iteration": "newton",
+                              "max_order": 2}),
     # CVODES, Adams-Moulton: cheaper per step on non-stiff scenes
     IntegratorMethod(name="cvodes-adams", plugin="cvodes",
                      options={"linear_multistep_method": "adams", "nonlinear_solver_iteration": "newton"}),

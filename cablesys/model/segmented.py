@@ -61,6 +61,7 @@ class SegmentedModel(CableModel):
     segments: tuple = ()
     accel: ca.Function | None = None          # (q, qd, e, p) -> q'' by 2 x 2 block solves
     name: str = "segmented"
+    kind: str = "segmented"                  # the model-ladder rung (integrators cap BDF at order 2 for it)
 
     @property
     def n_elements(self) -> int:
