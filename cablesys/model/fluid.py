@@ -30,10 +30,15 @@ def current_profile(depth, depths, speeds):
 
 
 def wave_velocity(x, depth, t, waves, gravity):
-    """Deep-water wave particle velocity (x_W, y_W), y down (Wang 1971 eq. 26a-b).
+    """Deep-water wave particle velocity (x_W, y_W), y down (Wang 1971 eq. 26a-b, sign of 26b fixed).
 
     ``waves`` is a list of (amplitude a, length lambda, phase) expressions;
-    n = 2 pi / lambda, sigma = sqrt(g n) (= sqrt(2 pi g / lambda)).
+    n = 2 pi / lambda, sigma = sqrt(g n) (= sqrt(2 pi g / lambda)). The velocity derives from the
+    potential (a sigma / n) e^{-n y} cos(n x - sigma t + phase) of the wave
+    eta = a sin(n x - sigma t + phase) (elevation up). Eq. 26b as printed,
+    -a sigma e^{-n y} cos(...), is the *upward* component (the report's source measures y up):
+    with y down it breaks continuity (div v = 2 n a sigma e^{-n y} cos != 0). We use
+    y_W = +a sigma e^{-n y} cos(...), which is divergence- and curl-free (tests/test_waves.py).
     """
     vx, vy = 0.0, 0.0
     for a, lam, ph in waves:
@@ -42,7 +47,7 @@ def wave_velocity(x, depth, t, waves, gravity):
         arg = n * x - sigma * t + ph
         amp = a * sigma * ca.exp(-n * depth)
         vx = vx + amp * ca.sin(arg)
-        vy = vy - amp * ca.cos(arg)
+        vy = vy + amp * ca.cos(arg)          # y down: eq. 26b's sign reversed (see docstring)
     return vx, vy
 
 
