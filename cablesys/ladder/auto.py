@@ -40,7 +40,7 @@ def run_rung(scene: Scene, name: str, segments: int = 1, **kw):
 
 def _periodic_run(scene: Scene):
     from ..linear import periodic_steady_state
-    from ..linear.periodic import scene_input_amplitude, trig_interpolate  # noqa: F401
+    from ..linear.periodic import scene_input_amplitude
     from ..results import TimeResult
     sc = rung_scene(scene, "wang")
     model = build_rung(sc, "wang")
@@ -56,7 +56,10 @@ def _periodic_run(scene: Scene):
         ph = 2 * np.pi * (times[:, None] - per.time[0]) / per.period * k[None, :]
         w = np.where((k == 0) | ((n % 2 == 0) & (k == n // 2)), 1.0, 2.0)
         data[lbl] = np.real(np.exp(1j * ph) @ (w * c))
-    stats = dict(per.stats, method="periodic collocation", nsteps=0)
+    E = np.array(model.top.map(times.size)(times[None, :], np.tile(p[:, None], (1, times.size))))
+    data["x_s"], data["y_s"] = E[1], E[2]
+    stats = dict(per.stats, method="periodic collocation", nsteps=0, wall_s=float(per.stats.get("wall_time_s", 0.0)),
+                 build_s=0.0)
     return TimeResult(time=times, data=data, success=bool(per.success), message=per.message, stats=stats,
                       scene_name=scene.name)
 

@@ -142,7 +142,7 @@ def _run(args) -> int:
             model = build_rung(scene_run, choice.name, choice.segments)
         summary = write_run(scene_run or scene, result, outdir, series_on_disk=model is not None, units=units)
         summary["model"] = result.stats.get("model") or choice.as_dict()
-        outdir.finish(result.status, **summary)
+        outdir.finish(getattr(result, "status", "success" if result.success else "failed"), **summary)   # periodic: a TimeResult
     _print_summary(summary, units)
     print(f"wrote {out}/ ({', '.join(outdir.files)}, summary.json)")
     if not result.success:
