@@ -65,3 +65,26 @@ def test_hanging_equilibrium_tensions_and_sparsity():
     assert st.outputs["tension_bottom"] == pytest.approx(b.weight, rel=1e-9)
     nnz = model.ode.sparsity_jac(0, 0).nnz()
     assert nnz < 40 * model.nq                       # banded: a few entries per state, not (4N)^2
+
+
+def test_two_sections_with_a_joint_body():
+    """Two segmented sections joined by a small body, in a current: the equilibrium is found, the
+    lower body hangs below and downstream of the joint, and each cable's top force exceeds its
+    bottom force by about that cable's weight (the current's drag is small here)."""
+    import dataclasses
+
+    from cablesys.scene import Section
+    scene = dale_scene()
+    s = scene.sections[0]
+    cable = dataclasses.replace(s.cable, length=s.cable.length / 2, segments=5)
+    joint = dataclasses.replace(s.body, weight=0.01, mass_x=0.002, mass_y=0.002)
+    two = scene.replace(sections=(Section(cable=cable, body=joint), Section(cable=cable, body=s.body)))
+    two = two.with_environment(current_speeds=(0.2,))
+    model = build_model(two)
+    st = steady_state(model, model.parameters(two)).outputs
+    assert st["y_b_2"] > st["y_b_1"] > 0 and st["x_b_2"] > st["x_b_1"] > 0
+    w = cable.total_weight
+    for i in (1, 2):
+        assert st[f"tension_top_{i}"] - st[f"tension_bottom_{i}"] == pytest.approx(w, rel=0.1)
+    with pytest.raises(ParameterError, match="angles"):
+        build_model(two.replace(angles="shared"))

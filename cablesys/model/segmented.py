@@ -31,6 +31,7 @@ import dataclasses
 import casadi as ca
 import numpy as np
 
+from ..errors import ParameterError
 from ..scene import Scene
 from . import fluid
 from .build import EXO_LABELS, CableModel
@@ -164,9 +165,12 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
         Functions with the interface of :class:`CableModel` (``dynamics``, ``ode``, ``top``,
         ``outputs``, ``energy``, ``cable_force``) plus ``accel``.
     """
+    n_sec = len(scene.sections)
+    if scene.angles == "shared" and n_sec > 1:
+        raise ParameterError("angles", scene.angles, "must be 'per_section' for a segmented cable (cable.segments > 1): "
+                             "every element has its own inclination")
     layout = ParameterLayout.from_scene(scene)
     p = layout.symbol
-    n_sec = len(scene.sections)
     segs = tuple(s.cable.segments for s in scene.sections)
     n_nodes = sum(segs)
     q_labels = tuple(f"{c}[{j}]" for j in range(1, n_nodes + 1) for c in ("x", "y"))
