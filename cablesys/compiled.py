@@ -13,7 +13,8 @@ lock serializes builders, and each library is compiled under a temporary name an
 place atomically, so a reader never sees a half-written file.
 
 Settings (environment): ``CABLESYS_CC`` the compiler command (default ``cc``),
-``CABLESYS_CFLAGS`` its optimization flags (default ``-O2``), ``CABLESYS_COMPILE=0`` to use
+``CABLESYS_CFLAGS`` its optimization flags (default ``-O2``, less for very large functions:
+``SIZE_FLAGS``), ``CABLESYS_COMPILE=0`` to use
 CasADi's virtual machine. Without a working compiler the functions run in the virtual machine
 and one warning says so.
 """
@@ -67,10 +68,18 @@ def cache_dir() -> Path:
     return Path(base) / f"cablesys-{__version__}_casadi-{ca.__version__}_v{CACHE_FORMAT}"
 
 
-def compiler_command() -> list[str]:
-    """The compiler command and flags (``CABLESYS_CC``, ``CABLESYS_CFLAGS``)."""
+# default optimization by size of the functions (serialized characters): gcc's time grows
+# faster than linearly with the length of straight-line code (a 305-sample top-motion series:
+# 1.6 MB of C, 39 s at -O2, 7 s at -O0), while small models gain 2x at run time from -O2
+SIZE_FLAGS = ((400_000, "-O2"), (1_500_000, "-O1"), (float("inf"), "-O0"))
+
+
+def compiler_command(size: int = 0) -> list[str]:
+    """The compiler command and flags: ``CABLESYS_CC`` (default ``cc``) and ``CABLESYS_CFLAGS``
+    (default by ``size``, the functions' serialized length: see ``SIZE_FLAGS``)."""
     cc = shlex.split(os.environ.get("CABLESYS_CC", "cc")) or ["cc"]
-    flags = shlex.split(os.environ.get("CABLESYS_CFLAGS", "-O2"))
+    default = next(flag for limit, flag in SIZE_FLAGS if size < limit)
+    flags = shlex.split(os.environ.get("CABLESYS_CFLAGS", default))
     return cc + flags + ["-fPIC", "-shared"]
 
 
@@ -118,13 +127,13 @@ def generate(functions, *, jacobians: bool = True) -> str:
     return cg.dump()
 
 
-def cache_key(functions, jacobians: bool, ident: str, cmd: list[str]) -> str:
+def cache_key(serialized, jacobians: bool, ident: str, cmd: list[str]) -> str:
     """Hash of what the library is made of: the functions' serialized form (CasADi's exact,
     deterministic description of the expression graphs, from which the C code is generated;
     hashing it costs ~1 ms where generating the C costs ~100 ms), whether Jacobians are
     included, the compiler identity, its flags and the cache format."""
     h = hashlib.sha256()
-    for part in [f.serialize() for f in functions] + [str(jacobians), ident, " ".join(cmd[1:]), str(CACHE_FORMAT)]:
+    for part in list(serialized) + [str(jacobians), ident, " ".join(cmd[1:]), str(CACHE_FORMAT)]:
         h.update(part.encode())
         h.update(b"\0")
     return h.hexdigest()[:24]
@@ -167,14 +176,15 @@ def compile_functions(functions, *, jacobians: bool = True, enabled: bool = True
     if not enabled or os.environ.get("CABLESYS_COMPILE", "1").strip() in ("0", "false", "no"):
         return Compiled(originals, False, False, 0.0, 0.0, note="compilation disabled")
     t0 = time.perf_counter()
-    cmd = compiler_command()
+    serialized = [f.serialize() for f in functions]
+    cmd = compiler_command(sum(len(x) for x in serialized))
     ident = _compiler_identity(cmd)
     if ident is None:
         note = (f"no C compiler '{cmd[0]}' found: running the CasADi virtual machine (slower); "
                 "install cc or set CABLESYS_CC")
         log.warning(note)
         return Compiled(originals, False, False, time.perf_counter() - t0, 0.0, note=note)
-    key = cache_key(functions, jacobians, ident, cmd)
+    key = cache_key(serialized, jacobians, ident, cmd)
     folder = cache_dir()
     target = folder / f"{key}.so"
     cached = target.exists()
