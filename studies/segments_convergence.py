@@ -1,10 +1,8 @@
 """Several segments (Wang 1971 p. 33): one cable split into N identical straight sections.
 
 The general segmented model of the report ("each segment has a different inclination and
-stretch") is the per-section chain of :mod:`cablesys.model.build` with N equal sections
-and massless, weightless, drag-free joints (a joint body of 1e-6 of the end body's virtual
-mass: the chain needs a body at each joint; its own modes lie far above the cable's).
-As N grows the natural frequencies and the body response converge to the continuous
+stretch") is :mod:`cablesys.model.segmented`: N straight tension-only elements with lumped
+node masses (``cable.segments = N``). As N grows the natural frequencies and the body response converge to the continuous
 cable; N = 1 is Wang's 2-DOF model. For the Dale scene (light cable, W_c / W_b = 0.14)
 and a long heavy cable (W_c / W_b = 4) we report the 2-DOF model's error relative to
 the finest N.
@@ -39,7 +37,6 @@ from cablesys.model import build_model  # noqa: E402
 from cablesys.scene import Body, Cable, Environment, Numerics, Scene, Section, dale_scene  # noqa: E402
 from cablesys.scene.scene import single_section_scene  # noqa: E402
 
-JOINT_MASS_FRACTION = 1e-6
 TOTAL_DRAG_SEGMENTS = 24      # drag points along the whole cable, shared among the sections
 
 
@@ -67,31 +64,16 @@ def heavy_cable_scene() -> Scene:
 
 
 def segmented(scene: Scene, n: int) -> Scene:
-    """``scene``'s single cable as ``n`` identical per-section segments (the report's lumped cable).
-
-    Each segment keeps the cable's properties per unit length; its reference tension is its
-    own mean hanging tension (weight below + half its own weight), so every segment's l_r is
-    its loaded length and the total zero-tension length equals the single section's (eq. 1).
-    """
-    c, b = scene.cable, scene.body
-    seg_len = c.length / n
-    w_seg = c.weight_per_length * seg_len
-    joint = Body(weight=0.0, mass_x=JOINT_MASS_FRACTION * b.mass_x, mass_y=JOINT_MASS_FRACTION * b.mass_y)
-    sections = []
-    for i in range(n):
-        below = b.weight + (n - 1 - i) * w_seg
-        t_ref = below + 0.5 * w_seg if c.tension_ref > 0 else 0.0
-        cab = dataclasses.replace(c, length=seg_len, tension_ref=t_ref)
-        sections.append(Section(cable=cab, body=b if i == n - 1 else joint))
-    drag = max(1, TOTAL_DRAG_SEGMENTS // n)
-    return scene.replace(sections=tuple(sections), angles="per_section",
-                         numerics=dataclasses.replace(scene.numerics, drag_segments=drag),
-                         name=f"{scene.name}, {n} segments")
+    """``scene``'s single cable as ``n`` straight elements (:mod:`cablesys.model.segmented`), with
+    about TOTAL_DRAG_SEGMENTS drag points along the whole cable."""
+    drag = max(n, TOTAL_DRAG_SEGMENTS)
+    return scene.replace_section(0, cable={"segments": n}).with_numerics(drag_segments=drag).replace(
+        name=f"{scene.name}, {n} elements")
 
 
 def _split_modes(md):
     """Undamped frequencies of swing modes and stretch modes (at phi = 0 they decouple)."""
-    is_phi = np.array([lbl.startswith("phi") for lbl in md.q_labels])
+    is_phi = np.array([lbl.startswith(("phi", "x[")) for lbl in md.q_labels])   # 2-DOF angle / node x
     swing, stretch = [], []
     for k, w in enumerate(md.omega_undamped):
         s = np.abs(md.shapes[:, k])
@@ -111,12 +93,12 @@ def analyse(scene: Scene, ns, ns_response, sea: dict, n_log2: int) -> dict:
         swing, stretch = _split_modes(modes_of(lin))
         row = {"n": n, "swing_rad_s": swing[:3], "stretch_rad_s": stretch[:2]}
         if n in ns_response:
-            sfx = "" if n == 1 else f"_{n}"
+            sfx = ""
             w = np.linspace(sea["w_min"], sea["w_max"], sea["n"])
             st = stochastic_response(model, p, w, jonswap(w, sea["hs"], sea["tp"]), n_log2=n_log2)
             row.update({"x_b_sig_m": st.significant_amplitude(f"x_b{sfx}"),
                         "y_b_sig_m": st.significant_amplitude(f"y_b{sfx}"),
-                        "tension_top_sig_N": st.significant_amplitude("tension" if n == 1 else "tension_1"),
+                        "tension_top_sig_N": st.significant_amplitude("tension_top"),
                         "stochastic_converged": st.converged})
         row["wall_s"] = time.perf_counter() - t0
         rows.append(row)

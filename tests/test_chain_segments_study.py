@@ -1,4 +1,5 @@
-"""The several-segments study in quick mode: convergence with N and the 2-DOF model's error."""
+"""The several-segments study in quick mode (segmented cable): convergence of modes and stochastic
+body response with N, and the 2-DOF model's error."""
 
 import json
 
@@ -11,11 +12,11 @@ def test_segments_convergence_quick(run_study):
         rows = doc[key]["rows"]
         swing = [r["swing_rad_s"][0] for r in rows]
         stretch = [r["stretch_rad_s"][0] for r in rows]
-        # a stiffer straight segment: frequencies fall monotonically towards the continuous cable
-        assert all(a > b for a, b in zip(swing, swing[1:]))
-        assert all(a > b for a, b in zip(stretch, stretch[1:]))
-        errs = [r["rel_err"]["swing_1"] for r in rows[:-1]]
-        assert errs[1] < 0.5 * errs[0] and errs[2] < 0.5 * errs[1]       # at least first order in 1/N
+        # lumped node masses: the elements' frequencies rise monotonically towards the continuous cable
+        assert all(a < b for a, b in zip(swing[1:], swing[2:]))
+        assert all(a < b for a, b in zip(stretch[1:], stretch[2:]))
+        errs = [r["rel_err"]["swing_1"] for r in rows[1:-1]]
+        assert errs[1] < 0.3 * errs[0]                                   # second order in 1/N (vs the finest N)
         assert len(rows[-1]["swing_rad_s"]) == 3                       # higher string modes appear
     dale, heavy = doc["dale"], doc["heavy_cable"]
     assert dale["cable_to_body_weight"] < 0.2 < 4.0 < heavy["cable_to_body_weight"]
