@@ -25,6 +25,8 @@ def register(sub) -> None:
     p.add_argument("--model", default=None, help="auto (default: the scene's numerics.model) | frequency | quasi-static | "
                                                 "wang | segmented: the model ladder rung (cablesys.ladder)")
     p.add_argument("--duration", type=float, default=None, help="simulated time in s (overrides the scene)")
+    p.add_argument("--window", type=float, nargs=2, default=None, metavar=("T0", "T1"),
+                   help="statistics window in s for summary.json (default: the last 5 forcing periods, or the last 20 %% of the run)")
     p.add_argument("--jit", action="store_true", help="compile the model with the C compiler (faster long runs, ~2 s build)")
     p.add_argument("--strict", action="store_true", help="exit with status 3 when a criterion of the scene's [limits] fails")
     p.add_argument("--units", default=None, choices=("SI", "fps"),
@@ -140,6 +142,10 @@ def _run(args) -> int:
             from ..ladder.rungs import build_rung, rung_scene
             scene_run = rung_scene(scene, choice.name, choice.segments)
             model = build_rung(scene_run, choice.name, choice.segments)
+        if hasattr(result, "window_s"):         # the statistics window of the summary groups
+            import dataclasses
+            result = dataclasses.replace(result, window_s=tuple(args.window) if getattr(args, "window", None) else None,
+                                         forcing_period_s=_forcing_period(scene))
         summary = write_run(scene_run or scene, result, outdir, series_on_disk=model is not None, units=units)
         summary["model"] = result.stats.get("model") or choice.as_dict()
         outdir.finish(getattr(result, "status", "success" if result.success else "failed"), **summary)   # periodic: a TimeResult
