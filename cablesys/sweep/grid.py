@@ -109,8 +109,16 @@ def _plain(v):
 def parse_values(text: str) -> list:
     """Values of a command-line ``--vary NAME=SPEC``.
 
-    ``SPEC`` is a comma list (``2000,3000,4000``; strings allowed: ``cvodes,idas``) or a range
-    ``start:stop:lin|log:count`` (both ends included; ``log`` spaces geometrically).
+    Parameters
+    ----------
+    text : str
+        A comma list (``2000,3000,4000``; strings allowed: ``cvodes,idas``) or a range
+        ``start:stop:lin|log:count`` (both ends included; ``log`` spaces geometrically).
+
+    Returns
+    -------
+    list
+        The values (int, float or str), in SI as the scene's fields are.
     """
     text = text.strip()
     if ":" in text:
@@ -141,7 +149,19 @@ def parse_values(text: str) -> list:
 
 
 def parse_vary(specs) -> dict:
-    """{name: values} from ``["cable.ae=1e5:1e7:log:20", "body.weight=2000,3000"]``."""
+    """The ``vary`` dict of :func:`cablesys.sweep` from command-line specs.
+
+    Parameters
+    ----------
+    specs : list of str
+        ``NAME=VALUES`` items, e.g. ``["cable.ae=1e5:1e7:log:20", "body.weight=2000,3000"]``
+        (values as in :func:`parse_values`).
+
+    Returns
+    -------
+    dict
+        {label: list of values}, in the order given.
+    """
     vary = {}
     for s in specs:
         if "=" not in s:
