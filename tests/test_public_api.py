@@ -42,7 +42,7 @@ EXPORTED = _exported()
 # written: their numpydoc sections are owed. Strict xfail: once documented, the entry must go.
 PENDING = {
     "cablesys.build_model", "cablesys.statics.static_residual",
-    "cablesys.steady_state", "cablesys.sweep.parse_values", "cablesys.sweep.parse_vary",
+    "cablesys.steady_state",
 }
 FUNCTIONS = [pytest.param(n, o, id=n, marks=[pytest.mark.xfail(strict=True, reason="docstring owed")]
                           if n in PENDING else []) for n, o in EXPORTED if inspect.isfunction(o)]
