@@ -117,17 +117,45 @@ def _file_lock(path: Path):
             fcntl.flock(fh, fcntl.LOCK_UN)
 
 
-def generate(functions, *, jacobians: bool = True) -> str:
-    """C source of ``functions`` (and their Jacobians ``jac_<name>`` when ``jacobians``)."""
+def state_jacobian(f: ca.Function, wrt) -> ca.Function:
+    """``f.jacobian()``'s signature with only the blocks with respect to the inputs ``wrt``;
+    every other block is declared structurally zero.
+
+    What an integrator or a Newton solver asks of its residual is the state blocks (d/dx,
+    d/dz); the full Jacobian also carries d/dp, whose size grows with the number of scene
+    parameters (a 305-sample series: 610 columns, most of 1.6 MB of C, and every Jacobian
+    evaluation paying for them). A library built this way must not be used for parameter
+    sensitivities: those blocks read as zero.
+    """
+    J = f.jacobian()
+    ins = [ca.SX.sym(name, J.sparsity_in(i)) for i, name in enumerate(J.name_in())]
+    vals = f.call(ins[: f.n_in()])
+    outs = []
+    for k, name in enumerate(J.name_out()):          # jac_<output>_<input>
+        o = next(o for o in f.name_out() if name.startswith(f"jac_{o}_"))
+        i = name[len(f"jac_{o}_"):]
+        if i in wrt:
+            outs.append(ca.jacobian(vals[f.name_out().index(o)], ins[f.name_in().index(i)]))
+        else:
+            outs.append(ca.SX(J.sparsity_out(k).size1(), J.sparsity_out(k).size2()))
+    return ca.Function(J.name(), ins, outs, J.name_in(), J.name_out())
+
+
+def generate(functions, *, jacobians=True) -> str:
+    """C source of ``functions`` and, when ``jacobians``, their Jacobians ``jac_<name>``
+    (``True``: the full Jacobian; a tuple of input names: only those blocks, see
+    :func:`state_jacobian`)."""
     cg = ca.CodeGenerator("cablesys_model.c", {"with_header": False, "verbose": False})
     for f in functions:
         cg.add(f)
-        if jacobians:
+        if jacobians is True:
             cg.add(f.jacobian())
+        elif jacobians:
+            cg.add(state_jacobian(f, tuple(jacobians)))
     return cg.dump()
 
 
-def cache_key(serialized, jacobians: bool, ident: str, cmd: list[str]) -> str:
+def cache_key(serialized, jacobians, ident: str, cmd: list[str]) -> str:
     """Hash of what the library is made of: the functions' serialized form (CasADi's exact,
     deterministic description of the expression graphs, from which the C code is generated;
     hashing it costs ~1 ms where generating the C costs ~100 ms), whether Jacobians are
@@ -153,15 +181,17 @@ def _build(code: str, cmd: list[str], target: Path) -> None:
         os.replace(tmp_so, target)
 
 
-def compile_functions(functions, *, jacobians: bool = True, enabled: bool = True) -> Compiled:
+def compile_functions(functions, *, jacobians=True, enabled: bool = True) -> Compiled:
     """Compiled versions of ``functions`` from the cache, building the library if needed.
 
     Parameters
     ----------
     functions : sequence of casadi.Function
         Functions with distinct names (SX or MX, code-generatable).
-    jacobians : bool
-        Also compile each function's Jacobian, so that solvers (CVODES, IDAS, Newton) use it.
+    jacobians : bool or tuple of str
+        Also compile each function's Jacobian ``jac_<name>``, so that solvers (CVODES, IDAS,
+        Newton) use it: ``True`` the full one, a tuple of input names only those blocks
+        (:func:`state_jacobian`).
     enabled : bool
         False (or ``CABLESYS_COMPILE=0``) returns the functions unchanged.
 

@@ -103,7 +103,10 @@ def dae_function(model: CableModel, implicit: bool, compiled: bool = True) -> Co
         ``functions[name]`` is the DAE; ``build_s``/``load_s`` the times of its first build.
     """
     key = f"dae:{'implicit' if implicit else 'explicit'}:{'compiled' if compiled else 'vm'}"
-    return model.derive(key, lambda: compile_functions([_dae_function(model, implicit)], enabled=compiled))
+    # the integrators need the state blocks of the Jacobian only (d/dp would grow with the scene's
+    # parameter count); never use this library for parameter sensitivities
+    return model.derive(key, lambda: compile_functions([_dae_function(model, implicit)], jacobians=("x", "z"),
+                                                       enabled=compiled))
 
 
 def compiled_dae(model: CableModel, settings: IntegratorSettings) -> Compiled:
