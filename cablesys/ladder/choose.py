@@ -46,10 +46,14 @@ def tolerances(scene: Scene, tolerance=None) -> tuple[float, float]:
     return float(body), float(tension)
 
 
+SAFETY = 0.5       # N is chosen for half the tolerance: the estimates are good to a factor of 2
+
+
 def segments_for(errors: dict, tol: tuple[float, float]) -> int:
-    """Least N with the segmented rung's estimated errors within ``tol`` (N^-ORDER scaling)."""
+    """Least N with the segmented rung's estimated errors within SAFETY x ``tol`` (N^-ORDER scaling)."""
     base = errors["segmented_1"]
-    need = max((base["body"] / tol[0]) ** (1 / est.ORDER), (base["tension"] / tol[1]) ** (1 / est.ORDER), 2.0)
+    need = max((base["body"] / (SAFETY * tol[0])) ** (1 / est.ORDER),
+               (base["tension"] / (SAFETY * tol[1])) ** (1 / est.ORDER), 2.0)
     return int(min(MAX_SEGMENTS, math.ceil(need)))
 
 

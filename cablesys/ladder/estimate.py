@@ -105,14 +105,16 @@ def straight_cable_error(numbers: SceneNumbers) -> float:
     - string inertia: a string of tension T driven at its end has the dynamic stiffness
       (T/L) kL cot kL = (T/L) (1 - (kL)^2/3 - (kL)^4/45 - ...), kL = pi omega / omega_string; the
       straight cable (a linear shape, Wang 1971 eq. 22-25) keeps the first two terms exactly and
-      misses (pi^4/45) (omega/omega_string)^4.
+      misses (pi^4/45) (omega/omega_string)^4, times the part of the top motion normal to the cable.
+    Capped at 1: above the first string mode the straight cable is simply wrong (O(1) errors).
     The two gains were set on the Dale scene and six random short-cable scenes against the
     segmented cable (tests/test_ladder_random.py, studies/model_ladder.py); they are estimates.
     """
     sr = numbers.string_ratio if math.isfinite(numbers.string_ratio) else 0.0
     detune = abs(1.0 - (numbers.omega_forcing / numbers.omega_swing) ** 2) if numbers.omega_swing > 0 else 1.0
     amp = min(SWING_AMPLIFICATION, 1.0 / max(detune, 1e-12))
-    return amp * numbers.static_bow + DYNAMIC_BOW_GAIN * numbers.dynamic_bow + math.pi**4 / 45.0 * sr**4
+    string = numbers.transverse_fraction * math.pi**4 / 45.0 * sr**4
+    return min(1.0, amp * numbers.static_bow + DYNAMIC_BOW_GAIN * numbers.dynamic_bow + string)
 
 
 def estimate_errors(scene: Scene, numbers: SceneNumbers, response: LinearResponse) -> dict:

@@ -32,6 +32,7 @@ class SceneNumbers:
     string_ratio: float            # omega_forcing / omega_string
     mass_ratio: float              # cable mass (with added mass) / body virtual mass
     weight_ratio: float            # cable weight / body weight in water
+    transverse_fraction: float     # part of the top motion normal to the (static) cable
     static_bow: float              # current-drag sag / chord
     dynamic_bow: float             # sag under the drag of the top's motion / chord
     tension_static: float          # body-end tension hanging at rest (N)
@@ -64,6 +65,21 @@ def forcing_components(scene: Scene) -> list[tuple[float, float]]:
     return comps
 
 
+def static_angle(scene: Scene) -> float:
+    """Angle of the top section from the vertical in a current (rad): drag of the body and half the
+    cable's against the weights below the cable's middle (the straight-cable balance, eq. 47-48)."""
+    env = scene.environment
+    u = max((s - env.system_speed for s in env.current_speeds), key=abs)
+    drag, weight = 0.0, 0.0
+    for k, sec in enumerate(scene.sections):
+        c, b = sec.cable, sec.body
+        drag += 0.5 * env.density * (b.drag_area_normal * u * abs(u) + c.cd_normal * c.diameter * c.length * u * abs(u))
+        weight += b.weight + c.total_weight
+    c0 = scene.sections[0].cable
+    drag0 = drag - 0.25 * env.density * c0.cd_normal * c0.diameter * c0.length * u * abs(u)
+    return math.atan2(drag0, max(weight - 0.5 * c0.total_weight, 1e-300))
+
+
 def below_mass(scene: Scene, section) -> float:
     """Mass of the sections and bodies hanging below ``section`` (kg)."""
     secs = list(scene.sections)
@@ -82,7 +98,13 @@ def scene_numbers(scene: Scene) -> SceneNumbers:
     rho = env.density
     w_ax = min(axial_frequencies(scene))
     w_str, mass_r, weight_r, bow_s, bow_d, w_sw = math.inf, 0.0, 0.0, 0.0, 0.0, 0.0
-    a_top = math.hypot(sum(abs(s.amplitude) for s in scene.top_motion.x), sum(abs(s.amplitude) for s in scene.top_motion.y))
+    a_x = sum(abs(s.amplitude) for s in scene.top_motion.x)
+    a_y = sum(abs(s.amplitude) for s in scene.top_motion.y)
+    a_top = math.hypot(a_x, a_y)
+    phi0 = static_angle(scene)
+    # the top motion normal to the cable, e_n = (-cos phi, -sin phi) (Wang 1971 eq. 17): only it bows
+    # the cable and excites its string modes; motion along the cable stretches it
+    a_normal = math.hypot(a_x * math.cos(phi0), a_y * math.sin(phi0))
     below = 0.0
     t_static = None
     for sec in reversed(scene.sections):
@@ -99,7 +121,7 @@ def scene_numbers(scene: Scene) -> SceneNumbers:
         weight_r = max(weight_r, c.total_weight / max(abs(b.weight), 1e-300))
         u_rel = max(abs(s - env.system_speed) for s in env.current_speeds)
         q_s = 0.5 * rho * c.cd_normal * c.diameter * u_rel**2
-        q_d = 0.5 * rho * c.cd_normal * c.diameter * (w_f * a_top) ** 2
+        q_d = 0.5 * rho * c.cd_normal * c.diameter * (w_f * a_normal) ** 2
         if t_mean > 0:
             bow_s = max(bow_s, q_s * c.length / (8 * t_mean))
             bow_d = max(bow_d, q_d * c.length / (8 * t_mean))
@@ -108,4 +130,5 @@ def scene_numbers(scene: Scene) -> SceneNumbers:
     return SceneNumbers(forcing=tuple(comps), omega_forcing=w_f, single_frequency=single, omega_axial=w_ax,
                         axial_ratio=w_f / w_ax, omega_string=w_str, omega_swing=w_sw, string_ratio=w_f / w_str if w_str > 0 else math.inf,
                         mass_ratio=mass_r, weight_ratio=weight_r, static_bow=bow_s, dynamic_bow=bow_d,
+                        transverse_fraction=a_normal / a_top if a_top > 0 else 0.0,
                         tension_static=float(t_static), tension_floor=float(floor if math.isfinite(floor) else -1e300))
