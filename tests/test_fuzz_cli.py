@@ -203,3 +203,13 @@ def test_rao_grid_size_and_band_are_checked_before_any_work(tmp_path):
         rc, _, err = _cli(["rao", tmp_path / "s.toml", "--out", tmp_path / "o", *opts])
         assert rc == 2 and msg in err
         assert not (tmp_path / "o").exists()
+
+
+def test_slack_load_beyond_the_allowed_strain_is_refused(tmp_path):
+    # a 1e6 kg point mass on the 23.8 m example cable (EA 8.9e5 N) hung at 500 % strain, reported
+    # as success, and its mode-shape plot exhausted memory
+    doc = {**SLACK, "scene": {**SLACK["scene"], "n_elements": 16, "n_modes": 4},
+           "masses": [SLACK["masses"][0], {**SLACK["masses"][1], "mass": 1e6}]}
+    (tmp_path / "s.toml").write_text(dumps(doc))
+    rc, _, err = _cli(["slack", tmp_path / "s.toml", "--out", tmp_path / "o"])
+    assert rc == 2 and "cable.max_strain = 0.02: the equilibrium stretches the cable by" in err

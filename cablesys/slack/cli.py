@@ -41,6 +41,7 @@ def run(args) -> int:
                        owned=("slack_result.json", "equilibrium.png", "mode_shapes.png"))
     with outdir.start(scene=str(args.scene)):
         eq, modes = analyze(scene, n_modes)
+        _check_strain(scene, eq)
         out = outdir.path
         doc = {"scene": str(args.scene), "medium": scene.medium, "n_elements": modes.n_elements,
                "equilibrium": eq.to_dict(), "modes": modes.table(),
@@ -59,3 +60,13 @@ def run(args) -> int:
     lines.append(f"wrote {out / 'slack_result.json'}, equilibrium.png, mode_shapes.png")
     sys.stdout.write("\n".join(lines) + "\n")
     return 0
+
+
+def _check_strain(scene, eq) -> None:
+    """The linear-elastic model holds up to ``cable.max_strain``; a heavier load is an input error."""
+    import numpy as np
+    strain = float(np.max(eq.element_lengths / np.diff(eq.s) - 1.0))
+    if not strain <= scene.cable.max_strain:
+        raise ParameterError("cable.max_strain", scene.cable.max_strain,
+                             f"the equilibrium stretches the cable by {strain:.4g}, beyond its allowed strain: the "
+                             "weights and masses are too large for this cable's EA (or raise max_strain)")
