@@ -29,7 +29,24 @@ log = logging.getLogger(__name__)
 
 
 def run_rung(scene: Scene, name: str, segments: int = 1, **kw):
-    """One time-domain run of rung ``name`` (``frequency``: the periodic orbit sampled at the output times)."""
+    """One time-domain run of rung ``name``.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    name : str
+        A rung; ``frequency`` gives the periodic orbit (Fourier collocation) sampled at the output times.
+    segments : int, optional
+        Elements per section of the segmented rung.
+    **kw
+        Passed to :func:`cablesys.simulate.simulate`.
+
+    Returns
+    -------
+    TimeResult
+        The run (``success`` False with the reason when the integrator failed).
+    """
     from ..simulate import simulate
     if name == "frequency":
         return _periodic_run(scene)

@@ -36,8 +36,20 @@ def _finite(v):
 
 
 def tolerances(scene: Scene, tolerance=None) -> tuple[float, float]:
-    """(body, tension) tolerances: ``tolerance`` (a number: body, tension = 2x; or a pair), else the
-    scene's ``numerics.model_tolerance``, else 1 % / 2 %."""
+    """(body, tension) relative tolerances.
+
+    Parameters
+    ----------
+    scene : Scene
+        Its ``numerics.model_tolerance`` is the default.
+    tolerance : float or (float, float), optional
+        A number (body; tension twice it) or a (body, tension) pair.
+
+    Returns
+    -------
+    tuple of float
+        (body, tension), each in (0, 1).
+    """
     tol = tolerance if tolerance is not None else getattr(scene.numerics, "model_tolerance", DEFAULT_TOLERANCE)
     body, tension = (tol, 2 * tol) if isinstance(tol, (int, float)) else tuple(tol)
     for name, v in (("body", body), ("tension", tension)):
@@ -61,6 +73,17 @@ def _within(e: dict, tol) -> bool:
     return e["body"] <= tol[0] and e["tension"] <= tol[1]
 
 
+def _assess(scene: Scene, tol):
+    """(numbers, Wang's linear response, every rung's estimated errors, info dict) of ``scene``."""
+    numbers = scene_numbers(scene)
+    response = est.linear_response(scene, numbers)
+    est.check_response(response)
+    errs = est.estimate_errors(scene, numbers, response)
+    info = {"scene": numbers.as_dict(), "linear_response": dataclasses.asdict(response),
+            "estimates": {k: dict(v) for k, v in errs.items()}, "tolerance": {"body": tol[0], "tension": tol[1]}}
+    return numbers, response, errs, info
+
+
 def choose(scene: Scene, tolerance=None, *, question: str = "time") -> Choice:
     """The cheapest rung of :data:`~cablesys.ladder.rungs.RUNGS` within the tolerance.
 
@@ -80,16 +103,11 @@ def choose(scene: Scene, tolerance=None, *, question: str = "time") -> Choice:
         Rung, elements per section, the reason with its deciding numbers, the estimated errors.
     """
     tol = tolerances(scene, tolerance)
-    numbers = scene_numbers(scene)
-    response = est.linear_response(scene, numbers)
-    est.check_response(response)
-    errs = est.estimate_errors(scene, numbers, response)
+    numbers, response, errs, info = _assess(scene, tol)
     deciding = (f"omega/omega_ax = {numbers.axial_ratio:.3g}, omega/omega_string = {numbers.string_ratio:.3g}, "
                 f"cable/body mass {numbers.mass_ratio:.3g}, weight {numbers.weight_ratio:.3g}, "
                 f"bow/chord static {numbers.static_bow:.2g} dynamic {numbers.dynamic_bow:.2g}, "
                 f"least tension (linear) {response.least_tension:.4g} N vs floor {numbers.tension_floor:.4g} N")
-    info = {"scene": numbers.as_dict(), "linear_response": dataclasses.asdict(response),
-            "estimates": {k: dict(v) for k, v in errs.items()}, "tolerance": {"body": tol[0], "tension": tol[1]}}
     order = [r for r in RUNGS if r != "segmented" and (question == "steady" or r != "frequency")]
     for name in order:
         e = errs[name]
@@ -107,13 +125,26 @@ def choose(scene: Scene, tolerance=None, *, question: str = "time") -> Choice:
 
 
 def forced(scene: Scene, name: str, segments: int | None = None, tolerance=None) -> Choice:
-    """The Choice for a rung the user named, with its estimate (``validity`` note when it misses)."""
+    """The Choice for a rung the user named, with its estimate.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    name : str
+        A rung of :data:`~cablesys.ladder.rungs.RUNGS`.
+    segments : int, optional
+        Elements per section for the segmented rung (default: chosen for the tolerance).
+    tolerance : float or (float, float), optional
+        See :func:`tolerances`.
+
+    Returns
+    -------
+    Choice
+        ``numbers["valid"]`` is False (and the reason says why) when the estimate misses the tolerance.
+    """
     tol = tolerances(scene, tolerance)
-    numbers = scene_numbers(scene)
-    response = est.linear_response(scene, numbers)
-    errs = est.estimate_errors(scene, numbers, response)
-    info = {"scene": numbers.as_dict(), "linear_response": dataclasses.asdict(response),
-            "estimates": {k: dict(v) for k, v in errs.items()}, "tolerance": {"body": tol[0], "tension": tol[1]}}
+    _, _, errs, info = _assess(scene, tol)
     if name == "segmented":
         n = segments or segments_for(errs, tol)
         e = est.segmented_error(errs, n)

@@ -40,7 +40,22 @@ def rung_scene(scene: Scene, name: str, segments: int = 1) -> Scene:
 
 
 def build_rung(scene: Scene, name: str, segments: int = 1) -> CableModel:
-    """The CasADi model of rung ``name`` (``frequency`` uses Wang's model)."""
+    """The CasADi model of rung ``name``.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (its ``cable.segments`` are replaced by the rung's).
+    name : str
+        A rung; ``frequency`` uses Wang's model.
+    segments : int, optional
+        Elements per section of the segmented rung (>= 2).
+
+    Returns
+    -------
+    CableModel
+        The model; ``model.parameters(rung_scene(scene, name, segments))`` gives its ``p``.
+    """
     check_rung(name)
     if name == "quasi-static":
         return build_quasistatic(rung_scene(scene, name))
