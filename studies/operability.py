@@ -74,9 +74,10 @@ def plot(rows, hs, tp, path, title):
     S = np.array([r["steepness"] for r in rows]).reshape(len(hs), len(tp))
     G = np.array([r["governing"] for r in rows], dtype=object).reshape(len(hs), len(tp))
     fig, ax = plt.subplots(figsize=(max(7.5, 2.6 + 0.8 * len(tp)), max(4.2, 1.6 + 0.45 * len(hs))))
-    lim = max(0.05, float(np.nanmax(np.abs(M))) if np.isfinite(M).any() else 1.0)
+    # colours saturate at +-0.5 (50 % margin): the pass/fail boundary stays visible next to large slack margins
+    lim = min(0.5, max(0.05, float(np.nanmax(np.abs(M))) if np.isfinite(M).any() else 0.5))
     cmap = plt.get_cmap("RdYlGn").with_extremes(bad="0.8")
-    im = ax.pcolormesh(np.ma.masked_invalid(M), cmap=cmap, norm=TwoSlopeNorm(0.0, -lim, lim))
+    im = ax.pcolormesh(np.ma.masked_invalid(np.clip(M, -lim, lim)), cmap=cmap, norm=TwoSlopeNorm(0.0, -lim, lim))
     for (i, j), m in np.ndenumerate(M):
         txt = ("PASS" if A[i, j] else "FAIL") + (f"\n{G[i, j]}" if not A[i, j] and G[i, j] else "")
         ax.text(j + 0.5, i + 0.5, txt, ha="center", va="center", fontsize=6.5)
@@ -86,7 +87,7 @@ def plot(rows, hs, tp, path, title):
     ax.set_yticks(np.arange(len(hs)) + 0.5, [f"{v:g}" for v in hs])
     ax.set(xlabel="peak period Tp [s]", ylabel="significant wave height Hs [m]")
     ax.set_title(title, fontsize=9.5)
-    fig.colorbar(im, ax=ax, label="smallest verdict margin (>= 0 passes)")
+    fig.colorbar(im, ax=ax, label="smallest verdict margin (>= 0 passes)", extend="both")
     return save_figure(fig, path)
 
 
