@@ -18,6 +18,7 @@ margin = (limit - value) / |limit| for upper limits, (value - limit) / |limit| f
 
 from __future__ import annotations
 
+import re
 import numpy as np
 
 from . import statistics as st
@@ -43,11 +44,10 @@ def tension_labels(labels) -> list[str]:
 
 def body_labels(labels) -> tuple[str, str] | None:
     """(x, y) labels of the lowest body: ``x_b``/``y_b`` or the highest-numbered ``x_b_k``/``y_b_k``."""
-    xs = sorted((lbl for lbl in labels if lbl.startswith("x_b") and not lbl.endswith("rate")),
-                key=lambda s: (len(s), s))
+    xs = [lbl for lbl in labels if re.fullmatch(r"x_b(_\d+)?", lbl)]      # positions, not x_b_rate[_k]
     if not xs:
         return None
-    x = xs[-1]
+    x = max(xs, key=lambda s: int(s[4:]) if len(s) > 3 else 0)
     y = "y" + x[1:]
     return (x, y) if y in labels else None
 

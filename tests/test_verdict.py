@@ -122,3 +122,11 @@ def test_design_failed_starts_are_named_with_the_reason():
     f = failed_starts(SimpleNamespace(runs=runs))
     assert [x["solve"] for x in f] == [1, 3]
     assert "iteration limit" in f[0]["why"] and "constraints" in f[1]["why"]
+
+
+def test_body_labels_pick_the_lowest_body_position_not_a_rate():
+    """Multi-section outputs end in _k: the lowest body is the highest k, and never x_b_rate_k."""
+    from cablesys.verdict import body_labels
+    assert body_labels(["x_b", "x_b_rate", "y_b", "y_b_rate"]) == ("x_b", "y_b")
+    labels = [f"{n}_{k}" for k in (1, 2, 10) for n in ("x_b", "x_b_rate", "y_b", "y_b_rate")]
+    assert body_labels(labels) == ("x_b_10", "y_b_10")
