@@ -19,6 +19,7 @@ margin = (limit - value) / |limit| for upper limits, (value - limit) / |limit| f
 from __future__ import annotations
 
 import re
+
 import numpy as np
 
 from . import statistics as st
