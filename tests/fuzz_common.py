@@ -28,12 +28,15 @@ REPORT = os.environ.get("CABLESYS_FUZZ_REPORT")
 TALLY: dict = {}
 
 
-def tally(entry: str, outcome: str, seconds: float) -> None:
-    """Count one outcome ('result', 'named error', 'raw: <type>', ...) of an entry point."""
-    t = TALLY.setdefault(entry, {"examples": 0, "outcomes": {}, "max_seconds": 0.0})
+def tally(entry: str, outcome: str, seconds: float, detail: str = "") -> None:
+    """Count one outcome ('result', 'named error', 'raw: <type>', ...) of an entry point;
+    ``detail`` (the input and message of a bad outcome) is kept for the first few."""
+    t = TALLY.setdefault(entry, {"examples": 0, "outcomes": {}, "max_seconds": 0.0, "details": []})
     t["examples"] += 1
     t["outcomes"][outcome] = t["outcomes"].get(outcome, 0) + 1
     t["max_seconds"] = max(t["max_seconds"], round(seconds, 2))
+    if detail and len(t["details"]) < 8:
+        t["details"].append(f"{outcome}: {detail}"[:1500])
 
 
 def _write_report():

@@ -64,13 +64,14 @@ def _cli(argv, out: Path | None = None, check=None) -> tuple[int, str, str]:
                 _no_nan(f.read_text())
         if rc == 0 and check is not None:
             check(o.getvalue())
-    except AssertionError:
-        tally(entry, "silent acceptance or bad exit", time.perf_counter() - t0)
+    except AssertionError as err:
+        tally(entry, "silent acceptance or bad exit", time.perf_counter() - t0,
+              f"{argv[1:]} {err!r} stderr: {e.getvalue()[-500:]}")
         if REPORT:
             return -1, o.getvalue(), e.getvalue()
         raise
     except Exception as err:
-        tally(entry, f"raw {type(err).__name__}", time.perf_counter() - t0)
+        tally(entry, f"raw {type(err).__name__}", time.perf_counter() - t0, f"{argv[1:]} {err!r}")
         if REPORT:
             return -1, o.getvalue(), e.getvalue()
         raise

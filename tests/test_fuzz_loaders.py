@@ -97,7 +97,7 @@ def _load(loader, data: bytes, suffix: str):
         tally(entry, "named error", time.perf_counter() - t0)
         return None
     except Exception as err:
-        tally(entry, f"raw {type(err).__name__}", time.perf_counter() - t0)
+        tally(entry, f"raw {type(err).__name__}", time.perf_counter() - t0, f"{data[:300]!r} {err!r}")
         if REPORT:
             return None
         raise
