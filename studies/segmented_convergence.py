@@ -16,6 +16,7 @@ Usage: python studies/segmented_convergence.py --out DIR [--quick]
 
 from __future__ import annotations
 
+import itertools
 import math
 import sys
 import time
@@ -25,15 +26,15 @@ import casadi as ca
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
+from _common import parse_args, setup_matplotlib, write_json
 
-import cablesys  # noqa: E402
-from cablesys.model import build_model  # noqa: E402
-from cablesys.plots import save_figure  # noqa: E402
-from cablesys.scene import OMEGA_N_MEASURED, dale_scene, load_scene  # noqa: E402
-from cablesys.simulate import simulate  # noqa: E402
-from cablesys.simulate.integrators import IntegratorSettings  # noqa: E402
-from cablesys.simulate.run import Simulator, initial_state  # noqa: E402
+import cablesys
+from cablesys.model import build_model
+from cablesys.plots import save_figure
+from cablesys.scene import OMEGA_N_MEASURED, dale_scene, load_scene
+from cablesys.simulate import simulate
+from cablesys.simulate.integrators import IntegratorSettings
+from cablesys.simulate.run import Simulator, initial_state
 
 HEAVE_SCENE = Path(cablesys.__file__).parent / "data" / "heave_300m.toml"
 METRICS = ("x_amp", "y_amp", "top_max", "top_min")
@@ -80,7 +81,7 @@ def converge(name: str, scene, period: float, ns: list) -> dict:
     rel = lambda row, k: abs(row[k] - ref[k]) / max(abs(ref[k]), 1e-300) if row.get("success") and ref.get("success") else None
     for row in rows[:-1]:
         row["rel_err"] = {k: rel(row, k) for k in METRICS}
-    for a, b in zip(rows[:-2], rows[1:-1]):
+    for a, b in itertools.pairwise(rows[:-1]):
         a["observed_order"] = {k: math.log2(a["rel_err"][k] / b["rel_err"][k])
                                if a["rel_err"][k] and b["rel_err"][k] else None for k in METRICS}
     wang["rel_err"] = {k: rel(wang, k) for k in METRICS}

@@ -17,7 +17,6 @@ Usage: python studies/segments_convergence.py --out DIR [--quick]
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import sys
 import time
@@ -26,16 +25,23 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
+from _common import parse_args, setup_matplotlib, write_json
 
-from cablesys import units as U  # noqa: E402
-from cablesys.linear.linearize import linearize  # noqa: E402
-from cablesys.linear import modes as modes_of  # noqa: E402
-from cablesys.linear.spectra import jonswap  # noqa: E402
-from cablesys.linear.stochastic import stochastic_response  # noqa: E402
-from cablesys.model import build_model  # noqa: E402
-from cablesys.scene import Body, Cable, Environment, Numerics, Scene, Section, dale_scene  # noqa: E402
-from cablesys.scene.scene import single_section_scene  # noqa: E402
+from cablesys import units as U
+from cablesys.linear import modes as modes_of
+from cablesys.linear.linearize import linearize
+from cablesys.linear.spectra import jonswap
+from cablesys.linear.stochastic import stochastic_response
+from cablesys.model import build_model
+from cablesys.scene import (
+    Body,
+    Cable,
+    Environment,
+    Numerics,
+    Scene,
+    dale_scene,
+)
+from cablesys.scene.scene import single_section_scene
 
 TOTAL_DRAG_SEGMENTS = 24      # drag points along the whole cable, shared among the sections
 

@@ -11,9 +11,8 @@ from scipy.special import j0, j1, jn_zeros, y0, y1
 
 from cablesys.linear import linearize, modes
 from cablesys.model import build_model
-from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMotion
+from cablesys.scene import Body, Cable, Environment, Numerics, TopMotion
 from cablesys.scene.scene import single_section_scene
-from cablesys.simulate import simulate
 from cablesys.statics import elastic_catenary, steady_state
 
 G = 9.80665

@@ -29,7 +29,6 @@ from __future__ import annotations
 import dataclasses
 
 import casadi as ca
-import numpy as np
 
 from ..errors import ParameterError
 from ..scene import Scene
@@ -148,7 +147,7 @@ def _norm(v):
 def drag_points(scene: Scene, n_el: int) -> int:
     """Drag points per element: ``numerics.drag_segments`` shared among the section's elements (at
     least one, the element mid-point); N = 1 uses the 2-DOF model's points exactly."""
-    return max(1, int(round(scene.numerics.drag_segments / n_el)))
+    return max(1, round(scene.numerics.drag_segments / n_el))
 
 
 def build_segmented_model(scene: Scene) -> SegmentedModel:

@@ -250,7 +250,7 @@ def segmented_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
         sfx = (lambda i: "") if model.n_sections == 1 else (lambda i: f"_{i + 1}")
         for i, n_el in enumerate(model.segments):
             pre = "" if model.n_sections == 1 else f"sections[{i}]."
-            val = lambda lbl: p[model.layout.index(pre + lbl)]
+            val = lambda lbl, pre=pre: p[model.layout.index(pre + lbl)]
             l_0 = val("cable.length") * (1 - val("cable.tension_ref") / val("cable.ae"))
             phi = ini.phi if ini.phi is not None else y[f"phi{sfx(i)}"]
             u = ini.u if ini.u is not None else y[f"u{sfx(i)}"]
