@@ -24,8 +24,14 @@ def _check_all_finite(obj, prefix: str) -> None:
             if f.name == "tension_floor" and v == -math.inf:
                 continue  # -inf: the cable never goes slack (a rod)
             require_finite(f"{prefix}.{f.name}", v)
+            if abs(v) > MAX_MAGNITUDE:
+                raise ParameterError(f"{prefix}.{f.name}", v, f"must be within +-{MAX_MAGNITUDE:g} (SI units); larger "
+                                     "values overflow the squares and products of the equations of motion")
 
 
+# no cable or body number in SI comes near this (AE of the largest steel ropes ~1e10 N); a cable
+# 1e300 m long passed the range checks and overflowed the steady-state solve (fuzzing, issue 9)
+MAX_MAGNITUDE = 1e15
 MAX_SEGMENTS = 2000       # elements per section (the model's size grows linearly with it)
 
 
