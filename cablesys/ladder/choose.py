@@ -58,6 +58,7 @@ def tolerances(scene: Scene, tolerance=None) -> tuple[float, float]:
     return float(body), float(tension)
 
 
+STIFF_RATIO = 30.0   # omega_ax / omega above which the quasi-static rung is the cheaper one (model_ladder study)
 SAFETY = 0.5       # N is chosen for half the tolerance: the estimates are good to a factor of 2
 
 
@@ -109,6 +110,11 @@ def choose(scene: Scene, tolerance=None, *, question: str = "time") -> Choice:
                 f"bow/chord static {numbers.static_bow:.2g} dynamic {numbers.dynamic_bow:.2g}, "
                 f"least tension (linear) {response.least_tension:.4g} N vs floor {numbers.tension_floor:.4g} N")
     order = [r for r in RUNGS if r != "segmented" and (question == "steady" or r != "frequency")]
+    if numbers.axial_ratio > 1.0 / STIFF_RATIO:
+        # the stretch mode is within STIFF_RATIO of the forcing: stepping it costs less than the
+        # quasi-static reduction (whose stretch is a Newton solve at every evaluation), and is exact
+        order.remove("wang")
+        order.insert(order.index("quasi-static"), "wang")
     for name in order:
         e = errs[name]
         if _within(e, tol):

@@ -34,7 +34,8 @@ from .rungs import build_rung, rung_scene
 DYNAMIC_BOW_GAIN = 2.0   # body-amplitude error per unit dynamic sag / chord (see straight_cable_error)
 ORDER = 2.0         # convergence order of the segmented cable in N
 SLACK_MARGIN = 0.05
-SWING_AMPLIFICATION = 10.0  # a least tension within 5 % of the static tension of the floor counts as slack
+SWING_AMPLIFICATION = 10.0
+RESOLUTION = 1e-4    # estimates are not resolved below this (start-up transients, reference convergence)  # a least tension within 5 % of the static tension of the floor counts as slack
 
 
 @dataclasses.dataclass(frozen=True)
@@ -127,7 +128,8 @@ def estimate_errors(scene: Scene, numbers: SceneNumbers, response: LinearRespons
     e_wang = straight_cable_error(numbers)
     floor = numbers.tension_floor
     slack = response.least_tension < floor + SLACK_MARGIN * numbers.tension_static
-    wang = {"body": e_wang, "tension": e_wang * max(d_t / t_max, 0.1) if not slack else math.inf,
+    e_wang = max(e_wang, RESOLUTION)
+    wang = {"body": e_wang, "tension": max(e_wang * max(d_t / t_max, 0.1), RESOLUTION) if not slack else math.inf,
             "note": "straight cable: bowing and string inertia (closed form)"}
     if slack:
         wang["body"] = math.inf
