@@ -41,7 +41,7 @@ def run(args) -> int:
     from .grid import parse_vary
     from .plots import plot_sweep
     scene = load_scene(args.scene)
-    if args.duration:
+    if args.duration is not None:          # 0 or negative is refused by the scene, not ignored
         scene = scene.with_numerics(duration=args.duration)
     options = {"model": None if args.model == "built" else args.model} if args.analysis == "run" else {}
     ds = sweep(scene, parse_vary(args.vary), args.analysis, metrics=args.metric, zip=args.zip, out=args.out,
