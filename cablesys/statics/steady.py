@@ -51,7 +51,18 @@ def static_residual(model: CableModel) -> ca.Function:
     scaled to O(1) (built once per model; shared by :func:`steady_state` and the design NLP).
 
     u-rows (forces) are divided by the total weight, phi-rows (moments) by weight x length,
-    so that solver tolerances are relative and not below round-off for heavy, long systems.
+    so that solver tolerances are relative and not below round-off for heavy, long systems
+    (Wang 1971 eq. 47-48 with all rates zero).
+
+    Parameters
+    ----------
+    model : CableModel
+        A 2-DOF or section-chain model.
+
+    Returns
+    -------
+    casadi.Function
+        ``static_residual(q, p) -> r`` (dimensionless), built once per model (``model.cache``).
     """
     def build():
         q = ca.SX.sym("q", model.nq)
@@ -105,6 +116,23 @@ def steady_state(model: CableModel, p, *, guess=None, solver: ca.Function | None
 
     Raises :class:`SolverError` if no equilibrium is found from any starting guess. A segmented
     model (node coordinates) gets its elastic catenary (:mod:`cablesys.statics.catenary`).
+
+    Parameters
+    ----------
+    model : CableModel
+        The model (2-DOF, chain, quasi-static or segmented).
+    p : array_like
+        Parameter vector (``model.parameters(scene)``); wave amplitudes and slack switches are ignored.
+    guess : array_like, optional
+        Starting coordinates q (rad, m); tried before the built-in hanging guesses.
+    solver : casadi.Function, optional
+        A rootfinder to use instead of the model's cached KINSOL (``model.cache``).
+
+    Returns
+    -------
+    SteadyState
+        Coordinates ``q``, labelled ``outputs`` (angles in rad, lengths in m, tensions in N) and the
+        relative residual reached.
     """
     if getattr(model, "segments", None):
         return _segmented_steady(model, p, guess)
