@@ -67,7 +67,23 @@ def _end_forces(momenta, ext, M, f, q, qd, z, zd, zdd):
 
 
 def build_model(scene: Scene) -> CableModel:
-    """Build the CasADi functions for ``scene``'s structure (values go in through ``p``)."""
+    """Build the CasADi functions for ``scene``'s structure (values go in through ``p``).
+
+    Wang's 2-DOF model (one section; Wang 1971 eq. 8-9, 15, 25, 37-46) or the chain of sections
+    (p. 32-33) by Lagrange's equations from energies and virtual work; a scene with
+    ``segments > 1`` in a section's cable gets the segmented cable (:mod:`.segmented`).
+
+    Parameters
+    ----------
+    scene : Scene
+        Any scene of the structure wanted (its values only fix the parameter layout).
+
+    Returns
+    -------
+    CableModel
+        SX functions ``dynamics``, ``ode``, ``top``, ``outputs``, ``energy``, ``cable_force`` and the
+        labelled parameter layout (``model.parameters(scene)`` gives the numbers, SI units).
+    """
     if any(s.cable.segments > 1 for s in scene.sections):   # N straight elements per section
         from .segmented import build_segmented_model
         return build_segmented_model(scene)
