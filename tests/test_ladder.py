@@ -70,9 +70,11 @@ def test_stiff_straight_cable_gets_the_quasi_static_rung():
 def test_predicted_partial_slack_rejects_the_straight_cable_and_a_forced_wang_warns():
     """300 m wire, 2 t sphere, 1 m heave at T = 6 s: the linear response dips below zero tension."""
     scene = _wire_300m(6.0)
-    choice = choose(scene)
-    assert choice.name == "segmented" and choice.segments >= 4
+    with pytest.warns(NumericalWarning, match="not reachable"):     # snap loads converge as 1/N: said, not hidden
+        choice = choose(scene)
+    assert choice.name == "segmented" and choice.segments == 40
     assert "partial slack" in choice.reason
+    assert choice.estimated_error["tension"] == pytest.approx(1 / 40)
     with pytest.warns(NumericalWarning, match="partial slack"):
         plan_run(scene, "wang")
 

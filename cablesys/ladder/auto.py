@@ -22,7 +22,7 @@ from ..errors import NumericalWarning
 from ..scene import Scene
 from . import estimate as est
 from . import metrics
-from .choose import MAX_SEGMENTS, Choice, choose, forced, tolerances
+from .choose import MAX_SEGMENTS, SLACK_MAX_SEGMENTS, Choice, choose, forced, tolerances
 from .rungs import build_rung, check_rung, rung_scene
 
 log = logging.getLogger(__name__)
@@ -143,10 +143,12 @@ def _richardson(scene: Scene, choice: Choice, tol, result, *, auto: bool, **kw):
         if not (coarse.success and result.success):
             return result, choice
         diff = metrics.errors(metrics.statistics(coarse, period), metrics.statistics(result, period))
-        factor = 1.0 / (2.0 ** est.ORDER - 1.0)
+        order = choice.numbers.get("estimates", {}).get("segmented_1", {}).get("order", est.ORDER)
+        factor = 1.0 / (2.0 ** order - 1.0)
         e = {k: v * factor for k, v in diff.items()}
-        if not auto or (e["body"] <= tol[0] and e["tension"] <= tol[1]) or 2 * n > MAX_SEGMENTS:
-            reason = choice.reason + f"; a posteriori (N = {n} vs {n // 2}, order {est.ORDER:g}): body {e['body']:.2g}, tension {e['tension']:.2g}"
+        cap = MAX_SEGMENTS if order >= est.ORDER else SLACK_MAX_SEGMENTS
+        if not auto or (e["body"] <= tol[0] and e["tension"] <= tol[1]) or 2 * n > cap:
+            reason = choice.reason + f"; a posteriori (N = {n} vs {n // 2}, order {order:g}): body {e['body']:.2g}, tension {e['tension']:.2g}"
             return result, Choice("segmented", n, reason, e, choice.numbers)
         n *= 2
         result = run_rung(scene, "segmented", n, **kw)

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 
-from ..errors import ParameterError
+from ..errors import NumericalWarning, ParameterError
 from ..scene import Scene
 from . import estimate as est
 from .indicators import scene_numbers
@@ -13,6 +14,7 @@ from .rungs import RUNGS
 
 DEFAULT_TOLERANCE = 0.01          # body motion; tension extremes get twice this (issue 12)
 MAX_SEGMENTS = 128
+SLACK_MAX_SEGMENTS = 40     # snap-load runs cost ~N^2 (300 m wire, T = 6 s, 30 s: 16 min at N = 40)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -65,9 +67,10 @@ SAFETY = 0.5       # N is chosen for half the tolerance: the estimates are good 
 def segments_for(errors: dict, tol: tuple[float, float]) -> int:
     """Least N with the segmented rung's estimated errors within SAFETY x ``tol`` (N^-ORDER scaling)."""
     base = errors["segmented_1"]
-    need = max((base["body"] / (SAFETY * tol[0])) ** (1 / est.ORDER),
-               (base["tension"] / (SAFETY * tol[1])) ** (1 / est.ORDER), 2.0)
-    return int(min(MAX_SEGMENTS, math.ceil(need)))
+    p = base.get("order", est.ORDER)
+    need = max((base["body"] / (SAFETY * tol[0])) ** (1 / p), (base["tension"] / (SAFETY * tol[1])) ** (1 / p), 2.0)
+    cap = MAX_SEGMENTS if p >= est.ORDER else SLACK_MAX_SEGMENTS
+    return int(min(cap, math.ceil(need)))
 
 
 def _within(e: dict, tol) -> bool:
@@ -127,6 +130,10 @@ def choose(scene: Scene, tolerance=None, *, question: str = "time") -> Choice:
     reason = (f"segmented with N = {n}: the straight cable misses the tolerance ({why}, estimated body "
               f"{errs['wang']['body']:.3g}, tension {errs['wang']['tension']:.3g}); N from its error scaling as "
               f"N^-{est.ORDER:g}; {deciding}")
+    if not _within(e, tol):
+        reason += (f"; the tolerance is not reachable at an affordable N: estimated body {e['body']:.2g}, "
+                   f"tension {e['tension']:.2g} at N = {n}")
+        warnings.warn(f"model auto: {reason}", NumericalWarning, stacklevel=2)
     return Choice("segmented", n, reason, {"body": e["body"], "tension": e["tension"]}, info)
 
 
