@@ -10,4 +10,4 @@ from .auto import run_rung, simulate_auto
 from .choose import Choice, choose, tolerances
 from .rungs import MODEL_CHOICES, RUNGS, build_rung
 
-__all__ = ["Choice", "MODEL_CHOICES", "RUNGS", "build_rung", "choose", "run_rung", "simulate_auto", "tolerances"]
+__all__ = ["MODEL_CHOICES", "RUNGS", "Choice", "build_rung", "choose", "run_rung", "simulate_auto", "tolerances"]
