@@ -36,11 +36,11 @@ _EXPORTS = {
 # subpackages reachable as attributes (``cablesys.slack.solve_equilibrium``, ``cablesys.sweep(...)``,
 # ``cablesys.simulate.simulate``, ``cablesys.design.design``): a function of the same name as a
 # subpackage is not exported here, where it would hide the subpackage
-_SUBPACKAGES = ("design", "linear", "model", "plots", "scene", "simulate", "slack", "sweep", "towed")
+_SUBPACKAGES = ("design", "ladder", "linear", "model", "plots", "scene", "simulate", "slack", "sweep", "towed")
 
 __all__ = ["AnalysisResult", "CableModel", "NumericalWarning", "ParameterError", "Scene", "Simulator",
            "SolverError", "TimeResult", "build_model", "dale_scene", "default_scene", "design", "dump_scene",
-           "harmonic_response", "jonswap", "linear", "linearize", "load_scene", "model", "modes",
+           "harmonic_response", "jonswap", "ladder", "linear", "linearize", "load_scene", "model", "modes",
            "periodic_steady_state", "pierson_moskowitz", "plots", "rao", "scene", "simulate", "slack",
            "steady_state", "stochastic_response", "sweep", "towed"]
 
