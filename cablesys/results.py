@@ -331,8 +331,10 @@ class TimeResult(ResultBase):
     def _statistics_groups(self) -> dict:
         """``tension``, ``slack``, ``body``, ``model`` and ``window_s`` over the statistics window."""
         mask = self._window_mask()
+        if not np.any(mask):                  # a run that failed before the window: report no statistics
+            mask = np.ones_like(self.time, dtype=bool)
         t0, t1 = self.statistics_window
-        ext = lambda lbl, f: None if lbl is None else float(f(self.data[lbl][mask]))
+        ext = lambda lbl, f: None if lbl is None or not np.any(mask) else float(f(self.data[lbl][mask]))
         top, bottom = self._first("tension_top"), self._last("tension_bottom")
         out = {"window_s": [t0, t1],
                "tension": {"top_min_N": ext(top, np.min), "top_max_N": ext(top, np.max),
@@ -340,7 +342,7 @@ class TimeResult(ResultBase):
         body = {}
         for axis in ("x", "y"):
             lbl = self._last(f"{axis}_b")
-            y = self.data[lbl][mask] if lbl else None
+            y = self.data[lbl][mask] if lbl and np.any(mask) else None
             body[f"{axis}_amplitude_m"] = None if y is None else 0.5 * float(np.max(y) - np.min(y))
             body[f"{axis}_mean_m"] = None if y is None else float(np.mean(y))
         out["body"] = body

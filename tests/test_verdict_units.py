@@ -20,7 +20,8 @@ def test_fps_in_fps_out_equals_si_converted(tmp_path):
     scene = dale_scene(duration=8.0, output_step=0.1)
     for units in ("SI", "fps"):
         (tmp_path / f"{units}.toml").write_text(dump_scene(scene, units=units))
-        assert main(["run", str(tmp_path / f"{units}.toml"), "--out", str(tmp_path / units)]) == 0
+        # Wang's model for both (the units are under test, not the ladder's choice of model)
+        assert main(["run", str(tmp_path / f"{units}.toml"), "--out", str(tmp_path / units), "--model", "wang"]) == 0
     h_si, si = _csv(tmp_path / "SI" / "timeseries.csv")
     h_fps, fps = _csv(tmp_path / "fps" / "timeseries.csv")
     factor = {"m": 1 / U.FT, "m/s": 1 / U.FT, "N": 1 / U.LBF, "rad": 1.0, "rad/s": 1.0, "s": 1.0}
@@ -37,7 +38,7 @@ def test_fps_in_fps_out_equals_si_converted(tmp_path):
         # ~0.5 % of their range, positions and tensions to 1e-6; any unit factor is >= 3.28
         np.testing.assert_allclose(fps[:, col_fps[name]], si[:, k] * factor[unit], rtol=1e-3, atol=1e-2 * np.max(np.abs(si[:, k] * factor[unit])))
     # --units chooses: the SI scene printed in fps gives the fps file's columns
-    assert main(["run", str(tmp_path / "SI.toml"), "--out", str(tmp_path / "SI2"), "--units", "fps"]) == 0
+    assert main(["run", str(tmp_path / "SI.toml"), "--out", str(tmp_path / "SI2"), "--units", "fps", "--model", "wang"]) == 0
     assert _csv(tmp_path / "SI2" / "timeseries.csv")[0] == h_fps
     assert {"x_b [ft]", "y_b [ft]", "tension_top [lbf]", "phi [rad]"} <= set(h_fps)
 

@@ -159,7 +159,8 @@ def forced(scene: Scene, name: str, segments: int | None = None, tolerance=None)
     tol = tolerances(scene, tolerance)
     _, _, errs, info = _assess(scene, tol)
     if name == "segmented":
-        n = segments or segments_for(errs, tol)
+        scene_n = max(s.cable.segments for s in scene.sections)      # the user's own `segments = N`
+        n = segments or (scene_n if scene_n > 1 else segments_for(errs, tol))
         e = est.segmented_error(errs, n)
     else:
         n, e = 1, errs[name]
