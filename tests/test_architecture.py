@@ -146,10 +146,7 @@ def _code_lines(path: Path):
 
 # Pairs of files known to repeat a block, with the owner's task: the test fails on any other
 # pair, and on a listed pair that no longer repeats (then delete its entry).
-KNOWN_REPEATS = {
-    ("cablesys/model/build.py", "cablesys/model/segmented.py"):
-        "the environment's parameter symbols (current, waves, density): one function in model/params.py",
-}
+KNOWN_REPEATS: dict = {}
 
 
 def test_no_block_of_six_lines_is_repeated():

@@ -12,7 +12,7 @@ import casadi as ca
 from ..scene import Scene
 from .cable_model import CableModel
 from .lagrange import lagrange_equations, virtual_work
-from .params import ParameterLayout, section_prefix
+from .params import ParameterLayout, environment_symbols, section_prefix
 from .section import SectionParameters, section_terms
 from .top_motion import symbolic_type, top_motion_function
 
@@ -93,16 +93,8 @@ def build_model(scene: Scene) -> CableModel:
     q, qd, q_labels, pick, sfx = _coordinates(n, scene.angles)
     e = ca.SX.sym("e", len(EXO_LABELS))
     t, z, zd, zdd = e[0], e[1:3], e[3:5], e[5:7]
-    env_p = {
-        "current_depths": [layout.sym(f"environment.current_depths[{k}]") for k in range(len(scene.environment.current_depths))],
-        "current_speeds": [layout.sym(f"environment.current_speeds[{k}]") for k in range(len(scene.environment.current_depths))],
-        "system_speed": layout.sym("environment.system_speed"),
-        "gravity": layout.sym("environment.gravity"),
-        "waves": [tuple(layout.sym(f"environment.waves[{k}].{a}") for a in ("amplitude", "length", "phase"))
-                  for k in range(len(scene.environment.waves))],
-    }
-    rho = layout.sym("environment.density")
-    depth0 = layout.sym("environment.top_depth")
+    env_p = environment_symbols(layout, scene)          # Wang 1971 eq. 26-28 inputs
+    rho, depth0 = env_p["density"], env_p["top_depth"]
 
     top_r, top_v = (z[0], depth0 + z[1]), (zd[0], zd[1])
     K = V = 0

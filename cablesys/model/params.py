@@ -182,3 +182,32 @@ class ParameterLayout:
                                  "has a different structure (sections, drag shapes, segments, current points, "
                                  "waves, sinusoids or series grid) than the model; build a model for it")
         return np.array([v for _, v in parameter_items(scene)], dtype=float)
+
+
+def environment_symbols(layout: "ParameterLayout", scene: Scene) -> dict:
+    """The environment's entries of ``p`` as the dict the fluid laws take (Wang 1971 eq. 26-28):
+    ``current_depths``/``current_speeds`` (the CUR profile), ``system_speed``, ``gravity``,
+    ``waves`` [(a, lambda, phase)], and ``density`` and ``top_depth``.
+
+    Parameters
+    ----------
+    layout : ParameterLayout
+        The model's parameter layout (its symbol vector).
+    scene : Scene
+        A scene of the layout's structure (how many current points and waves).
+
+    Returns
+    -------
+    dict
+        SX entries of ``layout.symbol`` by name.
+    """
+    env = scene.environment
+    return {
+        "current_depths": [layout.sym(f"environment.current_depths[{k}]") for k in range(len(env.current_depths))],
+        "current_speeds": [layout.sym(f"environment.current_speeds[{k}]") for k in range(len(env.current_depths))],
+        "system_speed": layout.sym("environment.system_speed"),
+        "gravity": layout.sym("environment.gravity"),
+        "waves": [tuple(layout.sym(f"environment.waves[{k}].{a}") for a in _WAVE) for k in range(len(env.waves))],
+        "density": layout.sym("environment.density"),
+        "top_depth": layout.sym("environment.top_depth"),
+    }

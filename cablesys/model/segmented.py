@@ -35,7 +35,7 @@ from ..scene import Scene
 from . import fluid
 from .build import EXO_LABELS, CableModel
 from .lagrange import lagrange_equations
-from .params import ParameterLayout, section_prefix
+from .params import ParameterLayout, environment_symbols, section_prefix
 from .section import SectionParameters
 from .top_motion import symbolic_type, top_motion_function
 
@@ -176,16 +176,8 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
     q, qd = ca.SX.sym("q", 2 * n_nodes), ca.SX.sym("qd", 2 * n_nodes)
     e = ca.SX.sym("e", len(EXO_LABELS))
     t, z, zd, zdd = e[0], e[1:3], e[3:5], e[5:7]
-    env = {
-        "current_depths": [layout.sym(f"environment.current_depths[{k}]") for k in range(len(scene.environment.current_depths))],
-        "current_speeds": [layout.sym(f"environment.current_speeds[{k}]") for k in range(len(scene.environment.current_depths))],
-        "system_speed": layout.sym("environment.system_speed"),
-        "gravity": layout.sym("environment.gravity"),
-        "waves": [tuple(layout.sym(f"environment.waves[{k}].{a}") for a in ("amplitude", "length", "phase"))
-                  for k in range(len(scene.environment.waves))],
-    }
-    rho = layout.sym("environment.density")
-    depth0 = layout.sym("environment.top_depth")
+    env = environment_symbols(layout, scene)          # Wang 1971 eq. 26-28 inputs
+    rho, depth0 = env["density"], env["top_depth"]
     node_r = [(z[0], z[1])] + [(q[2 * j], q[2 * j + 1]) for j in range(n_nodes)]
     node_v = [(zd[0], zd[1])] + [(qd[2 * j], qd[2 * j + 1]) for j in range(n_nodes)]
 
