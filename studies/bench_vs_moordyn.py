@@ -21,8 +21,10 @@ truth: where cablesys and MoorDyn differ by more than 2 % in a converged taut ca
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import math
+import os
 import sys
 import time
 import warnings
@@ -64,6 +66,24 @@ def cases(quick: bool):
                                  top_motion=dataclasses.replace(heave.top_motion, y=(sine,)))
         out.append((f"heave_T{period:g}", _ramped(sc, period, 60.0), period, (20, 80), taut))
     return out
+
+
+COMPILE_MAX_ELEMENTS = 20     # gcc's time and memory grow faster than linearly with the segmented
+# model's straight-line code (N = 80: minutes and >10 GB at -O1): larger models run in CasADi's VM
+
+
+@contextlib.contextmanager
+def _compiled(enabled: bool):
+    """Run cablesys compiled (cached C, the default) or in CasADi's virtual machine."""
+    old = os.environ.get("CABLESYS_COMPILE")
+    os.environ["CABLESYS_COMPILE"] = "1" if enabled else "0"
+    try:
+        yield
+    finally:
+        if old is None:
+            os.environ.pop("CABLESYS_COMPILE", None)
+        else:
+            os.environ["CABLESYS_COMPILE"] = old
 
 
 def _segments(scene, n):
@@ -130,7 +150,8 @@ def bench_case(name, scene, period, ns, taut, quick):
     dur = scene.numerics.duration
     row = {"case": name, "scene": scene.name, "duration_s": dur, "period_s": period, "taut": taut, "by_n": []}
     n_conv = 2 * max(ns)
-    ref = simulate(_segments(scene, n_conv), method="cvodes", rtol=1e-7, atol=1e-10)
+    with _compiled(False):
+        ref = simulate(_segments(scene, n_conv), method="cvodes", rtol=1e-7, atol=1e-10)
     ref_stats = _stats(ref, period)
     row["reference"] = {"segments": n_conv, "stats": ref_stats, "success": ref.success}
     md_small = None
@@ -139,10 +160,11 @@ def bench_case(name, scene, period, ns, taut, quick):
         dt = largest_stable_dt(sc, n, probe_s=min(dur, 10.0))
         md, _, _ = _timed(lambda: run_moordyn(sc, n, dt))
         md_stats = _moordyn_stats(md, period)
-        tight = simulate(sc, method="cvodes", rtol=1e-7, atol=1e-10)
-        tight_stats = _stats(tight, period)
-        m = _matched(lambda meth, rtol: simulate(sc, method=meth, rtol=rtol, atol=rtol * 1e-3), tight_stats, period)
-        entry = {"segments": n, "moordyn_dt_s": dt, "moordyn_s_per_s": md["wall_s"] / dur,
+        with _compiled(n <= COMPILE_MAX_ELEMENTS):
+            tight = simulate(sc, method="cvodes", rtol=1e-7, atol=1e-10)
+            tight_stats = _stats(tight, period)
+            m = _matched(lambda meth, rtol: simulate(sc, method=meth, rtol=rtol, atol=rtol * 1e-3), tight_stats, period)
+        entry = {"segments": n, "cablesys_compiled": n <= COMPILE_MAX_ELEMENTS, "moordyn_dt_s": dt, "moordyn_s_per_s": md["wall_s"] / dur,
                  "moordyn_stable": md["stable"], "moordyn_stats": md_stats,
                  "moordyn_slack_fraction_per_segment": md["slack_fraction_per_segment"].tolist(),
                  "cablesys_stats": tight_stats,
@@ -167,8 +189,9 @@ def bench_case(name, scene, period, ns, taut, quick):
             run = lambda meth, rtol: simulate(scene, model=wang_model, method=meth, rtol=rtol, atol=rtol * 1e-3)
         else:
             run = lambda meth, rtol: simulate_auto(scene, model="auto", method=meth, rtol=rtol, atol=rtol * 1e-3)
+        compiled = label == "wang" or name == "dale"      # auto may pick many elements on the heave scenes
         try:
-            with warnings.catch_warnings():
+            with warnings.catch_warnings(), _compiled(compiled):
                 warnings.simplefilter("ignore")
                 tight = run("cvodes", 1e-8)
                 m = _matched(run, _stats(tight, period), period)
@@ -179,7 +202,7 @@ def bench_case(name, scene, period, ns, taut, quick):
             row[label] = {"failed": "no setting met matched accuracy", "error": _diff(_stats(tight, period), ref_stats)}
             continue
         res, wall, first, how = m
-        row[label] = {"s_per_s": wall / dur, "build_s": first - wall, "error": _diff(_stats(res, period), ref_stats),
+        row[label] = {"s_per_s": wall / dur, "build_s": first - wall, "compiled": compiled, "error": _diff(_stats(res, period), ref_stats),
                       "settings": how, "steps": res.stats.get("nsteps"), "model": res.stats.get("model"),
                       "speedup_vs_moordyn_n": md_small[0], "speedup": md_small[1] / wall}
     row["wang_speedup"] = row["wang"].get("speedup")
