@@ -30,8 +30,8 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from ..options import option_int, option_number
     from ..outputs import OutputDir
-    from ..reader import option_int, option_number
     from ..scene import load_scene
 
     option_int("--n", args.n, lo=2, hi=MAX_FREQUENCIES, why="the frequency-grid size limit")
@@ -47,7 +47,9 @@ def run(args) -> int:
 
 def _analyse(args, scene, outdir) -> int:
     from ..errors import ParameterError, SolverError
+    from ..export import convert_rao_table, units_of_file
     from ..model import build_model
+    from ..units import output_unit
     from .band import default_band, forcing_frequencies
     from .equivalent import harmonic_response
     from .frequency_response import rao
@@ -62,9 +64,6 @@ def _analyse(args, scene, outdir) -> int:
         plot_sea_response,
     )
     from .sea_response import sea_response
-
-    from ..export import convert_rao_table, units_of_file
-    from ..units import output_unit
     units = getattr(args, "units", None) or units_of_file(args.scene)
     model = build_model(scene)
     p = model.parameters(scene)

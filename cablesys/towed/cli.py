@@ -12,7 +12,7 @@ import json
 import math
 import sys
 
-from ..reader import option_number
+from ..options import option_number
 from .equation import REPORT_SEA_TRIAL
 from .runs import model_runs, read_runs
 
