@@ -87,6 +87,19 @@ def _went_slack(result, scene: Scene) -> bool:
     return bool(result.events) or result.time_slack() > 0 or low <= floor
 
 
+def _decide(scene: Scene, model, tolerance, segments):
+    """(Choice, tolerances, auto?) for the rung ``model`` (default ``numerics.model``); a rung the
+    user forced outside its validity warns with the reason (stacklevel: the public caller's caller)."""
+    name = check_rung(model or getattr(scene.numerics, "model", "auto"))
+    tol = tolerances(scene, tolerance)
+    if name == "auto":
+        return choose(scene, tol), tol, True
+    choice = forced(scene, name, segments, tol)
+    if not choice.numbers.get("valid", True):
+        warnings.warn(f"model '{name}': {choice.reason}", NumericalWarning, stacklevel=3)
+    return choice, tol, False
+
+
 def simulate_auto(scene: Scene, *, model: str | None = None, tolerance=None, segments: int | None = None,
                   **kw):
     """Simulate ``scene`` with the rung ``model`` ("auto": chosen; default ``scene.numerics.model``).
@@ -110,15 +123,8 @@ def simulate_auto(scene: Scene, *, model: str | None = None, tolerance=None, seg
         ``stats["model"] = {name, segments, reason, estimated_error}``; a rung forced outside its
         validity warns (:class:`~cablesys.errors.NumericalWarning`) with the reason.
     """
-    name = check_rung(model or getattr(scene.numerics, "model", "auto"))
-    tol = tolerances(scene, tolerance)
-    if name == "auto":
-        choice = choose(scene, tol)
-    else:
-        choice = forced(scene, name, segments, tol)
-        if not choice.numbers.get("valid", True):
-            warnings.warn(f"model '{name}': {choice.reason}", NumericalWarning, stacklevel=2)
-    result, choice = _run_checked(scene, choice, tol, auto=(name == "auto"), **kw)
+    choice, tol, auto = _decide(scene, model, tolerance, segments)
+    result, choice = _run_checked(scene, choice, tol, auto=auto, **kw)
     result.stats["model"] = choice.as_dict()
     log.info("model %s (N = %d): %s", choice.name, choice.segments, choice.reason)
     return result
@@ -158,14 +164,7 @@ def plan_run(scene: Scene, model: str | None = None, tolerance=None):
     """(scene to run, its CasADi model, Choice) for a caller that runs the simulation itself
     (the ``run`` command streams its output). Warns when a forced rung is outside its validity.
     The ``frequency`` rung is not a time-domain model: callers use :func:`simulate_auto` for it."""
-    name = check_rung(model or getattr(scene.numerics, "model", "auto"))
-    tol = tolerances(scene, tolerance)
-    if name == "auto":
-        choice = choose(scene, tol)
-    else:
-        choice = forced(scene, name, None, tol)
-        if not choice.numbers.get("valid", True):
-            warnings.warn(f"model '{name}': {choice.reason}", NumericalWarning, stacklevel=2)
+    choice, _, _ = _decide(scene, model, tolerance, None)
     if choice.name == "frequency":
         return None, None, choice
     sc = rung_scene(scene, choice.name, choice.segments)
