@@ -23,11 +23,6 @@ from cablesys.scene import (
 from cablesys.scene.scene import single_section_scene
 
 
-@pytest.fixture(autouse=True)
-def _virtual_machine(monkeypatch):
-    """Short runs of freshly built models: CasADi's virtual machine beats compiling them to C."""
-    monkeypatch.setenv("CABLESYS_COMPILE", "0")
-
 def _stiff_pendulum(period=8.0, ae=1e9, amplitude=0.3):
     """A short, stiff, drag-free-cable pendulum: nothing bows, the stretch is far above the forcing."""
     cable = Cable(length=20.0, tension_ref=1540.0, ae=ae, diameter=0.01, mass_per_length=0.5,

@@ -10,10 +10,6 @@ from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMoti
 from cablesys.scene.scene import single_section_scene
 
 
-@pytest.fixture(autouse=True)
-def _virtual_machine(monkeypatch):
-    monkeypatch.setenv("CABLESYS_COMPILE", "0")
-
 
 def random_scene(rng: np.random.Generator):
     """A short cable and a sphere: length 5-20 m, strain 0.3-3 %, body 50-200 kg, cable 2-20 % of the

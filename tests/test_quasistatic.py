@@ -21,11 +21,6 @@ from cablesys.scene.scene import single_section_scene
 from cablesys.simulate import simulate
 
 
-@pytest.fixture(autouse=True)
-def _virtual_machine(monkeypatch):
-    """Short runs of freshly built models: CasADi's virtual machine beats compiling them to C."""
-    monkeypatch.setenv("CABLESYS_COMPILE", "0")
-
 def _pendulum(ae=1e9, cd=0.0, cda=0.0, heave=None, duration=20.0):
     """20 m cable of 5 kg/m (40 N/m in water) with a 200 kg body (1500 N in water)."""
     cable = Cable(length=20.0, tension_ref=1900.0, ae=ae, diameter=0.03, mass_per_length=5.0,

@@ -10,8 +10,7 @@ from cablesys.cli import main
 SCENE = Path(cablesys.__file__).parent / "data" / "heave_300m.toml"
 
 
-def test_run_segmented_scene(tmp_path, monkeypatch):
-    monkeypatch.setenv("CABLESYS_COMPILE", "0")        # no C build of the model in a short test
+def test_run_segmented_scene(tmp_path):
     out = tmp_path / "heave"
     assert main(["run", str(SCENE), "--out", str(out), "--duration", "3", "--method", "rk",
                  "--model", "segmented", "--window", "1", "3"]) == 0
