@@ -28,21 +28,21 @@ _EXPORTS = {
     "Scene": ".scene", "load_scene": ".scene", "dump_scene": ".scene", "dale_scene": ".scene",
     "default_scene": ".scene",
     "CableModel": ".model", "build_model": ".model",
-    "Simulator": ".simulate",
+    "Simulator": ".time_domain", "simulate": ".time_domain", "design": ".isolation", "sweep": ".sweeps",
     "steady_state": ".linear", "linearize": ".linear", "modes": ".linear", "rao": ".linear",
     "harmonic_response": ".linear", "periodic_steady_state": ".linear", "stochastic_response": ".linear",
     "jonswap": ".linear", "pierson_moskowitz": ".linear",
 }
-# subpackages reachable as attributes (``cablesys.slack.solve_equilibrium``, ``cablesys.sweep(...)``,
-# ``cablesys.simulate.simulate``, ``cablesys.design.design``): a function of the same name as a
-# subpackage is not exported here, where it would hide the subpackage
-_SUBPACKAGES = ("design", "ladder", "linear", "model", "plots", "scene", "simulate", "slack", "sweep", "towed")
+# subpackages reachable as attributes (``cablesys.slack.solve_equilibrium``); packages are nouns
+# (``time_domain``, ``isolation``, ``sweeps``) and their verbs (``simulate``, ``design``, ``sweep``)
+# are exported above, so no module and function share a name
+_SUBPACKAGES = ("isolation", "ladder", "linear", "model", "plots", "scene", "slack", "sweeps", "time_domain", "towed")
 
 __all__ = ["AnalysisResult", "CableModel", "NumericalWarning", "ParameterError", "Scene", "Simulator",
            "SolverError", "TimeResult", "build_model", "dale_scene", "default_scene", "design", "dump_scene",
-           "harmonic_response", "jonswap", "ladder", "linear", "linearize", "load_scene", "model", "modes",
-           "periodic_steady_state", "pierson_moskowitz", "plots", "rao", "scene", "simulate", "slack",
-           "steady_state", "stochastic_response", "sweep", "towed"]
+           "harmonic_response", "isolation", "jonswap", "ladder", "linear", "linearize", "load_scene", "model",
+           "modes", "periodic_steady_state", "pierson_moskowitz", "plots", "rao", "scene", "simulate", "slack",
+           "steady_state", "stochastic_response", "sweep", "sweeps", "time_domain", "towed"]
 
 
 def __getattr__(name):

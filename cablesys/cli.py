@@ -18,12 +18,12 @@ from .messages import casadi_messages_to_log
 
 # module -> provides register(subparsers); order is the order in --help
 COMMAND_MODULES = (
-    "cablesys.simulate.cli",    # run, scene (Wang 1971 time domain)
+    "cablesys.time_domain.cli",    # run, scene (Wang 1971 time domain)
     "cablesys.slack.cli",       # slack  (Griffin & Rosenthal 1985)
     "cablesys.linear.cli",      # rao    (steady state, linearization, RAOs)
-    "cablesys.design.cli",      # design (dual-isolation NLP)
+    "cablesys.isolation.cli",      # design (dual-isolation NLP)
     "cablesys.towed.cli",       # towed  (Kennedy & Strahan 1981)
-    "cablesys.sweep.cli",       # sweep  (parameter sweeps of any analysis)
+    "cablesys.sweeps.cli",       # sweep  (parameter sweeps of any analysis)
 )
 
 

@@ -15,7 +15,7 @@ state. For example CVODES with a looser Newton convergence test::
                               options={"linear_multistep_method": "bdf", "nonlin_conv_coeff": 0.5})
 
 This module is a leaf (no CasADi import): the scene validates names against it and
-:mod:`cablesys.simulate` builds the integrators.
+:mod:`cablesys.time_domain` builds the integrators.
 """
 
 from __future__ import annotations

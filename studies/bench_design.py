@@ -1,4 +1,4 @@
-"""Benchmark of the isolation-design NLP (the example of :mod:`cablesys.design.example`).
+"""Benchmark of the isolation-design NLP (the example of :mod:`cablesys.isolation.example`).
 
 Measured in one run (so ratios are machine-independent): one objective evaluation, one
 objective-plus-gradient evaluation (reverse-mode AD through the rootfinder, linearization and
@@ -23,11 +23,11 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import parse_args, write_json  # noqa: E402
 
-from cablesys.design import design  # noqa: E402
-from cablesys.design.example import dual_scene, example_settings  # noqa: E402
-from cablesys.design.objective import nlp_functions  # noqa: E402
-from cablesys.design.problem import current_values, variables  # noqa: E402
-from cablesys.design.solve import equivalent_jacobian_shift  # noqa: E402
+from cablesys.isolation import design  # noqa: E402
+from cablesys.isolation.example import dual_scene, example_settings  # noqa: E402
+from cablesys.isolation.objective import nlp_functions  # noqa: E402
+from cablesys.isolation.problem import current_values, variables  # noqa: E402
+from cablesys.isolation.solve import equivalent_jacobian_shift  # noqa: E402
 from cablesys.linear.steady import steady_state  # noqa: E402
 from cablesys.model import build_model  # noqa: E402
 

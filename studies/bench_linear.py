@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from cablesys.linear import rao
-from cablesys.linear.linearize import linearize
+from cablesys.linear.linearization import linearize
 from cablesys.linear.periodic import (
     periodic_steady_state,
     periodic_sweep,
@@ -27,7 +27,7 @@ from cablesys.linear.periodic import (
 from cablesys.linear.steady import steady_state
 from cablesys.model import build_model
 from cablesys.scene import dale_scene
-from cablesys.simulate import simulate
+from cablesys.time_domain import simulate
 
 TARGET = 1e-4
 

@@ -41,8 +41,8 @@ from cablesys.linear import linearize, modes, rao
 from cablesys.model import build_model
 from cablesys.plots import save_figure
 from cablesys.scene import OMEGA_N_MEASURED, dale_scene
-from cablesys.simulate import IntegratorSettings, Simulator, initial_state
-from cablesys.sweep.backends import local_cores
+from cablesys.sweeps.backends import local_cores
+from cablesys.time_domain import IntegratorSettings, Simulator, initial_state
 
 FX, FY = "top_motion.x[0].frequency", "top_motion.y[0].frequency"
 

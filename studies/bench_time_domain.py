@@ -46,8 +46,8 @@ from _common import WangNumpy, parse_args, setup_matplotlib, write_json  # noqa:
 from cablesys.model import build_model  # noqa: E402
 from cablesys.plots import save_figure  # noqa: E402
 from cablesys.scene import TopMotion, dale_scene  # noqa: E402
-from cablesys.simulate import IntegratorSettings, Simulator  # noqa: E402
-from cablesys.simulate.run import initial_state  # noqa: E402
+from cablesys.time_domain import IntegratorSettings, Simulator  # noqa: E402
+from cablesys.time_domain.run import initial_state  # noqa: E402
 
 RTOL, ATOL = 1e-6, 1e-10
 STATE = ("phi", "u", "phi_rate", "u_rate")

@@ -37,11 +37,11 @@ from _common import setup_matplotlib, write_json  # noqa: E402
 from _moordyn import largest_stable_dt, run_moordyn  # noqa: E402
 
 import cablesys  # noqa: E402
+from cablesys.ladder import metrics as M  # noqa: E402
 from cablesys.ladder import simulate_auto  # noqa: E402
 from cablesys.model import build_model  # noqa: E402
-from cablesys.ladder import metrics as M  # noqa: E402
 from cablesys.scene import dale_scene, load_scene  # noqa: E402
-from cablesys.simulate import simulate  # noqa: E402
+from cablesys.time_domain import simulate  # noqa: E402
 
 DATA = Path(cablesys.__file__).resolve().parent / "data"
 RTOLS = (1e-3, 1e-4, 1e-5, 1e-6)

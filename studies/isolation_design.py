@@ -2,8 +2,8 @@
 
 A 300 kg instrument package hangs 200 m below a ship in a JONSWAP sea (Hs 2.5 m, Tp 9 s):
 baseline, one polyester rope; designed, 150 m rope - heave-damper plate - 50 m rope with AE and
-C_I of both ropes chosen by the NLP of :mod:`cablesys.design` (example values and bounds with
-their reasons in :mod:`cablesys.design.example`). Outputs:
+C_I of both ropes chosen by the NLP of :mod:`cablesys.isolation` (example values and bounds with
+their reasons in :mod:`cablesys.isolation.example`). Outputs:
 
 * RAO of the package's heave per unit sea amplitude, before/after, over the sea spectrum;
 * the parameter table (Markdown), ``isolation_design.json`` and the problem as a scene TOML with a
@@ -27,14 +27,14 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
 
-from cablesys.design import design, settings_to_toml  # noqa: E402
-from cablesys.design.example import baseline_scene, dual_scene, example_settings  # noqa: E402
+from cablesys.isolation import design, settings_to_toml  # noqa: E402
+from cablesys.isolation.example import baseline_scene, dual_scene, example_settings  # noqa: E402
 from cablesys.linear.spectra import jonswap  # noqa: E402
 from cablesys.linear.stochastic import stochastic_response  # noqa: E402
 from cablesys.model import build_model  # noqa: E402
-from cablesys.scene import Sinusoid, TopMotion, dump_scene  # noqa: E402
-from cablesys.simulate import simulate  # noqa: E402
 from cablesys.plots import save_figure  # noqa: E402
+from cablesys.scene import Sinusoid, TopMotion, dump_scene  # noqa: E402
+from cablesys.time_domain import simulate  # noqa: E402
 
 TRANSIENT_S = 100.0
 

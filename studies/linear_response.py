@@ -16,19 +16,32 @@ from pathlib import Path
 import numpy as np
 
 from cablesys import units as U
-from cablesys.linear.equivalent import harmonic_response
-from cablesys.linear.linearize import linearize
 from cablesys.linear import modes as modes_of
-from cablesys.linear.periodic import periodic_steady_state, scene_input_amplitude
-from cablesys.linear.plots import plot_modes, plot_nonlinear_rao, plot_rao_bode, plot_response_spectrum
 from cablesys.linear import rao
+from cablesys.linear.equivalent import harmonic_response
+from cablesys.linear.linearization import linearize
+from cablesys.linear.periodic import periodic_steady_state, scene_input_amplitude
+from cablesys.linear.plots import (
+    plot_modes,
+    plot_nonlinear_rao,
+    plot_rao_bode,
+    plot_response_spectrum,
+)
 from cablesys.linear.spectra import jonswap
 from cablesys.linear.stochastic import stochastic_response
 from cablesys.model import build_model
-from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMotion, dale_scene
+from cablesys.scene import (
+    Body,
+    Cable,
+    Environment,
+    Numerics,
+    Sinusoid,
+    TopMotion,
+    dale_scene,
+)
 from cablesys.scene.dale import OMEGA_N_MEASURED
 from cablesys.scene.scene import single_section_scene
-from cablesys.simulate import simulate
+from cablesys.time_domain import simulate
 
 FULL_SCALE_OMEGA_N_MEASURED = 0.49     # rad/s, Wang (1971) Table 1, full-scale column
 

@@ -32,9 +32,9 @@ import cablesys
 from cablesys.model import build_model
 from cablesys.plots import save_figure
 from cablesys.scene import OMEGA_N_MEASURED, dale_scene, load_scene
-from cablesys.simulate import simulate
-from cablesys.simulate.integrators import IntegratorSettings
-from cablesys.simulate.run import Simulator, initial_state
+from cablesys.time_domain import simulate
+from cablesys.time_domain.integrators import IntegratorSettings
+from cablesys.time_domain.run import Simulator, initial_state
 
 HEAVE_SCENE = Path(cablesys.__file__).parent / "data" / "heave_300m.toml"
 METRICS = ("x_amp", "y_amp", "top_max", "top_min")

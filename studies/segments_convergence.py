@@ -29,7 +29,7 @@ from _common import parse_args, setup_matplotlib, write_json
 
 from cablesys import units as U
 from cablesys.linear import modes as modes_of
-from cablesys.linear.linearize import linearize
+from cablesys.linear.linearization import linearize
 from cablesys.linear.spectra import jonswap
 from cablesys.linear.stochastic import stochastic_response
 from cablesys.model import build_model

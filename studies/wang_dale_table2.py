@@ -33,14 +33,20 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
 
 from cablesys import units as U  # noqa: E402
-from cablesys.model import build_model  # noqa: E402
-from cablesys.scene import dale_scene  # noqa: E402
-from cablesys.scene.dale import CABLE_CD, CABLE_CT, OMEGA_N_MEASURED, SPHERE_CD, TOP_MOTION_PEAK_TO_PEAK  # noqa: E402
-from cablesys.simulate import IntegratorSettings, Simulator  # noqa: E402
-from cablesys.simulate.run import initial_state  # noqa: E402
-from cablesys.linear.linearize import linearize  # noqa: E402
 from cablesys.linear import modes  # noqa: E402
+from cablesys.linear.linearization import linearize  # noqa: E402
+from cablesys.model import build_model  # noqa: E402
 from cablesys.plots import save_figure  # noqa: E402
+from cablesys.scene import dale_scene  # noqa: E402
+from cablesys.scene.dale import (  # noqa: E402
+    CABLE_CD,
+    CABLE_CT,
+    OMEGA_N_MEASURED,
+    SPHERE_CD,
+    TOP_MOTION_PEAK_TO_PEAK,
+)
+from cablesys.time_domain import IntegratorSettings, Simulator  # noqa: E402
+from cablesys.time_domain.run import initial_state  # noqa: E402
 
 RATIOS = (0.5, 1.0, 1.5, 2.0)
 K_PERIODS = 3                  # amplitude = half peak-to-peak over the last K periods

@@ -27,9 +27,18 @@ from scipy.special import ellipk
 
 from cablesys import units as U
 from cablesys.model import build_model
-from cablesys.scene import Body, Cable, Environment, Initial, Numerics, Sinusoid, TopMotion, single_section_scene
-from cablesys.simulate import simulate
 from cablesys.plots import save_figure  # noqa: E402
+from cablesys.scene import (
+    Body,
+    Cable,
+    Environment,
+    Initial,
+    Numerics,
+    Sinusoid,
+    TopMotion,
+    single_section_scene,
+)
+from cablesys.time_domain import simulate
 
 
 def spring_scene(*, k_lb_ft=2.0, length_ft=10.0, body_slug=1.0, weight_lb=32.2, cable_slug=0.0,

@@ -3,7 +3,7 @@
     python studies/work_precision.py --out DIR [--quick]
 
 1. For the Dale scene (AE = 1000 lb) and a stiff steel-like variant (AE a thousand times
-   larger), every integrator of ``cablesys.simulate`` is run over a sweep of tolerances
+   larger), every integrator of ``cablesys.time_domain`` is run over a sweep of tolerances
    (adaptive 'cvodes', 'cvodes-adams', 'idas': rtol 1e-3 ... 1e-10 with atol = 1e-3 rtol) or
    of steps per output interval (fixed-step 'rk' and 'collocation'). The error is the largest
    distance of the lower body from its position in a CVODES run at rtol 1e-12 (atol 1e-14),
@@ -30,14 +30,14 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
 
 from cablesys import units as U  # noqa: E402
-from cablesys.model import build_model  # noqa: E402
-from cablesys.scene import dale_scene  # noqa: E402
-from cablesys.simulate import IntegratorSettings, Simulator  # noqa: E402
-from cablesys.simulate.run import initial_state  # noqa: E402
-from cablesys.linear.linearize import linearize  # noqa: E402
-from cablesys.linear import modes  # noqa: E402
-from cablesys.plots import save_figure  # noqa: E402
 from cablesys.integration import METHODS  # noqa: E402
+from cablesys.linear import modes  # noqa: E402
+from cablesys.linear.linearization import linearize  # noqa: E402
+from cablesys.model import build_model  # noqa: E402
+from cablesys.plots import save_figure  # noqa: E402
+from cablesys.scene import dale_scene  # noqa: E402
+from cablesys.time_domain import IntegratorSettings, Simulator  # noqa: E402
+from cablesys.time_domain.run import initial_state  # noqa: E402
 
 ADAPTIVE = tuple(name for name, m in METHODS.items() if m.adaptive)       # the one registry
 FIXED = tuple(name for name, m in METHODS.items() if not m.adaptive)

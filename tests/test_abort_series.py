@@ -18,7 +18,7 @@ SCRIPT = textwrap.dedent("""
     import numpy as np
     from cablesys.scene import (Body, Cable, Environment, Numerics, Sinusoid, TimeSeries, TopMotion,
                                 single_section_scene)
-    from cablesys.simulate import simulate
+    from cablesys.time_domain import simulate
 
     # 300 m steel wire (25 mm, AE 4e7 N, 2.5 kg/m) with a 2 t sphere (1.6 m); 1 m heave at T = 6 s
     # goes slack each cycle. The 305-sample all-zero series puts interior spline knots on output times

@@ -31,9 +31,9 @@ LAYERS = [
     ("scene", ("cablesys.scene",)),
     ("model", ("cablesys.model",)),
     ("statics", ("cablesys.statics",)),
-    ("analyses", ("cablesys.simulate", "cablesys.linear", "cablesys.slack", "cablesys.towed")),
-    ("design", ("cablesys.design", "cablesys.ladder", "cablesys.verdict", "cablesys.examples", "cablesys.export")),
-    ("workflows", ("cablesys.sweep",)),
+    ("analyses", ("cablesys.time_domain", "cablesys.linear", "cablesys.slack", "cablesys.towed")),
+    ("design", ("cablesys.isolation", "cablesys.ladder", "cablesys.verdict", "cablesys.examples", "cablesys.export")),
+    ("workflows", ("cablesys.sweeps",)),
     ("plots", ("cablesys.plots",)),
     ("cli", ("cablesys.cli", "cablesys.__main__")),
 ]

@@ -10,13 +10,13 @@ import math
 import numpy as np
 import pytest
 
-from cablesys.linear.linearize import linearize
 from cablesys.linear import modes
+from cablesys.linear.linearization import linearize
 from cablesys.linear.steady import steady_state
 from cablesys.model import build_model
 from cablesys.scene import Body, Cable, Numerics, Scene, Section, Sinusoid, TopMotion
 from cablesys.scene.scene import single_section_scene
-from cablesys.simulate import simulate
+from cablesys.time_domain import simulate
 
 
 def _cable(length, ae, *, w=0.0, m=0.0, mass=True, d=0.01, cd=0.0, ct=0.0, ci=0.0, floor=0.0):

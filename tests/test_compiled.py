@@ -88,8 +88,8 @@ def test_concurrent_builds_share_one_library(cache):
 def test_simulation_compiled_agrees_with_virtual_machine(cache, method):
     from cablesys.model import build_model
     from cablesys.scene import dale_scene
-    from cablesys.simulate import Simulator, simulate
-    from cablesys.simulate.integrators import IntegratorSettings
+    from cablesys.time_domain import Simulator, simulate
+    from cablesys.time_domain.integrators import IntegratorSettings
     scene = dale_scene().with_numerics(duration=3.0, drag_segments=2)
     model = build_model(scene)
     res = {}

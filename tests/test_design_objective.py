@@ -4,10 +4,15 @@ import casadi as ca
 import numpy as np
 import pytest
 
-from cablesys.design.example import baseline_scene, dual_scene, example_settings
-from cablesys.design.objective import complex_solve, nlp_functions, parameter_map, response_functions
-from cablesys.design.problem import variables
-from cablesys.design.solve import equivalent_jacobian_shift
+from cablesys.isolation.example import baseline_scene, dual_scene, example_settings
+from cablesys.isolation.objective import (
+    complex_solve,
+    nlp_functions,
+    parameter_map,
+    response_functions,
+)
+from cablesys.isolation.problem import variables
+from cablesys.isolation.solve import equivalent_jacobian_shift
 from cablesys.linear.steady import steady_state
 from cablesys.model import build_model
 

@@ -6,11 +6,16 @@ import json
 import numpy as np
 import pytest
 
-from cablesys.design import DesignInfeasible, DesignSettings, design, settings_from_dict
-from cablesys.design import cli as design_cli
-from cablesys.design.example import baseline_scene, dual_scene, example_settings
-from cablesys.design.solve import equivalent_jacobian_shift
 from cablesys.errors import ParameterError
+from cablesys.isolation import (
+    DesignInfeasible,
+    DesignSettings,
+    design,
+    settings_from_dict,
+)
+from cablesys.isolation import cli as design_cli
+from cablesys.isolation.example import baseline_scene, dual_scene, example_settings
+from cablesys.isolation.solve import equivalent_jacobian_shift
 from cablesys.model import build_model
 from cablesys.scene import dump_scene
 
@@ -52,8 +57,8 @@ def test_optimum_is_a_local_minimum(example):
     scene = dual_scene(ae=(example.value("ae_1"), example.value("ae_2")),
                        c_i=(example.value("internal_damping_1"), example.value("internal_damping_2")))
     s1 = example_settings(n_starts=1, outer_iterations=1)
-    from cablesys.design.objective import nlp_functions
-    from cablesys.design.problem import variables
+    from cablesys.isolation.objective import nlp_functions
+    from cablesys.isolation.problem import variables
     from cablesys.linear.steady import steady_state
     model = build_model(scene)
     p = model.parameters(scene)
@@ -140,7 +145,8 @@ def test_cli_design_writes_json(tmp_path, capsys):
 
 def test_settings_toml_round_trip():
     import tomllib
-    from cablesys.design import settings_to_toml
+
+    from cablesys.isolation import settings_to_toml
     s = example_settings(intermediate_mass_bounds=(900.0, 3600.0), objective="rao_band", band=(0.6, 1.2))
     assert settings_from_dict(tomllib.loads(settings_to_toml(s))["design"]) == s
 

@@ -4,7 +4,7 @@ drawn curve is numerical noise (a response below 1e-9 of the largest on its axes
 import numpy as np
 import pytest
 
-import cablesys.design.plots as design_plots
+import cablesys.isolation.plots as design_plots
 import cablesys.linear.plots as linear_plots
 import cablesys.plots.time_domain as td_plots
 from cablesys.cli import main

@@ -12,7 +12,15 @@ import tomllib
 from pathlib import Path
 
 import pytest
-from fuzz_common import REPORT, dumps, encoded, fuzz_settings, mutated, nonfinite_fields, tally
+from fuzz_common import (
+    REPORT,
+    dumps,
+    encoded,
+    fuzz_settings,
+    mutated,
+    nonfinite_fields,
+    tally,
+)
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -137,7 +145,7 @@ DESIGN = {"ae_bounds": [[1e6, 1e8], [1e5, 1e7]], "damping_bounds": [[10.0, 1e4],
 @fuzz_settings(40)
 @given(table=mutated(DESIGN, extra_keys=("foo", "n_starts", "tol")))
 def test_design_settings_give_settings_or_a_named_error(table):
-    from cablesys.design import settings_from_dict
+    from cablesys.isolation import settings_from_dict
     try:
         s = settings_from_dict(table)
     except ParameterError:
@@ -146,7 +154,7 @@ def test_design_settings_give_settings_or_a_named_error(table):
 
 
 def test_design_loader_reads_a_scene_file_with_a_design_table(tmp_path):
-    from cablesys.design.cli import load
+    from cablesys.isolation.cli import load
     f = tmp_path / "d.toml"
     f.write_text(CHAIN + "\n[design]\nae_bounds = [[1e6, 1e8], [1e5, 1e7]]\n"
                  "damping_bounds = [[10.0, 1e4], [10.0, 1e4]]\nhs = \"2\"\n")

@@ -6,7 +6,7 @@ import pytest
 from cablesys.errors import ParameterError
 from cablesys.integration import METHODS, IntegratorMethod, resolve
 from cablesys.scene import INTEGRATORS, Numerics, dale_scene
-from cablesys.simulate import IntegratorSettings, simulate
+from cablesys.time_domain import IntegratorSettings, simulate
 
 
 def test_the_scene_checks_names_against_the_one_registry():

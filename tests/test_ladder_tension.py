@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from cablesys.linear.linearize import linearize
+from cablesys.linear.linearization import linearize
 from cablesys.linear.steady import steady_state
 from cablesys.model import build_model
 from cablesys.scene import dale_scene

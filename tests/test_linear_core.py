@@ -6,16 +6,25 @@ import numpy as np
 import pytest
 
 from cablesys.errors import ParameterError, SolverError
-from cablesys.linear.equivalent import describing_function, describing_matrices, harmonic_response
-from cablesys.linear.linearize import linearize
-from cablesys.linear import modes
+from cablesys.linear import modes, rao
+from cablesys.linear.equivalent import (
+    describing_function,
+    describing_matrices,
+    harmonic_response,
+)
+from cablesys.linear.linearization import linearize
 from cablesys.linear.periodic import periodic_steady_state, scene_input_amplitude
-from cablesys.linear import rao
-from cablesys.linear.spectra import jonswap, pierson_moskowitz, significant_amplitude, slack_probability, spectral_moment
+from cablesys.linear.spectra import (
+    jonswap,
+    pierson_moskowitz,
+    significant_amplitude,
+    slack_probability,
+    spectral_moment,
+)
 from cablesys.linear.steady import steady_state
 from cablesys.model import build_model
 from cablesys.scene import dale_scene
-from cablesys.simulate import simulate
+from cablesys.time_domain import simulate
 
 
 @pytest.fixture(scope="module")

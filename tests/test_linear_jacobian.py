@@ -3,7 +3,13 @@
 import numpy as np
 
 from cablesys.linear import linearize
-from cablesys.linear.linearize import from_jacobian, functions, operating_xi, residual_jacobian, taut_parameters
+from cablesys.linear.linearization import (
+    from_jacobian,
+    functions,
+    operating_xi,
+    residual_jacobian,
+    taut_parameters,
+)
 from cablesys.model import build_model
 from cablesys.scene import dale_scene
 

@@ -18,7 +18,7 @@ def test_current_deflected_equilibrium_is_where_a_long_run_settles(current, spee
     model = build_model(scene)
     ss = steady_state(model, model.parameters(scene))
     assert abs(ss.q[0]) > 0.02                                   # visibly deflected
-    from cablesys.simulate import simulate
+    from cablesys.time_domain import simulate
     hanging = scene.replace(initial=Initial(phi=0.0, u=ss.q[1]))
     r = simulate(hanging, model=model)
     assert r.success

@@ -9,6 +9,7 @@ exported class has a docstring; every result class (a subclass of ``ResultBase``
 import ast
 import dataclasses
 import importlib
+import importlib.util
 import inspect
 import pkgutil
 import re
@@ -212,7 +213,7 @@ def test_real_results_of_every_wang_analysis_keep_the_protocol():
     lin = cablesys.linearize(model, p)
     w, z = scene_input_amplitude(scene)
     om = np.linspace(0.3, 3.0, 40)
-    results = [cablesys.simulate.simulate(scene, model=model), lin, cablesys.modes(lin),
+    results = [cablesys.simulate(scene, model=model), lin, cablesys.modes(lin),
                cablesys.rao(lin, np.linspace(0.5, 2.0, 20)), harmonic_response(model, p, [w], z),
                periodic_steady_state(model, p, w, input_amplitude=z, n_harmonics=8),
                stochastic_response(model, p, om, jonswap(om, 0.01, 5.0), n_log2=6)]
@@ -231,3 +232,22 @@ def test_real_slack_results_keep_the_protocol():
     eq, modes = cablesys.slack.analyze(scene, 4, n_elements=40)
     for res in (eq, modes):
         _check_protocol(res)
+
+
+def test_no_module_and_function_share_a_name():
+    """Packages are nouns and verbs are functions: ``cablesys.simulate`` is a function, never a package
+    that hides (or is hidden by) a function of the same name (issue 10)."""
+    clashes = []
+    for info in pkgutil.walk_packages(cablesys.__path__, "cablesys."):
+        module = importlib.import_module(info.name)
+        for name in getattr(module, "__all__", ()):
+            obj = getattr(module, name)
+            if info.ispkg and inspect.isfunction(obj) and importlib.util.find_spec(f"{info.name}.{name}"):
+                clashes.append(f"{info.name}.{name}")
+    for name in cablesys.__all__:
+        obj = getattr(cablesys, name)
+        if inspect.isfunction(obj) and importlib.util.find_spec(f"cablesys.{name}") is not None:
+            clashes.append(f"cablesys.{name}")
+    assert not clashes, f"a function and a module share these names: {clashes}"
+    assert inspect.isfunction(cablesys.simulate) and inspect.isfunction(cablesys.sweep)
+    assert inspect.isfunction(cablesys.design)

@@ -18,7 +18,7 @@ from cablesys.scene import (
     dale_scene,
 )
 from cablesys.scene.scene import single_section_scene
-from cablesys.simulate import simulate
+from cablesys.time_domain import simulate
 
 
 def _pendulum(ae=1e9, cd=0.0, cda=0.0, heave=None, duration=20.0):

@@ -17,8 +17,8 @@ from cablesys.model import build_model
 from cablesys.outputs import CsvStream, OutputDir, atomic_write_text
 from cablesys.results import AnalysisResult
 from cablesys.scene import dale_scene
-from cablesys.simulate import IntegratorSettings, Simulator, initial_state, simulate
-from cablesys.simulate.record import (
+from cablesys.time_domain import IntegratorSettings, Simulator, initial_state, simulate
+from cablesys.time_domain.record import (
     InterruptFlag,
     RunInterrupted,
     RunRecord,
@@ -92,7 +92,7 @@ def test_interrupt_between_integrator_calls_keeps_the_partial_record(dale, monke
     with RunInterrupted carrying the series up to the last output time reached."""
     import signal
 
-    from cablesys.simulate import track
+    from cablesys.time_domain import track
     scene, model, p, x0 = dale
     monkeypatch.setattr(track.Track, "FLUSH_S", 0.0)          # hand over every chunk
 

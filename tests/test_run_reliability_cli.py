@@ -93,7 +93,7 @@ def test_killed_run_leaves_a_running_manifest_and_a_readable_prefix(tmp_path):
 
 
 def test_out_is_checked_before_any_computation(tmp_path, capsys, monkeypatch):
-    from cablesys.simulate import run
+    from cablesys.time_domain import run
 
     def forbidden(*a, **k):
         raise AssertionError("computation started before --out was checked")
@@ -152,7 +152,7 @@ def test_other_commands_check_out_first(tmp_path, capsys):
 
 
 def test_progress_line_only_for_long_runs(capsys):
-    from cablesys.simulate.cli import _Progress
+    from cablesys.time_domain.cli import _Progress
     p = _Progress()
     p(1.0, 10.0, 0.5)
     p(10.0, 10.0, 1.0)                    # a short run: finished before the first line is due
@@ -167,7 +167,7 @@ def test_progress_line_only_for_long_runs(capsys):
 def test_an_interrupted_analysis_is_marked_and_exits_130(tmp_path, capsys, monkeypatch):
     """Any sub-command: an interrupt during the analysis leaves status interrupted, exit 130."""
     import importlib
-    lin = importlib.import_module("cablesys.linear.linearize")     # the module (the package exports the function)
+    lin = importlib.import_module("cablesys.linear.linearization")     # the module (the package exports the function)
 
     def interrupted(*a, **k):
         raise KeyboardInterrupt
@@ -181,7 +181,7 @@ def test_an_interrupted_analysis_is_marked_and_exits_130(tmp_path, capsys, monke
 def test_interrupted_dale_table_keeps_the_rows_and_the_main_run(tmp_path, capsys, monkeypatch):
     """`cablesys run` (the Dale table) interrupted in its third frequency: the two rows computed and
     the omega = omega_n run's files are written, the manifest says interrupted, exit 130."""
-    from cablesys.simulate import run as run_module
+    from cablesys.time_domain import run as run_module
     calls = []
     real = run_module.simulate
 

@@ -8,8 +8,17 @@ import pytest
 
 from cablesys import units as U
 from cablesys.errors import ParameterError
-from cablesys.scene import (Body, Cable, TimeSeries, TopMotion,
-                            dale_scene, default_scene, dump_scene, load_scene, scene_from_dict)
+from cablesys.scene import (
+    Body,
+    Cable,
+    TimeSeries,
+    TopMotion,
+    dale_scene,
+    default_scene,
+    dump_scene,
+    load_scene,
+    scene_from_dict,
+)
 
 
 def dale_toml(units="SI"):
@@ -105,7 +114,7 @@ def test_missing_file_and_bad_toml(tmp_path):
 def test_time_series_top_motion_matches_sinusoid():
     """A sampled sinusoid, spline-interpolated, drives the body like the sinusoid itself."""
     from cablesys.model import build_model
-    from cablesys.simulate import simulate
+    from cablesys.time_domain import simulate
     base = dale_scene(duration=12.0)
     w, a = base.top_motion.x[0].frequency, base.top_motion.x[0].amplitude
     t = np.arange(0.0, 13.0, 0.05)

@@ -6,10 +6,10 @@ import pytest
 from cablesys.model import build_model
 from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMotion
 from cablesys.scene.scene import single_section_scene
-from cablesys.simulate import simulate
-from cablesys.simulate.integrators import IntegratorSettings
-from cablesys.simulate.run import Simulator
 from cablesys.statics import steady_state
+from cablesys.time_domain import simulate
+from cablesys.time_domain.integrators import IntegratorSettings
+from cablesys.time_domain.run import Simulator
 
 G = 9.80665
 

@@ -8,8 +8,8 @@ from cablesys.errors import ParameterError
 from cablesys.model import build_model
 from cablesys.model.segmented import SegmentedModel, build_segmented_model
 from cablesys.scene import dale_scene
-from cablesys.simulate import simulate
 from cablesys.statics import steady_state
+from cablesys.time_domain import simulate
 
 PERIOD = 2 * np.pi / 1.71
 

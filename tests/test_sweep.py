@@ -9,9 +9,9 @@ import cablesys
 from cablesys import units as U
 from cablesys.errors import ParameterError
 from cablesys.scene import OMEGA_N_MEASURED, dale_scene
-from cablesys.simulate import simulate
-from cablesys.sweep import Grid, backends, parse_values, parse_vary
-from cablesys.sweep.worker import process_cache
+from cablesys.sweeps import Grid, backends, parse_values, parse_vary
+from cablesys.sweeps.worker import process_cache
+from cablesys.time_domain import simulate
 
 DURATION = 19.0          # 6 periods at 1.8 omega_n: amplitudes over the last 3
 RATIOS = (1.8, 2.2)
@@ -80,7 +80,7 @@ def test_failures_are_recorded_and_the_sweep_completes():
 
 @pytest.mark.slow
 def test_an_infeasible_design_is_recorded():
-    from cablesys.design.example import dual_scene, example_settings
+    from cablesys.isolation.example import dual_scene, example_settings
     ds = cablesys.sweep(dual_scene(), {"design.n_sigma": [40.0]}, "design", workers=1, progress=False,
                         options={"settings": example_settings(n_starts=1, outer_iterations=1)})
     assert ds["status"].values[0] == "infeasible"

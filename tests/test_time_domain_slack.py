@@ -5,8 +5,17 @@ import math
 import numpy as np
 import pytest
 
-from cablesys.scene import Body, Cable, Environment, Initial, Numerics, Sinusoid, TopMotion, single_section_scene
-from cablesys.simulate import simulate
+from cablesys.scene import (
+    Body,
+    Cable,
+    Environment,
+    Initial,
+    Numerics,
+    Sinusoid,
+    TopMotion,
+    single_section_scene,
+)
+from cablesys.time_domain import simulate
 
 M, W, K, L, U0 = 10.0, 50.0, 1000.0, 10.0, -0.2      # kg, N, N/m, m, m (starts slack)
 
@@ -101,10 +110,10 @@ def test_integrator_failure_keeps_results_and_says_where():
 def test_step_budget_is_reported_not_multiplied():
     """One output interval needing more steps than max_num_steps: a named failure that keeps the results
     so far and names the budget; a budget large enough for the interval reaches the reference state."""
-    from cablesys.scene import dale_scene
-    from cablesys.simulate import IntegratorSettings, Simulator
-    from cablesys.simulate.run import initial_state
     from cablesys.model import build_model
+    from cablesys.scene import dale_scene
+    from cablesys.time_domain import IntegratorSettings, Simulator
+    from cablesys.time_domain.run import initial_state
     scene = dale_scene()
     model = build_model(scene)
     p = model.parameters(scene)

@@ -9,8 +9,17 @@ import pytest
 from cablesys.errors import ParameterError
 from cablesys.model import build_model
 from cablesys.model.top_motion import ramp
-from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMotion, dale_scene, single_section_scene
-from cablesys.simulate import simulate
+from cablesys.scene import (
+    Body,
+    Cable,
+    Environment,
+    Numerics,
+    Sinusoid,
+    TopMotion,
+    dale_scene,
+    single_section_scene,
+)
+from cablesys.time_domain import simulate
 
 
 def test_ramp_starts_and_ends_without_jumps():

@@ -115,7 +115,7 @@ def test_slack_and_snap_warnings_are_printed():
 def test_design_failed_starts_are_named_with_the_reason():
     from types import SimpleNamespace
 
-    from cablesys.design.cli import failed_starts
+    from cablesys.isolation.cli import failed_starts
     runs = ({"outer": 0, "status": "Maximum_Iterations_Exceeded", "iterations": 100, "objective": 1.0, "max_violation": 0.0},
             {"outer": 0, "status": "Solve_Succeeded", "iterations": 12, "objective": 0.9, "max_violation": 0.0},
             {"outer": 0, "status": "Infeasible_Problem_Detected", "iterations": 30, "objective": 2.0, "max_violation": 0.5})

@@ -49,7 +49,7 @@ def test_netcdf_carries_units_conventions_and_the_scene(tmp_path):
 
     from cablesys.examples import example_text
     from cablesys.export import write_netcdf
-    from cablesys.simulate import simulate
+    from cablesys.time_domain import simulate
     text = example_text("rov-lift").replace("duration = 600.0", "duration = 5.0").replace(
         "n_components = 60", "n_components = 8")
     scene = scene_from_dict(tomllib.loads(text))

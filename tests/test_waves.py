@@ -8,7 +8,7 @@ import pytest
 
 from cablesys.model.fluid import fluid_velocity, wave_velocity
 from cablesys.scene import TopMotion, Wave, dale_scene
-from cablesys.simulate import simulate
+from cablesys.time_domain import simulate
 
 
 def test_wave_velocity_equals_eq_26a_and_continuity_fixes_26b():

@@ -7,7 +7,7 @@ Rungs, cheapest first (:mod:`.rungs`): ``frequency`` (periodic steady state), ``
 """
 
 from .auto import run_rung, simulate_auto
-from .choose import Choice, choose, tolerances
+from .choice import Choice, choose, tolerances
 from .rungs import MODEL_CHOICES, RUNGS, build_rung
 
 __all__ = ["MODEL_CHOICES", "RUNGS", "Choice", "build_rung", "choose", "run_rung", "simulate_auto", "tolerances"]

@@ -1,6 +1,6 @@
 """``simulate_auto(scene)``: run the rung the scene needs, check it afterwards, say which and why.
 
-The choice (:func:`~cablesys.ladder.choose.choose`) is checked a posteriori:
+The choice (:func:`~cablesys.ladder.choice.choose`) is checked a posteriori:
 - quasi-static: the stretch must stay taut (a quasi-static stretch cannot go slack); if the
   tension falls to the floor, the run is rejected and Wang's model (or the segmented cable) runs;
 - wang: a run that goes slack is outside the straight cable's validity (one stretch makes the whole
@@ -22,7 +22,7 @@ from ..errors import NumericalWarning
 from ..scene import Scene
 from . import estimate as est
 from . import metrics
-from .choose import MAX_SEGMENTS, SLACK_MAX_SEGMENTS, Choice, choose, forced, tolerances
+from .choice import MAX_SEGMENTS, SLACK_MAX_SEGMENTS, Choice, choose, forced, tolerances
 from .rungs import build_rung, check_rung, rung_scene
 
 log = logging.getLogger(__name__)
@@ -40,14 +40,14 @@ def run_rung(scene: Scene, name: str, segments: int = 1, **kw):
     segments : int, optional
         Elements per section of the segmented rung.
     **kw
-        Passed to :func:`cablesys.simulate.simulate`.
+        Passed to :func:`cablesys.time_domain.simulate`.
 
     Returns
     -------
     TimeResult
         The run (``success`` False with the reason when the integrator failed).
     """
-    from ..simulate import simulate
+    from ..time_domain import simulate
     if name == "frequency":
         return _periodic_run(scene)
     sc = rung_scene(scene, name, segments)
@@ -115,7 +115,7 @@ def simulate_auto(scene: Scene, *, model: str | None = None, tolerance=None, seg
     segments : int, optional
         Elements per section for a forced segmented rung (default: chosen for the tolerance).
     **kw
-        Passed to :func:`cablesys.simulate.simulate` (method, rtol, atol, times, jit).
+        Passed to :func:`cablesys.time_domain.simulate` (method, rtol, atol, times, jit).
 
     Returns
     -------

@@ -8,10 +8,15 @@ equivalent linearization with the ``jonswap`` / ``pierson_moskowitz`` spectra).
 
 from .equivalent import HarmonicResponse, harmonic_response
 from .frequency_response import RAO, rao
-from .linearize import LinearModel, linearize
+from .linearization import LinearModel, linearize
 from .modal import Modes, modes
 from .periodic import PeriodicSolution, periodic_steady_state
-from .spectra import jonswap, pierson_moskowitz, significant_amplitude, slack_probability
+from .spectra import (
+           jonswap,
+           pierson_moskowitz,
+           significant_amplitude,
+           slack_probability,
+)
 from .steady import SteadyState, steady_state
 from .stochastic import StochasticResponse, stochastic_response
 

@@ -53,7 +53,7 @@ def _analyse(args, scene, outdir) -> int:
     from .band import default_band, forcing_frequencies
     from .equivalent import harmonic_response
     from .frequency_response import rao
-    from .linearize import linearize
+    from .linearization import linearize
     from .modal import modes as modes_of
     from .periodic import scene_input_amplitude
     from .plots import (

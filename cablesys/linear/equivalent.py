@@ -38,7 +38,7 @@ from ..errors import ParameterError
 from ..model import CableModel
 from ..results import ResultBase, timed
 from .frequency_response import RAO
-from .linearize import (
+from .linearization import (
     from_jacobian,
     functions,
     linearize,

@@ -13,7 +13,7 @@ from typing import ClassVar
 import numpy as np
 
 from ..results import ResultBase, timed, unit_of
-from .linearize import LinearModel
+from .linearization import LinearModel
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

@@ -16,7 +16,7 @@ import scipy.linalg
 
 from ..errors import ParameterError
 from ..results import ResultBase, timed
-from .linearize import LinearModel
+from .linearization import LinearModel
 
 
 @dataclasses.dataclass(frozen=True)

@@ -117,7 +117,7 @@ def _newton(model: CableModel, p, times, T, Q, *, tol: float = 1e-8, max_iter: i
 
 def _linear_guess(model: CableModel, p, omega: float, input_amplitude, times) -> np.ndarray:
     """Node values of the linear response about the steady state (one complex solve)."""
-    from .linearize import linearize
+    from .linearization import linearize
     from .steady import steady_state
     st = steady_state(model, p)
     Qc, _ = linearize(model, p, steady=st).transfer([omega])

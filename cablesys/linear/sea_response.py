@@ -94,7 +94,7 @@ def side_by_side(scene, td_statistics: dict, exposure: float) -> dict:
     """
     from ..errors import SolverError
     from ..model import build_model
-    from .linearize import linearize
+    from .linearization import linearize
     if scene.top_motion.spectrum is None:
         return {}
     try:

@@ -24,7 +24,7 @@ from ..errors import ParameterError
 from ..model import CableModel
 from ..results import ResultBase, timed
 from .equivalent import complex_xi
-from .linearize import (
+from .linearization import (
     LinearModel,
     from_jacobian,
     functions,

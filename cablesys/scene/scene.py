@@ -30,7 +30,7 @@ class Scene:
     initial: Initial = dataclasses.field(default_factory=Initial)
     numerics: Numerics = dataclasses.field(default_factory=Numerics)
     limits: Limits | None = None      # what a run is checked against (cablesys.verdict); optional
-    design: dict | None = dataclasses.field(default=None, compare=False)   # the [design] table, read by cablesys.design
+    design: dict | None = dataclasses.field(default=None, compare=False)   # the [design] table, read by cablesys.isolation
 
     def __post_init__(self):
         secs = tuple(self.sections)

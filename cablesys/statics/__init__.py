@@ -1,4 +1,4 @@
-"""Statics: equilibria of every model (the layer below both :mod:`cablesys.simulate` and :mod:`cablesys.linear`).
+"""Statics: equilibria of every model (the layer below both :mod:`cablesys.time_domain` and :mod:`cablesys.linear`).
 
 - :func:`steady_state` the equilibrium of any model (2-DOF: KINSOL on (phi, u); segmented:
   the elastic catenary of :mod:`.catenary`);

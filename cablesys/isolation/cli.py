@@ -13,7 +13,7 @@ def register(sub) -> None:
                                    "in the sea state of the scene's [design] table, over AE and C_I per section "
                                    "within the given bounds, with no-slack, working-load and static-strain "
                                    "constraints (Wang 1971 p. 33, dual isolation). Writes design.json.")
-    p.add_argument("scene", help="scene TOML file with a [design] table (keys of cablesys.design.DesignSettings)")
+    p.add_argument("scene", help="scene TOML file with a [design] table (keys of cablesys.isolation.DesignSettings)")
     p.add_argument("--out", default="design_out", help="output directory (default: design_out)")
     p.add_argument("--overwrite", action="store_true", help="replace results of another scene in --out")
     p.set_defaults(func=run)

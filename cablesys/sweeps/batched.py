@@ -19,7 +19,7 @@ from .analyses import rao_summary
 def linear_models(model, P) -> list:
     """LinearModel (or the exception that stopped it) per column of the parameter matrix ``P``."""
     from ..linear import steady_state
-    from ..linear.linearize import (
+    from ..linear.linearization import (
         from_jacobian,
         functions,
         operating_xi,

@@ -7,7 +7,7 @@ import time as _time
 
 import numpy as np
 
-log = logging.getLogger("cablesys.simulate.run")
+log = logging.getLogger("cablesys.time_domain.run")
 
 
 class Track:

@@ -1,6 +1,6 @@
 """Figures of an isolation design: RAOs before and after, the objective's history, constraint margins.
 
-Reads a :class:`~cablesys.design.DesignResult` (and the model to linearize at the two
+Reads a :class:`~cablesys.isolation.DesignResult` (and the model to linearize at the two
 parameter vectors); matplotlib is imported lazily.
 """
 

@@ -55,7 +55,7 @@ def _scene(args) -> int:
     if args.example or args.file is None:
         print(dump_scene(default_scene(), units=args.units, annotate=True), end="")
         if args.design:
-            from ..design.example import design_template
+            from ..isolation.example import design_template
             print(design_template(), end="")
         return 0
     print(dump_scene(load_scene(args.file), units=args.units, annotate=True), end="")

@@ -24,7 +24,7 @@ import numpy as np
 from scipy.stats import qmc
 
 from ..errors import SolverError
-from ..linear.linearize import linearize, residual_jacobian, xi_blocks
+from ..linear.linearization import linearize, residual_jacobian, xi_blocks
 from ..linear.spectra import jonswap
 from ..linear.steady import steady_state
 from ..linear.stochastic import stochastic_response

@@ -6,7 +6,7 @@ Chain of CasADi expressions of the normalized design vector x (no finite differe
 2. Steady state q_0(p): ``casadi.rootfinder`` (Newton) on the static residual f(q, 0, 0, p) = 0
    of the model (Wang 1971 eq. 47-48 with all rates zero). Its derivative is the implicit-
    function-theorem one, dq_0/dp = -(df/dq)^-1 df/dp, provided by CasADi.
-3. Linearization about q_0 by the model's own AD Jacobians (``cablesys.linear.linearize``):
+3. Linearization about q_0 by the model's own AD Jacobians (``cablesys.linear.linearization``):
    M dq'' + C dq' + K dq = F0 z + F1 z' + F2 z'', y = Cq dq + Cv dq' + D0 z + D1 z' + D2 z''.
 4. Transfer on a fixed frequency grid in real arithmetic: with Z = K - w^2 M + i w C (dJ included),
    [[Re Z, -Im Z], [Im Z, Re Z]] [Re Q; Im Q] = [Re F; Im F] for the buoy input z = (1, i) a
@@ -34,9 +34,9 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
-from ..linear.steady import static_residual
-from ..linear.linearize import functions, xi_blocks
+from ..linear.linearization import functions, xi_blocks
 from ..linear.spectra import jonswap
+from ..linear.steady import static_residual
 from ..linear.stochastic import BUOY
 from ..model import CableModel
 from .problem import DesignSettings

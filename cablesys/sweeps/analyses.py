@@ -44,7 +44,7 @@ class ModelCache:
         return self._get(self._models, structure_of(scene), make)
 
     def simulator(self, scene, jit: bool = False):
-        from ..simulate import IntegratorSettings, Simulator
+        from ..time_domain import IntegratorSettings, Simulator
         num = scene.numerics
         settings = IntegratorSettings(method=num.integrator, rtol=num.rtol, atol=num.atol,
                                       steps_per_output=num.steps_per_output, jit=jit)
@@ -54,7 +54,7 @@ class ModelCache:
     def rung_simulator(self, scene, name: str, segments: int):
         """Simulator of a model-ladder rung for ``scene`` (the rung's scene), built once per structure."""
         from ..ladder.rungs import build_rung
-        from ..simulate import IntegratorSettings, Simulator
+        from ..time_domain import IntegratorSettings, Simulator
         num = scene.numerics
         settings = IntegratorSettings(method=num.integrator, rtol=num.rtol, atol=num.atol,
                                       steps_per_output=num.steps_per_output)
@@ -77,9 +77,9 @@ def _ladder_run(scene, name: str, cache):
     """The model ladder's choice for ``scene`` (``name``: "auto" or a rung), run with a cached simulator
     and checked a posteriori (:mod:`cablesys.ladder.auto`); returns (result, choice dict)."""
     from ..ladder.auto import after_run, simulate_auto
-    from ..ladder.choose import choose, forced
+    from ..ladder.choice import choose, forced
     from ..ladder.rungs import check_rung, rung_scene
-    from ..simulate import simulate
+    from ..time_domain import simulate
     name = check_rung(name)
     choice = choose(scene) if name == "auto" else forced(scene, name)
     if choice.name == "frequency":
@@ -97,11 +97,11 @@ def _ladder_run(scene, name: str, cache):
 def run(scene, options, cache):
     """Time-domain run (Wang 1971 eq. 47-48 integrated); amplitudes over the last ``periods`` forcing periods.
 
-    Option ``model``: None (default) runs the scene's model as built, like :func:`cablesys.simulate.simulate`;
+    Option ``model``: None (default) runs the scene's model as built, like :func:`cablesys.time_domain.simulate`;
     ``"auto"`` or a rung name runs the model ladder's choice (:mod:`cablesys.ladder`), ``"scene"`` the
     scene's ``numerics.model``. The model that ran is reported (``model_name``, its reason and estimated error).
     """
-    from ..simulate import simulate
+    from ..time_domain import simulate
     ladder = options.get("model")
     if ladder == "scene":
         ladder = getattr(scene.numerics, "model", None)
@@ -139,7 +139,7 @@ def rao(scene, options, cache):
     """Linearization about the steady state: natural frequencies, |RAO| at the forcing frequency and peaks.
 
     A chunk of RAO cases is linearized in one mapped call instead (:mod:`.batched`); both end here."""
-    from ..linear.linearize import linearize
+    from ..linear.linearization import linearize
     model = cache.model(scene)
     return rao_summary(scene, linearize(model, model.parameters(scene)), options)
 
@@ -224,8 +224,8 @@ def stochastic(scene, options, cache):
 
 def design(scene, options, cache):
     """The isolation design NLP (Wang 1971 p. 33) with ``options['settings']`` (fields variable as ``design.<field>``)."""
-    from ..design import DesignSettings
-    from ..design import design as solve
+    from ..isolation import DesignSettings
+    from ..isolation import design as solve
     settings = options.get("settings")
     if not isinstance(settings, DesignSettings):
         raise ParameterError("options['settings']", settings, "a design sweep needs a DesignSettings")

@@ -81,7 +81,7 @@ def newton_bracketed(fun, a: float, b: float, fa: float, fb: float, xtol: float,
 
 
 class EventLocator:
-    """Switch and snap-load location for :class:`~cablesys.simulate.run.Simulator` (a mixin).
+    """Switch and snap-load location for :class:`~cablesys.time_domain.run.Simulator` (a mixin).
 
     Uses the simulator's ``_advance``, ``_call``, ``_dense``, ``_gap_and_rate``, ``_gap_rates``
     and ``_jac``.
