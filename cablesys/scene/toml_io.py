@@ -202,4 +202,9 @@ def dump_scene(scene: Scene, *, units: str = "SI", annotate: bool = False) -> st
             out += _table_lines(s.body, "[sections.body]", units, annotate)
     for key in ("environment", "top_motion", "initial", "numerics"):
         out += _table_lines(getattr(scene, key), f"[{key}]", units, annotate)
+    if scene.limits is not None:      # what the verdict checks: written so that nothing asked for is dropped
+        out += _table_lines(scene.limits, "[limits]", units, annotate)
+    if scene.design:                  # the design NLP's table is SI whatever `units` says (DesignSettings)
+        out += ["[design]" + ("   # SI, keys of cablesys.isolation.DesignSettings" if annotate else "")]
+        out += [f"{k} = {_fmt(v)}" for k, v in scene.design.items()] + [""]
     return "\n".join(out).rstrip() + "\n"
