@@ -1,7 +1,7 @@
 """Architecture rules, checked on the source: the layer ladder and no copy-paste.
 
 1. Imports point down the ladder (the table ``LAYERS`` below is the one place it is written):
-   foundation (units, errors, results, reader, statistics, outputs, compiled,
+   foundation (units, errors, results, reader, tables, statistics, outputs, atomic, compiled,
    messages, integration, profiles) < scene < model < statics
    < analyses (simulate, linear, and the slack and towed models) < design (design, ladder,
    verdict, export, ...) < workflows over any analysis (sweep) < plots < cli. A module may import its
@@ -27,7 +27,7 @@ PKG = Path(__file__).resolve().parents[1] / "cablesys"
 LAYERS = [
     ("foundation", ("cablesys.units", "cablesys.errors", "cablesys.results", "cablesys.reader", "cablesys.options", "cablesys.time_result",
                     "cablesys.statistics", "cablesys.outputs", "cablesys.compiled", "cablesys.messages",
-                    "cablesys.integration", "cablesys.profiles")),
+                    "cablesys.integration", "cablesys.profiles", "cablesys.atomic", "cablesys.tables")),
     ("scene", ("cablesys.scene",)),
     ("model", ("cablesys.model",)),
     ("statics", ("cablesys.statics",)),

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import dataclasses
 import logging
-import re
 import time as _time
 import warnings
 
@@ -22,8 +21,9 @@ from ..errors import NumericalWarning, ParameterError
 from ..model import CableModel, build_model
 from ..results import SlackEvent
 from ..scene import Scene
-from ..statics.steady import steady_state
 from . import events as ev
+from .failures import REMEDIES, failure_message, failure_reason, rk4_stability_note
+from .initial import initial_state
 from .integrators import (
     ADAPTIVE,
     IntegratorSettings,
@@ -42,26 +42,7 @@ from .track import Track
 
 log = logging.getLogger(__name__)
 
-REMEDIES = {
-    "TOO_MUCH_WORK": "Remedy: the motion needs far smaller steps than the output interval (a very stiff cable, "
-                     "large AE, or one that goes slack and taut violently): use the stiff default 'cvodes' (BDF), "
-                     "shorten numerics.output_step, loosen rtol, or raise the budget (--max-steps, "
-                     "IntegratorSettings.max_num_steps)",
-    "CONV_FAIL": "Newton iterations failed: tighten tolerances, shorten numerics.output_step, or try 'idas'",
-    "ERR_FAIL": "error test failed repeatedly: the motion may be unbounded or discontinuous; check the inputs",
-    "nonfinite": "the state became infinite: a fixed-step method above its stability limit; raise "
-                 "numerics.steps_per_output or use 'cvodes'",
-    "chatter": "the cable switched taut/slack endlessly at one instant (Zeno): set a tension_floor below 0 "
-               "or add internal damping",
-}
-
-
-def _reason(err: Exception) -> tuple[str, float | None]:
-    text = str(err)
-    flag = re.search(r'returned "([A-Z_]+)"', text)
-    when = re.search(r"[Aa]t t ?= ?([-+0-9.eE]+)", text)
-    return (flag.group(1) if flag else text.strip().splitlines()[-1][:200],
-            float(when.group(1)) if when else None)
+__all__ = ["Simulator", "initial_state", "simulate"]   # initial_state lives in .initial
 
 
 class Simulator(ev.EventLocator):
@@ -147,22 +128,15 @@ class Simulator(ev.EventLocator):
             raise FloatingPointError("nonfinite")
         return xf
 
-    RK4_LIMIT = 2.78     # |h lambda| on RK4's stability boundary (2.785 real axis, 2.828 imaginary)
-
     def _check_fixed_step(self, x0, p) -> str:
         """For 'rk': warn when h |lambda|_max at the start exceeds RK4's stability limit."""
         if self.settings.method != "rk":
             return ""
         lam = np.linalg.eigvals(np.array(self._jac(x0, self.times[0], self._with_mode(p, np.zeros(len(self.model.slack_index))))))
         h = float(np.min(np.diff(self.times))) / self.settings.steps_per_output
-        ratio = h * float(np.max(np.abs(lam)))
-        if ratio <= self.RK4_LIMIT:
-            return ""
-        need = int(np.ceil(self.settings.steps_per_output * ratio / self.RK4_LIMIT))
-        note = (f"the fixed RK4 step h = {h:.3g} s times the largest eigenvalue |lambda| = {np.max(np.abs(lam)):.4g} 1/s "
-                f"is {ratio:.3g} > {self.RK4_LIMIT} (RK4 stability limit): expect growth; use steps_per_output >= {need} "
-                "or an implicit method ('cvodes', 'collocation')")
-        warnings.warn(note, NumericalWarning, stacklevel=4)
+        note = rk4_stability_note(h, float(np.max(np.abs(lam))), self.settings.steps_per_output)
+        if note:
+            warnings.warn(note, NumericalWarning, stacklevel=4)
         return note
 
     def _with_mode(self, p, mode):
@@ -244,7 +218,7 @@ class Simulator(ev.EventLocator):
             try:
                 Xs = np.array(self._call(self._chunk_integrator(m), x0=x, p=np.concatenate([pm, [times[k], 1.0]]))["xf"])
             except RuntimeError as err:
-                log.info("chunk integration failed (%s); stepping interval by interval", _reason(err)[0])
+                log.info("chunk integration failed (%s); stepping interval by interval", failure_reason(err)[0])
                 break
             if self._uniform and _time.perf_counter() - t_call < self.CHUNK_GROW_S:
                 size = next((c for c in self.CHUNKS if c > size), size)
@@ -299,18 +273,10 @@ class Simulator(ev.EventLocator):
         return True, ""
 
     def _failure(self, err: Exception, t_a: float, t_b: float, t_kept: float) -> str:
-        """The message of an integrator failure between t_a and t_b: where, why, what to try."""
-        flag, when = _reason(err)
-        method = self.settings.method
-        at = f" (at t = {when + t_a:.6g} s)" if when is not None and method in ADAPTIVE else ""
-        if "TOO_MUCH_WORK" in flag:
-            return (f"step budget exhausted: {method} used all max_num_steps = {self.settings.max_num_steps} steps "
-                    f"between t = {t_a:.6g} s and {t_b:.6g} s{at} without reaching {t_b:.6g} s "
-                    f"(besides {self._stats.get('nsteps', 0)} steps in the intervals before). {REMEDIES['TOO_MUCH_WORK']}. "
-                    f"Results up to t = {t_kept:.6g} s are kept.")
-        key = next((kk for kk in REMEDIES if kk in flag), None)
-        return (f"{method} failed between t = {t_a:.6g} s and {t_b:.6g} s{at}: {flag}. "
-                f"Remedy: {REMEDIES.get(key, 'check the scene and tolerances')}. Results up to t = {t_kept:.6g} s are kept.")
+        """The message of an integrator failure between t_a and t_b (see :func:`.failures.failure_message`)."""
+        return failure_message(err, method=self.settings.method, adaptive=self.settings.method in ADAPTIVE,
+                               max_num_steps=self.settings.max_num_steps, steps_before=self._stats.get("nsteps", 0),
+                               t_a=t_a, t_b=t_b, t_kept=t_kept)
 
     def labelled(self, times, X, modes, p) -> dict:
         """Labelled outputs and top motion (``x_s``, ``y_s``) for states ``X`` at ``times``.
@@ -358,34 +324,6 @@ class Simulator(ev.EventLocator):
             ``{label: array}``, see :meth:`labelled`.
         """
         return self.labelled(self.times[: X.shape[1]], X, modes, p)
-
-
-def initial_state(scene: Scene, model: CableModel, p) -> np.ndarray:
-    """x0 from ``scene.initial``; unset angle/stretch come from the steady state.
-
-    Parameters
-    ----------
-    scene : Scene
-        The scene (its ``initial`` table).
-    model : CableModel
-        The model of the scene.
-    p : array_like
-        Parameter vector.
-
-    Returns
-    -------
-    ndarray
-        x0 = (q, q') in SI.
-    """
-    if getattr(model, "segments", None):      # node coordinates: the segmented cable
-        from ..statics.catenary import segmented_initial_state
-        return segmented_initial_state(scene, model, p)
-    ini = scene.initial
-    q = steady_state(model, p).q if (ini.phi is None or ini.u is None) else None
-    q0 = np.array([(ini.phi if ini.phi is not None else q[i]) if lbl.startswith("phi")
-                   else (ini.u if ini.u is not None else q[i]) for i, lbl in enumerate(model.q_labels)])
-    qd0 = np.array([ini.phi_rate if lbl.startswith("phi") else ini.u_rate for lbl in model.q_labels])
-    return np.concatenate([q0, qd0])
 
 
 def simulate(scene: Scene, *, model: CableModel | None = None, method: str | None = None,

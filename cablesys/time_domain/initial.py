@@ -1,0 +1,37 @@
+"""The initial state of a time-domain run: ``scene.initial`` completed by the steady state."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..model import CableModel
+from ..scene import Scene
+from ..statics.steady import steady_state
+
+
+def initial_state(scene: Scene, model: CableModel, p) -> np.ndarray:
+    """x0 from ``scene.initial``; unset angle/stretch come from the steady state.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (its ``initial`` table).
+    model : CableModel
+        The model of the scene.
+    p : array_like
+        Parameter vector.
+
+    Returns
+    -------
+    ndarray
+        x0 = (q, q') in SI.
+    """
+    if getattr(model, "segments", None):      # node coordinates: the segmented cable
+        from ..statics.catenary import segmented_initial_state
+        return segmented_initial_state(scene, model, p)
+    ini = scene.initial
+    q = steady_state(model, p).q if (ini.phi is None or ini.u is None) else None
+    q0 = np.array([(ini.phi if ini.phi is not None else q[i]) if lbl.startswith("phi")
+                   else (ini.u if ini.u is not None else q[i]) for i, lbl in enumerate(model.q_labels)])
+    qd0 = np.array([ini.phi_rate if lbl.startswith("phi") else ini.u_rate for lbl in model.q_labels])
+    return np.concatenate([q0, qd0])
