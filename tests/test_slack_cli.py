@@ -28,8 +28,8 @@ def test_example_scene_runs_and_writes_outputs(tmp_path, capsys, monkeypatch):
     monkeypatch.setenv("MPLBACKEND", "Agg")
     f = tmp_path / "s.toml"
     f.write_text(EXAMPLE_TOML)
-    scene, n = load_scene(f)
-    assert len(scene.masses) == 2 and n == 12
+    scene = load_scene(f)
+    assert len(scene.masses) == 2 and scene.n_modes == 12
     assert run(["slack", str(f), "--out", str(tmp_path / "o")]) == 0
     doc = json.loads((tmp_path / "o" / "slack_result.json").read_text())
     types = [m["mode_type"] for m in doc["modes"]]
@@ -44,6 +44,10 @@ def test_example_scene_runs_and_writes_outputs(tmp_path, capsys, monkeypatch):
     (("span = 22.9 ", "span = 30.0 "), "scene.chord"),
     (("length = 23.80", "length = 0"), "cable.length"),
     (("medium = \"air\"", "colour = \"red\""), "scene.colour"),
+    (("n_modes = 12 ", "n_modes = 0 "), "scene.n_modes"),
+    (("n_modes = 12 ", "n_modes = 400 "), "scene.n_modes"),            # above MAX_MODES
+    (("n_elements = 120", "n_elements = 4"), "scene.n_modes"),         # 12 modes > 3 (4 - 1) - 1 degrees of freedom
+    (("n_modes = 12 ", "n_modes = \"all\" "), "scene.n_modes"),
 ])
 def test_bad_toml_names_the_field(tmp_path, edit, field):
     f = tmp_path / "bad.toml"

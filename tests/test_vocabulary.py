@@ -22,11 +22,11 @@ def test_old_slack_keys_are_deprecated_aliases():
     doc = tomllib.loads(EXAMPLE_TOML.replace("ae = ", "axial_stiffness = "))
     doc["masses"][0]["added_mass_coefficient"] = 0.8
     with pytest.warns(DeprecationWarning) as caught:
-        scene, _ = scene_from_dict(doc)
+        scene = scene_from_dict(doc)
     assert sorted(str(w.message) for w in caught) == [
         "cable.axial_stiffness is deprecated: write ae",
         "masses[0].added_mass_coefficient is deprecated: write added_mass_factor"]
-    new, _ = scene_from_dict(tomllib.loads(EXAMPLE_TOML))
+    new = scene_from_dict(tomllib.loads(EXAMPLE_TOML))
     assert scene.cable.ae == new.cable.ae and scene.masses[0].added_mass_factor == 0.8
     doc["cable"]["ae"] = 1.0
     with pytest.raises(ParameterError, match="old name of cable.ae"):

@@ -35,12 +35,12 @@ def run(args) -> int:
     from .modes import analyze
     from .plots import plot_equilibrium, plot_mode_shapes
 
-    scene, n_modes = load_scene(args.scene)
+    scene = load_scene(args.scene)
     # --out checked before any work; summary.json says running / success / failed / interrupted
-    outdir = OutputDir(args.out, "slack", {"scene": scene, "n_modes": n_modes}, overwrite=getattr(args, "overwrite", False),
+    outdir = OutputDir(args.out, "slack", {"scene": scene}, overwrite=getattr(args, "overwrite", False),
                        owned=("slack_result.json", "equilibrium.png", "mode_shapes.png"))
     with outdir.start(scene=str(args.scene)):
-        eq, modes = analyze(scene, n_modes)
+        eq, modes = analyze(scene)
         _check_strain(scene, eq)
         out = outdir.path
         doc = {"scene": str(args.scene), "medium": scene.medium, "n_elements": modes.n_elements,
@@ -52,7 +52,7 @@ def run(args) -> int:
         with outdir.writing("equilibrium.png") as tmp:
             plot_equilibrium(eq, tmp)
         with outdir.writing("mode_shapes.png") as tmp:
-            plot_mode_shapes(eq, modes, tmp, n=min(6, n_modes))
+            plot_mode_shapes(eq, modes, tmp, n=min(6, scene.n_modes))
     lines = [f"sag/L = {eq.sag_to_length:.5f}, H = {eq.horizontal_tension:.6g} N, "
              f"max tension = {eq.tension.max():.6g} N",
              "mode  type  omega (rad/s)"]

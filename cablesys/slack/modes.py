@@ -171,7 +171,7 @@ def compute_modes(eq: Equilibrium, d: Discretization, n_modes: int, *, solver: s
                    n_elements=d.n_elements, solver=used, seconds=time.perf_counter() - t0)
 
 
-def analyze(scene, n_modes: int = 12, *, n_elements: int | None = None, solver: str = "auto",
+def analyze(scene, n_modes: int | None = None, *, n_elements: int | None = None, solver: str = "auto",
             cache=None):
     """Statics (CasADi NLP) then modes: returns (Equilibrium, ModeSet).
 
@@ -180,7 +180,7 @@ def analyze(scene, n_modes: int = 12, *, n_elements: int | None = None, solver: 
     scene : SlackScene
         The slack-cable scene (SI).
     n_modes : int, optional
-        Number of modes.
+        Number of modes (default ``scene.n_modes``).
     n_elements : int, optional
         Lumped-mass elements (default from the scene).
     solver : str, optional
@@ -194,11 +194,11 @@ def analyze(scene, n_modes: int = 12, *, n_elements: int | None = None, solver: 
         The static shape and its modes.
     """
     eq, d = solve_equilibrium(scene, n_elements=n_elements, cache=cache)
-    return eq, compute_modes(eq, d, n_modes, solver=solver)
+    return eq, compute_modes(eq, d, scene.n_modes if n_modes is None else n_modes, solver=solver)
 
 
 @timed
-def converge(scene, n_modes: int, *, levels: tuple[int, ...] = (48, 96, 192),
+def converge(scene, n_modes: int | None = None, *, levels: tuple[int, ...] = (48, 96, 192),
              solver: str = "auto", cache=None) -> Convergence:
     """Solve at each element count and Richardson-extrapolate (h^2 convergence).
 
@@ -210,8 +210,8 @@ def converge(scene, n_modes: int, *, levels: tuple[int, ...] = (48, 96, 192),
     ----------
     scene : SlackScene
         The slack-cable scene (SI).
-    n_modes : int
-        Number of modes reported.
+    n_modes : int, optional
+        Number of modes reported (default ``scene.n_modes``).
     levels : tuple of int, optional
         Element counts, each twice the previous (at least three).
     solver : str, optional
@@ -226,6 +226,7 @@ def converge(scene, n_modes: int, *, levels: tuple[int, ...] = (48, 96, 192),
     """
     if len(levels) < 3:
         raise ParameterError("levels", levels, "needs at least three element counts")
+    n_modes = scene.n_modes if n_modes is None else n_modes
     fam_w = []
     types = None
     n_extra = n_modes + 4

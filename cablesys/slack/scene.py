@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import ParameterError, require_finite, require_nonnegative, require_positive
-from ..reader import build, integer, located, read_toml, typed_fields
+from ..reader import build, located, read_toml, typed_fields
 from ..units import G_STANDARD
 
 MEDIA = ("air", "water")
@@ -119,7 +119,9 @@ class SlackScene:
     span: horizontal distance (m, > 0); rise: height of B above A (m);
     masses: attached point masses; medium: 'air' or 'water';
     gravity (m/s^2); n_elements: lumped-mass elements (mass positions are
-    added as nodes).
+    added as nodes); n_modes: number of natural modes an analysis reports
+    (:func:`~cablesys.slack.analyze` and :func:`~cablesys.slack.converge` use it
+    when not given one).
     """
 
     cable: Cable
@@ -129,6 +131,7 @@ class SlackScene:
     medium: str = "air"
     gravity: float = G_STANDARD
     n_elements: int = 120
+    n_modes: int = 12
 
     def __post_init__(self):
         require_positive("scene.span", self.span, "m")
@@ -141,6 +144,9 @@ class SlackScene:
             raise ParameterError("scene.n_elements", self.n_elements,
                                  f"must be an integer in [4, {MAX_ELEMENTS}] (the limit keeps the eigenproblem "
                                  "within seconds and memory)")
+        if (not isinstance(self.n_modes, int) or isinstance(self.n_modes, bool)
+                or not 1 <= self.n_modes <= MAX_MODES):
+            raise ParameterError("scene.n_modes", self.n_modes, f"must be an integer in [1, {MAX_MODES}]")
         object.__setattr__(self, "masses", tuple(self.masses))
         L = self.cable.length
         for i, pm in enumerate(self.masses):
@@ -219,8 +225,8 @@ position = 15.867
 mass = 4.5
 """
 
-def scene_from_dict(doc: dict, source=None) -> tuple[SlackScene, int]:
-    """(scene, n_modes) from a parsed TOML document (see :data:`EXAMPLE_TOML`).
+def scene_from_dict(doc: dict, source=None) -> SlackScene:
+    """The scene of a parsed TOML document (see :data:`EXAMPLE_TOML`).
 
     Parameters
     ----------
@@ -231,10 +237,9 @@ def scene_from_dict(doc: dict, source=None) -> tuple[SlackScene, int]:
 
     Returns
     -------
-    scene : SlackScene
-        The validated scene (SI).
-    n_modes : int
-        Number of modes to report, in [1, MAX_MODES].
+    SlackScene
+        The validated scene (SI); ``scene.n_modes`` is the number of modes to report, in
+        [1, MAX_MODES] and below the degrees of freedom of its ``n_elements``.
 
     Raises
     ------
@@ -265,7 +270,7 @@ def _renamed(table, where: str):
     return out
 
 
-def _scene_from_dict(doc: dict) -> tuple[SlackScene, int]:
+def _scene_from_dict(doc: dict) -> SlackScene:
     if not isinstance(doc, dict):
         raise ParameterError("document", doc, "must be a TOML document (a table)")
     for k in doc:
@@ -280,23 +285,15 @@ def _scene_from_dict(doc: dict) -> tuple[SlackScene, int]:
     if not isinstance(masses, list) or not all(isinstance(m, dict) for m in masses):
         raise ParameterError("masses", masses, "must be an array of tables [[masses]]")
     masses = tuple(build(PointMass, _renamed(m, f"masses[{i}]"), f"masses[{i}]") for i, m in enumerate(masses))
-    sc = doc.get("scene", {})
-    if isinstance(sc, dict):
-        sc = dict(sc)
-        n_modes = integer("scene.n_modes", sc.pop("n_modes", 12))
-    else:
-        n_modes = 12                          # typed_fields names the wrong type below
-    if not 1 <= n_modes <= MAX_MODES:
-        raise ParameterError("scene.n_modes", n_modes, f"must be an integer in [1, {MAX_MODES}]")
-    kw = typed_fields(SlackScene, sc, "scene", skip=("cable", "masses"))
+    kw = typed_fields(SlackScene, doc.get("scene", {}), "scene", skip=("cable", "masses"))
     scene = SlackScene(cable=cable, masses=masses, **kw)
-    if n_modes > 3 * (scene.n_elements - 1) - 1:
-        raise ParameterError("scene.n_modes", n_modes, f"must be < 3 (n_elements - 1) = {3 * (scene.n_elements - 1)}, "
+    if scene.n_modes > 3 * (scene.n_elements - 1) - 1:
+        raise ParameterError("scene.n_modes", scene.n_modes, f"must be < 3 (n_elements - 1) = {3 * (scene.n_elements - 1)}, "
                              "the number of degrees of freedom")
-    return scene, n_modes
+    return scene
 
 
-def load_scene(path: str | Path) -> tuple[SlackScene, int]:
+def load_scene(path: str | Path) -> SlackScene:
     """Read a slack-cable scene TOML file (UTF-8, a byte-order mark accepted).
 
     Parameters
@@ -306,10 +303,8 @@ def load_scene(path: str | Path) -> tuple[SlackScene, int]:
 
     Returns
     -------
-    scene : SlackScene
-        The validated scene.
-    n_modes : int
-        Number of modes to report.
+    SlackScene
+        The validated scene; ``scene.n_modes`` is the number of modes to report.
 
     Raises
     ------
