@@ -133,8 +133,8 @@ def test_scene_loader_gives_a_scene_or_a_named_error(data):
 def test_slack_loader_gives_a_scene_or_a_named_error(data):
     out = _load(load_slack, data, ".toml")
     if out is not None:
-        scene, n_modes = out
-        assert not nonfinite_fields(scene) and 1 <= n_modes
+        scene = out
+        assert not nonfinite_fields(scene) and 1 <= scene.n_modes
         assert 4 <= scene.n_elements <= 5000
 
 
