@@ -102,7 +102,7 @@ def _top(scene, t):
     """Top position (MoorDyn frame: z up) and velocity at time t from the scene's sinusoids,
     times cablesys's smooth-start ramp r = u - sin(2 pi u)/(2 pi), u = t / ramp_s
     (``cablesys.model.top_motion.ramp``), so both codes are driven by the same motion."""
-    ramp = float(scene.top_motion.ramp_s)
+    ramp = scene.top_motion.effective_ramp_s
     r, dr = 1.0, 0.0
     if ramp > 0 and t < ramp:
         u = t / ramp

@@ -53,7 +53,8 @@ def spring_scene(*, k_lb_ft=2.0, length_ft=10.0, body_slug=1.0, weight_lb=32.2, 
                   cable_mass_switch=1.0 if cable_slug > 0 else -1.0)
     m = body_slug * U.SLUG
     body = Body(weight=weight_lb * U.LBF, mass_x=m, mass_y=m if same_mass else 1.3 * m)
-    top = TopMotion(y=(Sinusoid(amplitude=heave_ft * U.FT, frequency=omega),) if heave_ft else ())
+    top = TopMotion(y=(Sinusoid(amplitude=heave_ft * U.FT, frequency=omega),) if heave_ft else (),
+                    ramp_s=0.0)    # the closed forms below start abruptly from rest
     return single_section_scene(
         cable=cable, body=body, environment=Environment(density=U.RHO_FRESH), top_motion=top,
         initial=Initial(phi=phi0, u=u0), name="direct check",

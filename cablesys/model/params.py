@@ -125,7 +125,7 @@ def parameter_items(scene: Scene) -> list[tuple[str, float]]:
     if top.series is not None:
         for axis in ("x", "y"):
             items += [(f"top_motion.series.{axis}[{k}]", v) for k, v in enumerate(getattr(top.series, axis))]
-    items.append(("top_motion.ramp_s", float(top.ramp_s)))     # smooth start (model/top_motion.py)
+    items.append(("top_motion.ramp_s", top.effective_ramp_s))  # smooth start (model/top_motion.py; unset: 3 periods)
     return items
 
 

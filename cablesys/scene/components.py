@@ -220,6 +220,9 @@ class TimeSeries:
         object.__setattr__(self, "times", t)
 
 
+RAMP_PERIODS = 3   # default smooth start: this many of the longest forcing periods (issue 13)
+
+
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class TopMotion:
     """Prescribed motion of the top of the cable (ship motion): sinusoids and/or a time series."""
@@ -230,15 +233,17 @@ class TopMotion:
     spectrum: SeaSpectrum | None = spec("none", "an irregular sea (scene/sea.py SeaSpectrum), realised as sinusoids appended to x and y", None)
     rao: MotionRAO | None = spec("none", "vessel / crane-tip motion RAO turning the sea into top motion (scene/sea.py MotionRAO); "
                                "none: the top heaves with the surface", None)
-    ramp_s: float = spec("time", "smooth start: every top-motion amplitude rises from 0 to full over 0 <= t <= ramp_s "
-                                 "with a cosine-rate ramp u - sin(2 pi u)/(2 pi), u = t/ramp_s (no jump in top velocity "
-                                 "or acceleration; 2-3 forcing periods); 0: abrupt start, as in Wang (1971)", 0.0)
+    ramp_s: float | None = spec("time", "smooth start: every top-motion amplitude rises from 0 to full over 0 <= t <= "
+                                        "ramp_s with a cosine-rate ramp u - sin(2 pi u)/(2 pi), u = t/ramp_s (no jump in top "
+                                        "velocity or acceleration); unset: 3 periods of the longest forcing period (a sea: "
+                                        "3 T_p; a series alone: 0); 0: abrupt start, as in Wang (1971)", None)
 
     def __post_init__(self):
         object.__setattr__(self, "x", tuple(self.x))
         object.__setattr__(self, "y", tuple(self.y))
-        require_finite("top_motion.ramp_s", self.ramp_s)
-        require_nonnegative("top_motion.ramp_s", self.ramp_s, "s")
+        if self.ramp_s is not None:
+            require_finite("top_motion.ramp_s", self.ramp_s)
+            require_nonnegative("top_motion.ramp_s", self.ramp_s, "s")
         if self.spectrum is not None:          # the sea as sinusoids: the compiled SX path (scene/sea.py)
             from .sea import append_once, sea_sinusoids
             sx, sy = sea_sinusoids(self.spectrum, self.rao)
@@ -249,6 +254,20 @@ class TopMotion:
                                                      "y": len(self.y) - len(sy) if len(self.y) == ny else ny})
         elif self.rao is not None:
             raise ParameterError("top_motion.rao", "given", "needs a [top_motion.spectrum] sea to act on")
+
+    @property
+    def effective_ramp_s(self) -> float:
+        """The smooth start's duration (s): ``ramp_s``, or when unset RAMP_PERIODS periods of the longest
+        forcing period (of the user's sinusoids and a sea's T_p, not of the sea's realised components,
+        whose low-frequency tail has arbitrarily long periods); 0 without sinusoids (a recorded series
+        plays as recorded)."""
+        if self.ramp_s is not None:
+            return float(self.ramp_s)
+        n = getattr(self, "_user_count", {"x": len(self.x), "y": len(self.y)})
+        periods = [2.0 * math.pi / s.frequency for axis in ("x", "y") for s in getattr(self, axis)[: n[axis]]]
+        if self.spectrum is not None:
+            periods.append(self.spectrum.tp)
+        return RAMP_PERIODS * max(periods) if periods else 0.0
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

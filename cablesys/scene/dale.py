@@ -69,7 +69,8 @@ def dale_scene(*, omega_ratio: float = 1.0, ae_lb: float = 1000.0, duration: flo
     omega = omega_ratio * OMEGA_N_MEASURED
     a = 0.5 * TOP_MOTION_PEAK_TO_PEAK
     top = TopMotion(x=(Sinusoid(amplitude=a, frequency=omega, phase=math.pi / 2),),   # a cos(wt)
-                    y=(Sinusoid(amplitude=a, frequency=omega, phase=0.0),))           # a sin(wt)
+                    y=(Sinusoid(amplitude=a, frequency=omega, phase=0.0),),           # a sin(wt)
+                    ramp_s=0.0)    # Wang's runs start abruptly from rest (his Tables 2-3 are checked against it)
     return single_section_scene(
         cable=cable, body=body, name=f"Dale et al. water-channel model, omega/omega_n = {omega_ratio:g}",
         environment=Environment(density=rho, gravity=g),
