@@ -29,7 +29,8 @@ SCRIPT = textwrap.dedent("""
                 axis_angle_deg=999.0)
     times = tuple(np.linspace(0.0, 60.0, 305))
     top = TopMotion(y=(Sinusoid(amplitude=1.0, frequency=2 * math.pi / 6.0),),
-                    series=TimeSeries(times=times, x=(0.0,) * 305, y=(0.0,) * 305))
+                    series=TimeSeries(times=times, x=(0.0,) * 305, y=(0.0,) * 305),
+                    ramp_s=0.0)   # abrupt: slack within the first 9 s
     scene = single_section_scene(cable=cable, body=body, environment=Environment(density=1025.0),
                                  top_motion=top, numerics=Numerics(duration=DURATION, output_step=0.1,
                                                                    integrator=METHOD, rtol=1e-6, atol=1e-8))

@@ -19,7 +19,7 @@ def make_scene(*, sphere=True, n_seg=7, current=((0.0, 0.3), (0.4, -0.1)), cbmas
     env = Environment(density=1025.0, gravity=9.81, current_depths=(current[0][0], 3.0 + current[1][0] * 10),
                       current_speeds=(current[0][1], current[1][1]), system_speed=0.2, top_depth=1.0)
     top = TopMotion(x=(Sinusoid(amplitude=0.5, frequency=0.7, phase=0.2),),
-                    y=(Sinusoid(amplitude=0.3, frequency=1.1, phase=-0.4),))
+                    y=(Sinusoid(amplitude=0.3, frequency=1.1, phase=-0.4),), ramp_s=0.0)   # the bare sinusoids
     return single_section_scene(cable=cable, body=body, environment=env, top_motion=top,
                                 numerics=Numerics(drag_segments=n_seg))
 
