@@ -2,21 +2,24 @@
 
 CasADi generates C for a set of functions (and their Jacobians, named ``jac_<name>`` so that
 ``casadi.external`` finds them); the C is compiled once with the system C compiler and the
-shared library is kept in a cache keyed by a hash of the functions (their serialized
-expression graphs, from which the C is generated deterministically), the compiler and its flags. The generated code depends on the scene *structure* only (every scene number is an
-entry of ``p``), so a second run of the same structure, with any parameter values, loads the
-library in a millisecond instead of compiling it again.
+shared library is kept in the cache (:mod:`cablesys.disk_cache`: versioned folder, atomic
+writes, per-entry locks, size cap with least-recently-used eviction), keyed by a hash of the
+functions (their serialized expression graphs, from which the C is generated
+deterministically), the compiler and its flags. The generated code depends on the scene
+*structure* only (every scene number is an entry of ``p``), so a second run of the same
+structure, with any parameter values, loads the library instead of compiling it again.
 
-Cache: ``$CABLESYS_CACHE_DIR`` or ``~/.cache/cablesys``, in a sub-folder per cablesys and
-CasADi version and cache-format version. Safe under concurrent runs (sweeps): a per-key file
-lock serializes builders, and each library is compiled under a temporary name and renamed into
-place atomically, so a reader never sees a half-written file.
+A second start need not even build the functions: :class:`DerivedStore` maps (a model
+structure key, the name of a derived function) to its library, so a model that knows its
+structure (:func:`cablesys.model.build_model` attaches the store to ``model.cache``) loads its
+compiled DAE with ``casadi.external`` without building or serializing its expression graph.
 
-Settings (environment): ``CABLESYS_CC`` the compiler command (default ``cc``),
-``CABLESYS_CFLAGS`` its optimization flags (default ``-O2``, less for very large functions:
-``SIZE_FLAGS``), ``CABLESYS_COMPILE=0`` to use
-CasADi's virtual machine. Without a working compiler the functions run in the virtual machine
-and one warning says so.
+A library that fails to load (truncated, corrupt, removed by another process's eviction) is
+removed and rebuilt. Settings (environment): ``CABLESYS_CC`` the compiler command (default
+``cc``), ``CABLESYS_CFLAGS`` its optimization flags (default ``-O2``, less for very large
+functions: ``SIZE_FLAGS``), ``CABLESYS_COMPILE=0`` to use CasADi's virtual machine; the cache
+folder and its cap: see :mod:`cablesys.disk_cache`. Without a working compiler the functions
+run in the virtual machine and one warning says so.
 """
 
 from __future__ import annotations
@@ -24,7 +27,7 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import functools
-import hashlib
+import json
 import logging
 import os
 import shlex
@@ -36,11 +39,20 @@ from pathlib import Path
 
 import casadi as ca
 
-from . import __version__
+from .disk_cache import (
+    CACHE_FORMAT,
+    atomic_write,
+    cache_dir,
+    digest,
+    evict,
+    file_lock,
+    touch,
+)
 
 log = logging.getLogger(__name__)
 
-CACHE_FORMAT = 1          # bump when the layout of the cache or of the generated library changes
+__all__ = ["CACHE_FORMAT", "Compiled", "DerivedStore", "cache_dir", "compilation_enabled", "compile_functions",
+           "compiler_command", "generate", "state_jacobian"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -48,8 +60,8 @@ class Compiled:
     """Functions loaded from a compiled library (or the originals when not compiled).
 
     ``functions`` maps each name to a ``casadi.Function``; ``compiled`` says whether they are
-    external (compiled) functions; ``cached`` whether the library came from the cache;
-    ``build_s`` code generation + compilation time, ``load_s`` loading time [s];
+    external (compiled) functions; ``cached`` whether the library came from the cache (no
+    compiler run); ``build_s`` code generation + compilation time, ``load_s`` loading time [s];
     ``library`` the path of the shared library (None in the virtual machine).
     """
 
@@ -62,10 +74,9 @@ class Compiled:
     note: str = ""
 
 
-def cache_dir() -> Path:
-    """The versioned cache folder (created on demand)."""
-    base = os.environ.get("CABLESYS_CACHE_DIR") or os.path.join(os.path.expanduser("~"), ".cache", "cablesys")
-    return Path(base) / f"cablesys-{__version__}_casadi-{ca.__version__}_v{CACHE_FORMAT}"
+def compilation_enabled(enabled: bool = True) -> bool:
+    """False when ``enabled`` is False or ``CABLESYS_COMPILE`` is 0/false/no."""
+    return enabled and os.environ.get("CABLESYS_COMPILE", "1").strip().lower() not in ("0", "false", "no")
 
 
 # default optimization by size of the functions (serialized characters): gcc's time grows
@@ -84,37 +95,38 @@ def compiler_command(size: int = 0) -> list[str]:
 
 
 def _compiler_identity(cmd: list[str]) -> str | None:
-    """First line of ``<cc> --version`` (part of the cache key); None when there is no compiler."""
-    return _identity(tuple(cmd[:1]))
+    """The compiler's path and first line of ``--version`` (part of the cache key); None when
+    there is no compiler. Remembered on disk per executable (path, size, modification time):
+    asking the compiler costs a process start (~5 ms) at every start otherwise."""
+    exe = shutil.which(cmd[0])
+    if exe is None:
+        return None
+    real = os.path.realpath(exe)
+    try:
+        st = os.stat(real)
+    except OSError:
+        return None
+    return _identity(exe, f"{real}|{st.st_size}|{st.st_mtime_ns}")
 
 
 @functools.lru_cache(maxsize=8)
-def _identity(cc: tuple) -> str | None:
-    """Memoized per compiler command: asking the compiler costs a process start."""
-    exe = shutil.which(cc[0])
-    if exe is None:
-        return None
+def _identity(exe: str, stamp: str) -> str | None:
+    memo = cache_dir() / "compilers.json"
+    try:
+        known = json.loads(memo.read_text())
+    except (OSError, ValueError):
+        known = {}
+    if stamp in known:
+        return known[stamp]
     try:
         out = subprocess.run([exe, "--version"], capture_output=True, text=True, timeout=30, check=False)
     except (OSError, subprocess.SubprocessError):
         return None
-    return f"{exe}|{(out.stdout or out.stderr).splitlines()[0] if (out.stdout or out.stderr) else ''}"
-
-
-@contextlib.contextmanager
-def _file_lock(path: Path):
-    """An exclusive advisory lock on ``path`` (POSIX ``flock``; no-op where unavailable)."""
-    try:
-        import fcntl
-    except ImportError:          # pragma: no cover (Windows): atomic rename still protects readers
-        yield
-        return
-    with open(path, "a+") as fh:
-        fcntl.flock(fh, fcntl.LOCK_EX)
-        try:
-            yield
-        finally:
-            fcntl.flock(fh, fcntl.LOCK_UN)
+    text = out.stdout or out.stderr
+    ident = f"{exe}|{text.splitlines()[0] if text else ''}"
+    with contextlib.suppress(OSError):
+        atomic_write(memo, json.dumps({**known, stamp: ident}).encode())
+    return ident
 
 
 def state_jacobian(f: ca.Function, wrt) -> ca.Function:
@@ -160,11 +172,7 @@ def cache_key(serialized, jacobians, ident: str, cmd: list[str]) -> str:
     deterministic description of the expression graphs, from which the C code is generated;
     hashing it costs ~1 ms where generating the C costs ~100 ms), whether Jacobians are
     included, the compiler identity, its flags and the cache format."""
-    h = hashlib.sha256()
-    for part in list(serialized) + [str(jacobians), ident, " ".join(cmd[1:]), str(CACHE_FORMAT)]:
-        h.update(part.encode())
-        h.update(b"\0")
-    return h.hexdigest()[:24]
+    return digest(*serialized, jacobians, ident, " ".join(cmd[1:]), CACHE_FORMAT)[:24]
 
 
 def _build(code: str, cmd: list[str], target: Path) -> None:
@@ -179,6 +187,14 @@ def _build(code: str, cmd: list[str], target: Path) -> None:
         if proc.returncode != 0:
             raise RuntimeError(f"{' '.join(cmd)} failed: {(proc.stderr or proc.stdout).strip()[-500:]}")
         os.replace(tmp_so, target)
+
+
+def _load(target: Path, names) -> dict:
+    """``casadi.external`` of every name in the library ``target`` (RuntimeError when it does
+    not load: truncated, corrupt, removed, or without one of the names)."""
+    loaded = {name: ca.external(name, str(target)) for name in names}
+    touch(target)
+    return loaded
 
 
 def compile_functions(functions, *, jacobians=True, enabled: bool = True) -> Compiled:
@@ -200,10 +216,11 @@ def compile_functions(functions, *, jacobians=True, enabled: bool = True) -> Com
     Compiled
         The functions (external when compiled), and the build and load times [s]. Without a C
         compiler, or when compilation fails, the original functions with one logged warning.
+        A cached library that does not load is removed and built again.
     """
     functions = list(functions)
     originals = {f.name(): f for f in functions}
-    if not enabled or os.environ.get("CABLESYS_COMPILE", "1").strip() in ("0", "false", "no"):
+    if not compilation_enabled(enabled):
         return Compiled(originals, False, False, 0.0, 0.0, note="compilation disabled")
     t0 = time.perf_counter()
     serialized = [f.serialize() for f in functions]
@@ -217,19 +234,92 @@ def compile_functions(functions, *, jacobians=True, enabled: bool = True) -> Com
     key = cache_key(serialized, jacobians, ident, cmd)
     folder = cache_dir()
     target = folder / f"{key}.so"
-    cached = target.exists()
-    if not cached:
+    for attempt in (0, 1):
+        cached = target.exists()
+        if not cached:
+            try:
+                with file_lock(folder / f"{key}.lock"):
+                    cached = target.exists()          # another process may have built it meanwhile
+                    if not cached:
+                        _build(generate(functions, jacobians=jacobians), cmd, target)
+            except (OSError, RuntimeError) as err:
+                note = f"compilation failed ({err}): running the CasADi virtual machine (slower)"
+                log.warning(note)
+                return Compiled(originals, False, False, time.perf_counter() - t0, 0.0, note=note)
+            with contextlib.suppress(OSError):
+                evict(keep=[target])
+        t1 = time.perf_counter()
         try:
-            folder.mkdir(parents=True, exist_ok=True)
-            with _file_lock(folder / f"{key}.lock"):
-                cached = target.exists()          # another process may have built it meanwhile
-                if not cached:
-                    _build(generate(functions, jacobians=jacobians), cmd, target)
-        except (OSError, RuntimeError) as err:
-            note = f"compilation failed ({err}): running the CasADi virtual machine (slower)"
-            log.warning(note)
-            return Compiled(originals, False, False, time.perf_counter() - t0, 0.0, note=note)
-    t1 = time.perf_counter()
-    loaded = {name: ca.external(name, str(target)) for name in originals}
-    t2 = time.perf_counter()
-    return Compiled(loaded, True, cached, t1 - t0, t2 - t1, library=target)
+            loaded = _load(target, originals)
+        except RuntimeError as err:
+            if attempt:
+                note = f"the compiled library {target} does not load ({err}): running the CasADi virtual machine"
+                log.warning(note)
+                return Compiled(originals, False, False, time.perf_counter() - t0, 0.0, note=note)
+            log.warning("cached library %s does not load (%s): building it again", target.name,
+                        str(err).strip().splitlines()[-1][:200] if str(err).strip() else "")
+            with file_lock(folder / f"{key}.lock"), contextlib.suppress(OSError):
+                target.unlink()
+            continue
+        t2 = time.perf_counter()
+        return Compiled(loaded, True, cached, t1 - t0, t2 - t1, library=target)
+    raise AssertionError("unreachable")     # pragma: no cover
+
+
+class DerivedStore:
+    """The disk index of a model structure's compiled derived functions.
+
+    ``load(key)`` returns the :class:`Compiled` stored under (structure, ``key``) by an earlier
+    process, loaded with ``casadi.external`` without building anything, or None (not stored,
+    library gone or not loading: the caller builds it); ``save(key, item)`` records a compiled
+    item. Keys are those of :class:`~cablesys.model.FunctionCache` (what is derived and its
+    structural options), so the entry is exactly as specific as the in-memory cache; the
+    structure key (:func:`cablesys.model.store.structure_key`) includes the versions and the
+    source fingerprint, and the entry's name includes the compiler settings.
+
+    Parameters
+    ----------
+    structure : str
+        The model's structure key.
+    """
+
+    def __init__(self, structure: str):
+        self.structure = structure
+
+    def __repr__(self) -> str:
+        return f"DerivedStore({self.structure})"
+
+    def _path(self, key: str) -> Path:
+        settings = (os.environ.get("CABLESYS_CC", "cc"), os.environ.get("CABLESYS_CFLAGS", ""))
+        return cache_dir() / "derived" / f"{digest(self.structure, key, *settings)}.json"
+
+    def load(self, key: str) -> Compiled | None:
+        """The compiled item stored under ``key``, or None (see the class docstring)."""
+        if not compilation_enabled():
+            return None
+        path = self._path(key)
+        try:
+            entry = json.loads(path.read_text())
+        except (OSError, ValueError):
+            return None
+        t0 = time.perf_counter()
+        target = cache_dir() / entry.get("library", "")
+        ident = _compiler_identity(compiler_command())
+        if entry.get("key") != key or entry.get("compiler") != ident or not target.is_file():
+            return None
+        try:
+            loaded = _load(target, entry["names"])
+        except (RuntimeError, KeyError, TypeError):
+            log.info("stored library %s of %s does not load: building it again", target.name, key)
+            return None
+        touch(path)
+        return Compiled(loaded, True, True, 0.0, time.perf_counter() - t0, library=target)
+
+    def save(self, key: str, item) -> None:
+        """Record ``item`` under ``key`` when it is a compiled :class:`Compiled` (else nothing)."""
+        if not (isinstance(item, Compiled) and item.compiled and item.library is not None):
+            return
+        entry = {"key": key, "structure": self.structure, "library": item.library.name,
+                 "names": list(item.functions), "compiler": _compiler_identity(compiler_command())}
+        with contextlib.suppress(OSError):
+            atomic_write(self._path(key), json.dumps(entry).encode())

@@ -19,7 +19,8 @@ def _pendulum():
 
 @pytest.fixture
 def cache(tmp_path, monkeypatch):
-    monkeypatch.setenv("CABLESYS_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setenv("CABLESYS_CACHE", str(tmp_path / "cache"))
+    monkeypatch.delenv("CABLESYS_CACHE_DIR", raising=False)
     monkeypatch.setenv("CABLESYS_CFLAGS", "-O0")
     monkeypatch.delenv("CABLESYS_CC", raising=False)
     monkeypatch.delenv("CABLESYS_COMPILE", raising=False)

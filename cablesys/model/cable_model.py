@@ -7,6 +7,11 @@ the compiled integrator); they are built once per model and kept in the model's
 :class:`FunctionCache`, an explicit object with a documented interface, not a dict filled
 under ad hoc keys. A copy made with ``dataclasses.replace`` (a different model) starts
 with an empty cache.
+
+A cache may be attached to a disk store (:meth:`FunctionCache.attach`, done by
+:func:`~cablesys.model.build_model` with :class:`cablesys.compiled.DerivedStore`): an item
+not yet built in this process is first asked of the store (a compiled library built by an
+earlier run of the same model structure), and a newly built one is offered to it.
 """
 
 from __future__ import annotations
@@ -30,12 +35,30 @@ class FunctionCache:
     ``"colloc_41"``); numbers that vary between calls must be arguments of the functions
     (entries of ``p``), never part of a key. Safe to share between threads (a build may
     itself ask the cache for another key). Pickling keeps no functions: a copy in another
-    process builds its own.
+    process builds its own (or loads it from the attached store, which is kept).
+
+    Parameters
+    ----------
+    store : object, optional
+        A disk store with ``load(key) -> item or None`` and ``save(key, item)`` (see
+        :meth:`attach`).
     """
 
-    def __init__(self):
+    def __init__(self, store=None):
         self._items: dict[str, Any] = {}
         self._lock = threading.RLock()
+        self._store = store
+        self.hits = 0            # items this cache took from its store instead of building them
+
+    def attach(self, store) -> None:
+        """Use ``store`` (``load(key)`` / ``save(key, item)``) behind this cache: on a miss the
+        store is asked first; what is built is offered to it (it keeps what it can reuse)."""
+        self._store = store
+
+    @property
+    def store(self):
+        """The attached disk store (None: memory only)."""
+        return self._store
 
     def get(self, key: str, build: Callable[[], Any]) -> Any:
         """The function stored under ``key``, built by ``build()`` on first use.
@@ -54,7 +77,14 @@ class FunctionCache:
         """
         with self._lock:
             if key not in self._items:
-                self._items[key] = build()
+                item = self._store.load(key) if self._store is not None else None
+                if item is None:
+                    item = build()
+                    if self._store is not None:
+                        self._store.save(key, item)
+                else:
+                    self.hits += 1
+                self._items[key] = item
             return self._items[key]
 
     def __contains__(self, key: str) -> bool:
@@ -73,10 +103,10 @@ class FunctionCache:
             self._items.clear()
 
     def __getstate__(self):
-        return {}
+        return {"store": self._store}
 
     def __setstate__(self, state):
-        self.__init__()
+        self.__init__(state.get("store"))
 
     def __repr__(self) -> str:
         return f"FunctionCache({', '.join(self._items) or 'empty'})"
@@ -109,10 +139,13 @@ class CableModel:
     symbolic: type = ca.SX      # ca.MX when the top motion has a sampled series
     kind: str = "wang"          # which rung of the model ladder: "wang", "quasi-static", "segmented"
     cache: FunctionCache = dataclasses.field(init=False, repr=False)
+    # how build_model made it: ``stored`` (loaded from the disk cache), ``build_s``, ``structure_key``
+    build_info: dict = dataclasses.field(init=False, repr=False, compare=False)
     derived: dataclasses.InitVar[dict | None] = None    # deprecated, ignored: use ``cache``
 
     def __post_init__(self, derived):
         object.__setattr__(self, "cache", FunctionCache())
+        object.__setattr__(self, "build_info", {})
 
     def derive(self, key: str, build):
         """``self.cache.get(key, build)`` (see :meth:`FunctionCache.get`): a derived function, built once."""

@@ -1,0 +1,116 @@
+"""A model structure's functions kept on disk, so that a second start skips the symbolic build.
+
+Building a model derives its equations of motion symbolically (Lagrange's equations by AD:
+15 ms for Wang's model, 75-160 ms for a segmented cable of 20 elements); CasADi's serialized
+form of the same functions loads in a fraction of that (3 ms and ~25 ms). The functions
+depend on the scene's structure only (every scene number is an entry of ``p``), so they are
+stored under a **structure key**: a hash of
+
+- the structure description :func:`~cablesys.model.params.structure_of` (sections, angle mode,
+  body drag shapes, drag segments, elements per section, current points, waves, sinusoids,
+  time-series grid) and the full list of parameter labels (every named input of the model);
+- the builder (``build_model``), the versions of cablesys and CasADi, the cache format and the
+  fingerprint of the model's source files (:func:`cablesys.disk_cache.code_fingerprint`).
+
+Two scenes with equal keys build identical functions, so a key collision would need a
+SHA-256 collision. The entry carries a SHA-256 of its content: a truncated or corrupt file is
+detected, removed and rebuilt. Only used when compilation is enabled (the compiled path;
+``CABLESYS_COMPILE=0`` keeps everything in memory).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import dataclasses
+import hashlib
+import importlib
+import logging
+import pickle
+
+import casadi as ca
+
+from ..disk_cache import (
+    CACHE_FORMAT,
+    atomic_write,
+    cache_dir,
+    code_fingerprint,
+    digest,
+    evict,
+    touch,
+)
+from .params import ParameterLayout, structure_of
+
+log = logging.getLogger(__name__)
+
+_SKIP = ("layout",)          # rebuilt from the scene (its SX symbol is not part of the functions)
+
+
+def structure_key(scene, builder: str = "build_model", layout: ParameterLayout | None = None) -> str:
+    """The hash naming ``scene``'s model structure (see the module docstring).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (its values do not enter the key).
+    builder : str
+        Name of the function that builds the model.
+    layout : ParameterLayout, optional
+        ``scene``'s layout when already made.
+
+    Returns
+    -------
+    str
+        32 hexadecimal digits.
+    """
+    labels = (layout or ParameterLayout.from_scene(scene)).labels
+    return digest(CACHE_FORMAT, ca.__version__, code_fingerprint(), builder, repr(structure_of(scene)), *labels)
+
+
+def _path(key: str):
+    return cache_dir() / "models" / f"{key}.model"
+
+
+def save_model(model, key: str) -> None:
+    """Store ``model``'s functions and fields under ``key`` (atomic; errors only logged)."""
+    fields = {}
+    for f in dataclasses.fields(model):
+        if not f.init or f.name in _SKIP:
+            continue
+        value = getattr(model, f.name)
+        fields[f.name] = ("function", value.serialize()) if isinstance(value, ca.Function) else ("value", value)
+    cls = type(model)
+    payload = pickle.dumps({"class": (cls.__module__, cls.__qualname__), "fields": fields},
+                           protocol=pickle.HIGHEST_PROTOCOL)
+    path = _path(key)
+    try:
+        atomic_write(path, hashlib.sha256(payload).digest() + payload)
+        evict(keep=[path])
+    except OSError as err:
+        log.info("model not stored (%s)", err)
+
+
+def load_model(scene, key: str, layout: ParameterLayout | None = None):
+    """The model stored under ``key`` with ``scene``'s parameter layout (``layout`` when already
+    made), or None (not stored, or the entry is corrupt: then it is removed)."""
+    path = _path(key)
+    try:
+        blob = path.read_bytes()
+    except OSError:
+        return None
+    try:
+        payload = blob[32:]
+        if hashlib.sha256(payload).digest() != blob[:32]:
+            raise ValueError("checksum mismatch")
+        data = pickle.loads(payload)
+        module, name = data["class"]
+        cls = getattr(importlib.import_module(module), name)
+        kwargs = {k: ca.Function.deserialize(v) if kind == "function" else v
+                  for k, (kind, v) in data["fields"].items()}
+        model = cls(layout=layout or ParameterLayout.from_scene(scene), **kwargs)
+    except Exception as err:         # noqa: BLE001 (any unreadable entry is rebuilt, never trusted)
+        log.warning("stored model %s is unreadable (%s): building it again", path.name, err)
+        with contextlib.suppress(OSError):
+            path.unlink()
+        return None
+    touch(path)
+    return model
