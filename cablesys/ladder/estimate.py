@@ -59,11 +59,12 @@ class LinearResponse:
         return max(self.tension_mean[k] + self.tension_amplitude[k] for k in self.tension_mean)
 
 
-def linear_response(scene: Scene, numbers: SceneNumbers) -> LinearResponse:
+def linear_response(scene: Scene, numbers: SceneNumbers, model=None) -> LinearResponse:
     """Wang's one-harmonic (describing-function) response to the scene's forcing, or for several
-    frequencies the exact linear response at each component summed (a bound)."""
+    frequencies the exact linear response at each component summed (a bound). ``model``: Wang's
+    model of the scene's structure if already built (its cached solvers are reused)."""
     sc = rung_scene(scene, "wang")
-    model = build_rung(sc, "wang")
+    model = model or build_rung(sc, "wang")
     p = model.parameters(sc)
     keys = ("tension_top", "tension_bottom", "tension")      # "tension": Wang's F_bc, the slack switch (eq. 54)
     if numbers.single_frequency and not scene.environment.waves:
