@@ -30,14 +30,79 @@ FPS_TO_SI = {
 UNIT_SYSTEMS = ("SI", "fps")
 
 
-def spec(dim: str, doc: str, default=dataclasses.MISSING, *, default_factory=dataclasses.MISSING):
-    """A dataclass field with unit metadata."""
-    kw = {"metadata": {"dim": dim, "doc": doc}}
+def spec(dim: str, doc: str, default=dataclasses.MISSING, *, default_factory=dataclasses.MISSING,
+         symbol: str | None = None, quantity: str | None = None):
+    """A dataclass field with unit metadata.
+
+    Parameters
+    ----------
+    dim : str
+        Physical dimension, a key of :data:`SI_UNIT` (``"force"``, ``"length"``...).
+    doc : str
+        Meaning of the field (with the report's notation and equation).
+    default, default_factory : optional
+        As for :func:`dataclasses.field`.
+    symbol : str, optional
+        The quantity's symbol (``"EA"``); stored as ``metadata["symbol"]``.
+    quantity : str, optional
+        Name of the entry of :data:`QUANTITIES` the field stands for (set by :func:`quantity`).
+
+    Returns
+    -------
+    dataclasses.Field
+        With ``metadata`` ``dim``, ``unit`` (SI), ``doc`` and, when given, ``symbol`` and ``quantity``.
+    """
+    meta = {"dim": dim, "unit": SI_UNIT[dim], "doc": doc}
+    if symbol is not None:
+        meta["symbol"] = symbol
+    if quantity is not None:
+        meta["quantity"] = quantity
+    kw = {"metadata": meta}
     if default is not dataclasses.MISSING:
         kw["default"] = default
     if default_factory is not dataclasses.MISSING:
         kw["default_factory"] = default_factory
     return dataclasses.field(**kw)
+
+
+# One name per physical quantity shared by the models (Wang's scene, the slack and the towed
+# cable): name -> (dimension, symbol). A model that has one of these quantities declares it
+# with ``quantity(name, doc)``, so the name, unit and symbol are the same everywhere
+# (tests/test_vocabulary.py checks the three models against this table).
+QUANTITIES = {
+    "length": ("length", "L"),                     # cable length (unstretched or at the reference tension)
+    "diameter": ("length", "d"),
+    "mass_per_length": ("mass_per_length", "m"),   # in air
+    "weight_per_length": ("force_per_length", "w"),  # weight in water per unit length
+    "ae": ("force", "EA"),                         # axial stiffness (Wang's (AE)_r)
+    "added_mass_factor": ("none", "C_a"),          # added mass = C_a x displaced fluid mass
+    "cd_normal": ("none", "C_D"),                  # quadratic normal drag, referred to d
+    "ct_tangential": ("none", "C_t"),              # quadratic tangential friction, referred to d
+    "specific_gravity": ("none", "S"),
+    "gravity": ("acceleration", "g"),
+    "density": ("density", "rho"),
+}
+
+
+def quantity(name: str, doc: str, default=dataclasses.MISSING, *, default_factory=dataclasses.MISSING):
+    """A dataclass field for the shared quantity ``name`` of :data:`QUANTITIES` (its unit and symbol).
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`QUANTITIES`; the field must have this name.
+    doc : str
+        Meaning in the model at hand (its report's notation and equation).
+    default, default_factory : optional
+        As for :func:`dataclasses.field`.
+
+    Returns
+    -------
+    dataclasses.Field
+        See :func:`spec`; ``metadata["quantity"]`` is ``name``.
+    """
+    dim, symbol = QUANTITIES[name]
+    return spec(dim, doc, default, default_factory=default_factory, symbol=symbol, quantity=name)
 
 
 def to_si(value, dim: str, system: str):
