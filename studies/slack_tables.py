@@ -64,7 +64,7 @@ def read_reference():
 def table1_scene(n_elements=120) -> SlackScene:
     """Inclined cable in water; span found so that H = 76300 N with the depth 130 m."""
     cab = Cable(length=T1["L"], mass_per_length=T1["m"], ae=T1["EA"],
-                submerged_weight_per_length=T1["w"], added_mass_per_length=T1["ca"] * T1["m"],
+                weight_per_length=T1["w"], added_mass_per_length=T1["ca"] * T1["m"],
                 specific_gravity=1.0 / (1.0 - T1["w"] / (T1["m"] * 9.80665)))
 
     def sc(span):

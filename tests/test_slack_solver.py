@@ -103,7 +103,7 @@ def test_water_added_mass_lowers_transverse_frequencies_by_eq27():
     # taut-ish horizontal cable: out-of-plane modes scale by sqrt(m_W/m_A) at equal weight
     cab_air = Cable(length=100.0, mass_per_length=2.0, ae=1e7)
     cab_w = Cable(length=100.0, mass_per_length=2.0, ae=1e7, specific_gravity=4.0,
-                  added_mass_factor=1.0, submerged_weight_per_length=2.0 * 9.80665)
+                  added_mass_factor=1.0, weight_per_length=2.0 * 9.80665)
     a = compute_modes(*solve_equilibrium(SlackScene(cable=cab_air, span=99.9, n_elements=60)), 4)
     w = compute_modes(*solve_equilibrium(SlackScene(cable=cab_w, span=99.9, medium="water", n_elements=60)), 4)
     ratio = irvine.virtual_mass_ratio(added_mass_factor=1.0, specific_gravity=4.0)

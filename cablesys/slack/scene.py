@@ -10,11 +10,12 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import ParameterError, require_finite, require_nonnegative, require_positive
 from ..reader import build, located, read_toml, typed_fields
+from ..scene.fields import quantity, spec
 from ..units import G_STANDARD
 
 MEDIA = ("air", "water")
@@ -39,25 +40,30 @@ def _buoyancy_and_added(mass: float, S: float | None, c_am: float, medium: str, 
 
 @dataclass(frozen=True, kw_only=True)
 class Cable:
-    """A uniform extensible cable.
+    """A uniform extensible cable (Griffin & Rosenthal 1985), in the vocabulary of the Wang scene.
 
-    length: unstretched length L (m); mass_per_length: m in air (kg/m);
-    ae: axial stiffness EA (N; Wang's (AE)); specific_gravity: S, needed in water;
-    added_mass_factor: C_am of eq. 26 (water only; Wang's added-mass factor gamma);
-    submerged_weight_per_length / added_mass_per_length: optional explicit
-    values (N/m, kg/m) that override the ones derived from S and C_am;
-    max_strain: the largest strain the cable may take, which fixes how far it
-    can reach (chord < length * (1 + max_strain)).
+    The quantities it shares with :class:`cablesys.scene.Cable` (length, mass_per_length, ae,
+    weight_per_length, added_mass_factor, specific_gravity) have the same names, units and
+    symbols (:data:`cablesys.scene.fields.QUANTITIES`); the slack model adds the specific
+    gravity that derives the weight in water and added mass (eq. 26), an explicit added mass
+    and the largest strain. ``weight_per_length`` and ``added_mass_per_length`` override the
+    values derived from S and C_a (water only); ``max_strain`` fixes how far the cable can
+    reach (chord < length * (1 + max_strain)).
     """
 
-    length: float
-    mass_per_length: float
-    ae: float
-    specific_gravity: float | None = None
-    added_mass_factor: float = 1.0
-    submerged_weight_per_length: float | None = None
-    added_mass_per_length: float | None = None
-    max_strain: float = 0.02
+    length: float = quantity("length", "unstretched length L")
+    mass_per_length: float = quantity("mass_per_length", "mass per unit length in air m")
+    ae: float = quantity("ae", "axial stiffness EA (Wang's (AE))")
+    specific_gravity: float | None = quantity("specific_gravity", "specific gravity S of the cable, needed in water "
+                                              "(buoyancy m g / S and added mass, eq. 26)", None)
+    added_mass_factor: float = quantity("added_mass_factor", "C_am of eq. 26: added mass = C_am m / S (water only; "
+                                        "Wang's added-mass factor gamma)", 1.0)
+    weight_per_length: float | None = quantity("weight_per_length", "weight in water per unit length; overrides "
+                                               "m g (1 - 1/S) (water only)", None)
+    added_mass_per_length: float | None = spec("mass_per_length", "transverse added mass per unit length; overrides "
+                                               "C_am m / S (water only)", None, symbol="m_a")
+    max_strain: float = spec("none", "largest strain the cable may take (linear elastic up to it)", 0.02,
+                             symbol="epsilon_max")
 
     def __post_init__(self):
         require_positive("cable.length", self.length, "m")
@@ -68,8 +74,8 @@ class Cable:
             raise ParameterError("cable.specific_gravity", self.specific_gravity,
                                  "must be > 1 (a cable that floats cannot hang as a catenary)")
         require_nonnegative("cable.added_mass_factor", self.added_mass_factor)
-        if self.submerged_weight_per_length is not None:
-            require_positive("cable.submerged_weight_per_length", self.submerged_weight_per_length, "N/m")
+        if self.weight_per_length is not None:
+            require_positive("cable.weight_per_length", self.weight_per_length, "N/m")
         if self.added_mass_per_length is not None:
             require_nonnegative("cable.added_mass_per_length", self.added_mass_per_length, "kg/m")
         v = require_positive("cable.max_strain", self.max_strain)
@@ -78,13 +84,13 @@ class Cable:
 
     def weight_and_added_mass(self, medium: str, g: float) -> tuple[float, float]:
         """(weight per length N/m, transverse added mass per length kg/m) in ``medium``."""
-        if medium == "water" and self.submerged_weight_per_length is not None \
+        if medium == "water" and self.weight_per_length is not None \
                 and self.added_mass_per_length is not None:
-            return self.submerged_weight_per_length, self.added_mass_per_length
+            return self.weight_per_length, self.added_mass_per_length
         w, ma = _buoyancy_and_added(self.mass_per_length, self.specific_gravity,
                                     self.added_mass_factor, medium, g, "cable")
         if medium == "water":
-            w = self.submerged_weight_per_length if self.submerged_weight_per_length is not None else w
+            w = self.weight_per_length if self.weight_per_length is not None else w
             ma = self.added_mass_per_length if self.added_mass_per_length is not None else ma
         return w, ma
 
@@ -98,11 +104,11 @@ class PointMass:
     name is a label for outputs.
     """
 
-    position: float
-    mass: float
-    specific_gravity: float | None = None
-    added_mass_factor: float = 1.0
-    name: str = ""
+    position: float = spec("length", "unstretched arc length from support A", symbol="s")
+    mass: float = spec("mass", "mass in air", symbol="M")
+    specific_gravity: float | None = quantity("specific_gravity", "specific gravity S, needed in water", None)
+    added_mass_factor: float = quantity("added_mass_factor", "C_am: added mass = C_am M / S (isotropic, eq. 26)", 1.0)
+    name: str = spec("none", "label for outputs", "", symbol="")
 
     def __post_init__(self):
         require_finite("mass.position", self.position)
@@ -124,14 +130,14 @@ class SlackScene:
     when not given one).
     """
 
-    cable: Cable
-    span: float
-    rise: float = 0.0
-    masses: tuple[PointMass, ...] = field(default_factory=tuple)
-    medium: str = "air"
-    gravity: float = G_STANDARD
-    n_elements: int = 120
-    n_modes: int = 12
+    cable: Cable = spec("none", "the cable", symbol="")
+    span: float = spec("length", "horizontal distance from A to B", symbol="x_B")
+    rise: float = spec("length", "height of B above A", 0.0, symbol="z_B")
+    masses: tuple[PointMass, ...] = spec("none", "attached point masses", default_factory=tuple, symbol="")
+    medium: str = spec("none", f"surrounding fluid, one of {MEDIA}", "air", symbol="")
+    gravity: float = quantity("gravity", "gravitational acceleration", G_STANDARD)
+    n_elements: int = spec("none", "lumped-mass elements (mass positions are added as nodes)", 120, symbol="N")
+    n_modes: int = spec("none", "natural modes an analysis reports", 12, symbol="")
 
     def __post_init__(self):
         require_positive("scene.span", self.span, "m")
@@ -208,7 +214,7 @@ mass_per_length = 1.14    # kg/m, in air
 ae = 8.9e5                # axial stiffness EA, N
 # specific_gravity = 7.8        # needed in water: buoyancy and added mass (eq. 26)
 # added_mass_factor = 1.0       # C_am
-# submerged_weight_per_length = 47.6   # N/m, overrides the value from S
+# weight_per_length = 47.6     # N/m, weight in water, overrides m g (1 - 1/S)
 # added_mass_per_length = 0.71         # kg/m, overrides C_am m / S
 # max_strain = 0.02
 
@@ -253,7 +259,8 @@ def scene_from_dict(doc: dict, source=None) -> SlackScene:
 
 
 # keys renamed to the Wang scene's vocabulary (one name per quantity); the old ones still load
-DEPRECATED_KEYS = {"axial_stiffness": "ae", "added_mass_coefficient": "added_mass_factor"}
+DEPRECATED_KEYS = {"axial_stiffness": "ae", "added_mass_coefficient": "added_mass_factor",
+                   "submerged_weight_per_length": "weight_per_length"}
 
 
 def _renamed(table, where: str):

@@ -55,7 +55,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ParameterError, require_nonnegative, require_positive, require_range
-from ..scene.fields import spec
+from ..scene.fields import quantity, spec
 
 __all__ = ["TowedCable", "Coefficients", "REPORT_SEA_TRIAL", "REPORT_TYPICAL"]
 
@@ -127,18 +127,22 @@ class TowedCable:
     depressed cable), c_t_drogue the drogue term c_t', beta = M/(M+m).
     """
 
-    # unit (dimension) and the report's symbol of every field, as the Wang scene's fields carry them.
-    # c_t and c_n keep the report's names: c_t is referred to pi d_c (F_t = rho/2 pi d_c c_t U^2),
-    # Wang's ct_tangential to d (eq. 44), so c_t = ct_tangential / pi; c_n is Wang's cd_normal.
-    length: float = spec("length", "cable length L")
-    speed: float = spec("velocity", "tow speed U")
-    diameter: float = spec("length", "cable diameter d_c", 0.016)
-    c_t: float = spec("none", "tangential drag coefficient c_t, referred to pi d_c (= Wang's C_t / pi)", 0.0101)
-    c_n: float = spec("none", "normal drag coefficient c_n (effective c_n* = A c_n for a depressed cable, "
-                      "eq. 39; Wang's C_D)", 0.16)
-    c_t_drogue: float = spec("none", "drogue term c_t' (drogue drag 2 c_t' M U^2)", 228.0)
+    # unit (dimension) and the report's symbol of every field, as the Wang scene's fields carry them;
+    # length and diameter are the shared quantities of cablesys.scene.fields.QUANTITIES.
+    # c_t and c_n keep the report's names because they are other numbers than Wang's coefficients:
+    # c_t is referred to pi d_c (F_t = rho/2 pi d_c c_t U^2), Wang's ct_tangential to d (eq. 44), so
+    # c_t = ct_tangential / pi (see :attr:`ct_tangential`); c_n is the coefficient of a drag linear in
+    # the cross-flow angle (F_n = rho/2 d_c c_n U v_n), not Wang's quadratic cd_normal.
+    length: float = quantity("length", "cable length L")
+    speed: float = spec("velocity", "tow speed U", symbol="U")
+    diameter: float = quantity("diameter", "cable diameter d_c", 0.016)
+    c_t: float = spec("none", "tangential drag coefficient c_t, referred to pi d_c (= Wang's C_t / pi)", 0.0101,
+                      symbol="c_t")
+    c_n: float = spec("none", "linearized normal drag coefficient c_n (effective c_n* = A c_n for a depressed "
+                      "cable, eq. 39)", 0.16, symbol="c_n")
+    c_t_drogue: float = spec("none", "drogue term c_t' (drogue drag 2 c_t' M U^2)", 228.0, symbol="c_t'")
     beta: float = spec("none", "mass ratio beta = M / (M + m): fluid mass M = rho pi d_c^2 / 4 over fluid plus "
-                       "cable mass per length", 0.5)
+                       "cable mass per length", 0.5, symbol="beta")
 
     def __post_init__(self):
         require_positive("length", self.length, "m")
@@ -148,6 +152,11 @@ class TowedCable:
         require_positive("c_n", self.c_n)
         require_nonnegative("c_t_drogue", self.c_t_drogue)
         require_range("beta", self.beta, 0.0, 1.0, lo_open=True)
+
+    @property
+    def ct_tangential(self) -> float:
+        """The tangential coefficient in the Wang scene's convention, ``C_t = pi c_t`` (referred to d, eq. 44)."""
+        return math.pi * self.c_t
 
     @property
     def eps(self) -> float:
