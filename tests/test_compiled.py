@@ -118,3 +118,121 @@ def test_run_summary_reports_build_load_and_run_time(cache, tmp_path):
         timing = json.loads((out / "summary.json").read_text())["timing"]
         assert set(timing) == {"build_s", "load_s", "run_s"} and all(v >= 0.0 for v in timing.values())
     assert len(list(cache_dir().glob("*.so"))) >= 1
+
+
+def _heavier(scene, factor=1.3):
+    """The same structure with another body weight."""
+    import dataclasses
+    sec = scene.sections[0]
+    body = dataclasses.replace(sec.body, weight=factor * sec.body.weight)
+    return dataclasses.replace(scene, sections=(dataclasses.replace(sec, body=body),) + scene.sections[1:])
+
+
+def test_second_start_loads_the_stored_model_and_library_without_building(cache, monkeypatch):
+    """A second build of the same structure (other values) comes from the disk; its compiled DAE
+    is found by the structure index (no graph built, no compiler run) and runs identically."""
+    from cablesys.compiled import DerivedStore
+    from cablesys.model import build_model
+    from cablesys.scene import dale_scene
+    from cablesys.time_domain import Simulator, simulate
+    from cablesys.time_domain.integrators import IntegratorSettings
+    scene = dale_scene().with_numerics(duration=2.0, drag_segments=2)
+    first = build_model(scene)
+    assert first.build_info["stored"] is False and isinstance(first.cache.store, DerivedStore)
+    settings = IntegratorSettings(rtol=1e-9, atol=1e-11)
+    ref = simulate(scene, model=first, simulator=Simulator(first, scene.output_times, settings))
+    libraries = sorted(cache_dir().glob("*.so"))
+    heavier = _heavier(scene)                               # same structure, other values
+    second = build_model(heavier)
+    assert second.build_info["stored"] is True
+    assert second.build_info["structure_key"] == first.build_info["structure_key"]
+    sim = Simulator(second, scene.output_times, settings)
+    assert sim.compiled.compiled and sim.compiled.cached and second.cache.hits >= 2   # the DAE and the output functions
+    assert sorted(cache_dir().glob("*.so")) == libraries                                 # nothing compiled
+    again = simulate(scene, model=second, simulator=sim)
+    for lbl in ("phi", "u", "x_b", "tension"):
+        assert np.array_equal(again[lbl], ref[lbl])          # the same machine code on the same numbers
+    # the stored functions are CasADi's exact graphs: equal to a fresh symbolic build in the VM
+    x = np.array([0.1, 0.2, 0.01, -0.02])
+    p = second.parameters(heavier)
+    monkeypatch.setenv("CABLESYS_COMPILE", "0")
+    fresh = build_model(heavier)
+    assert fresh.build_info["stored"] is False
+    assert np.array_equal(np.array(second.ode(x, 0.7, p)), np.array(fresh.ode(x, 0.7, p)))
+
+
+def test_structure_key_follows_structure_not_values():
+    from cablesys.ladder.rungs import with_segments
+    from cablesys.model.store import structure_key
+    from cablesys.scene import dale_scene
+    scene = dale_scene()
+    key = structure_key(scene)
+    assert structure_key(_heavier(scene, 2.0)) == key
+    assert structure_key(scene.with_numerics(drag_segments=3)) != key
+    assert structure_key(with_segments(scene, 4)) != key
+
+
+def test_corrupt_entries_are_detected_and_rebuilt(cache, caplog):
+    from cablesys.model import build_model
+    from cablesys.scene import dale_scene
+    scene = dale_scene().with_numerics(drag_segments=2)
+    model = build_model(scene)
+    stored = next(cache_dir().glob("models/*.model"))
+    stored.write_bytes(stored.read_bytes()[:-100])                 # truncated
+    with caplog.at_level(logging.WARNING):
+        again = build_model(scene)
+    assert again.build_info["stored"] is False and "unreadable" in caplog.text
+    assert build_model(scene).build_info["stored"] is True        # rewritten whole
+    x, p = np.array([0.1, 0.2, 0.0, 0.0]), model.parameters(scene)
+    assert np.array_equal(np.array(again.ode(x, 0.0, p)), np.array(model.ode(x, 0.0, p)))
+    # a library that does not load is removed and built again (a garbage file where the library
+    # of a function never loaded in this process is expected: rewriting a loaded one would fault)
+    from cablesys.compiled import _compiler_identity, cache_key, compiler_command
+    x = ca.SX.sym("x", 2)
+    f = ca.Function("corrupt_check", [x], [ca.vertcat(x[1], -x[0])])
+    ser = [f.serialize()]
+    cmd = compiler_command(len(ser[0]))
+    target = cache_dir() / f"{cache_key(ser, True, _compiler_identity(cmd), cmd)}.so"
+    target.write_bytes(b"\x7fELF garbage")
+    with caplog.at_level(logging.WARNING):
+        out = compile_functions([f])
+    assert out.compiled and not out.cached and out.library == target and "does not load" in caplog.text
+    assert np.array_equal(np.array(out.functions["corrupt_check"]([1.0, 2.0])).ravel(), [2.0, -1.0])
+
+
+def test_eviction_removes_least_recently_used_first(cache, monkeypatch):
+    import os
+
+    from cablesys.disk_cache import cap_bytes, evict
+    from cablesys.errors import ParameterError
+    folder = cache_dir()
+    folder.mkdir(parents=True)
+    files = []
+    for k in range(4):                                       # 4 entries of 1000 bytes, used at t = k
+        f = folder / f"entry{k}.so"
+        f.write_bytes(b"x" * 1000)
+        os.utime(f, (1000 + k, 1000 + k))
+        files.append(f)
+    os.utime(files[0], (2000, 2000))                         # entry0 used last
+    removed = evict(cap=2500)
+    assert set(removed) == {files[1], files[2]}             # the two least recently used
+    assert files[0].exists() and files[3].exists()
+    monkeypatch.setenv("CABLESYS_CACHE_MB", "0.0015")
+    assert cap_bytes() == 1500 and evict(keep=[files[3]]) == [files[0]]
+    monkeypatch.setenv("CABLESYS_CACHE_MB", "-1")
+    with pytest.raises(ParameterError, match="CABLESYS_CACHE_MB"):
+        cap_bytes()
+
+
+def test_simulate_without_a_compiler_runs_in_the_virtual_machine(cache, monkeypatch, caplog):
+    """The default (compiled) path on a machine with no C compiler: one notice, same results."""
+    from cablesys.scene import dale_scene
+    from cablesys.time_domain import simulate
+    monkeypatch.setenv("CABLESYS_CC", "cc-not-installed-anywhere")
+    scene = dale_scene().with_numerics(duration=1.0, drag_segments=2)
+    with caplog.at_level(logging.WARNING, logger="cablesys.compiled"):
+        res = simulate(scene)
+    assert res.success and res.stats["compiled"] is False
+    notes = {r.getMessage() for r in caplog.records if r.name == "cablesys.compiled"}
+    assert len(notes) == 1 and "no C compiler" in notes.pop()
+    assert not list(cache_dir().glob("*.so"))
