@@ -85,3 +85,69 @@ def test_ramp_leaves_no_free_vibration_where_the_abrupt_start_rings():
     expected = A * WF ** 3 / (w * (w ** 2 - WF ** 2))
     assert free_vibration(abrupt, R) == pytest.approx(expected, rel=0.02)
     assert free_vibration(smooth, R) < 1e-2 * expected
+
+
+# -- Wang's model on the Dale scene: consistent start, stretch mode left at rest ---------------
+def dale(ramp_s):
+    sc = dale_scene(duration=30.0)
+    tm = sc.top_motion
+    return sc.replace(top_motion=TopMotion(x=tm.x, y=tm.y, ramp_s=ramp_s))
+
+
+def test_default_ramp_is_three_forcing_periods_and_zero_is_abrupt():
+    sc = dale_scene()
+    tm = sc.top_motion
+    assert tm.ramp_s == 0.0 and tm.effective_ramp_s == 0.0        # Wang's runs: abrupt, explicitly
+    auto = TopMotion(x=tm.x, y=(Sinusoid(amplitude=0.01, frequency=0.5),))
+    assert auto.ramp_s is None and auto.effective_ramp_s == pytest.approx(3 * 2 * math.pi / 0.5)
+    assert TopMotion().effective_ramp_s == 0.0
+    model = build_model(sc.replace(top_motion=auto))
+    p = model.parameters(sc.replace(top_motion=auto))
+    assert p[model.layout.index("top_motion.ramp_s")] == pytest.approx(12 * math.pi)
+
+
+def test_steady_start_is_consistent_with_the_ramped_top():
+    """x0 = (static q, 0) is an equilibrium of the ramped problem at t = 0 (top at rest, no
+    acceleration: Wang (1971) eq. 49 with x_s'' = y_s'' = 0), not of the abrupt one."""
+    from cablesys.time_domain import initial_state
+    for ramp_s, consistent in ((3 * 2 * math.pi / 1.14, True), (0.0, False)):
+        sc = dale(ramp_s)
+        model = build_model(sc)
+        p = model.parameters(sc)
+        x0 = initial_state(sc, model, p)
+        acc = np.array(model.ode(x0, 0.0, p)).ravel()[model.nq:]
+        top = np.array(model.top(0.0, p)).ravel()
+        if consistent:
+            assert np.allclose(top[1:], 0.0, atol=1e-15)
+            assert np.max(np.abs(acc)) < 1e-8          # q'' of the static state: solver tolerance
+        else:
+            assert np.max(np.abs(top[5:7])) > 0.05    # the abrupt top accelerates at t = 0 (m/s^2)
+            assert np.max(np.abs(acc)) > 1e-2
+
+
+def stretch_band_energy(res, t_from, omega_s):
+    """Mean square of the stretch rate u' in the band 0.5-2 omega_s after ``t_from`` (FFT)."""
+    keep = res.time >= t_from
+    t, v = res.time[keep], res["u_rate"][keep]
+    v = v - v.mean()
+    f = np.fft.rfftfreq(t.size, t[1] - t[0]) * 2 * math.pi
+    V = np.abs(np.fft.rfft(v * np.hanning(t.size))) ** 2
+    band = (f > 0.5 * omega_s) & (f < 2.0 * omega_s)
+    return float(V[band].sum())
+
+
+@pytest.mark.slow
+def test_ramp_leaves_the_stretch_mode_at_rest_on_dale():
+    """Wang's model, Dale scene (undamped stretch mode, C_I = 0): after the ramp the energy in the
+    stretch band is a tiny fraction of what the abrupt start leaves ringing for ever."""
+    R = 3 * 2 * math.pi / 1.14
+    sc = dale(R)
+    c, b = sc.sections[0].cable, sc.sections[0].body
+    omega_s = math.sqrt(c.ae / c.length / (b.mass_y + c.mass_per_length * c.length / 3.0))   # ~250 rad/s
+    times = np.concatenate([[0.0], np.arange(R + 1.0, R + 5.0, 0.002)])
+    e = {}
+    for name, scene in (("ramped", sc), ("abrupt", dale(0.0))):
+        res = simulate(scene, times=times, rtol=1e-9, atol=1e-12, max_num_steps=1_000_000)
+        assert res.success, res.message
+        e[name] = stretch_band_energy(res, R + 1.0, omega_s)
+    assert e["ramped"] < 1e-4 * e["abrupt"]
