@@ -146,7 +146,7 @@ class EventLocator:
     def _snap(self, x, t_star, pm, i_sec, t_end):
         """First tension maximum after section ``i_sec`` went taut at ``t_star`` (dg/dt = 0, d2g/dt2 < 0)."""
         J = np.array(self._jac(x, t_star, pm))
-        iu = self.model.q_labels.index("u" if self.model.n_sections == 1 else f"u_{i_sec + 1}")
+        iu = self.model.q_labels.index(self.model.label("u", i_sec))
         w2 = max(-J[self.model.nq + iu, iu], 1e-12)
         window = min(t_end - t_star, 2.0 * np.pi / np.sqrt(w2))      # within one stretch period
         if window <= 0:
@@ -162,5 +162,5 @@ class EventLocator:
         except (RuntimeError, FloatingPointError):
             return None
         g = float(np.array(self._gap_and_rate(x_pk, t_pk, pm)[0])[i_sec, 0])
-        tens = pm[self.model.layout.index(("" if self.model.n_sections == 1 else f"sections[{i_sec}].") + "cable.tension_floor")]
+        tens = pm[self.model.layout.section_index(i_sec, "cable.tension_floor")]
         return SnapLoad(time=float(t_pk), section=i_sec, tension=g + float(tens))
