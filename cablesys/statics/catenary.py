@@ -100,12 +100,11 @@ def _rootfinders(model):
 def _tolerance(model, p) -> float:
     """TOLERANCE, or the round-off floor of the scaled residual when stiff elements set it: a node
     position known to eps x (cable length) gives an element force error k_e eps L."""
-    lab = model.layout.labels
-    val = lambda lbl: p[lab.index(lbl)]
-    pre = (lambda i: "") if model.n_sections == 1 else (lambda i: f"sections[{i}].")
-    total_l = sum(val(f"{pre(i)}cable.length") for i in range(model.n_sections))
-    k_max = max(val(f"{pre(i)}cable.ae") * n / val(f"{pre(i)}cable.length") for i, n in enumerate(model.segments))
-    weight = sum(abs(val(f"{pre(i)}body.weight")) + abs(val(f"{pre(i)}cable.weight_per_length")) * val(f"{pre(i)}cable.length")
+    def val(i, name):
+        return p[model.layout.section_index(i, name)]
+    total_l = sum(val(i, "cable.length") for i in range(model.n_sections))
+    k_max = max(val(i, "cable.ae") * n / val(i, "cable.length") for i, n in enumerate(model.segments))
+    weight = sum(abs(val(i, "body.weight")) + abs(val(i, "cable.weight_per_length")) * val(i, "cable.length")
                  for i in range(model.n_sections))
     return max(TOLERANCE, 1e3 * np.finfo(float).eps * k_max * total_l / weight)
 
@@ -247,13 +246,11 @@ def segmented_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
             y = steady_state(model, p).outputs
         pos, vel = [], []
         r0, v0 = np.zeros(2), np.zeros(2)
-        sfx = (lambda i: "") if model.n_sections == 1 else (lambda i: f"_{i + 1}")
         for i, n_el in enumerate(model.segments):
-            pre = "" if model.n_sections == 1 else f"sections[{i}]."
-            val = lambda lbl, pre=pre: p[model.layout.index(pre + lbl)]
+            val = lambda name, i=i: p[model.layout.section_index(i, name)]
             l_0 = val("cable.length") * (1 - val("cable.tension_ref") / val("cable.ae"))
-            phi = ini.phi if ini.phi is not None else y[f"phi{sfx(i)}"]
-            u = ini.u if ini.u is not None else y[f"u{sfx(i)}"]
+            phi = ini.phi if ini.phi is not None else y[model.label("phi", i)]
+            u = ini.u if ini.u is not None else y[model.label("u", i)]
             et, en = np.array([-np.sin(phi), np.cos(phi)]), np.array([-np.cos(phi), -np.sin(phi)])
             length = l_0 + u
             for k in range(1, n_el + 1):
