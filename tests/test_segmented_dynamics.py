@@ -36,7 +36,7 @@ def test_axial_wave_front_arrives_at_l_over_c():
     n, length, m, ae = 100, 100.0, 1.0, 1e6
     a, om = -0.01, 0.5                                   # up (y is down): y_s = a sin(omega t)
     scene = _scene(n, length=length, m=m, ae=ae, w=m * G, body_m=1e4, body_w=1e4 * G,
-                   top=TopMotion(y=(Sinusoid(amplitude=a, frequency=om),)),
+                   top=TopMotion(y=(Sinusoid(amplitude=a, frequency=om),), ramp_s=0.0),   # a velocity step
                    numerics=Numerics(duration=0.2, output_step=1e-4, rtol=1e-8, atol=1e-11))
     model = build_model(scene)
     st = steady_state(model, model.parameters(scene))
