@@ -47,11 +47,13 @@ class DesignInfeasible(SolverError):
         self.constraint, self.violation = constraint, violation
 
 
-def equivalent_jacobian_shift(model, p, settings: DesignSettings, *, n_log2: int | None = None):
-    """dJ = E[dr/dxi] - dr/dxi(q_0): what the Gaussian equivalent linearization adds (mostly drag)."""
+def equivalent_jacobian_shift(model, p, settings: DesignSettings, *, n_log2: int | None = None, start=None):
+    """dJ = E[dr/dxi] - dr/dxi(q_0): what the Gaussian equivalent linearization adds (mostly drag).
+
+    ``start``: the stochastic response at a neighbouring design (warm start of its iteration)."""
     omega = settings.omega
     st = stochastic_response(model, p, omega, jonswap(omega, settings.hs, settings.tp, settings.gamma),
-                             n_log2=n_log2 or settings.quadrature_log2, tol=settings.equivalent_tol)
+                             n_log2=n_log2 or settings.quadrature_log2, tol=settings.equivalent_tol, start=start)
     return (residual_jacobian(st.linear) - residual_jacobian(linearize(model, p))).real, st
 
 
@@ -155,7 +157,7 @@ def design(scene, settings: DesignSettings, *, model=None) -> DesignResult:
         best = min(feasible, key=lambda c: c[0]["objective"])
         f_now = best[0]["objective"]
         # update the equivalent drag damping at the optimum (the outer fixed point)
-        C_new, st = equivalent_jacobian_shift(model, p_of(best[1]), settings)
+        C_new, st = equivalent_jacobian_shift(model, p_of(best[1]), settings, start=st)
         change = float(np.max(np.abs(C_new - dJ)) / max(np.max(np.abs(C_new)), 1e-30))
         history.append({"outer": outer, "objective": f_now, "dJ_change": change})
         dJ = C_new

@@ -5,7 +5,12 @@ Vibration and Statistical Linearization", ch. 5): for one zero-mean drag element
 sqrt(8/pi) sigma_v, with a mean flow U it tends to the exact slope 2|U|. Sigma is the
 covariance of the linear response, Sigma = int Re(Xi(w) Xi(w)^H) S(w) dw, and the mean obeys
 E[r] = 0 (the drag's rectified mean force shifts the equilibrium). The expectation is a
-scrambled-Sobol quadrature with antithetic pairs of the model's own CasADi Jacobian.
+scrambled-Sobol quadrature with antithetic pairs of the model's own CasADi Jacobian: one
+mapped function sums r and dr/dxi over the samples (common subexpressions shared, compiled
+and cached on disk by :mod:`cablesys.compiled`), so an iteration is one call; the outputs'
+Jacobian is averaged once, after the iteration has settled. A neighbouring solution
+(``start``: a nearby design, sea state or parameter) warm-starts the covariance and the
+mean shift, and the iteration then settles in a few passes.
 
 The sea enters through the top: the top follows the surface particle orbit of Wang (1971)
 eq. 26 at x = 0 (a buoy), x_s = a cos wt, y_s = -a sin wt, i.e. input (1, i) per unit wave
@@ -17,13 +22,14 @@ from __future__ import annotations
 import dataclasses
 from typing import ClassVar
 
+import casadi as ca
 import numpy as np
 from scipy.stats import norm, qmc
 
+from ..compiled import compile_functions
 from ..errors import ParameterError
 from ..model import CableModel
 from ..results import ResultBase, timed
-from .equivalent import complex_xi
 from .linearization import (
     LinearModel,
     from_jacobian,
@@ -55,6 +61,8 @@ class StochasticResponse(ResultBase):
     success: bool = True
     message: str = ""
     stats: dict = dataclasses.field(default_factory=dict)
+    covariance: np.ndarray | None = None     # Sigma of xi (last iterate), for warm starts
+    mean_shift: np.ndarray | None = None     # q mean minus the static q0 (rectified drag)
 
     VARIABLES: ClassVar[dict] = {"sea_spectrum": ("m^2 s/rad", "sea elevation spectrum"),
                                   "response_spectrum": ("SI^2 s/rad", "output spectrum"), "mean": ("SI", "output mean"),
@@ -99,9 +107,34 @@ def _normal_samples(dim: int, n_log2: int, seed: int) -> np.ndarray:
     return np.vstack([z, -z])                         # antithetic: odd moments exactly zero
 
 
+def _moment_functions(model: CableModel, n: int) -> tuple[ca.Function, ca.Function]:
+    """Sums over n samples xi_k (columns of X) of (r, dr/dxi) and of (y, dy/dxi): one mapped,
+    reduced CasADi function each, common subexpressions shared, compiled (cached on disk)."""
+    def build():
+        fns = functions(model)
+        b = xi_blocks(model)
+        xi, p = ca.SX.sym("xi", b["n"]), ca.SX.sym("p", len(model.layout))
+        r = fns["residual"](xi, p)
+        y, Jy = fns["out_jac"](xi, p)
+        rj = ca.Function("stoch_rj", [xi, p], [ca.cse(ca.vertcat(r, ca.vec(fns["jac"](xi, p))))])
+        yj = ca.Function("stoch_yj", [xi, p], [ca.cse(ca.vertcat(y, ca.vec(Jy)))])
+        mapped = [f.map(f"{f.name()}_sum_{n}", "serial", n, [1], [0]) for f in (rj, yj)]
+        out = compile_functions(mapped, jacobians=False).functions
+        return tuple(out[m.name()] for m in mapped)
+    return model.cache.get(f"stochastic_moments_{n}", build)
+
+
+def _xi_amplitudes(b: dict, Q: np.ndarray, D: np.ndarray, omega: np.ndarray) -> np.ndarray:
+    """Complex amplitudes of xi = (q, q', q'', z, z', z'', w) on the grid: (n_omega, n_xi)
+    (:func:`cablesys.linear.equivalent.complex_xi` for every frequency at once)."""
+    s = 1j * omega[:, None]
+    return np.hstack([Q, s * Q, s**2 * Q, D[:, :2], s * D[:, :2], s**2 * D[:, :2], D[:, 2:]])
+
+
 @timed
 def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY, n_log2: int = 10,
-                        tol: float = 1e-4, max_iter: int = 60, relax: float = 0.5, seed: int = 0) -> StochasticResponse:
+                        tol: float = 1e-4, max_iter: int = 60, relax: float = 0.5, seed: int = 0,
+                        start: StochasticResponse | None = None) -> StochasticResponse:
     """Iterate N = E[J] <-> Sigma(N) until the response standard deviations change by < ``tol``.
 
     Gaussian equivalent linearization (Roberts & Spanos ch. 5): N = E[dr/dxi] over the
@@ -129,6 +162,9 @@ def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY
         Under-relaxation of the covariance update (0 < relax <= 1).
     seed : int, optional
         Seed of the scrambled Sobol sequence.
+    start : StochasticResponse, optional
+        A neighbouring solution (same model and grid; e.g. the previous design point): its
+        covariance and mean shift start the iteration, which converges to the same fixed point.
 
     Returns
     -------
@@ -151,39 +187,58 @@ def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY
     b = xi_blocks(model)
     D = np.zeros((omega.size, nu), complex)
     D[:, :direction.shape[1]] = direction
-    fns = functions(model)
-    z = _normal_samples(b["n"], n_log2, seed)
+    z = model.cache.get(f"stochastic_samples_{b['n']}_{n_log2}_{seed}", lambda: _normal_samples(b["n"], n_log2, seed))
     n = z.shape[0]
-    jac_map, res_map, out_map = fns["jac"].map(n), fns["residual"].map(n), fns["out_jac"].map(n)
+    rj_sum, yj_sum = _moment_functions(model, n)
+    q_static = lin.q0.copy()
     xi_mean = operating_xi(model, lin.q0)
+    ny = len(model.output_labels)
     Q = np.zeros((omega.size, model.nq), complex)
     sigma_old, Sigma = None, None
+
+    def samples(Sigma):
+        lam, V = np.linalg.eigh(0.5 * (Sigma + Sigma.T))
+        return xi_mean[:, None] + (V * np.sqrt(np.clip(lam, 0, None))) @ z.T
+
+    last = {}
+
+    def update(Sigma):
+        """N = E[dr/dxi] over N(xi_mean, Sigma), the mean step E[r] = 0, and the new transfer."""
+        X = samples(Sigma)
+        m = np.array(rj_sum(X, p)).ravel() / n
+        r_mean, J = m[:model.nq], m[model.nq:].reshape(b["n"], model.nq).T
+        last.update(X=X, J=J)
+        xi_mean[b["q"]] -= np.linalg.solve(J[:, b["q"]], r_mean)          # E[r] = 0: rectified mean drag
+        lin = from_jacobian(model, J, np.zeros((ny, b["n"])), xi_mean[b["q"]].copy(), np.zeros(ny), kind="stochastic")
+        Qw, _ = lin.transfer(omega)
+        return np.einsum("kqi,ki->kq", Qw, D)
+
+    if start is not None and start.covariance is not None and start.covariance.shape == (b["n"], b["n"]):
+        Sigma = np.array(start.covariance, float)
+        xi_mean[b["q"]] += start.mean_shift
+        sigma_old = np.sqrt(np.clip(np.diag(Sigma), 0, None))
+        Q = update(Sigma)
     converged, it = False, 0
     for it in range(1, max_iter + 1):
-        Xi = np.array([complex_xi(model, Q[k], D[k], omega[k]) for k in range(omega.size)])
+        Xi = _xi_amplitudes(b, Q, D, omega)
         Sig_new = np.trapezoid(np.real(Xi[:, :, None] * np.conj(Xi[:, None, :])) * S[:, None, None], omega, axis=0)
         Sigma = Sig_new if Sigma is None else (1 - relax) * Sigma + relax * Sig_new
-        lam, V = np.linalg.eigh(0.5 * (Sigma + Sigma.T))
-        X = xi_mean[:, None] + (V * np.sqrt(np.clip(lam, 0, None))) @ z.T
-        J = np.array(jac_map(X, p)).reshape(model.nq, n, b["n"]).mean(axis=1)
-        r_mean = np.array(res_map(X, p)).mean(axis=1)
-        y, Jy = (np.array(a) for a in out_map(X, p))
-        Jy = Jy.reshape(y.shape[0], n, b["n"]).mean(axis=1)
-        xi_mean[b["q"]] -= np.linalg.solve(J[:, b["q"]], r_mean)          # E[r] = 0: rectified mean drag
-        lin = from_jacobian(model, J, Jy, xi_mean[b["q"]].copy(), y.mean(axis=1), kind="stochastic")
-        Qw, _ = lin.transfer(omega)
-        Q = np.einsum("kqi,ki->kq", Qw, D)
+        Q = update(Sigma)
         sigma = np.sqrt(np.clip(np.diag(Sig_new), 0, None))
         if sigma_old is not None and np.all(np.abs(sigma - sigma_old) <= tol * np.maximum(sigma, 1e-30)):
             converged = True
             break
         sigma_old = sigma
+    my = np.array(yj_sum(last["X"], p)).ravel() / n      # outputs over the last iterate's samples
+    lin = from_jacobian(model, last["J"], my[ny:].reshape(b["n"], ny).T,
+                        xi_mean[b["q"]].copy(), my[:ny], kind="stochastic")
     _, Yw = lin.transfer(omega)
     Y = np.einsum("kyi,ki->ky", Yw, D)
     std = np.sqrt(np.trapezoid(np.abs(Y) ** 2 * S[:, None], omega, axis=0))
     floors = [p[k] for k in model.layout.section_indices("cable.tension_floor")]
     return StochasticResponse(omega=omega, spectrum=S, linear=lin, output_labels=model.output_labels, transfer=Y,
                               output_mean=lin.y0, output_std=std, tension_floor=float(max(floors)),
-                              success=converged, stats={"iterations": it, "samples": n},
+                              success=converged, stats={"iterations": it, "samples": n, "warm_start": start is not None},
+                              covariance=Sigma, mean_shift=xi_mean[b["q"]] - q_static,
                               message="" if converged else (f"the standard deviations did not settle to {tol:g} in "
                                                             f"{max_iter} iterations: raise max_iter or lower relax"))
