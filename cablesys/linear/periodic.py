@@ -14,8 +14,11 @@ are solved by Newton's method with the exact Jacobian assembled from per-node bl
 the three n-by-n-free pieces evaluated by one mapped CasADi function (AD of the node
 residual), so a Newton step costs one pass over the nodes and one dense (N nq) solve instead
 of differentiating the whole collocation graph (whose symbolic Jacobian has ~2e6 operations).
-Starting guess: the linear response at omega about the steady state (one complex solve), or
-the describing-function orbit of :mod:`.equivalent` when that does not converge; along a
+Starting guess: the linear response at omega about the steady state (one complex solve),
+refined by the same collocation with 3 harmonics (7 nodes: small enough for CasADi's own Newton
+rootfinder with the AD Jacobian of the whole residual, compiled, in one call) and
+interpolated onto the N nodes, where Newton then needs about two steps; the plain linear
+response and the describing-function orbit of :mod:`.equivalent` are the fallbacks; along a
 frequency sweep (:func:`periodic_sweep`) each solution starts from its neighbour's
 (continuation). This is the pseudo-spectral (AFT) harmonic balance: no drag linearization,
 every harmonic up to H. The cable must stay taut (no slack switches). A smooth start
@@ -57,7 +60,9 @@ def trig_interpolate(values: np.ndarray, n_fine: int) -> np.ndarray:
 
 
 def _node_function(model: CableModel, n: int) -> ca.Function:
-    """Residual r = M(q) q'' - f(q, q', e, p) at n nodes and its blocks dr/dq, dr/dq', M (mapped)."""
+    """[r | dr/dq | dr/dq' | M] at n nodes in one (nq, n (1 + 3 nq)) matrix, r = M(q) q'' - f(q, q', e, p)
+    (Wang 1971 eq. 47-48) and its blocks by AD; mapped over the nodes, compiled and cached on disk.
+    One output, so a Newton step reads one array back from CasADi."""
     def build():
         nq = model.nq
         q, qd, qdd = ca.SX.sym("q", nq), ca.SX.sym("qd", nq), ca.SX.sym("qdd", nq)
@@ -65,10 +70,65 @@ def _node_function(model: CableModel, n: int) -> ca.Function:
         p = ca.SX.sym("p", len(model.layout))
         M, f = model.dynamics(q, qd, e, p)
         r = ca.mtimes(M, qdd) - f
-        node = ca.Function("colloc_node", [q, qd, qdd, e, p], [r, ca.jacobian(r, q), ca.jacobian(r, qd), M])
+        node = ca.Function("colloc_node", [q, qd, qdd, e, p],
+                           [ca.cse(ca.horzcat(r, ca.jacobian(r, q), ca.jacobian(r, qd), M))])
         mapped = node.map(n)
-        return compile_functions([mapped], jacobians=False).functions[mapped.name()]   # C, cached on disk
-    return model.cache.get(f"colloc_node_{n}", build)
+        Q, Qd, Qdd = ca.MX.sym("Q", nq, n), ca.MX.sym("Qd", nq, n), ca.MX.sym("Qdd", nq, n)
+        E, P = ca.MX.sym("E", e.shape[0], n), ca.MX.sym("p", p.shape[0])
+        out = ca.Function(f"colloc_nodes_{n}", [Q, Qd, Qdd, E, P], [mapped(Q, Qd, Qdd, E, P)])
+        return compile_functions([out], jacobians=False).functions[out.name()]   # C, cached on disk
+    return model.cache.get(f"colloc_nodes_{n}", build)
+
+
+def _node_maps(model: CableModel, n: int) -> tuple[ca.Function, ca.Function]:
+    """The top motion e(t) and the outputs y(x, e, p) mapped over n nodes (built once per model)."""
+    return model.cache.get(f"colloc_maps_{n}", lambda: (model.top.map(n), model.outputs.map(n)))
+
+
+COARSE_HARMONICS = 3      # the coarse collocation that turns the linear guess into a Newton start
+
+
+def _coarse_rootfinder(model: CableModel, n: int) -> ca.Function:
+    """CasADi Newton rootfinder of the collocation equations on n (small) nodes: Q(Q_guess, [vec E, p, omega]).
+
+    The whole residual is one SX function of the node values, differentiated by AD (cheap at a
+    few nodes) and compiled with its Q-Jacobian, so the coarse Newton runs in C in one call."""
+    def build():
+        nq = model.nq
+        q, qd, qdd = ca.SX.sym("q", nq), ca.SX.sym("qd", nq), ca.SX.sym("qdd", nq)
+        e = ca.SX.sym("e", model.top.size1_out(0))
+        p = ca.SX.sym("p", len(model.layout))
+        M, f = model.dynamics(q, qd, e, p)
+        node = ca.Function("colloc_residual", [q, qd, qdd, e, p], [ca.mtimes(M, qdd) - f])
+        Q, E, w = ca.SX.sym("Q", nq, n), ca.SX.sym("E", e.shape[0], n), ca.SX.sym("omega")
+        D1 = fourier_differentiation(n, 2 * np.pi)          # unit frequency: D = omega D1
+        Qd, Qdd = w * ca.mtimes(Q, D1.T), w**2 * ca.mtimes(Q, (D1 @ D1).T)
+        R = ca.horzcat(*[node(Q[:, j], Qd[:, j], Qdd[:, j], E[:, j], p) for j in range(n)])
+        G = ca.Function(f"colloc_coarse_{n}", [ca.vec(Q), ca.vertcat(ca.vec(E), p, w)], [ca.vec(R)],
+                        ["Q", "par"], ["r"])
+        G = compile_functions([G], jacobians=("Q",)).functions[G.name()]
+        return ca.rootfinder(f"colloc_coarse_newton_{n}", "newton", G,
+                             {"abstol": 1e-9, "max_iter": 40, "error_on_fail": False})
+    return model.cache.get(f"colloc_coarse_{n}", build)
+
+
+def _coarse_guess(model: CableModel, p, omega: float, input_amplitude, times) -> tuple[np.ndarray, int]:
+    """Node values at ``times`` from the periodic solution with ``COARSE_HARMONICS`` harmonics
+    (started from the linear response), trigonometrically interpolated: the Newton start whose
+    nonlinearity (drag at resonance) is already resolved, so the full collocation needs ~2 steps.
+    Returns (node values, coarse Newton iterations)."""
+    n, nc = times.size, 2 * COARSE_HARMONICS + 1
+    T = 2 * np.pi / omega
+    tc = times[0] + T * np.arange(nc) / nc
+    Q0 = _linear_guess(model, p, omega, input_amplitude, tc)
+    E = np.array(_node_maps(model, nc)[0](tc[None, :], p))
+    par = np.concatenate([E.ravel(order="F"), p, [omega]])
+    rf = _coarse_rootfinder(model, nc)
+    Qc = np.array(rf(Q0.ravel(order="F"), par)).reshape(model.nq, nc, order="F")
+    it = int(rf.stats().get("iter_count", 0))
+    if not np.all(np.isfinite(Qc)):
+        return _linear_guess(model, p, omega, input_amplitude, times), it
+    return trig_interpolate(Qc, n), it
 
 
 def _without_ramp(model: CableModel, p) -> np.ndarray:
@@ -83,35 +143,42 @@ def _newton(model: CableModel, p, times, T, Q, *, tol: float = 1e-8, max_iter: i
     """Newton on the collocation equations from node values ``Q`` (nq, n); exact block Jacobian,
     step halving when the residual does not decrease. Returns (Q, max |r|, iterations)."""
     nq, n = Q.shape
-    D = fourier_differentiation(n, T)
+    D1 = model.cache.get(f"fourier_D_{n}", lambda: fourier_differentiation(n, 2 * np.pi))
+    D = D1 * (2 * np.pi / T)
     D2 = D @ D
     node = _node_function(model, n)
-    E = np.array(model.top.map(n)(times[None, :], p))
+    E = np.array(_node_maps(model, n)[0](times[None, :], p))
     idx = np.arange(n)
+    # J[j a, k b] = delta_jk A_j[a, b] + D[j, k] B_j[a, b] + D2[j, k] C_j[a, b]  (node-major ordering)
+    DD = np.stack([D, D2])[:, :, None, :, None]
 
     def evaluate(Qv):
-        return [o.full() for o in node(Qv, Qv @ D.T, Qv @ D2.T, E, p)]
+        """(R, blocks): R (nq, n) and blocks (3, n, nq, nq) = [dr/dq, dr/dq', M] at every node."""
+        out = np.asarray(node(Qv, Qv @ D.T, Qv @ D2.T, E, p)).reshape(nq, n, 1 + 3 * nq)  # per node [r A B C]
+        return out[:, :, 0], out[:, :, 1:].reshape(nq, n, 3, nq).transpose(2, 1, 0, 3)
 
-    R, A, B, C = evaluate(Q)
+    R, blk = evaluate(Q)
     res = float(np.max(np.abs(R)))
-    it = 0
-    while res > tol and it < max_iter and np.isfinite(res):
+    it, step_size, prev_size = 0, np.inf, np.inf
+    # stop on a small residual *and* a small error estimate: the residual tolerance is absolute (N),
+    # and converging the node values as well makes the orbit independent of where Newton started
+    while (res > tol or step_size > 1e-9 * (1.0 + np.max(np.abs(Q)))) and it < max_iter and np.isfinite(res):
         it += 1
-        # J[j a, k b] = delta_jk A_j[a, b] + D[j, k] B_j[a, b] + D2[j, k] C_j[a, b]  (node-major ordering)
-        Aj, Bj, Cj = (X.reshape(nq, n, nq).transpose(1, 0, 2) for X in (A, B, C))
-        J4 = D[:, None, :, None] * Bj[:, :, None, :] + D2[:, None, :, None] * Cj[:, :, None, :]
-        J4[idx, :, idx, :] += Aj
-        J = J4.reshape(n * nq, n * nq)
-        step = np.linalg.solve(J, R.T.ravel()).reshape(n, nq).T
+        J4 = np.sum(DD * blk[1:, :, :, None, :], axis=0)
+        J4[idx, :, idx, :] += blk[0]
+        step = np.linalg.solve(J4.reshape(n * nq, n * nq), R.T.ravel()).reshape(n, nq).T
         lam = 1.0
         while True:
             Qn = Q - lam * step
-            Rn, An, Bn, Cn = evaluate(Qn)
+            Rn, blk_n = evaluate(Qn)
             rn = float(np.max(np.abs(Rn)))
-            if (np.isfinite(rn) and rn < res) or lam < 1e-3:
+            if (np.isfinite(rn) and (rn < res or rn <= tol)) or lam < 1e-3:
                 break
             lam *= 0.5
-        Q, R, A, B, C, res = Qn, Rn, An, Bn, Cn, rn
+        size = lam * float(np.max(np.abs(step)))
+        # error left after a full step: about the next step, size^2 / previous size (quadratic convergence)
+        step_size = min(size, size**2 / prev_size) if lam == 1.0 and np.isfinite(prev_size) else size
+        Q, R, blk, res, prev_size = Qn, Rn, blk_n, rn, size
     return Q, res, it
 
 
@@ -211,22 +278,28 @@ def periodic_steady_state(model: CableModel, p, omega: float, *, n_harmonics: in
     if guess is None and input_amplitude is None:
         raise ParameterError("input_amplitude", None, "periodic_steady_state needs input_amplitude "
                              "(complex x_s, y_s) or a guess")
-    starts = [] if guess is None else [("given", lambda: np.asarray(guess, float))]
+    # each start: (name, () -> (node values, Newton iterations spent making them))
+    starts = [] if guess is None else [("given", lambda: (np.asarray(guess, float), 0))]
     if input_amplitude is not None:
-        starts += [("linear", lambda: _linear_guess(model, p, omega, input_amplitude, times)),
-                   ("describing function", lambda: _describing_guess(model, p, omega, input_amplitude, times))]
-    iterations, tried = 0, []
+        if n > 2 * COARSE_HARMONICS + 1:
+            starts.append(("coarse", lambda: _coarse_guess(model, p, omega, input_amplitude, times)))
+        starts += [("linear", lambda: (_linear_guess(model, p, omega, input_amplitude, times), 0)),
+                   ("describing function", lambda: (_describing_guess(model, p, omega, input_amplitude, times), 0))]
+    iterations, coarse_iterations, tried = 0, 0, []
     for name, make in starts:
-        q, res, it = _newton(model, p, times, T, np.array(make(), dtype=float).reshape(model.nq, n))
+        Q0, it0 = make()
+        q, res, it = _newton(model, p, times, T, np.array(Q0, dtype=float).reshape(model.nq, n))
         iterations += it
+        coarse_iterations += it0
         tried.append(name)
         if res < 1e-8:
             break
     ok = res < 1e-8
     qd = q @ fourier_differentiation(n, T).T
     X = np.vstack([q, qd])
-    E = np.array(model.top.map(n)(times[None, :], p))
-    Y = np.array(model.outputs.map(n)(X, E, p))
+    top_map, out_map = _node_maps(model, n)
+    E = np.array(top_map(times[None, :], p))
+    Y = np.array(out_map(X, E, p))
     outputs = {lbl: Y[i] for i, lbl in enumerate(model.output_labels)}
     msg = "" if ok else (f"collocation residual {res:.3g} > 1e-8: Newton did not converge; try more harmonics, a guess "
                          "from a neighbouring frequency, or simulate()")
@@ -236,7 +309,9 @@ def periodic_steady_state(model: CableModel, p, omega: float, *, n_harmonics: in
         ok, msg = False, (f"the cable goes slack on the orbit (min tension {tens_min:.4g} N): the smooth periodic "
                           "solve does not apply; use simulate()")
     return PeriodicSolution(period=T, time=times, q=q, qd=qd, outputs=outputs, residual=res, success=ok, message=msg,
-                            stats={"n_harmonics": n_harmonics, "nodes": n, "newton_iterations": iterations,
+                            stats={"n_harmonics": n_harmonics, "nodes": n,
+                                   "newton_iterations": iterations + coarse_iterations,
+                                   "full_newton_iterations": iterations, "coarse_newton_iterations": coarse_iterations,
                                    "starts": tried})
 
 
