@@ -13,7 +13,7 @@ import math
 from ..errors import (ParameterError, require_finite, require_nonnegative,
                       require_positive, require_range)
 from ..integration import METHODS as INTEGRATION_METHODS
-from .fields import spec
+from .fields import quantity, spec
 from .sea import MotionRAO, SeaSpectrum
 
 
@@ -39,16 +39,16 @@ MAX_SEGMENTS = 2000       # elements per section (the model's size grows linearl
 class Cable:
     """One cable section, described at its reference tension (Wang 1971 eq. 1-7)."""
 
-    length: float = spec("length", "reference length l_r at the reference tension")
+    length: float = quantity("length", "reference length l_r at the reference tension")
     tension_ref: float = spec("force", "reference tension T_r at which length/ae/diameter are given", 0.0)
-    ae: float = spec("force", "reference spring coefficient (AE)_r; spring constant k = (AE)_r / l_r")
-    diameter: float = spec("length", "cable thickness d_r at the reference tension")
-    mass_per_length: float = spec("mass_per_length", "cable mass per unit length m_r at the reference tension")
-    weight_per_length: float = spec("force_per_length", "cable weight in water per unit length (W_c = w l_r)")
+    ae: float = quantity("ae", "reference spring coefficient (AE)_r; spring constant k = (AE)_r / l_r")
+    diameter: float = quantity("diameter", "cable thickness d_r at the reference tension")
+    mass_per_length: float = quantity("mass_per_length", "cable mass per unit length m_r at the reference tension")
+    weight_per_length: float = quantity("weight_per_length", "cable weight in water per unit length (W_c = w l_r)")
     thinning_ratio: float = spec("none", "ratio p of lateral contraction to strain, d = d_0 (1 - p u / l_r) (eq. 3)", 0.0)
-    added_mass_factor: float = spec("none", "added-mass factor gamma of the cable (1 for a round cable, eq. 23)", 1.0)
-    cd_normal: float = spec("none", "normal drag coefficient C_D of the cable (eq. 42)", 1.5)
-    ct_tangential: float = spec("none", "tangential friction coefficient C_t of the cable (eq. 44)", 0.01)
+    added_mass_factor: float = quantity("added_mass_factor", "added-mass factor gamma of the cable (1 for a round cable, eq. 23)", 1.0)
+    cd_normal: float = quantity("cd_normal", "normal drag coefficient C_D of the cable (eq. 42)", 1.5)
+    ct_tangential: float = quantity("ct_tangential", "tangential friction coefficient C_t of the cable (eq. 44)", 0.01)
     internal_damping: float = spec("force_time", "Voigt internal damping constant C_I, force = (C_I/l_r) du/dt (eq. 46)", 0.0)
     tension_floor: float = spec("force", "least tension TENS the cable supports; 0 for a flexible cable, -inf for a rod (eq. 54)", 0.0)
     cable_mass_switch: float = spec("none", "the report's CBMAS: any negative value drops the cable mass and added-mass terms", 1.0)
@@ -151,8 +151,8 @@ class Wave:
 class Environment:
     """Fluid, gravity, current profile (the report's CUR) and waves."""
 
-    density: float = spec("density", "fluid density rho", 1025.0)
-    gravity: float = spec("acceleration", "gravity g", 9.80665)
+    density: float = quantity("density", "fluid density rho", 1025.0)
+    gravity: float = quantity("gravity", "gravity g", 9.80665)
     current_depths: tuple = spec("length", "depths y (down) of the current-profile points, strictly increasing", (0.0,))
     current_speeds: tuple = spec("velocity", "actual current speed in +x at each depth; linearly interpolated, constant beyond the ends", (0.0,))
     system_speed: float = spec("velocity", "steady speed of the cable system in +x (ship speed); subtracted from the current: c(y) = current(y) - speed (eq. 27)", 0.0)
