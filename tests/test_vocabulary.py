@@ -54,6 +54,10 @@ def test_every_slack_and_towed_field_carries_unit_and_symbol(cls, f):
 def test_wang_fields_carry_their_unit():
     for cls, f in _fields(WANG):
         assert f.metadata.get("unit") == SI_UNIT[f.metadata["dim"]], f"{cls.__name__}.{f.name}"
+    # the Wang cable declares every shared quantity it has from the one table
+    assert {f.name for f in dataclasses.fields(WangCable) if "quantity" in f.metadata} == {
+        "length", "ae", "diameter", "mass_per_length", "weight_per_length", "added_mass_factor", "cd_normal",
+        "ct_tangential"}
 
 
 @pytest.mark.parametrize("cls,f", ALL, ids=[f"{c.__name__}.{f.name}" for c, f in ALL])
@@ -62,6 +66,7 @@ def test_a_shared_quantity_has_one_name_unit_and_symbol(cls, f):
     if "quantity" in meta:                       # declared with fields.quantity(name, ...)
         assert f.name == meta["quantity"], f"{cls.__name__}.{f.name} stands for {meta['quantity']!r}: use that name"
     if f.name in QUANTITIES:
+        assert meta.get("quantity") == f.name, f"{cls.__name__}.{f.name}: declare it with fields.quantity({f.name!r}, ...)"
         dim, symbol = QUANTITIES[f.name]
         assert meta.get("dim") == dim, f"{cls.__name__}.{f.name}: dimension {meta.get('dim')} is not {dim}"
         if "symbol" in meta:
