@@ -1,20 +1,31 @@
 """Error estimates of each rung against the converged segmented cable (relative numbers).
 
-Two errors per rung, as the tolerance names them: ``body`` (body-motion amplitude relative to
-the largest body amplitude) and ``tension`` (tension extremes relative to the largest tension).
+Two errors per rung, as the tolerance names them (:mod:`.metrics`): ``body`` (body-motion amplitude
+relative to the largest body amplitude) and ``tension`` (tension extremes relative to the largest
+tension).
 
 - quasi-static vs Wang: the stretch of a spring with mass driven at omega responds by
   1 / (1 - r^2 + i 2 zeta r) of its quasi-static value (r = omega / omega_ax, Voigt damping
   zeta r = C_I omega / (2 AE), Wang 1971 eq. 46), so the quasi-static tension and stretch miss the
   fraction r^2 / |1 - r^2 + i 2 zeta r| of their dynamic parts (the dynamic tension and the body
   amplitude come from Wang's own equivalent-linear response, :func:`linear_response`);
-- Wang vs segmented: a straight chord cannot bow. The error grows with the sag the normal drag
-  (current, and the motion's own drag) and the cable's inertia near its first string mode would
-  give the real cable, relative to its chord (:func:`straight_cable_error`).
+- Wang vs segmented: the straight cable is one linear element with consistent mass; the continuous
+  cable's string (transverse) and rod (axial) dynamics with the body at the end and the drag
+  equivalently linearized are solved in closed form, and their body amplitudes and end forces
+  compared (:mod:`.continuum`: string and rod dynamic stiffness, Rayleigh-Ritz, describing function).
+  The straight cable also cannot bow under a current: its static sag / chord q L / (8 T), amplified
+  near the swing resonance by 1 / |1 - (omega/omega_swing)^2| (at most SWING_AMPLIFICATION, drag
+  bounds it), is kept as a second term (a closed form not yet replaced by a derivation).
   Partial slack (least tension of the linear response below the floor) puts the straight cable
   outside its validity: infinite error;
-- segmented with N elements: each element is a straight cable of length L / N, so the straight
-  cable's error falls as N^-ORDER (checked a posteriori by the run at N/2, :mod:`.auto`).
+- segmented with N elements: N lumped-mass linear elements of the same continuum (:mod:`.continuum`),
+  and no less than the straight cable's error scaled by N^-ORDER (Richardson: the lumped linear
+  element converges as h^2; the drag-bowed Dale cable converges slower, N^-1.6, see choice.py), with
+  partial slack N^-SLACK_ORDER from the straight cable's O(1) error (checked a posteriori by the run
+  at N/2, :mod:`.auto`).
+
+Estimates are floored at RESOLUTION: below it, start-up transients, the reference's own
+convergence and nonlinear terms these linear estimates leave out are of the same size.
 """
 
 from __future__ import annotations
@@ -28,15 +39,17 @@ from ..errors import SolverError
 from ..linear import harmonic_response, linearize, steady_state
 from ..linear.periodic import scene_input_amplitude
 from ..scene import Scene
-from .indicators import SceneNumbers
+from . import continuum
+from .indicators import SceneNumbers, static_angle
 from .rungs import build_rung, rung_scene
 
-DYNAMIC_BOW_GAIN = 2.0   # body-amplitude error per unit dynamic sag / chord (see straight_cable_error)
 ORDER = 2.0         # convergence order of the segmented cable in N (taut; Dale study: 2-3)
 SLACK_ORDER = 1.0   # with partial slack and snap loads (300 m wire at T = 6 s: 11 % at N = 15 vs N = 40)
-SLACK_MARGIN = 0.05
+SLACK_MARGIN = 0.05  # a least tension within 5 % of the static tension of the floor counts as slack
 SWING_AMPLIFICATION = 10.0
-RESOLUTION = 1e-4    # estimates are not resolved below this (start-up transients, reference convergence)  # a least tension within 5 % of the static tension of the floor counts as slack
+HB_PHASES, HB_CONTINUATION = 16, 2   # harmonic balance of linear_response (see there)
+RESOLUTION = 1e-4    # estimates are not resolved below this (start-up transients, reference convergence)
+CONTINUUM_N = (2, 4, 8, 16, 32, 64, 128)   # elements at which the segmented estimate is tabulated
 
 
 @dataclasses.dataclass(frozen=True)
@@ -69,7 +82,10 @@ def linear_response(scene: Scene, numbers: SceneNumbers, model=None) -> LinearRe
     keys = ("tension_top", "tension_bottom", "tension")      # "tension": Wang's F_bc, the slack switch (eq. 54)
     if numbers.single_frequency and not scene.environment.waves:
         omega, Z = scene_input_amplitude(sc)
-        h = harmonic_response(model, p, [omega], Z)
+        # 16 phase samples and 2 continuation steps: the same amplitudes to 4 digits as 64 and 6 on the
+        # Dale and 300 m heave scenes (x_b 0.07117 vs 0.07118 m), 7 ms instead of 52 ms (issue 12: choosing is
+        # part of the user's wait)
+        h = harmonic_response(model, p, [omega], Z, n_theta=HB_PHASES, ladder=HB_CONTINUATION)
         if h.success:
             lab = list(h.output_labels)
             amp = lambda k: float(abs(h.output_amplitude[0][lab.index(k)]))
@@ -98,41 +114,42 @@ def axial_factor(scene: Scene, numbers: SceneNumbers) -> float:
     return math.inf if den == 0.0 else r * r / den
 
 
-def straight_cable_error(numbers: SceneNumbers) -> float:
-    """Relative body-amplitude error of one straight cable vs the converged segmented one.
-
-    - static bowing under current (sag / chord of a uniformly loaded string, q L / 8 T), amplified
-      like the body's swing near its resonance, 1 / |1 - (omega/omega_swing)^2| (at most
-      SWING_AMPLIFICATION: drag bounds it);
-    - dynamic bowing under the drag of the motion itself: DYNAMIC_BOW_GAIN x its sag / chord;
-    - string inertia: a string of tension T driven at its end has the dynamic stiffness
-      (T/L) kL cot kL = (T/L) (1 - (kL)^2/3 - (kL)^4/45 - ...), kL = pi omega / omega_string; the
-      straight cable (a linear shape, Wang 1971 eq. 22-25) keeps the first two terms exactly and
-      misses (pi^4/45) (omega/omega_string)^4, times the part of the top motion normal to the cable.
-    Capped at 1: above the first string mode the straight cable is simply wrong (O(1) errors).
-    The two gains were set on the Dale scene and six random short-cable scenes against the
-    segmented cable (tests/test_ladder_random.py, studies/model_ladder.py); they are estimates.
-    """
-    sr = numbers.string_ratio if math.isfinite(numbers.string_ratio) else 0.0
+def static_bow_error(numbers: SceneNumbers) -> float:
+    """Body error of a straight cable that cannot bow under a current: sag / chord of a uniformly loaded
+    string, q L / (8 T), amplified like the body's swing near its resonance, 1 / |1 - (omega/omega_swing)^2|
+    (at most SWING_AMPLIFICATION: drag bounds it)."""
     detune = abs(1.0 - (numbers.omega_forcing / numbers.omega_swing) ** 2) if numbers.omega_swing > 0 else 1.0
-    amp = min(SWING_AMPLIFICATION, 1.0 / max(detune, 1e-12))
-    string = numbers.transverse_fraction * math.pi**4 / 45.0 * sr**4
-    return min(1.0, amp * numbers.static_bow + DYNAMIC_BOW_GAIN * numbers.dynamic_bow + string)
+    return min(SWING_AMPLIFICATION, 1.0 / max(detune, 1e-12)) * numbers.static_bow
+
+
+def continuum_errors(scene: Scene, numbers: SceneNumbers, largest_tension: float) -> dict:
+    """{"wang": {body, tension}, n: {body, tension} for n in CONTINUUM_N} against the continuous cable
+    (:mod:`.continuum`), without floors."""
+    angle = static_angle(scene)
+    kw = {"forcing": list(numbers.forcing)}
+    ref = continuum.response(scene, angle, "exact", **kw)
+    out = {"wang": continuum.relative_errors(continuum.response(scene, angle, "wang", **kw), ref, largest_tension)}
+    for n in CONTINUUM_N:
+        out[n] = continuum.relative_errors(continuum.response(scene, angle, "segmented", n, **kw), ref, largest_tension)
+    return out
 
 
 def estimate_errors(scene: Scene, numbers: SceneNumbers, response: LinearResponse) -> dict:
     """{rung: {"body": e, "tension": e, "note": str}} estimated against the converged segmented cable.
 
-    The segmented entry is the error at N = 1 scaled by N^-ORDER: ``segmented_error(errors, N)``.
+    The segmented entry ``segmented_1`` is the error at N = 1 with its ``order`` and the continuum
+    table ``continuum`` ({N: {body, tension}}): ``segmented_error(errors, N)``.
     """
     t_max = max(response.largest_tension, 1e-300)
     d_t = max(response.tension_amplitude.values())
-    e_wang = straight_cable_error(numbers)
+    cont = continuum_errors(scene, numbers, t_max)
+    e_wang = min(1.0, max(cont["wang"]["body"], static_bow_error(numbers)))
     floor = numbers.tension_floor
     slack = response.least_tension < floor + SLACK_MARGIN * numbers.tension_static
     e_wang = max(e_wang, RESOLUTION)
-    wang = {"body": e_wang, "tension": max(e_wang * max(d_t / t_max, 0.1), RESOLUTION) if not slack else math.inf,
-            "note": "straight cable: bowing and string inertia (closed form)"}
+    t_wang = max(min(1.0, cont["wang"]["tension"]), RESOLUTION)
+    wang = {"body": e_wang, "tension": t_wang if not slack else math.inf,
+            "note": "straight cable vs the continuous string and rod (string/rod dynamic stiffness) and its static bow"}
     if slack:
         wang["body"] = math.inf
         wang["note"] = (f"partial slack predicted: least tension of the linear response {response.least_tension:.4g} N "
@@ -151,17 +168,22 @@ def estimate_errors(scene: Scene, numbers: SceneNumbers, response: LinearRespons
     if not numbers.single_frequency:
         freq.update(body=math.inf, tension=math.inf, note="no single forcing frequency: no periodic steady state")
     order = SLACK_ORDER if slack else ORDER
-    seg = {"body": e_wang if not slack else 1.0, "tension": wang["tension"] if not slack else 1.0, "order": order,
-           "note": f"error of one straight element, scaled by N^-{order:g}"
+    seg = {"body": e_wang if not slack else 1.0, "tension": t_wang if not slack else 1.0, "order": order,
+           "continuum": {str(n): cont[n] for n in CONTINUUM_N} if not slack else {},
+           "note": f"N lumped elements vs the continuous cable, at least the straight cable's error x N^-{order:g}"
                    + (" (snap loads converge slowly)" if slack else "")}
     return {"frequency": freq, "quasi-static": qs, "wang": wang, "segmented_1": seg}
 
 
 def segmented_error(errors: dict, n: int) -> dict:
-    """Estimated errors of the segmented rung with ``n`` elements per section."""
+    """Estimated errors of the segmented rung with ``n`` elements per section: the larger of the
+    straight cable's error x n^-order and the continuum estimate at the tabulated N nearest above n."""
     base = errors["segmented_1"]
     scale = float(n) ** -base.get("order", ORDER)
-    return {"body": base["body"] * scale, "tension": base["tension"] * scale, "note": base["note"]}
+    table = base.get("continuum", {})
+    above = [int(k) for k in table if int(k) >= n]
+    c = table[str(min(above))] if above else {"body": 0.0, "tension": 0.0}
+    return {k: max(base[k] * scale, c[k], RESOLUTION) for k in ("body", "tension")} | {"note": base["note"]}
 
 
 def check_response(response: LinearResponse) -> None:
