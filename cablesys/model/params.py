@@ -17,6 +17,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..scene import Scene
+from ..scene.labels import section_prefix, section_suffix  # noqa: F401 (re-exported for the model modules)
 
 _CABLE = ("length", "tension_ref", "ae", "diameter", "mass_per_length", "weight_per_length",
           "thinning_ratio", "added_mass_factor", "cd_normal", "ct_tangential", "internal_damping",
@@ -26,44 +27,6 @@ _ENV = ("density", "gravity", "system_speed", "top_depth")
 _SINE = ("amplitude", "frequency", "phase")
 _WAVE = ("amplitude", "length", "phase")
 TENSION_FLOOR_NONE = -1e300   # stands for -inf (a rod that never goes slack)
-
-
-def section_prefix(scene_or_n, i: int) -> str:
-    """Prefix of section ``i``'s parameter labels: "" for one section, else ``sections[i].``.
-
-    Parameters
-    ----------
-    scene_or_n : Scene or int
-        The scene, or its number of sections.
-    i : int
-        Section index, 0 at the top.
-
-    Returns
-    -------
-    str
-        The prefix (``sections[1].`` in ``sections[1].cable.ae``).
-    """
-    n = scene_or_n if isinstance(scene_or_n, int) else len(scene_or_n.sections)
-    return "" if n == 1 else f"sections[{i}]."
-
-
-def section_suffix(scene_or_n, i: int) -> str:
-    """Suffix of section ``i``'s coordinate and output labels: "" for one section, else ``_{i+1}``.
-
-    Parameters
-    ----------
-    scene_or_n : Scene or int
-        The scene, or its number of sections.
-    i : int
-        Section index, 0 at the top.
-
-    Returns
-    -------
-    str
-        The suffix (``_2`` in ``tension_2``, ``u_2``).
-    """
-    n = scene_or_n if isinstance(scene_or_n, int) else len(scene_or_n.sections)
-    return "" if n == 1 else f"_{i + 1}"
 
 
 def structure_of(scene: Scene) -> tuple:

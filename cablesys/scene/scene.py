@@ -8,6 +8,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from .components import Body, Cable, Environment, Initial, Numerics, Section, TopMotion
+from .labels import section_prefix
 from .limits import Limits
 
 ANGLE_MODES = ("per_section", "shared")
@@ -68,7 +69,7 @@ class Scene:
             c, b = self.sections[i].cable, self.sections[i].body
             tension = below + b.weight + 0.5 * c.total_weight
             if tension <= c.tension_floor:
-                field = "body.weight" if len(self.sections) == 1 else f"sections[{i}].body.weight"
+                field = f"{section_prefix(self, i)}body.weight"
                 raise ParameterError(
                     field, b.weight,
                     f"the hanging cable force W_b + W_c/2 + (weight below) = {tension:.6g} N must exceed "
