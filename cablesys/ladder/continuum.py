@@ -1,0 +1,202 @@
+"""The straight cable and the N-element cable against the continuous cable, in closed form.
+
+A linear estimate of the error of Wang's straight cable and of the segmented cable with N elements
+against the converged (continuous) cable, from quantities the scene gives. The cable's small motion
+about its static line splits into two one-dimensional problems (Irvine 1981, "Cable Structures",
+ch. 3-4; Wang 1971 eq. 17-25 for the straight cable's two directions):
+
+- transverse: a taut string, tension T (the mean of the body-end and top tensions), mass m_v per
+  length with the added mass (Wang eq. 23-24), normal drag;
+- axial: a rod, stiffness AE (+ i omega C_I, Voigt, Wang eq. 46), mass m per length, tangential
+  friction.
+
+Each is driven at the top by the part of the top motion along (or normal to) the static cable and
+carries the body (virtual mass, drag) at its lower end. With w(s) e^{i omega t}, k^2 = (m omega^2 -
+i omega c) / S (S = T or AE), the continuous member's end forces are exact (the dynamic stiffness
+of a string/rod; e.g. Clough & Penzien, "Dynamics of Structures", ch. 19):
+
+    F_top  = (S/L) (b W_s - a W_b),     F_body = (S/L) (a W_s - b W_b),
+    a = kL / sin kL,  b = kL cot kL,
+
+and the body obeys -M omega^2 W_b + i omega c_b W_b = F_body. Wang's straight cable is the
+Rayleigh-Ritz model with the linear shape (consistent mass: the kinetic energy of eq. 22-25
+integrates the straight line), i.e. one linear finite element; the segmented cable is N linear
+elements with the mass lumped half to each node (:mod:`cablesys.model.segmented`) and the drag shared
+by virtual work. Both are solved in the same complex arithmetic; their differences from the
+continuous member are the estimates. The drag enters as the equivalent linear damping of the
+harmonic (describing-function) balance, c = (8 / 3 pi) 1/2 rho C_D A |V| (Roberts & Spanos,
+"Random Vibration and Statistical Linearization", ch. 5; Borgman 1967), plus the slope
+rho C_D A |U| of the drag about a current U, with |V| from the response itself (fixed point).
+
+What this leaves out (said in :mod:`.estimate`): the static bow under current, slack, and the
+start-up transients of slow modes that a time-domain comparison over a finite window contains.
+"""
+
+from __future__ import annotations
+
+import cmath
+import dataclasses
+import math
+
+import numpy as np
+
+from ..scene import Scene
+
+K_HARMONIC = 8.0 / (3.0 * math.pi)   # describing function of |v| v for v = V sin(theta)
+FIXED_POINT_ITERATIONS = 8
+
+
+@dataclasses.dataclass(frozen=True)
+class Member:
+    """One direction of one section: a string (transverse) or a rod (axial) with an end mass."""
+
+    length: float          # m
+    stiffness: complex     # T (string, N) or AE + i omega C_I (rod, N)
+    mass: float            # per unit length (kg/m)
+    drag: float            # 1/2 rho C_D d (normal) or 1/2 rho C_t pi d (tangential), kg/m^2
+    end_mass: float        # body virtual mass in this direction (kg)
+    end_drag: float        # 1/2 rho C_D A of the body in this direction (kg/m)
+    current: float         # steady relative flow normal to the member (m/s), 0 for the rod
+
+
+def exact(mb: Member, omega: float, c: float, cb: float) -> tuple:
+    """(W_b, F_body, F_top) per unit top amplitude of the continuous member (module docstring)."""
+    k = cmath.sqrt((mb.mass * omega**2 - 1j * omega * c) / mb.stiffness)
+    x = k * mb.length
+    if abs(x) < 1e-6:
+        a, b = 1.0 + x * x / 6.0, 1.0 - x * x / 3.0
+    else:
+        a, b = x / cmath.sin(x), x * cmath.cos(x) / cmath.sin(x)
+    s = mb.stiffness / mb.length
+    wb = s * a / (s * b - mb.end_mass * omega**2 + 1j * omega * cb)
+    return wb, s * (a - b * wb), s * (b - a * wb)
+
+
+def elements(mb: Member, omega: float, c: float, cb: float, n: int, *, consistent: bool) -> tuple:
+    """(W_b, F_body, F_top) per unit top amplitude of ``n`` linear elements: consistent mass for
+    Wang's straight cable (n = 1), lumped mass for the segmented cable; drag shared by virtual work."""
+    h = mb.length / n
+    ke = mb.stiffness / h * np.array([[1.0, -1.0], [-1.0, 1.0]])
+    me = mb.mass * h * (np.array([[2.0, 1.0], [1.0, 2.0]]) / 6.0 if consistent else np.eye(2) / 2.0)
+    ce = c * h * np.array([[2.0, 1.0], [1.0, 2.0]]) / 6.0
+    D = ke - omega**2 * me + 1j * omega * ce
+    # nodes 1..n free (n: the body), node 0 the top moving with amplitude 1: a tridiagonal system
+    A = np.zeros((n, n), complex)
+    f = np.zeros(n, complex)
+    for e in range(n):
+        for i, gi in enumerate((e, e + 1)):
+            if gi == 0:
+                continue
+            for j, gj in enumerate((e, e + 1)):
+                if gj == 0:
+                    f[gi - 1] -= D[i, j]
+                else:
+                    A[gi - 1, gj - 1] += D[i, j]
+    A[n - 1, n - 1] += -mb.end_mass * omega**2 + 1j * omega * cb
+    w = np.linalg.solve(A, f)
+    prev = w[-2] if n > 1 else 1.0
+    return w[-1], -(D[1, 0] * prev + D[1, 1] * w[-1]), D[0, 0] + D[0, 1] * w[0]
+
+
+def respond(mb: Member, omega: float, top: complex, model: str, n: int = 1) -> tuple:
+    """(W_b, F_body, F_top) for top amplitude ``top`` (m); ``model`` "exact", "wang" or "segmented".
+
+    The drag's equivalent damping follows the member's own response (fixed point on |V|)."""
+    if top == 0 or omega <= 0:
+        return 0j, 0j, 0j
+    wb = top
+    for _ in range(FIXED_POINT_ITERATIONS):
+        v_b, v_c = omega * abs(wb), omega * 0.5 * (abs(top) + abs(wb))
+        c = mb.drag * (K_HARMONIC * v_c + 2.0 * mb.current)
+        cb = mb.end_drag * (K_HARMONIC * v_b + 2.0 * mb.current)
+        if model == "exact":
+            r = exact(mb, omega, c, cb)
+        else:
+            r = elements(mb, omega, c, cb, n, consistent=(model == "wang"))
+        wb = r[0] * top
+    return tuple(v * top for v in r)
+
+
+def members(scene: Scene, omega: float, angle: float) -> list[tuple[Member, Member]]:
+    """(transverse string, axial rod) per section about the static line at ``angle`` from the vertical.
+
+    A lower section's body and everything below it hang from the section's end: their virtual mass
+    is the end mass (a bound: the lower sections move with it)."""
+    env = scene.environment
+    rho = env.density
+    u_rel = max(abs(s - env.system_speed) for s in env.current_speeds)
+    st, ct = math.sin(angle), math.cos(angle)
+    out = []
+    secs = list(scene.sections)
+    for i, sec in enumerate(secs):
+        c, b = sec.cable, sec.body
+        below_w = sum(s.body.weight + s.cable.total_weight for s in secs[i + 1:])
+        below_m = sum(s.body.mass_x + s.cable.total_mass for s in secs[i + 1:])
+        tension = max(below_w + b.weight + 0.5 * c.total_weight, 1e-12)     # mean along the section
+        m_n = c.mass_per_length + c.added_mass_factor * rho * math.pi * c.diameter**2 / 4     # eq. 23-24
+        m_bn = b.mass_x * ct**2 + b.mass_y * st**2 + below_m
+        m_bt = b.mass_x * st**2 + b.mass_y * ct**2 + below_m
+        string = Member(c.length, complex(tension), m_n, 0.5 * rho * c.cd_normal * c.diameter, m_bn,
+                        0.5 * rho * b.drag_area_normal, u_rel * ct)
+        rod = Member(c.length, complex(c.ae, omega * c.internal_damping), c.mass_per_length,
+                     0.5 * rho * c.ct_tangential * math.pi * c.diameter, m_bt, 0.5 * rho * b.drag_area_tangential, 0.0)
+        out.append((string, rod))
+    return out
+
+
+def top_components(scene: Scene) -> list[tuple[float, complex, complex]]:
+    """(omega, X_s, Y_s) per forcing frequency: the complex top amplitudes, a sin(wt + ph) = Re(-i a e^{i ph} e^{iwt})."""
+    comps: dict = {}
+    for axis in ("x", "y"):
+        for s in getattr(scene.top_motion, axis):
+            if s.amplitude == 0.0:
+                continue
+            z = comps.setdefault(round(s.frequency, 12), [s.frequency, 0j, 0j])
+            z[1 if axis == "x" else 2] += -1j * s.amplitude * cmath.exp(1j * s.phase)
+    return [tuple(v) for v in comps.values()]
+
+
+def response(scene: Scene, angle: float, model: str, n: int = 1, forcing=None) -> dict:
+    """Body amplitudes |x_b|, |y_b| (m) and end-force amplitudes (N) summed over the forcing components.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    angle : float
+        Static angle of the cable from the vertical (rad), :func:`~cablesys.ladder.indicators.static_angle`.
+    model : {"exact", "wang", "segmented"}
+        The continuous cable, the straight cable (one consistent element), N lumped elements.
+    n : int, optional
+        Elements per section of the segmented cable.
+    forcing : list of (omega, amplitude), optional
+        Used (in both directions) when the top motion has no sinusoids (a series, waves).
+
+    Returns
+    -------
+    dict
+        ``x_b``, ``y_b`` (m), ``force_body``, ``force_top`` (N, the largest over sections, axial).
+    """
+    comps = top_components(scene) or [(w, a + 0j, a + 0j) for w, a in (forcing or [])]
+    st, ct = math.sin(angle), math.cos(angle)
+    out = {"x_b": 0.0, "y_b": 0.0, "force_body": 0.0, "force_top": 0.0}
+    for omega, xs, ys in comps:
+        top_t, top_n = xs * st + ys * ct, xs * ct - ys * st      # along and normal to the static line
+        for string, rod in members(scene, omega, angle):
+            wb, _, _ = respond(string, omega, top_n, model, n)
+            ub, fb, ft = respond(rod, omega, top_t, model, n)
+            out["x_b"] = max(out["x_b"], abs(ub * st + wb * ct))
+            out["y_b"] = max(out["y_b"], abs(ub * ct - wb * st))
+            out["force_body"] = max(out["force_body"], abs(fb))
+            out["force_top"] = max(out["force_top"], abs(ft))
+    return out
+
+
+def relative_errors(got: dict, ref: dict, largest_tension: float) -> dict:
+    """{"body", "tension"} of ``got`` against ``ref`` as :mod:`.metrics` measures them: amplitude
+    differences relative to the larger reference amplitude, force differences relative to the
+    largest tension."""
+    a_ref = max(ref["x_b"], ref["y_b"], 1e-300)
+    body = max(abs(got[k] - ref[k]) for k in ("x_b", "y_b")) / a_ref
+    tension = max(abs(got[k] - ref[k]) for k in ("force_body", "force_top")) / max(largest_tension, 1e-300)
+    return {"body": float(body), "tension": float(tension)}

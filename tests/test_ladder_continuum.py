@@ -1,0 +1,54 @@
+"""The closed-form cable the ladder's estimates compare against (cablesys/ladder/continuum.py)."""
+
+import math
+
+import numpy as np
+
+from cablesys.ladder.continuum import Member, elements, exact, respond
+
+
+def _rod(ae=4.0e7, length=300.0, mass=2.5, end=3100.0):
+    return Member(length=length, stiffness=complex(ae), mass=mass, drag=0.0, end_mass=end, end_drag=0.0, current=0.0)
+
+
+def test_exact_member_is_a_spring_with_mass_at_low_frequency():
+    # a rod much shorter than its wave: the straight cable's W_b = (k + m L w^2 / 6) / (k - (M + m L / 3) w^2)
+    # (consistent mass of the linear shape, Wang 1971 eq. 22-25) to O((kL)^4)
+    rod = _rod()
+    w = 0.6
+    k = rod.stiffness.real / rod.length
+    m_eff = rod.end_mass + rod.mass * rod.length / 3
+    wb, fb, _ = exact(rod, w, 0.0, 0.0)
+    assert abs(wb - (k + rod.mass * rod.length * w**2 / 6) / (k - m_eff * w**2)) < 1e-5 * abs(wb)
+    # and the force on the body is its inertia (no damping): F = -M w^2 W_b
+    assert abs(fb + rod.end_mass * w**2 * wb) < 1e-9 * abs(fb)
+
+
+def test_string_resonance_at_its_first_mode():
+    # a string fixed at the top with a huge body: first mode at pi / L sqrt(T / m)
+    s = Member(length=100.0, stiffness=complex(1e4), mass=2.0, drag=0.0, end_mass=1e12, end_drag=0.0, current=0.0)
+    w1 = math.pi / 100.0 * math.sqrt(1e4 / 2.0)
+    # the body barely moves and the top force is the fixed-fixed string's: it diverges at w1
+    f = [abs(exact(s, w, 1e-6, 0.0)[2]) for w in (0.9 * w1, 0.999 * w1, 1.1 * w1)]
+    assert f[1] > 50 * max(f[0], f[2])
+
+
+def test_lumped_elements_converge_to_the_continuum_at_second_order():
+    s = Member(length=100.0, stiffness=complex(1e4), mass=2.0, drag=0.5, end_mass=500.0, end_drag=50.0, current=0.0)
+    w = 1.2
+    ref = exact(s, w, 0.5, 50.0)[0]
+    err = [abs(elements(s, w, 0.5, 50.0, n, consistent=False)[0] - ref) for n in (8, 16, 32)]
+    rates = np.log2(np.array(err[:-1]) / np.array(err[1:]))
+    assert np.all(np.abs(rates - 2.0) < 0.2), rates
+    # one consistent element (the straight cable) is closer than one lumped element
+    one = [abs(elements(s, w, 0.5, 50.0, 1, consistent=c)[0] - ref) for c in (True, False)]
+    assert one[0] < one[1]
+
+
+def test_equivalent_drag_damps_a_resonant_response():
+    # at the spring-mass resonance the undamped response is unbounded; the body's describing-function
+    # drag (8 / 3 pi) 1/2 rho C A |V| bounds it: W_b of order sqrt(k / (rho C A)) / w-ish, finite
+    rod = Member(length=10.0, stiffness=complex(1e5), mass=0.0, drag=0.0, end_mass=100.0, end_drag=500.0, current=0.0)
+    w = math.sqrt(1e4 / 100.0)
+    wb = respond(rod, w, 0.1, "exact")[0]
+    assert np.isfinite(abs(wb)) and 0.1 < abs(wb) < 100.0
