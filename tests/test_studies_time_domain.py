@@ -143,8 +143,36 @@ def test_bench_trajectories_agree(bench):
     # both runs at rtol 1e-6 land within a micrometre of the tight CasADi reference
     assert bench["scipy_errors"]["body_position_m"] < 1e-6
     assert bench["cablesys_errors"]["body_position_m"] < 1e-6
-    for v in bench["compiled"].values():
-        assert v["errors"]["body_position_m"] < 1e-6
+    for k, v in bench["compiled"].items():
+        # BDF capped at order 2 is second order: its error at a given rtol is far larger (8e-7 m in 5 s)
+        assert v["errors"]["body_position_m"] < (1e-5 if k == "cvodes-bdf2" else 1e-6), k
+
+
+def test_bench_work_precision_converges(bench):
+    """Every cablesys method of the sweep gets more accurate as its tolerance or step shrinks,
+    and each equal-accuracy pick is at least as accurate as the SciPy run it is compared with."""
+    wp = bench["work_precision"]
+    for method, key in (("cvodes", "rtol"), ("cvodes-bdf2", "rtol"), ("rk4", "steps_per_output")):
+        rows = sorted((r for r in wp if r["method"] == method), key=lambda r: r[key], reverse=key == "rtol")
+        err = [r["errors"]["body_position_m"] for r in rows]
+        assert len(rows) >= 2 and err[-1] < err[0], method
+    for e in bench["equal_accuracy"]:
+        for pick in (e["fastest"], e["fastest_adaptive"]):
+            if pick:
+                assert pick["error_m"] <= e["scipy_error_m"] and pick["speedup"] > 0
+
+
+def test_bench_ramp_removes_the_stretch_ringing_steps(bench):
+    # the abrupt start rings the undamped stretch mode; the A-stable BDF2 then has to follow it
+    assert bench["abrupt_bdf2"]["steps"] > 5 * bench["compiled"]["cvodes-bdf2"]["steps"]
+    assert bench["abrupt"]["steps"] > bench["cablesys_steps"]
+
+
+def test_bench_per_state_tolerances_measured(bench):
+    rows = bench["per_state_atol"]
+    assert {r["tolerance"] for r in rows} == {"scalar", "natural", "natural/10"}
+    for r in rows:
+        assert r["steps"] > 0 and math.isfinite(r["errors"]["body_position_m"])
 
 
 def test_bench_reports_its_numbers(bench):
