@@ -43,7 +43,7 @@ import numpy as np
 from ..scene import Scene
 
 K_HARMONIC = 8.0 / (3.0 * math.pi)   # describing function of |v| v for v = V sin(theta)
-FIXED_POINT_ITERATIONS = 8
+FIXED_POINT_ITERATIONS = 12
 
 
 @dataclasses.dataclass(frozen=True)
@@ -101,19 +101,21 @@ def elements(mb: Member, omega: float, c: float, cb: float, n: int, *, consisten
 def respond(mb: Member, omega: float, top: complex, model: str, n: int = 1) -> tuple:
     """(W_b, F_body, F_top) for top amplitude ``top`` (m); ``model`` "exact", "wang" or "segmented".
 
-    The drag's equivalent damping follows the member's own response (fixed point on |V|)."""
+    The drag's equivalent damping follows the member's own response: a fixed point on the body
+    amplitude |W_b|, relaxed geometrically (at a drag-controlled resonance |W_b| ~ 1 / c ~ 1 / |W_b|,
+    where plain substitution alternates between two values; the geometric mean lands on the root)."""
     if top == 0 or omega <= 0:
         return 0j, 0j, 0j
-    wb = top
+    amp = abs(top)
     for _ in range(FIXED_POINT_ITERATIONS):
-        v_b, v_c = omega * abs(wb), omega * 0.5 * (abs(top) + abs(wb))
+        v_b, v_c = omega * amp, omega * 0.5 * (abs(top) + amp)
         c = mb.drag * (K_HARMONIC * v_c + 2.0 * mb.current)
         cb = mb.end_drag * (K_HARMONIC * v_b + 2.0 * mb.current)
         if model == "exact":
             r = exact(mb, omega, c, cb)
         else:
             r = elements(mb, omega, c, cb, n, consistent=(model == "wang"))
-        wb = r[0] * top
+        amp = math.sqrt(amp * max(abs(r[0] * top), 1e-300))
     return tuple(v * top for v in r)
 
 
