@@ -20,7 +20,11 @@ The spline is built from SX operations only, so every model is SX and compilable
 The cost is about 25 operations per sample per evaluation.
 
 Smooth start: with ``top_motion.ramp_s`` > 0 the whole top motion (sinusoids and series) is
-multiplied by the cosine ramp :func:`ramp`; 0 (the default) is Wang's abrupt start.
+multiplied by the cosine ramp :func:`ramp`; unset, it lasts 3 of the longest forcing periods
+(``TopMotion.effective_ramp_s``); 0 is Wang's abrupt start. The ramp makes the static start
+consistent: top position, velocity and acceleration are 0 at t = 0, so the steady state at rest
+(``time_domain.initial_state``) is an equilibrium of the equations of motion at t = 0 and the
+stretch mode is not excited by the start.
 
 History: this used to call CasADi's MX-only ``bspline`` primitive with the coefficients from
 ``ca.solve(A, samples, "csparse")``. That aborted the process ("double free or corruption",
