@@ -5,30 +5,94 @@ The choice (:func:`~cablesys.ladder.choice.choose`) is checked a posteriori:
   tension falls to the floor, the run is rejected and Wang's model (or the segmented cable) runs;
 - wang: a run that goes slack is outside the straight cable's validity (one stretch makes the whole
   cable slack at once): rejected for the segmented cable;
-- segmented with N: a second run with N/2 gives the Richardson estimate |y_N - y_N/2| / (2^p - 1);
-  N is doubled while that exceeds the tolerance.
-The result's ``stats["model"]`` holds ``{name, segments, reason, estimated_error}``.
+- segmented with N: N is chosen for SAFETY x the tolerance (:func:`~.choice.segments_for`); only
+  when the estimate at N is not that far within the tolerance (N capped, or forced by the user) does
+  a second run with N/2 give the Richardson estimate |y_N - y_N/2| / (2^p - 1), N doubling while it
+  exceeds the tolerance (a second run costs as much as the first: it is not spent on a sure case).
+The result's ``stats["model"]`` holds ``{name, segments, reason, estimated_error}``, and
+``stats["ladder_timing"]`` the wall time of choosing, building, the run and its checks.
+
+Speed (issue 12): models and simulators are built once per call, or once for many calls through a
+:class:`~cablesys.ladder.rungs.RungCache`; without a method or tolerances from the caller or the
+scene, the rung runs with :func:`integrator_settings` (BDF of order <= 2, rtol a hundredth of the
+body tolerance, compiled C up to COMPILE_MAX_ELEMENTS elements).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
+import time
 import warnings
 
 import numpy as np
 
 from ..errors import NumericalWarning
-from ..scene import Scene
+from ..scene import Numerics, Scene
 from . import estimate as est
 from . import metrics
-from .choice import MAX_SEGMENTS, SLACK_MAX_SEGMENTS, Choice, choose, forced, tolerances
-from .rungs import build_rung, check_rung, rung_scene
+from .choice import (
+    MAX_SEGMENTS,
+    SAFETY,
+    SLACK_MAX_SEGMENTS,
+    Choice,
+    choose,
+    forced,
+    tolerances,
+)
+from .rungs import RungCache, check_rung, rung_scene
 
 log = logging.getLogger(__name__)
 
+AUTO_METHOD = "cvodes-bdf2"   # A-stable BDF steps over the undamped stretch modes (Dale: 1.7k steps vs 41k)
+AUTO_RTOL = 1e-4     # at most; rtol = body tolerance / 100 (Dale, N = 3: 1e-4 leaves 0.01 % body, 0.2 % tension
+#                      vs its own tight run; 1e-3 leaves 9 % on the tension extremes from the element ringing)
+COMPILE_MAX_ELEMENTS = 20   # compiled C up to this many elements (gcc: seconds); larger models run in
+#                             CasADi's VM (N = 80: minutes and > 10 GB of memory to compile)
+_SIMULATE_KEYS = ("x0", "on_block", "progress")
 
-def run_rung(scene: Scene, name: str, segments: int = 1, **kw):
+
+def _scene_sets_integrator(scene: Scene) -> bool:
+    """True when the scene's [numerics] names an integrator or tolerances other than the defaults."""
+    d = {f.name: f.default for f in dataclasses.fields(Numerics)}
+    num = scene.numerics
+    return (num.integrator, num.rtol, num.atol) != (d["integrator"], d["rtol"], d["atol"])
+
+
+def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rtol=None, atol=None,
+                        max_num_steps=None, jit: bool = False):
+    """The integrator settings of a ladder run.
+
+    Parameters
+    ----------
+    scene : Scene
+        Its ``numerics`` integrator and tolerances are used when they differ from the defaults.
+    tol : (float, float)
+        The model tolerance (body, tension).
+    elements : int, optional
+        Elements of the rung's model (compiled C up to COMPILE_MAX_ELEMENTS, else the VM).
+    method, rtol, atol, max_num_steps, jit : optional
+        The caller's choices (they win).
+
+    Returns
+    -------
+    IntegratorSettings
+        Without any choice from the caller or the scene: AUTO_METHOD with rtol = min(AUTO_RTOL,
+        tol[0] / 100) and atol = rtol / 1000 (integration error well below the model tolerance).
+    """
+    from ..time_domain import IntegratorSettings
+    num = scene.numerics
+    if method is None and rtol is None and atol is None and not _scene_sets_integrator(scene):
+        method, rtol = AUTO_METHOD, min(AUTO_RTOL, tol[0] / 100.0)
+        atol = rtol * 1e-3
+    extra = {} if max_num_steps is None else {"max_num_steps": int(max_num_steps)}
+    return IntegratorSettings(method=method or num.integrator, rtol=rtol or num.rtol, atol=atol or num.atol,
+                              steps_per_output=num.steps_per_output, compiled=elements <= COMPILE_MAX_ELEMENTS,
+                              jit=jit, **extra)
+
+
+def run_rung(scene: Scene, name: str, segments: int = 1, *, cache: RungCache | None = None, **kw):
     """One time-domain run of rung ``name``.
 
     Parameters
@@ -39,6 +103,8 @@ def run_rung(scene: Scene, name: str, segments: int = 1, **kw):
         A rung; ``frequency`` gives the periodic orbit (Fourier collocation) sampled at the output times.
     segments : int, optional
         Elements per section of the segmented rung.
+    cache : RungCache, optional
+        Built models to reuse (default: a new one).
     **kw
         Passed to :func:`cablesys.time_domain.simulate`.
 
@@ -48,19 +114,34 @@ def run_rung(scene: Scene, name: str, segments: int = 1, **kw):
         The run (``success`` False with the reason when the integrator failed).
     """
     from ..time_domain import simulate
+    cache = cache if cache is not None else RungCache()
     if name == "frequency":
-        return _periodic_run(scene)
+        return _periodic_run(scene, cache)
     sc = rung_scene(scene, name, segments)
-    model = build_rung(sc, name, segments)
-    return simulate(sc, model=model, **kw)
+    return simulate(sc, model=cache.model(scene, name, segments), **kw)
 
 
-def _periodic_run(scene: Scene):
+def _run(scene: Scene, choice: Choice, tol, cache: RungCache, kw: dict):
+    """The run of ``choice`` with the ladder's integrator settings and the cache's simulator."""
+    from ..time_domain import simulate
+    if choice.name == "frequency":
+        return _periodic_run(scene, cache)
+    sc = rung_scene(scene, choice.name, choice.segments)
+    model = cache.model(scene, choice.name, choice.segments)
+    elements = sum(s.cable.segments for s in sc.sections)
+    settings = integrator_settings(sc, tol, elements, method=kw.get("method"), rtol=kw.get("rtol"),
+                                   atol=kw.get("atol"), max_num_steps=kw.get("max_num_steps"), jit=kw.get("jit", False))
+    times = kw.get("times")
+    sim = cache.simulator(model, sc.output_times if times is None else times, settings)
+    return simulate(sc, model=model, simulator=sim, **{k: kw[k] for k in _SIMULATE_KEYS if k in kw})
+
+
+def _periodic_run(scene: Scene, cache: RungCache):
     from ..linear import periodic_steady_state
     from ..linear.periodic import scene_input_amplitude
     from ..results import TimeResult
     sc = rung_scene(scene, "wang")
-    model = build_rung(sc, "wang")
+    model = cache.model(scene, "wang")
     p = model.parameters(sc)
     omega, Z = scene_input_amplitude(sc)
     per = periodic_steady_state(model, p, omega, input_amplitude=Z)
@@ -87,21 +168,21 @@ def _went_slack(result, scene: Scene) -> bool:
     return bool(result.events) or result.time_slack() > 0 or low <= floor
 
 
-def _decide(scene: Scene, model, tolerance, segments):
+def _decide(scene: Scene, model, tolerance, segments, cache: RungCache | None = None):
     """(Choice, tolerances, auto?) for the rung ``model`` (default ``numerics.model``); a rung the
     user forced outside its validity warns with the reason (stacklevel: the public caller's caller)."""
     name = check_rung(model or getattr(scene.numerics, "model", "auto"))
     tol = tolerances(scene, tolerance)
     if name == "auto":
-        return choose(scene, tol), tol, True
-    choice = forced(scene, name, segments, tol)
+        return choose(scene, tol, cache=cache), tol, True
+    choice = forced(scene, name, segments, tol, cache=cache)
     if not choice.numbers.get("valid", True):
         warnings.warn(f"model '{name}': {choice.reason}", NumericalWarning, stacklevel=3)
     return choice, tol, False
 
 
 def simulate_auto(scene: Scene, *, model: str | None = None, tolerance=None, segments: int | None = None,
-                  **kw):
+                  cache: RungCache | None = None, **kw):
     """Simulate ``scene`` with the rung ``model`` ("auto": chosen; default ``scene.numerics.model``).
 
     Parameters
@@ -114,38 +195,59 @@ def simulate_auto(scene: Scene, *, model: str | None = None, tolerance=None, seg
         Body-motion (and tension) tolerance; default ``numerics.model_tolerance`` or 1 % / 2 %.
     segments : int, optional
         Elements per section for a forced segmented rung (default: chosen for the tolerance).
+    cache : RungCache, optional
+        Built models and simulators to reuse; pass one cache to many calls on scenes of one
+        structure (default: a new one, so nothing is built twice within this call).
     **kw
-        Passed to :func:`cablesys.time_domain.simulate` (method, rtol, atol, times, jit).
+        ``method``, ``rtol``, ``atol``, ``max_num_steps``, ``jit`` (see :func:`integrator_settings`),
+        ``times``, ``x0``, ``on_block``, ``progress`` (see :func:`cablesys.time_domain.simulate`).
 
     Returns
     -------
     TimeResult
-        ``stats["model"] = {name, segments, reason, estimated_error}``; a rung forced outside its
-        validity warns (:class:`~cablesys.errors.NumericalWarning`) with the reason.
+        ``stats["model"] = {name, segments, reason, estimated_error}``; ``stats["ladder_timing"]``:
+        wall seconds ``choose_s`` (steady state, linearization, describing function, estimates; on a
+        new cache it includes building that solver), ``build_s`` (models and simulators, incl. loading
+        compiled code), ``run_s`` (the chosen run), ``check_s`` (a posteriori runs), ``total_s``.
+        A rung forced outside its validity warns (:class:`~cablesys.errors.NumericalWarning`) with
+        the reason.
     """
-    choice, tol, auto = _decide(scene, model, tolerance, segments)
-    result, choice = _run_checked(scene, choice, tol, auto=auto, **kw)
+    cache = cache if cache is not None else RungCache()
+    t0, b0 = time.perf_counter(), cache.build_s
+    choice, tol, auto = _decide(scene, model, tolerance, segments, cache)
+    t1, b1 = time.perf_counter(), cache.build_s
+    result = _run(scene, choice, tol, cache, kw)
+    t2, b2 = time.perf_counter(), cache.build_s
+    result, choice = _check(scene, choice, tol, result, cache, kw, auto=auto)
+    t3, b3 = time.perf_counter(), cache.build_s
     result.stats["model"] = choice.as_dict()
+    result.stats["ladder_timing"] = {"choose_s": (t1 - t0) - (b1 - b0), "build_s": b3 - b0,
+                                     "run_s": (t2 - t1) - (b2 - b1), "check_s": (t3 - t2) - (b3 - b2),
+                                     "total_s": t3 - t0}
     log.info("model %s (N = %d): %s", choice.name, choice.segments, choice.reason)
     return result
 
 
-def _run_checked(scene: Scene, choice: Choice, tol, *, auto: bool, **kw):
-    result = run_rung(scene, choice.name, choice.segments, **kw)
-    choice, again = after_run(scene, choice, result, auto=auto)
-    if again:
+def _check(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict, *, auto: bool):
+    """A posteriori checks of ``result`` (see the module docstring): (result, choice) to keep."""
+    while True:
+        choice, again = after_run(scene, choice, result, auto=auto)
+        if not again:
+            break
         log.info("rejected a posteriori; running %s with N = %d", choice.name, choice.segments)
-        return _run_checked(scene, choice, tol, auto=auto, **kw)
-    if choice.name == "segmented" and choice.segments >= 4:
-        return _richardson(scene, choice, tol, result, auto=auto, **kw)
+        result = _run(scene, choice, tol, cache, kw)
+    e = choice.estimated_error
+    sure = e["body"] <= SAFETY * tol[0] and e["tension"] <= SAFETY * tol[1]
+    if choice.name == "segmented" and choice.segments >= 4 and not sure:
+        return _richardson(scene, choice, tol, result, cache, kw, auto=auto)
     return result, choice
 
 
-def _richardson(scene: Scene, choice: Choice, tol, result, *, auto: bool, **kw):
+def _richardson(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict, *, auto: bool):
     period = metrics.forcing_period(scene)
     n = choice.segments
     while True:
-        coarse = run_rung(scene, "segmented", n // 2, **kw)
+        coarse = _run(scene, dataclasses.replace(choice, segments=n // 2), tol, cache, kw)
         if not (coarse.success and result.success):
             return result, choice
         diff = metrics.errors(metrics.statistics(coarse, period), metrics.statistics(result, period))
@@ -157,18 +259,22 @@ def _richardson(scene: Scene, choice: Choice, tol, result, *, auto: bool, **kw):
             reason = choice.reason + f"; a posteriori (N = {n} vs {n // 2}, order {order:g}): body {e['body']:.2g}, tension {e['tension']:.2g}"
             return result, Choice("segmented", n, reason, e, choice.numbers)
         n *= 2
-        result = run_rung(scene, "segmented", n, **kw)
+        choice = dataclasses.replace(choice, segments=n)
+        result = _run(scene, choice, tol, cache, kw)
 
 
-def plan_run(scene: Scene, model: str | None = None, tolerance=None):
+def plan_run(scene: Scene, model: str | None = None, tolerance=None, cache: RungCache | None = None):
     """(scene to run, its CasADi model, Choice) for a caller that runs the simulation itself
     (the ``run`` command streams its output). Warns when a forced rung is outside its validity.
-    The ``frequency`` rung is not a time-domain model: callers use :func:`simulate_auto` for it."""
-    choice, _, _ = _decide(scene, model, tolerance, None)
+    The ``frequency`` rung is not a time-domain model: callers use :func:`simulate_auto` for it.
+    Wang's model built for the choice is reused when it is the one to run (``cache``: see
+    :class:`~cablesys.ladder.rungs.RungCache`)."""
+    cache = cache if cache is not None else RungCache()
+    choice, _, _ = _decide(scene, model, tolerance, None, cache)
     if choice.name == "frequency":
         return None, None, choice
     sc = rung_scene(scene, choice.name, choice.segments)
-    return sc, build_rung(sc, choice.name, choice.segments), choice
+    return sc, cache.model(scene, choice.name, choice.segments), choice
 
 
 def after_run(scene: Scene, choice: Choice, result, *, auto: bool) -> tuple[Choice, bool]:
