@@ -28,3 +28,22 @@ def test_a_user_method_runs_and_agrees_with_the_built_in_one():
     assert a.success and b.success
     assert a.stats["method"] == "cvodes-loose-newton"
     assert np.max(np.abs(a["x_b"] - b["x_b"])) < 1e-6 * np.max(np.abs(b["x_b"]))
+
+
+def test_bdf_capped_at_order_two_steps_over_the_undamped_stretch_mode():
+    """BDF orders 3-5 are not A-stable: on the Dale scene (undamped stretch mode, 254 rad/s) the
+    variable-order BDF is held to steps of about 0.6/omega_stretch at any tolerance, while BDF of
+    order <= 2 (A-stable) steps with the forcing; both stay within the loose tolerance's error."""
+    import math
+
+    from cablesys.scene import TopMotion
+    base = dale_scene(duration=20.0, output_step=0.05)
+    tm = base.top_motion
+    scene = base.replace(top_motion=TopMotion(x=tm.x, y=tm.y, ramp_s=3 * 2 * math.pi / tm.x[0].frequency))
+    ref = simulate(scene, method="cvodes", rtol=1e-10, atol=1e-13)
+    runs = {m: simulate(scene, method=m, rtol=1e-4, atol=1e-8) for m in ("cvodes", "cvodes-bdf2")}
+    assert ref.success and all(r.success for r in runs.values())
+    assert runs["cvodes-bdf2"].stats["nsteps"] * 5 < runs["cvodes"].stats["nsteps"]
+    amp = np.max(np.abs(ref["x_b"]))
+    for r in runs.values():
+        assert np.max(np.abs(r["x_b"] - ref["x_b"])) < 1e-2 * amp
