@@ -147,6 +147,8 @@ def _run(args) -> int:
             result = dataclasses.replace(result, window_s=tuple(args.window) if getattr(args, "window", None) else None,
                                          forcing_period_s=_forcing_period(scene))
         summary = write_run(scene_run or scene, result, outdir, series_on_disk=model is not None, units=units)
+        if model is not None:          # the model was built (or loaded from the cache) for this run
+            summary["timing"]["build_s"] += float(model.build_info.get("build_s", 0.0))
         summary["model"] = result.stats.get("model") or choice.as_dict()
         outdir.finish(getattr(result, "status", "success" if result.success else "failed"), **summary)   # periodic: a TimeResult
     _print_summary(summary, units)
@@ -219,6 +221,9 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
     summary.pop("status", None)
     st = result.stats
     summary["timing"] = {k: float(st.get(k, 0.0)) for k in ("build_s", "load_s", "run_s")}
+    if "ladder_timing" in st and "run_s" not in st:     # the frequency rung: no time-domain run, the ladder's times
+        summary["timing"].update(build_s=float(st["ladder_timing"].get("build_s", 0.0)),
+                                 run_s=float(st["ladder_timing"].get("run_s", 0.0)))
     period = _forcing_period(scene)
     if period and scene.top_motion.spectrum is None and result.time[-1] - result.time[0] >= 6 * period:
         summary["amplitude_periods"] = 3
