@@ -24,6 +24,11 @@ def test_model_ladder_quick(run_study):
     assert rows[("wang", 1, "cvodes")]["error_body"] > 0.01
     auto = dale["auto"]
     tol = auto["tolerance"]
+    # every row carries its rung's a-priori estimate next to its actual error; auto its stated estimate
+    # and the verdicts of issue 12's checks
+    assert all(r["estimate_body"] is not None and r["estimate_body"] > 0 for r in dale["rows"] if r["rung"] != "frequency")
+    assert set(auto["stated_estimate"]) == {"body", "tension"} and auto["stated_how"]
+    assert {"body", "tension", "within_tolerance", "cheaper_rung_within_tolerance"} <= set(auto["check"])
     assert auto["actual_error"]["body"] <= tol["body"] and auto["actual_error"]["tension"] <= tol["tension"]
     # auto never picks a rung that a cheaper one beats clearly (actual errors under half the tolerance)
     order = ["quasi-static", "wang"] + [f"segmented {n}" for n in sorted({r["segments"] for r in dale["rows"]
