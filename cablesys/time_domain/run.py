@@ -81,7 +81,6 @@ class Simulator(ev.EventLocator):
         g2 = ca.mtimes(ca.jacobian(g1, x), xdot) + ca.jacobian(g1, t)
         self._gap_and_rate = ca.Function("gap_rate", [x, t, p], [g, g1])
         self._gap_rates = ca.Function("gap_rates", [x, t, p], [g, g1, g2])
-        self._jac = ca.Function("ode_jacobian", [x, t, p], [ca.jacobian(xdot, x)])
         self._gap_and_rate, self._top_c, self._outputs_c = compiled_functions(   # one cached library
             model, self.settings, [self._gap_and_rate, model.top, model.outputs])
         # the same functions over many output times, numpy in and out (no DM conversion, no map per call)
@@ -92,6 +91,13 @@ class Simulator(ev.EventLocator):
         self._stats = {}
 
     # -- helpers -------------------------------------------------------------------------
+    @property
+    def _jac(self) -> ca.Function:
+        """dx'/dx (RK4 stability check, events), built on first use: ~100 ms of AD for 20 elements, rarely needed."""
+        m = self.model
+        x, t, p = m.sym("x", 2 * m.nq), m.sym("t"), m.sym("p", len(m.layout))
+        return m.derive("ode_jacobian", lambda: ca.Function("ode_jacobian", [x, t, p], [ca.jacobian(m.ode(x, t, p), x)]))
+
     def _chunk_integrator(self, m: int) -> ca.Function:
         """The integrator over ``m`` output intervals from a chunk start (built once per length)."""
         if m not in self._chunks:
