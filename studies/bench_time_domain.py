@@ -32,6 +32,9 @@ output times. Timed, in one run, best of several repeats (the machine may be sha
 - ``equal_accuracy``: for each SciPy run, the fastest cablesys run of the sweep whose body position
   error is not larger, and the fastest error-controlled one (``speedup_vs_scipy_equal_accuracy``,
   ``..._adaptive``: against SciPy at rtol 1e-6);
+- ``interleaved``: the headline runs (SciPy at rtol 1e-6, cvodes, cvodes-bdf2, RK4) timed again in
+  alternating rounds, ``median_speedup`` per method: steadier than one ratio of measurements taken
+  minutes apart while the load of a shared machine drifts;
 - ``per_state_atol``: CVODES with one scalar atol against per-state absolute tolerances from the
   natural scales (angle 1 rad, stretch its static value, rates times the forcing frequency),
   obtained by integrating scaled states (CasADi 3.8 gives CVODES a scalar abstol only; its
@@ -275,6 +278,19 @@ def main(argv=None) -> int:
         print(f"SciPy LSODA at rtol {r:g}: {1e3 * w_r:.1f} ms, body position error "
               f"{scipy_runs[-1]['errors']['body_position_m']:.2e} m")
     res["scipy_runs"] = scipy_runs
+
+    # -- the headline ratios again, measured in alternating rounds (SciPy, then each cablesys run):
+    # on a shared machine the load drifts over the minutes this study takes; a ratio of two
+    # measurements taken seconds apart is steadier than one of measurements minutes apart
+    heads = {"cvodes": sim, "cvodes-bdf2": Simulator(model, times, IntegratorSettings(method="cvodes-bdf2", rtol=RTOL, atol=ATOL)),
+             "rk4": Simulator(model, times, IntegratorSettings(method="rk", steps_per_output=RK_STEPS))}
+    rounds = []
+    for _ in range(1 if args.quick else 3):
+        w_s, _sol = best_of(run_scipy, 1, budget_s=0.0)
+        rounds.append({k: w_s / best_of(lambda s=s: s.run(p, x0), 1, budget)[0] for k, s in heads.items()})
+    res["interleaved"] = {"rounds": rounds, "median_speedup": {k: float(np.median([r[k] for r in rounds])) for k in heads}}
+    print("interleaved rounds, median speedup vs SciPy: "
+          + ", ".join(f"{k} {v:.0f}x" for k, v in res["interleaved"]["median_speedup"].items()))
 
     res["speedup_vs_scipy"] = res["scipy_ms"] / res["cablesys_ms"]
     res["speedup_vs_scipy_vm"] = res["scipy_ms"] / res["vm"]["ms"]
