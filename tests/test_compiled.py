@@ -236,3 +236,20 @@ def test_simulate_without_a_compiler_runs_in_the_virtual_machine(cache, monkeypa
     notes = {r.getMessage() for r in caplog.records if r.name == "cablesys.compiled"}
     assert len(notes) == 1 and "no C compiler" in notes.pop()
     assert not list(cache_dir().glob("*.so"))
+
+
+@pytest.mark.filterwarnings("ignore:model 'frequency'")     # forced outside its validity: warned, as it should
+def test_run_summary_timing_of_the_frequency_rung(cache, tmp_path, monkeypatch):
+    """The frequency rung has no time-domain run: its summary reports the ladder's build and run."""
+    import json
+
+    from cablesys.cli import main
+    from cablesys.scene import dale_scene, dump_scene
+    monkeypatch.setenv("CABLESYS_COMPILE", "0")
+    f = tmp_path / "dale.toml"
+    f.write_text(dump_scene(dale_scene(duration=2.0, output_step=0.1)))
+    assert main(["run", str(f), "--model", "frequency", "--out", str(tmp_path / "out")]) == 0
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    timing, ladder = summary["timing"], summary["stats"]["ladder_timing"]
+    assert set(timing) == {"build_s", "load_s", "run_s"}
+    assert timing["run_s"] == ladder["run_s"] > 0.0 and timing["build_s"] == ladder["build_s"] >= 0.0
