@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import os
 import time
 from pathlib import Path
 
@@ -209,7 +210,8 @@ def main(argv=None) -> int:
            "periodic_sweep_newton_iterations": [x.stats["newton_iterations"] for x in sweep],
            "time_domain_to_steady": td, "time_domain_baseline": best, "time_domain_baseline_practical": best_p,
            "time_domain_to_steady_cpu_ms": 1e3 * td_c if td_c else None,
-           "target_rel_err": TARGET, "target_speedup": TARGET_SPEEDUP}
+           "target_rel_err": TARGET, "target_speedup": TARGET_SPEEDUP,
+           "load_average_1min": os.getloadavg()[0], "cpu_count": os.cpu_count()}
     plot(args.out / "bench_linear.png", doc)
     (args.out / "bench_linear.json").write_text(json.dumps(doc, indent=1))
     print(json.dumps({k: v for k, v in doc.items() if k.startswith("periodic_speedup") or k.endswith("_ms")}, indent=1))

@@ -34,3 +34,7 @@ def test_bench_design_quick(run_study):
     # timings (eval ms, the gradient's cost ratio) are the benchmark's report, not asserted here:
     # a test must not depend on the machine's load
     assert doc["gradient_cost_ratio"] > 0 and doc["objective_gradient_eval_ms"] > 0
+    # issue 13: each target beside its measured value; the iteration count is work, so it is asserted
+    assert doc["design_total_s_target"] == 1.0 and doc["design_total_cpu_s"] > 0
+    assert doc["design_iterations"] == doc["design"]["nlp_iterations_total"] < doc["design_iterations_target"] == 100
+    assert (out / "bench_design.png").stat().st_size > 20000
