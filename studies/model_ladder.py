@@ -270,6 +270,9 @@ def plot_case(res: dict, path: Path):
         hit = [r for r in ok if r["rung"] == a["name"] and (a["name"] != "segmented" or r["segments"] == a["segments"])]
         if hit:
             ax.loglog(max(hit[0]["wall_s"], 1e-4), max(hit[0][key], floor), "*", color="k", ms=18, mfc="none", mew=1.5)
+            stated = (a.get("stated_estimate") or {}).get(key.removeprefix("error_"))
+            if stated is not None and math.isfinite(stated):   # auto's stated estimate: a bar at the star's wall time
+                ax.loglog(max(hit[0]["wall_s"], 1e-4), max(stated, floor), "_", color="k", ms=22, mew=2.5)
         ax.axhline(tl, ls="--", color="grey", lw=1)
         ax.text(ax.get_xlim()[0] if ok else 1e-3, tl * 1.1, f"tolerance {tl:.0%}", fontsize=8, color="grey")
         ax.axhline(1.0, ls=":", color="red", lw=0.8)
@@ -283,8 +286,9 @@ def plot_case(res: dict, path: Path):
     handles += [Line2D([], [], color="k", marker=m, ls="", label=k) for k, m in MARKERS.items()
                 if any(r["integrator"] == k for r in res["rows"])]
     handles += [Line2D([], [], color="k", marker="*", mfc="none", ls="", ms=12, label="auto's choice"),
+                Line2D([], [], color="k", marker="_", ls="", ms=14, mew=2.5, label="auto's stated estimate"),
                 Line2D([], [], color="k", marker="x", ls="", label="failed (at error = 1)")]
-    fig.legend(handles=handles, fontsize=8, loc="outside lower center", ncol=len(handles))
+    fig.legend(handles=handles, fontsize=8, loc="outside lower center", ncol=math.ceil(len(handles) / 2))
     fig.suptitle(f"{res['scene']}: model ladder work-precision (reference: segmented N = {res['reference']['segments']})")
     return save_figure(fig, path, dpi=110)
 
