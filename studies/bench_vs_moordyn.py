@@ -12,9 +12,30 @@ Per case and element count N:
 - Wang's 2-DOF model (``wang``) and the model ladder's ``auto`` choice, each against a converged
   segmented reference (2 x the largest N): ``wang_speedup``, ``auto_speedup``, ``auto_error``
   against MoorDyn at the smallest N of the case (issues 12 and 13).
-Times are seconds of wall time per simulated second, measured on a second run (the first builds
-and compiles; its build time is reported apart). A peer is a benchmark and a sanity check, not the
-truth: where cablesys and MoorDyn differ by more than 2 % in a converged taut case we say why.
+Times are seconds of wall time per simulated second of the time stepping and its outputs, as
+MoorDyn's are of its steps: ``cablesys_s_per_s`` is a second ``Simulator.run`` of a simulator built
+once; the setup (SX model, integrators, compiled code, the catenary statics) is reported apart, as
+the issue asks: ``cablesys_build_s`` the first time (with the C compile when the cache is cold),
+``cablesys_setup_s`` again from the compile cache, and ``cablesys_total_s_per_s`` / ``speedup_total``
+with that setup counted. ``cablesys_profile`` says where a run's time goes (CVODES steps, right-hand
+side and Jacobian evaluations and their wall time, linear-solver setups, the outputs), ``cablesys_vm``
+the same run in CasADi's virtual machine (is the compile worth it?), ``cablesys_rk`` classical RK4 at
+its largest stable step (h |lambda|_max = 2.78).
+
+A peer is a benchmark and a sanity check, not the truth: where cablesys and MoorDyn differ by more
+than 2 % in a converged taut case we say why. The tensions are not the same quantity at the ends:
+cablesys's ``tension_top`` is the force of the cable on the top point (the crane or ship) and
+``tension_bottom`` the force on the body, i.e. the end element's tension plus (top) or minus (body)
+the half element lumped at that node (its weight in water w h / 2, its drag share, minus its
+inertia); MoorDyn's ``GetLineFairTen`` and ``GetLineNodeTen(0)`` are the end *segments'* tensions
+(T + Td of segment N - 1 and 0; the end nodes' weight and drag go to the attached point). So
+MoorDyn's top-minus-bottom difference is (N - 1) element weights, (1 - 1/N) W instead of W: Dale,
+N = 10: 0.9 x 0.0160 N = 0.0144 N (0.0140 N at the extremes), a 1 % gap; heave at T = 10 s, N = 20:
+w h / 2 = 147 N at each end, 1.8 % of the top tension. Not a weight or buoyancy convention: the
+MoorDyn line's diameter is chosen so that its weight in water is Wang's w_r l_r (see ``_moordyn``),
+and its end nodes carry half a segment as ours do. Compared as the same quantity (cablesys's end
+element tension against MoorDyn's end segment tension: ``cablesys_vs_moordyn_segments``) the codes
+agree within 0.1 % on the taut heave case.
 
     python studies/bench_vs_moordyn.py --out DIR [--quick]
 """
@@ -42,9 +63,16 @@ from cablesys.ladder import simulate_auto  # noqa: E402
 from cablesys.model import build_model  # noqa: E402
 from cablesys.scene import dale_scene, load_scene  # noqa: E402
 from cablesys.time_domain import simulate  # noqa: E402
+from cablesys.time_domain.failures import RK4_LIMIT  # noqa: E402
+from cablesys.time_domain.initial import initial_state  # noqa: E402
+from cablesys.time_domain.integrators import IntegratorSettings, make_integrator  # noqa: E402
+from cablesys.time_domain.run import Simulator  # noqa: E402
 
 DATA = Path(cablesys.__file__).resolve().parent / "data"
 RTOLS = (1e-3, 1e-4, 1e-5, 1e-6)
+# the segmented model: its BDF is capped at order 2 under both names (integrators.make_integrator), so
+# one name; 3e-4 between 1e-3 (a tension error near 1 % on the heave case) and 1e-4
+SEGMENTED_METHODS, SEGMENTED_RTOLS = ("cvodes-bdf2",), (1e-3, 3e-4, 1e-4, 1e-5, 1e-6)
 
 
 def _ramped(scene, period, duration):
@@ -67,6 +95,23 @@ def cases(quick: bool):
         out.append((f"heave_T{period:g}", _ramped(sc, period, 60.0), period, (20, 80), taut))
     return out
 
+
+NOTES = {
+    "timing": "cablesys_s_per_s: wall time of the time stepping and the outputs at every output time "
+              "(Simulator.run, second run), as moordyn_s_per_s times MoorDyn's steps; the setup (SX model, "
+              "integrators, compiled code, catenary statics) is apart: cablesys_build_s the first time (C compile "
+              "if the cache is cold), cablesys_setup_s from the cache, cablesys_total_s_per_s and speedup_total "
+              "with it counted.",
+    "tension_gap": "cablesys tension_top / tension_bottom are the forces on the top point and on the body: the end "
+                   "element's tension plus (top) or minus (body) the half element lumped at that node (weight in "
+                   "water w h/2, drag share, minus inertia). MoorDyn's GetLineFairTen / GetLineNodeTen(0) are the "
+                   "end segments' tensions (T + Td of segment N-1 and 0): its top-minus-bottom difference is "
+                   "(N-1) element weights, (1 - 1/N) W. Dale N = 10: 0.9 x 0.0160 N = 0.0144 N (0.0140 N at the "
+                   "extremes), about 1 %; heave T = 10 s, N = 20: w h/2 = 147 N at each end, 1.8 % of the top "
+                   "tension. Not a buoyancy or weight convention (the MoorDyn diameter gives Wang's weight in "
+                   "water; its end nodes carry half a segment as ours do). Same quantity against same quantity "
+                   "(end element vs end segment): cablesys_vs_moordyn_segments.",
+}
 
 COMPILE_MAX_ELEMENTS = 20     # gcc's time and memory grow faster than linearly with the segmented
 # model's straight-line code (N = 80: minutes and >10 GB at -O1): larger models run in CasADi's VM
@@ -98,6 +143,17 @@ def _stats(result, period):
     return s
 
 
+def _segment_stats(result, period):
+    """:func:`_stats` with the end *elements'* tensions (top element, body element) in place of the
+    forces on the top point and on the body: the quantity MoorDyn reports as its line tensions."""
+    s = _stats(result, period)
+    w = M.window(np.asarray(result.time), period)
+    T = np.asarray(result.profiles["element_tension"])[w]
+    for key, col in (("tension_top", T[:, 0]), ("tension_bottom", T[:, -1])):
+        s[f"{key}_max"], s[f"{key}_min"] = float(col.max()), float(col.min())
+    return s
+
+
 def _timed(fn):
     """(result, wall of the second call, wall of the first call): the first builds and compiles."""
     t0 = time.perf_counter()
@@ -106,6 +162,32 @@ def _timed(fn):
     t0 = time.perf_counter()
     r = fn()
     return r, time.perf_counter() - t0, first
+
+
+def _prepared(sc, method, rtol, atol):
+    """(simulator, p, x0, setup wall): the segmented model, its integrators (compiled code from the
+    cache, or compiled now) and its initial state (the elastic catenary), built once."""
+    t0 = time.perf_counter()
+    model = build_model(sc)
+    sim = Simulator(model, sc.output_times, IntegratorSettings(method=method, rtol=rtol, atol=atol,
+                                                               steps_per_output=sc.numerics.steps_per_output))
+    p = model.parameters(sc)
+    x0 = initial_state(sc, model, p)
+    return sim, p, x0, time.perf_counter() - t0
+
+
+def _timed_run(sc, method, rtol, atol):
+    """(result, run wall, first-call wall, setup wall) of the segmented model, timed as MoorDyn is: the
+    time stepping and the outputs at every output time (a second run of a simulator built once);
+    the setup (model build, integrators, compiled code, statics) is reported apart, as MoorDyn's
+    input reading and initial equilibrium are not timed."""
+    sim, p, x0, setup = _prepared(sc, method, rtol, atol)
+    t0 = time.perf_counter()
+    sim.run(p, x0)
+    first = setup + time.perf_counter() - t0
+    t0 = time.perf_counter()
+    r = sim.run(p, x0)
+    return r, time.perf_counter() - t0, first, setup
 
 
 def _moordyn_stats(r, period):
@@ -125,15 +207,16 @@ def _diff(a: dict, b: dict) -> dict:
 METHODS = ("cvodes", "cvodes-bdf2")
 
 
-def _matched(run, tight_stats, period):
+def _matched(run, tight_stats, period, timed=None, methods=None, rtols=RTOLS):
     """The fastest (method, rtol) whose run is within 0.5 % (body amplitudes) and 1 % (top and
     body-end tension extremes) of ``tight_stats``: (result, wall of a second run, first-call wall,
-    settings), or None."""
+    settings), or None. ``timed(method, rtol) -> (result, wall, first, ...)`` replaces timing
+    ``run(method, rtol)`` whole (twice)."""
     best = None
-    for method in METHODS:
-        for rtol in RTOLS:
+    for method in methods or METHODS:
+        for rtol in rtols:
             try:
-                res, wall, first = _timed(lambda: run(method, rtol))
+                res, wall, first = (timed(method, rtol) if timed else _timed(lambda m=method, r=rtol: run(m, r)))[:3]
             except Exception:                 # noqa: BLE001 - a failing setting is skipped
                 continue
             if not res.success:
@@ -144,6 +227,57 @@ def _matched(run, tight_stats, period):
                     best = (res, wall, first, {"method": method, "rtol": rtol, "error_vs_own_tight": e})
                 break                          # looser tolerances of this method failed already or are slower
     return best
+
+
+def _profile(sc, method, rtol, atol, compiled):
+    """Where a run's time goes (issue 11, "profile first"): the setup again (now from the compile
+    cache), one run, and one CVODES call over the whole horizon with its statistics: steps,
+    right-hand side and Jacobian evaluations and their wall time, linear-solver setups, Newton
+    iterations, error-test failures; the rest of that call is CVODES itself (BDF error control,
+    the sparse LU factorizations and solves, interpolation at the output times). ``outputs_s``
+    labels every output time (tensions, profiles)."""
+    sim, p, x0, setup = _prepared(sc, method, rtol, atol)
+    sim.run(p, x0)
+    t0 = time.perf_counter()
+    rec = sim.run(p, x0)
+    run = time.perf_counter() - t0
+    times = np.asarray(sc.output_times)
+    F = make_integrator(sim.model, sim.settings, times - times[0], "whole")
+    pp = np.concatenate([p, [times[0], 1.0]])
+    F(x0=x0, p=pp)
+    t0 = time.perf_counter()
+    F(x0=x0, p=pp)
+    integ = time.perf_counter() - t0
+    st = F.stats()
+    t0 = time.perf_counter()
+    sim.labelled(rec.time, rec.states, rec.modes, p)
+    outputs = time.perf_counter() - t0
+    n_el = sim.model.n_elements
+    rhs, jac = float(st.get("t_wall_daeF", np.nan)), float(st.get("t_wall_jacF", np.nan))
+    return {"compiled": compiled, "setup_s": setup, "run_s": run, "whole_horizon_call_s": integ, "outputs_s": outputs,
+            "nsteps": int(st["nsteps"]), "nfevals": int(st["nfevals"]), "njevals": int(st.get("n_call_jacF", -1)),
+            "nlinsetups": int(st["nlinsetups"]), "nniters": int(st["nniters"]), "netfails": int(st["netfails"]),
+            "nncfails": int(st["nncfails"]), "rhs_s": rhs, "jacobian_s": jac, "cvodes_and_linear_algebra_s": integ - rhs - jac,
+            "us_per_step": 1e6 * integ / max(int(st["nsteps"]), 1),
+            "us_per_rhs": 1e6 * rhs / max(int(st["nfevals"]), 1), "us_per_jacobian": 1e6 * jac / max(int(st.get("n_call_jacF", 1)), 1),
+            "rhs_instructions": sim.model.ode.n_instructions(), "rhs_instructions_per_element": sim.model.ode.n_instructions() / n_el}
+
+
+def _rk(sc, tight_stats, period, md_wall):
+    """Classical RK4 (the compiled fixed-step loop, as MoorDyn steps) at its largest stable step:
+    h |lambda|_max = 2.78 for the largest eigenvalue of the Jacobian at the initial state."""
+    dur = sc.numerics.duration
+    sim, p, x0, _ = _prepared(sc, "rk", 1e-6, 1e-9)
+    lam = float(np.max(np.abs(np.linalg.eigvals(np.array(sim._jac(x0, sc.output_times[0], p))))))
+    h_out = float(sc.numerics.output_step)
+    spo = math.ceil(h_out * lam / RK4_LIMIT)
+    if spo > 2000:
+        return {"skipped": f"RK4's stable step {h_out / spo:.3g} s needs {spo} steps per output"}
+    sc_rk = sc.with_numerics(steps_per_output=spo)
+    res, wall, first, _ = _timed_run(sc_rk, "rk", 1e-6, 1e-9)
+    return {"steps_per_output": spo, "step_s": h_out / spo, "lambda_max": lam, "s_per_s": wall / dur,
+            "speedup": md_wall / wall, "build_s": first - wall, "success": bool(res.success),
+            "error_vs_own_tight": _diff(_stats(res, period), tight_stats) if res.success else None}
 
 
 def bench_case(name, scene, period, ns, taut, quick):
@@ -158,24 +292,39 @@ def bench_case(name, scene, period, ns, taut, quick):
     for n in ns:
         sc = _segments(scene, n)
         dt = largest_stable_dt(sc, n, probe_s=min(dur, 10.0))
-        md, _, _ = _timed(lambda: run_moordyn(sc, n, dt))
+        md, _, _ = _timed(lambda sc=sc, n=n, dt=dt: run_moordyn(sc, n, dt))
         md_stats = _moordyn_stats(md, period)
-        with _compiled(n <= COMPILE_MAX_ELEMENTS):
+        compiled = n <= COMPILE_MAX_ELEMENTS
+        with _compiled(compiled):
             tight = simulate(sc, method="cvodes", rtol=1e-7, atol=1e-10)
             tight_stats = _stats(tight, period)
-            m = _matched(lambda meth, rtol: simulate(sc, method=meth, rtol=rtol, atol=rtol * 1e-3), tight_stats, period)
+            m = _matched(None, tight_stats, period, timed=lambda meth, rtol, sc=sc: _timed_run(sc, meth, rtol, rtol * 1e-3),
+                         methods=SEGMENTED_METHODS, rtols=SEGMENTED_RTOLS)
+            extra = {}
+            if m:
+                meth, rtol = m[3]["method"], m[3]["rtol"]
+                extra["cablesys_profile"] = _profile(sc, meth, rtol, rtol * 1e-3, compiled)
+                if compiled and not quick:   # is the compile worth it? the same run in CasADi's VM
+                    with _compiled(False):
+                        _, wall_vm, _, setup_vm = _timed_run(sc, meth, rtol, rtol * 1e-3)
+                    extra["cablesys_vm"] = {"s_per_s": wall_vm / dur, "setup_s": setup_vm}
+            if taut and compiled and not quick:
+                extra["cablesys_rk"] = _rk(sc, tight_stats, period, md["wall_s"])
         entry = {"segments": n, "cablesys_compiled": n <= COMPILE_MAX_ELEMENTS, "moordyn_dt_s": dt, "moordyn_s_per_s": md["wall_s"] / dur,
                  "moordyn_stable": md["stable"], "moordyn_stats": md_stats,
                  "moordyn_slack_fraction_per_segment": md["slack_fraction_per_segment"].tolist(),
                  "cablesys_stats": tight_stats,
                  "cablesys_vs_moordyn": _diff(tight_stats, md_stats),
+                 "cablesys_vs_moordyn_segments": _diff(_segment_stats(tight, period), md_stats),
                  "cablesys_error_vs_converged": _diff(tight_stats, ref_stats),
                  "moordyn_error_vs_converged": _diff(md_stats, ref_stats)}
         if m:
             res, wall, first, how = m
+            setup = extra["cablesys_profile"]["setup_s"]
             entry.update(cablesys_s_per_s=wall / dur, speedup=md["wall_s"] / wall, cablesys_settings=how,
-                         cablesys_build_s=first - wall, cablesys_steps=res.stats.get("nsteps"),
-                         cablesys_timing={k: res.stats.get(k) for k in ("build_s", "load_s", "run_s")})
+                         cablesys_build_s=first - wall, cablesys_setup_s=setup,
+                         cablesys_total_s_per_s=(setup + wall) / dur, speedup_total=md["wall_s"] / (setup + wall),
+                         cablesys_steps=res.stats.get("nsteps"), **extra)
         else:
             entry.update(cablesys_s_per_s=None, speedup=None, note="no setting met matched accuracy")
         row["by_n"].append(entry)
@@ -183,15 +332,18 @@ def bench_case(name, scene, period, ns, taut, quick):
             md_small = (n, md["wall_s"])
     # Wang's 2-DOF model and the ladder's auto choice: matched accuracy against their own tight runs,
     # error against the converged segmented reference, speed against MoorDyn at the smallest N
-    wang_model = build_model(scene)       # Wang's 2-DOF model itself (issue 13); auto includes its choosing (issue 12)
+    wang_scene = _segments(scene, 1)    # Wang's 2-DOF model itself (issue 13), whatever the scene's own segments
+    wang_model = build_model(wang_scene)
     for label in ("wang",):
-        run = lambda meth, rtol: simulate(scene, model=wang_model, method=meth, rtol=rtol, atol=rtol * 1e-3)
+        run = lambda meth, rtol: simulate(wang_scene, model=wang_model, method=meth, rtol=rtol, atol=rtol * 1e-3)
         compiled = True
         try:
             with warnings.catch_warnings(), _compiled(compiled):
                 warnings.simplefilter("ignore")
                 tight = run("cvodes", 1e-8)
-                m = _matched(run, _stats(tight, period), period)
+                # timed as the segmented runs and MoorDyn: the stepping and outputs, setup apart
+                m = _matched(run, _stats(tight, period), period,
+                             timed=lambda meth, rtol: _timed_run(wang_scene, meth, rtol, rtol * 1e-3))
         except Exception as err:          # noqa: BLE001 - a failing rung is a result of the benchmark
             row[label] = {"failed": f"{type(err).__name__}: {err}"}
             continue
@@ -286,7 +438,7 @@ def main(argv=None):
             continue
         rows.append(bench_case(*c, args.quick))
         # written after every case: a long benchmark that is stopped keeps what it measured
-        write_json(args.out / "bench_vs_moordyn.json", {"cases": rows, "quick": args.quick})
+        write_json(args.out / "bench_vs_moordyn.json", {"cases": rows, "quick": args.quick, "notes": NOTES})
     plot(rows, args.out / "bench_vs_moordyn.png")
     for r in rows:
         for e in r["by_n"]:
