@@ -126,3 +126,82 @@ def test_auto_result_says_which_model_why_and_its_error():
     assert m["name"] == "quasi-static" and m["segments"] == 1
     assert set(m["estimated_error"]) == {"body", "tension"} and m["reason"]
     assert np.all(np.isfinite(r["tension_top"]))
+
+
+def test_rung_cache_builds_each_model_once_and_the_timing_adds_up():
+    """A second auto call with the same RungCache builds nothing (same structure: every number is in p);
+    the timing splits the call into choosing, building, the run and its checks."""
+    from cablesys.ladder.rungs import RungCache
+    scene = _stiff_pendulum().with_numerics(duration=16.0)
+    cache = RungCache()
+    first = simulate_auto(scene, cache=cache)
+    built, n_models = cache.build_s, len(cache)
+    assert n_models == 2                      # Wang's model (the choice's describing function) and the quasi-static
+    other = scene.replace_section(0, body={"weight": 1400.0})   # other values, same structure
+    second = simulate_auto(other, cache=cache)
+    assert len(cache) == n_models and cache.build_s == built
+    t = second.stats["ladder_timing"]
+    assert t["build_s"] == 0.0
+    assert t["choose_s"] + t["run_s"] + t["check_s"] == pytest.approx(t["total_s"], rel=1e-9)
+    assert first.stats["ladder_timing"]["build_s"] > 0.0
+    assert second["y_b"][-1] != first["y_b"][-1]       # the cached model ran the new numbers
+
+
+def test_auto_integrator_settings_follow_the_tolerance_unless_someone_chose():
+    """BDF of order <= 2 at rtol = body tolerance / 100 (at most 1e-4), atol = rtol / 1000; the scene's
+    own [numerics] integrator or tolerances, or the caller's, win; compiled C up to 20 elements."""
+    from cablesys.ladder.auto import COMPILE_MAX_ELEMENTS, integrator_settings
+    scene = _stiff_pendulum()
+    s = integrator_settings(scene, (0.01, 0.02))
+    assert (s.method, s.rtol, s.atol, s.compiled) == ("cvodes-bdf2", 1e-4, pytest.approx(1e-7), True)
+    assert integrator_settings(scene, (1e-3, 2e-3)).rtol == pytest.approx(1e-5)
+    assert integrator_settings(scene, (0.05, 0.1)).rtol == 1e-4
+    own = scene.with_numerics(integrator="cvodes", rtol=1e-6)
+    s = integrator_settings(own, (0.01, 0.02))
+    assert (s.method, s.rtol) == ("cvodes", 1e-6)
+    s = integrator_settings(scene, (0.01, 0.02), method="idas", rtol=1e-5)
+    assert (s.method, s.rtol) == ("idas", 1e-5)
+    assert not integrator_settings(scene, (0.01, 0.02), COMPILE_MAX_ELEMENTS + 1).compiled
+
+
+def test_segments_for_is_the_least_n_within_the_safety_margin():
+    """N is the least element count whose estimate is within SAFETY x the tolerance, so the actual error
+    meets the tolerance while the estimate is good to a factor 1 / SAFETY."""
+    from cablesys.ladder import estimate as est
+    from cablesys.ladder.choice import SAFETY, segments_for
+    tol = (0.01, 0.02)
+    for body in (0.002, 0.04, 0.3):
+        errs = {"segmented_1": {"body": body, "tension": 1e-3, "order": 2.0, "note": ""}}
+        n = segments_for(errs, tol)
+        assert est.segmented_error(errs, n)["body"] <= SAFETY * tol[0]
+        if n > 2:
+            assert est.segmented_error(errs, n - 1)["body"] > SAFETY * tol[0]
+    # 4 % at N = 1 falling as N^-2 (sqrt(0.04 / 0.005) = 2.83): 3 elements, not the 2 of the full tolerance
+    assert segments_for({"segmented_1": {"body": 0.04, "tension": 1e-3, "order": 2.0, "note": ""}}, tol) == 3
+
+
+def test_no_a_posteriori_rerun_when_the_estimate_is_far_within_the_tolerance():
+    """A forced segmented N = 4 on a cable that cannot bow: its estimate is far within the tolerance, so
+    the Richardson run at N/2 (as costly as the run itself) is not spent; the reason says no check ran."""
+    from cablesys.ladder.rungs import RungCache
+    scene = _stiff_pendulum(period=4.0).with_numerics(duration=12.0, output_step=0.1)
+    cache = RungCache()
+    r = simulate_auto(scene, model="segmented", segments=4, cache=cache)
+    assert r.stats["model"]["segments"] == 4
+    assert "a posteriori" not in r.stats["model"]["reason"]
+    assert len(cache) == 2            # Wang's (for the estimate) and N = 4; no N = 2 model was built
+
+
+@pytest.mark.slow
+def test_auto_on_the_dale_scene_meets_its_tolerance():
+    """The Dale scene at resonance (omega / omega_n = 1, Wang 1971 Table 1): the straight cable misses the
+    body amplitude by ~4 % there (it cannot bow), so auto must add elements; its body amplitude and
+    tension extremes are within 1 % / 2 % of the segmented cable at N = 16 (converged to 0.05 %)."""
+    scene = dale_scene(duration=30.0)
+    period = 2 * math.pi / scene.top_motion.x[0].frequency
+    r = simulate_auto(scene)
+    m = r.stats["model"]
+    assert m["name"] == "segmented" and m["segments"] >= 3
+    ref = run_rung(scene, "segmented", 16, method="cvodes-bdf2", rtol=1e-7, atol=1e-10)
+    err = metrics.errors(metrics.statistics(r, period), metrics.statistics(ref, period))
+    assert err["body"] <= 0.01 and err["tension"] <= 0.02
