@@ -390,17 +390,20 @@ def plot(path, res):
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(13, 5))
     names = ["SciPy LSODA\n+ NumPy", "CVODES\nvirtual\nmachine", "CVODES\ncompiled\n(default)"]
     vals = [res["scipy_ms"], res["vm"]["ms"], res["cablesys_ms"]]
+    errs = [res["scipy_errors"], res["vm"]["errors"], res["cablesys_errors"]]
     short = {"cvodes-bdf2": "BDF <= 2", "cvodes-adams": "Adams", "rk4": f"RK4 {RK_STEPS}/out"}
     for k, v in res["compiled"].items():
         names.append(short.get(k, k) + "\ncompiled")
         vals.append(v["ms"])
+        errs.append(v["errors"])
     colors = ["tab:gray", "tab:purple", "tab:blue", "tab:orange", "tab:green", "tab:red"]
     bars = ax1.bar(range(len(vals)), vals, color=colors[: len(vals)])
-    for b, v in zip(bars, vals):
-        ax1.text(b.get_x() + b.get_width() / 2, v * 1.1, f"{v:.0f} ms\n({vals[0] / v:.0f}x)", ha="center", fontsize=8)
+    for b, v, e in zip(bars, vals, errs):
+        ax1.text(b.get_x() + b.get_width() / 2, v * 1.1, f"{v:.0f} ms\n({vals[0] / v:.0f}x)\nerr {e['body_position_m']:.0e} m",
+                 ha="center", fontsize=7)
     ax1.set_xticks(range(len(vals)), names, fontsize=8)
     ax1.set_yscale("log")
-    ax1.set_ylim(min(vals) / 3, max(vals) * 5)
+    ax1.set_ylim(min(vals) / 3, max(vals) * 10)
     ax1.set_ylabel("wall time (ms, log scale)")
     ax1.set_title(f"{res['duration_s']:g} s of the Dale scene (ramped start), rtol {RTOL:g}, atol {ATOL:g}", fontsize=10)
     style = {"cvodes": ("tab:blue", "o"), "cvodes-bdf2": ("tab:orange", "s"), "rk4": ("tab:red", "^")}
