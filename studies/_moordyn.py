@@ -54,8 +54,8 @@ def moordyn_input(scene, n_segments: int, dt: float) -> str:
     sec = scene.sections[0]
     c, b, env = sec.cable, sec.body, scene.environment
     rho, g = env.density, env.gravity
-    l_r, k = c.length, c.ae / c.length
-    l_0 = l_r - c.tension_ref / k
+    l_r = c.length
+    l_0 = _unstretched_length(scene)
     mass = c.mass_per_length * l_r / l_0
     buoy_mass = mass - c.weight_per_length * l_r / (g * l_0)        # rho * pi d_v^2 / 4
     if buoy_mass <= 0:
@@ -117,15 +117,35 @@ def _top(scene, t):
     return [xs, 0.0, -(scene.environment.top_depth + ys)], [vx, 0.0, -vy]
 
 
+def _segment_state(moordyn, line, n_segments: int):
+    """Signed top and body-end tensions and per-segment strains of MoorDyn's line, in cablesys's
+    order (element 0 at the top). MoorDyn's node 0 is the body (AttachA), node N the top; its
+    segment force is EA strain (only while stretched) plus BA strain rate (always, also while
+    slack: it can push), along the segment's unit vector. ``GetLineFairTen`` is the norm of that
+    force, which is never negative and rarely zero: the signed value is its projection on the
+    segment. A segment is slack when its length is at most its unstretched length (MoorDyn's own
+    rule for a zero elastic tension)."""
+    r = np.array([moordyn.GetLineNodePos(line, i) for i in range(n_segments + 1)])
+    seg = np.diff(r, axis=0)
+    length = np.linalg.norm(seg, axis=1)
+    unit = seg / length[:, None]
+    top = float(np.dot(moordyn.GetLineNodeTen(line, n_segments), unit[-1]))
+    bottom = float(np.dot(moordyn.GetLineNodeTen(line, 0), unit[0]))
+    return top, bottom, length[::-1]
+
+
 def run_moordyn(scene, n_segments: int, dt: float, *, duration: float | None = None,
                 output_step: float | None = None, scheme: str = "RK4") -> dict:
     """Run MoorDyn on ``scene``; returns time, body x/y (Wang frame: y down from the top's mean
-    depth), top and body-end tension, per-segment slack fraction, wall time and whether it stayed
-    finite and bounded."""
+    depth), signed top and body-end tension (MoorDyn's segment force, elastic plus damping, along
+    the segment), the per-segment strain (time x segment, top first) and slack fraction (strain
+    <= 0: MoorDyn's elastic tension is zero), the wall time of MoorDyn's own steps (reading the
+    results through Python is not counted) and whether it stayed finite and bounded."""
     import moordyn
     duration = duration or scene.numerics.duration
     h = output_step or scene.numerics.output_step
-    n_out = int(round(duration / h))
+    n_out = round(duration / h)
+    l_seg = _unstretched_length(scene) / n_segments
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "lines.txt"
         path.write_text(moordyn_input(scene, n_segments, dt))
@@ -133,16 +153,16 @@ def run_moordyn(scene, n_segments: int, dt: float, *, duration: float | None = N
             s = moordyn.Create(str(path))
             moordyn.SetDt(s, dt)
             moordyn.SetTimeScheme(s, scheme)
-            x, v = _top(scene, 0.0)
+            x, _ = _top(scene, 0.0)
             moordyn.Init(s, x, [0.0, 0.0, 0.0])     # equilibrium with the top at rest (a moving top would be extrapolated)
         line, body = moordyn.GetLine(s, 1), moordyn.GetPoint(s, 2)
         T = np.zeros(n_out + 1)
         XB, YB, TT, TB = (np.zeros(n_out + 1) for _ in range(4))
-        seg_slack = np.zeros(n_segments)
+        strain = np.zeros((n_out + 1, n_segments))
         ok = True
         m = max(1, math.ceil(h / max(dt, 1e-3) - 1e-9))      # coupling calls per output step
         h_c = h / m
-        wall = time.perf_counter()
+        wall = 0.0
         with _quiet():
             for k in range(n_out + 1):
                 t = k * h
@@ -152,6 +172,7 @@ def run_moordyn(scene, n_segments: int, dt: float, *, duration: float | None = N
                     # would jump the top by ~a w^2 h^2 / 2 per call, more than the Dale cable's stretch).
                     # The path is then piecewise linear: its velocity jumps by ~a w^2 h_c per call and
                     # rings the undamped axial mode, so calls are short (h_c <= 1 ms, or one dtM).
+                    t_wall = time.perf_counter()
                     try:
                         for j in range(1, m + 1):
                             x_prev = x
@@ -160,21 +181,26 @@ def run_moordyn(scene, n_segments: int, dt: float, *, duration: float | None = N
                     except RuntimeError:          # MoorDyn's own NaN check: the step is unstable
                         ok = False
                         break
+                    finally:
+                        wall += time.perf_counter() - t_wall
                 pos = moordyn.GetPointPos(body)
                 T[k], XB[k], YB[k] = t, pos[0], -pos[2] - scene.environment.top_depth
-                TT[k] = moordyn.GetLineFairTen(line)
-                ten = [np.linalg.norm(moordyn.GetLineNodeTen(line, i)) for i in range(n_segments + 1)]
-                TB[k] = ten[0]
-                seg_slack += np.array(ten[:-1]) <= 0.0
+                TT[k], TB[k], length = _segment_state(moordyn, line, n_segments)
+                strain[k] = length / l_seg - 1.0
                 if not (np.all(np.isfinite(pos)) and abs(pos[2]) < 10 * scene.sections[0].cable.length + 100):
                     ok = False
                     break
-            wall = time.perf_counter() - wall
             moordyn.Close(s)
     n = k + 1
     return {"time": T[:n], "x_b": XB[:n], "y_b": YB[:n], "tension_top": TT[:n], "tension_bottom": TB[:n],
-            "slack_fraction_per_segment": seg_slack / n, "wall_s": wall, "stable": ok and n == n_out + 1,
-            "dt": dt, "scheme": scheme, "n_segments": n_segments}
+            "element_strain": strain[:n], "slack_fraction_per_segment": np.mean(strain[:n] <= 0.0, axis=0),
+            "wall_s": wall, "stable": ok and n == n_out + 1, "dt": dt, "scheme": scheme, "n_segments": n_segments}
+
+
+def _unstretched_length(scene) -> float:
+    """l_0 = l_r - T_r / k (Wang eq. 1), MoorDyn's ``UnstrLen``."""
+    c = scene.sections[0].cable
+    return c.length - c.tension_ref * c.length / c.ae
 
 
 def axial_step_estimate(scene, n_segments: int) -> float:
@@ -198,18 +224,27 @@ def _agree(a: dict, b: dict, scene, tol: float) -> bool:
 
 
 def largest_stable_dt(scene, n_segments: int, *, probe_s: float | None = None, scheme: str = "RK4",
-                      start: float | None = None, floor: float = 1e-7, tol: float = 0.02) -> float:
+                      start: float | None = None, floor: float = 1e-7, tol: float = 0.02, agree=None,
+                      runs: dict | None = None) -> float:
     """MoorDyn's largest usable step: halving from ``start`` (default 4x the axial estimate), the
     first step whose run over ``probe_s`` (default the scene's duration) stays finite and bounded
     and agrees with the run at half that step within ``tol`` (body motion, top tension). Just
     above RK4's limit on the undamped axial mode MoorDyn stays bounded but its tension is
-    chaotic (it goes slack at rest), so boundedness alone is not stability here."""
+    chaotic (it goes slack at rest), so boundedness alone is not stability here.
+
+    ``agree(a, b) -> bool`` replaces the sample-by-sample test (a slack-and-snap run's transient
+    amplifies differences by 1e5 before it settles: compare its settled statistics instead). A
+    slack scene must be probed over its whole run: a probe inside the smooth start sees no snap.
+    ``runs``, if given, receives the runs made, by step (the caller can reuse the chosen one)."""
     dt = start or min(4 * axial_step_estimate(scene, n_segments), 0.05)
+    agree = agree or (lambda a, b: _agree(a, b, scene, tol))
+    runs = {} if runs is None else runs
+    run = lambda h: runs[h] if h in runs else runs.setdefault(h, run_moordyn(scene, n_segments, h, duration=probe_s, scheme=scheme))
     while dt >= floor:
-        a = run_moordyn(scene, n_segments, dt, duration=probe_s, scheme=scheme)
+        a = run(dt)
         if a["stable"]:
-            b = run_moordyn(scene, n_segments, dt / 2, duration=probe_s, scheme=scheme)
-            if b["stable"] and _agree(a, b, scene, tol):
+            b = run(dt / 2)
+            if b["stable"] and agree(a, b):
                 return dt
         dt /= 2
     raise RuntimeError(f"MoorDyn found no stable step above {floor} s")

@@ -4,14 +4,27 @@ Scenes (the segmented-cable issue):
 - Dale et al. (Wang 1971, Table 1) driven at omega = 2.28 rad/s (2 omega_n), where the straight
   2-DOF cable is 9 % off in sway against a lumped-mass code: the cable bows under its drag;
 - the 300 m wire with a 2 t sphere (``cablesys/data/heave_300m.toml``), 1 m heave at T = 10 s
-  (taut) and T = 6 s (slack and snapping); full mode only (long runs).
+  (taut, 8 periods) and T = 6 s (slack and snapping); full mode only (long runs).
 
-For each N: body amplitudes (half peak-to-peak over the last 3 periods), top tension extremes over
-the same window, wall time. Errors are against the finest N; the observed order is
-log2(err(N) / err(2N)). The 2-DOF model (Wang's straight cable) is run on the same scene and its
-error against the finest N is reported.
+Dale and taut heave: for each N, body amplitudes (half peak-to-peak over the last 3 periods), top
+tension extremes over the same window, wall time. Errors are against the finest N; the observed
+order is log2(err(N) / err(2N)). The 2-DOF model (Wang's straight cable) is run on the same scene
+and its error against the finest N is reported.
 
-Usage: python studies/segmented_convergence.py --out DIR [--quick]
+Slack heave (T = 6 s): the response has a transient of ~100 s (a period-2 bounce, then the body's
+mean lifts by ~1.5 m and the motion settles on a periodic cycle), so a 60 s run measures *when*
+that transition happens, which depends on N, tolerance and method in the 4th digit of the state:
+runs of 60 s did not converge in N for that reason. Here each N runs ``--slack-duration`` (360 s)
+with RK4 at a fixed step inside its stability limit (step halved once to show the integration
+error is far below the discretisation's), and every figure is a mean over the forcing cycles of
+the second half (``_cycles.cycle_statistics``: extremes refined between samples; the spread over
+the cycles is 0 for a settled periodic response). The observed order needs no reference:
+p = log2(|f(N) - f(2N)| / |f(2N) - f(4N)|). MoorDyn v2 (if installed) runs the same scene, same
+ramp and N at its largest stable step, probed over the whole run (stability and agreement of the
+settled statistics with the half step), with the same statistics and the same slack definition
+(element strain <= 0, i.e. zero elastic tension).
+
+Usage: python studies/segmented_convergence.py --out DIR [--quick] [--slack-n 10 20 40 80]
 """
 
 from __future__ import annotations
@@ -26,7 +39,8 @@ import casadi as ca
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import parse_args, setup_matplotlib, write_json
+from _common import setup_matplotlib, write_json
+from _cycles import cycle_statistics
 
 import cablesys
 from cablesys.model import build_model
@@ -40,7 +54,7 @@ HEAVE_SCENE = Path(cablesys.__file__).parent / "data" / "heave_300m.toml"
 METRICS = ("x_amp", "y_amp", "top_max", "top_min")
 
 
-def _steps_per_output(model, scene, x0) -> int:
+def _steps_per_output(model, scene, x0, margin: float = 2.5) -> int:
     """RK4 steps per output interval that keep h |lambda|_max below 2.5 (RK4 is stable to 2.78): the
     undamped axial modes of a lumped cable make BDF resolve them anyway, so a fixed explicit step at
     the stability limit is the cheaper method for these scenes."""
@@ -48,7 +62,7 @@ def _steps_per_output(model, scene, x0) -> int:
     x, t = model.sym("x", 2 * model.nq), model.sym("t")
     jac = ca.Function("ode_jacobian", [x, t], [ca.jacobian(model.ode(x, t, p), x)])
     lam = float(np.max(np.abs(np.linalg.eigvals(np.array(jac(x0, 0.0))))))
-    return max(1, math.ceil(scene.numerics.output_step * lam / 2.5))
+    return max(1, math.ceil(scene.numerics.output_step * lam / margin))
 
 
 def measure(scene, period: float, n_periods: int = 3) -> dict:
@@ -114,25 +128,181 @@ def plot(results: list, path: Path) -> Path:
     return save_figure(fig, path)
 
 
+SLACK_METRICS = ("y_amp", "y_min", "top_max", "top_min", "bottom_max", "slack_bottom", "slack_top")
+
+
+def slack_scene(period: float = 6.0, duration: float = 360.0, output_step: float = 0.01):
+    """The heave scene at ``period`` (default smooth start: 3 periods), run ``duration`` s."""
+    heave = load_scene(HEAVE_SCENE)
+    sc = heave.replace(top_motion=dataclasses_replace_top(heave, period))
+    return sc.with_numerics(duration=duration, output_step=output_step)
+
+
+def run_slack(scene, n: int, period: float, t0: float, *, refine: int = 1) -> dict:
+    """cablesys at N elements: RK4 (CasADi VM) at its stability step / ``refine``; the settled
+    statistics over [t0, end] and the series to plot."""
+    sc = scene.replace_section(0, cable={"segments": n})
+    t_wall = time.perf_counter()
+    model = build_model(sc)
+    x0 = initial_state(sc, model, model.parameters(sc))
+    spo = refine * _steps_per_output(model, sc, x0, margin=2.0)
+    sim = Simulator(model, sc.output_times, IntegratorSettings(method="rk", steps_per_output=spo, compiled=False))
+    t_run = time.perf_counter()
+    r = simulate(sc, model=model, simulator=sim, x0=x0)
+    wall = time.perf_counter() - t_wall
+    row = {"n": n, "success": bool(r.success), "dt_s": sc.numerics.output_step / spo, "wall_s": wall,
+           "run_s_per_s": (time.perf_counter() - t_run) / sc.numerics.duration}
+    if not r.success:
+        return {**row, "message": r.message}
+    st = cycle_statistics(r.time, r.data, period, t0, strain=r.profiles["element_strain"],
+                          law_slack=r.profiles["element_slack"])
+    return {**row, **st, "min_strain": float(np.min(r.profiles["element_strain"][np.asarray(r.time) >= t0])),
+            "series": {"time": np.asarray(r.time), "y_b": np.asarray(r["y_b"]), "tension_top": np.asarray(r["tension_top"])}}
+
+
+def run_moordyn_slack(scene, n: int, period: float, t0: float) -> dict:
+    """MoorDyn at N segments, its largest step whose whole run is stable and whose settled
+    statistics agree with the half step's (0.5 % body amplitude, 1 % top tension)."""
+    from _moordyn import largest_stable_dt
+    sc = scene.replace_section(0, cable={"segments": n})
+    stat = lambda r: cycle_statistics(r["time"], r, period, t0, strain=r["element_strain"])
+
+    def agree(a, b):
+        sa, sb = stat(a), stat(b)
+        return (abs(sa["y_amp"] - sb["y_amp"]) <= 0.005 * sb["y_amp"]
+                and abs(sa["top_max"] - sb["top_max"]) <= 0.01 * sb["top_max"])
+    runs = {}
+    dt = largest_stable_dt(sc, n, agree=agree, runs=runs)
+    r = runs[dt]
+    return {"n": n, "dt_s": dt, "run_s_per_s": r["wall_s"] / sc.numerics.duration, "stable": r["stable"],
+            **stat(r), "min_strain": float(np.min(r["element_strain"][r["time"] >= t0])),
+            "series": {"time": r["time"], "y_b": r["y_b"], "tension_top": r["tension_top"]}}
+
+
+def _orders(rows: list, keys) -> None:
+    """Reference-free observed order from three successive doublings, and the change to 2N."""
+    for a, b, c in zip(rows, rows[1:], rows[2:]):
+        a["observed_order"] = {k: math.log2(abs(a[k] - b[k]) / abs(b[k] - c[k]))
+                               if abs(b[k] - c[k]) > 0 and abs(a[k] - b[k]) > 0 else None for k in keys}
+    for a, b in itertools.pairwise(rows):
+        a["change_to_2n"] = {k: abs(a[k] - b[k]) / max(abs(b[k]), 1e-300) for k in keys}
+
+
+def converge_slack(ns: list, duration: float, period: float = 6.0, moordyn: bool = True) -> dict:
+    """The slack scene at each N: cablesys (and a half-step run at the second N), MoorDyn."""
+    sc = slack_scene(period, duration)
+    t0 = sc.top_motion.effective_ramp_s + math.floor((duration / 2 - sc.top_motion.effective_ramp_s) / period) * period
+    rows = [run_slack(sc, n, period, t0) for n in ns]
+    check = run_slack(sc, ns[min(1, len(ns) - 1)], period, t0, refine=2)
+    ok = [r for r in rows if r["success"]]
+    _orders(ok, SLACK_METRICS[:5])
+    out = {"scene": f"300 m wire, 2 t sphere, T = {period:g} s (slack)", "period_s": period, "duration_s": duration,
+           "window_s": [t0, duration], "rows": rows,
+           "time_step_check": {"n": check["n"], "dt_s": check.get("dt_s"),
+                               "change": {k: abs(check[k] - rows[min(1, len(ns) - 1)][k]) / abs(check[k])
+                                          for k in SLACK_METRICS[:5]} if check["success"] else None}}
+    if moordyn:
+        try:
+            import moordyn as _  # noqa: F401
+        except ImportError:
+            return out
+        md = [run_moordyn_slack(sc, n, period, t0) for n in ns]
+        _orders(md, SLACK_METRICS[:5])
+        out["moordyn"] = md
+        out["cablesys_vs_moordyn"] = [{"n": a["n"], **{k: (a[k] - b[k]) / abs(b[k]) for k in SLACK_METRICS[:5]}}
+                                      for a, b in zip(ok, md)]
+    return out
+
+
+def plot_slack(res: dict, path: Path) -> Path:
+    """Settled figures vs N (both codes), the change to 2N (order), the transient at one N."""
+    plt = setup_matplotlib()
+    fig, ax = plt.subplots(1, 3, figsize=(16, 4.6))
+    rows = [r for r in res["rows"] if r["success"]]
+    md = res.get("moordyn", [])
+    ns = [r["n"] for r in rows]
+    for k, lab, c in (("y_amp", "body heave amplitude (m)", "C0"), ("top_max", "top tension max / 25 kN", "C1")):
+        sc = 1.0 if k == "y_amp" else 2.5e4
+        ax[0].semilogx(ns, [r[k] / sc for r in rows], "o-", color=c, label=f"cablesys, {lab}")
+        if md:
+            ax[0].semilogx([r["n"] for r in md], [r[k] / sc for r in md], "s--", color=c, label=f"MoorDyn v2, {lab}")
+    ax[0].semilogx(ns, [r["slack_bottom"] for r in rows], "o-", color="C2", label="cablesys, bottom element slack fraction")
+    if md:
+        ax[0].semilogx([r["n"] for r in md], [r["slack_bottom"] for r in md], "s--", color="C2", label="MoorDyn, bottom slack fraction")
+    ax[0].set(xlabel="elements N", title=f"settled cycle means, window {res['window_s'][0]:g}-{res['window_s'][1]:g} s")
+    ax[0].set_xticks(ns, [str(n) for n in ns])
+    ax[0].minorticks_off()
+    ax[0].legend(fontsize=7)
+    for k, lab in (("y_amp", "body amplitude"), ("top_max", "top tension max"), ("top_min", "top tension min"),
+                   ("bottom_max", "body-end tension max")):
+        pts = [(r["n"], r["change_to_2n"][k]) for r in rows if "change_to_2n" in r and r["change_to_2n"][k] > 0]
+        if pts:
+            ax[1].loglog(*zip(*pts), "o-", label=f"cablesys {lab}")
+    if len(rows) > 1 and rows[0]["change_to_2n"]["y_amp"] > 0:
+        e0 = rows[0]["change_to_2n"]["y_amp"]
+        ax[1].loglog(ns[:-1], [e0 * ns[0] / n for n in ns[:-1]], color="0.6", lw=0.8, label="slope -1")
+    ax[1].set(xlabel="elements N", ylabel="|f(N) - f(2N)| / |f(2N)|", title="change on doubling N (slack, T = 6 s)")
+    ax[1].grid(alpha=0.3, which="both")
+    ax[1].legend(fontsize=7)
+    r = rows[min(1, len(rows) - 1)]
+    ax[2].plot(r["series"]["time"], r["series"]["y_b"], lw=0.6, label=f"cablesys N = {r['n']}")
+    m = next((x for x in md if x["n"] == r["n"]), None)
+    if m:
+        ax[2].plot(m["series"]["time"], m["series"]["y_b"], lw=0.6, label=f"MoorDyn N = {r['n']}")
+    ax[2].axvspan(*res["window_s"], color="0.9", label="statistics window")
+    ax[2].invert_yaxis()
+    ax[2].set(xlabel="time (s)", ylabel="body depth below mean top (m)", title="transient, then a settled cycle")
+    ax[2].legend(fontsize=7)
+    return save_figure(fig, path)
+
+
 def main(argv=None) -> int:
-    args = parse_args(__doc__.splitlines()[0], argv)
+    import argparse
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--out", required=True, type=Path, help="output directory (created if missing)")
+    ap.add_argument("--quick", action="store_true", help="Dale at N = 2, 4, 8 only (for tests)")
+    ap.add_argument("--slack-n", type=int, nargs="+", default=[10, 20, 40, 80], help="N for the slack scene")
+    ap.add_argument("--slack-duration", type=float, default=360.0, help="slack run length (s)")
+    ap.add_argument("--no-moordyn", action="store_true", help="skip MoorDyn on the slack scene")
+    ap.add_argument("--skip-taut", action="store_true", help="full mode: only the slack scene")
+    args = ap.parse_args(argv)
+    args.out.mkdir(parents=True, exist_ok=True)
     w = 2.0 * OMEGA_N_MEASURED
     period = 2 * math.pi / w
-    dale = dale_scene(omega_ratio=2.0, duration=(6 if args.quick else 12) * period)
-    results = [converge("Dale et al., omega = 2.28 rad/s", dale, period, [2, 4, 8] if args.quick else [2, 4, 8, 16, 32])]
+    results = []
+    if not args.skip_taut:
+        dale = dale_scene(omega_ratio=2.0, duration=(6 if args.quick else 12) * period)
+        results.append(converge("Dale et al., omega = 2.28 rad/s", dale, period, [2, 4, 8] if args.quick else [2, 4, 8, 16, 32]))
+    slack = None
     if not args.quick:
-        heave = load_scene(HEAVE_SCENE)
-        for T in (10.0, 6.0):
-            sc = heave.replace(top_motion=dataclasses_replace_top(heave, T)).with_numerics(duration=8 * T)
-            results.append(converge(f"300 m wire, 2 t sphere, T = {T:g} s", sc, T, [5, 10, 20, 40]))
-    write_json(args.out / "segmented_convergence.json", {"results": results})
-    plot(results, args.out / "segmented_convergence.png")
+        if not args.skip_taut:
+            heave = load_scene(HEAVE_SCENE)
+            sc = heave.replace(top_motion=dataclasses_replace_top(heave, 10.0)).with_numerics(duration=80.0)
+            results.append(converge("300 m wire, 2 t sphere, T = 10 s", sc, 10.0, [5, 10, 20, 40]))
+        slack = converge_slack(args.slack_n, args.slack_duration, moordyn=not args.no_moordyn)
+        plot_slack(slack, args.out / "segmented_convergence_slack.png")
+    doc = {"results": results}
+    if slack:
+        strip = lambda rows: [{k: v for k, v in r.items() if k != "series"} for r in rows]
+        doc["slack"] = {**slack, "rows": strip(slack["rows"]), "moordyn": strip(slack.get("moordyn", []))}
+    write_json(args.out / "segmented_convergence.json", doc)
+    if results:
+        plot(results, args.out / "segmented_convergence.png")
     for res in results:
         print(res["scene"])
         for r in res["rows"]:
             print(f"  N = {r['n']:3d}  x_amp {r.get('x_amp', float('nan')):.6g}  top max {r.get('top_max', float('nan')):.6g} N"
                   f"  wall {r['wall_s']:.2f} s  err {r.get('rel_err')}")
         print(f"  2-DOF  err {res['two_dof']['rel_err']}")
+    if slack:
+        print(slack["scene"], "window", slack["window_s"])
+        for code, rows in (("cablesys", slack["rows"]), ("MoorDyn", slack.get("moordyn", []))):
+            for r in rows:
+                print(f"  {code:8s} N = {r['n']:3d}  y_amp {r.get('y_amp', float('nan')):.4f} m  top max {r.get('top_max', float('nan')):.0f} N"
+                      f"  top min {r.get('top_min', float('nan')):.0f} N  slack bottom {r.get('slack_bottom', float('nan')):.3f}"
+                      f"  top {r.get('slack_top', float('nan')):.3f}  dt {r.get('dt_s', float('nan')):.3g} s"
+                      f"  {r.get('run_s_per_s', float('nan')):.3g} s/s  order {r.get('observed_order')}")
+        print("  time-step check", slack["time_step_check"])
     return 0
 
 
