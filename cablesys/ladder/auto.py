@@ -92,6 +92,32 @@ def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rt
                               jit=jit, **extra)
 
 
+def run_options(scene: Scene, choice: Choice, tolerance=None, *, method=None) -> dict:
+    """``method``, ``rtol``, ``atol`` for :func:`cablesys.time_domain.simulate` of ``choice``'s run, for a
+    caller that runs it itself (the ``run`` command): :func:`integrator_settings` of the rung's scene.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    choice : Choice
+        The rung to run (:func:`plan_run`).
+    tolerance : float or (float, float), optional
+        The model tolerance (default the scene's).
+    method : str, optional
+        The caller's method (it wins; the tolerances are then the scene's).
+
+    Returns
+    -------
+    dict
+        Keyword arguments ``method``, ``rtol``, ``atol``.
+    """
+    sc = rung_scene(scene, choice.name, choice.segments)
+    elements = sum(s.cable.segments for s in sc.sections)
+    s = integrator_settings(sc, tolerances(scene, tolerance), elements, method=method)
+    return {"method": s.method, "rtol": s.rtol, "atol": s.atol}
+
+
 def run_rung(scene: Scene, name: str, segments: int = 1, *, cache: RungCache | None = None, **kw):
     """One time-domain run of rung ``name``.
 
