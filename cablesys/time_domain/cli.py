@@ -126,6 +126,7 @@ def _run(args) -> int:
         from ..ladder.auto import (  # the model ladder (issue 12)
             after_run,
             plan_run,
+            run_options,
             simulate_auto,
         )
         auto = (getattr(args, "model", None) or scene.numerics.model) == "auto"
@@ -134,8 +135,8 @@ def _run(args) -> int:
             if model is None:          # the frequency rung: no time-domain model to stream
                 result = simulate_auto(scene, model="frequency", method=args.method)
                 break
-            result = _simulate_into(outdir, scene_run, units=units, model=model, method=args.method, jit=args.jit,
-                                    max_num_steps=args.max_steps)
+            result = _simulate_into(outdir, scene_run, units=units, model=model, jit=args.jit, max_num_steps=args.max_steps,
+                                    **run_options(scene, choice, method=args.method))   # the ladder's integrator (issue 12)
             choice, again = after_run(scene, choice, result, auto=auto)
             if not again:
                 break
