@@ -16,7 +16,7 @@ residual), so a Newton step costs one pass over the nodes and one dense (N nq) s
 of differentiating the whole collocation graph (whose symbolic Jacobian has ~2e6 operations).
 Starting guess: the same collocation with 3 harmonics (7 nodes: small enough for CasADi's own
 Newton rootfinder with the AD Jacobian of the whole residual, compiled, in one call), solved
-from the static steady state and interpolated onto the N nodes, where Newton then needs 2-3
+from the hanging guess of the statics and interpolated onto the N nodes, where Newton then needs 2-3
 steps; the linear response at omega and the describing-function orbit of :mod:`.equivalent`
 are the fallbacks. Along a frequency sweep (:func:`periodic_sweep`) each solution starts from
 the secant extrapolation of its two neighbours' (continuation). This is the pseudo-spectral (AFT) harmonic balance: no drag linearization,
@@ -94,7 +94,7 @@ def _unit_differentiation(model: CableModel, n: int) -> np.ndarray:
     return model.cache.get(f"fourier_D_{n}", lambda: fourier_differentiation(n, 2 * np.pi))
 
 
-COARSE_HARMONICS = 3      # the coarse collocation that turns the linear guess into a Newton start
+COARSE_HARMONICS = 3      # harmonics of the coarse collocation that makes the Newton start
 
 
 def _coarse_rootfinder(model: CableModel, n: int) -> ca.Function:
@@ -121,24 +121,27 @@ def _coarse_rootfinder(model: CableModel, n: int) -> ca.Function:
     return model.cache.get(f"colloc_coarse_{n}", build)
 
 
-def _coarse_guess(model: CableModel, p, omega: float, input_amplitude, times) -> tuple[np.ndarray, int]:
-    """Node values at ``times`` from the periodic solution with ``COARSE_HARMONICS`` harmonics
-    (Newton from the static steady state: at 7 nodes it converges from there in 5-8 steps, as
-    fast as from the linear response, which would cost a linearization), trigonometrically
-    interpolated: the start whose nonlinearity (drag at resonance) is already resolved, so the
-    full collocation needs 2-3 steps. Returns (node values, coarse Newton iterations)."""
-    from .steady import steady_state
+def _coarse_guess(model: CableModel, p, omega: float, times) -> tuple[np.ndarray | None, int]:
+    """Node values at ``times`` from the periodic solution with ``COARSE_HARMONICS`` harmonics,
+    trigonometrically interpolated: the start whose nonlinearity (drag at resonance) is already
+    resolved, so the full collocation needs 2-3 steps. The coarse Newton starts from the
+    statics' first hanging guess (every angle 0, each section's stretch under the weight below
+    it): at 7 nodes it converges from there in 4-8 steps, as from the exact steady state or the
+    linear response, which would cost a KINSOL solve and a linearization. Returns (node values
+    or None when the coarse Newton fails, coarse Newton iterations)."""
+    from ..statics.steady import _guesses
     n, nc = times.size, 2 * COARSE_HARMONICS + 1
     T = 2 * np.pi / omega
     tc = times[0] + T * np.arange(nc) / nc
-    Q0 = np.repeat(steady_state(model, p).q[:, None], nc, axis=1)
+    Q0 = np.repeat(next(_guesses(model, p))[:, None], nc, axis=1)
     E = np.array(_node_maps(model, nc)[0](tc[None, :], p))
     par = np.concatenate([E.ravel(order="F"), p, [omega]])
     rf = _coarse_rootfinder(model, nc)
     Qc = np.array(rf(Q0.ravel(order="F"), par)).reshape(model.nq, nc, order="F")
-    it = int(rf.stats().get("iter_count", 0))
-    if not np.all(np.isfinite(Qc)):
-        return _linear_guess(model, p, omega, input_amplitude, times), it
+    stats = rf.stats()
+    it = int(stats.get("iter_count", 0))
+    if not (stats.get("success", True) and np.all(np.isfinite(Qc))):
+        return None, it
     return trig_interpolate(Qc, n), it
 
 
@@ -293,16 +296,19 @@ def periodic_steady_state(model: CableModel, p, omega: float, *, n_harmonics: in
     starts = [] if guess is None else [("given", lambda: (np.asarray(guess, float), 0))]
     if input_amplitude is not None:
         if n > 2 * COARSE_HARMONICS + 1:
-            starts.append(("coarse", lambda: _coarse_guess(model, p, omega, input_amplitude, times)))
+            starts.append(("coarse", lambda: _coarse_guess(model, p, omega, times)))
         starts += [("linear", lambda: (_linear_guess(model, p, omega, input_amplitude, times), 0)),
                    ("describing function", lambda: (_describing_guess(model, p, omega, input_amplitude, times), 0))]
     iterations, coarse_iterations, tried = 0, 0, []
+    q, res = None, np.inf
     for name, make in starts:
         Q0, it0 = make()
-        q, res, it = _newton(model, p, times, T, np.array(Q0, dtype=float).reshape(model.nq, n))
-        iterations += it
         coarse_iterations += it0
         tried.append(name)
+        if Q0 is None:
+            continue
+        q, res, it = _newton(model, p, times, T, np.array(Q0, dtype=float).reshape(model.nq, n))
+        iterations += it
         if res < 1e-8:
             break
     ok = res < 1e-8
