@@ -92,7 +92,9 @@ def cases(quick: bool):
         sine = dataclasses.replace(heave.top_motion.y[0], frequency=2 * math.pi / period)
         sc = dataclasses.replace(heave, name=f"300 m / 2 t sphere, 1 m heave, T = {period:g} s",
                                  top_motion=dataclasses.replace(heave.top_motion, y=(sine,)))
-        out.append((f"heave_T{period:g}", _ramped(sc, period, 60.0), period, (20, 80), taut))
+        # slack: the response settles on its periodic cycle only after ~100 s (a 60 s run ends in its
+        # transient, where no statistic converges in N or tolerance); 360 s, statistics at the end
+        out.append((f"heave_T{period:g}", _ramped(sc, period, 60.0 if taut else 360.0), period, (20, 80), taut))
     return out
 
 
@@ -140,7 +142,21 @@ def _stats(result, period):
     w = M.window(np.asarray(result.time), period)
     tb = np.asarray(result["tension_bottom"])[w]
     s["slack_fraction_bottom"] = float(np.mean(tb <= 0.0))
+    strain = getattr(result, "profiles", {}).get("element_strain")
+    if strain is not None:   # segmented / MoorDyn: the end elements' elastic slack (strain <= 0), alike on both sides
+        strain = np.asarray(strain)[w]
+        s["slack_fraction_bottom"] = float(np.mean(strain[:, -1] <= 0.0))
+        s["slack_fraction_top"] = float(np.mean(strain[:, 0] <= 0.0))
     return s
+
+
+def _slack_agree(period):
+    """MoorDyn's step probe on a slack scene: its statistics over the end window (not its samples:
+    the transient amplifies any difference 1e5-fold before it settles) within 0.5 % / 1 %."""
+    def agree(a, b):
+        e = _diff(_moordyn_stats(a, period), _moordyn_stats(b, period))
+        return e["body"] <= 0.005 and e["tension"] <= 0.01
+    return agree
 
 
 def _segment_stats(result, period):
@@ -193,6 +209,7 @@ def _timed_run(sc, method, rtol, atol):
 def _moordyn_stats(r, period):
     class _R:                        # the metrics read a result by label and time
         time = r["time"]
+        profiles = {"element_strain": r["element_strain"]} if "element_strain" in r else {}
 
         def __getitem__(self, k):
             return r[k]
@@ -291,7 +308,8 @@ def bench_case(name, scene, period, ns, taut, quick):
     md_small = None
     for n in ns:
         sc = _segments(scene, n)
-        dt = largest_stable_dt(sc, n, probe_s=min(dur, 10.0))
+        # a slack scene is probed over its whole run (a probe inside the smooth start sees no snap)
+        dt = largest_stable_dt(sc, n, probe_s=min(dur, 10.0) if taut else None, agree=None if taut else _slack_agree(period))
         md, _, _ = _timed(lambda sc=sc, n=n, dt=dt: run_moordyn(sc, n, dt))
         md_stats = _moordyn_stats(md, period)
         compiled = n <= COMPILE_MAX_ELEMENTS

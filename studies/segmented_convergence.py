@@ -242,6 +242,8 @@ def plot_slack(res: dict, path: Path) -> Path:
         e0 = rows[0]["change_to_2n"]["y_amp"]
         ax[1].loglog(ns[:-1], [e0 * ns[0] / n for n in ns[:-1]], color="0.6", lw=0.8, label="slope -1")
     ax[1].set(xlabel="elements N", ylabel="|f(N) - f(2N)| / |f(2N)|", title="change on doubling N (slack, T = 6 s)")
+    ax[1].set_xticks(ns[:-1], [str(n) for n in ns[:-1]])
+    ax[1].minorticks_off()
     ax[1].grid(alpha=0.3, which="both")
     ax[1].legend(fontsize=7)
     r = rows[min(1, len(rows) - 1)]
