@@ -77,9 +77,22 @@ def test_predicted_partial_slack_rejects_the_straight_cable_and_a_forced_wang_wa
 def test_taut_300m_case_is_not_called_slack_and_steps_its_stretch():
     """Heave at T = 10 s: taut; the stretch mode is only 10x the forcing, so stepping it (Wang's model)
     is cheaper than the quasi-static reduction (model_ladder study: 0.16 s vs 0.29 s) and exact."""
-    choice = choose(_wire_300m(10.0))
+    choice = choose(_wire_300m(10.0))          # CasADi's VM (tests/conftest.py)
     assert "partial slack" not in choice.numbers["estimates"]["wang"]["note"]
     assert choice.name == "wang"
+
+
+def test_pure_heave_compiled_gets_the_quasi_static_rung(monkeypatch):
+    """Heave along a vertical cable drives no swing: the quasi-static rung has nothing left to step (its
+    cost is its outputs), so compiled it is the cheapest rung within the tolerance; its estimate (the
+    quasi-static spring amplification r^2 / |1 - r^2|, r = 0.097) is far within 2 % on tension."""
+    monkeypatch.setenv("CABLESYS_COMPILE", "1")
+    choice = choose(_wire_300m(10.0))
+    assert choice.name == "quasi-static"
+    assert "nothing drives the swing" in choice.reason
+    assert choice.estimated_error["tension"] < 0.5 * 0.02
+    swinging = _wire_300m(10.0).replace(top_motion=TopMotion(x=(Sinusoid(amplitude=1.0, frequency=2 * math.pi / 10.0),)))
+    assert "nothing drives the swing" not in choose(swinging).reason
 
 
 def test_unknown_rung_is_a_parameter_error():
