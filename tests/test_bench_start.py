@@ -24,6 +24,7 @@ def test_bench_start_quick(run_study):
     assert wang["recompiled"] is False and wang["new_libraries"] == []
     assert wang["model_stored"] and wang["dae_from_cache"] and wang["cache_hits"] >= 2
     assert all(w["success"] and w["compiled"] for w in wang["warm_runs"])
+    assert res["series"] is res["series_runs"][-1] or res["series"] == res["series_runs"][-1]
     s = res["series"]
     assert s["series"]["compiled"] and s["sinusoid"]["compiled"] and s["ratio"] > 0
     # the sampled sinusoid (22 samples per period) reproduces the sinusoidal run's body motion

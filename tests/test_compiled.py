@@ -253,3 +253,14 @@ def test_run_summary_timing_of_the_frequency_rung(cache, tmp_path, monkeypatch):
     timing, ladder = summary["timing"], summary["stats"]["ladder_timing"]
     assert set(timing) == {"build_s", "load_s", "run_s"}
     assert timing["run_s"] == ladder["run_s"] > 0.0 and timing["build_s"] == ladder["build_s"] >= 0.0
+
+
+def test_cache_folder_is_versioned_and_overridable(tmp_path, monkeypatch):
+    from cablesys import __version__
+    from cablesys.disk_cache import CACHE_FORMAT, cache_root
+    monkeypatch.delenv("CABLESYS_CACHE", raising=False)
+    monkeypatch.setenv("CABLESYS_CACHE_DIR", str(tmp_path / "old-name"))
+    assert cache_root() == tmp_path / "old-name"                     # the former setting still works
+    monkeypatch.setenv("CABLESYS_CACHE", str(tmp_path / "new"))
+    assert cache_root() == tmp_path / "new"                          # and CABLESYS_CACHE wins
+    assert cache_dir() == tmp_path / "new" / f"cablesys-{__version__}_casadi-{ca.__version__}_v{CACHE_FORMAT}"
