@@ -55,16 +55,22 @@ def dimension_of(name: str) -> str:
     return name.split("_", 1)[0]
 
 
-def statistics_window(time, window_s=None, period=None) -> tuple[float, float]:
-    """The statistics window [t0, t1] (s): as given, else the last 5 forcing periods (when they fit in
-    the run), else the last 20 % of the run."""
+def statistics_window(time, window_s=None, period=None, settled_s=0.0) -> tuple[float, float]:
+    """The statistics window [t0, t1] (s): as given, else the last 5 forcing periods, else the last 20 %
+    of the run; a default window starts after the smooth start (``settled_s`` from the first time, the
+    ramp of ``[top_motion] ramp_s``) when at least one forcing period (or 10 % of the run) is left
+    after it, so that the ramp's reduced amplitudes do not enter the statistics."""
     t = np.asarray(time, float)
     if window_s is not None:
         return float(window_s[0]), float(window_s[1])
     span = t[-1] - t[0]
-    if period and 5 * period <= span:
+    settled = t[0] + max(float(settled_s or 0.0), 0.0)
+    if period and t[-1] - 5 * period >= settled:
         return float(t[-1] - 5 * period), float(t[-1])
-    return float(t[-1] - 0.2 * span), float(t[-1])
+    start = t[-1] - 0.2 * span
+    if settled > start and t[-1] - settled >= max(period or 0.0, 0.1 * span):
+        start = settled                # the ramp covers the last 20 %: what follows it
+    return float(start), float(t[-1])
 
 
 def hermite_peak(t0, t1, y0, y1, d0, d1) -> tuple[float, float]:

@@ -219,9 +219,13 @@ def timed(func):
     return wrapper
 
 
-# the time-domain result lives in its own module; re-exported so ``from cablesys.results import
-# TimeResult`` keeps working (imported last: it derives from ResultBase above)
-from .time_result import SlackEvent, SnapLoad, TimeResult  # noqa: E402
+# the time-domain result lives in its own module; re-exported lazily (PEP 562) so ``from cablesys.results
+# import TimeResult`` keeps working and ``cablesys.time_result`` can be imported first (no import cycle)
+_TIME_RESULT_NAMES = ("SlackEvent", "SnapLoad", "TimeResult")
 
-__all__ = ["QUANTITIES", "UNITS", "AnalysisResult", "ResultBase", "SlackEvent", "SnapLoad", "TimeResult",
-           "annotate", "long_name_of", "timed", "unit_of"]
+
+def __getattr__(name):
+    if name in _TIME_RESULT_NAMES:
+        from . import time_result
+        return getattr(time_result, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -56,6 +56,7 @@ class TimeResult(ResultBase):
     profiles: dict = dataclasses.field(default_factory=dict)
     window_s: tuple | None = None            # statistics window [t0, t1] (s); None: the default
     forcing_period_s: float | None = None    # sets the default window: the last 5 periods
+    ramp_s: float = 0.0                      # the smooth start (s): a default window starts after it
     model_info: dict = dataclasses.field(default_factory=dict)   # {"name", "segments"} of the model run
 
     VARIABLES: ClassVar[dict] = {
@@ -82,9 +83,9 @@ class TimeResult(ResultBase):
     @property
     def statistics_window(self) -> tuple:
         """[t0, t1] (s) of the summary statistics: ``window_s``, else the last 5 forcing periods, else
-        the last 20 % of the run."""
+        the last 20 % of the run, after the smooth start (:func:`cablesys.profiles.statistics_window`)."""
         from .profiles import statistics_window
-        return statistics_window(self.time, self.window_s, self.forcing_period_s)
+        return statistics_window(self.time, self.window_s, self.forcing_period_s, self.ramp_s)
 
     def slack_fraction_per_element(self) -> np.ndarray | None:
         """Fraction of the output samples in the statistics window at which each element is slack

@@ -25,12 +25,16 @@ import numpy as np
 from . import statistics as st
 
 
-def statistics_window(time, limits=None) -> np.ndarray:
-    """Boolean mask of the statistics window: from ``limits.statistics_start`` (default 20 % of the run)."""
+def statistics_window(time, limits=None, result=None) -> np.ndarray:
+    """Boolean mask of the statistics window: from ``limits.statistics_start`` when given, else the
+    window of the run's own summary (the last 5 forcing periods or the last 20 % of the run, after the
+    smooth start: :func:`cablesys.profiles.statistics_window`), so summary.json has one window."""
+    from .profiles import statistics_window as default_window
     t = np.asarray(time, float)
     start = getattr(limits, "statistics_start", None)
     if start is None:
-        start = t[0] + 0.2 * (t[-1] - t[0])
+        start = default_window(t, getattr(result, "window_s", None), getattr(result, "forcing_period_s", None),
+                               getattr(result, "ramp_s", 0.0))[0]
     mask = t >= start
     if mask.sum() < 2:
         mask[:] = True
@@ -56,7 +60,7 @@ def body_labels(labels) -> tuple[str, str] | None:
 def run_statistics(result, limits=None) -> dict:
     """Time-domain statistics (:func:`cablesys.statistics.time_domain`) of the lowest body's motion and
     every tension output over the statistics window; exposure from ``limits.exposure``."""
-    mask = statistics_window(result.time, limits)
+    mask = statistics_window(result.time, limits, result)
     t = result.time[mask]
     exposure = getattr(limits, "exposure", None)
     labels = list(tension_labels(result.labels))
@@ -181,7 +185,7 @@ def report(scene, result) -> dict:
     limits = getattr(scene, "limits", None)
     stats = run_statistics(result, limits)
     grouped = group_by_quantity(stats)
-    mask = statistics_window(result.time, limits)
+    mask = statistics_window(result.time, limits, result)
     window = [float(result.time[mask][0]), float(result.time[mask][-1])]
     return {"statistics": {"window_s": window, "exposure_s": getattr(limits, "exposure", None) or window[1] - window[0],
                            **grouped},

@@ -146,7 +146,8 @@ def _run(args) -> int:
         if hasattr(result, "window_s"):         # the statistics window of the summary groups
             import dataclasses
             result = dataclasses.replace(result, window_s=tuple(args.window) if getattr(args, "window", None) else None,
-                                         forcing_period_s=_forcing_period(scene))
+                                         forcing_period_s=_forcing_period(scene),
+                                         ramp_s=scene.top_motion.effective_ramp_s)
         summary = write_run(scene_run or scene, result, outdir, series_on_disk=model is not None, units=units)
         if model is not None:          # the model was built (or loaded from the cache) for this run
             summary["timing"]["build_s"] += float(model.build_info.get("build_s", 0.0))
