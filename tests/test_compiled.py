@@ -264,3 +264,26 @@ def test_cache_folder_is_versioned_and_overridable(tmp_path, monkeypatch):
     monkeypatch.setenv("CABLESYS_CACHE", str(tmp_path / "new"))
     assert cache_root() == tmp_path / "new"                          # and CABLESYS_CACHE wins
     assert cache_dir() == tmp_path / "new" / f"cablesys-{__version__}_casadi-{ca.__version__}_v{CACHE_FORMAT}"
+
+
+def test_concurrent_first_starts_share_one_stored_model(cache):
+    """Processes of a sweep starting one structure together on an empty cache: every one gets a
+    working model, one stored entry results, and a later start loads it."""
+    code = textwrap.dedent("""
+        import numpy as np
+        from cablesys.model import build_model
+        from cablesys.scene import dale_scene
+        scene = dale_scene().with_numerics(drag_segments=2)
+        m = build_model(scene)
+        print(float(np.array(m.ode([0.1, 0.2, 0.0, 0.0], 0.5, m.parameters(scene)))[2, 0]))
+    """)
+    procs = [subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+             for _ in range(3)]
+    outs = [p.communicate(timeout=300) for p in procs]
+    assert all(p.returncode == 0 for p in procs), [o[1][-1000:] for o in outs]
+    assert len({o[0].strip() for o in outs}) == 1                      # the same numbers everywhere
+    assert len(list(cache_dir().glob("models/*.model"))) == 1
+    assert not [f for f in cache_dir().rglob("*.tmp*")]                 # no temporary file left behind
+    from cablesys.model import build_model
+    from cablesys.scene import dale_scene
+    assert build_model(dale_scene().with_numerics(drag_segments=2)).build_info["stored"] is True
