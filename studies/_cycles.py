@@ -9,7 +9,8 @@ its spread over those cycles (zero for a periodic response, the sign that the wi
 
 Extremes between samples: a tension peak of a snap lasts about the axial travel time (0.08 s on
 300 m of steel wire), so a sampled maximum is refined by the parabola through the largest sample
-and its two neighbours (the same for minima).
+and its two neighbours. Minima are the sampled ones: a tension minimum sits on the kink of the
+tension floor (max(TENS, ...)), where a parabola through three samples overshoots below the floor.
 """
 
 from __future__ import annotations
@@ -53,7 +54,7 @@ def cycle_statistics(time, series: dict, period: float, t0: float, t1: float | N
     dict
         ``y_amp`` / ``x_amp`` (m, mean over cycles of half the cycle's range), ``y_min``, ``y_max``
         (m), ``top_max``, ``top_min``, ``bottom_max``, ``bottom_min`` (N, mean of the cycles'
-        refined extremes), each with ``<name>_spread`` (max - min over the cycles), ``cycles``, the
+        extremes, maxima refined between samples), each with ``<name>_spread`` (max - min over the cycles), ``cycles``, the
         slack fractions asked for, and ``window_s``.
     """
     t = np.asarray(time, dtype=float)
@@ -73,7 +74,7 @@ def cycle_statistics(time, series: dict, period: float, t0: float, t1: float | N
             full = np.asarray(series[key])
             i_max, i_min = m[np.argmax(full[m])], m[np.argmin(full[m])]
             per[f"{name}_max"].append(_refined_extreme(full, i_max, -1.0))
-            per[f"{name}_min"].append(_refined_extreme(full, i_min, +1.0))
+            per[f"{name}_min"].append(float(full[i_min]))
     out = {"window_s": [t0, t0 + n_cyc * period], "cycles": n_cyc}
     for k, v in per.items():
         out[k] = float(np.mean(v))
