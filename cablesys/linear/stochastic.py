@@ -197,8 +197,11 @@ def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY
     sigma_old, Sigma = None, None
 
     def samples(Sigma):
+        # the symmetric square root Sigma^(1/2) = V sqrt(L) V^T maps the fixed standard-normal points
+        # continuously (V sqrt(L) alone jumps when eigenvectors swap or flip sign, and the iteration
+        # then wanders between quadrature realizations instead of settling)
         lam, V = np.linalg.eigh(0.5 * (Sigma + Sigma.T))
-        return xi_mean[:, None] + (V * np.sqrt(np.clip(lam, 0, None))) @ z.T
+        return xi_mean[:, None] + ((V * np.sqrt(np.clip(lam, 0, None))) @ V.T) @ z.T
 
     last = {}
 
@@ -216,7 +219,6 @@ def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY
     if start is not None and start.covariance is not None and start.covariance.shape == (b["n"], b["n"]):
         Sigma = np.array(start.covariance, float)
         xi_mean[b["q"]] += start.mean_shift
-        sigma_old = np.sqrt(np.clip(np.diag(Sigma), 0, None))
         Q = update(Sigma)
     converged, it = False, 0
     for it in range(1, max_iter + 1):
