@@ -38,6 +38,9 @@ def test_coarse_start_gives_the_orbit_of_the_linear_start(dale):
     lin = periodic_steady_state(m, p, w, n_harmonics=20, guess=_linear_guess(m, p, w, Z, times))
     assert lin.success and lin.stats["full_newton_iterations"] > cold.stats["full_newton_iterations"]
     np.testing.assert_allclose(lin.q, cold.q, rtol=0, atol=1e-9 * (1 + np.abs(cold.q).max()))
+    # the truncation indicator falls with the harmonics kept (the orbit converges)
+    assert 0 < periodic_steady_state(m, p, w, input_amplitude=Z, n_harmonics=30).stats["harmonic_tail"] \
+        < cold.stats["harmonic_tail"] < 1e-3
     # too few harmonics for a coarse level: the linear start is used directly
     low = periodic_steady_state(m, p, w, input_amplitude=Z, n_harmonics=3)
     assert low.success and low.stats["starts"] == ["linear"] and low.stats["coarse_newton_iterations"] == 0
