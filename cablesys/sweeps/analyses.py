@@ -27,6 +27,16 @@ class ModelCache:
         self._models = collections.OrderedDict()
         self._sims = collections.OrderedDict()
         self.builds = 0
+        self._rungs = None
+
+    @property
+    def rungs(self):
+        """The model ladder's :class:`~cablesys.ladder.rungs.RungCache` of this process (its rungs' models,
+        the choice's describing-function solver and the simulators, built once per structure)."""
+        if self._rungs is None:
+            from ..ladder.rungs import RungCache
+            self._rungs = RungCache()
+        return self._rungs
 
     def _get(self, store, key, make):
         if key in store:
@@ -74,24 +84,12 @@ def _outputs(labels) -> list:
 
 
 def _ladder_run(scene, name: str, cache):
-    """The model ladder's choice for ``scene`` (``name``: "auto" or a rung), run with a cached simulator
-    and checked a posteriori (:mod:`cablesys.ladder.auto`); returns (result, choice dict)."""
-    from ..ladder.auto import after_run, simulate_auto
-    from ..ladder.choice import choose, forced
-    from ..ladder.rungs import check_rung, rung_scene
-    from ..time_domain import simulate
-    name = check_rung(name)
-    choice = choose(scene) if name == "auto" else forced(scene, name)
-    if choice.name == "frequency":
-        r = simulate_auto(scene, model="frequency")
-        return r, r.stats.get("model", choice.as_dict())
-    sc = rung_scene(scene, choice.name, choice.segments)
-    r = simulate(sc, simulator=cache.rung_simulator(sc, choice.name, choice.segments))
-    choice, again = after_run(scene, choice, r, auto=(name == "auto"))
-    if again:                      # rejected a posteriori (went slack): the ladder reruns it its way
-        r = simulate_auto(scene, model=name)
-        return r, r.stats["model"]
-    return r, choice.as_dict()
+    """The model ladder's choice for ``scene`` (``name``: "auto" or a rung), run with the process's cached
+    rung models and simulators, its integrator settings and its a posteriori checks
+    (:func:`cablesys.ladder.simulate_auto`); returns (result, choice dict)."""
+    from ..ladder.auto import simulate_auto
+    r = simulate_auto(scene, model=name, cache=cache.rungs)
+    return r, r.stats["model"]
 
 
 def run(scene, options, cache):
