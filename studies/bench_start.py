@@ -9,7 +9,8 @@ benchmark's own process or the user's cache:
 
 - ``cold``: the first start of a structure: symbolic build, C generation and compilation;
 - ``warm``: the same structure started again in a new process (median and best of a few):
-  ``model_s`` (``build_model``: the stored functions, :mod:`cablesys.model.store`),
+  ``model_s`` (``build_model``: the stored functions, :mod:`cablesys.model.store`, each
+  deserialized on its first use, so part of that cost shows in the next two),
   ``simulator_s`` (``Simulator``: integrators, the compiled DAE loaded from the structure index
   of :class:`cablesys.compiled.DerivedStore`), ``initial_s`` (initial state from the static
   equilibrium), ``start_s`` their sum, the "start" the target is about; ``load_s`` of it is
@@ -209,7 +210,7 @@ def plot(res: dict, path: Path) -> None:
     plt = setup_matplotlib()
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 5.4), gridspec_kw={"width_ratios": [1.7, 1]})
     cases = list(res["cases"])
-    parts = (("model_s", "model (stored functions)", "tab:blue"), ("simulator_s", "simulator (load compiled DAE)", "tab:orange"),
+    parts = (("model_s", "model (stored, deserialized on use)", "tab:blue"), ("simulator_s", "simulator (+ compiled DAE loaded)", "tab:orange"),
              ("initial_s", "initial state", "tab:green"))
     rows, labels = [], []
     for case in cases:

@@ -159,6 +159,11 @@ def test_second_start_loads_the_stored_model_and_library_without_building(cache,
     fresh = build_model(heavier)
     assert fresh.build_info["stored"] is False
     assert np.array_equal(np.array(second.ode(x, 0.7, p)), np.array(fresh.ode(x, 0.7, p)))
+    # each stored function is deserialized on first use: a run never asked for the energy
+    assert "energy" not in vars(second) and "ode" in vars(second)
+    e = np.array(second.top(0.7, p)).ravel()
+    assert all(np.array_equal(np.array(a), np.array(b)) for a, b in zip(second.energy(x, e, p), fresh.energy(x, e, p)))
+    assert "energy" in vars(second) and second.energy is second.energy
 
 
 def test_structure_key_follows_structure_not_values():

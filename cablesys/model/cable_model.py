@@ -147,6 +147,19 @@ class CableModel:
         object.__setattr__(self, "cache", FunctionCache())
         object.__setattr__(self, "build_info", {})
 
+    def __getattr__(self, name):
+        """A function of a model loaded from the disk cache, deserialized on first use (only reached
+        when the attribute is not set yet: see :func:`cablesys.model.store.load_model`)."""
+        pending = self.__dict__.get("_pending")
+        if pending is None or name not in pending:
+            if name in self.__dict__:              # another thread deserialized it meanwhile
+                return self.__dict__[name]
+            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+        f = ca.Function.deserialize(pending[name])
+        object.__setattr__(self, name, f)
+        pending.pop(name, None)
+        return f
+
     def derive(self, key: str, build):
         """``self.cache.get(key, build)`` (see :meth:`FunctionCache.get`): a derived function, built once."""
         return self.cache.get(key, build)
