@@ -32,7 +32,6 @@ import logging
 import os
 import shlex
 import shutil
-import subprocess
 import tempfile
 import time
 from pathlib import Path
@@ -118,6 +117,7 @@ def _identity(exe: str, stamp: str) -> str | None:
         known = {}
     if stamp in known:
         return known[stamp]
+    import subprocess  # only on a first start with this compiler: a warm start imports less
     try:
         out = subprocess.run([exe, "--version"], capture_output=True, text=True, timeout=30, check=False)
     except (OSError, subprocess.SubprocessError):
@@ -177,6 +177,7 @@ def cache_key(serialized, jacobians, ident: str, cmd: list[str]) -> str:
 
 def _build(code: str, cmd: list[str], target: Path) -> None:
     """Compile ``code`` to ``target``: temporary files in the cache folder, then an atomic rename."""
+    import subprocess
     target.parent.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(dir=target.parent, prefix=".build-") as tmp:
         src = Path(tmp) / "model.c"
