@@ -116,6 +116,7 @@ def _identity(exe: str, stamp: str) -> str | None:
     except (OSError, ValueError):
         known = {}
     if stamp in known:
+        touch(memo)
         return known[stamp]
     import subprocess  # only on a first start with this compiler: a warm start imports less
     try:

@@ -172,4 +172,6 @@ def evict(cap: int | None = None, keep=()) -> list[Path]:
                 path.unlink()
                 total -= size
                 removed.append(path)
+            with contextlib.suppress(OSError):   # its build lock (a racing builder at worst builds twice: atomic)
+                path.with_suffix(".lock").unlink()
     return removed

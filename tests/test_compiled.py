@@ -219,9 +219,13 @@ def test_eviction_removes_least_recently_used_first(cache, monkeypatch):
         os.utime(f, (1000 + k, 1000 + k))
         files.append(f)
     os.utime(files[0], (2000, 2000))                         # entry0 used last
+    locks = [f.with_suffix(".lock") for f in files]
+    for lock in locks:
+        lock.touch()
     removed = evict(cap=2500)
     assert set(removed) == {files[1], files[2]}             # the two least recently used
     assert files[0].exists() and files[3].exists()
+    assert [lock.exists() for lock in locks] == [True, False, False, True]     # with their build locks
     monkeypatch.setenv("CABLESYS_CACHE_MB", "0.0015")
     assert cap_bytes() == 1500 and evict(keep=[files[3]]) == [files[0]]
     monkeypatch.setenv("CABLESYS_CACHE_MB", "-1")
