@@ -6,8 +6,8 @@ sqrt(8/pi) sigma_v, with a mean flow U it tends to the exact slope 2|U|. Sigma i
 covariance of the linear response, Sigma = int Re(Xi(w) Xi(w)^H) S(w) dw, and the mean obeys
 E[r] = 0 (the drag's rectified mean force shifts the equilibrium). The expectation is a
 scrambled-Sobol quadrature with antithetic pairs of the model's own CasADi Jacobian: one
-mapped function sums r and dr/dxi over the samples (common subexpressions shared, compiled
-and cached on disk by :mod:`cablesys.compiled`), so an iteration is one call; the outputs'
+mapped function sums r and dr/dxi over the samples (compiled and cached on disk by
+:mod:`cablesys.compiled`), so an iteration is one call; the outputs'
 Jacobian is averaged once, after the iteration has settled. A neighbouring solution
 (``start``: a nearby design, sea state or parameter) warm-starts the covariance and the
 mean shift, and the iteration then settles in a few passes.
@@ -109,15 +109,16 @@ def _normal_samples(dim: int, n_log2: int, seed: int) -> np.ndarray:
 
 def _moment_functions(model: CableModel, n: int) -> tuple[ca.Function, ca.Function]:
     """Sums over n samples xi_k (columns of X) of (r, dr/dxi) and of (y, dy/dxi): one mapped,
-    reduced CasADi function each, common subexpressions shared, compiled (cached on disk)."""
+    reduced CasADi function each, compiled (cached on disk)."""
     def build():
         fns = functions(model)
         b = xi_blocks(model)
         xi, p = ca.SX.sym("xi", b["n"]), ca.SX.sym("p", len(model.layout))
         r = fns["residual"](xi, p)
         y, Jy = fns["out_jac"](xi, p)
-        rj = ca.Function("stoch_rj", [xi, p], [ca.cse(ca.vertcat(r, ca.vec(fns["jac"](xi, p))))])
-        yj = ca.Function("stoch_yj", [xi, p], [ca.cse(ca.vertcat(y, ca.vec(Jy)))])
+        # r and its Jacobian from one graph (shared subexpressions without the cost of ca.cse)
+        rj = ca.Function("stoch_rj", [xi, p], [ca.vertcat(r, ca.vec(ca.jacobian(r, xi)))])
+        yj = ca.Function("stoch_yj", [xi, p], [ca.vertcat(y, ca.vec(Jy))])
         mapped = [f.map(f"{f.name()}_sum_{n}", "serial", n, [1], [0]) for f in (rj, yj)]
         out = compile_functions(mapped, jacobians=False).functions
         return tuple(out[m.name()] for m in mapped)
