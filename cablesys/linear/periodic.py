@@ -247,20 +247,30 @@ def periodic_sweep(model: CableModel, p, omegas, input_amplitude, *, n_harmonics
     return out
 
 
+def _sinusoid_indices(model: CableModel) -> dict:
+    """Per axis, the (amplitude, frequency, phase) positions in p of each top-motion sinusoid, in
+    order (read from the layout once per model)."""
+    def build():
+        labels, out = model.layout.labels, {}
+        for ax in ("x", "y"):
+            ks = sorted({int(lb.split("[")[1].split("]")[0]) for lb in labels if lb.startswith(f"top_motion.{ax}[")})
+            out[ax] = [tuple(model.layout.index(f"top_motion.{ax}[{k}].{a}") for a in ("amplitude", "frequency", "phase"))
+                       for k in ks]
+        return out
+    return model.cache.get("periodic_sinusoid_indices", build)
+
+
 def _with_sinusoids(model: CableModel, p, omega: float, Z) -> np.ndarray:
     """``p`` with the first sinusoid of x and of y set to Re(Z e^{i omega t}) = |Z| sin(omega t + arg(iZ))
     and every other sinusoid silenced."""
     p = np.array(p, dtype=float)
-    labels = model.layout.labels
-    for ax, z in zip(("x", "y"), Z[:2]):
-        ks = sorted({int(lb.split("[")[1].split("]")[0]) for lb in labels if lb.startswith(f"top_motion.{ax}[")})
-        if not ks:
+    for (ax, idx), z in zip(_sinusoid_indices(model).items(), Z[:2]):
+        if not idx:
             if abs(z) > 0:
                 raise ParameterError("input_amplitude", Z, f"the scene has no {ax} sinusoid to carry a {ax} motion")
             continue
-        for k in ks:
-            pre = f"top_motion.{ax}[{k}]."
-            p[model.layout.index(pre + "amplitude")] = abs(z) if k == ks[0] else 0.0
-            p[model.layout.index(pre + "frequency")] = omega
-            p[model.layout.index(pre + "phase")] = float(np.angle(1j * z)) if k == ks[0] else 0.0
+        for j, (i_amp, i_freq, i_phase) in enumerate(idx):
+            p[i_amp] = abs(z) if j == 0 else 0.0
+            p[i_freq] = omega
+            p[i_phase] = float(np.angle(1j * z)) if j == 0 else 0.0
     return p
