@@ -95,9 +95,14 @@ def compiler_command(size: int = 0) -> list[str]:
 
 def _compiler_identity(cmd: list[str]) -> str | None:
     """The compiler's path and first line of ``--version`` (part of the cache key); None when
-    there is no compiler. Remembered on disk per executable (path, size, modification time):
-    asking the compiler costs a process start (~5 ms) at every start otherwise."""
-    exe = shutil.which(cmd[0])
+    there is no compiler. Remembered per process and, on disk, per executable (path, size,
+    modification time): asking the compiler costs a process start (~5 ms)."""
+    return _identity(cmd[0], os.environ.get("PATH", ""))
+
+
+@functools.lru_cache(maxsize=8)
+def _identity(cc: str, path: str) -> str | None:
+    exe = shutil.which(cc, path=path or None)
     if exe is None:
         return None
     real = os.path.realpath(exe)
@@ -105,11 +110,7 @@ def _compiler_identity(cmd: list[str]) -> str | None:
         st = os.stat(real)
     except OSError:
         return None
-    return _identity(exe, f"{real}|{st.st_size}|{st.st_mtime_ns}")
-
-
-@functools.lru_cache(maxsize=8)
-def _identity(exe: str, stamp: str) -> str | None:
+    stamp = f"{real}|{st.st_size}|{st.st_mtime_ns}"
     memo = cache_dir() / "compilers.json"
     try:
         known = json.loads(memo.read_text())
