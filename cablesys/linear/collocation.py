@@ -49,20 +49,22 @@ def _node_residual(model: CableModel):
 
 
 def _node_function(model: CableModel, n: int) -> ca.Function:
-    """[r | dr/dq | dr/dq' | M] at n nodes in one (nq, n (1 + 3 nq)) matrix, r = M(q) q'' - f(q, q', e, p)
-    (Wang 1971 eq. 47-48) and its blocks by AD; mapped over the nodes, compiled and cached on disk.
-    One output, so a Newton step reads one array back from CasADi."""
+    """(Q, E, p, omega) -> [r | dr/dq | dr/dq' | M] at n nodes in one (nq, n (1 + 3 nq)) matrix,
+    r = M(q) q'' - f(q, q', e, p) (Wang 1971 eq. 47-48) with q' = omega Q D1^T, q'' = omega^2 Q (D1^2)^T
+    (D1 the differentiation matrix of period 2 pi) and its blocks by AD; mapped over the nodes,
+    compiled and cached on disk. One array in, one out: a Newton step converts little."""
     def build():
         nq = model.nq
         (q, qd, qdd, e, p), r, M = _node_residual(model)
         node = ca.Function("colloc_node", [q, qd, qdd, e, p],
                            [ca.cse(ca.horzcat(r, ca.jacobian(r, q), ca.jacobian(r, qd), M))])
         mapped = node.map(n)
-        Q, Qd, Qdd = ca.MX.sym("Q", nq, n), ca.MX.sym("Qd", nq, n), ca.MX.sym("Qdd", nq, n)
-        E, P = ca.MX.sym("E", e.shape[0], n), ca.MX.sym("p", p.shape[0])
-        out = ca.Function(f"colloc_nodes_{n}", [Q, Qd, Qdd, E, P], [mapped(Q, Qd, Qdd, E, P)])
+        D1 = fourier_differentiation(n, 2 * np.pi)
+        Q, E, P, w = ca.MX.sym("Q", nq, n), ca.MX.sym("E", e.shape[0], n), ca.MX.sym("p", p.shape[0]), ca.MX.sym("w")
+        Qd, Qdd = w * ca.mtimes(Q, ca.DM(D1.T)), w**2 * ca.mtimes(Q, ca.DM((D1 @ D1).T))
+        out = ca.Function(f"colloc_nodes_{n}", [Q, E, P, w], [mapped(Q, Qd, Qdd, E, P)])
         return compile_functions([out], jacobians=False).functions[out.name()]   # C, cached on disk
-    return model.cache.get(f"colloc_nodes_{n}", build)
+    return model.cache.get(f"colloc_nodes_w_{n}", build)
 
 
 def _node_maps(model: CableModel, n: int) -> tuple[ca.Function, ca.Function]:
@@ -132,7 +134,8 @@ def _newton(model: CableModel, p, times, T, Q, *, tol: float = 1e-8, max_iter: i
     """Newton on the collocation equations from node values ``Q`` (nq, n); exact block Jacobian,
     step halving when the residual does not decrease. Returns (Q, max |r|, iterations)."""
     nq, n = Q.shape
-    D = _unit_differentiation(model, n) * (2 * np.pi / T)
+    omega = 2 * np.pi / T
+    D = _unit_differentiation(model, n) * omega
     D2 = D @ D
     node = _node_function(model, n)
     E = _node_maps(model, n)[0](times[None, :], p)          # DM: E and p are converted once, not per call
@@ -143,7 +146,7 @@ def _newton(model: CableModel, p, times, T, Q, *, tol: float = 1e-8, max_iter: i
 
     def evaluate(Qv):
         """(R, blocks): R (nq, n) and blocks (3, n, nq, nq) = [dr/dq, dr/dq', M] at every node."""
-        out = np.asarray(node(Qv, Qv @ D.T, Qv @ D2.T, E, p_dm)).reshape(nq, n, 1 + 3 * nq)  # per node [r A B C]
+        out = np.asarray(node(Qv, E, p_dm, omega)).reshape(nq, n, 1 + 3 * nq)  # per node [r A B C]
         return out[:, :, 0], out[:, :, 1:].reshape(nq, n, 3, nq).transpose(2, 1, 0, 3)
 
     R, blk = evaluate(Q)
