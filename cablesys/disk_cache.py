@@ -57,8 +57,8 @@ def cap_bytes() -> int:
     except ValueError:
         mb = -1.0
     if not mb >= 0.0:
-        raise ParameterError("CABLESYS_CACHE_MB", text, "must be a size in megabytes >= 0")
-    return int(mb * 1e6)
+        raise ParameterError("CABLESYS_CACHE_MB", text, "must be a size in megabytes >= 0 (inf: no cap)")
+    return int(min(mb * 1e6, 2.0 ** 62))
 
 
 def digest(*parts) -> str:

@@ -228,9 +228,12 @@ def test_eviction_removes_least_recently_used_first(cache, monkeypatch):
     assert [lock.exists() for lock in locks] == [True, False, False, True]     # with their build locks
     monkeypatch.setenv("CABLESYS_CACHE_MB", "0.0015")
     assert cap_bytes() == 1500 and evict(keep=[files[3]]) == [files[0]]
-    monkeypatch.setenv("CABLESYS_CACHE_MB", "-1")
-    with pytest.raises(ParameterError, match="CABLESYS_CACHE_MB"):
-        cap_bytes()
+    monkeypatch.setenv("CABLESYS_CACHE_MB", "inf")
+    assert cap_bytes() > 1e18
+    for bad in ("-1", "nan", "lots"):
+        monkeypatch.setenv("CABLESYS_CACHE_MB", bad)
+        with pytest.raises(ParameterError, match="CABLESYS_CACHE_MB"):
+            cap_bytes()
 
 
 def test_simulate_without_a_compiler_runs_in_the_virtual_machine(cache, monkeypatch, caplog):
