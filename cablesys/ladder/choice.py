@@ -136,14 +136,14 @@ def choose(scene: Scene, tolerance=None, *, question: str = "time", cache: RungC
         # quasi-static reduction (whose stretch is a Newton solve at every evaluation), and is exact
         order.remove("wang")
         order.insert(order.index("quasi-static"), "wang")
-    elif swing_free:
-        deciding += ("; nothing drives the swing (top motion along the cable, no current, waves or series): the "
-                     "quasi-static rung has no dynamics left to step, its cost is its outputs")
     for name in order:
         e = errs[name]
         if _within(e, tol):
             reason = (f"{name}: the cheapest rung within {tol[0]:.3g} (body) / {tol[1]:.3g} (tension); "
                       f"{e['note']}; {deciding}")
+            if name == "quasi-static" and swing_free:
+                reason += ("; nothing drives the swing (top motion along the cable, no current, waves or series): "
+                           "the quasi-static rung has no dynamics left to step, its cost is its outputs")
             return Choice(name, 1, reason, {"body": e["body"], "tension": e["tension"]}, info)
     n = segments_for(errs, tol)
     e = est.segmented_error(errs, n)
