@@ -114,6 +114,26 @@ NOTES = {
                    "tension. Not a buoyancy or weight convention (the MoorDyn diameter gives Wang's weight in "
                    "water; its end nodes carry half a segment as ours do). Same quantity against same quantity "
                    "(end element vs end segment): cablesys_vs_moordyn_segments.",
+    "dale_top_dynamics": "Dale, N = 40: the end-element and end-segment mean tensions agree within 0.04 %, the "
+                         "body motion within 0.03 %, but MoorDyn's top-segment tension oscillates less (first "
+                         "harmonic 0.88 mN vs 2.39 mN; body end 1.77 vs 2.19 mN) and its range shrinks with N "
+                         "(0.0034 N at N = 10, 0.0019 N at N = 40) where cablesys's is converged (0.0045 N at "
+                         "N = 10, 40, 80). Under the 2 % of the issue (about 1.1 % of the top tension); not "
+                         "explained here (candidates: MoorDyn's node-averaged tangents for drag and added mass on "
+                         "this drag-bowed, undamped (C_I = 0) line).",
+    "speed": "Where a run's time goes (cablesys_profile): CVODES BDF(<= 2) steps, each one or two right-hand sides "
+             "and a Jacobian every ~7 steps (the Jacobian costs ~8 right-hand sides: 12 colours of a banded "
+             "matrix); RHS, Jacobian and CVODES (error control, sparse QR factorizations and solves) about a third "
+             "each. Linear solver (qr, csparse, lapacklu, gmres), Newton options and always_recalculate_jacobian "
+             "change the whole-horizon call by < 10 % on the 300 m heave at N = 20. Looser rtol: 1e-3 passes the "
+             "matched-accuracy test only barely (tension 0.9 %), scalar atol above 1e-5 breaks the tension (x "
+             "positions near 0 and millimetre stretches share one atol); per-state atol (cablesys_scaled_atol) "
+             "halves the steps. RK4 (cablesys_rk) needs 5 ms steps (|lambda|max ~ 530 1/s): 48000 RHS against "
+             "BDF2's ~1600 RHS + ~200 Jacobians. Compile: N = 20 DAE + state Jacobian is 1.8 MB of C, gcc -O1 "
+             "20-25 s on this (loaded) machine, RHS alone 2 s; N = 80: 7.5 MB, -O0 (the default at that size) "
+             "70-100 s and 1.8 GB, and its code runs only 1.5x faster than CasADi's VM: not worth it for one run, "
+             "so N > 20 runs in the VM (COMPILE_MAX_ELEMENTS). Numbers measured before the element-by-element "
+             "Lagrange equations made the right-hand side 31 % smaller.",
 }
 
 COMPILE_MAX_ELEMENTS = 20     # gcc's time and memory grow faster than linearly with the segmented
