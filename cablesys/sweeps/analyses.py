@@ -61,17 +61,6 @@ class ModelCache:
         key = (structure_of(scene), num, jit)
         return self._get(self._sims, key, lambda: Simulator(self.model(scene), scene.output_times, settings))
 
-    def rung_simulator(self, scene, name: str, segments: int):
-        """Simulator of a model-ladder rung for ``scene`` (the rung's scene), built once per structure."""
-        from ..ladder.rungs import build_rung
-        from ..time_domain import IntegratorSettings, Simulator
-        num = scene.numerics
-        settings = IntegratorSettings(method=num.integrator, rtol=num.rtol, atol=num.atol,
-                                      steps_per_output=num.steps_per_output)
-        key = ("rung", name, segments, structure_of(scene), num)
-        return self._get(self._sims, key, lambda: Simulator(build_rung(scene, name, segments), scene.output_times,
-                                                            settings))
-
 
 def forcing_frequency(scene) -> float | None:
     """Lowest frequency of the top-motion sinusoids with a non-zero amplitude (rad/s)."""
