@@ -260,7 +260,7 @@ def plot(res: dict, path: Path) -> None:
     bx.set_ylabel("compiled run time / sinusoid run time")
     bx.set_ylim(0, max(SERIES_TARGET, max(s["ratio"] for s in res["series_runs"])) * 1.25)
     bx.legend(loc="upper right", fontsize=8)
-    bx.set_title(f"Sampled top motion (every {SAMPLE_DT} s) vs sinusoids:\nrun-time ratio, best of repeats", fontsize=11)
+    bx.set_title(f"Sampled top motion (every {SAMPLE_DT} s)\nvs sinusoids: run-time ratio, best of repeats", fontsize=11)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
