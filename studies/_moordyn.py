@@ -185,9 +185,13 @@ def run_moordyn(scene, n_segments: int, dt: float, *, duration: float | None = N
                         break
                     finally:
                         step_wall += time.perf_counter() - t_wall
-                pos = moordyn.GetPointPos(body)
+                try:
+                    pos = moordyn.GetPointPos(body)
+                    TT[k], TB[k], length = _segment_state(moordyn, line, n_segments)
+                except RuntimeError:              # MoorDyn refuses to report a state that went NaN
+                    ok = False
+                    break
                 T[k], XB[k], YB[k] = t, pos[0], -pos[2] - scene.environment.top_depth
-                TT[k], TB[k], length = _segment_state(moordyn, line, n_segments)
                 strain[k] = length / l_seg - 1.0
                 if not (np.all(np.isfinite(pos)) and abs(pos[2]) < 10 * scene.sections[0].cable.length + 100):
                     ok = False

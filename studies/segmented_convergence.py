@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import pickle
 import sys
 import time
 from pathlib import Path
@@ -195,12 +196,28 @@ def _orders(rows: list, keys) -> None:
         a["change_to_2n"] = {k: abs(a[k] - b[k]) / max(abs(b[k]), 1e-300) for k in keys}
 
 
-def converge_slack(ns: list, duration: float, period: float = 6.0, moordyn: bool = True) -> dict:
-    """The slack scene at each N: cablesys (and a half-step run at the second N), MoorDyn."""
+def _kept(folder: Path | None, name: str, fn):
+    """``fn()``, kept in ``folder/name.pkl`` (a long study that is stopped resumes from its runs)."""
+    if folder is None:
+        return fn()
+    path = folder / f"{name}.pkl"
+    if path.is_file():
+        return pickle.loads(path.read_bytes())
+    out = fn()
+    folder.mkdir(parents=True, exist_ok=True)
+    path.write_bytes(pickle.dumps(out))
+    return out
+
+
+def converge_slack(ns: list, duration: float, period: float = 6.0, moordyn: bool = True, keep: Path | None = None) -> dict:
+    """The slack scene at each N: cablesys (and a half-step run at the second N), MoorDyn. Runs are
+    kept in ``keep`` (if given) and reused from there."""
     sc = slack_scene(period, duration)
     t0 = sc.top_motion.effective_ramp_s + math.floor((duration / 2 - sc.top_motion.effective_ramp_s) / period) * period
-    rows = [run_slack(sc, n, period, t0) for n in ns]
-    check = run_slack(sc, ns[min(1, len(ns) - 1)], period, t0, refine=2)
+    tag = f"T{period:g}_{duration:g}s"
+    rows = [_kept(keep, f"cablesys_{tag}_n{n}", lambda n=n: run_slack(sc, n, period, t0)) for n in ns]
+    n_check = ns[min(1, len(ns) - 1)]
+    check = _kept(keep, f"cablesys_{tag}_n{n_check}_half_step", lambda: run_slack(sc, n_check, period, t0, refine=2))
     ok = [r for r in rows if r["success"]]
     _orders(ok, SLACK_METRICS[:5])
     out = {"scene": f"300 m wire, 2 t sphere, T = {period:g} s (slack)", "period_s": period, "duration_s": duration,
@@ -213,7 +230,7 @@ def converge_slack(ns: list, duration: float, period: float = 6.0, moordyn: bool
             import moordyn as _  # noqa: F401
         except ImportError:
             return out
-        md = [run_moordyn_slack(sc, n, period, t0) for n in ns]
+        md = [_kept(keep, f"moordyn_{tag}_n{n}", lambda n=n: run_moordyn_slack(sc, n, period, t0)) for n in ns]
         _orders(md, SLACK_METRICS[:5])
         out["moordyn"] = md
         out["cablesys_vs_moordyn"] = [{"n": a["n"], **{k: (a[k] - b[k]) / abs(b[k]) for k in SLACK_METRICS[:5]}}
@@ -288,7 +305,7 @@ def main(argv=None) -> int:
             heave = load_scene(HEAVE_SCENE)
             sc = heave.replace(top_motion=dataclasses_replace_top(heave, 10.0)).with_numerics(duration=80.0)
             results.append(converge("300 m wire, 2 t sphere, T = 10 s", sc, 10.0, [5, 10, 20, 40]))
-        slack = converge_slack(args.slack_n, args.slack_duration, moordyn=not args.no_moordyn)
+        slack = converge_slack(args.slack_n, args.slack_duration, moordyn=not args.no_moordyn, keep=args.out / "runs")
         plot_slack(slack, args.out / "segmented_convergence_slack.png")
     doc = {"results": results}
     if slack:
