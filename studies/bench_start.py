@@ -115,6 +115,7 @@ def child_start(case: str, duration: float) -> dict:
             "load_s": sim.compiled.load_s, "run_s": t7 - t6, "success": bool(rec.success),
             "compiled": bool(sim.compiled.compiled), "dae_from_cache": bool(sim.compiled.cached),
             "model_stored": bool(model.build_info.get("stored")), "cache_hits": int(model.cache.hits),
+            "structure_key": model.build_info.get("structure_key"),     # changes when the model's sources do
             "nq": int(model.nq)}
 
 
