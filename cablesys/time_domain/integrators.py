@@ -17,15 +17,20 @@ The DAE is one SX function of the model (built once per model and form, kept in
 :mod:`cablesys.compiled` unless ``compiled=False`` (then CasADi's virtual machine runs it).
 
 Tolerances: CasADi (3.8) gives CVODES and IDAS one scalar ``abstol`` (``scale_abstol`` multiplies
-it by the DAE function's nominal values, which are 1 for an SX function), so ``atol`` applies to
-angles, stretches and their rates alike. Per-state tolerances from the natural scales (angle 1 rad,
-stretch its static value, rates times the forcing frequency; by integrating scaled states) were
-measured in ``studies/bench_time_domain.py`` (``per_state_atol``) and not adopted: on the ramped
-Dale scene they never beat the scalar atol at equal accuracy (fewer steps only where they loosen the
-angles, with a larger body position error than a scalar-atol run of as many steps; the body error
-is set by the angles, which rtol already controls). What sets the cost is stability: the undamped stretch
-mode (254 rad/s on Dale) limits BDF orders 3-5, which are not A-stable, to steps of about
-0.6/omega_stretch whatever the tolerance (27k steps per 60 s at rtol 1e-6, 24k at 1e-3).
+it by the DAE function's nominal values, which are 1 for an SX function). So the adaptive methods
+integrate the scaled states x~ = x / S(p) (``IntegratorSettings.scaled``, the default; S from
+:mod:`cablesys.model.scales`: stretch by its static value, angle by the top's amplitude over the
+length, node positions by one element's static stretch, rates by these times the forcing
+frequency), and ``atol`` is per state atol x S_i: a fraction of each state's natural size, the
+same in any unit system. :class:`ScaledIntegrator` takes and gives physical states. Measured
+(BDF <= 2, rtol 1e-4, vs a tight run, errors as fractions of each series' range): 300 m heave
+N = 20, 30 s: 742 steps unscaled (atol 1e-7 m) vs 502 scaled (atol 1e-5), top tension 1.9 vs
+2.7 %; Dale N = 10, 60 s: 7784 vs 6776 steps, top tension 89 vs 24 %, bottom 7.1 vs 4.4 %;
+ramped Dale (Wang): 339 vs 576 steps, tension 7e-5 vs 9e-5; default cvodes rtol 1e-7, atol 1e-9
+on ramped Dale: 4.2k steps, tension 1.3e-3 and stretch rate 17 % unscaled vs 9.5k steps,
+1e-6 and 1.3e-4 scaled (the SI atol was 1.4 % of the static stretch).
+What sets the cost is stability: the undamped stretch mode (254 rad/s on Dale) limits BDF orders
+3-5, which are not A-stable, to steps of about 0.6/omega_stretch whatever the tolerance (27k steps per 60 s at rtol 1e-6, 24k at 1e-3).
 ``cvodes-bdf2`` (orders <= 2, A-stable) steps over it: 0.9-2k steps at rtol 1e-3-1e-4, but second
 order, so it is the cheapest only at engineering accuracy (body error >= 1e-5 m on Dale). A smooth
 start (``top_motion.ramp_s``, the default) removes the ringing that an abrupt start adds (BDF2:
@@ -44,6 +49,7 @@ import numpy as np
 from ..compiled import Compiled, compile_functions
 from ..integration import METHODS, IntegratorMethod, resolve
 from ..model import CableModel
+from ..model.scales import state_scales
 
 # the registry and the protocol of a user method live in cablesys.integration (the scene checks names there)
 ADAPTIVE = tuple(name for name, m in METHODS.items() if m.adaptive)
@@ -60,10 +66,11 @@ class IntegratorSettings:
 
     method: str | IntegratorMethod = "cvodes"
     rtol: float = 1e-8
-    atol: float = 1e-10
+    atol: float = 1e-8                # scaled: per state atol x S_i (cablesys.model.scales); unscaled: SI
     steps_per_output: int = 10        # fixed-step methods only
     max_num_steps: int = 20000        # step budget per output interval (typical runs use < 100); more fails by name
     compiled: bool = True             # the DAE as cached compiled C (see cablesys.compiled); False: CasADi VM
+    scaled: bool = True               # adaptive methods integrate x~ = x / S(p) (cablesys.model.scales): atol x S_i per state
     jit: bool = False                 # former opt-in compilation; now an alias of ``compiled``
     custom: IntegratorMethod | None = dataclasses.field(default=None, repr=False)   # set from ``method``
 
@@ -82,42 +89,73 @@ class IntegratorSettings:
         return self.custom if self.custom is not None else resolve(self.method)
 
 
-def _dae_function(model: CableModel, implicit: bool) -> ca.Function:
+def _dae_function(model: CableModel, implicit: bool, scaled: bool = False) -> ca.Function:
     """The DAE in relative time s as a CasADi function with the integrator's signature
     (``ca.dyn_in()`` -> ``ca.dyn_out()``): x' = h * ode(x, t0 + h s), parameters (p, t0, h);
-    implicit form: x' = h (q', q''), 0 = M(q) q'' - f."""
+    implicit form: x' = h (q', q''), 0 = M(q) q'' - f.
+
+    ``scaled``: the same DAE in the states x~ = x / S(p) (S = :func:`~cablesys.model.scales.state_scales`,
+    computed from p inside the function, so one compiled DAE serves every parameter value):
+    x~' = h ode(S x~) / S; implicit: z~ = q'' / S_rate, x~' = h (q' / S_q, z~), 0 = M(q) (S_rate z~) - f.
+    """
     x = ca.SX.sym("x", 2 * model.nq)
     s = ca.SX.sym("t")
     p = ca.SX.sym("p", len(model.layout) + 2)
     pm, t0, h = p[:-2], p[-2], p[-1]
     t = t0 + h * s
-    q, qd = x[: model.nq], x[model.nq:]
+    S = state_scales(model)(pm) if scaled else ca.SX.ones(2 * model.nq)
+    xs = S * x if scaled else x
+    q, qd = xs[: model.nq], xs[model.nq:]
     u = ca.SX.sym("u", 0)
     empty = ca.SX(0, 1)
     if not implicit:
         z = ca.SX.sym("z", 0)
-        ode, alg = h * model.ode(x, t, pm), empty
+        ode, alg = h * model.ode(xs, t, pm), empty
+        if scaled:
+            ode = ode / S
     else:
         z = ca.SX.sym("z", model.nq)
+        zs = S[model.nq:] * z if scaled else z
         M, f = model.dynamics(q, qd, model.top(t, pm), pm)
-        ode, alg = h * ca.vertcat(qd, z), ca.mtimes(M, z) - f
-    name = "cablesys_dae_implicit" if implicit else "cablesys_dae"
+        ode, alg = h * ca.vertcat(qd, zs), ca.mtimes(M, zs) - f
+        if scaled:
+            ode = ode / S
+    name = ("cablesys_dae_implicit" if implicit else "cablesys_dae") + ("_scaled" if scaled else "")
     return ca.Function(name, [s, x, z, p, u], [ode, alg, empty, empty], ca.dyn_in(), ca.dyn_out())
 
 
-def dae_function(model: CableModel, implicit: bool, compiled: bool = True) -> Compiled:
+def dae_function(model: CableModel, implicit: bool, compiled: bool = True, scaled: bool = False) -> Compiled:
     """The model's DAE function, compiled and cached when ``compiled`` (built once per model).
+
+    Parameters
+    ----------
+    model : CableModel
+        The model.
+    implicit : bool
+        The residual form M q'' - f = 0 (IDAS) instead of the ODE.
+    compiled : bool, optional
+        Compiled C (cached on disk) instead of CasADi's virtual machine.
+    scaled : bool, optional
+        In the scaled states x / S(p) (see :func:`_dae_function`; a function of its own, its own key).
 
     Returns
     -------
     Compiled
         ``functions[name]`` is the DAE; ``build_s``/``load_s`` the times of its first build.
     """
-    key = f"dae:{'implicit' if implicit else 'explicit'}:{'compiled' if compiled else 'vm'}"
+    key = (f"dae:{'implicit' if implicit else 'explicit'}:{'compiled' if compiled else 'vm'}"
+           + (":scaled" if scaled else ""))
     # the integrators need the state blocks of the Jacobian only (d/dp would grow with the scene's
     # parameter count); never use this library for parameter sensitivities
-    return model.derive(key, lambda: compile_functions([_dae_function(model, implicit)], jacobians=("x", "z"),
+    return model.derive(key, lambda: compile_functions([_dae_function(model, implicit, scaled)], jacobians=("x", "z"),
                                                        enabled=compiled))
+
+
+def uses_scaling(settings: IntegratorSettings) -> bool:
+    """Whether ``settings`` integrate the scaled states (adaptive methods with ``scaled``; a fixed
+    step has no error test for the scales to act on)."""
+    return bool(settings.scaled) and settings.integrator_method.adaptive and not (
+        settings.method == "rk" and settings.custom is None)
 
 
 def compiled_dae(model: CableModel, settings: IntegratorSettings) -> Compiled:
@@ -125,7 +163,48 @@ def compiled_dae(model: CableModel, settings: IntegratorSettings) -> Compiled:
     interval for ``rk``), with its first build/load times."""
     if settings.method == "rk" and settings.custom is None:
         return rk4_interval(model, int(settings.steps_per_output), settings.compiled or settings.jit)
-    return dae_function(model, settings.integrator_method.implicit, settings.compiled or settings.jit)
+    return dae_function(model, settings.integrator_method.implicit, settings.compiled or settings.jit,
+                        uses_scaling(settings))
+
+
+class ScaledIntegrator:
+    """A CasADi integrator of the scaled DAE seen in the physical states: called like the
+    integrator (``F(x0=..., p=...)`` -> ``{"xf": ..., "zf": ...}``, positional (x0, p) too), it
+    divides x0 by S(p) and multiplies the outputs back, so callers never see x~.
+    ``stats()`` and every other attribute are the wrapped integrator's (its step counts).
+
+    Parameters
+    ----------
+    integrator : casadi.Function
+        The integrator of the scaled DAE.
+    scales : casadi.Function
+        ``state_scales(p) -> S`` of the model.
+    n_params : int
+        Length of the model's p (the integrator's p has (t_0, h) appended).
+    nq : int
+        Number of coordinates (the algebraic q'' of the implicit form is scaled by the rate scales).
+    """
+
+    def __init__(self, integrator: ca.Function, scales: ca.Function, n_params: int, nq: int):
+        self.integrator, self.scales, self.n_params, self.nq = integrator, scales, n_params, nq
+
+    def __call__(self, *args, **kw) -> dict:
+        names = ("x0", "p", "z0")
+        kw.update(zip(names, args))
+        p = np.asarray(kw["p"], dtype=float).ravel()
+        S = np.array(self.scales(p[: self.n_params])).ravel()
+        kw["x0"] = np.asarray(kw.get("x0", np.zeros(S.size)), dtype=float).ravel() / S
+        if "z0" in kw:
+            kw["z0"] = np.asarray(kw["z0"], dtype=float).ravel() / S[self.nq:]
+        out = self.integrator(**kw)
+        out = dict(out)
+        out["xf"] = ca.DM(np.array(out["xf"]) * S[:, None])
+        if "zf" in out and out["zf"].numel():
+            out["zf"] = ca.DM(np.array(out["zf"]) * S[self.nq:, None])
+        return out
+
+    def __getattr__(self, name):
+        return getattr(self.integrator, name)
 
 
 def compiled_functions(model: CableModel, settings: IntegratorSettings, functions) -> list:
@@ -177,8 +256,12 @@ def _rk4_integrator(model: CableModel, settings: IntegratorSettings, grid, name:
     return ca.Function(name, [x0, p], [X], ["x0", "p"], ["xf"])
 
 
-def make_integrator(model: CableModel, settings: IntegratorSettings, grid, name: str = "F") -> ca.Function:
+def make_integrator(model: CableModel, settings: IntegratorSettings, grid, name: str = "F"):
     """A CasADi integrator over the relative ``grid`` (first entry 0 excluded from outputs).
+
+    With ``settings.scaled`` (the default) an adaptive method integrates the scaled states
+    x~ = x / S(p) (:mod:`cablesys.model.scales`), so ``atol`` is per state atol x S_i, and the
+    returned :class:`ScaledIntegrator` takes and gives physical states like the integrator.
 
     Parameters
     ----------
@@ -193,8 +276,9 @@ def make_integrator(model: CableModel, settings: IntegratorSettings, grid, name:
 
     Returns
     -------
-    casadi.Function
-        The integrator (``casadi.integrator`` or the compiled RK4 loop).
+    casadi.Function or ScaledIntegrator
+        The integrator (``casadi.integrator``, the compiled RK4 loop, or the scaled integrator
+        wrapped in physical states).
     """
     if settings.method == "rk" and settings.custom is None:
         return _rk4_integrator(model, settings, np.asarray(grid, dtype=float), name)
@@ -220,4 +304,7 @@ def make_integrator(model: CableModel, settings: IntegratorSettings, grid, name:
     opts["print_stats"] = False
     comp = compiled_dae(model, settings)
     dae = next(iter(comp.functions.values()))
-    return ca.integrator(name, plugin, dae, float(grid[0]), list(grid[1:]), opts)
+    F = ca.integrator(name, plugin, dae, float(grid[0]), list(grid[1:]), opts)
+    if uses_scaling(settings):
+        return ScaledIntegrator(F, state_scales(model), len(model.layout), model.nq)
+    return F

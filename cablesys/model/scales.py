@@ -1,0 +1,147 @@
+"""Natural scales of a model's states, for per-state absolute tolerances by state scaling.
+
+CVODES and IDAS (through CasADi 3.8) take one scalar absolute tolerance. The integrators
+(:mod:`cablesys.time_domain.integrators`) therefore integrate x~ = S^-1 x with S = diag of the
+scales below, so that the scalar atol acts on state i as atol x S_i: "small" means the same
+fraction of every state's natural size, and the answer no longer depends on the unit system
+(an fps scene and its SI twin are integrated alike).
+
+The scales are CasADi expressions of the parameter vector p (:func:`state_scales`), so one
+compiled DAE serves every parameter value of a structure. Per model kind (``model.kind``):
+
+- ``wang`` (Wang 1971, 2-DOF per section): stretch u_i by the section's static stretch
+  T_i L_i / (AE)_i (eq. 46, 54: k = AE / L); the swing angle phi by the top's displacement
+  amplitude over the line's length, A / L (between 1e-3 and 1 rad); rates by these times the
+  highest forcing frequency (the top's sinusoids; without any, the pendulum frequency sqrt(g / L)).
+- ``quasi-static``: the angles of the same (the stretch is not a state).
+- ``segmented``: the node positions by one element's static stretch T h / AE, the rates by the
+  top's speed or the element's own axial speed, whichever is larger (the provider
+  :func:`cablesys.model.segmented.nominal_state` computes the same numbers from a scene).
+
+T_i is the section's ``tension_ref`` when set, else W_b + w L / 2 (its body and half its cable).
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+import numpy as np
+
+from .params import ParameterLayout
+
+ANGLE_SCALE_MIN = 1e-3   # rad: the swing scale when nothing moves the top (static or current-driven scenes)
+ANGLE_SCALE_MAX = 1.0    # rad
+
+
+def section_tension(layout: ParameterLayout, i: int):
+    """T_i: section ``i``'s ``tension_ref``, or W_b + w L / 2 when that is 0 (N, SX of p)."""
+    p = layout.symbol
+
+    def c(name):
+        return p[layout.section_index(i, name)]
+    hanging = c("body.weight") + c("cable.weight_per_length") * c("cable.length") / 2
+    return ca.if_else(c("cable.tension_ref") > 0, c("cable.tension_ref"), hanging)
+
+
+def static_stretch(layout: ParameterLayout, i: int, n_elements: int = 1):
+    """Static stretch of one of ``n_elements`` equal elements of section ``i``: T_i h / (AE)_i with
+    h = L_i / n_elements (Wang 1971 eq. 46: tension = AE x strain). m, SX of p."""
+    p = layout.symbol
+    h = p[layout.section_index(i, "cable.length")] / n_elements
+    return ca.fabs(section_tension(layout, i)) * h / p[layout.section_index(i, "cable.ae")]
+
+
+def _sinusoids(layout: ParameterLayout) -> list[tuple]:
+    """(amplitude, frequency) SX pairs of the top's sinusoids, both axes."""
+    p, out = layout.symbol, []
+    for lbl in layout.labels:
+        if lbl.startswith("top_motion.") and lbl.endswith(".amplitude"):
+            out.append((p[layout.index(lbl)], p[layout.index(lbl[: -len("amplitude")] + "frequency")]))
+    return out
+
+
+def top_amplitude(layout: ParameterLayout):
+    """The top's displacement scale: sum of |a| of its sinusoids plus half the span of a sampled
+    series per axis (m, SX of p)."""
+    p = layout.symbol
+    a = sum((ca.fabs(amp) for amp, _ in _sinusoids(layout)), ca.SX(0))
+    for axis in ("x", "y"):
+        idx = [k for k, lbl in enumerate(layout.labels) if lbl.startswith(f"top_motion.series.{axis}[")]
+        if idx:
+            v = p[idx]
+            a = a + (ca.mmax(v) - ca.mmin(v)) / 2
+    return a
+
+
+def top_speed(layout: ParameterLayout):
+    """The top's velocity amplitude: sum of |a| omega over its sinusoids (m/s, SX of p)."""
+    return sum((ca.fabs(amp * w) for amp, w in _sinusoids(layout)), ca.SX(0))
+
+
+def forcing_frequency(layout: ParameterLayout, length):
+    """The highest frequency of the top's sinusoids; without any, the pendulum's sqrt(g / L) (rad/s)."""
+    sines = _sinusoids(layout)
+    if sines:
+        return ca.fmax(ca.mmax(ca.vertcat(*[ca.fabs(w) for _, w in sines])), 1e-6)
+    return ca.sqrt(layout.sym("environment.gravity") / length)
+
+
+def _section_of(model, label: str) -> int | None:
+    """Section of a Wang coordinate label (``u``, ``u_2``, ``phi_1``); None for a shared angle."""
+    _, _, sfx = label.partition("_")
+    if model.n_sections == 1:
+        return 0
+    return int(sfx) - 1 if sfx.isdigit() else None
+
+
+def _wang_scales(model) -> ca.SX:
+    lay = model.layout
+    n = model.n_sections
+    length = sum(lay.symbol[lay.section_index(i, "cable.length")] for i in range(n))
+    angle = ca.fmin(ca.fmax(top_amplitude(lay) / length, ANGLE_SCALE_MIN), ANGLE_SCALE_MAX)
+    omega = forcing_frequency(lay, length)
+    pos = [angle if lbl.startswith("phi") else static_stretch(lay, _section_of(model, lbl)) for lbl in model.q_labels]
+    pos = ca.vertcat(*pos)
+    return ca.vertcat(pos, pos * omega)
+
+
+def _segmented_scales(model) -> ca.SX:
+    lay = model.layout
+    pos, speed = [], top_speed(lay)
+    for i, n_el in enumerate(model.segments):
+        p = lay.symbol
+        delta = static_stretch(lay, i, n_el)
+        h = p[lay.section_index(i, "cable.length")] / n_el
+        omega_e = ca.sqrt(p[lay.section_index(i, "cable.ae")] / (p[lay.section_index(i, "cable.mass_per_length")] * h**2))
+        pos += [delta] * (2 * n_el)                         # x[j], y[j] of the section's nodes
+        speed = ca.fmax(speed, delta * omega_e)
+    return ca.vertcat(*pos, ca.repmat(speed, len(pos), 1))
+
+
+def state_scales(model) -> ca.Function:
+    """``state_scales(p) -> S``: the natural scale of every state of ``model`` (SI units of the
+    state), an SX function of the parameter vector, built once per model.
+
+    Parameters
+    ----------
+    model : CableModel
+        A model of kind ``wang``, ``quasi-static`` or ``segmented``.
+
+    Returns
+    -------
+    casadi.Function
+        (len(p),) -> (2 nq,) positive scales, positions then rates (see the module docstring).
+    """
+    def build():
+        if model.kind == "segmented":
+            S = _segmented_scales(model)
+        else:                              # wang and quasi-static (angles only)
+            S = _wang_scales(model)
+        if S.numel() != 2 * model.nq:
+            raise ValueError(f"state scales of a {model.kind!r} model: {S.numel()} for {2 * model.nq} states")
+        return ca.Function("state_scales", [model.layout.symbol], [S], ["p"], ["S"])
+    return model.derive("state_scales", build)
+
+
+def state_scale_values(model, p) -> np.ndarray:
+    """Numeric :func:`state_scales` at ``p`` (model parameters, without the integrators' (t_0, h))."""
+    return np.array(state_scales(model)(np.asarray(p, dtype=float)[: len(model.layout)])).ravel()
