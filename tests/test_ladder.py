@@ -161,12 +161,13 @@ def test_rung_cache_builds_each_model_once_and_the_timing_adds_up():
 
 
 def test_auto_integrator_settings_follow_the_tolerance_unless_someone_chose():
-    """BDF of order <= 2 at rtol = body tolerance / 100 (at most 1e-4), atol = rtol / 1000; the scene's
+    """BDF of order <= 2 at rtol = body tolerance / 100 (at most 1e-4), atol = rtol / 10 of each state's
+    natural scale (scaled states, cablesys.model.scales); the scene's
     own [numerics] integrator or tolerances, or the caller's, win; compiled C up to 20 elements."""
     from cablesys.ladder.auto import COMPILE_MAX_ELEMENTS, integrator_settings
     scene = _stiff_pendulum()
     s = integrator_settings(scene, (0.01, 0.02))
-    assert (s.method, s.rtol, s.atol, s.compiled) == ("cvodes-bdf2", 1e-4, pytest.approx(1e-7), True)
+    assert (s.method, s.rtol, s.atol, s.compiled, s.scaled) == ("cvodes-bdf2", 1e-4, pytest.approx(1e-5), True, True)
     assert integrator_settings(scene, (1e-3, 2e-3)).rtol == pytest.approx(1e-5)
     assert integrator_settings(scene, (0.05, 0.1)).rtol == 1e-4
     own = scene.with_numerics(integrator="cvodes", rtol=1e-6)
