@@ -41,7 +41,8 @@ def test_bdf_capped_at_order_two_steps_over_the_undamped_stretch_mode():
     tm = base.top_motion
     scene = base.replace(top_motion=TopMotion(x=tm.x, y=tm.y, ramp_s=3 * 2 * math.pi / tm.x[0].frequency))
     ref = simulate(scene, method="cvodes", rtol=1e-10, atol=1e-13)
-    runs = {m: simulate(scene, method=m, rtol=1e-4, atol=1e-8) for m in ("cvodes", "cvodes-bdf2")}
+    # atol of each state's natural scale (scaled states): 1e-4 of the stretch is 7e-9 m
+    runs = {m: simulate(scene, method=m, rtol=1e-4, atol=1e-4) for m in ("cvodes", "cvodes-bdf2")}
     assert ref.success and all(r.success for r in runs.values())
     assert runs["cvodes-bdf2"].stats["nsteps"] * 5 < runs["cvodes"].stats["nsteps"]
     amp = np.max(np.abs(ref["x_b"]))
