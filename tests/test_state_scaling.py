@@ -123,3 +123,34 @@ def test_ladder_tolerance_resolves_the_dynamic_tension():
     old = _run(model, sc, IntegratorSettings(method=settings.method, rtol=settings.rtol, atol=settings.rtol * 1e-3,
                                              scaled=False))
     assert err["tension"] <= 2 * np.max(np.abs(old["tension"] - ref["tension"])) / np.ptp(ref["tension"])
+
+
+def test_every_model_kind_runs_scaled_to_the_tight_answer():
+    """Two Wang sections (each u by its own static stretch), the quasi-static rung (angles only) and a
+    top motion with a sampled series: scaled runs at rtol = atol = 1e-6 within 1e-3 of each body's
+    range of a tight unscaled run."""
+    import dataclasses
+
+    from cablesys.model.quasistatic import build_quasistatic
+    from cablesys.scene import Section, TimeSeries
+
+    base = _ramped_dale(4.0)
+    s = base.sections[0]
+    cable = dataclasses.replace(s.cable, length=s.cable.length / 2, tension_ref=0.0)
+    joint = dataclasses.replace(s.body, weight=0.01, mass_x=0.002, mass_y=0.002)
+    two = base.replace(sections=(Section(cable=cable, body=joint), Section(cable=cable, body=s.body)))
+    times = tuple(np.linspace(0.0, 5.0, 51))
+    series = base.replace(top_motion=dataclasses.replace(
+        base.top_motion, series=TimeSeries(times=times, x=tuple(0.01 * np.sin(times)), y=(0.0,) * 51)))
+    cases = [(build_model(two), two, "y_b_2"), (build_quasistatic(base), base, "y_b"),
+             (build_model(series), series, "x_b")]
+    for model, sc, key in cases:
+        S = state_scale_values(model, model.parameters(sc))
+        assert S.shape == (2 * model.nq,) and np.all(S > 0)
+        if model.n_sections == 2:
+            # T_i = W_b,i + w L / 2 (no tension_ref): u_i by T_i L / AE, Wang (1971) eq. 46
+            tension = [sc.sections[i].body.weight + cable.weight_per_length * cable.length / 2 for i in (0, 1)]
+            np.testing.assert_allclose(S[[1, 3]], [t * cable.length / cable.ae for t in tension], rtol=1e-12)
+        ref = _run(model, sc, IntegratorSettings(rtol=1e-11, atol=1e-13, scaled=False, max_num_steps=10**6))
+        r = _run(model, sc, IntegratorSettings(rtol=1e-6, atol=1e-6))
+        assert np.max(np.abs(r[key] - ref[key])) < 1e-3 * np.ptp(ref[key]), (model.kind, key)
