@@ -300,7 +300,7 @@ class Numerics:
     drag_segments: int = spec("none", "number N of cable segments for drag (eq. 30-45)", 10)
     integrator: str = spec("none", f"one of {INTEGRATORS}", "cvodes")
     rtol: float = spec("none", "relative tolerance (the report used 1e-3)", 1e-7)
-    atol: float = spec("none", "absolute tolerance (SI state units)", 1e-9)
+    atol: float = spec("none", "absolute tolerance, a fraction of each state's natural scale (cablesys.model.scales)", 1e-9)
     duration: float = spec("time", "simulated time", 60.0)
     output_step: float = spec("time", "spacing of output times", 0.05)
     steps_per_output: int = spec("none", "fixed-step methods (rk, collocation): steps per output interval", 10)
