@@ -7,17 +7,14 @@ through the exogenous vector e = (t, x_s, y_s, x_s', y_s', x_s'', y_s'').
 
 from __future__ import annotations
 
-import time
-
 import casadi as ca
 
-from ..compiled import DerivedStore, compilation_enabled
 from ..scene import Scene
 from .cable_model import CableModel
 from .lagrange import lagrange_equations, virtual_work
 from .params import ParameterLayout, environment_symbols, section_prefix
 from .section import SectionParameters, section_terms
-from .store import load_model, save_model, structure_key
+from .store import stored_model
 from .top_motion import symbolic_type, top_motion_function
 
 EXO_LABELS = ("t", "x_s", "y_s", "x_s_rate", "y_s_rate", "x_s_acc", "y_s_acc")
@@ -95,29 +92,15 @@ def build_model(scene: Scene) -> CableModel:
         SX functions ``dynamics``, ``ode``, ``top``, ``outputs``, ``energy``, ``cable_force`` and the
         labelled parameter layout (``model.parameters(scene)`` gives the numbers, SI units).
     """
-    t0 = time.perf_counter()
-    if not compilation_enabled():
-        model = _build(scene)
-        model.build_info.update(stored=False, build_s=time.perf_counter() - t0)
-        return model
-    layout = ParameterLayout.from_scene(scene)
-    key = structure_key(scene, "build_model", layout)
-    model = load_model(scene, key, layout)
-    stored = model is not None
-    if not stored:
-        model = _build(scene, layout)
-        save_model(model, key)
-    model.cache.attach(DerivedStore(key))
-    model.build_info.update(stored=stored, build_s=time.perf_counter() - t0, structure_key=key)
-    return model
+    return stored_model(scene, "build_model", lambda: _build(scene))
 
 
-def _build(scene: Scene, layout: ParameterLayout | None = None) -> CableModel:
-    """The symbolic build of :func:`build_model` (``layout``: the scene's, when already made)."""
+def _build(scene: Scene) -> CableModel:
+    """The symbolic build of :func:`build_model`."""
     if any(s.cable.segments > 1 for s in scene.sections):   # N straight elements per section
         from .segmented import build_segmented_model
         return build_segmented_model(scene)
-    layout = layout or ParameterLayout.from_scene(scene)
+    layout = ParameterLayout.from_scene(scene)
     p = layout.symbol
     n = len(scene.sections)
     q, qd, q_labels, pick, sfx = _coordinates(n, scene.angles)

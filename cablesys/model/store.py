@@ -27,9 +27,11 @@ import hashlib
 import importlib
 import logging
 import pickle
+import time
 
 import casadi as ca
 
+from ..compiled import DerivedStore, compilation_enabled
 from ..disk_cache import (
     CACHE_FORMAT,
     atomic_write,
@@ -46,7 +48,7 @@ log = logging.getLogger(__name__)
 _SKIP = ("layout",)          # rebuilt from the scene (its SX symbol is not part of the functions)
 
 
-def structure_key(scene, builder: str = "build_model", layout: ParameterLayout | None = None) -> str:
+def structure_key(scene, builder: str = "build_model", layout: ParameterLayout | None = None, options=()) -> str:
     """The hash naming ``scene``'s model structure (see the module docstring).
 
     Parameters
@@ -57,6 +59,8 @@ def structure_key(scene, builder: str = "build_model", layout: ParameterLayout |
         Name of the function that builds the model.
     layout : ParameterLayout, optional
         ``scene``'s layout when already made.
+    options : tuple, optional
+        The builder's structural options (e.g. unrolled Newton iterations), by their ``repr``.
 
     Returns
     -------
@@ -64,7 +68,50 @@ def structure_key(scene, builder: str = "build_model", layout: ParameterLayout |
         32 hexadecimal digits.
     """
     labels = (layout or ParameterLayout.from_scene(scene)).labels
-    return digest(CACHE_FORMAT, ca.__version__, code_fingerprint(), builder, repr(structure_of(scene)), *labels)
+    return digest(CACHE_FORMAT, ca.__version__, code_fingerprint(), builder, repr(tuple(options)),
+                  repr(structure_of(scene)), *labels)
+
+
+def stored_model(scene, builder: str, build, options=()):
+    """The model of ``scene`` built by ``build()``, or loaded when this structure was stored before.
+
+    With compilation disabled (``CABLESYS_COMPILE=0``) it is simply ``build()``. Otherwise the
+    stored model (:func:`load_model`) or a fresh build, stored (:func:`save_model`); either way
+    ``model.cache`` is attached to the disk index of its compiled functions
+    (:class:`cablesys.compiled.DerivedStore`) and ``model.build_info`` records ``stored``,
+    ``build_s`` and ``structure_key``.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (its structure names the entry).
+    builder : str
+        Name of the building function (part of the key).
+    build : callable
+        No-argument function building the model symbolically.
+    options : tuple, optional
+        Structural options of the builder (part of the key).
+
+    Returns
+    -------
+    CableModel
+        The model.
+    """
+    t0 = time.perf_counter()
+    if not compilation_enabled():
+        model = build()
+        model.build_info.update(stored=False, build_s=time.perf_counter() - t0)
+        return model
+    layout = ParameterLayout.from_scene(scene)
+    key = structure_key(scene, builder, layout, options)
+    model = load_model(scene, key, layout)
+    stored = model is not None
+    if not stored:
+        model = build()
+        save_model(model, key)
+    model.cache.attach(DerivedStore(key))
+    model.build_info.update(stored=stored, build_s=time.perf_counter() - t0, structure_key=key)
+    return model
 
 
 def _path(key: str):
