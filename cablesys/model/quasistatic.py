@@ -31,6 +31,7 @@ import casadi as ca
 
 from ..scene import Scene
 from .build import CableModel, build_model
+from .store import stored_model
 
 MAX_NEWTON_ITERATIONS = 6
 
@@ -104,10 +105,16 @@ def build_quasistatic(scene: Scene, *, full: CableModel | None = None,
         the quasi-static one, du/dt along the motion without the top jerk); ``kind`` is
         ``"quasi-static"``.
     """
+    iterations = iterations or newton_iterations(scene)
+    # a structure built before is loaded from the disk cache (model/store.py), like build_model's
+    return stored_model(scene, "build_quasistatic", lambda: _build_quasistatic(scene, full, iterations), (iterations,))
+
+
+def _build_quasistatic(scene: Scene, full: CableModel | None, iterations: int) -> CableModel:
+    """The symbolic build of :func:`build_quasistatic`."""
     if full is None:          # always Wang's straight cable, whatever the scene's segments
         secs = tuple(dataclasses.replace(sec, cable=dataclasses.replace(sec.cable, segments=1)) for sec in scene.sections)
         full = build_model(dataclasses.replace(scene, sections=secs))
-    iterations = iterations or newton_iterations(scene)
     slow, fast = _split(full)
     ns = len(slow)
     n = full.nq
