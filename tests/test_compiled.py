@@ -303,3 +303,20 @@ def test_concurrent_first_starts_share_one_stored_model(cache):
     code_fingerprint.cache_clear()           # this process's fingerprint may predate an edit in a shared tree
     again = build_model(dale_scene().with_numerics(drag_segments=2))
     assert again.build_info["structure_key"] == key and again.build_info["stored"] is True
+
+
+def test_quasi_static_rung_is_stored_with_its_iterations(cache, monkeypatch):
+    """The quasi-static reduction is stored like build_model's models; its unrolled Newton
+    iterations (chosen from the scene's values) are part of the key."""
+    from cablesys.model.quasistatic import build_quasistatic
+    from cablesys.scene import dale_scene
+    scene = dale_scene().with_numerics(drag_segments=2)
+    first = build_quasistatic(scene)
+    again = build_quasistatic(scene)
+    assert not first.build_info["stored"] and again.build_info["stored"] and again.kind == "quasi-static"
+    other = build_quasistatic(scene, iterations=7)
+    assert other.build_info["structure_key"] != first.build_info["structure_key"]
+    monkeypatch.setenv("CABLESYS_COMPILE", "0")
+    fresh = build_quasistatic(scene)
+    x, p = np.array([0.1, 0.02]), again.parameters(scene)
+    assert np.array_equal(np.array(again.ode(x, 0.3, p)), np.array(fresh.ode(x, 0.3, p)))
