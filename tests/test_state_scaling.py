@@ -154,3 +154,29 @@ def test_every_model_kind_runs_scaled_to_the_tight_answer():
         ref = _run(model, sc, IntegratorSettings(rtol=1e-11, atol=1e-13, scaled=False, max_num_steps=10**6))
         r = _run(model, sc, IntegratorSettings(rtol=1e-6, atol=1e-6))
         assert np.max(np.abs(r[key] - ref[key])) < 1e-3 * np.ptp(ref[key]), (model.kind, key)
+
+
+@pytest.mark.slow
+def test_state_scaling_study_quick(tmp_path):
+    """studies/bench_state_scaling.py --quick: its rows mean what they say (the ladder's scaled
+    default resolves the Dale tension to 1e-3 of its range; with the library's default tolerances
+    the scaled stretch rate is two orders more accurate than one SI atol leaves it)."""
+    import json
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    proc = subprocess.run([sys.executable, str(root / "studies" / "bench_state_scaling.py"), "--out", str(tmp_path),
+                           "--quick"], check=False, cwd=root, env=dict(os.environ, MPLBACKEND="Agg"),
+                          capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    assert (tmp_path / "bench_state_scaling.png").stat().st_size > 10_000
+    res = json.loads((tmp_path / "bench_state_scaling.json").read_text())["results"][0]
+    rows = {r["variant"]: r for r in res["rows"]}
+    assert all(r["success"] for r in rows.values())
+    assert rows["bdf2 scaled atol=rtol/10 (ladder)"]["error_over_range"]["tension"] < 1e-3
+    u_scaled = rows["cvodes rtol 1e-7 scaled atol=1e-9"]["error_over_range"]["u_rate"]
+    u_si = rows["cvodes rtol 1e-7 unscaled atol=1e-9"]["error_over_range"]["u_rate"]
+    assert u_scaled < 1e-2 * u_si
