@@ -22,15 +22,19 @@ integrate the scaled states x~ = x / S(p) (``IntegratorSettings.scaled``, the de
 :mod:`cablesys.model.scales`: stretch by its static value, angle by the top's amplitude over the
 length, node positions by one element's static stretch, rates by these times the forcing
 frequency), and ``atol`` is per state atol x S_i: a fraction of each state's natural size, the
-same in any unit system. :class:`ScaledIntegrator` takes and gives physical states. Measured
-(BDF <= 2, rtol 1e-4, vs a tight run, errors as fractions of each series' range): 300 m heave
-N = 20, 30 s: 742 steps unscaled (atol 1e-7 m) vs 502 scaled (atol 1e-5), top tension 1.9 vs
-2.7 %; Dale N = 10, 60 s: 7784 vs 6776 steps, top tension 89 vs 24 %, bottom 7.1 vs 4.4 %;
-ramped Dale (Wang): 339 vs 576 steps, tension 7e-5 vs 9e-5; default cvodes rtol 1e-7, atol 1e-9
-on ramped Dale: 4.2k steps, tension 1.3e-3 and stretch rate 17 % unscaled vs 9.5k steps,
-1e-6 and 1.3e-4 scaled (the SI atol was 1.4 % of the static stretch).
+same in any unit system. :class:`ScaledIntegrator` takes and gives physical states. Measured in
+``studies/bench_state_scaling.py`` (BDF <= 2 at rtol 1e-4, atol 1e-7 m unscaled vs rtol / 10
+scaled; errors over each series' range against a tight run): 300 m heave N = 20, 742 vs 502 steps,
+tension 0.83 vs 0.86 %; segmented Dale N = 10, 2670 vs 2368 steps, tension 3.4 % both; ramped Dale
+(Wang), 652 vs 778 steps, tension 1.4e-4 vs 1.0e-4, stretch rate 1 vs 0.3 %. At the library's
+default tolerances the scaled run resolves the dynamic tension (ramped Dale, cvodes rtol 1e-7,
+atol 1e-9: 8.2k steps and tension 1.3e-3, stretch rate 20 % unscaled; 19k steps, 6e-7 and 1e-4
+scaled: the SI atol was 1.4 % of the static stretch). After an abrupt start (Dale as published)
+the undamped stretch mode rings throughout (amplitude ~11 % of the tension range); BDF2 damps it: 18 %
+tension error at 2.8k steps unscaled, 8 % at 33k scaled.
 What sets the cost is stability: the undamped stretch mode (254 rad/s on Dale) limits BDF orders
-3-5, which are not A-stable, to steps of about 0.6/omega_stretch whatever the tolerance (27k steps per 60 s at rtol 1e-6, 24k at 1e-3).
+3-5, which are not A-stable, to steps of about 0.6/omega_stretch whatever the tolerance (unscaled:
+27k steps per 60 s at rtol 1e-6, 24k at 1e-3).
 ``cvodes-bdf2`` (orders <= 2, A-stable) steps over it: 0.9-2k steps at rtol 1e-3-1e-4, but second
 order, so it is the cheapest only at engineering accuracy (body error >= 1e-5 m on Dale). A smooth
 start (``top_motion.ramp_s``, the default) removes the ringing that an abrupt start adds (BDF2:
