@@ -303,6 +303,7 @@ def _run_dale_table(args, out: Path) -> int:
                 if ratio == 1.0:     # the run whose series, summary and plot go to --out
                     r = _simulate_into(outdir, scene, tag, simulator=sim)
                     summary = write_run(scene, r, outdir, series_on_disk=True)
+                    summary["model"] = _dale_model(scene)
                     outdir.manifest.update(summary)
                 else:
                     r = simulate(scene, simulator=sim, progress=_Progress(tag))
@@ -315,5 +316,21 @@ def _run_dale_table(args, out: Path) -> int:
         finally:                     # the rows computed so far, also when interrupted
             outdir.write_json("dale_amplitudes.json", rows)
         outdir.finish("success" if ok else "failed", **summary)
+    if summary.get("model"):
+        from ..ladder.auto import describe
+        print(describe(summary["model"]))
     print(f"wrote {out}/ (time series, summary.json and plots of the omega = omega_n run; dale_amplitudes.json)")
     return 0 if ok else 1
+
+
+def _dale_model(scene) -> dict:
+    """summary.json's ``model`` of the Dale table: Wang's 2-DOF model on purpose (the table reproduces the
+    report's model against the experiment), with the ladder's estimate of its error for this scene and
+    what the ladder would run instead (issue 12: every result says which model ran, why, and its error)."""
+    from ..ladder.choice import choose, forced
+    wang, auto = forced(scene, "wang"), choose(scene)
+    d = wang.as_dict()
+    d["reason"] = (f"Wang's 2-DOF model, as Wang (1971) Table 2 compares it with the experiment; the model ladder "
+                   f"would run {auto.name}" + (f" N = {auto.segments}" if auto.name == "segmented" else "")
+                   + " for a scene file with model = auto")
+    return d

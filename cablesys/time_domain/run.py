@@ -377,6 +377,7 @@ def simulate(scene: Scene, *, model: CableModel | None = None, method: str | Non
     if times is None and simulator is None:
         check_scene_run_size(scene)
     t_build = _time.perf_counter()
+    built_here = simulator is None       # the compiled library is loaded inside build_s only then
     model = model or (simulator.model if simulator else build_model(scene))
     num = scene.numerics
     if simulator is None:
@@ -390,11 +391,14 @@ def simulate(scene: Scene, *, model: CableModel | None = None, method: str | Non
     try:
         record = simulator.run(p, x0, on_block=on_block, progress=progress)
     except RunInterrupted as err:
-        raise RunInterrupted(_named(err.result, scene, build_s)) from None
+        raise RunInterrupted(_named(err.result, scene, build_s, built_here)) from None
     if not record.success:
         log.warning(record.message)
-    return _named(record, scene, build_s)
+    return _named(record, scene, build_s, built_here)
 
 
-def _named(record: RunRecord, scene: Scene, build_s: float) -> RunRecord:
-    return dataclasses.replace(record, scene_name=scene.name, stats={**record.stats, "build_s": build_s - record.stats.get("load_s", 0.0)})
+def _named(record: RunRecord, scene: Scene, build_s: float, built_here: bool) -> RunRecord:
+    # build_s apart from load_s (issue 13): the library's load is inside build_s when the simulator was
+    # made here; a caller's simulator was built (and its library loaded) before this call
+    load = record.stats.get("load_s", 0.0) if built_here else 0.0
+    return dataclasses.replace(record, scene_name=scene.name, stats={**record.stats, "build_s": build_s - load})
