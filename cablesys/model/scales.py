@@ -117,6 +117,10 @@ def _segmented_scales(model) -> ca.SX:
     return ca.vertcat(*pos, ca.repmat(speed, len(pos), 1))
 
 
+# the scale provider of each model kind (``model.kind``): model -> SX (2 nq,) in p
+PROVIDERS = {"wang": _wang_scales, "quasi-static": _wang_scales, "segmented": _segmented_scales}
+
+
 def state_scales(model) -> ca.Function:
     """``state_scales(p) -> S``: the natural scale of every state of ``model`` (SI units of the
     state), an SX function of the parameter vector, built once per model.
@@ -124,7 +128,8 @@ def state_scales(model) -> ca.Function:
     Parameters
     ----------
     model : CableModel
-        A model of kind ``wang``, ``quasi-static`` or ``segmented``.
+        A model of a kind in :data:`PROVIDERS` (``wang``, ``quasi-static``, ``segmented``); any
+        other kind gets S = 1 (atol then stays absolute, in SI).
 
     Returns
     -------
@@ -132,10 +137,8 @@ def state_scales(model) -> ca.Function:
         (len(p),) -> (2 nq,) positive scales, positions then rates (see the module docstring).
     """
     def build():
-        if model.kind == "segmented":
-            S = _segmented_scales(model)
-        else:                              # wang and quasi-static (angles only)
-            S = _wang_scales(model)
+        provider = PROVIDERS.get(model.kind)
+        S = provider(model) if provider is not None else ca.SX.ones(2 * model.nq)
         if S.numel() != 2 * model.nq:
             raise ValueError(f"state scales of a {model.kind!r} model: {S.numel()} for {2 * model.nq} states")
         return ca.Function("state_scales", [model.layout.symbol], [S], ["p"], ["S"])
