@@ -27,7 +27,7 @@ PKG = Path(__file__).resolve().parents[1] / "cablesys"
 LAYERS = [
     ("foundation", ("cablesys.units", "cablesys.errors", "cablesys.results", "cablesys.reader", "cablesys.options", "cablesys.time_result",
                     "cablesys.statistics", "cablesys.outputs", "cablesys.compiled", "cablesys.messages",
-                    "cablesys.integration", "cablesys.profiles", "cablesys.atomic", "cablesys.tables",
+                    "cablesys.integration", "cablesys.profiles", "cablesys.lazy", "cablesys.atomic", "cablesys.tables",
                     "cablesys.disk_cache")),
     ("scene", ("cablesys.scene",)),
     ("model", ("cablesys.model",)),

@@ -7,9 +7,22 @@ Rungs, cheapest first (:mod:`.rungs`): ``frequency`` (periodic steady state), ``
 A :class:`RungCache` passed to many calls builds each rung's model and simulator once.
 """
 
-from .auto import run_rung, simulate_auto
-from .choice import Choice, choose, tolerances
-from .rungs import MODEL_CHOICES, RUNGS, RungCache, build_rung
+from ..lazy import lazy_exports
+
+# public name -> module that defines it, imported on first use (cablesys.lazy)
+_EXPORTS = {
+    "run_rung": ".auto",
+    "simulate_auto": ".auto",
+    "Choice": ".choice",
+    "choose": ".choice",
+    "tolerances": ".choice",
+    "MODEL_CHOICES": ".rungs",
+    "RUNGS": ".rungs",
+    "RungCache": ".rungs",
+    "build_rung": ".rungs",
+}
 
 __all__ = ["MODEL_CHOICES", "RUNGS", "Choice", "RungCache", "build_rung", "choose", "run_rung", "simulate_auto",
            "tolerances"]
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, __all__)

@@ -6,21 +6,33 @@ near resonance ``harmonic_response`` (regular input, describing function), ``per
 equivalent linearization with the ``jonswap`` / ``pierson_moskowitz`` spectra).
 """
 
-from .equivalent import HarmonicResponse, harmonic_response
-from .frequency_response import RAO, rao
-from .linearization import LinearModel, linearize
-from .modal import Modes, modes
-from .periodic import PeriodicSolution, periodic_steady_state
-from .spectra import (
-           jonswap,
-           pierson_moskowitz,
-           significant_amplitude,
-           slack_probability,
-)
-from .steady import SteadyState, steady_state
-from .stochastic import StochasticResponse, stochastic_response
+from ..lazy import lazy_exports
+
+# public name -> module that defines it, imported on first use (cablesys.lazy)
+_EXPORTS = {
+    "HarmonicResponse": ".equivalent",
+    "harmonic_response": ".equivalent",
+    "RAO": ".frequency_response",
+    "rao": ".frequency_response",
+    "LinearModel": ".linearization",
+    "linearize": ".linearization",
+    "Modes": ".modal",
+    "modes": ".modal",
+    "PeriodicSolution": ".periodic",
+    "periodic_steady_state": ".periodic",
+    "jonswap": ".spectra",
+    "pierson_moskowitz": ".spectra",
+    "significant_amplitude": ".spectra",
+    "slack_probability": ".spectra",
+    "SteadyState": ".steady",
+    "steady_state": ".steady",
+    "StochasticResponse": ".stochastic",
+    "stochastic_response": ".stochastic",
+}
 
 __all__ = ["RAO", "HarmonicResponse", "LinearModel", "Modes", "PeriodicSolution", "SteadyState",
            "StochasticResponse", "harmonic_response", "jonswap", "linearize", "modes", "periodic_steady_state",
            "pierson_moskowitz", "rao", "significant_amplitude", "slack_probability", "steady_state",
            "stochastic_response"]
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, __all__)

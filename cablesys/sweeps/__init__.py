@@ -6,7 +6,16 @@ and worker, finished cases written as they complete so an interrupted sweep resu
 at the top level).
 """
 
-from .api import sweep
-from .grid import Grid, parse_values, parse_vary
+from ..lazy import lazy_exports
+
+# public name -> module that defines it, imported on first use (cablesys.lazy)
+_EXPORTS = {
+    "sweep": ".api",
+    "Grid": ".grid",
+    "parse_values": ".grid",
+    "parse_vary": ".grid",
+}
 
 __all__ = ["Grid", "parse_values", "parse_vary", "sweep"]
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, __all__)

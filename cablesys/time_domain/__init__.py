@@ -4,10 +4,22 @@
 :class:`IntegratorMethod` (the protocol of :mod:`cablesys.integration`).
 """
 
-from ..integration import METHODS, IntegratorMethod
-from .integrators import IntegratorSettings, make_integrator
-from .record import RunInterrupted, RunRecord
-from .run import Simulator, initial_state, simulate
+from ..lazy import lazy_exports
+
+# public name -> module that defines it, imported on first use (cablesys.lazy)
+_EXPORTS = {
+    "METHODS": "..integration",
+    "IntegratorMethod": "..integration",
+    "IntegratorSettings": ".integrators",
+    "make_integrator": ".integrators",
+    "RunInterrupted": ".record",
+    "RunRecord": ".record",
+    "Simulator": ".run",
+    "initial_state": ".run",
+    "simulate": ".run",
+}
 
 __all__ = ["METHODS", "IntegratorMethod", "IntegratorSettings", "RunInterrupted", "RunRecord", "Simulator",
            "initial_state", "make_integrator", "simulate"]
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, __all__)

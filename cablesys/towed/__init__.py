@@ -11,15 +11,37 @@ runs         sea-trial runs: CSV reading with row/column errors, model per run, 
 cli          the `cablesys towed` sub-command
 """
 
-from .eigen import Eigenfrequencies, damping_time, eigenfrequencies, exact_eigenfrequency
-from .equation import REPORT_SEA_TRIAL, REPORT_TYPICAL, Coefficients, TowedCable
-from .interaction import amplification, effective_amplification
-from .mol import forced_response, slowest_mode
-from .runs import fit_normal_drag, model_runs, read_runs
-from .transfer import TransferGrid, c_star, phase_lag, phase_velocity, transfer_function
-from .transfer import transfer_grid, water_pulley_c_star
+from ..lazy import lazy_exports
+
+# public name -> module that defines it, imported on first use (cablesys.lazy)
+_EXPORTS = {
+    "Eigenfrequencies": ".eigen",
+    "damping_time": ".eigen",
+    "eigenfrequencies": ".eigen",
+    "exact_eigenfrequency": ".eigen",
+    "REPORT_SEA_TRIAL": ".equation",
+    "REPORT_TYPICAL": ".equation",
+    "Coefficients": ".equation",
+    "TowedCable": ".equation",
+    "amplification": ".interaction",
+    "effective_amplification": ".interaction",
+    "forced_response": ".mol",
+    "slowest_mode": ".mol",
+    "fit_normal_drag": ".runs",
+    "model_runs": ".runs",
+    "read_runs": ".runs",
+    "TransferGrid": ".transfer",
+    "c_star": ".transfer",
+    "phase_lag": ".transfer",
+    "phase_velocity": ".transfer",
+    "transfer_function": ".transfer",
+    "transfer_grid": ".transfer",
+    "water_pulley_c_star": ".transfer",
+}
 
 __all__ = ["REPORT_SEA_TRIAL", "REPORT_TYPICAL", "Coefficients", "Eigenfrequencies", "TowedCable", "TransferGrid",
            "amplification", "c_star", "damping_time", "effective_amplification", "eigenfrequencies",
            "exact_eigenfrequency", "fit_normal_drag", "forced_response", "model_runs", "phase_lag", "phase_velocity",
            "read_runs", "slowest_mode", "transfer_function", "transfer_grid", "water_pulley_c_star"]
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, __all__)

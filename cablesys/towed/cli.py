@@ -14,7 +14,6 @@ import sys
 
 from ..options import option_number
 from .equation import REPORT_SEA_TRIAL
-from .runs import model_runs, read_runs
 
 __all__ = ["register", "run"]
 
@@ -64,6 +63,7 @@ def _number(text):
 
 def run(args) -> int:
     """Evaluate every run; errors in the CSV or options raise ParameterError."""
+    from .runs import model_runs, read_runs     # SciPy's optimizer: imported when the command runs
     # physically meaningful ranges (cable drag coefficients are O(1e-3..1)); outside them the
     # complex-order solution is meaningless or cannot be evaluated (c_n = 1e-300 gave c* off by 1e290)
     for flag, name, lo, hi, lo_open in OPTION_RANGES:
