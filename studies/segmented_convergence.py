@@ -24,6 +24,23 @@ ramp and N at its largest stable step, probed over the whole run (stability and 
 settled statistics with the half step), with the same statistics and the same slack definition
 (element strain <= 0, i.e. zero elastic tension).
 
+Findings on the slack scene (2026-11-30; numbers in the JSON):
+- cablesys converges at first order in N (observed p = 0.98-1.02 for body amplitude and top-tension
+  maximum from N = 10, 20, 40, 80); the RK4 half-step changes them by < 2e-5, and CVODES (BDF <= 2)
+  at rtol 1e-4, 1e-6, 1e-8 agrees to 1e-4 in amplitude: time integration is not the issue.
+- The slack lower elements bunch: no compression, no damping while slack (Wang eq. 54), so their
+  nodes close up (element strain -0.15, -0.29, -0.58, -1.0 at N = 10, 20, 40, 80: touching at 80).
+  The planar response is unstable to a lateral perturbation (the bunched chain buckles: 1e-6 m at a
+  middle node grows to 0.8 m); CVODES's round-off does that by itself, RK4 keeps x = 0 exactly. The
+  buckled response differs by 0.4 % (amplitude) and 0.7 % (top maximum, with a 1-3 % spread over
+  cycles) at N = 20: small against the discretisation error, and reported, not hidden.
+- MoorDyn differs by its slack law, not by its numerics: its segment force is EA strain while
+  stretched plus BA strain rate always (damping acts on slack segments and can push, -1.1 kN at the
+  body end). With that law put into the cablesys element (a scratch experiment, not an option of the
+  model), cablesys gives MoorDyn's body amplitude to 1e-4 at N = 10 and 20 and its top tension to
+  0.7 % (the rest is the end-force read-out). Drag and added mass on the unstretched length of a
+  bunched element (MoorDyn's choice) change nothing here (1e-5).
+
 Usage: python studies/segmented_convergence.py --out DIR [--quick] [--slack-n 10 20 40 80]
 """
 
