@@ -169,9 +169,9 @@ def run_slack(scene, n: int, period: float, t0: float, *, refine: int = 1) -> di
     x0 = initial_state(sc, model, model.parameters(sc))
     spo = refine * _steps_per_output(model, sc, x0, margin=2.0)
     compiled = n <= COMPILE_MAX_SLACK
-    sim = Simulator(model, sc.output_times, IntegratorSettings(method="rk", steps_per_output=spo, compiled=compiled))
-    p = model.parameters(sc)
-    sim.run(p, x0)                                   # builds (and compiles) the RK4 loop
+    settings = IntegratorSettings(method="rk", steps_per_output=spo, compiled=compiled)
+    Simulator(model, sc.output_times[:3], settings).run(model.parameters(sc), x0)   # builds (compiles) the RK4 step loop
+    sim = Simulator(model, sc.output_times, settings)
     t_run = time.perf_counter()
     r = simulate(sc, model=model, simulator=sim, x0=x0)
     row = {"n": n, "success": bool(r.success), "dt_s": sc.numerics.output_step / spo, "compiled": compiled,
