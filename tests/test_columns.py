@@ -44,3 +44,16 @@ def test_bad_inputs_are_named():
     M = ca.SX.sym("M", 2, 2)
     with pytest.raises(ParameterError):
         Columns(ca.Function("g", [M], [M[0]]))                 # a matrix input
+
+
+def test_concurrent_calls_from_threads_do_not_mix():
+    """One Columns (one set of buffers) shared by threads, as a cached Simulator in a threaded worker."""
+    from concurrent.futures import ThreadPoolExecutor
+    f = _function()
+    cols = Columns(f, block=3)
+    rng = np.random.default_rng(7)
+    inputs = [(rng.normal(size=(3, 50)), rng.normal(size=2)) for _ in range(8)]
+    with ThreadPoolExecutor(4) as pool:
+        got = list(pool.map(lambda a: cols(*a)[0], inputs))
+    for (X, p), y in zip(inputs, got):
+        np.testing.assert_array_equal(y, np.array(f.map(50)(X, np.tile(p[:, None], (1, 50)))[0]))

@@ -9,6 +9,8 @@ evaluates it through CasADi's ``FunctionBuffer`` on numpy memory: no conversion,
 
 from __future__ import annotations
 
+import threading
+
 import casadi as ca
 import numpy as np
 
@@ -42,6 +44,7 @@ class Columns:
                 raise ParameterError(f"{f.name()}.output[{i}]", f.sparsity_out(i).dim(), "must be a column vector")
         self._rows = [np.asarray(f.sparsity_out(i).row(), dtype=int) for i in range(f.n_out())]
         self.f, self.block = f, int(block)
+        self._lock = threading.Lock()           # one set of buffers: one evaluation at a time
         self._mapped = f.map(self.block)
         self._buf, self._eval = self._mapped.buffer()
         self._in = [np.zeros((f.nnz_in(i), self.block), order="F") for i in range(f.n_in())]
@@ -78,6 +81,11 @@ class Columns:
             if a.shape[1] not in (1, n):
                 raise ParameterError(f"args[{i}]", a.shape, f"must have 1 or {n} columns")
         outs = [np.zeros((self.f.size1_out(i), n)) for i in range(self.f.n_out())]
+        with self._lock:
+            self._blocks(args, outs, n)
+        return outs
+
+    def _blocks(self, args, outs, n) -> None:
         for j0 in range(0, n, self.block):
             m = min(self.block, n - j0)
             for a, buf in zip(args, self._in):
@@ -91,4 +99,3 @@ class Columns:
                 raise RuntimeError(f"{self.f.name()} failed to evaluate (status {self._buf.ret()})")
             for o, rows, res in zip(outs, self._rows, self._out):
                 o[rows, j0:j0 + m] = res[:, :m]
-        return outs
