@@ -45,7 +45,9 @@ def structure_of(scene: Scene) -> tuple:
     env, top = scene.environment, scene.top_motion
     return (len(scene.sections), scene.angles, tuple(s.body.is_sphere for s in scene.sections),
             scene.numerics.drag_segments, len(env.current_depths), len(env.waves),
-            len(top.x), len(top.y), None if top.series is None else top.series.times,
+            len(top.x), len(top.y),
+            # the series' samples are constants of the top-motion function (top_motion.py, issue 13)
+            None if top.series is None else (top.series.times, top.series.x, top.series.y),
             tuple(s.cable.segments for s in scene.sections))
 
 
@@ -143,7 +145,7 @@ class ParameterLayout:
         if structure_of(scene) != self.structure:
             raise ParameterError("scene", scene.name,
                                  "has a different structure (sections, drag shapes, segments, current points, "
-                                 "waves, sinusoids or series grid) than the model; build a model for it")
+                                 "waves, sinusoids or series samples) than the model; build a model for it")
         return np.array([v for _, v in parameter_items(scene)], dtype=float)
 
 
