@@ -5,19 +5,29 @@ plus an optional sampled series (the report's "non-periodic motions") interpolat
 not-a-knot cubic spline through the samples (the spline of ``scipy.interpolate.
 make_interp_spline``, held at its end values outside the sampled span).
 
-The spline is built from SX operations only, so every model is SX and compilable:
+The spline is evaluated at a cost independent of the number of samples (issue 13), and the
+model stays SX and compilable:
 
 - the second derivatives M_i at the samples solve the not-a-knot moment equations
   (de Boor, *A Practical Guide to Splines*, ch. IV), a tridiagonal system once the two end
-  conditions are eliminated; it depends on the sample *times* only, so it is factored
-  numerically once and the forward/back substitution (Thomas algorithm) is applied to the
-  symbolic samples (the samples stay entries of ``p``);
-- the piece containing t is selected by a telescoping sum of steps,
-  v(t) = v_0 + sum_i [t >= t_i] (v_i - v_{i-1});
-- on the piece, s = A y_i + B y_{i+1} + ((A^3 - A) M_i + (B^3 - B) M_{i+1}) h_i^2 / 6 with
-  B = (t - t_i) / h_i, A = 1 - B (the moment form of the cubic spline).
+  conditions are eliminated (Thomas algorithm, :func:`spline_moments`);
+- on the piece [t_i, t_{i+1}] the moment form s = A y_i + B y_{i+1} + ((A^3 - A) M_i +
+  (B^3 - B) M_{i+1}) h_i^2 / 6, B = (t - t_i) / h_i, A = 1 - B, is written as the cubic
+  s = a_i + b_i u + c_i u^2 + d_i u^3 in u = t - t_i (:func:`piece_coefficients`);
+- the piece is found by binary search (CasADi's ``low``) and its coefficients read from a
+  constant table, in a small MX function called from the SX expression as one call node
+  (:func:`series_lookup`); the cubic in u is SX, so its t-derivatives (velocity,
+  acceleration, the event locator's jerk) are plain SX: the table lookup has a structurally
+  zero derivative and is called once per evaluation.
 
-The cost is about 25 operations per sample per evaluation.
+The samples are therefore *constants of the model*, not entries of ``p`` (a symbolic sample
+vector makes every evaluation O(n): the output depends on all n entries, so a straight-line
+SX program needs at least n - 1 operations; the previous telescoping sum cost ~26 operations
+per sample and axis, 5.95x the sinusoid run at 242 samples). A different series is a
+different model structure (:func:`cablesys.model.params.structure_of` includes the values);
+the ``top_motion.series.*`` entries stay in ``p`` (their scale is used by
+:mod:`cablesys.model.scales`) but the top-motion function does not read them.
+:func:`spline_expression` keeps the O(n) form with symbolic samples, as the reference.
 
 Smooth start: with ``top_motion.ramp_s`` > 0 the whole top motion (sinusoids and series) is
 multiplied by the cosine ramp :func:`ramp`; unset, it lasts 3 of the longest forcing periods
@@ -127,8 +137,10 @@ def spline_moments(times, y):
 def spline_expression(times, y, t):
     """SX expression of the not-a-knot cubic spline through (times, y) at ``t``, held outside.
 
-    ``y`` may be symbolic (entries of ``p``); the piece is selected without branching so the
-    expression is plain SX (see the module docstring for the formulas).
+    ``y`` may be symbolic; the piece is selected without branching by a telescoping sum of
+    steps, v(t) = v_0 + sum_i [t >= t_i] (v_i - v_{i-1}), so the cost is O(n) per
+    evaluation (~26 operations per sample). The reference form of :func:`series_expressions`
+    (which the model uses), kept for symbolic samples.
     """
     tk = np.asarray(times, float)
     n = tk.size
@@ -151,6 +163,96 @@ def spline_expression(times, y, t):
     # held at the end values outside the sampled span; at the end points themselves the
     # one-sided derivatives of the spline are kept (a clamp fmin/fmax would zero them at t_0)
     return ca.if_else(t < tk[0], y[0], ca.if_else(t > tk[-1], y[-1], inside))
+
+
+def piece_coefficients(times, y) -> np.ndarray:
+    """Coefficients of the not-a-knot spline through (times, y) on each piece, numerically.
+
+    Parameters
+    ----------
+    times : sequence of float
+        Sample times, strictly increasing, at least 4 [s].
+    y : sequence of float
+        Sample values.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (n - 1, 4): (a_i, b_i, c_i, d_i) with s(t) = a_i + b_i u + c_i u^2 + d_i u^3,
+        u = t - t_i on [t_i, t_{i+1}]: the moment form (module docstring) expanded in u,
+        a = y_i, b = (y_{i+1} - y_i) / h_i - h_i (2 M_i + M_{i+1}) / 6, c = M_i / 2,
+        d = (M_{i+1} - M_i) / (6 h_i).
+    """
+    tk = np.asarray(times, float)
+    v = np.asarray(y, float)
+    h = np.diff(tk)
+    M = np.asarray(spline_moments(tk, v), float)
+    b = np.diff(v) / h - h * (2.0 * M[:-1] + M[1:]) / 6.0
+    return np.column_stack([v[:-1], b, M[:-1] / 2.0, np.diff(M) / (6.0 * h)])
+
+
+def series_lookup(times, columns) -> ca.Function:
+    """``lookup(t) -> (t - t_i, coefficients of piece i)`` by binary search in a constant table.
+
+    MX function (CasADi's ``low`` finds i with t_i <= t < t_{i+1}, clamped to the first and
+    last piece; the coefficients are read with a symbolic index); meant to be called from SX
+    as one call node (``never_inline``). Its output does not depend on t structurally, so
+    differentiating the caller with respect to t adds no call.
+
+    Parameters
+    ----------
+    times : sequence of float
+        Sample times (n) [s].
+    columns : sequence of numpy.ndarray
+        Per-piece tables, each of length n - 1 (e.g. the columns of :func:`piece_coefficients`).
+
+    Returns
+    -------
+    casadi.Function
+        ``t -> [t - t_i, columns[0][i], columns[1][i], ...]`` (a column vector).
+    """
+    t = ca.MX.sym("t")
+    tk = np.asarray(times, float)
+    i = ca.low(ca.DM(tk), t)
+    # u = t - t_i is computed here, not in the caller: CasADi 3.8.2's SX call node, when
+    # differentiated, reads an output whose forward derivative has no structural nonzero as
+    # NaN (not 0); with u among the outputs the derivative has one (du/dt = 1)
+    rows = [t - ca.MX(ca.DM(tk[:-1]))[i]] + [ca.MX(ca.DM(np.asarray(c, float)))[i] for c in columns]
+    return ca.Function("top_series_lookup", [t], [ca.vertcat(*rows)], ["t"], ["piece"])
+
+
+def series_expressions(times, values, t) -> list:
+    """SX expressions of the not-a-knot cubic splines through (times, values[j]) at ``t``.
+
+    Same spline as :func:`spline_expression` (equal to rounding), held at the end values
+    outside the sampled span, at a cost independent of the number of samples: one table
+    lookup (:func:`series_lookup`) shared by all series, then a cubic in u = t - t_i.
+
+    Parameters
+    ----------
+    times : sequence of float
+        Sample times, strictly increasing, at least 4 [s].
+    values : sequence of sequence of float
+        One sample sequence per series (numbers: they become constants of the expression).
+    t : casadi.SX
+        Time symbol.
+
+    Returns
+    -------
+    list of casadi.SX
+        One expression per series.
+    """
+    tk = np.asarray(times, float)
+    coeffs = [piece_coefficients(tk, v) for v in values]
+    lookup = series_lookup(tk, [c[:, j] for c in coeffs for j in range(4)])
+    piece = lookup.call([t], False, True)[0]                 # never inlined: one call node
+    u = piece[0]                                            # t - t_i
+    out = []
+    for j, v in enumerate(values):
+        a, b, c, d = (piece[1 + 4 * j + m] for m in range(4))
+        inside = a + u * (b + u * (c + u * d))
+        out.append(ca.if_else(t < tk[0], float(v[0]), ca.if_else(t > tk[-1], float(v[-1]), inside)))
+    return out
 
 
 def ramp(t, ramp_s):
@@ -180,9 +282,9 @@ def top_motion_function(scene, layout) -> ca.Function:
         pos.append(s)
     series = scene.top_motion.series
     if series is not None:
-        for j, axis in enumerate(("x", "y")):
-            samples = [sym(f"top_motion.series.{axis}[{k}]") for k in range(len(series.times))]
-            pos[j] = pos[j] + spline_expression(series.times, samples, t)
+        # the samples are constants of the model (module docstring): O(1) per evaluation
+        spl = series_expressions(series.times, (series.x, series.y), t)
+        pos = [pos[j] + spl[j] for j in range(2)]
     if "top_motion.ramp_s" in layout.labels:
         pos = [ramp(t, sym("top_motion.ramp_s")) * v for v in pos]
     pos = ca.vertcat(*pos)
