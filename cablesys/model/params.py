@@ -121,6 +121,12 @@ class ParameterLayout:
     def sym(self, label: str) -> ca.SX:
         return self.symbol[self.index(label)]
 
+    @property
+    def series_samples(self) -> tuple | None:
+        """The sampled top-motion series as (times, x, y) tuples of numbers, None without one:
+        part of the structure (the top-motion function holds them as constants, issue 13)."""
+        return self.structure[8]
+
     # -- the one owner of label arithmetic: sections, waves, tension floors --------------------
     @property
     def n_sections(self) -> int:
