@@ -87,9 +87,8 @@ def parameter_items(scene: Scene) -> list[tuple[str, float]]:
     for axis in ("x", "y"):
         for k, s in enumerate(getattr(top, axis)):
             items += [(f"top_motion.{axis}[{k}].{a}", float(getattr(s, a))) for a in _SINE]
-    if top.series is not None:
-        for axis in ("x", "y"):
-            items += [(f"top_motion.series.{axis}[{k}]", v) for k, v in enumerate(getattr(top.series, axis))]
+    # a sampled series is not in p: its samples are constants of the model (structure_of,
+    # model/top_motion.py; issue 13): 2n dead entries cost a copy in every integrator step
     items.append(("top_motion.ramp_s", top.effective_ramp_s))  # smooth start (model/top_motion.py; unset: 3 periods)
     return items
 
