@@ -23,10 +23,10 @@ model stays SX and compilable:
 The samples are therefore *constants of the model*, not entries of ``p`` (a symbolic sample
 vector makes every evaluation O(n): the output depends on all n entries, so a straight-line
 SX program needs at least n - 1 operations; the previous telescoping sum cost ~26 operations
-per sample and axis, 5.95x the sinusoid run at 242 samples). A different series is a
-different model structure (:func:`cablesys.model.params.structure_of` includes the values);
-the ``top_motion.series.*`` entries stay in ``p`` (their scale is used by
-:mod:`cablesys.model.scales`) but the top-motion function does not read them.
+per sample and axis, 5.95x the sinusoid run at 242 samples; and CasADi's integrators copy
+``p`` into their DAE wrapper at every right-hand side, 13 % of a run with 2 x 2002 entries).
+A different series is a different model structure (:func:`cablesys.model.params.structure_of`
+includes the values; ``ParameterLayout.series_samples`` gives them to the state scales).
 :func:`spline_expression` keeps the O(n) form with symbolic samples, as the reference.
 
 Smooth start: with ``top_motion.ramp_s`` > 0 the whole top motion (sinusoids and series) is
@@ -213,11 +213,16 @@ def series_lookup(times, columns) -> ca.Function:
     """
     t = ca.MX.sym("t")
     tk = np.asarray(times, float)
-    i = ca.low(ca.DM(tk), t)
+    grid = ca.MX(ca.DM(tk))
+    i = ca.low(grid, t)
+    # one row-major table: a piece's entries are adjacent in memory (one or two cache lines)
+    table = np.column_stack([np.asarray(c, float) for c in columns])
+    m = table.shape[1]
+    flat = ca.MX(ca.DM(table.ravel()))
     # u = t - t_i is computed here, not in the caller: CasADi 3.8.2's SX call node, when
     # differentiated, reads an output whose forward derivative has no structural nonzero as
     # NaN (not 0); with u among the outputs the derivative has one (du/dt = 1)
-    rows = [t - ca.MX(ca.DM(tk[:-1]))[i]] + [ca.MX(ca.DM(np.asarray(c, float)))[i] for c in columns]
+    rows = [t - grid[i]] + [flat[m * i + j] for j in range(m)]
     return ca.Function("top_series_lookup", [t], [ca.vertcat(*rows)], ["t"], ["piece"])
 
 
