@@ -25,10 +25,18 @@ segmented cable with N = 20 elements on the same scene.
 Also the cost of a sampled top motion (issue 13: "Sampled series on the SX path ... compilable,
 within 2x of the sinusoid cost"): the Dale scene's top motion (two sinusoids, omega = 1.14 rad/s)
 given instead as a series sampled every 0.25 s (22 samples per period), same abrupt start,
-same model; the ratio of best-of-3 compiled run times, with both runs' step counts and the
-largest difference of the body motion (how well the spline reproduces the sinusoid). The spline
-selects its piece by a telescoping sum over the samples, so its cost grows with the record:
-measured for a 10 s (42 samples) and, without ``--quick``, a 60 s record (242 samples).
+same model; the ratio of best-of-3 compiled run times, with both runs' step counts, the ODE's
+instruction count and the largest difference of the body motion (how well the spline reproduces
+the sinusoid). The spline finds its piece by binary search in a constant table
+(:mod:`cablesys.model.top_motion`), so its cost should not grow with the record: measured for a
+10 s run (10 s record, 42 samples) and, without ``--quick``, a 60 s run with a 60 s record (242
+samples) and with a 500 s record (2002 samples; the run uses its first 60 s). Before that
+change the piece was selected by a telescoping sum over the samples (~26 operations per sample
+and axis) and the samples were entries of ``p``: 1.14x at 42 samples, 5.95x at 242 (the ODE's top motion
+~52 instructions per sample: ~100k at 2002, not measured); after it, on a loaded 2-core machine:
+0.92x, 1.39x and 1.42x. ``per_step_ratio`` divides out the step counts (the series run takes
+~30 % more steps over 60 s; not investigated: the spline's third derivative jumps at every
+sample, a likely cause).
 
 The machine may be shared: the load average at the start and end is recorded, and
 ``model_build_vs_load`` compares, in the same run, the cold process's symbolic build with the
@@ -66,15 +74,16 @@ def _scene(case: str, duration: float):
     return scene
 
 
-def _series_scene(scene):
-    """The scene's sinusoidal top motion as a sampled series (no sinusoids), both abrupt starts."""
+def _series_scene(scene, record_s: float | None = None):
+    """The scene's sinusoidal top motion as a sampled series (no sinusoids), both abrupt starts;
+    the record lasts ``record_s`` (default: the run's duration)."""
     import dataclasses
 
     import numpy as np
 
     from cablesys.scene.components import TimeSeries
     top = scene.top_motion
-    t = np.arange(0.0, scene.numerics.duration + 2 * SAMPLE_DT, SAMPLE_DT)
+    t = np.arange(0.0, max(scene.numerics.duration, record_s or 0.0) + 2 * SAMPLE_DT, SAMPLE_DT)
     xs = sum(s.amplitude * np.sin(s.frequency * t + s.phase) for s in top.x)
     ys = sum(s.amplitude * np.sin(s.frequency * t + s.phase) for s in top.y)
     sine = dataclasses.replace(scene, top_motion=dataclasses.replace(top, ramp_s=0.0))
@@ -119,15 +128,16 @@ def child_start(case: str, duration: float) -> dict:
             "nq": int(model.nq)}
 
 
-def child_series(duration: float, repeats: int) -> dict:
+def child_series(duration: float, repeats: int, record_s: float) -> dict:
     """Compiled run time of the sinusoidal and the sampled top motion (best of ``repeats``)."""
     import numpy as np
 
     from cablesys.model import build_model
     from cablesys.time_domain import Simulator
     from cablesys.time_domain.initial import initial_state
-    sine, series, n_samples = _series_scene(_scene("wang", duration))
-    out, body = {"samples": n_samples, "sample_dt_s": SAMPLE_DT, "duration_s": duration}, {}
+    sine, series, n_samples = _series_scene(_scene("wang", duration), record_s)
+    out, body = {"samples": n_samples, "sample_dt_s": SAMPLE_DT, "duration_s": duration,
+                 "record_s": max(duration, record_s)}, {}
     for name, scene in (("sinusoid", sine), ("series", series)):
         model = build_model(scene)
         sim = Simulator(model, scene.output_times, _settings(scene))
@@ -142,6 +152,9 @@ def child_series(duration: float, repeats: int) -> dict:
         out[name] = {"run_s": min(times), "nsteps": int(rec.stats.get("nsteps", 0)), "success": bool(rec.success),
                      "compiled": bool(sim.compiled.compiled), "ode_instructions": int(model.ode.n_instructions())}
     out["ratio"] = out["series"]["run_s"] / out["sinusoid"]["run_s"]
+    # the series run takes more steps (see the module docstring): the cost per step is what the
+    # record length could change
+    out["per_step_ratio"] = out["ratio"] * out["sinusoid"]["nsteps"] / max(out["series"]["nsteps"], 1)
     out["body_x_max_difference_m"] = float(np.max(np.abs(body["series"] - body["sinusoid"])))
     out["body_x_amplitude_m"] = float(np.max(np.abs(body["sinusoid"])))
     return out
@@ -197,11 +210,11 @@ def measure_case(case: str, duration: float, n_warm: int) -> dict:
             "target_ms": TARGET_MS, "target_met": 1e3 * med["start_s"] < TARGET_MS}
 
 
-def measure_series(duration: float, repeats: int) -> dict:
+def measure_series(duration: float, repeats: int, record_s: float = 0.0) -> dict:
     with tempfile.TemporaryDirectory(prefix="cablesys-bench-series-") as tmp:
         cache = Path(tmp) / "cache"
-        _spawn(cache, "series", duration, 1)                 # compiles both structures
-        out = _spawn(cache, "series", duration, repeats)      # times them warm
+        _spawn(cache, "series", duration, 1, record_s)                 # compiles both structures
+        out = _spawn(cache, "series", duration, repeats, record_s)      # times them warm
     out["target_ratio"] = SERIES_TARGET
     out["target_met"] = out["ratio"] <= SERIES_TARGET
     return out
@@ -271,7 +284,8 @@ def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if "--child" in argv:
         rest = argv[argv.index("--child") + 1:]
-        out = child_start(rest[1], float(rest[2])) if rest[0] == "start" else child_series(float(rest[1]), int(rest[2]))
+        out = (child_start(rest[1], float(rest[2])) if rest[0] == "start"
+               else child_series(float(rest[1]), int(rest[2]), float(rest[3])))
         print(json.dumps(out))
         return 0
     from _common import parse_args, write_json
@@ -283,8 +297,9 @@ def main(argv=None) -> int:
            "python": sys.version.split()[0], "load_average_start": os.getloadavg(), "cases": {}}
     for case in cases:
         res["cases"][case] = measure_case(case, duration, n_warm)
-    res["series_runs"] = [measure_series(d, 1 if args.quick else 3) for d in ((10.0,) if args.quick else (10.0, 60.0))]
-    res["series"] = res["series_runs"][-1]          # the longest record: the issue's 60 s Dale run
+    runs = ((10.0, 0.0),) if args.quick else ((10.0, 0.0), (60.0, 0.0), (60.0, 500.0))     # (run, record) [s]
+    res["series_runs"] = [measure_series(d, 1 if args.quick else 3, r) for d, r in runs]
+    res["series"] = res["series_runs"][-1]          # the longest record
     res["summary"] = {case: {k: c[k] for k in ("cold_start_ms", "warm_start_ms", "warm_start_best_ms", "import_ms",
                                                 "target_met", "recompiled", "cache_hits")}
                       for case, c in res["cases"].items()}
