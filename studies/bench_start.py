@@ -267,7 +267,9 @@ def plot(res: dict, path: Path) -> None:
         bx.text(x0 + 1, series * 1.02, f"{series:.2f}x", ha="center", va="bottom", fontsize=9)
         bx.text(x0, sine * 1.02, f"{1e3 * s['sinusoid']['run_s']:.0f} ms", ha="center", va="bottom", fontsize=8)
         ticks.append(x0 + 0.5)
-        names.append(f"{s['duration_s']:g} s run\n{s['samples']} samples")
+        record = s.get("record_s", s["duration_s"])
+        names.append(f"{s['duration_s']:g} s run\n{s['samples']} samples"
+                     + (f"\n({record:g} s record)" if record > s["duration_s"] else ""))
     bx.axhline(SERIES_TARGET, color="k", ls="--", lw=1)
     bx.text(-0.4, SERIES_TARGET * 1.02, f"target {SERIES_TARGET:g}x", fontsize=9)
     bx.set_xticks(ticks, names)
