@@ -5,9 +5,9 @@ import numpy as np
 import pytest
 from scipy.interpolate import make_interp_spline
 
+from cablesys.errors import ParameterError
 from cablesys.model import build_model
 from cablesys.model.top_motion import series_expressions, spline_expression
-from cablesys.errors import ParameterError
 from cablesys.scene import TimeSeries, TopMotion, dale_scene
 
 
