@@ -136,7 +136,7 @@ class CableModel:
     energy: ca.Function
     cable_force: ca.Function
     slack_index: tuple          # positions of the per-section slack switches in p
-    symbolic: type = ca.SX      # ca.MX when the top motion has a sampled series
+    symbolic: type = ca.SX      # the symbol type of the model's functions (a sampled series is SX too: a table lookup)
     kind: str = "wang"          # which rung of the model ladder: "wang", "quasi-static", "segmented"
     cache: FunctionCache = dataclasses.field(init=False, repr=False)
     # how build_model made it: ``stored`` (loaded from the disk cache), ``build_s``, ``structure_key``

@@ -8,7 +8,7 @@ stored under a **structure key**: a hash of
 
 - the structure description :func:`~cablesys.model.params.structure_of` (sections, angle mode,
   body drag shapes, drag segments, elements per section, current points, waves, sinusoids,
-  time-series grid) and the full list of parameter labels (every named input of the model);
+  time-series grid and values) and the full list of parameter labels (every named input of the model);
 - the builder (``build_model``), the versions of cablesys and CasADi, the cache format and the
   fingerprint of the model's source files (:func:`cablesys.disk_cache.code_fingerprint`).
 
