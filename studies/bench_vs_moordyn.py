@@ -483,7 +483,8 @@ def _auto(scene, period, ref_stats, md_small):
 
 def plot(rows, path):
     plt = setup_matplotlib()
-    fig, ax = plt.subplots(figsize=(8, 4.8))
+    n_bars = sum(len(r["by_n"]) + 2 for r in rows)
+    fig, ax = plt.subplots(figsize=(max(8.0, 0.95 * n_bars), 4.8))     # room for every case's labels
     labels, md, cs, ratio = [], [], [], []
     for r in rows:
         for e in r["by_n"]:
