@@ -320,3 +320,21 @@ def test_quasi_static_rung_is_stored_with_its_iterations(cache, monkeypatch):
     fresh = build_quasistatic(scene)
     x, p = np.array([0.1, 0.02]), again.parameters(scene)
     assert np.array_equal(np.array(again.ode(x, 0.3, p)), np.array(fresh.ode(x, 0.3, p)))
+
+
+def test_stored_segmented_model_keeps_every_function(cache, monkeypatch):
+    """A loaded segmented model has all its functions, including ``accel``, a field with a default (a
+    class attribute that a lazy load must not expose as None), equal to a fresh build's."""
+    from cablesys.ladder.rungs import with_segments
+    from cablesys.model import build_model
+    from cablesys.scene import dale_scene
+    scene = with_segments(dale_scene().with_numerics(duration=1.0), 3)
+    first = build_model(scene)
+    second = build_model(scene)
+    assert first.build_info["stored"] is False and second.build_info["stored"] is True
+    nq = 2 * 3
+    q, qd = np.linspace(0.1, 0.6, nq), np.linspace(-0.2, 0.2, nq)
+    p = second.parameters(scene)
+    e = np.array(second.top(0.3, p)).ravel()
+    assert isinstance(second.accel, ca.Function)
+    assert np.array_equal(np.array(second.accel(q, qd, e, p)), np.array(first.accel(q, qd, e, p)))

@@ -157,7 +157,11 @@ def load_model(scene, key: str, layout: ParameterLayout | None = None):
             if not isinstance(v, str):
                 raise TypeError(f"field {k} is not a serialized function")
         values = {k: v for k, (kind, v) in data["fields"].items() if kind != "function"}
-        model = cls(layout=layout or ParameterLayout.from_scene(scene), **values, **dict.fromkeys(functions))
+        # a field with a default (SegmentedModel.accel = None) is also a class attribute: deleting the
+        # instance's value would expose that default instead of reaching __getattr__, so those load now
+        eager = {k: ca.Function.deserialize(functions.pop(k)) for k in list(functions) if hasattr(cls, k)}
+        model = cls(layout=layout or ParameterLayout.from_scene(scene), **values, **eager,
+                    **dict.fromkeys(functions))
         for k in functions:                  # deserialized on first use (CableModel.__getattr__)
             object.__delattr__(model, k)
         object.__setattr__(model, "_pending", functions)
