@@ -494,10 +494,11 @@ def plot(rows, path):
             ratio.append(e.get("speedup"))
         for k in ("wang", "auto"):
             if "s_per_s" in r.get(k, {}):
-                labels.append(f"{r['case']}\n{k}")
+                n0 = r["by_n"][0]["segments"] if r["by_n"] else "?"      # its speedup is against this MoorDyn run
+                labels.append(f"{r['case']}\n{k}\nvs N = {n0}")
                 md.append(np.nan)
                 cs.append(r[k]["s_per_s"])
-                ratio.append(None)
+                ratio.append(r.get(f"{k}_speedup"))
     x = np.arange(len(labels))
     for xi, c, q in zip(x, cs, ratio):
         if q:
