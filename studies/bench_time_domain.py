@@ -17,17 +17,18 @@ rtol 1e-12, atol 1e-14): the largest error of each state and of the body positio
 output times. Timed, in one run, best of several repeats (the machine may be shared):
 
 - ``cablesys_ms`` (``cablesys_steps``): ``Simulator.run`` as shipped (CVODES BDF, variable order)
-  at rtol 1e-6, atol 1e-10, the model compiled to C and cached on disk by ``cablesys.compiled``;
+  at rtol 1e-6 and atol rtol / 10 of each state's natural scale (the integrators scale the states;
+  SciPy's atol 1e-10 is in SI), the model compiled to C and cached on disk by ``cablesys.compiled``;
   ``build_s`` its build (model + simulator, compiling only when the cache is cold),
   ``cached_start_s`` a second start of the same structure (cache hit: hash + load, the model's
   own symbolic build ``model_build_s`` apart); ``speedup_vs_scipy`` = ``scipy_ms / cablesys_ms``
-  at the same rtol/atol;
+  at the same rtol;
 - ``vm``: the same CVODES run in CasADi's virtual machine (``compiled=False``);
 - ``compiled``: the other integrators, compiled: ``cvodes-bdf2`` (BDF capped at order 2,
   A-stable), CVODES Adams and the fixed-step RK4 loop (``rk``, 5 steps per 0.05 s output: the
   fewest inside RK4's stability limit for the stretch mode, h |lambda| = 2.5 < 2.785);
 - ``abrupt``, ``abrupt_bdf2``: the abrupt start (ramp_s = 0), steps the stretch ringing costs;
-- ``work_precision``: cvodes and cvodes-bdf2 over rtol 1e-3 ... 1e-8 (atol = 1e-4 rtol), RK4 over
+- ``work_precision``: cvodes and cvodes-bdf2 over rtol 1e-3 ... 1e-8 (atol = rtol / 10, scaled), RK4 over
   5, 10, 20 steps per output; ``scipy_runs``: LSODA at rtol 1e-6, 1e-3, 1e-4;
 - ``equal_accuracy``: for each SciPy run, the fastest cablesys run of the sweep whose body position
   error is not larger, and the fastest error-controlled one (``speedup_vs_scipy_equal_accuracy``,
@@ -63,7 +64,9 @@ from cablesys.scene import TopMotion, dale_scene  # noqa: E402
 from cablesys.time_domain import IntegratorSettings, Simulator  # noqa: E402
 from cablesys.time_domain.run import initial_state  # noqa: E402
 
-RTOL, ATOL = 1e-6, 1e-10
+RTOL, ATOL = 1e-6, 1e-10      # SciPy's atol is in SI units
+ATOL_CS = RTOL / 10            # cablesys integrates scaled states: its atol is a fraction of each state's
+                               # natural scale (cablesys.model.scales), the ladder's choice rtol / 10
 STATE = ("phi", "u", "phi_rate", "u_rate")
 RAMP_PERIODS = 3
 RK_STEPS = 5                    # RK4 steps per 0.05 s output: h |lambda|_max = 2.5 < 2.785
@@ -177,12 +180,12 @@ def main(argv=None) -> int:
     model = build_model(scene)
     p = model.parameters(scene)
     x0 = initial_state(scene, model, p)
-    sim = Simulator(model, times, IntegratorSettings(method="cvodes", rtol=RTOL, atol=ATOL))
+    sim = Simulator(model, times, IntegratorSettings(method="cvodes", rtol=RTOL, atol=ATOL_CS))
     build_s = time.perf_counter() - t0
     t1 = time.perf_counter()
     model2 = build_model(scene)                       # a second start of the same structure
     t2 = time.perf_counter()
-    Simulator(model2, times, IntegratorSettings(method="cvodes", rtol=RTOL, atol=ATOL))
+    Simulator(model2, times, IntegratorSettings(method="cvodes", rtol=RTOL, atol=ATOL_CS))
     t3 = time.perf_counter()
     res["model_build_s"], res["cached_start_s"] = t2 - t1, t3 - t2
     res["compiled_by_default"] = bool(sim.compiled.compiled)
@@ -218,18 +221,18 @@ def main(argv=None) -> int:
                 "rhs_evals": int(o.stats.get("nfevals", 0)),
                 "errors": errors(o.states, Xref, body_position(model, o.states, times, pv), pos_ref)
                 if sc is scene else None}
-    res["vm"] = variant(IntegratorSettings(method="cvodes", rtol=RTOL, atol=ATOL, compiled=False))
+    res["vm"] = variant(IntegratorSettings(method="cvodes", rtol=RTOL, atol=ATOL_CS, compiled=False))
     print(f"cablesys CVODES, virtual machine: {res['vm']['ms']:.1f} ms")
     res["compiled"] = {
-        "cvodes-bdf2": variant(IntegratorSettings(method="cvodes-bdf2", rtol=RTOL, atol=ATOL)),
-        "cvodes-adams": variant(IntegratorSettings(method="cvodes-adams", rtol=RTOL, atol=ATOL)),
+        "cvodes-bdf2": variant(IntegratorSettings(method="cvodes-bdf2", rtol=RTOL, atol=ATOL_CS)),
+        "cvodes-adams": variant(IntegratorSettings(method="cvodes-adams", rtol=RTOL, atol=ATOL_CS)),
         "rk4": variant(IntegratorSettings(method="rk", steps_per_output=RK_STEPS)),
     }
     for k, v in res["compiled"].items():
         print(f"cablesys {k} (compiled): {v['ms']:.1f} ms, {v['steps'] or '-'} steps, "
               f"body position error {v['errors']['body_position_m']:.2e} m")
-    res["abrupt"] = variant(IntegratorSettings(method="cvodes", rtol=RTOL, atol=ATOL), ramped(base, 0.0))
-    res["abrupt_bdf2"] = variant(IntegratorSettings(method="cvodes-bdf2", rtol=RTOL, atol=ATOL), ramped(base, 0.0))
+    res["abrupt"] = variant(IntegratorSettings(method="cvodes", rtol=RTOL, atol=ATOL_CS), ramped(base, 0.0))
+    res["abrupt_bdf2"] = variant(IntegratorSettings(method="cvodes-bdf2", rtol=RTOL, atol=ATOL_CS), ramped(base, 0.0))
     print(f"cablesys CVODES, abrupt start: {res['abrupt']['ms']:.1f} ms, {res['abrupt']['steps']} steps "
           f"(ramped {res['cablesys_steps']}); cvodes-bdf2 abrupt {res['abrupt_bdf2']['steps']} steps "
           f"(ramped {res['compiled']['cvodes-bdf2']['steps']})")
@@ -238,8 +241,8 @@ def main(argv=None) -> int:
     wp = []
     for method, rtols in (("cvodes", WP_RTOLS), ("cvodes-bdf2", WP_RTOLS)):
         for r in rtols[::2] if args.quick else rtols:
-            v = variant(IntegratorSettings(method=method, rtol=r, atol=r * ATOL / RTOL))
-            wp.append({"method": method, "rtol": r, "atol": r * ATOL / RTOL, **v})
+            v = variant(IntegratorSettings(method=method, rtol=r, atol=r * ATOL_CS / RTOL))
+            wp.append({"method": method, "rtol": r, "atol": r * ATOL_CS / RTOL, **v})
     for n in WP_RK_STEPS[:2] if args.quick else WP_RK_STEPS:
         v = variant(IntegratorSettings(method="rk", steps_per_output=n))
         wp.append({"method": "rk4", "steps_per_output": n, **v})
@@ -282,7 +285,7 @@ def main(argv=None) -> int:
     # -- the headline ratios again, measured in alternating rounds (SciPy, then each cablesys run):
     # on a shared machine the load drifts over the minutes this study takes; a ratio of two
     # measurements taken seconds apart is steadier than one of measurements minutes apart
-    heads = {"cvodes": sim, "cvodes-bdf2": Simulator(model, times, IntegratorSettings(method="cvodes-bdf2", rtol=RTOL, atol=ATOL)),
+    heads = {"cvodes": sim, "cvodes-bdf2": Simulator(model, times, IntegratorSettings(method="cvodes-bdf2", rtol=RTOL, atol=ATOL_CS)),
              "rk4": Simulator(model, times, IntegratorSettings(method="rk", steps_per_output=RK_STEPS))}
     rounds = []
     for _ in range(1 if args.quick else 3):
