@@ -338,3 +338,18 @@ def test_stored_segmented_model_keeps_every_function(cache, monkeypatch):
     e = np.array(second.top(0.3, p)).ravel()
     assert isinstance(second.accel, ca.Function)
     assert np.array_equal(np.array(second.accel(q, qd, e, p)), np.array(first.accel(q, qd, e, p)))
+
+
+def test_large_segmented_models_run_in_the_vm_by_default(cache):
+    """simulate() compiles up to COMPILE_MAX_ELEMENTS elements; above, gcc's minutes and gigabytes buy
+    ~1.5x, so the VM runs it (the same rule as the ladder's), unless jit=True asks."""
+    from cablesys.ladder.rungs import with_segments
+    from cablesys.scene import dale_scene
+    from cablesys.time_domain import simulate
+    from cablesys.time_domain.integrators import COMPILE_MAX_ELEMENTS
+    scene = dale_scene().with_numerics(duration=0.1, output_step=0.05)
+    big = simulate(with_segments(scene, COMPILE_MAX_ELEMENTS + 1))
+    assert big.success and big.stats["compiled"] is False
+    assert not list(cache_dir().glob("*.so"))                  # nothing was handed to the compiler
+    small = simulate(with_segments(scene, 2))
+    assert small.success and small.stats["compiled"] is True

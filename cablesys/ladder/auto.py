@@ -30,6 +30,9 @@ import numpy as np
 
 from ..errors import NumericalWarning
 from ..scene import Numerics, Scene
+from ..time_domain.integrators import (
+    COMPILE_MAX_ELEMENTS,  # one rule, simulate's default too
+)
 from . import estimate as est
 from . import metrics
 from .choice import (
@@ -48,8 +51,6 @@ log = logging.getLogger(__name__)
 AUTO_METHOD = "cvodes-bdf2"   # A-stable BDF steps over the undamped stretch modes (Dale: 1.7k steps vs 41k)
 AUTO_RTOL = 1e-4     # at most; rtol = body tolerance / 100 (Dale, N = 3: 1e-4 leaves 0.01 % body, 0.2 % tension
 #                      vs its own tight run; 1e-3 leaves 9 % on the tension extremes from the element ringing)
-COMPILE_MAX_ELEMENTS = 20   # compiled C up to this many elements (gcc: seconds); larger models run in
-#                             CasADi's VM (N = 80: minutes and > 10 GB of memory to compile)
 _SIMULATE_KEYS = ("x0", "on_block", "progress")
 
 

@@ -128,6 +128,28 @@ def _dae_function(model: CableModel, implicit: bool, scaled: bool = False) -> ca
     return ca.Function(name, [s, x, z, p, u], [ode, alg, empty, empty], ca.dyn_in(), ca.dyn_out())
 
 
+# Compiled C up to this many cable elements: gcc's time and memory grow faster than linearly with the
+# segmented model's code (N = 20: seconds; N = 40: ~40 s; N = 80: 70-100 s at -O0 and 1.8 GB, for a run
+# only 1.5x faster than CasADi's virtual machine), so larger models run in the VM unless asked.
+COMPILE_MAX_ELEMENTS = 20
+
+
+def compiled_by_default(model: CableModel) -> bool:
+    """Whether a run of ``model`` compiles by default: up to :data:`COMPILE_MAX_ELEMENTS` elements.
+
+    Parameters
+    ----------
+    model : CableModel
+        The model (a segmented model counts its elements; the 2-DOF models count as one).
+
+    Returns
+    -------
+    bool
+        True to compile (and cache) its functions, False to run them in CasADi's virtual machine.
+    """
+    return int(getattr(model, "n_elements", 1)) <= COMPILE_MAX_ELEMENTS
+
+
 def dae_function(model: CableModel, implicit: bool, compiled: bool = True, scaled: bool = False) -> Compiled:
     """The model's DAE function, compiled and cached when ``compiled`` (built once per model).
 

@@ -28,6 +28,7 @@ from .initial import initial_state
 from .integrators import (
     ADAPTIVE,
     IntegratorSettings,
+    compiled_by_default,
     compiled_dae,
     compiled_functions,
     make_integrator,
@@ -382,8 +383,9 @@ def simulate(scene: Scene, *, model: CableModel | None = None, method: str | Non
     num = scene.numerics
     if simulator is None:
         extra = {} if max_num_steps is None else {"max_num_steps": int(max_num_steps)}
-        settings = IntegratorSettings(method=method or num.integrator, rtol=rtol or num.rtol,
-                                      atol=atol or num.atol, steps_per_output=num.steps_per_output, jit=jit, **extra)
+        settings = IntegratorSettings(method=method or num.integrator, rtol=rtol or num.rtol, atol=atol or num.atol,
+                                      steps_per_output=num.steps_per_output, jit=jit,
+                                      compiled=compiled_by_default(model), **extra)   # jit=True compiles any size
         simulator = Simulator(model, scene.output_times if times is None else times, settings)
     build_s = _time.perf_counter() - t_build
     p = model.parameters(scene)
