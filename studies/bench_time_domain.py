@@ -36,11 +36,8 @@ output times. Timed, in one run, best of several repeats (the machine may be sha
 - ``interleaved``: the headline runs (SciPy at rtol 1e-6, cvodes, cvodes-bdf2, RK4) timed again in
   alternating rounds, ``median_speedup`` per method: steadier than one ratio of measurements taken
   minutes apart while the load of a shared machine drifts;
-- ``per_state_atol``: CVODES with one scalar atol against per-state absolute tolerances from the
-  natural scales (angle 1 rad, stretch its static value, rates times the forcing frequency),
-  obtained by integrating scaled states (CasADi 3.8 gives CVODES a scalar abstol only; its
-  ``scale_abstol`` uses the DAE function's nominal values, which are 1 for SX functions): steps
-  and errors only (these runs are in the virtual machine).
+- per-state absolute tolerances are the integrators' state scaling (the default; measured scaled vs
+  unscaled in ``studies/bench_state_scaling.py``), so cablesys's atol is a fraction of each state's scale;
 
 Writes DIR/bench_time_domain.json and DIR/bench_time_domain.png.
 """
@@ -248,12 +245,6 @@ def main(argv=None) -> int:
         wp.append({"method": "rk4", "steps_per_output": n, **v})
     res["work_precision"] = wp
 
-    # -- per-state absolute tolerances (issue 13): CasADi 3.8 passes one scalar abstol to CVODES
-    # (its ``scale_abstol`` multiplies by the DAE function's nominal values, always 1 for an SX
-    # function), so integrate the scaled states y = x / s: abstol on y is atol * s_i on x
-    res["per_state_atol"] = per_state_atol(model, p, x0, times, Xref, pos_ref, base.top_motion.x[0].frequency,
-                                           args.quick)
-
     # -- SciPy LSODA on the NumPy RHS, the same ramp -----------------------------------------
     W = RampedWangNumpy(scene)
 
@@ -351,36 +342,6 @@ def equal_accuracy(scipy_run, wp) -> dict:
                 "steps": r["steps"], "speedup": scipy_run["ms"] / r["ms"]}
     return {"scipy_rtol": scipy_run["rtol"], "scipy_ms": scipy_run["ms"], "scipy_error_m": target,
             "fastest": pick(ok), "fastest_adaptive": pick([r for r in ok if "rtol" in r])}
-
-
-def per_state_atol(model, p, x0, times, Xref, pos_ref, w, quick) -> list:
-    """CVODES (BDF, variable order and order <= 2) with one scalar atol against per-state absolute
-    tolerances from the natural scales: angle 1 rad, stretch its static value u_0, rates scale * omega
-    (omega the forcing frequency), atol_i = a * s_i with a = rtol and a = rtol / 10."""
-    import casadi as ca
-    nx = x0.size
-    sq = np.array([1.0 if lbl.startswith("phi") else max(abs(x0[i]), 1e-12) for i, lbl in enumerate(model.q_labels)])
-    natural = np.concatenate([sq, sq * w])
-    x, t, S = ca.SX.sym("x", nx), ca.SX.sym("t"), ca.SX.sym("S", nx)
-    P = ca.SX.sym("p", len(p))
-    dae = {"x": x, "t": t, "p": ca.vertcat(P, S), "ode": model.ode(S * x, t, P) / S}
-    out = []
-    for rtol in (1e-4, 1e-6) if quick else (1e-4, 1e-6, 1e-8):
-        for order in (None, 2):
-            for kind, scale, atol in (("scalar", np.ones(nx), rtol * ATOL / RTOL), ("natural", natural, rtol),
-                                      ("natural/10", natural, rtol / 10)):
-                opts = {"reltol": rtol, "abstol": atol, "max_num_steps": 1_000_000, "linear_multistep_method": "bdf",
-                        "nonlinear_solver_iteration": "newton", "print_stats": False}
-                if order:
-                    opts["max_order"] = order
-                F = ca.integrator("F", "cvodes", dae, float(times[0]), list(times[1:]), opts)
-                pv = np.concatenate([p, scale])
-                wall, Y = best_of(lambda F=F, scale=scale, pv=pv: np.array(F(x0=x0 / scale, p=pv)["xf"]), 1, budget_s=0.0)
-                X = np.hstack([x0[:, None], Y * scale[:, None]])
-                out.append({"tolerance": kind, "max_order": order or 5, "rtol": rtol, "atol": atol,
-                            "scales": scale.tolist(), "ms_vm": 1e3 * wall, "steps": int(F.stats()["nsteps"]),
-                            "errors": errors(X, Xref, body_position(model, X, times, p), pos_ref)})
-    return out
 
 
 def per_call_us(fn, n=2000) -> float:

@@ -51,7 +51,6 @@ import time
 import warnings
 from pathlib import Path
 
-import casadi as ca
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -66,7 +65,7 @@ from cablesys.scene import dale_scene, load_scene  # noqa: E402
 from cablesys.time_domain import simulate  # noqa: E402
 from cablesys.time_domain.failures import RK4_LIMIT  # noqa: E402
 from cablesys.time_domain.initial import initial_state  # noqa: E402
-from cablesys.time_domain.integrators import IntegratorSettings, make_integrator  # noqa: E402
+from cablesys.time_domain.integrators import COMPILE_MAX_ELEMENTS, IntegratorSettings, make_integrator  # noqa: E402
 from cablesys.time_domain.run import Simulator  # noqa: E402
 
 DATA = Path(cablesys.__file__).resolve().parent / "data"
@@ -127,8 +126,8 @@ NOTES = {
              "each. Linear solver (qr, csparse, lapacklu, gmres), Newton options and always_recalculate_jacobian "
              "change the whole-horizon call by < 10 % on the 300 m heave at N = 20. Looser rtol: 1e-3 passes the "
              "matched-accuracy test only barely (tension 0.9 %), scalar atol above 1e-5 breaks the tension (x "
-             "positions near 0 and millimetre stretches share one atol); per-state atol (cablesys_scaled_atol) "
-             "halves the steps. RK4 (cablesys_rk) needs 5 ms steps (|lambda|max ~ 530 1/s): 48000 RHS against "
+             "positions near 0 and millimetre stretches share one atol); per-state atol (the "
+             "integrators' state scaling, since made the default) halves the steps. RK4 (cablesys_rk) needs 5 ms steps (|lambda|max ~ 530 1/s): 48000 RHS against "
              "BDF2's ~1600 RHS + ~200 Jacobians. Compile: N = 20 DAE + state Jacobian is 1.8 MB of C, gcc -O1 "
              "20-25 s on this (loaded) machine, RHS alone 2 s; N = 80: 7.5 MB, -O0 (the default at that size) "
              "70-100 s and 1.8 GB, and its code runs only 1.5x faster than CasADi's VM: not worth it for one run, "
@@ -136,8 +135,6 @@ NOTES = {
              "Lagrange equations made the right-hand side 31 % smaller.",
 }
 
-COMPILE_MAX_ELEMENTS = 20     # gcc's time and memory grow faster than linearly with the segmented
-# model's straight-line code (N = 80: minutes and >10 GB at -O1): larger models run in CasADi's VM
 
 
 @contextlib.contextmanager
@@ -301,49 +298,6 @@ def _profile(sc, method, rtol, atol, compiled):
             "rhs_instructions": sim.model.ode.n_instructions(), "rhs_instructions_per_element": sim.model.ode.n_instructions() / n_el}
 
 
-def _scaled_atol(sc, tight_stats, period, md_wall, compiled):
-    """Experiment (not yet the library's path): per-state absolute tolerances from the segmented
-    model's scale provider (``segmented.nominal_state``: positions by one element's static stretch,
-    rates by the top's speed) by state scaling, x = S x~, CVODES (BDF <= 2) on x~ with atol = rtol:
-    atol_i = rtol S_i. Timed as ``Simulator.run`` (one whole-horizon call and the outputs)."""
-    from cablesys.compiled import compile_functions
-    from cablesys.model.segmented import nominal_state
-    from cablesys.time_domain.integrators import _dae_function
-    dur = sc.numerics.duration
-    sim, p, x0, _ = _prepared(sc, "cvodes-bdf2", 1e-4, 1e-7)
-    S = nominal_state(sc)
-    dae = _dae_function(sim.model, False)
-    x, t, pp = ca.SX.sym("x", S.size), ca.SX.sym("t"), ca.SX.sym("p", dae.size1_in(3))
-    ode = dae(t, S * x, ca.SX(0, 1), pp, ca.SX(0, 1))[0] / S
-    f = ca.Function("cablesys_dae_scaled", [t, x, ca.SX.sym("z", 0), pp, ca.SX.sym("u", 0)],
-                    [ode, ca.SX(0, 1), ca.SX(0, 1), ca.SX(0, 1)], ca.dyn_in(), ca.dyn_out())
-    f = compile_functions([f], jacobians=("x", "z"), enabled=compiled).functions["cablesys_dae_scaled"]
-    times = np.asarray(sc.output_times)
-    par = np.concatenate([p, [times[0], 1.0]])
-    best = None
-    for rtol in (1e-3, 3e-4, 1e-4):
-        F = ca.integrator("F", "cvodes", f, 0.0, list(times[1:] - times[0]),
-                          {"reltol": rtol, "abstol": rtol, "max_order": 2, "max_num_steps": 100000,
-                           "linear_multistep_method": "bdf", "nonlinear_solver_iteration": "newton"})
-
-        def run(F=F):
-            X = np.column_stack([x0, np.array(F(x0=x0 / S, p=par)["xf"]) * S[:, None]])
-            return X, sim.labelled(times, X, np.zeros((0, X.shape[1])), p)
-        try:
-            run()
-            t0 = time.perf_counter()
-            _, data = run()
-            wall = time.perf_counter() - t0
-        except RuntimeError:
-            continue
-        res = type("R", (), {"time": times, "__getitem__": lambda self, k, d=data: d[k]})()
-        e = _diff(_stats(res, period), tight_stats)
-        if e["body"] <= 0.005 and e["tension"] <= 0.01 and (best is None or wall < best["run_s"]):
-            best = {"rtol": rtol, "run_s": wall, "s_per_s": wall / dur, "speedup": md_wall / wall,
-                    "nsteps": int(F.stats()["nsteps"]), "error_vs_own_tight": e}
-    return {"nominal_position_m": float(S[0]), "nominal_rate_m_s": float(S[-1]), "matched": best}
-
-
 def _rk(sc, tight_stats, period, md_wall):
     """Classical RK4 (the compiled fixed-step loop, as MoorDyn steps) at its largest stable step:
     h |lambda|_max = 2.78 for the largest eigenvalue of the Jacobian at the initial state."""
@@ -390,8 +344,6 @@ def bench_case(name, scene, period, ns, taut, quick):
                     with _compiled(False):
                         _, wall_vm, _, setup_vm = _timed_run(sc, meth, rtol, rtol * 1e-3)
                     extra["cablesys_vm"] = {"s_per_s": wall_vm / dur, "setup_s": setup_vm}
-            if m and not quick:
-                extra["cablesys_scaled_atol"] = _scaled_atol(sc, tight_stats, period, md["wall_s"], compiled)
             if taut and compiled and not quick:
                 extra["cablesys_rk"] = _rk(sc, tight_stats, period, md["wall_s"])
         entry = {"segments": n, "cablesys_compiled": n <= COMPILE_MAX_ELEMENTS, "moordyn_dt_s": dt, "moordyn_s_per_s": md["wall_s"] / dur,

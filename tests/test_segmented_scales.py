@@ -1,4 +1,4 @@
-"""The segmented cable's state magnitudes (scale provider for per-state absolute tolerances)."""
+"""The segmented cable's state scales (cablesys.model.scales: per-state absolute tolerances)."""
 
 import math
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from cablesys.model import build_model
-from cablesys.model.segmented import nominal_state
+from cablesys.model.scales import state_scale_values
 from cablesys.scene import Body, Cable, Sinusoid, TopMotion
 from cablesys.scene.scene import single_section_scene
 
@@ -22,8 +22,8 @@ def test_position_scale_is_one_elements_stretch_and_its_tension():
     """delta = T h / AE: moving a node by delta along the element changes its tension by T (Wang eq. 46)."""
     n = 20
     sc = _scene(n, top=TopMotion(y=(Sinusoid(amplitude=1.0, frequency=2 * math.pi / 10),)))
-    S = nominal_state(sc)
     model = build_model(sc)
+    S = state_scale_values(model, model.parameters(sc))
     assert S.shape == (2 * model.nq,)
     delta = 4877.0 * (300.0 / n) / 4.0e7
     np.testing.assert_allclose(S[: model.nq], delta, rtol=1e-12)
@@ -45,7 +45,8 @@ def test_position_scale_is_one_elements_stretch_and_its_tension():
 def test_without_motion_or_reference_tension_the_scales_stay_physical():
     """tension_ref = 0: the mean hanging tension W_b + w l / 2; no top motion: delta omega_e."""
     sc = _scene(10, tension_ref=0.0)
-    S = nominal_state(sc)
+    model = build_model(sc)
+    S = state_scale_values(model, model.parameters(sc))
     h = 30.0
     delta = (1937.0 + 19.6 * 300.0 / 2) * h / 4.0e7
     assert S[0] == pytest.approx(delta, rel=1e-12)

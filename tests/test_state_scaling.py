@@ -8,7 +8,6 @@ import pytest
 from cablesys.ladder.auto import integrator_settings
 from cablesys.model import build_model
 from cablesys.model.scales import state_scale_values
-from cablesys.model.segmented import nominal_state
 from cablesys.scene import Body, Cable, Sinusoid, TopMotion, dale_scene
 from cablesys.scene.scene import single_section_scene
 from cablesys.time_domain import (
@@ -51,16 +50,23 @@ def test_wang_scales_are_the_static_stretch_the_swing_and_the_forcing_frequency(
     assert S[1] == pytest.approx(x0[1], rel=2e-2)
 
 
-def test_segmented_scales_are_the_segmented_providers():
-    """One provider: the symbolic scales of a segmented model equal segmented.nominal_state for
-    two sections of different elements, stiffness and tension (with and without tension_ref)."""
-    top = TopMotion(y=(Sinusoid(amplitude=1.0, frequency=2 * math.pi / 10),))
+def test_segmented_scales_follow_the_element_stretch_closed_form():
+    """The segmented model's scales: positions T h / AE (T = tension_ref, or W_b + w L / 2 without it;
+    Wang eq. 46), rates max(top speed a omega, delta sqrt(AE / (m h^2))), with and without tension_ref."""
+    w = 2 * math.pi / 10
+    top = TopMotion(y=(Sinusoid(amplitude=1.0, frequency=w),))
     sc = single_section_scene(cable=Cable(length=300.0, tension_ref=4877.0, ae=4.0e7, diameter=0.025,
                                           mass_per_length=2.5, weight_per_length=19.6, segments=6),
                               body=Body(weight=1937.0, mass_x=2900.0, mass_y=2900.0), top_motion=top)
-    for s in (sc, sc.replace_section(0, cable={"tension_ref": 0.0, "segments": 3})):
+    for s, n, tension in ((sc, 6, 4877.0),
+                          (sc.replace_section(0, cable={"tension_ref": 0.0, "segments": 3}), 3,
+                           1937.0 + 19.6 * 300.0 / 2)):
         model = build_model(s)
-        np.testing.assert_allclose(state_scale_values(model, model.parameters(s)), nominal_state(s), rtol=1e-12)
+        h = 300.0 / n
+        delta = tension * h / 4.0e7
+        speed = max(1.0 * w, delta * math.sqrt(4.0e7 / (2.5 * h**2)))
+        S = state_scale_values(model, model.parameters(s))
+        np.testing.assert_allclose(S, np.r_[np.full(2 * n, delta), np.full(2 * n, speed)], rtol=1e-12)
 
 
 def test_scaled_integrator_returns_physical_states_and_its_own_compiled_function():

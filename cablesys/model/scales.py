@@ -15,8 +15,7 @@ compiled DAE serves every parameter value of a structure. Per model kind (``mode
   highest forcing frequency (the top's sinusoids; without any, the pendulum frequency sqrt(g / L)).
 - ``quasi-static``: the angles of the same (the stretch is not a state).
 - ``segmented``: the node positions by one element's static stretch T h / AE, the rates by the
-  top's speed or the element's own axial speed, whichever is larger (the provider
-  :func:`cablesys.model.segmented.nominal_state` computes the same numbers from a scene).
+  top's speed or the element's own axial speed, whichever is larger.
 
 T_i is the section's ``tension_ref`` when set, else W_b + w L / 2 (its body and half its cable).
 """
@@ -26,7 +25,7 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
-from .params import ParameterLayout
+from .params import ParameterLayout, section_suffix
 
 ANGLE_SCALE_MIN = 1e-3   # rad: the swing scale when nothing moves the top (static or current-driven scenes)
 ANGLE_SCALE_MAX = 1.0    # rad
@@ -85,12 +84,10 @@ def forcing_frequency(layout: ParameterLayout, length):
     return ca.sqrt(layout.sym("environment.gravity") / length)
 
 
-def _section_of(model, label: str) -> int | None:
-    """Section of a Wang coordinate label (``u``, ``u_2``, ``phi_1``); None for a shared angle."""
-    _, _, sfx = label.partition("_")
-    if model.n_sections == 1:
-        return 0
-    return int(sfx) - 1 if sfx.isdigit() else None
+def _section_of(model, label: str) -> int:
+    """Section of a Wang stretch coordinate (``u``, ``u_2``), by the one labelling rule."""
+    n = model.n_sections
+    return next(i for i in range(n) if label == "u" + section_suffix(n, i))
 
 
 def _wang_scales(model) -> ca.SX:

@@ -29,7 +29,6 @@ from __future__ import annotations
 import dataclasses
 
 import casadi as ca
-import numpy as np
 
 from ..errors import ParameterError
 from ..scene import Scene
@@ -175,41 +174,6 @@ def drag_points(scene: Scene, n_el: int) -> int:
     """Drag points per element: ``numerics.drag_segments`` shared among the section's elements (at
     least one, the element mid-point); N = 1 uses the 2-DOF model's points exactly."""
     return max(1, round(scene.numerics.drag_segments / n_el))
-
-
-def nominal_state(scene: Scene) -> np.ndarray:
-    """Magnitudes of the segmented cable's states (x[j], y[j] of every free node, then their
-    rates), a scale provider for per-state absolute tolerances (atol_i = atol x nominal_i).
-
-    Positions: the static stretch of one element of the node's section, delta = T h_r / (AE)_r,
-    T its mean tension (``tension_ref``, or W_b + w_r l_r / 2 when that is 0): a position error
-    of atol x delta is a tension error of about atol x T (eq. 46), whereas the positions
-    themselves (up to the cable's length) make a relative tolerance on them say nothing about
-    the tension. Rates: the top's velocity amplitude (sum of |a| omega over its sinusoids: the
-    whole line moves with it), at least delta omega_e, the speed of an element's own axial
-    vibration (omega_e^2 = (AE)_r / (m_r h_r^2)) at that stretch.
-
-    Parameters
-    ----------
-    scene : Scene
-        A scene with ``segments`` per section (as for :func:`build_segmented_model`).
-
-    Returns
-    -------
-    numpy.ndarray
-        (2 n_nodes,) magnitudes: m for the positions, m/s for their rates.
-    """
-    pos, speed = [], 0.0
-    for sec in scene.sections:
-        c, n = sec.cable, sec.cable.segments
-        h = c.length / n
-        tension = c.tension_ref if c.tension_ref > 0 else sec.body.weight + c.weight_per_length * c.length / 2
-        delta = abs(tension) * h / c.ae
-        pos += [delta] * n
-        speed = max(speed, delta * np.sqrt(c.ae / (c.mass_per_length * h**2)))
-    top = scene.top_motion
-    speed = max(speed, sum(abs(s.amplitude) * s.frequency for s in top.x + top.y))
-    return np.concatenate([np.repeat(pos, 2), np.full(2 * len(pos), speed)])
 
 
 def build_segmented_model(scene: Scene) -> SegmentedModel:
