@@ -26,8 +26,7 @@ def section_prefix(scene_or_n, i: int) -> str:
     str
         The prefix (``sections[1].`` in ``sections[1].cable.ae``).
     """
-    n = scene_or_n if isinstance(scene_or_n, int) else len(scene_or_n.sections)
-    return "" if n == 1 else f"sections[{i}]."
+    return "" if _count(scene_or_n) == 1 else f"sections[{i}]."
 
 
 def section_suffix(scene_or_n, i: int) -> str:
@@ -45,5 +44,8 @@ def section_suffix(scene_or_n, i: int) -> str:
     str
         The suffix (``_2`` in ``tension_2``, ``u_2``).
     """
-    n = scene_or_n if isinstance(scene_or_n, int) else len(scene_or_n.sections)
-    return "" if n == 1 else f"_{i + 1}"
+    return "" if _count(scene_or_n) == 1 else f"_{i + 1}"
+
+
+def _count(scene_or_n) -> int:
+    return scene_or_n if isinstance(scene_or_n, int) else len(scene_or_n.sections)
