@@ -328,7 +328,9 @@ def _dale_model(scene) -> dict:
     report's model against the experiment), with the ladder's estimate of its error for this scene and
     what the ladder would run instead (issue 12: every result says which model ran, why, and its error)."""
     from ..ladder.choice import choose, forced
-    wang, auto = forced(scene, "wang"), choose(scene)
+    from ..ladder.rungs import RungCache
+    cache = RungCache()          # one Wang model and describing-function solver for both questions
+    wang, auto = forced(scene, "wang", cache=cache), choose(scene, cache=cache)
     d = wang.as_dict()
     d["reason"] = (f"Wang's 2-DOF model, as Wang (1971) Table 2 compares it with the experiment; the model ladder "
                    f"would run {auto.name}" + (f" N = {auto.segments}" if auto.name == "segmented" else "")
