@@ -26,3 +26,13 @@ def run_study(tmp_path):
         assert proc.returncode == 0, f"{name} failed:\n{proc.stdout[-2000:]}\n{proc.stderr[-4000:]}"
         return out
     return _run
+
+
+@pytest.fixture(scope="module")
+def dale():
+    """(scene, Wang's model, p) of the Dale et al. scene, built once per test module."""
+    from cablesys.model import build_model
+    from cablesys.scene import dale_scene
+    scene = dale_scene()
+    model = build_model(scene)
+    return scene, model, model.parameters(scene)

@@ -10,13 +10,6 @@ from cablesys.model import build_model
 from cablesys.scene import dale_scene
 
 
-@pytest.fixture(scope="module")
-def dale():
-    scene = dale_scene()
-    model = build_model(scene)
-    return scene, model, model.parameters(scene)
-
-
 def test_hanging_tensions_are_hand_statics(dale):
     """At rest: top W_b + W_c, body end W_b, Wang's spring force k u = W_b + W_c/2 (eq. 49b, 54)."""
     scene, model, p = dale

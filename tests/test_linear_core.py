@@ -22,16 +22,7 @@ from cablesys.linear.spectra import (
     spectral_moment,
 )
 from cablesys.linear.steady import steady_state
-from cablesys.model import build_model
-from cablesys.scene import dale_scene
 from cablesys.time_domain import simulate
-
-
-@pytest.fixture(scope="module")
-def dale():
-    s = dale_scene()
-    m = build_model(s)
-    return s, m, m.parameters(s)
 
 
 def test_closed_form_frequencies(dale):

@@ -16,14 +16,6 @@ from cablesys.linear.periodic import (
 from cablesys.linear.spectra import jonswap
 from cablesys.linear.stochastic import stochastic_response
 from cablesys.model import build_model
-from cablesys.scene import dale_scene
-
-
-@pytest.fixture(scope="module")
-def dale():
-    s = dale_scene()
-    m = build_model(s)
-    return s, m, m.parameters(s)
 
 
 def test_coarse_start_gives_the_orbit_of_the_linear_start(dale):

@@ -1,18 +1,9 @@
 """Periodic steady state under the top motion: frequency sweep by continuation, smooth start ignored."""
 
 import numpy as np
-import pytest
 
 from cablesys.linear.periodic import periodic_steady_state, periodic_sweep, scene_input_amplitude
-from cablesys.model import build_model
-from cablesys.scene import TopMotion, dale_scene
-
-
-@pytest.fixture(scope="module")
-def dale():
-    scene = dale_scene()
-    model = build_model(scene)
-    return scene, model, model.parameters(scene)
+from cablesys.scene import TopMotion
 
 
 def test_sweep_by_continuation_equals_independent_solves(dale):
