@@ -114,11 +114,11 @@ def _coarse_guess(model: CableModel, p, omega: float, times) -> tuple[np.ndarray
     it): at 7 nodes it converges from there in 4-8 steps, as from the exact steady state or the
     linear response, which would cost a KINSOL solve and a linearization. Returns (node values
     or None when the coarse Newton fails, coarse Newton iterations)."""
-    from ..statics.steady import _guesses
+    from ..statics.steady import starting_guesses
     n, nc = times.size, 2 * COARSE_HARMONICS + 1
     T = 2 * np.pi / omega
     tc = times[0] + T * np.arange(nc) / nc
-    Q0 = np.repeat(next(_guesses(model, p))[:, None], nc, axis=1)
+    Q0 = np.repeat(next(starting_guesses(model, p))[:, None], nc, axis=1)
     E = np.array(_node_maps(model, nc)[0](tc[None, :], p))
     par = np.concatenate([E.ravel(order="F"), p, [omega]])
     rf = _coarse_rootfinder(model, nc)

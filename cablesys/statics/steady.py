@@ -88,8 +88,23 @@ def _rootfinder(model: CableModel) -> ca.Function:
          "disable_internal_warnings": True}))
 
 
-def _guesses(model: CableModel, p):
-    """Hanging stretch u = (weight below + W_c/2)/k for every section, several angles."""
+def starting_guesses(model: CableModel, p):
+    """Starting guesses for the statics and the periodic solution: every section's hanging stretch
+    u = (weight below + W_c / 2) / k (dV/du = 0 of Wang 1971 eq. 15 at phi = 0) with several
+    angles, the hanging one (all angles 0) first.
+
+    Parameters
+    ----------
+    model : CableModel
+        A 2-DOF (Wang) model.
+    p : array_like
+        Parameter vector (``model.layout``).
+
+    Yields
+    ------
+    numpy.ndarray
+        Generalized coordinates q in ``model.q_labels`` order.
+    """
     lay = model.layout
     n = model.n_sections
     pre = (lambda i: "") if n == 1 else (lambda i: f"sections[{i}].")
@@ -139,7 +154,7 @@ def steady_state(model: CableModel, p, *, guess=None, solver: ca.Function | None
     p = _static_parameters(model, p)
     rf = solver or _rootfinder(model)
     resid_fn = static_residual(model)
-    guesses = ([np.asarray(guess, float)] if guess is not None else []) + list(_guesses(model, p))
+    guesses = ([np.asarray(guess, float)] if guess is not None else []) + list(starting_guesses(model, p))
     gap_fn = model.cable_force
     best = None
     for g0 in guesses:
