@@ -200,7 +200,8 @@ def _load(target: Path, names) -> dict:
     return loaded
 
 
-def compile_functions(functions, *, jacobians=True, enabled: bool = True) -> Compiled:
+def compile_functions(functions, *, jacobians=True, enabled: bool = True, extra_c: str = "",
+                      extra_names=()) -> Compiled:
     """Compiled versions of ``functions`` from the cache, building the library if needed.
 
     Parameters
@@ -213,6 +214,12 @@ def compile_functions(functions, *, jacobians=True, enabled: bool = True) -> Com
         (:func:`state_jacobian`).
     enabled : bool
         False (or ``CABLESYS_COMPILE=0``) returns the functions unchanged.
+    extra_c : str, optional
+        Hand-written C appended to the generated code (it may call the generated functions by
+        name, e.g. an integrator driver around a right-hand side); part of the cache key.
+    extra_names : sequence of str, optional
+        Functions defined in ``extra_c`` with CasADi's external-function API, loaded with
+        ``casadi.external`` too (absent from ``functions`` when not compiled).
 
     Returns
     -------
@@ -234,7 +241,7 @@ def compile_functions(functions, *, jacobians=True, enabled: bool = True) -> Com
                 "install cc or set CABLESYS_CC")
         log.warning(note)
         return Compiled(originals, False, False, time.perf_counter() - t0, 0.0, note=note)
-    key = cache_key(serialized, jacobians, ident, cmd)
+    key = cache_key(serialized + ([extra_c] if extra_c else []), jacobians, ident, cmd)
     folder = cache_dir()
     target = folder / f"{key}.so"
     for attempt in (0, 1):
@@ -244,7 +251,7 @@ def compile_functions(functions, *, jacobians=True, enabled: bool = True) -> Com
                 with file_lock(folder / f"{key}.lock"):
                     cached = target.exists()          # another process may have built it meanwhile
                     if not cached:
-                        _build(generate(functions, jacobians=jacobians), cmd, target)
+                        _build(generate(functions, jacobians=jacobians) + extra_c, cmd, target)
             except (OSError, RuntimeError) as err:
                 note = f"compilation failed ({err}): running the CasADi virtual machine (slower)"
                 log.warning(note)
@@ -253,7 +260,7 @@ def compile_functions(functions, *, jacobians=True, enabled: bool = True) -> Com
                 evict(keep=[target])
         t1 = time.perf_counter()
         try:
-            loaded = _load(target, originals)
+            loaded = _load(target, [*originals, *extra_names])
         except RuntimeError as err:
             if attempt:
                 note = f"the compiled library {target} does not load ({err}): running the CasADi virtual machine"
