@@ -54,6 +54,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _bench_slack import bench_slack_case  # noqa: E402
 from _common import setup_matplotlib, write_json  # noqa: E402
 from _moordyn import largest_stable_dt, run_moordyn  # noqa: E402
 
@@ -80,7 +81,10 @@ def _ramped(scene, period, duration):
     return dataclasses.replace(scene, top_motion=top).with_numerics(duration=duration)
 
 
-def cases(quick: bool):
+SLACK_DURATION, SLACK_OUTPUT_STEP = 360.0, 0.01     # the slack row (see _bench_slack)
+
+
+def cases(quick: bool, slack_duration: float = SLACK_DURATION, slack_n=(20, 80)):
     """(name, scene, period, element counts, taut?)"""
     dur = 20.0 if quick else 60.0
     w = dale_scene().top_motion.x[0].frequency
@@ -93,8 +97,12 @@ def cases(quick: bool):
         sc = dataclasses.replace(heave, name=f"300 m / 2 t sphere, 1 m heave, T = {period:g} s",
                                  top_motion=dataclasses.replace(heave.top_motion, y=(sine,)))
         # slack: the response settles on its periodic cycle only after ~100 s (a 60 s run ends in its
-        # transient, where no statistic converges in N or tolerance); 360 s, statistics at the end
-        out.append((f"heave_T{period:g}", _ramped(sc, period, 60.0 if taut else 360.0), period, (20, 80), taut))
+        # transient, where no statistic converges in N or tolerance); 360 s, cycle means over the
+        # second half (bench_slack_case), sampled at 0.01 s (a snap peak lasts ~0.08 s)
+        if not taut:
+            sc = sc.with_numerics(output_step=SLACK_OUTPUT_STEP)
+        out.append((f"heave_T{period:g}", _ramped(sc, period, 60.0 if taut else slack_duration), period,
+                    (20, 80) if taut else tuple(slack_n), taut))
     return out
 
 
@@ -315,7 +323,10 @@ def _rk(sc, tight_stats, period, md_wall):
             "error_vs_own_tight": _diff(_stats(res, period), tight_stats) if res.success else None}
 
 
-def bench_case(name, scene, period, ns, taut, quick):
+def bench_case(name, scene, period, ns, taut, quick, keep=None):
+    if not taut:
+        return bench_slack_case(name, scene, period, ns, timed_run=_timed_run, prepared=_prepared,
+                                compiled_ctx=_compiled, segments=_segments, keep=keep)
     dur = scene.numerics.duration
     row = {"case": name, "scene": scene.name, "duration_s": dur, "period_s": period, "taut": taut, "by_n": []}
     n_conv = 2 * max(ns) if taut else max(ns)   # partial slack: 2x the largest N is out of reach here
@@ -473,13 +484,16 @@ def main(argv=None):
     ap.add_argument("--quick", action="store_true", help="Dale, 10 elements, 20 s (for tests)")
     ap.add_argument("--case", action="append", default=None,
                     help="run only these cases (dale, heave_T10, heave_T6); repeatable")
+    ap.add_argument("--slack-duration", type=float, default=SLACK_DURATION,
+                    help="length of the slack case's run (s); its statistics are the cycle means of the second half")
+    ap.add_argument("--slack-n", type=int, nargs="+", default=[20, 80], help="element counts of the slack case")
     args = ap.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
     rows = []
-    for c in cases(args.quick):
+    for c in cases(args.quick, args.slack_duration, args.slack_n):
         if args.case and c[0] not in args.case:
             continue
-        rows.append(bench_case(*c, args.quick))
+        rows.append(bench_case(*c, args.quick, keep=args.out / "moordyn_steps.json"))
         # written after every case: a long benchmark that is stopped keeps what it measured
         write_json(args.out / "bench_vs_moordyn.json", {"cases": rows, "quick": args.quick, "notes": NOTES})
     plot(rows, args.out / "bench_vs_moordyn.png")
@@ -488,6 +502,8 @@ def main(argv=None):
             print(f"{r['case']:10s} N={e['segments']:3d}  MoorDyn {e['moordyn_s_per_s']:.4g} s/s (dt {e['moordyn_dt_s']:.3g})  "
                   f"cablesys {e['cablesys_s_per_s'] or float('nan'):.4g} s/s  speedup {e['speedup'] or float('nan'):.3g}  "
                   f"vs MoorDyn {e['cablesys_vs_moordyn']}")
+        if "wang" not in r:          # the slack row: segmented cablesys against MoorDyn only
+            continue
         print(f"{r['case']:10s} wang speedup {r['wang_speedup']}, auto speedup {r['auto_speedup']} (run only "
               f"{r.get('auto_speedup_run_only')}, choosing {r.get('auto_choose_s')} s), auto error {r['auto_error']}")
 
