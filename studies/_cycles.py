@@ -89,3 +89,46 @@ def cycle_statistics(time, series: dict, period: float, t0: float, t1: float | N
         s = np.asarray(law_slack)[w] > 0.5
         out.update(law_slack_top=float(s[:, 0].mean()), law_slack_bottom=float(s[:, -1].mean()))
     return out
+
+
+# -- shared with studies/model_ladder.py: the settled figures in the ladder's error terms ---------------
+
+def settled_window_start(ramp_s: float, period: float, duration: float) -> float:
+    """Start of the statistics window: the second half of the run, on the forcing-cycle grid after
+    the ramp (the slack scene, 360 s with a 18 s ramp at T = 6 s: 180 s), or the ramp's end when the
+    run is shorter than twice the ramp."""
+    return ramp_s + max(0, int(np.floor((duration / 2 - ramp_s) / period + 1e-9))) * period
+
+
+def ladder_statistics(result, period: float, t0: float, t1: float | None = None) -> dict:
+    """:func:`cycle_statistics` of a run, named as :func:`cablesys.ladder.metrics.statistics` names
+    its figures (so :func:`cablesys.ladder.metrics.errors` compares them): ``x_b_amplitude``,
+    ``y_b_amplitude`` (m), ``tension_top_max`` / ``_min``, ``tension_bottom_max`` / ``_min`` (N),
+    each a mean over the whole forcing cycles of [t0, t1], with ``spread`` (max - min over the
+    cycles of each), ``window_s`` and ``cycles``."""
+    series = {k: np.asarray(result[k]) for k in ("x_b", "y_b", "tension_top", "tension_bottom")}
+    st = cycle_statistics(result.time, series, period, t0, t1)
+    names = {"x_b_amplitude": "x_amp", "y_b_amplitude": "y_amp", "tension_top_max": "top_max",
+             "tension_top_min": "top_min", "tension_bottom_max": "bottom_max", "tension_bottom_min": "bottom_min"}
+    out = {k: st[v] for k, v in names.items()}
+    out["spread"] = {k: st[f"{v}_spread"] for k, v in names.items()}
+    return {**out, "window_s": st["window_s"], "cycles": st["cycles"]}
+
+
+def richardson_limit(coarse: dict, fine: dict, ratio: float = 2.0, order: float = 1.0) -> dict:
+    """The Richardson limit f + (f - f_c) / (r^p - 1) of every number of ``fine`` (N) and ``coarse``
+    (N / r), for a discretisation error ~ N^-p (Richardson 1911; p = 1 on the slack scene)."""
+    return {k: v + (v - coarse[k]) / (ratio**order - 1.0)
+            for k, v in fine.items() if isinstance(v, float) and isinstance(coarse.get(k), float)}
+
+
+def observed_orders(f1: dict, f2: dict, f4: dict, ratio: float = 2.0) -> dict:
+    """Observed order log_r(|f1 - f2| / |f2 - f4|) of each number from three runs at N, rN, r^2 N
+    (None where a difference is zero)."""
+    out = {}
+    for k, v in f4.items():
+        if not (isinstance(v, float) and isinstance(f1.get(k), float) and isinstance(f2.get(k), float)):
+            continue
+        a, b = abs(f1[k] - f2[k]), abs(f2[k] - v)
+        out[k] = float(np.log(a / b) / np.log(ratio)) if a > 0 and b > 0 else None
+    return out
