@@ -219,3 +219,56 @@ def test_auto_on_the_dale_scene_meets_its_tolerance():
     ref = run_rung(scene, "segmented", 16, method="cvodes-bdf2", rtol=1e-7, atol=1e-10)
     err = metrics.errors(metrics.statistics(r, period), metrics.statistics(ref, period))
     assert err["body"] <= 0.01 and err["tension"] <= 0.02
+
+
+def test_continuum_estimate_between_tabulated_n_is_the_power_law_through_its_neighbours():
+    """A continuum table falling as C N^-2 up to N = 8 and C' N^-3 beyond is met exactly at N between the
+    tabulated ones (the power law through the two neighbours); the nearest N above would state the error
+    of up to twice the elements (5 elements got 8's)."""
+    from cablesys.ladder import estimate as est
+    exact = lambda n: 0.3 * n**-2.0 if n <= 8 else 0.3 * 8.0 * n**-3.0
+    table = {str(n): {"body": exact(n), "tension": 0.0} for n in est.CONTINUUM_N}
+    errs = {"segmented_1": {"body": 0.0, "tension": 0.0, "order": 2.0, "continuum": table, "note": ""}}
+    for n in (3, 5, 6, 7, 12, 20, 40):
+        assert est.segmented_error(errs, n)["body"] == pytest.approx(max(exact(n), est.RESOLUTION), rel=1e-12)
+
+
+def test_quasi_static_segmented_estimate_is_the_segmented_plus_the_stretch_part():
+    """The quasi-static segmented rung at N errs as the segmented cable at N plus what a quasi-static stretch
+    misses (the straight quasi-static rung's part over Wang's, r^2 / |1 - r^2| of the dynamic stretch);
+    under predicted partial slack it is invalid (a quasi-static stretch cannot go slack)."""
+    from cablesys.ladder.estimate import rung_error, segmented_error
+    errs = choose(_stiff_pendulum(period=2.0, ae=1.5e6)).numbers["estimates"]
+    qs, wang = errs["quasi-static"], errs["wang"]
+    assert qs["stretch"]["tension"] > 1e-4          # a soft stretch: the part is resolved
+    for n in (2, 5):
+        e, s = rung_error(errs, "quasi-static", n), segmented_error(errs, n)
+        for k in ("body", "tension"):
+            assert e[k] == pytest.approx(s[k] + qs[k] - wang[k], rel=1e-12)
+    assert rung_error(errs, "quasi-static", 1) is qs
+    with pytest.warns(NumericalWarning):
+        slack = choose(_wire_300m(6.0)).numbers["estimates"]
+    assert math.isinf(rung_error(slack, "quasi-static", 10)["body"])
+
+
+def test_auto_takes_the_quasi_static_segmented_cable_where_the_stretch_is_stiff(monkeypatch):
+    """With the quasi-static segmented rung available: on the Dale scene (omega/omega_ax = 0.0045) the
+    straight cable misses the body by ~4 % (it cannot bow), so auto takes N elements whose stretches follow
+    the tension (N = 3-4 by the estimate), not the node model with its stiff element stretches; with AE
+    divided by 100 (omega/omega_ax = 0.045 > 1/30) it steps them (the segmented rung); under partial slack
+    it cannot take it."""
+    import cablesys.ladder.choice as ch
+    monkeypatch.setattr(ch, "quasistatic_segments_available", lambda scene: True)
+    from cablesys.ladder.estimate import rung_error
+    dale = dale_scene()
+    c = choose(dale)
+    assert (c.name, c.segments) in (("quasi-static", 3), ("quasi-static", 4))
+    assert c.estimated_error["body"] == rung_error(c.numbers["estimates"], "quasi-static", c.segments)["body"]
+    assert c.estimated_error["body"] <= ch.SAFETY * 0.01 and "quasi-static segmented" in c.reason
+    soft = dale.replace_section(0, cable={"ae": dale.cable.ae / 100})
+    assert scene_numbers(soft).axial_ratio > 1 / ch.STIFF_RATIO
+    assert choose(soft).name == "segmented"
+    with pytest.warns(NumericalWarning, match="not reachable"):
+        assert choose(_wire_300m(6.0)).name == "segmented"
+    forced = ch.forced(dale, "quasi-static", 5)
+    assert forced.segments == 5 and forced.estimated_error["body"] < 0.01

@@ -5,6 +5,8 @@ The choice (:func:`~cablesys.ladder.choice.choose`) is checked a posteriori:
   tension falls to the floor, the run is rejected and Wang's model (or the segmented cable) runs;
 - wang: a run that goes slack is outside the straight cable's validity (one stretch makes the whole
   cable slack at once): rejected for the segmented cable;
+- quasi-static segmented (N elements whose stretches follow the tension): rejected like the straight
+  quasi-static rung when any element's tension reaches the floor; its N is checked as the segmented one's;
 - segmented with N: N is chosen for SAFETY x the tolerance (:func:`~.choice.segments_for`); only
   when the estimate at N is not that far within the tolerance (N capped, or forced by the user) does
   a second run with N/2 give the Richardson estimate |y_N - y_N/2| / (2^p - 1), N doubling while it
@@ -195,8 +197,13 @@ def _periodic_run(scene: Scene, cache: RungCache):
 
 
 def _went_slack(result, scene: Scene) -> bool:
+    """True when the run's least tension (ends, Wang's F_bc, and every element of a segmented cable)
+    reached the floor, or the run located a slack event."""
     floor = max(s.cable.tension_floor for s in scene.sections)
     low = min(float(np.min(result[k])) for k in ("tension_bottom", "tension") if k in result.labels)
+    profiles = getattr(result, "profiles", {}) or {}
+    if "element_tension" in profiles:         # a segmented cable: an element can slacken between the ends
+        low = min(low, float(np.min(profiles["element_tension"])))
     return bool(result.events) or result.time_slack() > 0 or low <= floor
 
 
@@ -270,7 +277,7 @@ def _check(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict
         result = _run(scene, choice, tol, cache, kw)
     e = choice.estimated_error
     sure = e["body"] <= SAFETY * tol[0] and e["tension"] <= SAFETY * tol[1]
-    if choice.name == "segmented" and choice.segments >= 4 and not sure:
+    if choice.name in ("segmented", "quasi-static") and choice.segments >= 4 and not sure:
         return _richardson(scene, choice, tol, result, cache, kw, auto=auto)
     return result, choice
 
@@ -289,7 +296,7 @@ def _richardson(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw:
         cap = MAX_SEGMENTS if order >= est.ORDER else SLACK_MAX_SEGMENTS
         if not auto or (e["body"] <= tol[0] and e["tension"] <= tol[1]) or 2 * n > cap:
             reason = choice.reason + f"; a posteriori (N = {n} vs {n // 2}, order {order:g}): body {e['body']:.2g}, tension {e['tension']:.2g}"
-            return result, Choice("segmented", n, reason, e, choice.numbers)
+            return result, Choice(choice.name, n, reason, e, choice.numbers)
         n *= 2
         choice = dataclasses.replace(choice, segments=n)
         result = _run(scene, choice, tol, cache, kw)
@@ -312,12 +319,13 @@ def plan_run(scene: Scene, model: str | None = None, tolerance=None, cache: Rung
 def after_run(scene: Scene, choice: Choice, result, *, auto: bool) -> tuple[Choice, bool]:
     """A posteriori check of one run: (updated Choice, whether to run again with it).
 
-    A straight-cable run (quasi-static or wang) that went slack is outside its validity: under
-    "auto" the segmented cable is chosen instead (run again); a forced rung keeps its result with
-    a warning and an infinite estimated error."""
+    A straight-cable run (quasi-static or wang) or a quasi-static segmented run that went slack is
+    outside its validity: under "auto" the segmented cable is chosen instead (run again); a forced rung
+    keeps its result with a warning and an infinite estimated error."""
     if choice.name not in ("quasi-static", "wang") or not _went_slack(result, scene):
         return choice, False
-    note = f"the {choice.name} run went slack: a straight cable with one stretch cannot be partly slack"
+    note = (f"the {choice.name} run went slack: " + ("a quasi-static stretch cannot go slack" if choice.segments > 1
+                                                     else "a straight cable with one stretch cannot be partly slack"))
     if not auto:
         warnings.warn(f"model '{choice.name}': {note}", NumericalWarning, stacklevel=2)
         return Choice(choice.name, 1, choice.reason + "; " + note, {"body": math.inf, "tension": math.inf},
@@ -331,6 +339,6 @@ def describe(choice_dict: dict) -> str:
     """One console line: which model ran, why, and its estimated error."""
     e = choice_dict.get("estimated_error", {})
     fmt = lambda v: "n/a" if v is None else f"{100 * v:.2g} %"
-    seg = f", N = {choice_dict['segments']}" if choice_dict.get("name") == "segmented" else ""
+    seg = f", N = {choice_dict['segments']}" if (choice_dict.get("segments") or 1) > 1 else ""
     return (f"model {choice_dict.get('name')}{seg}: estimated error body {fmt(e.get('body'))}, tension "
             f"{fmt(e.get('tension'))}; {choice_dict.get('reason', '')}")

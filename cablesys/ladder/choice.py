@@ -11,7 +11,7 @@ from ..errors import NumericalWarning, ParameterError
 from ..scene import Scene
 from . import estimate as est
 from .indicators import scene_numbers
-from .rungs import RUNGS, RungCache
+from .rungs import RUNGS, RungCache, rung_scene
 
 DEFAULT_TOLERANCE = 0.01          # body motion; tension extremes get twice this (issue 12)
 MAX_SEGMENTS = 128
@@ -65,17 +65,39 @@ STIFF_RATIO = 30.0   # omega_ax / omega above which the quasi-static rung is the
 SAFETY = 0.5       # N is chosen for half the tolerance: the estimates are good to a factor of 2
 
 
-def segments_for(errors: dict, tol: tuple[float, float]) -> int:
-    """Least N (2 <= N <= the cap) whose estimated errors (:func:`~.estimate.segmented_error`) are within
-    SAFETY x ``tol``: a margin for the estimate's factor of 2 (on the Dale scene the body error falls as
+def segments_for(errors: dict, tol: tuple[float, float], name: str = "segmented") -> int:
+    """Least N (2 <= N <= the cap) whose estimated errors (:func:`~.estimate.rung_error` of the segmented
+    rung, or of the quasi-static segmented rung for ``name`` "quasi-static") are within SAFETY x ``tol``:
+    a margin for the estimate's factor of 2 (on the Dale scene the body error falls as
     N^-1.6, 4.1, 1.26, 0.72, 0.55 % at N = 1, 2, 3, 4 against N = 80, not as the N^-2 of a smooth bow:
     N chosen for the full tolerance under N^-2 missed it at N = 2)."""
     cap = MAX_SEGMENTS if errors["segmented_1"].get("order", est.ORDER) >= est.ORDER else SLACK_MAX_SEGMENTS
     for n in range(2, cap + 1):
-        e = est.segmented_error(errors, n)
+        e = est.rung_error(errors, name, n)
         if e["body"] <= SAFETY * tol[0] and e["tension"] <= SAFETY * tol[1]:
             return n
     return cap
+
+
+def quasistatic_segments_available(scene: Scene) -> bool:
+    """True when the quasi-static rung takes elements (:func:`~.rungs.rung_scene` keeps ``segments`` for it:
+    the segmented cable with its stretches following the tension, :mod:`cablesys.model.quasistatic`)."""
+    return all(s.cable.segments == 2 for s in rung_scene(scene, "quasi-static", 2).sections)
+
+
+def _quasistatic_segmented(scene: Scene, numbers, errs: dict, tol) -> int | None:
+    """N of the quasi-static segmented rung when it is the cheaper way to N elements, else None.
+
+    It replaces the segmented cable when the stretch is stiff (omega/omega_ax <= 1 / STIFF_RATIO, the rule
+    that puts the straight quasi-static rung before Wang's: stepping the stretch modes of N elements,
+    the lowest at omega_ax and the others higher, costs more than solving for them), the cable stays taut
+    (a quasi-static stretch cannot go slack: :func:`~.estimate.quasistatic_segmented_error` is infinite
+    under predicted partial slack) and its estimate at its N is within SAFETY x the tolerance."""
+    if numbers.axial_ratio > 1.0 / STIFF_RATIO or not quasistatic_segments_available(scene):
+        return None
+    n = segments_for(errs, tol, "quasi-static")
+    e = est.rung_error(errs, "quasi-static", n)
+    return n if e["body"] <= SAFETY * tol[0] and e["tension"] <= SAFETY * tol[1] else None
 
 
 def _within(e: dict, tol) -> bool:
@@ -145,17 +167,21 @@ def choose(scene: Scene, tolerance=None, *, question: str = "time", cache: RungC
                 reason += ("; nothing drives the swing (top motion along the cable, no current, waves or series): "
                            "the quasi-static rung has no dynamics left to step, its cost is its outputs")
             return Choice(name, 1, reason, {"body": e["body"], "tension": e["tension"]}, info)
-    n = segments_for(errs, tol)
-    e = est.segmented_error(errs, n)
+    n_qs = _quasistatic_segmented(scene, numbers, errs, tol)
+    name, n = ("quasi-static", n_qs) if n_qs is not None else ("segmented", segments_for(errs, tol))
+    e = est.rung_error(errs, name, n)
     why = errs["wang"]["note"] if not _within(errs["wang"], tol) else ""
-    reason = (f"segmented with N = {n}: the straight cable misses the tolerance ({why}, estimated body "
-              f"{errs['wang']['body']:.3g}, tension {errs['wang']['tension']:.3g}); the least with its estimate "
+    what = (f"quasi-static segmented with N = {n} (the element stretches follow the tension: "
+            f"omega/omega_ax = {numbers.axial_ratio:.3g} <= 1/{STIFF_RATIO:g})" if name == "quasi-static"
+            else f"segmented with N = {n}")
+    reason = (f"{what}: the straight cable misses the tolerance ({why}, estimated body "
+              f"{errs['wang']['body']:.3g}, tension {errs['wang']['tension']:.3g}); the least N with its estimate "
               f"within {SAFETY:g} x the tolerance; {deciding}")
     if not _within(e, tol):
         reason += (f"; the tolerance is not reachable at an affordable N: estimated body {e['body']:.2g}, "
                    f"tension {e['tension']:.2g} at N = {n}")
         warnings.warn(f"model auto: {reason}", NumericalWarning, stacklevel=2)
-    return Choice("segmented", n, reason, {"body": e["body"], "tension": e["tension"]}, info)
+    return Choice(name, n, reason, {"body": e["body"], "tension": e["tension"]}, info)
 
 
 def forced(scene: Scene, name: str, segments: int | None = None, tolerance=None,
@@ -169,7 +195,8 @@ def forced(scene: Scene, name: str, segments: int | None = None, tolerance=None,
     name : str
         A rung of :data:`~cablesys.ladder.rungs.RUNGS`.
     segments : int, optional
-        Elements per section for the segmented rung (default: chosen for the tolerance).
+        Elements per section for the segmented rung (default: chosen for the tolerance), or for the
+        quasi-static rung (> 1: the quasi-static segmented cable; default 1, the straight cable).
     tolerance : float or (float, float), optional
         See :func:`tolerances`.
     cache : RungCache, optional
@@ -185,9 +212,11 @@ def forced(scene: Scene, name: str, segments: int | None = None, tolerance=None,
     if name == "segmented":
         scene_n = max(s.cable.segments for s in scene.sections)      # the user's own `segments = N`
         n = segments or (scene_n if scene_n > 1 else segments_for(errs, tol))
-        e = est.segmented_error(errs, n)
+    elif name == "quasi-static" and segments and segments > 1 and quasistatic_segments_available(scene):
+        n = segments                                                 # the quasi-static segmented rung
     else:
-        n, e = 1, errs[name]
+        n = 1
+    e = est.rung_error(errs, name, n)
     ok = _within(e, tol)
     reason = f"{name} requested by the user" + ("" if ok else f"; OUTSIDE its validity at this tolerance: {e['note']}")
     return Choice(name, n, reason, {"body": e["body"], "tension": e["tension"]}, dict(info, valid=ok))

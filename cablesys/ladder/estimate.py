@@ -158,12 +158,14 @@ def estimate_errors(scene: Scene, numbers: SceneNumbers, response: LinearRespons
     f_ax = axial_factor(scene, numbers)
     k_eff = min(s.cable.spring_constant for s in scene.sections)
     body_qs = f_ax * (d_t / k_eff) / max(response.body_amplitude, 1e-300)
-    qs = {"body": wang["body"] + body_qs, "tension": wang["tension"] + f_ax * d_t / t_max,
+    stretch = {"body": body_qs, "tension": f_ax * d_t / t_max}
+    qs = {"body": wang["body"] + stretch["body"], "tension": wang["tension"] + stretch["tension"], "stretch": stretch,
           "note": f"stretch quasi-static: omega/omega_ax = {numbers.axial_ratio:.3g} misses {f_ax:.2g} of the "
                   "dynamic stretch"}
     if f_ax >= 0.5:
-        qs.update(body=math.inf, tension=math.inf, note=f"forcing near or above the axial frequency (omega/omega_ax = "
-                                                        f"{numbers.axial_ratio:.3g}): the stretch is not quasi-static")
+        qs.update(body=math.inf, tension=math.inf, stretch={"body": math.inf, "tension": math.inf},
+                  note=f"forcing near or above the axial frequency (omega/omega_ax = "
+                       f"{numbers.axial_ratio:.3g}): the stretch is not quasi-static")
     freq = dict(wang)
     if not numbers.single_frequency:
         freq.update(body=math.inf, tension=math.inf, note="no single forcing frequency: no periodic steady state")
@@ -175,17 +177,61 @@ def estimate_errors(scene: Scene, numbers: SceneNumbers, response: LinearRespons
     return {"frequency": freq, "quasi-static": qs, "wang": wang, "segmented_1": seg}
 
 
+def _continuum_at(table: dict, n: int, key: str) -> float:
+    """The continuum estimate at ``n`` elements: tabulated at CONTINUUM_N, interpolated in between as the
+    power law through the two neighbours (e ~ N^-s, s from the pair); the nearest N above instead would
+    state the error of up to twice the elements (a 5-element cable got the 8-element estimate)."""
+    ns = sorted(int(k) for k in table)
+    if not ns:
+        return 0.0
+    if n <= ns[0] or n >= ns[-1]:
+        return float(table[str(ns[0] if n <= ns[0] else ns[-1])][key])
+    lo = max(k for k in ns if k <= n)
+    hi = min(k for k in ns if k >= n)
+    e_lo, e_hi = float(table[str(lo)][key]), float(table[str(hi)][key])
+    if hi == lo or e_lo <= 0.0 or e_hi <= 0.0:
+        return max(e_lo, e_hi) if hi != lo else e_lo
+    s = math.log(e_lo / e_hi) / math.log(hi / lo)
+    return e_lo * (n / lo) ** -s
+
+
 def segmented_error(errors: dict, n: int) -> dict:
     """Estimated errors of the segmented rung with ``n`` elements per section: the larger of the
-    straight cable's error x n^-order and the continuum estimate at the tabulated N nearest above n."""
+    straight cable's error x n^-order and the continuum estimate at ``n`` (:func:`_continuum_at`)."""
     base = errors["segmented_1"]
     scale = float(n) ** -base.get("order", ORDER)
     table = base.get("continuum", {})
-    above = [int(k) for k in table if int(k) >= n]
-    c = table[str(min(above))] if above else {"body": 0.0, "tension": 0.0}
-    return {k: max(base[k] * scale, c[k], RESOLUTION) for k in ("body", "tension")} | {"note": base["note"]}
+    return ({k: max(base[k] * scale, _continuum_at(table, n, k), RESOLUTION) for k in ("body", "tension")}
+            | {"note": base["note"]})
+
+
+def quasistatic_segmented_error(errors: dict, n: int) -> dict:
+    """Estimated errors of the quasi-static segmented rung (``n`` elements, their stretches following the
+    tension): the segmented cable's at ``n`` (:func:`segmented_error`) plus the part of the dynamic
+    stretch a quasi-static stretch misses (the same r^2 / |1 - r^2 + i 2 zeta r| as the straight
+    quasi-static rung, :func:`axial_factor`: the N-element cable's lowest stretch mode is the rod's with
+    the body at its end, Wang's omega_ax to O(m L / M)); infinite where the quasi-static rung is invalid
+    (forcing near the axial frequency, or partial slack: a quasi-static stretch cannot go slack)."""
+    qs = errors["quasi-static"]
+    stretch = qs.get("stretch")
+    if stretch is None or not (math.isfinite(qs["body"]) and math.isfinite(qs["tension"])):
+        return {"body": math.inf, "tension": math.inf, "note": qs["note"]}
+    seg = segmented_error(errors, n)
+    return ({k: seg[k] + stretch[k] for k in ("body", "tension")}
+            | {"note": f"{seg['note']}; {qs['note']}"})
 
 
 def check_response(response: LinearResponse) -> None:
     if not (math.isfinite(response.body_amplitude) and math.isfinite(response.largest_tension)):
         raise SolverError("the linear response used to choose the model is not finite (undamped resonance?)")
+
+
+def rung_error(errors: dict, name: str, n: int = 1) -> dict:
+    """Estimated errors of rung ``name`` with ``n`` elements per section (``errors`` from
+    :func:`estimate_errors`): the segmented cable's at ``n``, the quasi-static segmented cable's for
+    "quasi-static" with ``n`` > 1, else the rung's own entry."""
+    if name == "segmented":
+        return segmented_error(errors, n)
+    if name == "quasi-static" and n > 1:
+        return quasistatic_segmented_error(errors, n)
+    return errors[name]
