@@ -90,6 +90,9 @@ METHODS = {m.name: m for m in (
     IntegratorMethod(name="idas", plugin="idas", implicit=True),
     # classical fixed-step Runge-Kutta 4 (cablesys compiles it as one loop)
     IntegratorMethod(name="rk", plugin="rk", adaptive=False),
+    # Dormand-Prince 5(4), explicit, error-controlled: cablesys's own compiled C driver (not a
+    # casadi.integrator plugin; time_domain/dopri5.py); CVODES when nothing is compiled
+    IntegratorMethod(name="dopri5", plugin="dopri5"),
     # fixed-step Radau collocation (implicit), for comparison
     IntegratorMethod(name="collocation", plugin="collocation", adaptive=False,
                      options={"collocation_scheme": "radau", "interpolation_order": 3}),
