@@ -1,0 +1,211 @@
+"""``dopri5``: Dormand-Prince 5(4) with error control, run entirely in compiled C.
+
+The method is the explicit embedded Runge-Kutta pair of Dormand & Prince (1980) ("A family of
+embedded Runge-Kutta formulae", J. Comput. Appl. Math. 6, 19-26) with the step control of
+Hairer, Norsett & Wanner, *Solving Ordinary Differential Equations I* (2nd ed., 1993): error
+norm RMS of err_i / (atol_i + rtol max(|x_i|, |x_new_i|)) (eq. II.4.11), the PI controller of
+their DOPRI5 code (sec. IV.2: beta = 0.04, safety 0.9, step ratio in [0.2, 10], no increase right
+after a rejection), their starting step (sec. II.4), first-same-as-last, and DOPRI5's 4th-order
+dense output (sec. II.6, Shampine 1986's coefficients) for the output times, so the steps are
+never shortened to land on an output time (on the Dale grid, 0.05 s outputs and ~0.01 s steps,
+clipping would add up to a step per output). The driver is ``dopri5.c`` next to this module.
+
+Why hand-written C: CasADi (3.8) offers no error-controlled explicit integrator (its ``rk``
+plugin takes fixed steps), SUNDIALS ARKODE is not exposed through ``casadi.integrator``, and a
+Python step loop costs ~35 us per right-hand-side call against ~0.2 us compiled. The driver is
+appended to the C that CasADi's ``CodeGenerator`` writes for the model's relative-time ODE (the
+DAE function of :mod:`.integrators`, x' = h ode(x, t0 + h s) with p extended by (t0, h)), built
+and cached on disk by :func:`cablesys.compiled.compile_functions` (same compiler command, cache
+key = code hash + compiler identity, atomic writes), and loaded as a CasADi function with
+``casadi.external`` (CasADi's external-function C API: ``cablesys_dopri5``, ``_n_in``,
+``_sparsity_in``, ``_work``, ...). One call advances to one output time; a CasADi ``mapaccum``
+over the output grid carries the integrator (time, step, state, FSAL stage, dense-output
+coefficients, counters, status) from one output time to the next, so a whole chunk of output
+times is one CasADi call with no Python per step.
+
+Why dopri5 at all: the Dale stretch mode (254 rad/s, undamped) lies on the imaginary axis, where
+BDF orders 3-5 are unstable, so CVODES takes ~30-44k steps per 60 s whatever rtol; DOPRI5 is
+stability-limited too (|h lambda| <= ~3.3 on the imaginary axis) but at ~5k steps of 7 cheap
+compiled right-hand sides, and it controls its error (the compiled ``rk`` loop does not).
+
+Tolerances: the same state scales as the other adaptive methods (``IntegratorSettings.scaled``,
+:mod:`cablesys.model.scales`), applied as a per-state absolute tolerance atol x S_i(p) on the
+physical states (DOPRI5 takes a vector atol, so no change of variables is needed: the error norm
+is identical to integrating x / S with the scalar atol). ``max_num_steps`` is the budget of
+attempted steps per output interval, as for CVODES.
+
+Without a compiled library (no C compiler, ``CABLESYS_COMPILE=0``, or ``compiled=False``)
+:func:`.integrators.make_integrator` runs CVODES instead, with one logged notice.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import logging
+from importlib import resources
+
+import casadi as ca
+import numpy as np
+
+from ..compiled import Compiled, compile_functions
+from ..errors import SolverError
+from ..model import CableModel
+from ..model.scales import state_scales
+
+log = logging.getLogger(__name__)
+
+__all__ = ["DRIVER", "Dopri5Integrator", "dopri5_library", "make_dopri5"]
+
+DRIVER = "cablesys_dopri5"
+HEAD = 12                  # carry layout: see dopri5.c
+STATUS = {1: ("TOO_MUCH_WORK", "the step budget max_num_steps of one output interval is used up"),
+          2: ("ERR_FAILURE", "the step size fell below the rounding level of the time"),
+          3: ("NONFINITE", "the right-hand side or the state is not finite and smaller steps do not help")}
+
+
+@dataclasses.dataclass(frozen=True)
+class _Source:
+    code: str
+    digest: str
+
+
+def _driver_source() -> _Source:
+    code = resources.files(__package__).joinpath("dopri5.c").read_text()
+    return _Source(code, hashlib.sha256(code.encode()).hexdigest()[:16])
+
+
+def dopri5_library(model: CableModel, compiled: bool = True) -> Compiled:
+    """The model's relative-time ODE and the DOPRI5 driver in one compiled library (built once
+    per model, cached on disk).
+
+    Parameters
+    ----------
+    model : CableModel
+        The model (its explicit ODE; any kind).
+    compiled : bool, optional
+        False returns the uncompiled Compiled (no driver: the caller falls back).
+
+    Returns
+    -------
+    Compiled
+        ``functions[DRIVER]`` is the driver (when ``compiled``); build and load times.
+    """
+    from .integrators import _dae_function  # the integrators' shared relative-time DAE
+
+    src = _driver_source()
+
+    def build():
+        rhs = _dae_function(model, implicit=False, scaled=False)
+        defines = (f"\n#define CS_DP5_NX {2 * model.nq}\n#define CS_DP5_NP {len(model.layout) + 2}\n"
+                   f"#define CS_DP5_RHS {rhs.name()}\n#define CS_DP5_RHS_WORK {rhs.name()}_work\n")
+        return compile_functions([rhs], jacobians=False, enabled=compiled, extra_c=defines + src.code,
+                                 extra_names=(DRIVER,))
+    return model.derive(f"dopri5:{src.digest}:{'compiled' if compiled else 'vm'}", build)
+
+
+class Dopri5Integrator:
+    """DOPRI5 over a fixed relative grid, called like a CasADi integrator.
+
+    ``F(x0=..., p=...)`` (or positional) -> ``{"xf": DM (nx, len(grid) - 1)}``; ``stats()`` of
+    the last call: ``nsteps`` (accepted), ``n_rejected``, ``nfevals``, ``status``. A failure
+    raises :class:`~cablesys.errors.SolverError` naming the flag and the time, with the states
+    reached kept on the error (``err.states``, ``err.times``: relative grid times).
+
+    Parameters
+    ----------
+    function : casadi.Function
+        ``(x0, p) -> (xf, carry)``: the driver mapped over the grid.
+    grid : array_like
+        The relative output grid (first entry the start).
+    """
+
+    def __init__(self, function: ca.Function, grid):
+        self.function, self.grid = function, np.asarray(grid, dtype=float)
+        self._stats = None
+
+    def __call__(self, *args, **kw) -> dict:
+        kw.update(zip(("x0", "p"), args))
+        p = np.asarray(kw["p"], dtype=float).ravel()
+        out = self.function(x0=kw["x0"], p=p)
+        X, c = np.array(out["xf"]), np.array(out["carry"]).ravel()
+        status = int(c[5])
+        self._stats = {"nsteps": int(c[2]), "n_rejected": int(c[3]), "nfevals": int(c[4]), "status": status}
+        if status:
+            flag, why = STATUS.get(status, (f"STATUS_{status}", "unknown failure"))
+            t0, h = p[-2], p[-1]
+            s_fail = float(c[6])
+            n_ok = int(np.argmin(np.all(np.isfinite(X), axis=0))) if not np.all(np.isfinite(X)) else X.shape[1]
+            err = SolverError(
+                f'dopri5 returned "{flag}" at t = {h * (s_fail - self.grid[0]):.9g} (s from the start of the call; '
+                f"time {t0 + h * s_fail:.9g} s): {why} (after {c[2]:.0f} accepted and {c[3]:.0f} rejected steps); "
+                f"the states at the first {n_ok} output times are kept")
+            err.flag, err.time, err.states, err.times = flag, float(t0 + h * s_fail), X[:, :n_ok], self.grid[1:n_ok + 1]
+            err.stats = dict(self._stats)
+            raise err
+        return {"xf": ca.DM(X)}
+
+    def stats(self) -> dict:
+        """Counters of the last call (RuntimeError before any, as CasADi's integrators)."""
+        if self._stats is None:
+            raise RuntimeError("dopri5: no statistics before a first evaluation")
+        return dict(self._stats)
+
+
+def make_dopri5(model: CableModel, settings, grid, name: str = "F") -> Dopri5Integrator | None:
+    """The DOPRI5 integrator of ``model`` over the relative ``grid``, or None without a compiled
+    library (the caller falls back to CVODES).
+
+    Parameters
+    ----------
+    model : CableModel
+        The model.
+    settings : IntegratorSettings
+        ``rtol``, ``atol`` (per state atol x S_i(p) when ``scaled``), ``max_num_steps`` (per
+        output interval), ``compiled``/``jit``.
+    grid : array_like
+        Relative output grid s (t = t0 + h s, (t0, h) appended to p); outputs at grid[1:].
+    name : str, optional
+        Name of the CasADi function.
+
+    Returns
+    -------
+    Dopri5Integrator or None
+    """
+    comp = dopri5_library(model, bool(settings.compiled or settings.jit))
+    if not comp.compiled:
+        return None
+    grid = np.asarray(grid, dtype=float)
+    nx, npx, n = 2 * model.nq, len(model.layout) + 2, len(grid) - 1
+    acc = comp.functions[DRIVER].mapaccum(f"{name}_steps", n, [0], [0])
+    x0, p = ca.MX.sym("x0", nx), ca.MX.sym("p", npx)
+    S = state_scales(model)(p[:-2]) if settings.scaled else ca.DM.ones(nx)
+    head = ca.DM([grid[0], 0, 0, 0, 0, 0, 0, grid[0], 0, 0, 0, 0])
+    carry0 = ca.vertcat(head, x0, ca.DM.zeros(6 * nx))
+    tol = ca.DM([settings.rtol, settings.max_num_steps])
+    C, X = acc(carry0, ca.DM(grid[1:]).T, ca.repmat(p, 1, n), ca.repmat(tol, 1, n),
+               ca.repmat(settings.atol * S, 1, n))
+    F = ca.Function(name, [x0, p], [X, C[:, -1]], ["x0", "p"], ["xf", "carry"])
+    return Dopri5Integrator(F, grid)
+
+
+def fallback_settings(model: CableModel, settings):
+    """The settings CVODES runs instead of ``dopri5`` when its driver is not compiled (no C
+    compiler, ``CABLESYS_COMPILE=0``, or ``compiled=False``); one logged notice per model.
+
+    Parameters
+    ----------
+    model : CableModel
+        The model (the notice is logged once per model).
+    settings : IntegratorSettings
+        The ``dopri5`` settings.
+
+    Returns
+    -------
+    IntegratorSettings
+        The same tolerances, scaling and step budget with ``method="cvodes"``.
+    """
+    comp = dopri5_library(model, bool(settings.compiled or settings.jit))
+    model.derive("dopri5:fallback-notice", lambda: log.warning(
+        "dopri5 needs its compiled C driver (%s): running CVODES (BDF) instead", comp.note or "not compiled") or True)
+    return dataclasses.replace(settings, method="cvodes")
