@@ -5,6 +5,8 @@
 - ``idas``          IDAS on the implicit residual M(q) q'' - f = 0 (q'' algebraic; M never inverted);
 - ``rk``            classical fixed-step Runge-Kutta 4 (compiled loop, :func:`rk4_interval`): the
                     fastest choice when the step is below the stability limit (no error control);
+- ``dopri5``        Dormand-Prince 5(4), explicit with error control and dense output, a compiled C
+                    driver (:mod:`.dopri5`); CVODES when nothing is compiled;
 - ``collocation``   fixed-step Radau collocation (implicit), for comparison.
 
 Every integrator runs in relative time s with the parameter vector extended by (t_0, h):
@@ -189,6 +191,12 @@ def compiled_dae(model: CableModel, settings: IntegratorSettings) -> Compiled:
     interval for ``rk``), with its first build/load times."""
     if settings.method == "rk" and settings.custom is None:
         return rk4_interval(model, int(settings.steps_per_output), settings.compiled or settings.jit)
+    if settings.method == "dopri5" and settings.custom is None:
+        from .dopri5 import dopri5_library, fallback_settings
+        comp = dopri5_library(model, settings.compiled or settings.jit)
+        if comp.compiled:
+            return comp
+        settings = fallback_settings(model, settings)
     return dae_function(model, settings.integrator_method.implicit, settings.compiled or settings.jit,
                         uses_scaling(settings))
 
@@ -308,6 +316,12 @@ def make_integrator(model: CableModel, settings: IntegratorSettings, grid, name:
     """
     if settings.method == "rk" and settings.custom is None:
         return _rk4_integrator(model, settings, np.asarray(grid, dtype=float), name)
+    if settings.method == "dopri5" and settings.custom is None:
+        from .dopri5 import fallback_settings, make_dopri5
+        F = make_dopri5(model, settings, np.asarray(grid, dtype=float), name)
+        if F is not None:
+            return F
+        settings = fallback_settings(model, settings)
     method = settings.integrator_method
     plugin, opts = method.plugin, method.plugin_options()
     grid = np.asarray(grid, dtype=float)
