@@ -73,9 +73,46 @@ def exact(mb: Member, omega: float, c: float, cb: float) -> tuple:
     return wb, s * (a - b * wb), s * (b - a * wb)
 
 
+CHAIN_OVERFLOW = 300.0   # |Re(n kappa)| above which cosh(n kappa) nears overflow: the banded solve instead
+
+
 def elements(mb: Member, omega: float, c: float, cb: float, n: int, *, consistent: bool) -> tuple:
     """(W_b, F_body, F_top) per unit top amplitude of ``n`` linear elements: consistent mass for
-    Wang's straight cable (n = 1), lumped mass for the segmented cable; drag shared by virtual work."""
+    Wang's straight cable (n = 1), lumped mass for the segmented cable; drag shared by virtual work.
+
+    Every element alike, the free nodes obey o w_{k-1} + 2 d w_k + o w_{k+1} = 0 (d = D00 = D11,
+    o = D01 = D10 of the element's dynamic stiffness D = K - omega^2 M + i omega C), a linear recurrence
+    with w_k = cosh(k kappa) + B sinh(k kappa) / sinh(kappa), cosh(kappa) = -d / o, w_0 = 1 at the top
+    and the body node o w_{n-1} + (d + Z_b) w_n = 0 (Z_b = -M omega^2 + i omega c_b). With
+    cosh((n-1) kappa) = cosh(n kappa) cosh(kappa) - sinh(n kappa) sinh(kappa) this gives, with S_n =
+    sinh(n kappa) / sinh(kappa),
+
+        W_b = o / (o cosh(n kappa) - Z_b S_n),   F_body = Z_b W_b (the body's own balance),
+        F_top = d + o w_1 = o B,   B = (o sinh(kappa) sinh(n kappa) - Z_b cosh(n kappa)) / (Z_b S_n - o cosh(n kappa)),
+
+    free of the cancellations of the stiffness in d + o w (the forces are small differences of k / h
+    terms). cosh(kappa) - 1 = -(d + o) / o is formed without the stiffness (d + o = -omega^2 m h / 2 +
+    i omega c h / 2 for either mass), so kappa stays accurate as k h -> 0. Constant cost in n (the
+    estimate tabulates n up to 128, issue 12: choosing is part of the user's wait); near overflow
+    (|Re(n kappa)| > CHAIN_OVERFLOW) the tridiagonal system is solved (:func:`elements_banded`)."""
+    h = mb.length / n
+    k_el = mb.stiffness / h
+    o_m = mb.mass * h / 6.0 if consistent else 0.0        # off-diagonal mass: consistent (m h / 6) or lumped
+    o = -k_el - omega**2 * o_m + 1j * omega * c * h / 6.0
+    delta = -(-omega**2 * mb.mass * h / 2.0 + 1j * omega * c * h / 2.0) / o      # cosh(kappa) - 1
+    kappa = 2.0 * cmath.asinh(cmath.sqrt(delta / 2.0))
+    if abs((n * kappa).real) > CHAIN_OVERFLOW:
+        return elements_banded(mb, omega, c, cb, n, consistent=consistent)
+    sk, ch, sh = cmath.sinh(kappa), cmath.cosh(n * kappa), cmath.sinh(n * kappa)
+    s_n = sh / sk if sk != 0 else complex(n)
+    zb = -mb.end_mass * omega**2 + 1j * omega * cb
+    den = zb * s_n - o * ch
+    wb = -o / den
+    return wb, zb * wb, o * (o * sk * sh - zb * ch) / den
+
+
+def elements_banded(mb: Member, omega: float, c: float, cb: float, n: int, *, consistent: bool) -> tuple:
+    """:func:`elements` by a banded solve of the node equations (any attenuation)."""
     h = mb.length / n
     ke = mb.stiffness / h * np.array([[1.0, -1.0], [-1.0, 1.0]])
     me = mb.mass * h * (np.array([[2.0, 1.0], [1.0, 2.0]]) / 6.0 if consistent else np.eye(2) / 2.0)
