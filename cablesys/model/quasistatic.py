@@ -17,6 +17,21 @@ is the swing. The tension is the constraint force k u that holds the stretch equ
 error of the reduction is O((omega / omega_ax)^2): a spring with mass driven at omega
 responds by 1 / (1 - (omega / omega_ax)^2) more than its quasi-static tension.
 
+A scene with ``cable.segments = N > 1`` gets the same reduction of the segmented cable
+(:mod:`.element_coordinates`: the node model of :mod:`.segmented` in the coordinates (phi_k, u_k)
+of its elements, Wang's p. 33 "each segment has two degrees of freedom"). Its fast modes are the
+N axial modes of the elements, the lowest near Wang's omega_ax and the others higher, all
+undamped unless C_I > 0 (eq. 46): with eps = omega / omega_ax the system is
+singularly perturbed (the stretch rows are M_uu u'' + ... = -k_e u + ..., k_e ~ 1/eps^2), and
+Tikhonov's theorem gives the slow manifold u = u*(s, s', e) + O(eps^2) on which the bowing,
+swing and string modes live (their frequencies stay far below omega_ax where the reduction is
+used). The element stretches are solved by the chord method with the element stiffness
+k_e = (AE)_r / h_r for Jacobian (:func:`chord_iterations`): the rows are -k_e u plus terms that
+depend on u only through the element lengths, so each iteration gains a factor T / AE. The
+tension of element k is the node model's element tension at the solved stretch (the constraint
+force), so ``element_tension[k]``, ``tension_top`` and ``tension_bottom`` come out of the node
+model's ``outputs``. N = 1 stays Wang's model above, exactly.
+
 The model has the interface of :class:`~cablesys.model.build.CableModel` (``dynamics``,
 ``ode``, ``outputs`` with the 2-DOF labels, ``energy``), so ``simulate`` and the linear layer
 run it unchanged. It carries no slack switch: a quasi-static stretch cannot go slack
@@ -28,26 +43,65 @@ from __future__ import annotations
 import dataclasses
 
 import casadi as ca
+import numpy as np
 
 from ..scene import Scene
 from .build import CableModel, build_model
+from .element_coordinates import (
+    ElementModel,
+    build_element_model,
+    element_stiffness,
+    hanging_stretch,
+)
 from .store import stored_model
 
 MAX_NEWTON_ITERATIONS = 6
+CHORD_TOLERANCE = 1e-8
+
+
+def segmented(scene: Scene) -> bool:
+    """Whether ``scene`` divides a section into elements (then the reduction is of the segmented cable)."""
+    return any(sec.cable.segments > 1 for sec in scene.sections)
+
+
+def _static_strain(scene: Scene) -> float:
+    """The largest static strain T_top / AE over the sections, hanging (Wang 1971 eq. 12, 46)."""
+    eps, below = 0.0, 0.0
+    for sec in reversed(scene.sections):
+        below += sec.body.weight + sec.cable.total_weight
+        eps = max(eps, abs(below) / sec.cable.ae)
+    return eps
 
 
 def newton_iterations(scene: Scene) -> int:
     """Newton iterations for the stretch: each squares the relative error, which starts near the
     static strain eps = T_top / AE (the residual is -k u plus terms that vary with u only through
     the length), so n iterations leave about eps^(2^n); we ask for 1e-12."""
-    eps, below = 0.0, 0.0
-    for sec in reversed(scene.sections):
-        below += sec.body.weight + sec.cable.total_weight
-        eps = max(eps, abs(below) / sec.cable.ae)
+    eps = _static_strain(scene)
     n = 1
     while eps ** (2 ** n) > 1e-12 and n < MAX_NEWTON_ITERATIONS:
         n += 1
     return n
+
+
+def chord_iterations(scene: Scene) -> int:
+    """Chord iterations for the element stretches (the segmented reduction): u <- u + r / k_e with the
+    element stiffness k_e = (AE)_r / h_r for Jacobian. The residual is -k_e u plus terms that change
+    with u only through the element lengths (relative size eps = T / AE) and the centripetal and
+    drag terms (smaller still where the reduction holds), so each iteration multiplies the error by
+    about eps; from the hanging stretch (relative error <= 1) n iterations leave eps^n. We ask for
+    :data:`CHORD_TOLERANCE`: far below the reduction's own O((omega / omega_ax)^2)."""
+    eps = max(_static_strain(scene), 1e-300)
+    n = 1
+    while eps ** n > CHORD_TOLERANCE and n < MAX_NEWTON_ITERATIONS:
+        n += 1
+    return n
+
+
+def default_iterations(scene: Scene) -> int:
+    """Iterations of the stretch solve of :func:`build_quasistatic`: Newton's for Wang's cable,
+    the chord method's for a segmented one."""
+    return chord_iterations(scene) if segmented(scene) else newton_iterations(scene)
 
 
 def _split(full: CableModel):
@@ -65,8 +119,13 @@ def _assemble(n, slow, fast, s_vals, u_vals):
     return ca.vertcat(*out)
 
 
-def _stretch_solution(full: CableModel, slow, fast, s, sd, e, p, iterations: int):
-    """(u, s'', M_ss, f_s): the stretch satisfying the u-rows with u'' = u' = 0, by Newton."""
+def _stretch_solution(full: CableModel, slow, fast, s, sd, e, p, iterations: int, start=None, stiffness=None):
+    """(u, s'', M_ss, f_s): the stretch satisfying the u-rows with u'' = u' = 0.
+
+    Wang's cable (``stiffness`` None): Newton with the exact AD Jacobian from the zero-tension length.
+    Elements: the chord method u <- u + r / k_e from ``start`` (both SX of p), one evaluation of the
+    rows per iteration (no AD through the N x N solve: 9x fewer operations at N = 4); s'', M_ss and
+    f_s are those of the last iterate before the update, off by O(eps^iterations)."""
     n = full.nq
     ns, nf = len(slow), len(fast)
     u_sym = ca.SX.sym("u", nf)
@@ -76,9 +135,16 @@ def _stretch_solution(full: CableModel, slow, fast, s, sd, e, p, iterations: int
     M_ss, M_us = M[slow, slow], M[fast, slow]
     sdd = ca.solve(M_ss, f[slow])
     r = f[fast] - ca.mtimes(M_us, sdd)                      # stretch rows with u'' = 0
+    if stiffness is not None:
+        rows = ca.Function("rows", [u_sym, s, sd, e, p], [r, sdd, M_ss, f[slow]])
+        u = start
+        for _ in range(iterations):
+            r_u, sdd_u, M_s, f_s = rows(u, s, sd, e, p)
+            u = u + r_u / stiffness
+        return u, sdd_u, M_s, f_s
     step = ca.solve(ca.jacobian(r, u_sym), r)
     newton = ca.Function("newton", [u_sym, s, sd, e, p], [u_sym - step])
-    u = ca.SX.zeros(nf)                                      # zero-tension length (eq. 1)
+    u = ca.SX.zeros(nf) if start is None else start          # default: zero-tension length (eq. 1)
     for _ in range(iterations):
         u = newton(u, s, sd, e, p)
     M_s, f_s, sdd_s = (ca.substitute(v, u_sym, u) for v in (M_ss, f[slow], sdd))
@@ -105,16 +171,18 @@ def build_quasistatic(scene: Scene, *, full: CableModel | None = None,
         the quasi-static one, du/dt along the motion without the top jerk); ``kind`` is
         ``"quasi-static"``.
     """
-    iterations = iterations or newton_iterations(scene)
+    iterations = iterations or default_iterations(scene)
     # a structure built before is loaded from the disk cache (model/store.py), like build_model's
     return stored_model(scene, "build_quasistatic", lambda: _build_quasistatic(scene, full, iterations), (iterations,))
 
 
 def _build_quasistatic(scene: Scene, full: CableModel | None, iterations: int) -> CableModel:
     """The symbolic build of :func:`build_quasistatic`."""
-    if full is None:          # always Wang's straight cable, whatever the scene's segments
-        secs = tuple(dataclasses.replace(sec, cable=dataclasses.replace(sec.cable, segments=1)) for sec in scene.sections)
-        full = build_model(dataclasses.replace(scene, sections=secs))
+    if full is None:
+        if segmented(scene):  # N elements per section: the node model in element coordinates
+            full = build_element_model(scene)
+        else:                 # Wang's straight cable
+            full = build_model(scene)
     slow, fast = _split(full)
     ns = len(slow)
     n = full.nq
@@ -122,28 +190,44 @@ def _build_quasistatic(scene: Scene, full: CableModel | None, iterations: int) -
     s, sd = ca.SX.sym("q", ns), ca.SX.sym("qd", ns)
     e = ca.SX.sym("e", 7)
     p = ca.SX.sym("p", len(full.layout))
-    u, sdd, M_s, f_s = _stretch_solution(full, slow, fast, s, sd, e, p, iterations)
+    # Wang's model starts Newton at the zero-tension length (its rows are smooth there); the elements'
+    # tension law max(TENS, ...) (eq. 54) is flat below the floor, so they start from the hanging stretch
+    elements = isinstance(full, ElementModel)
+    start, stiffness = (hanging_stretch(scene, full.layout)(p), element_stiffness(scene, full.layout)(p)) if elements else (None, None)
+    u, sdd, M_s, f_s = _stretch_solution(full, slow, fast, s, sd, e, p, iterations, start, stiffness)
     dynamics = ca.Function("dynamics", [s, sd, e, p], [M_s, f_s], ["q", "qd", "e", "p"], ["M", "f"])
 
     # u' along the motion: du/dt = du/ds s' + du/ds' s'' + du/dz z' + du/dz' z'' (the jerk and the
     # explicit time dependence of waves are left out: they are higher order in omega / omega_ax)
     z, zd, zdd = e[1:3], e[3:5], e[5:7]
-    ud = (ca.mtimes(ca.jacobian(u, s), sd) + ca.mtimes(ca.jacobian(u, sd), sdd)
-          + ca.mtimes(ca.jacobian(u, z), zd) + ca.mtimes(ca.jacobian(u, zd), zdd))
+    if elements:
+        # the chord step's derivative at the solved stretch: u = u* - r(u*)/k_e with u* held, so
+        # u' = (dr/dt at fixed u) / k_e to O(eps) (the implicit-function theorem with the chord's
+        # Jacobian), one forward AD sweep of one evaluation of the rows
+        u_fix = ca.SX.sym("u_fix", len(fast))
+        r_fix = _stretch_solution(full, slow, fast, s, sd, e, p, 1, u_fix, stiffness)[0] - u_fix
+        ud = ca.substitute(ca.jtimes(r_fix, ca.vertcat(s, sd, e), ca.vertcat(sd, sdd, 0.0, zd, zdd, 0.0, 0.0)), u_fix, u)
+    else:
+        ud = (ca.mtimes(ca.jacobian(u, s), sd) + ca.mtimes(ca.jacobian(u, sd), sdd)
+              + ca.mtimes(ca.jacobian(u, z), zd) + ca.mtimes(ca.jacobian(u, zd), zdd))
     x_full = ca.vertcat(_assemble(n, slow, fast, [s[k] for k in range(ns)], [u[k] for k in range(len(fast))]),
                         _assemble(n, slow, fast, [sd[k] for k in range(ns)], [ud[k] for k in range(len(fast))]))
     x = ca.vertcat(s, sd)
     outputs = ca.Function("outputs", [x, e, p], [full.outputs(x_full, e, p)], ["x", "e", "p"], ["y"])
     K, V = full.energy(x_full, e, p)
     energy = ca.Function("energy", [x, e, p], [K, V], ["x", "e", "p"], ["K", "V"])
-    cable_force = ca.Function("cable_force", [x, p], [ca.DM.ones(full.n_sections)], ["x", "p"], ["gap"])
+    # always taut (one per slack switch of the full model: Wang's per section, none for elements)
+    cable_force = ca.Function("cable_force", [x, p], [ca.DM.ones(len(full.slack_index), 1)], ["x", "p"], ["gap"])
 
     S = full.symbolic
     xs, ts, ps = S.sym("x", 2 * ns), S.sym("t"), S.sym("p", len(full.layout))
     M_t, f_t = dynamics(xs[:ns], xs[ns:], full.top(ts, ps), ps)
     ode = ca.Function("ode", [xs, ts, ps], [ca.vertcat(xs[ns:], ca.solve(M_t, f_t))], ["x", "t", "p"], ["xdot"])
+    extra = {}
+    if isinstance(full, ElementModel):    # its maps and node model are of the full coordinates: dropped
+        extra = {"to_nodes": None, "from_nodes": None, "node_model": None, "name": "quasi-static"}
     return dataclasses.replace(full, q_labels=q_labels, dynamics=dynamics, ode=ode, outputs=outputs,
-                               energy=energy, cable_force=cable_force, kind="quasi-static")
+                               energy=energy, cable_force=cable_force, kind="quasi-static", **extra)
 
 
 def axial_frequencies(scene: Scene) -> tuple:
@@ -157,3 +241,30 @@ def axial_frequencies(scene: Scene) -> tuple:
         out.append((c.spring_constant / (below + c.total_mass / 3.0)) ** 0.5)
         below += c.total_mass
     return tuple(reversed(out))
+
+
+def least_tension_margin(result, scene: Scene) -> float:
+    """The least tension above the floor over a quasi-static run (N): min over time of every
+    element's tension (``element_tension[k]``, the constraint force of the segmented reduction),
+    Wang's F_bc (``tension``) and the body-end force, minus the largest tension floor TENS (eq. 54).
+    A quasi-static stretch cannot go slack, so a margin <= 0 says the run left the model's validity
+    (run the segmented rung instead).
+
+    Parameters
+    ----------
+    result : TimeResult
+        A run of a quasi-static model (any model with these outputs).
+    scene : Scene
+        Its scene (the floors).
+
+    Returns
+    -------
+    float
+        min(T) - TENS in N.
+    """
+    floor = max(s.cable.tension_floor for s in scene.sections)
+    low = [float(np.min(result[k])) for k in ("tension_bottom", "tension") if k in result.labels]
+    profiles = getattr(result, "profiles", {}) or {}
+    if "element_tension" in profiles:
+        low.append(float(np.min(profiles["element_tension"])))
+    return min(low) - floor

@@ -1,0 +1,206 @@
+"""The segmented cable in generalized coordinates per element: inclination and stretch (phi_k, u_k).
+
+The same physics as the node model (:mod:`.segmented`), in other coordinates. Wang (1971, p. 33)
+describes the segmented cable as "several segments ... each segment has two degrees of freedom":
+element k has the inclination phi_k (from the vertical, clockwise positive) and the stretch
+u_k = l_k - h_0 (h_0 = l_0 / N the element's zero-tension length, eq. 1). The node positions follow
+by forward kinematics from the top point z (the exogenous input e), with Wang's unit tangent
+e_t = (-sin phi, cos phi) (eq. 10, y down):
+
+    r_j = z + sum_{k < j} (h_0 + u_k) e_t(phi_k),          r = R(q_g, z)  (holonomic, invertible)
+
+so r' = Z z' + J q_g' and r'' = Z z'' + J q_g'' + J' q_g', with J = dR/dq_g (CasADi AD), Z the
+column of 2 x 2 identities and J' q_g' = d(J q_g')/dq_g q_g'. The node model's equations
+M_n r'' = f_n (Lagrange's equations of the lumped cable, eq. 8-9 with eq. 12, 15-16, 23-24, 32-35,
+42-46, 54) transform by virtual work (the generalized forces of q_g are J^T times the node forces):
+
+    (J^T M_n J) q_g'' = J^T (f_n - M_n (Z z'' + J' q_g'))
+
+Tension, drag, weight and the inertial forces of the added mass all come with f_n; nothing is
+written twice. The model is the building block of the quasi-static segmented rung
+(:mod:`.quasistatic`), whose split into slow (``phi``) and fast (``u``) coordinates needs exactly
+these coordinates. Its outputs are the node model's (the state mapped back to node positions and
+velocities). Runs of it start from the node model's elastic catenary mapped by :func:`initial_state`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import casadi as ca
+import numpy as np
+
+from ..scene import Scene
+from .cable_model import CableModel
+from .params import ParameterLayout, section_prefix
+from .section import SectionParameters
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class ElementModel(CableModel):
+    """A :class:`CableModel` with coordinates ``phi[k]``, ``u[k]`` per element (k = 0.. top to bottom).
+
+    Besides the functions of :class:`CableModel`: ``to_nodes(x, e, p) -> x_n`` (the node model's state
+    (r, r')) and ``from_nodes(x_n, e, p) -> x`` (its inverse), ``node_model`` the node model whose
+    physics it carries, ``elements`` the elements per section. (Not ``segments``: that attribute marks a
+    node-coordinates model for the statics and the initial state.)
+    """
+
+    elements: tuple = ()
+    to_nodes: ca.Function | None = None
+    from_nodes: ca.Function | None = None
+    node_model: CableModel | None = None
+    name: str = "element-coordinates"
+
+    @property
+    def n_elements(self) -> int:
+        return int(sum(self.elements))
+
+
+def zero_tension_lengths(scene: Scene, layout: ParameterLayout) -> list:
+    """h_0 = l_0 / N of every element, top to bottom (Wang 1971 eq. 1), SX of ``layout.symbol``."""
+    n_sec = len(scene.sections)
+    out = []
+    for i, sec in enumerate(scene.sections):
+        P = SectionParameters.from_layout(layout, section_prefix(n_sec, i), sec.body.is_sphere)
+        out += [P.l_0 / sec.cable.segments] * sec.cable.segments
+    return out
+
+
+def hanging_stretch(scene: Scene, layout: ParameterLayout) -> ca.Function:
+    """``(p) -> u``: every element's stretch hanging still and vertical, u_k = T_k h_r / (AE)_r with
+    T_k the weight in water below the element's mid-point (eq. 12, 46): a starting point for Newton."""
+    n_sec = len(scene.sections)
+    p = layout.symbol
+    us, below = [], 0.0
+    for i in reversed(range(n_sec)):
+        sec = scene.sections[i]
+        P = SectionParameters.from_layout(layout, section_prefix(n_sec, i), sec.body.is_sphere)
+        n = sec.cable.segments
+        h_r, w_el = P.l_r / n, P.w_r * P.l_r / n
+        below = below + P.w_b
+        sec_u = []
+        for _ in range(n):                       # bottom element first
+            sec_u.append((below + 0.5 * w_el) * h_r / P.ae)
+            below = below + w_el
+        us = list(reversed(sec_u)) + us
+    return ca.Function("hanging_stretch", [p], [ca.vertcat(*us)], ["p"], ["u"])
+
+
+def element_stiffness(scene: Scene, layout: ParameterLayout) -> ca.Function:
+    """``(p) -> k``: every element's axial stiffness k_e = (AE)_r / h_r, h_r = l_r / N (Wang 1971 eq. 46
+    per element), top to bottom."""
+    n_sec = len(scene.sections)
+    k = []
+    for i, sec in enumerate(scene.sections):
+        P = SectionParameters.from_layout(layout, section_prefix(n_sec, i), sec.body.is_sphere)
+        k += [P.ae * sec.cable.segments / P.l_r] * sec.cable.segments
+    return ca.Function("element_stiffness", [layout.symbol], [ca.vertcat(*k)], ["p"], ["k"])
+
+
+def _kinematics(q, z, h0):
+    """Node positions r_1..r_N (stacked x, y) of elements (phi_k, u_k) hung from z (Wang 1971 eq. 10)."""
+    rx, ry, pos = z[0], z[1], []
+    for k, h in enumerate(h0):
+        length = h + q[2 * k + 1]
+        rx, ry = rx - length * ca.sin(q[2 * k]), ry + length * ca.cos(q[2 * k])
+        pos += [rx, ry]
+    return ca.vertcat(*pos)
+
+
+def build_element_model(scene: Scene, node: CableModel | None = None) -> ElementModel:
+    """The segmented cable of ``scene`` in element coordinates (same ``p`` as the node model).
+
+    Parameters
+    ----------
+    scene : Scene
+        Any scene the node model accepts; ``cable.segments`` per section (1 allowed: one element).
+    node : CableModel, optional
+        The node model of the same scene (:func:`~cablesys.model.segmented.build_segmented_model`),
+        if already built.
+
+    Returns
+    -------
+    ElementModel
+        ``q_labels`` ``phi[k]``, ``u[k]`` (rad, m); ``outputs`` with the node model's labels;
+        ``kind`` ``"element-coordinates"`` (state scales: none, atol in SI).
+    """
+    if node is None:
+        from .segmented import build_segmented_model
+        node = build_segmented_model(scene)
+    layout = ParameterLayout.from_scene(scene)
+    p = layout.symbol
+    h0 = zero_tension_lengths(scene, layout)
+    n = len(h0)
+    nq = 2 * n
+    q, qd, e = ca.SX.sym("q", nq), ca.SX.sym("qd", nq), ca.SX.sym("e", 7)
+    z, zd, zdd = e[1:3], e[3:5], e[5:7]
+    R = _kinematics(q, z, h0)
+    J = ca.jacobian(R, q)
+    Jqd = ca.mtimes(J, qd)
+    v = Jqd + ca.repmat(zd, n, 1)                                  # r' = Z z' + J q'
+    known = ca.jtimes(Jqd, q, qd) + ca.repmat(zdd, n, 1)           # r'' - J q'' = J' q' + Z z''
+    M_n, f_n = node.dynamics(R, v, e, p)
+    M = ca.mtimes([J.T, M_n, J])                                   # virtual work: J^T M_n J
+    f = ca.mtimes(J.T, f_n - ca.mtimes(M_n, known))
+    x = ca.vertcat(q, qd)
+    x_n = ca.vertcat(R, v)
+
+    # inverse map: element vectors from consecutive nodes (chord angle and length, as segmented's outputs)
+    xn = ca.SX.sym("x_n", 2 * nq)
+    r, rd = xn[:nq], xn[nq:]
+    back, back_d = [], []
+    for k in range(n):
+        a = (z[0], z[1]) if k == 0 else (r[2 * k - 2], r[2 * k - 1])
+        va = (zd[0], zd[1]) if k == 0 else (rd[2 * k - 2], rd[2 * k - 1])
+        dx, dy = r[2 * k] - a[0], r[2 * k + 1] - a[1]
+        dvx, dvy = rd[2 * k] - va[0], rd[2 * k + 1] - va[1]
+        lsq = dx**2 + dy**2
+        length = ca.sqrt(lsq)
+        back += [ca.atan2(-dx, dy), length - h0[k]]
+        back_d += [(dx * dvy - dy * dvx) / lsq, (dx * dvx + dy * dvy) / length]
+    from_nodes = ca.Function("from_nodes", [xn, e, p], [ca.vertcat(*back, *back_d)], ["x_n", "e", "p"], ["x"])
+    to_nodes = ca.Function("to_nodes", [x, e, p], [x_n], ["x", "e", "p"], ["x_n"])
+
+    dynamics = ca.Function("dynamics", [q, qd, e, p], [M, f], ["q", "qd", "e", "p"], ["M", "f"])
+    outputs = ca.Function("outputs", [x, e, p], [node.outputs(x_n, e, p)], ["x", "e", "p"], ["y"])
+    K, V = node.energy(x_n, e, p)
+    energy = ca.Function("energy", [x, e, p], [K, V], ["x", "e", "p"], ["K", "V"])
+    cable_force = ca.Function("cable_force", [x, p], [ca.SX(0, 1)], ["x", "p"], ["gap"])
+    S = node.symbolic
+    xs, ts, ps = S.sym("x", 2 * nq), S.sym("t"), S.sym("p", len(layout))
+    M_t, f_t = dynamics(xs[:nq], xs[nq:], node.top(ts, ps), ps)
+    ode = ca.Function("ode", [xs, ts, ps], [ca.vertcat(xs[nq:], ca.solve(M_t, f_t))], ["x", "t", "p"], ["xdot"])
+    q_labels = tuple(f"{c}[{k}]" for k in range(n) for c in ("phi", "u"))
+    return ElementModel(layout=layout, n_sections=node.n_sections, angles=node.angles, q_labels=q_labels,
+                        output_labels=node.output_labels, dynamics=dynamics, ode=ode, top=node.top,
+                        outputs=outputs, energy=energy, cable_force=cable_force, slack_index=(),
+                        symbolic=S, kind="element-coordinates",
+                        elements=tuple(s.cable.segments for s in scene.sections),
+                        to_nodes=to_nodes, from_nodes=from_nodes, node_model=node)
+
+
+def initial_state(scene: Scene, model: ElementModel, p) -> np.ndarray:
+    """x0 = (q, q') of ``model``: the node model's initial state (its elastic catenary, or the scene's
+    ``initial`` table) mapped to element coordinates.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    model : ElementModel
+        Its element-coordinates model.
+    p : array_like
+        Parameter vector (``model.parameters(scene)``).
+
+    Returns
+    -------
+    ndarray
+        x0 in SI (rad, m, rad/s, m/s).
+    """
+    from ..time_domain.initial import initial_state as node_initial_state
+    p = np.asarray(p, dtype=float)
+    x_n = node_initial_state(scene, model.node_model, p)
+    t0 = float(scene.output_times[0]) if hasattr(scene, "output_times") else 0.0
+    e = np.array(model.top(t0, p)).ravel()
+    return np.array(model.from_nodes(x_n, e, p)).ravel()
