@@ -2,7 +2,8 @@
 
 - ``frequency``: the periodic steady state of Wang's model (Fourier collocation,
   :func:`cablesys.linear.periodic_steady_state`), for a steady amplitude under one forcing frequency;
-- ``quasi-static``: the swing with the stretch following the tension (:mod:`cablesys.model.quasistatic`);
+- ``quasi-static``: the swing with the stretch following the tension (:mod:`cablesys.model.quasistatic`),
+  Wang's straight cable (``segments = 1``) or N elements whose stretches follow their tensions (``segments = N``);
 - ``wang``: Wang's (1971) 2-DOF straight cable per section (:mod:`cablesys.model.build`);
 - ``segmented``: N straight tension-only elements per section (:mod:`cablesys.model.segmented`).
 """
@@ -17,7 +18,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..model import CableModel, build_model
 from ..model.params import structure_of
-from ..model.quasistatic import build_quasistatic, newton_iterations
+from ..model.quasistatic import build_quasistatic, default_iterations
 from ..scene import Scene
 
 RUNGS = ("frequency", "quasi-static", "wang", "segmented")
@@ -39,8 +40,9 @@ def with_segments(scene: Scene, n: int) -> Scene:
 
 
 def rung_scene(scene: Scene, name: str, segments: int = 1) -> Scene:
-    """The scene a rung runs: ``segments`` elements for the segmented rung, 1 for the others."""
-    return with_segments(scene, segments if name == "segmented" else 1)
+    """The scene a rung runs: ``segments`` elements for the segmented and quasi-static rungs (the
+    quasi-static segmented cable for N > 1), 1 for the others."""
+    return with_segments(scene, segments if name in ("segmented", "quasi-static") else 1)
 
 
 def build_rung(scene: Scene, name: str, segments: int = 1) -> CableModel:
@@ -53,7 +55,8 @@ def build_rung(scene: Scene, name: str, segments: int = 1) -> CableModel:
     name : str
         A rung; ``frequency`` uses Wang's model.
     segments : int, optional
-        Elements per section of the segmented rung (>= 2).
+        Elements per section of the segmented rung (>= 2), or of the quasi-static rung (1: Wang's
+        straight cable; N > 1: the segmented cable with its element stretches quasi-static).
 
     Returns
     -------
@@ -62,7 +65,7 @@ def build_rung(scene: Scene, name: str, segments: int = 1) -> CableModel:
     """
     check_rung(name)
     if name == "quasi-static":
-        return build_quasistatic(rung_scene(scene, name))
+        return build_quasistatic(rung_scene(scene, name, segments))
     if name == "segmented" and segments < 2:
         raise ParameterError("segments", segments, "the segmented rung needs at least 2 elements per section")
     return build_model(rung_scene(scene, name, segments))
@@ -87,8 +90,8 @@ class RungCache:
 
     def _key(self, scene: Scene, name: str, segments: int) -> tuple:
         sc = rung_scene(scene, name, segments)
-        n = segments if name == "segmented" else 1
-        return (name, n, structure_of(sc), newton_iterations(sc) if name == "quasi-static" else 0)
+        n = segments if name in ("segmented", "quasi-static") else 1
+        return (name, n, structure_of(sc), default_iterations(sc) if name == "quasi-static" else 0)
 
     def model(self, scene: Scene, name: str, segments: int = 1) -> CableModel:
         """The model of rung ``name`` for ``scene``'s structure (built on first use).
@@ -105,15 +108,15 @@ class RungCache:
         Returns
         -------
         CableModel
-            As :func:`build_rung` builds it; the quasi-static rung shares the cached Wang model.
+            As :func:`build_rung` builds it; the straight quasi-static rung shares the cached Wang model.
         """
         name = "wang" if name == "frequency" else check_rung(name)
         key = self._key(scene, name, segments)
         if key not in self._models:
-            full = self.model(scene, "wang") if name == "quasi-static" else None
+            full = self.model(scene, "wang") if name == "quasi-static" and segments == 1 else None
             t0 = time.perf_counter()
             if name == "quasi-static":
-                self._models[key] = build_quasistatic(rung_scene(scene, name), full=full)
+                self._models[key] = build_quasistatic(rung_scene(scene, name, segments), full=full)
             else:
                 self._models[key] = build_rung(scene, name, segments)
             self.build_s += time.perf_counter() - t0
