@@ -261,10 +261,13 @@ def rk4_interval(model: CableModel, n_sub: int, compiled: bool = True) -> Compil
     """
     def build():
         nx, npx = 2 * model.nq, len(model.layout) + 2
-        x, s, hs, p = ca.SX.sym("x", nx), ca.SX.sym("s"), ca.SX.sym("hs"), ca.SX.sym("p", npx)
+        # a model may offer an ode for loops (the segmented element kernel, MX: its C has constant size)
+        ode = getattr(model, "loop_ode", model.ode)
+        S = ca.MX if ode.is_a("MXFunction") else ca.SX
+        x, s, hs, p = S.sym("x", nx), S.sym("s"), S.sym("hs"), S.sym("p", npx)
 
         def f(xx, ss):
-            return p[-1] * model.ode(xx, p[-2] + p[-1] * ss, p[:-2])
+            return p[-1] * ode(xx, p[-2] + p[-1] * ss, p[:-2])
         k1 = f(x, s)
         k2 = f(x + 0.5 * hs * k1, s + 0.5 * hs)
         k3 = f(x + 0.5 * hs * k2, s + 0.5 * hs)
