@@ -3,22 +3,37 @@
 Scenes (issue 12):
 - the Dale et al. water-channel model (Wang 1971 Table 1) at omega = 2 omega_n, where the straight
   cable is worst (cable drag bows it);
-- 300 m steel wire (25 mm, AE 4e7 N, 2.5 kg/m) with a 2 t sphere (virtual mass 3100 kg), 1 m heave
+- the 300 m steel wire with a 2 t sphere of issue 11 (``cablesys/data/heave_300m.toml``), 1 m heave
   at T = 10 s (taut) and T = 6 s (slack each cycle, snap loads);
 - 1000 m of 16 mm steel wire rope with a 300 kg sphere (the cable weighs 4x the body), 1 m heave
   and 1 m surge at T = 10 s: forcing above the cable's first string mode.
 
-For each scene the reference is the segmented cable at N_ref elements (its own convergence is
-reported: the difference to N_ref / 2). Every rung (frequency-domain periodic orbit, quasi-static
-stretch, Wang's 2-DOF, segmented at several N) runs with every integrator; errors are those of
-:mod:`cablesys.ladder.metrics` (body amplitudes, tension extremes over the last 5 forcing periods).
-Wall time is the integration alone (``stats["wall_s"]``) in CasADi's virtual machine, build apart
-(``MODEL_LADDER_ONLY=dale,heavy1000`` reruns some scenes and keeps the others' results;
-``MODEL_LADDER_REESTIMATE=1`` keeps the runs of an existing model_ladder.json and makes auto's choice,
-the estimates and the checks again). A run that
-fails (step budget, unstable fixed step, non-finite state) is marked with an x at the top of the
-chart with its reason in the JSON. Auto's choice (:func:`cablesys.ladder.choose`) is marked by a
-star, with its estimated error next to the actual one.
+Taut scenes: the reference is the segmented cable at N_ref elements (CVODES; its own convergence is
+reported: the difference to N_ref / 2), errors those of :mod:`cablesys.ladder.metrics` (body
+amplitudes, tension extremes over the last 5 forcing periods).
+
+Slack scene (T = 6 s): the response has a transient of ~100-150 s (issue 11), so a short run times
+the transient instead of comparing models. It runs 360 s and every figure is a mean over the forcing
+cycles of 180-360 s (:func:`_cycles.ladder_statistics`, the code of studies/segmented_convergence.py:
+maxima refined between samples, output every 0.01 s). The reference is the first-order Richardson
+limit of the finest two N the study runs (RK4 at its stability step, as issue 11; the segmented
+cable converges at first order there), stated in the JSON with the observed order of the finest
+three N and the limit's uncertainty (the limit at the observed order instead of 1).
+
+Every rung (frequency-domain periodic orbit, quasi-static stretch, the quasi-static segmented cable
+at a few N on the taut scenes when the library has it, Wang's 2-DOF, segmented at several N) runs
+with every integrator: CVODES (BDF, Adams), IDAS, RK4 at the scene's step (10 per output; it fails
+where that is above the stability limit, and the failure is marked) and RK4 at its stability step
+(``rk-stable``, segmented rungs). Wall time is the integration alone (``stats["wall_s"]``) in
+CasADi's virtual machine, build apart (``MODEL_LADDER_ONLY=dale,heavy1000`` reruns some scenes and
+keeps the others' results; ``MODEL_LADDER_REESTIMATE=1`` keeps the runs of an existing
+model_ladder.json and makes auto's choice, the estimates and the checks again). A failed run is
+an x at the top of the chart with its reason in the JSON. Auto's choice (:func:`cablesys.ladder.choose`)
+is a star, with its stated estimate next to the actual error.
+
+Per scene the JSON holds issue 12's checks: ``cheaper_rung_within_tolerance`` (the cheapest run
+within the tolerance against auto's, with wall times) and ``estimate_ratio`` (auto's stated
+estimate over its actual error, within 2x or not).
 
 Usage: python studies/model_ladder.py --out DIR [--quick]
 """
@@ -34,12 +49,22 @@ import warnings
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import parse_args, setup_matplotlib, write_json
+from _common import parse_args, write_json
+from _cycles import (
+    ladder_statistics,
+    observed_orders,
+    richardson_limit,
+    settled_window_start,
+)
+from _ladder_chart import plot_case
+from segmented_convergence import _steps_per_output, slack_scene
 
 from cablesys import units as U
 from cablesys.errors import NumericalWarning
-from cablesys.ladder import choose, metrics, run_rung
+from cablesys.ladder import RungCache, choose, metrics, run_rung
 from cablesys.ladder import estimate as est
+from cablesys.ladder.choice import SAFETY
+from cablesys.ladder.rungs import rung_scene
 from cablesys.scene import (
     Body,
     Cable,
@@ -50,22 +75,17 @@ from cablesys.scene import (
     dale_scene,
 )
 from cablesys.scene.scene import single_section_scene
+from cablesys.time_domain.run import initial_state
 
-INTEGRATORS = ("cvodes", "cvodes-adams", "idas", "rk")
-RUNG_COLOURS = {"frequency": "tab:purple", "quasi-static": "tab:green", "wang": "tab:blue", "segmented": "tab:orange"}
+INTEGRATORS = ("cvodes", "cvodes-adams", "idas", "rk", "rk-stable")
 RESOLVED_FRACTION = 0.1   # the factor-2 check applies to actual errors above this fraction of the tolerance
-MARKERS = {"cvodes": "o", "cvodes-adams": "s", "idas": "D", "rk": "^", "collocation": "v", "periodic": "P"}
+NOISE_FACTOR = 2.0        # a cheaper run "beats" auto's when its wall time is below 1/2 of auto's (shared machine)
 
 
-def wire_300m(period: float, duration: float) -> object:
-    """300 m steel wire, 2 t sphere, 1 m heave at ``period`` (the scene of issue 11)."""
-    cable = Cable(length=300.0, tension_ref=4877.0, ae=4.0e7, diameter=0.025, mass_per_length=2.5,
-                  weight_per_length=19.6, cd_normal=1.2, ct_tangential=0.01, tension_floor=0.0)
-    body = Body(weight=1937.0, mass_x=3100.0, mass_y=3100.0, drag_area_normal=1.0, drag_area_tangential=1.0)
-    top = TopMotion(y=(Sinusoid(amplitude=1.0, frequency=2 * math.pi / period),))
-    return single_section_scene(cable=cable, body=body, name=f"300 m wire, 2 t sphere, heave T = {period:g} s",
-                                environment=Environment(density=1025.0), top_motion=top,
-                                numerics=Numerics(duration=duration, output_step=0.05, rtol=1e-7, atol=1e-9))
+def heave_300m(period: float, duration: float, output_step: float = 0.05) -> object:
+    """The 300 m wire / 2 t sphere scene of issue 11 (``heave_300m.toml``), 1 m heave at ``period``."""
+    sc = slack_scene(period, duration, output_step)
+    return sc.replace(name=f"300 m wire, 2 t sphere, heave T = {period:g} s")
 
 
 def heavy_cable(duration: float) -> object:
@@ -84,31 +104,73 @@ def heavy_cable(duration: float) -> object:
                                 numerics=Numerics(duration=duration, output_step=0.1, rtol=1e-7, atol=1e-9))
 
 
+def _slack_case(duration: float, output_step: float, segments: tuple, integrators: tuple) -> dict:
+    sc = heave_300m(6.0, duration, output_step)
+    t0 = settled_window_start(sc.top_motion.effective_ramp_s, 6.0, duration)
+    return {"key": "wire300_T6", "scene": sc, "segments": segments, "reference": "richardson",
+            "reference_integrator": "rk-stable", "window_t0": t0, "integrators": integrators}
+
+
 def cases(quick: bool) -> list[dict]:
-    """Scenes with their segment counts and reference N (quick: one short Dale run, coarse N)."""
+    """Scenes with their segment counts and reference (quick: short runs at coarse N, the same code paths)."""
     if quick:
         return [{"key": "dale", "scene": dale_scene(omega_ratio=2.0, duration=10.0), "segments": (2,), "n_ref": 6,
-                 "integrators": ("cvodes", "rk")}]
+                 "qs_segments": (2,), "integrators": ("cvodes", "rk", "rk-stable")},
+                _slack_case(30.0, 0.02, (2, 4, 8), ("cvodes", "rk-stable"))]
     return [
         {"key": "dale", "scene": dale_scene(omega_ratio=2.0, duration=40.0), "segments": (2, 4, 8), "n_ref": 16,
-         "integrators": INTEGRATORS},
-        {"key": "wire300_T10", "scene": wire_300m(10.0, 40.0), "segments": (5, 10, 20), "n_ref": 40,
-         "integrators": INTEGRATORS},
-        {"key": "wire300_T6", "scene": wire_300m(6.0, 30.0), "segments": (5, 10, 20), "n_ref": 40,
-         "integrators": INTEGRATORS},
+         "qs_segments": (2, 4, 8), "integrators": INTEGRATORS},
+        {"key": "wire300_T10", "scene": heave_300m(10.0, 40.0), "segments": (5, 10, 20), "n_ref": 40,
+         "qs_segments": (5, 10, 20), "integrators": INTEGRATORS},
+        _slack_case(360.0, 0.01, (5, 10, 20, 40), INTEGRATORS),
         {"key": "heavy1000", "scene": heavy_cable(40.0), "segments": (5, 10, 20), "n_ref": 40,
-         "integrators": INTEGRATORS},
+         "qs_segments": (5, 10, 20), "integrators": INTEGRATORS},
     ]
 
 
-def _run(scene, rung: str, n: int, method: str | None) -> tuple:
-    """(result or None, row) with wall time, steps and failure."""
+def qs_segmented_available() -> bool:
+    """Whether the library's quasi-static rung takes elements (``build_rung(scene, "quasi-static",
+    segments=N)``, the quasi-static segmented cable): its rung scene then keeps N."""
+    try:
+        return rung_scene(dale_scene(), "quasi-static", 3).sections[0].cable.segments == 3
+    except Exception:       # noqa: BLE001 -- any failure means: not available in this tree
+        return False
+
+
+def plan(case: dict) -> list[tuple]:
+    """(rung, N, integrator) of every run: straight rungs with every integrator but the stable-step
+    RK4 (their step is stable at the scene's), elements with every one but Adams (non-stiff)."""
+    straight = [m for m in case["integrators"] if m != "rk-stable"]
+    elements = [m for m in case["integrators"] if m != "cvodes-adams"]
+    runs = [("frequency", 1, None)] + [(rung, 1, m) for rung in ("quasi-static", "wang") for m in straight]
+    if case.get("qs_segments") and qs_segmented_available():
+        runs += [("quasi-static", n, m) for n in case["qs_segments"] for m in straight]
+    return runs + [("segmented", n, m) for n in case["segments"] for m in elements]
+
+
+def _statistics(case: dict, result, period) -> dict:
+    """The compared figures: cycle means over the settled window, or the last 5 periods."""
+    if case.get("reference") == "richardson":
+        return ladder_statistics(result, period, case["window_t0"])
+    return metrics.statistics(result, period)
+
+
+def _run(scene, rung: str, n: int, method: str | None, cache: RungCache) -> tuple:
+    """(result or None, row) with wall time, steps and failure; ``rk-stable`` is RK4 at its
+    stability step (h |lambda|_max = 2, issue 11's choice), computed at the initial state."""
     row = {"rung": rung, "segments": n, "integrator": method or "periodic"}
     t0 = time.perf_counter()
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", NumericalWarning)
-            r = run_rung(scene, rung, n) if rung == "frequency" else run_rung(scene, rung, n, method=method)
+            if method == "rk-stable":
+                model, sc = cache.model(scene, rung, n), rung_scene(scene, rung, n)
+                spo = _steps_per_output(model, sc, initial_state(sc, model, model.parameters(sc)), margin=2.0)
+                row["steps_per_output"] = spo = max(spo, scene.numerics.steps_per_output)
+                scene, method = scene.with_numerics(steps_per_output=spo), "rk"
+            t0 = time.perf_counter()
+            r = (run_rung(scene, rung, n, cache=cache) if rung == "frequency"
+                 else run_rung(scene, rung, n, cache=cache, method=method))
     except (RuntimeError, ValueError, FloatingPointError) as err:   # rejected model / solver failure: marked
         row.update(success=False, failure=f"{type(err).__name__}: {str(err)[:300]}", wall_s=time.perf_counter() - t0)
         return None, row
@@ -118,80 +180,135 @@ def _run(scene, rung: str, n: int, method: str | None) -> tuple:
     return r, row
 
 
-def study_case(case: dict) -> dict:
-    scene = case["scene"]
-    period = metrics.forcing_period(scene)
-    ref, ref_row = _run(scene, "segmented", case["n_ref"], "cvodes")
-    half, _ = _run(scene, "segmented", case["n_ref"] // 2, "cvodes")
-    if ref is None or not ref.success:
-        return {"scene": scene.name, "reference": ref_row, "rows": [], "error": "reference run failed"}
-    ref_stats = metrics.statistics(ref, period)
-    ref_conv = metrics.errors(metrics.statistics(half, period), ref_stats) if half is not None and half.success else None
-    rows = []
-    plan = [("frequency", 1, None)] + [(rung, 1, m) for rung in ("quasi-static", "wang") for m in case["integrators"]]
-    plan += [("segmented", n, m) for n in case["segments"] for m in case["integrators"] if m != "cvodes-adams"]
-    for rung, n, method in plan:
-        r, row = _run(scene, rung, n, method)
-        if r is not None and r.success and r.time[-1] >= scene.output_times[-1] - 1e-9:
-            row["statistics"] = metrics.statistics(r, period)
-            row.update(metrics.errors(row["statistics"], ref_stats))
-            row["error_body"], row["error_tension"] = row.pop("body"), row.pop("tension")
-        else:
-            row["success"] = False
-            row.setdefault("failure", "did not reach the end")
-        rows.append(row)
-    res = {"scene": scene.name, "period_s": period, "reference": dict(ref_row, convergence_vs_half=ref_conv),
-           "reference_statistics": ref_stats, "rows": rows}
-    res["auto"] = assess_auto(case, res, ref_stats)
-    return res
-
-
-def _error_row(scene, rung: str, n: int, method, period, ref_stats) -> dict:
-    r, row = _run(scene, rung, n, method)
-    if r is not None and r.success:
-        row["statistics"] = metrics.statistics(r, period)
-        row.update(metrics.errors(row["statistics"], ref_stats))
-        row["error_body"], row["error_tension"] = row.pop("body"), row.pop("tension")
+def _measured(case, scene, rung, n, method, period, cache) -> dict:
+    """One run's row with its statistics (or marked failed)."""
+    r, row = _run(scene, rung, n, method, cache)
+    if r is not None and r.success and r.time[-1] >= scene.output_times[-1] - 1e-9:
+        row["statistics"] = _statistics(case, r, period)
+    else:
+        row["success"] = False
+        row["failure"] = row.get("failure") or "did not reach the end"
     return row
 
 
+def _with_errors(row: dict, ref_stats: dict) -> dict:
+    if "statistics" in row and ref_stats is not None:
+        e = metrics.errors(row["statistics"], ref_stats)
+        row["error_body"], row["error_tension"] = e["body"], e["tension"]
+    return row
+
+
+def richardson_reference(case: dict, rows: list) -> dict:
+    """The first-order Richardson limit of the finest two N of the reference integrator's rows."""
+    integ = case["reference_integrator"]
+    st = {r["segments"]: r for r in rows if r["rung"] == "segmented" and r["integrator"] == integ and "statistics" in r}
+    ns = sorted(n for n in case["segments"] if n in st)
+    if len(ns) < 2 or ns[-2:] != sorted(case["segments"])[-2:]:
+        return {"kind": "richardson", "error": f"the finest two N did not both run ({integ})"}
+    c, f = ns[-2:]
+    ratio = f / c
+    limit = richardson_limit(st[c]["statistics"], st[f]["statistics"], ratio, order=1.0)
+    orders = observed_orders(*(st[n]["statistics"] for n in ns[-3:]), ratio=ratio) if len(ns) >= 3 else {}
+    lead = [orders.get(k) for k in ("y_b_amplitude", "tension_top_max") if orders.get(k)]
+    p_obs = min(max(sum(lead) / len(lead), 0.5), 3.0) if lead else None
+    # how far the limit moves at the observed order instead of 1: the reference's own uncertainty
+    unc = metrics.errors(richardson_limit(st[c]["statistics"], st[f]["statistics"], ratio, p_obs), limit) if p_obs else None
+    return {"kind": "richardson", "segments": [c, f], "integrator": integ, "order_assumed": 1.0,
+            "observed_order": orders, "observed_order_from": ns[-3:], "order_for_uncertainty": p_obs,
+            "statistics": limit, "uncertainty": unc, "convergence_vs_half": unc,
+            "window_s": st[f]["statistics"]["window_s"], "duration_s": case["scene"].numerics.duration,
+            "spread_at_finest": st[f]["statistics"]["spread"], "wall_s": st[f]["wall_s"]}
+
+
+def study_case(case: dict) -> dict:
+    scene = case["scene"]
+    period = metrics.forcing_period(scene)
+    cache = RungCache()
+    rows = []
+    for rung, n, method in plan(case):
+        rows.append(_measured(case, scene, rung, n, method, period, cache))
+        print(f"    ran {rung} N={n} {method}: wall {rows[-1]['wall_s']:.3g} s {'' if rows[-1]['success'] else 'FAILED'}",
+              flush=True)
+    if case.get("reference") == "richardson":
+        reference = richardson_reference(case, rows)
+    else:
+        ref = _measured(case, scene, "segmented", case["n_ref"], "cvodes", period, cache)
+        half = _measured(case, scene, "segmented", case["n_ref"] // 2, "cvodes", period, cache)
+        ok = lambda r: "statistics" in r
+        reference = dict(ref, kind="segmented", convergence_vs_half=metrics.errors(half["statistics"], ref["statistics"])
+                         if ok(ref) and ok(half) else None)
+        if not ok(ref):
+            reference["error"] = "reference run failed"
+    ref_stats = reference.get("statistics")
+    if ref_stats is None:
+        return {"scene": scene.name, "reference": reference, "rows": rows, "error": reference.get("error")}
+    for r in rows:
+        _with_errors(r, ref_stats)
+    res = {"scene": scene.name, "period_s": period, "reference": reference, "reference_statistics": ref_stats, "rows": rows}
+    res["auto"] = assess_auto(case, res, ref_stats, cache)
+    res.update(verdicts(res))
+    return res
+
+
+def _same(r: dict, rung: str, n: int) -> bool:
+    return r["rung"] == rung and (r["segments"] == n or rung not in ("segmented", "quasi-static"))
+
+
 def _find(rows, rung, n, integrators):
-    return next((r for r in rows if r["rung"] == rung and (rung != "segmented" or r["segments"] == n)
-                 and r["integrator"] in integrators and r.get("error_body") is not None), None)
+    return next((r for r in rows if _same(r, rung, n) and r["integrator"] in integrators
+                 and r.get("error_body") is not None), None)
 
 
-def assess_auto(case: dict, res: dict, ref_stats: dict | None) -> dict:
+def _row_estimate(errs: dict, r: dict) -> dict:
+    if r["rung"] == "segmented":
+        return est.segmented_error(errs, r["segments"])
+    if r["rung"] == "quasi-static" and r["segments"] > 1:
+        qs = getattr(est, "quasistatic_segmented_error", None)
+        return qs(errs, r["segments"]) if qs else {}
+    return errs.get(r["rung"]) or {}
+
+
+def assess_auto(case: dict, res: dict, ref_stats: dict | None, cache: RungCache | None = None) -> dict:
     """Auto's choice, its a-priori estimate, the estimate it states and the verdicts of issue 12's checks.
 
     Every row gets the a-priori estimate of its rung (``estimate_body``, ``estimate_tension``). The
     stated estimate is the a-priori one, except for a segmented choice with N >= 4, for which auto
     states the Richardson estimate |y_N - y_N/2| / (2^p - 1) of its run at N/2 (:mod:`cablesys.ladder.auto`).
     The factor-2 check applies where the actual error is resolved: above RESOLVED_FRACTION of the
-    tolerance and above twice the reference's own convergence (N_ref vs N_ref / 2); below that the
-    estimate must only be within the tolerance too. Rows that are not run again come from ``res``.
+    tolerance and above twice the reference's own uncertainty; below that the estimate must only be
+    within the tolerance too. Rows that are not run again come from ``res``.
     """
     scene, period, rows = case["scene"], res.get("period_s"), res["rows"]
+    cache = cache if cache is not None else RungCache()
     t0 = time.perf_counter()
     choice = choose(scene)
     choose_s = time.perf_counter() - t0
     errs = choice.numbers["estimates"]
     for r in rows:
-        e = (est.segmented_error(errs, r["segments"]) if r["rung"] == "segmented" else errs.get(r["rung"])) or {}
+        e = _row_estimate(errs, r)
         r["estimate_body"], r["estimate_tension"] = e.get("body"), e.get("tension")
     integ = (scene.numerics.integrator, "periodic")
     actual = _find(rows, choice.name, choice.segments, integ)
-    at_reference = choice.name == "segmented" and choice.segments >= case["n_ref"]
-    if at_reference:          # auto wants the reference's own N: no converged reference to measure it against
+    # auto wants the reference's own N (or, for a Richardson reference, more than its finest N, where the
+    # limit's own uncertainty is no smaller than the error measured): not measured
+    finest = case["n_ref"] if case.get("reference") != "richardson" else max(case["segments"]) + 1
+    at_reference = choice.name == "segmented" and choice.segments >= finest
+    if at_reference:
         ref_stats = None
     if actual is None and ref_stats is not None:
-        actual = _error_row(scene, choice.name, choice.segments, scene.numerics.integrator, period, ref_stats)
+        actual = _with_errors(_measured(case, scene, choice.name, choice.segments, scene.numerics.integrator,
+                                        period, cache), ref_stats)
         actual.update(estimate_body=choice.estimated_error["body"], estimate_tension=choice.estimated_error["tension"])
         rows.append(actual)
     stated, how = dict(choice.estimated_error), "a priori"
-    if choice.name == "segmented" and choice.segments >= 4 and ref_stats is not None:
-        half = _find(rows, "segmented", choice.segments // 2, integ)
+    tol = choice.numbers["tolerance"]
+    sure = all(choice.estimated_error[k] <= SAFETY * tol[k] for k in ("body", "tension"))
+    if choice.name in ("segmented", "quasi-static") and choice.segments >= 4 and not sure and ref_stats is not None:
+        # as simulate_auto: a second run at N / 2 when the a-priori estimate is not well within the tolerance
+        half = _find(rows, choice.name, choice.segments // 2, integ)
         if half is None:
-            half = _error_row(scene, "segmented", choice.segments // 2, scene.numerics.integrator, period, ref_stats)
+            half = _with_errors(_measured(case, scene, choice.name, choice.segments // 2, scene.numerics.integrator,
+                                          period, cache), ref_stats)
             rows.append(half)
         if actual and actual.get("error_body") is not None and half.get("error_body") is not None:
             p = errs["segmented_1"].get("order", est.ORDER)
@@ -203,7 +320,6 @@ def assess_auto(case: dict, res: dict, ref_stats: dict | None) -> dict:
                 diff = {k: abs(half[f"error_{k}"] - actual[f"error_{k}"]) for k in ("body", "tension")}
             stated = {k: v / (2**p - 1) for k, v in diff.items()}
             how = f"a posteriori (N = {choice.segments} vs {choice.segments // 2}, order {p:g})"
-    tol = choice.numbers["tolerance"]
     if at_reference:
         actual = None
     act = {"body": (actual or {}).get("error_body"), "tension": (actual or {}).get("error_tension")}
@@ -221,81 +337,92 @@ def assess_auto(case: dict, res: dict, ref_stats: dict | None) -> dict:
         check[k] = {"resolved": resolved, "resolution": floor, "ratio": ratio, "pass": bool(ok),
                     "strict_pass": bool(0.5 <= ratio <= 2.0)}
     check["within_tolerance"] = None if act["body"] is None else bool(act["body"] <= tol["body"] and act["tension"] <= tol["tension"])
-    check["cheaper_rung_within_tolerance"] = cheaper_within(rows, choice, tol, integ)
-    return {"name": choice.name, "segments": choice.segments, "reason": choice.reason,
-            "estimated_error": choice.estimated_error, "stated_estimate": stated, "stated_how": how,
-            "choose_s": choose_s, "actual_error": act, "estimates": errs, "tolerance": tol, "check": check}
+    check["lower_rungs_within_half_tolerance"] = cheaper_within(rows, choice, tol, integ)
+    return {"name": choice.name, "segments": choice.segments, "integrator": scene.numerics.integrator,
+            "reason": choice.reason, "estimated_error": choice.estimated_error, "stated_estimate": stated,
+            "stated_how": how, "choose_s": choose_s, "actual_error": act, "estimates": errs, "tolerance": tol,
+            "check": check}
 
 
-def _rank(rung: str, n: int) -> int:
-    """Ladder order of cost: the straight-cable rungs, then the segmented cable by N."""
-    return 1 if rung in ("quasi-static", "wang") else 1 + n
+def _rank(rung: str, n: int) -> float:
+    """Ladder order of cost: the straight-cable rungs, then the cable in N elements (quasi-static below
+    the dynamic one at the same N)."""
+    if rung in ("quasi-static", "wang") and n <= 1:
+        return 1
+    return 1 + n - (0.5 if rung == "quasi-static" else 0.0)
+
+
+def _name(r: dict) -> str:
+    return r["rung"] + (f" N={r['segments']}" if r["rung"] == "segmented" or r["segments"] > 1 else "")
 
 
 def cheaper_within(rows, choice, tol, integrators) -> list:
     """Rungs below auto's choice on the ladder (straight cables, fewer elements) whose actual errors are
     within half the tolerance (auto aims at half of it: choice.SAFETY); the frequency rung answers
-    another question (a steady amplitude) and is left out. Wall times are not compared: on a shared
-    machine they are noise at these sizes."""
+    another question (a steady amplitude) and is left out."""
     mine = _rank(choice.name, choice.segments)
-    return [f"{r['rung']}" + (f" N={r['segments']}" if r["rung"] == "segmented" else "")
-            for r in rows if r["integrator"] in integrators and r.get("error_body") is not None
+    return [_name(r) for r in rows if r["integrator"] in integrators and r.get("error_body") is not None
             and r["rung"] != "frequency" and _rank(r["rung"], r["segments"]) < mine
             and r["error_body"] <= 0.5 * tol["body"] and r["error_tension"] <= 0.5 * tol["tension"]]
 
 
-def plot_case(res: dict, path: Path):
-    plt = setup_matplotlib()
-    from matplotlib.ticker import NullFormatter
+def _brief(r: dict | None) -> dict | None:
+    return None if r is None else {"run": _name(r), "integrator": r["integrator"], "wall_s": r["wall_s"],
+                                   "error_body": r.get("error_body"), "error_tension": r.get("error_tension")}
 
-    from cablesys.plots import save_figure
-    fig, axes = plt.subplots(1, 2, figsize=(12, 5.5), sharex=True, layout="constrained")
-    ok = [r for r in res["rows"] if r.get("success") and r.get("error_body") is not None]
-    bad = [r for r in res["rows"] if not r.get("success")]
-    tol = res["auto"]["tolerance"]
-    floor = 1e-7
-    for ax, key, tl, title in ((axes[0], "error_body", tol["body"], "body amplitude error"),
-                               (axes[1], "error_tension", tol["tension"], "tension-extremes error")):
-        for r in ok:
-            lab = r["rung"] + (f" N={r['segments']}" if r["rung"] == "segmented" else "")
-            ax.loglog(max(r["wall_s"], 1e-4), max(r[key], floor), MARKERS.get(r["integrator"], "o"),
-                      color=RUNG_COLOURS[r["rung"]], ms=8, alpha=0.85)
-            if r["integrator"] in ("cvodes", "periodic"):      # one label per rung, staggered vertically
-                dy = {"frequency": 14, "quasi-static": 4, "wang": -8, "segmented": 4}[r["rung"]]
-                ax.annotate(lab, (max(r["wall_s"], 1e-4), max(r[key], floor)), textcoords="offset points",
-                            xytext=(6, dy), fontsize=7, color=RUNG_COLOURS[r["rung"]])
-        for r in bad:
-            ax.plot(max(r["wall_s"], 1e-4), 1.0, "x", color=RUNG_COLOURS[r["rung"]], ms=10, mew=2)
-        a = res["auto"]
-        hit = [r for r in ok if r["rung"] == a["name"] and (a["name"] != "segmented" or r["segments"] == a["segments"])]
-        if hit:
-            ax.loglog(max(hit[0]["wall_s"], 1e-4), max(hit[0][key], floor), "*", color="k", ms=18, mfc="none", mew=1.5)
-            stated = (a.get("stated_estimate") or {}).get(key.removeprefix("error_"))
-            if stated is not None and math.isfinite(stated):   # auto's stated estimate: a bar at the star's wall time
-                ax.loglog(max(hit[0]["wall_s"], 1e-4), max(stated, floor), "_", color="k", ms=22, mew=2.5)
-        ax.axhline(tl, ls="--", color="grey", lw=1)
-        ax.text(ax.get_xlim()[0] if ok else 1e-3, tl * 1.1, f"tolerance {tl:.0%}", fontsize=8, color="grey")
-        ax.axhline(1.0, ls=":", color="red", lw=0.8)
-        ax.set_title(title)
-        ax.set_xlabel("wall time of the integration [s]")
-        ax.set_ylabel("relative error vs converged segmented")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.xaxis.set_minor_formatter(NullFormatter())
-    from matplotlib.lines import Line2D
-    handles = [Line2D([], [], color=c, marker="o", ls="", label=k) for k, c in RUNG_COLOURS.items()]
-    handles += [Line2D([], [], color="k", marker=m, ls="", label=k) for k, m in MARKERS.items()
-                if any(r["integrator"] == k for r in res["rows"])]
-    handles += [Line2D([], [], color="k", marker="*", mfc="none", ls="", ms=12, label="auto's choice"),
-                Line2D([], [], color="k", marker="_", ls="", ms=14, mew=2.5, label="auto's stated estimate"),
-                Line2D([], [], color="k", marker="x", ls="", label="failed (at error = 1)")]
-    fig.legend(handles=handles, fontsize=8, loc="outside lower center", ncol=math.ceil(len(handles) / 2))
-    fig.suptitle(f"{res['scene']}: model ladder work-precision (reference: segmented N = {res['reference']['segments']})")
-    return save_figure(fig, path, dpi=110)
+
+def verdicts(res: dict) -> dict:
+    """Issue 12's two checks on this scene, from the rows and auto's choice.
+
+    ``cheaper_rung_within_tolerance``: the run of least wall time whose actual errors are within the
+    tolerance, over every time-domain rung and integrator (``cheapest``) and with auto's integrator
+    (``cheapest_same_integrator``), against auto's run; auto is ``beaten`` when a run of another rung
+    with its integrator is within the tolerance in less than 1 / NOISE_FACTOR of its wall time.
+    ``estimate_ratio``: auto's stated estimate over its actual error, per figure, and whether it is
+    within a factor 2 (``None`` where the actual error is not measured).
+    """
+    a = res["auto"]
+    tol = a["tolerance"]
+    integ = (a.get("integrator", "cvodes"), "periodic")
+    within = [r for r in res["rows"] if r.get("error_body") is not None and r["rung"] != "frequency"
+              and r["error_body"] <= tol["body"] and r["error_tension"] <= tol["tension"]]
+    mine = _find(res["rows"], a["name"], a["segments"], integ)
+    cheapest = min(within, key=lambda r: r["wall_s"], default=None)
+    same = min((r for r in within if r["integrator"] in integ), key=lambda r: r["wall_s"], default=None)
+    beaten = (None if mine is None else bool(same is not None and not _same(same, a["name"], a["segments"])
+                                                 and same["wall_s"] * NOISE_FACTOR < mine["wall_s"]))
+    cheaper = {"auto": _brief(mine), "cheapest": _brief(cheapest), "cheapest_same_integrator": _brief(same),
+               "beaten": beaten, "rule": f"beaten: another rung within the tolerance with auto's integrator in "
+                                         f"< 1/{NOISE_FACTOR:g} of auto's wall time (frequency rung excluded: "
+                                         f"it answers the steady-amplitude question)"}
+    ratio = {}
+    for k in ("body", "tension"):
+        act, st = a["actual_error"].get(k), a["stated_estimate"].get(k)
+        r = st / act if act and st is not None and math.isfinite(st) else None
+        ratio[k] = {"stated": st, "actual": act, "ratio": r, "within_2x": None if r is None else bool(0.5 <= r <= 2.0),
+                    "resolved": a["check"][k].get("resolved")}
+    return {"cheaper_rung_within_tolerance": cheaper, "estimate_ratio": ratio}
 
 
 def _fmt(d) -> str:
     f = lambda v: "-" if v is None else f"{v:.2g}"
     return "{" + ", ".join(f"{k} {f(v)}" for k, v in (d or {}).items()) + "}"
+
+
+def _report(key: str, res: dict) -> None:
+    a = res.get("auto", {})
+    print(f"{key}: auto -> {a.get('name')} N={a.get('segments')}; stated ({a.get('stated_how')}) "
+          f"{_fmt(a.get('stated_estimate'))} vs actual {_fmt(a.get('actual_error'))}", flush=True)
+    print(f"    cheaper within tolerance: {res.get('cheaper_rung_within_tolerance')}", flush=True)
+    print(f"    estimate ratio: {res.get('estimate_ratio')}", flush=True)
+    ref = res.get("reference", {})
+    if ref.get("kind") == "richardson":
+        print(f"    reference: Richardson limit of N = {ref.get('segments')}: y_amp {ref['statistics']['y_b_amplitude']:.4f} m, "
+              f"top max {ref['statistics']['tension_top_max']:.0f} N, observed order {ref.get('observed_order')}", flush=True)
+    for r in res["rows"]:
+        print(f"    {_name(r):18s} {r['integrator']:12s} wall {r['wall_s']:8.3g} s  estimated "
+              f"{_fmt({'b': r.get('estimate_body'), 't': r.get('estimate_tension')})} actual "
+              f"{_fmt({'b': r.get('error_body'), 't': r.get('error_tension')})} {r.get('failure', '')[:60]}", flush=True)
 
 
 def main(argv=None) -> int:
@@ -310,23 +437,19 @@ def main(argv=None) -> int:
     for case in cases(args.quick):
         if only and case["key"] not in only:
             continue
+        t0 = time.perf_counter()
         if reestimate and case["key"] in out and out[case["key"]].get("rows"):
             # the runs are kept; auto's choice, the estimates and the checks are made again (estimate changes)
             res = out[case["key"]]
             res["auto"] = assess_auto(case, res, res.get("reference_statistics"))
+            res.update(verdicts(res))
         else:
             res = study_case(case)
+        res["study_s"] = time.perf_counter() - t0
         out[case["key"]] = res
-        if res["rows"]:
+        if res["rows"] and "auto" in res:
             plot_case(res, args.out / f"model_ladder_{case['key']}.png")
-        a = res.get("auto", {})
-        print(f"{case['key']}: auto -> {a.get('name')} N={a.get('segments')}; stated ({a.get('stated_how')}) "
-              f"{_fmt(a.get('stated_estimate'))} vs actual {_fmt(a.get('actual_error'))}; check {a.get('check')}", flush=True)
-        for r in res["rows"]:
-            if r["integrator"] in ("cvodes", "periodic"):
-                name = r["rung"] + (f" N={r['segments']}" if r["rung"] == "segmented" else "")
-                print(f"    {name:16s} estimated {_fmt({'b': r.get('estimate_body'), 't': r.get('estimate_tension')})} "
-                      f"actual {_fmt({'b': r.get('error_body'), 't': r.get('error_tension')})}", flush=True)
+        _report(case["key"], res)
         write_json(path, out)           # after every scene: a long study keeps what it has
     return 0
 

@@ -1,0 +1,115 @@
+"""The work-precision chart of studies/model_ladder.py: error against the reference versus wall time.
+
+Colour is the rung (the quasi-static segmented cable apart from the straight quasi-static rung),
+marker the integrator; failed runs are crosses at error = 1 (their wall time up to the failure),
+auto's choice a black star with its stated estimate as a bar at the same wall time.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from _common import setup_matplotlib
+
+RUNG_COLOURS = {"frequency": "tab:purple", "quasi-static": "tab:green", "quasi-static N": "tab:olive",
+                "wang": "tab:blue", "segmented": "tab:orange"}
+RUNG_LABELS = {"frequency": "frequency domain (periodic orbit)", "quasi-static": "quasi-static stretch",
+               "quasi-static N": "quasi-static segmented", "wang": "Wang 2-DOF", "segmented": "segmented"}
+MARKERS = {"cvodes": "o", "cvodes-adams": "s", "idas": "D", "rk": "^", "rk-stable": "v", "periodic": "P"}
+INTEGRATOR_LABELS = {"cvodes": "CVODES BDF", "cvodes-adams": "CVODES Adams", "idas": "IDAS",
+                     "rk": "RK4, 10 steps/output", "rk-stable": "RK4 at its stability step",
+                     "periodic": "Fourier collocation"}
+FLOOR = 1e-7          # errors below are drawn at the floor
+FAIL_Y = 1.0          # failed runs are drawn here
+
+
+def _kind(r: dict) -> str:
+    return "quasi-static N" if r["rung"] == "quasi-static" and r["segments"] > 1 else r["rung"]
+
+
+def _label(r: dict) -> str:
+    return r["rung"] + (f" N={r['segments']}" if r["rung"] == "segmented" or r["segments"] > 1 else "")
+
+
+def reference_text(res: dict) -> str:
+    """The reference in words, for the title."""
+    ref = res["reference"]
+    if ref.get("kind") == "richardson":
+        w = ref.get("window_s") or [0, 0]
+        return (f"reference: 1st-order Richardson limit of segmented N = {ref['segments'][0]}, {ref['segments'][1]} "
+                f"(RK4), cycle means {w[0]:g}-{w[1]:g} s of a {ref['duration_s']:g} s run")
+    return f"reference: segmented N = {ref['segments']} (CVODES), last 5 forcing periods"
+
+
+def _labels(ax, ok: list, key: str, wall) -> None:
+    """One label per rung and N at its fastest run, moved down in steps of a line while it would
+    overlap a label already placed (positions compared in axes fractions of the log axes)."""
+    import numpy as np
+    (x0, x1), (y0, y1) = (np.log10(ax.get_xlim()), np.log10(ax.get_ylim()))
+    pt = 1.0 / (ax.get_window_extent().height * 72.0 / ax.figure.dpi)        # one point in axes fraction
+    placed = []
+    for lab in dict.fromkeys(_label(r) for r in ok):
+        r = min((q for q in ok if _label(q) == lab), key=wall)
+        x = (np.log10(wall(r)) - x0) / (x1 - x0)
+        dy = 4.0
+        y = (np.log10(max(r[key], FLOOR)) - y0) / (y1 - y0)
+        while any(abs(x - px) < 0.02 + 0.009 * len(lab) and abs(y + dy * pt - py) < 10 * pt for px, py in placed):
+            dy -= 10.0
+        placed.append((x, y + dy * pt))
+        ax.annotate(lab, (wall(r), max(r[key], FLOOR)), textcoords="offset points", xytext=(7, dy), fontsize=7.5,
+                    color=RUNG_COLOURS[_kind(r)], arrowprops=None)
+
+
+def plot_case(res: dict, path: Path):
+    """One scene's chart: body-amplitude error and tension-extremes error against wall time."""
+    plt = setup_matplotlib()
+    from matplotlib.lines import Line2D
+
+    from cablesys.plots import save_figure
+    fig, axes = plt.subplots(1, 2, figsize=(13, 6), sharex=True, layout="constrained")
+    ok = [r for r in res["rows"] if r.get("success") and r.get("error_body") is not None]
+    bad = [r for r in res["rows"] if not r.get("success")]
+    a = res["auto"]
+    tol = a["tolerance"]
+    hit = [r for r in ok if r["rung"] == a["name"] and r["integrator"] in (a.get("integrator", "cvodes"), "periodic")
+           and (r["segments"] == a["segments"] or a["name"] not in ("segmented", "quasi-static"))]
+    wall = lambda r: max(r["wall_s"], 1e-4)
+    for ax, key, tl, title in ((axes[0], "error_body", tol["body"], "body amplitude error"),
+                               (axes[1], "error_tension", tol["tension"], "tension-extremes error")):
+        for r in ok:
+            ax.loglog(wall(r), max(r[key], FLOOR), MARKERS.get(r["integrator"], "o"), color=RUNG_COLOURS[_kind(r)],
+                      ms=8, alpha=0.8)
+        for r in bad:
+            ax.plot(wall(r), FAIL_Y, "x", color=RUNG_COLOURS[_kind(r)], ms=10, mew=2)
+        if hit:
+            h = hit[0]
+            ax.loglog(wall(h), max(h[key], FLOOR), "*", color="k", ms=20, mfc="none", mew=1.6, zorder=5)
+            stated = (a.get("stated_estimate") or {}).get(key.removeprefix("error_"))
+            if stated is not None and math.isfinite(stated):   # auto's stated estimate: a bar at the star's wall time
+                ax.loglog(wall(h), max(stated, FLOOR), "_", color="k", ms=24, mew=2.5, zorder=5)
+        ax.axhline(tl, ls="--", color="grey", lw=1)
+        ax.annotate(f"tolerance {tl:.0%}", (0.01, tl), xycoords=("axes fraction", "data"), xytext=(0, 3),
+                    textcoords="offset points", fontsize=8, color="grey")
+        ax.axhline(FAIL_Y, ls=":", color="red", lw=0.8)
+        lo = min([max(r[key], FLOOR) for r in ok] + [tl]) / 2
+        ax.set_ylim(lo, 2.0)
+        _labels(ax, ok, key, wall)
+        ax.set_title(title)
+        ax.set_xlabel("wall time of the integration [s] (CasADi VM, build apart)")
+        ax.set_ylabel("relative error vs reference")
+        ax.grid(True, which="both", alpha=0.3)
+        xl = ax.get_xlim()
+        ax.set_xlim(xl[0], xl[1] * 2.5)           # room for the labels of the slowest runs
+    kinds = {_kind(r) for r in res["rows"]}
+    handles = [Line2D([], [], color=c, marker="o", ls="", label=RUNG_LABELS[k]) for k, c in RUNG_COLOURS.items() if k in kinds]
+    handles += [Line2D([], [], color="k", marker=m, ls="", label=INTEGRATOR_LABELS[k]) for k, m in MARKERS.items()
+                if any(r["integrator"] == k for r in res["rows"])]
+    auto = f"auto's choice: {a['name']}" + (f" N={a['segments']}" if a["name"] in ("segmented",) or a["segments"] > 1 else "")
+    handles += [Line2D([], [], color="k", marker="*", mfc="none", ls="", ms=12,
+                       label=auto + ("" if hit else " (not measured)")),
+                Line2D([], [], color="k", marker="_", ls="", ms=14, mew=2.5, label="auto's stated estimate"),
+                Line2D([], [], color="k", marker="x", ls="", label=f"failed run (drawn at error = {FAIL_Y:g})")]
+    fig.legend(handles=handles, fontsize=8, loc="outside lower center", ncol=math.ceil(len(handles) / 3))
+    fig.suptitle(f"{res['scene']}: model ladder work-precision\n{reference_text(res)}", fontsize=11)
+    return save_figure(fig, path, dpi=110)
