@@ -25,15 +25,18 @@ output times. Timed, in one run, best of several repeats (the machine may be sha
   at the same rtol;
 - ``vm``: the same CVODES run in CasADi's virtual machine (``compiled=False``);
 - ``compiled``: the other integrators, compiled: ``cvodes-bdf2`` (BDF capped at order 2,
-  A-stable), CVODES Adams and the fixed-step RK4 loop (``rk``, 5 steps per 0.05 s output: the
-  fewest inside RK4's stability limit for the stretch mode, h |lambda| = 2.5 < 2.785);
+  A-stable), CVODES Adams, the fixed-step RK4 loop (``rk``, 5 steps per 0.05 s output: the
+  fewest inside RK4's stability limit for the stretch mode, h |lambda| = 2.5 < 2.785) and
+  ``dopri5`` (Dormand-Prince 5(4), error-controlled, cablesys's compiled C driver: stability-bound
+  on the stretch mode at h |lambda| ~ 1.35, ~11k steps per 60 s at any rtol);
 - ``abrupt``, ``abrupt_bdf2``: the abrupt start (ramp_s = 0), steps the stretch ringing costs;
-- ``work_precision``: cvodes and cvodes-bdf2 over rtol 1e-3 ... 1e-8 (atol = rtol / 10, scaled), RK4 over
-  5, 10, 20 steps per output; ``scipy_runs``: LSODA at rtol 1e-6, 1e-3, 1e-4;
+- ``work_precision``: cvodes, cvodes-bdf2 and dopri5 over rtol 1e-3 ... 1e-8 (atol = rtol / 10, scaled),
+  RK4 over 5, 10, 20 steps per output; ``scipy_runs``: LSODA at rtol 1e-6, 1e-3, 1e-4;
 - ``equal_accuracy``: for each SciPy run, the fastest cablesys run of the sweep whose body position
-  error is not larger, and the fastest error-controlled one (``speedup_vs_scipy_equal_accuracy``,
-  ``..._adaptive``: against SciPy at rtol 1e-6);
-- ``interleaved``: the headline runs (SciPy at rtol 1e-6, cvodes, cvodes-bdf2, RK4) timed again in
+  error is not larger, and the fastest error-controlled one (cvodes, cvodes-bdf2, dopri5;
+  ``speedup_vs_scipy_equal_accuracy``, ``..._adaptive``: against SciPy at rtol 1e-6);
+- ``interleaved``: the headline runs (SciPy at rtol 1e-6, cvodes, cvodes-bdf2, RK4, dopri5; dopri5
+  also at the loosest rtol of the sweep whose error is not larger than SciPy's) timed again in
   alternating rounds, ``median_speedup`` per method: steadier than one ratio of measurements taken
   minutes apart while the load of a shared machine drifts;
 - per-state absolute tolerances are the integrators' state scaling (the default; measured scaled vs
@@ -215,7 +218,7 @@ def main(argv=None) -> int:
         w, o = best_of(lambda: s.run(pv, xv), repeat, budget)
         assert o.success, o.message
         return {"ms": 1e3 * w, "build_and_first_run_s": b, "steps": int(o.stats.get("nsteps", 0)),
-                "rhs_evals": int(o.stats.get("nfevals", 0)),
+                "rhs_evals": int(o.stats.get("nfevals", 0)), "compiled": bool(o.stats.get("compiled")),
                 "errors": errors(o.states, Xref, body_position(model, o.states, times, pv), pos_ref)
                 if sc is scene else None}
     res["vm"] = variant(IntegratorSettings(method="cvodes", rtol=RTOL, atol=ATOL_CS, compiled=False))
@@ -224,6 +227,8 @@ def main(argv=None) -> int:
         "cvodes-bdf2": variant(IntegratorSettings(method="cvodes-bdf2", rtol=RTOL, atol=ATOL_CS)),
         "cvodes-adams": variant(IntegratorSettings(method="cvodes-adams", rtol=RTOL, atol=ATOL_CS)),
         "rk4": variant(IntegratorSettings(method="rk", steps_per_output=RK_STEPS)),
+        # without a compiler (or CABLESYS_COMPILE=0) dopri5 runs CVODES: "compiled" says which
+        "dopri5": variant(IntegratorSettings(method="dopri5", rtol=RTOL, atol=ATOL_CS)),
     }
     for k, v in res["compiled"].items():
         print(f"cablesys {k} (compiled): {v['ms']:.1f} ms, {v['steps'] or '-'} steps, "
@@ -236,7 +241,7 @@ def main(argv=None) -> int:
 
     # -- work-precision of the cablesys methods (same ramped problem, same reference) ----------
     wp = []
-    for method, rtols in (("cvodes", WP_RTOLS), ("cvodes-bdf2", WP_RTOLS)):
+    for method, rtols in (("cvodes", WP_RTOLS), ("cvodes-bdf2", WP_RTOLS), ("dopri5", WP_RTOLS)):
         for r in rtols[::2] if args.quick else rtols:
             v = variant(IntegratorSettings(method=method, rtol=r, atol=r * ATOL_CS / RTOL))
             wp.append({"method": method, "rtol": r, "atol": r * ATOL_CS / RTOL, **v})
@@ -277,7 +282,15 @@ def main(argv=None) -> int:
     # on a shared machine the load drifts over the minutes this study takes; a ratio of two
     # measurements taken seconds apart is steadier than one of measurements minutes apart
     heads = {"cvodes": sim, "cvodes-bdf2": Simulator(model, times, IntegratorSettings(method="cvodes-bdf2", rtol=RTOL, atol=ATOL_CS)),
-             "rk4": Simulator(model, times, IntegratorSettings(method="rk", steps_per_output=RK_STEPS))}
+             "rk4": Simulator(model, times, IntegratorSettings(method="rk", steps_per_output=RK_STEPS)),
+             "dopri5": Simulator(model, times, IntegratorSettings(method="dopri5", rtol=RTOL, atol=ATOL_CS))}
+    # dopri5 at the loosest rtol of the sweep that is as accurate as SciPy at rtol 1e-6 (its equal-accuracy run)
+    dp_ok = [r for r in wp if r["method"] == "dopri5" and r["errors"]["body_position_m"] <= res["scipy_errors"]["body_position_m"]]
+    if dp_ok:
+        r_eq = max(r["rtol"] for r in dp_ok)
+        heads["dopri5_equal_accuracy"] = Simulator(model, times, IntegratorSettings(method="dopri5", rtol=r_eq,
+                                                                                    atol=r_eq * ATOL_CS / RTOL))
+        res["interleaved_dopri5_equal_accuracy_rtol"] = r_eq
     rounds = []
     for _ in range(1 if args.quick else 3):
         w_s, _sol = best_of(run_scipy, 1, budget_s=0.0)
@@ -351,16 +364,16 @@ def per_call_us(fn, n=2000) -> float:
 
 def plot(path, res):
     plt = setup_matplotlib()
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(13, 5))
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(14, 5))
     names = ["SciPy LSODA\n+ NumPy", "CVODES\nvirtual\nmachine", "CVODES\ncompiled\n(default)"]
     vals = [res["scipy_ms"], res["vm"]["ms"], res["cablesys_ms"]]
     errs = [res["scipy_errors"], res["vm"]["errors"], res["cablesys_errors"]]
-    short = {"cvodes-bdf2": "BDF <= 2", "cvodes-adams": "Adams", "rk4": f"RK4 {RK_STEPS}/out"}
+    short = {"cvodes-bdf2": "BDF <= 2", "cvodes-adams": "Adams", "rk4": f"RK4 {RK_STEPS}/out", "dopri5": "DOPRI5"}
     for k, v in res["compiled"].items():
         names.append(short.get(k, k) + "\ncompiled")
         vals.append(v["ms"])
         errs.append(v["errors"])
-    colors = ["tab:gray", "tab:purple", "tab:blue", "tab:orange", "tab:green", "tab:red"]
+    colors = ["tab:gray", "tab:purple", "tab:blue", "tab:orange", "tab:green", "tab:red", "tab:brown"]
     bars = ax1.bar(range(len(vals)), vals, color=colors[: len(vals)])
     for b, v, e in zip(bars, vals, errs):
         ax1.text(b.get_x() + b.get_width() / 2, v * 1.1, f"{v:.0f} ms\n({vals[0] / v:.0f}x)\nerr {e['body_position_m']:.0e} m",
@@ -370,7 +383,8 @@ def plot(path, res):
     ax1.set_ylim(min(vals) / 3, max(vals) * 10)
     ax1.set_ylabel("wall time (ms, log scale)")
     ax1.set_title(f"{res['duration_s']:g} s of the Dale scene (ramped start), rtol {RTOL:g}, atol {ATOL:g}", fontsize=10)
-    style = {"cvodes": ("tab:blue", "o"), "cvodes-bdf2": ("tab:orange", "s"), "rk4": ("tab:red", "^")}
+    style = {"cvodes": ("tab:blue", "o"), "cvodes-bdf2": ("tab:orange", "s"), "rk4": ("tab:red", "^"),
+             "dopri5": ("tab:brown", "v")}
     for method, (c, mk) in style.items():
         rows = [r for r in res["work_precision"] if r["method"] == method]
         ax2.loglog([r["errors"]["body_position_m"] for r in rows], [r["ms"] for r in rows], marker=mk, color=c,

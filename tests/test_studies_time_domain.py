@@ -152,7 +152,7 @@ def test_bench_work_precision_converges(bench):
     """Every cablesys method of the sweep gets more accurate as its tolerance or step shrinks,
     and each equal-accuracy pick is at least as accurate as the SciPy run it is compared with."""
     wp = bench["work_precision"]
-    for method, key in (("cvodes", "rtol"), ("cvodes-bdf2", "rtol"), ("rk4", "steps_per_output")):
+    for method, key in (("cvodes", "rtol"), ("cvodes-bdf2", "rtol"), ("dopri5", "rtol"), ("rk4", "steps_per_output")):
         rows = sorted((r for r in wp if r["method"] == method), key=lambda r: r[key], reverse=key == "rtol")
         err = [r["errors"]["body_position_m"] for r in rows]
         assert len(rows) >= 2 and err[-1] < err[0], method
