@@ -78,3 +78,33 @@ def test_stiff_rod_top_force_is_the_rigid_inertia_at_any_element_count():
     rigid = (rod.end_mass + rod.mass * rod.length) * w**2
     for n in (2, 16, 128):
         assert abs(abs(elements(rod, w, 0.0, 0.0, n, consistent=False)[2]) - rigid) < 1e-7 * rigid
+
+
+def test_hanging_string_is_the_limit_of_fine_elements_with_their_own_tensions():
+    # the hanging chain's Bessel (Hankel) solution against N = 1000 and 2000 lumped elements, each with the
+    # tension at its mid-point, extrapolated (Richardson, second order), from light to heavy drag damping
+    # (scaled Hankel functions: no overflow where the string attenuates the top motion by 1e-40)
+    from cablesys.ladder.continuum import hanging_string
+    s = Member(length=300.0, stiffness=complex(2e4), mass=3.0, drag=1.0, end_mass=500.0, end_drag=50.0, current=0.0,
+               gradient=40.0)
+    assert s.varies()
+    for w, c in ((0.1, 0.01), (1.0, 1.0), (1.0, 30.0), (5.0, 0.01)):
+        ref = hanging_string(s, w, c, 5.0)
+        fine = [elements(s, w, c, 5.0, n, consistent=False) for n in (1000, 2000)]
+        rich = [(4 * b - a) / 3 for a, b in zip(*fine)]
+        assert all(abs(x - y) <= 1e-6 * abs(y) for x, y in zip(rich, ref)), (w, c)
+
+
+def test_hanging_string_frequency_falls_between_its_end_tensions():
+    # a string fixed at both ends (huge body) whose tension grows toward the top: its first resonance of the
+    # top force lies between those of uniform strings at the bottom and top tensions
+    def peak(member, ws):
+        f = [abs(exact(member, w, 1e-4, 0.0)[2]) for w in ws]
+        return ws[int(np.argmax(f))]
+    g, length, m = 60.0, 100.0, 2.0
+    s = Member(length=length, stiffness=complex(1e4), mass=m, drag=0.0, end_mass=1e12, end_drag=0.0, current=0.0,
+               gradient=g)
+    t_top, t_bot = s.end_stiffness()
+    lo, hi = (math.pi / length * math.sqrt(t / m) for t in (t_bot, t_top))
+    w1 = peak(s, np.linspace(0.9 * lo, 1.1 * hi, 4001))
+    assert lo < w1 < hi

@@ -5,8 +5,9 @@ against the converged (continuous) cable, from quantities the scene gives. The c
 about its static line splits into two one-dimensional problems (Irvine 1981, "Cable Structures",
 ch. 3-4; Wang 1971 eq. 17-25 for the straight cable's two directions):
 
-- transverse: a taut string, tension T (the mean of the body-end and top tensions), mass m_v per
-  length with the added mass (Wang eq. 23-24), normal drag;
+- transverse: a taut string whose tension grows linearly toward the top by the cable's weight in
+  water (the hanging chain, :func:`hanging_string`; Wang's straight cable has the mean tension),
+  mass m_v per length with the added mass (Wang eq. 23-24), normal drag;
 - axial: a rod, stiffness AE (+ i omega C_I, Voigt, Wang eq. 46), mass m per length, tangential
   friction.
 
@@ -45,6 +46,8 @@ from ..scene import Scene
 
 K_HARMONIC = 8.0 / (3.0 * math.pi)   # describing function of |v| v for v = V sin(theta)
 FIXED_POINT_ITERATIONS = 12
+FIXED_POINT_TOLERANCE = 1e-9         # step in log |W_b| at which the drag's fixed point has converged
+VARYING = 1e-3                       # relative change of the tension along a string below which it is uniform
 
 
 @dataclasses.dataclass(frozen=True)
@@ -58,10 +61,23 @@ class Member:
     end_mass: float        # body virtual mass in this direction (kg)
     end_drag: float        # 1/2 rho C_D A of the body in this direction (kg/m)
     current: float         # steady relative flow normal to the member (m/s), 0 for the rod
+    gradient: float = 0.0  # dS/ds, stiffness growth per metre toward the top (string: weight in water along it, N/m)
+
+    def varies(self) -> bool:
+        """True when the stiffness changes along the member by more than VARYING (a hanging string)."""
+        return abs(self.gradient) * self.length > VARYING * abs(self.stiffness)
+
+    def end_stiffness(self) -> tuple[float, float]:
+        """(top, bottom) stiffness of a varying member (the mean +- gradient L / 2)."""
+        half = 0.5 * self.gradient * self.length
+        return self.stiffness.real + half, self.stiffness.real - half
 
 
 def exact(mb: Member, omega: float, c: float, cb: float) -> tuple:
-    """(W_b, F_body, F_top) per unit top amplitude of the continuous member (module docstring)."""
+    """(W_b, F_body, F_top) per unit top amplitude of the continuous member (module docstring); a
+    string whose tension grows toward the top (:meth:`Member.varies`) by :func:`hanging_string`."""
+    if mb.varies():
+        return hanging_string(mb, omega, c, cb)
     k = cmath.sqrt((mb.mass * omega**2 - 1j * omega * c) / mb.stiffness)
     x = k * mb.length
     if abs(x) < 1e-6:
@@ -71,6 +87,37 @@ def exact(mb: Member, omega: float, c: float, cb: float) -> tuple:
     s = mb.stiffness / mb.length
     wb = s * a / (s * b - mb.end_mass * omega**2 + 1j * omega * cb)
     return wb, s * (a - b * wb), s * (b - a * wb)
+
+
+def hanging_string(mb: Member, omega: float, c: float, cb: float) -> tuple:
+    """(W_b, F_body, F_top) of the continuous string whose tension grows linearly toward the top, T = T_b +
+    g s (s up from the body, g the weight in water per length along it): the hanging chain of Irvine
+    (1981, ch. 4; Bernoulli's). (T W')' + mu W = 0 with mu = m omega^2 - i omega c becomes Bessel's equation
+    of order 0 in z = 2 sqrt(mu T) / g, so W = a H1_0(z) + b H2_0(z) and T W' = -(g z / 2)(a H1_1(z) +
+    b H2_1(z)) (Hankel functions, exponentially scaled: each is normalised at the end where it is largest,
+    so a strongly damped string does not overflow). W = 1 at the top; at the body
+    Z_b W_b = T_b W'(0) (Z_b = -M omega^2 + i omega c_b); the top force is T_t W'(L).
+    The uniform string's tension (the mean, :func:`exact`) puts the string modes of a cable weighing as
+    much as its body off by tens of percent, and with them the elements' error near them."""
+    from scipy.special import hankel1e, hankel2e
+    t_top, t_bot = mb.end_stiffness()
+    g = mb.gradient
+    mu = mb.mass * omega**2 - 1j * omega * c
+    zt, zb = 2.0 * cmath.sqrt(mu * t_top) / g, 2.0 * cmath.sqrt(mu * t_bot) / g
+    # H1(z) = h1e(z) e^{iz}, H2(z) = h2e(z) e^{-iz}; with a = alpha e^{-i z1}, b = beta e^{i z2} the factors
+    # are e^{i(z - z1)} and e^{-i(z - z2)}, at most 1 in size on [zb, zt] for (z1, z2) chosen by Im(zt - zb)
+    z1, z2 = (zt, zb) if (zt - zb).imag <= 0 else (zb, zt)
+    f1 = lambda z, v: complex(hankel1e(v, z)) * cmath.exp(1j * (z - z1))
+    f2 = lambda z, v: complex(hankel2e(v, z)) * cmath.exp(-1j * (z - z2))
+    zbody = -mb.end_mass * omega**2 + 1j * omega * cb
+    # rows: W(zt) = 1; Z_b W(zb) + (g zb / 2) (alpha f1'(zb) + beta f2'(zb)) = 0, with T W' = -(g z / 2)(...)
+    m11, m12 = f1(zt, 0), f2(zt, 0)
+    m21 = zbody * f1(zb, 0) + 0.5 * g * zb * f1(zb, 1)
+    m22 = zbody * f2(zb, 0) + 0.5 * g * zb * f2(zb, 1)
+    det = m11 * m22 - m12 * m21
+    alpha, beta = m22 / det, -m21 / det
+    wb = alpha * f1(zb, 0) + beta * f2(zb, 0)
+    return wb, zbody * wb, -0.5 * g * zt * (alpha * f1(zt, 1) + beta * f2(zt, 1))
 
 
 CHAIN_OVERFLOW = 300.0   # |Re(n kappa)| above which cosh(n kappa) nears overflow: the banded solve instead
@@ -95,6 +142,8 @@ def elements(mb: Member, omega: float, c: float, cb: float, n: int, *, consisten
     i omega c h / 2 for either mass), so kappa stays accurate as k h -> 0. Constant cost in n (the
     estimate tabulates n up to 128, issue 12: choosing is part of the user's wait); near overflow
     (|Re(n kappa)| > CHAIN_OVERFLOW) the tridiagonal system is solved (:func:`elements_banded`)."""
+    if mb.varies() and not consistent:
+        return elements_banded(mb, omega, c, cb, n, consistent=consistent)
     h = mb.length / n
     k_el = mb.stiffness / h
     o_m = mb.mass * h / 6.0 if consistent else 0.0        # off-diagonal mass: consistent (m h / 6) or lumped
@@ -112,43 +161,66 @@ def elements(mb: Member, omega: float, c: float, cb: float, n: int, *, consisten
 
 
 def elements_banded(mb: Member, omega: float, c: float, cb: float, n: int, *, consistent: bool) -> tuple:
-    """:func:`elements` by a banded solve of the node equations (any attenuation)."""
+    """:func:`elements` by a banded solve of the node equations (any attenuation), each element with the
+    stiffness at its mid-point (a string whose tension grows toward the top: :meth:`Member.varies`;
+    the consistent single element keeps the mean, Wang's straight cable)."""
     h = mb.length / n
-    ke = mb.stiffness / h * np.array([[1.0, -1.0], [-1.0, 1.0]])
-    me = mb.mass * h * (np.array([[2.0, 1.0], [1.0, 2.0]]) / 6.0 if consistent else np.eye(2) / 2.0)
-    ce = c * h * np.array([[2.0, 1.0], [1.0, 2.0]]) / 6.0
-    D = ke - omega**2 * me + 1j * omega * ce
-    # nodes 1..n free (n: the body), node 0 the top moving with amplitude 1: a tridiagonal system with
-    # constant bands (every element alike), solved banded in O(n): node k gets D11 of element k - 1 and
-    # D00 of element k, the body node D11 and its own mass and drag; node 1 is driven by D10 x 1
+    if mb.varies() and not consistent:
+        t_top, t_bot = mb.end_stiffness()
+        k = (t_top + (t_bot - t_top) * (np.arange(n) + 0.5) / n) / h + 0j     # element k from the top
+    else:
+        k = np.full(n, mb.stiffness / h, dtype=complex)
+    d_m, o_m = (mb.mass * h / 3.0, mb.mass * h / 6.0) if consistent else (mb.mass * h / 2.0, 0.0)
+    d = k - omega**2 * d_m + 1j * omega * c * h / 3.0          # D00 = D11 of each element
+    o = -k - omega**2 * o_m + 1j * omega * c * h / 6.0         # D01 = D10
+    # nodes 1..n free (n: the body), node 0 the top moving with amplitude 1: a tridiagonal system solved
+    # banded in O(n): node j gets D11 of element j - 1 and D00 of element j, the body node D11 of the last
+    # element and its own mass and drag; node 1 is driven by D10 of element 0 x 1
+    zb = -mb.end_mass * omega**2 + 1j * omega * cb
     ab = np.zeros((3, n), complex)
-    ab[0, 1:], ab[1], ab[2, :-1] = D[0, 1], D[0, 0] + D[1, 1], D[1, 0]
-    ab[1, -1] = D[1, 1] - mb.end_mass * omega**2 + 1j * omega * cb
+    ab[1, :-1] = d[:-1] + d[1:]
+    ab[1, -1] = d[-1] + zb
+    ab[0, 1:], ab[2, :-1] = o[1:], o[1:]
     f = np.zeros(n, complex)
-    f[0] = -D[1, 0]
+    f[0] = -o[0]
     w = scipy.linalg.solve_banded((1, 1), ab, f, check_finite=False)
-    prev = w[-2] if n > 1 else 1.0
-    return w[-1], -(D[1, 0] * prev + D[1, 1] * w[-1]), D[0, 0] + D[0, 1] * w[0]
+    return w[-1], zb * w[-1], d[0] + o[0] * w[0]
 
 
 def respond(mb: Member, omega: float, top: complex, model: str, n: int = 1) -> tuple:
     """(W_b, F_body, F_top) for top amplitude ``top`` (m); ``model`` "exact", "wang" or "segmented".
 
-    The drag's equivalent damping follows the member's own response: a fixed point on the body
-    amplitude |W_b|, relaxed geometrically (at a drag-controlled resonance |W_b| ~ 1 / c ~ 1 / |W_b|,
-    where plain substitution alternates between two values; the geometric mean lands on the root)."""
+    The drag's equivalent damping follows the member's own response: a fixed point of the body
+    amplitude, a = |W_b(a)|, solved in x = log a for R(x) = log|W_b(e^x)| - x = 0: one geometric relaxation
+    step (at a drag-controlled resonance |W_b| ~ 1 / c ~ 1 / |W_b|, where plain substitution alternates
+    between two values; the geometric mean lands on the root), then secant steps (superlinear: the
+    relaxation alone gains only a factor ~2 per step away from resonance), relaxation again whenever a
+    secant step is not usable; until the step is below FIXED_POINT_TOLERANCE."""
     if top == 0 or omega <= 0:
         return 0j, 0j, 0j
-    amp = abs(top)
-    for _ in range(FIXED_POINT_ITERATIONS):
+
+    def evaluate(x):
+        amp = math.exp(x)
         v_b, v_c = omega * amp, omega * 0.5 * (abs(top) + amp)
         c = mb.drag * (K_HARMONIC * v_c + 2.0 * mb.current)
         cb = mb.end_drag * (K_HARMONIC * v_b + 2.0 * mb.current)
-        if model == "exact":
-            r = exact(mb, omega, c, cb)
-        else:
-            r = elements(mb, omega, c, cb, n, consistent=(model == "wang"))
-        amp = math.sqrt(amp * max(abs(r[0] * top), 1e-300))
+        r = exact(mb, omega, c, cb) if model == "exact" else elements(mb, omega, c, cb, n, consistent=(model == "wang"))
+        return r, math.log(max(abs(r[0] * top), 1e-300)) - x
+
+    x = math.log(abs(top))
+    r, res = evaluate(x)
+    prev = None
+    for _ in range(FIXED_POINT_ITERATIONS):
+        step = 0.5 * res                                       # geometric relaxation
+        if prev is not None and res != prev[1]:
+            secant = -res * (x - prev[0]) / (res - prev[1])
+            if math.isfinite(secant) and abs(secant) <= 2.0 * abs(res) + 1e-12:
+                step = secant
+        prev = (x, res)
+        x += step
+        r, res = evaluate(x)
+        if abs(step) <= FIXED_POINT_TOLERANCE:
+            break
     return tuple(v * top for v in r)
 
 
@@ -171,8 +243,11 @@ def members(scene: Scene, omega: float, angle: float) -> list[tuple[Member, Memb
         m_n = c.mass_per_length + c.added_mass_factor * rho * math.pi * c.diameter**2 / 4     # eq. 23-24
         m_bn = b.mass_x * ct**2 + b.mass_y * st**2 + below_m
         m_bt = b.mass_x * st**2 + b.mass_y * ct**2 + below_m
+        # the tension grows toward the top by the weight in water along the cable (a heavy cable: string
+        # modes of the hanging chain, :func:`hanging_string`), bounded so that the body end stays taut
+        grad = min(max(c.weight_per_length * ct, 0.0), 1.8 * tension / c.length)
         string = Member(c.length, complex(tension), m_n, 0.5 * rho * c.cd_normal * c.diameter, m_bn,
-                        0.5 * rho * b.drag_area_normal, u_rel * ct)
+                        0.5 * rho * b.drag_area_normal, u_rel * ct, grad)
         rod = Member(c.length, complex(c.ae, omega * c.internal_damping), c.mass_per_length,
                      0.5 * rho * c.ct_tangential * math.pi * c.diameter, m_bt, 0.5 * rho * b.drag_area_tangential, 0.0)
         out.append((string, rod))
