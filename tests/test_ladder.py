@@ -169,6 +169,9 @@ def test_auto_integrator_settings_follow_the_tolerance_unless_someone_chose():
     s = integrator_settings(scene, (0.01, 0.02))
     assert (s.method, s.rtol, s.atol, s.compiled, s.scaled) == ("cvodes-bdf2", 1e-4, pytest.approx(1e-5), True, True)
     assert integrator_settings(scene, (1e-3, 2e-3)).rtol == pytest.approx(1e-5)
+    # the quasi-static rungs have no stretch modes to damp: variable-order BDF (fewer steps, same rtol)
+    assert integrator_settings(scene, (0.01, 0.02), rung="quasi-static").method == "cvodes"
+    assert integrator_settings(scene, (0.01, 0.02), rung="quasi-static", method="idas").method == "idas"
     assert integrator_settings(scene, (0.05, 0.1)).rtol == 1e-4
     own = scene.with_numerics(integrator="cvodes", rtol=1e-6)
     s = integrator_settings(own, (0.01, 0.02))
