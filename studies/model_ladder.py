@@ -57,6 +57,7 @@ from _cycles import (
     settled_window_start,
 )
 from _ladder_chart import plot_case
+from _ladder_checks import cheaper_within, find_row, run_name, verdicts
 from segmented_convergence import _steps_per_output, slack_scene
 
 from cablesys import units as U
@@ -79,7 +80,6 @@ from cablesys.time_domain.run import initial_state
 
 INTEGRATORS = ("cvodes", "cvodes-adams", "idas", "rk", "rk-stable")
 RESOLVED_FRACTION = 0.1   # the factor-2 check applies to actual errors above this fraction of the tolerance
-NOISE_FACTOR = 2.0        # a cheaper run "beats" auto's when its wall time is below 1/2 of auto's (shared machine)
 
 
 def heave_300m(period: float, duration: float, output_step: float = 0.05) -> object:
@@ -250,15 +250,6 @@ def study_case(case: dict) -> dict:
     return res
 
 
-def _same(r: dict, rung: str, n: int) -> bool:
-    return r["rung"] == rung and (r["segments"] == n or rung not in ("segmented", "quasi-static"))
-
-
-def _find(rows, rung, n, integrators):
-    return next((r for r in rows if _same(r, rung, n) and r["integrator"] in integrators
-                 and r.get("error_body") is not None), None)
-
-
 def _row_estimate(errs: dict, r: dict) -> dict:
     if r["rung"] == "segmented":
         return est.segmented_error(errs, r["segments"])
@@ -288,7 +279,7 @@ def assess_auto(case: dict, res: dict, ref_stats: dict | None, cache: RungCache 
         e = _row_estimate(errs, r)
         r["estimate_body"], r["estimate_tension"] = e.get("body"), e.get("tension")
     integ = (scene.numerics.integrator, "periodic")
-    actual = _find(rows, choice.name, choice.segments, integ)
+    actual = find_row(rows, choice.name, choice.segments, integ)
     # auto wants the reference's own N (or, for a Richardson reference, more than its finest N, where the
     # limit's own uncertainty is no smaller than the error measured): not measured
     finest = case["n_ref"] if case.get("reference") != "richardson" else max(case["segments"]) + 1
@@ -305,7 +296,7 @@ def assess_auto(case: dict, res: dict, ref_stats: dict | None, cache: RungCache 
     sure = all(choice.estimated_error[k] <= SAFETY * tol[k] for k in ("body", "tension"))
     if choice.name in ("segmented", "quasi-static") and choice.segments >= 4 and not sure and ref_stats is not None:
         # as simulate_auto: a second run at N / 2 when the a-priori estimate is not well within the tolerance
-        half = _find(rows, choice.name, choice.segments // 2, integ)
+        half = find_row(rows, choice.name, choice.segments // 2, integ)
         if half is None:
             half = _with_errors(_measured(case, scene, choice.name, choice.segments // 2, scene.numerics.integrator,
                                           period, cache), ref_stats)
@@ -344,66 +335,6 @@ def assess_auto(case: dict, res: dict, ref_stats: dict | None, cache: RungCache 
             "check": check}
 
 
-def _rank(rung: str, n: int) -> float:
-    """Ladder order of cost: the straight-cable rungs, then the cable in N elements (quasi-static below
-    the dynamic one at the same N)."""
-    if rung in ("quasi-static", "wang") and n <= 1:
-        return 1
-    return 1 + n - (0.5 if rung == "quasi-static" else 0.0)
-
-
-def _name(r: dict) -> str:
-    return r["rung"] + (f" N={r['segments']}" if r["rung"] == "segmented" or r["segments"] > 1 else "")
-
-
-def cheaper_within(rows, choice, tol, integrators) -> list:
-    """Rungs below auto's choice on the ladder (straight cables, fewer elements) whose actual errors are
-    within half the tolerance (auto aims at half of it: choice.SAFETY); the frequency rung answers
-    another question (a steady amplitude) and is left out."""
-    mine = _rank(choice.name, choice.segments)
-    return [_name(r) for r in rows if r["integrator"] in integrators and r.get("error_body") is not None
-            and r["rung"] != "frequency" and _rank(r["rung"], r["segments"]) < mine
-            and r["error_body"] <= 0.5 * tol["body"] and r["error_tension"] <= 0.5 * tol["tension"]]
-
-
-def _brief(r: dict | None) -> dict | None:
-    return None if r is None else {"run": _name(r), "integrator": r["integrator"], "wall_s": r["wall_s"],
-                                   "error_body": r.get("error_body"), "error_tension": r.get("error_tension")}
-
-
-def verdicts(res: dict) -> dict:
-    """Issue 12's two checks on this scene, from the rows and auto's choice.
-
-    ``cheaper_rung_within_tolerance``: the run of least wall time whose actual errors are within the
-    tolerance, over every time-domain rung and integrator (``cheapest``) and with auto's integrator
-    (``cheapest_same_integrator``), against auto's run; auto is ``beaten`` when a run of another rung
-    with its integrator is within the tolerance in less than 1 / NOISE_FACTOR of its wall time.
-    ``estimate_ratio``: auto's stated estimate over its actual error, per figure, and whether it is
-    within a factor 2 (``None`` where the actual error is not measured).
-    """
-    a = res["auto"]
-    tol = a["tolerance"]
-    integ = (a.get("integrator", "cvodes"), "periodic")
-    within = [r for r in res["rows"] if r.get("error_body") is not None and r["rung"] != "frequency"
-              and r["error_body"] <= tol["body"] and r["error_tension"] <= tol["tension"]]
-    mine = _find(res["rows"], a["name"], a["segments"], integ)
-    cheapest = min(within, key=lambda r: r["wall_s"], default=None)
-    same = min((r for r in within if r["integrator"] in integ), key=lambda r: r["wall_s"], default=None)
-    beaten = (None if mine is None else bool(same is not None and not _same(same, a["name"], a["segments"])
-                                                 and same["wall_s"] * NOISE_FACTOR < mine["wall_s"]))
-    cheaper = {"auto": _brief(mine), "cheapest": _brief(cheapest), "cheapest_same_integrator": _brief(same),
-               "beaten": beaten, "rule": f"beaten: another rung within the tolerance with auto's integrator in "
-                                         f"< 1/{NOISE_FACTOR:g} of auto's wall time (frequency rung excluded: "
-                                         f"it answers the steady-amplitude question)"}
-    ratio = {}
-    for k in ("body", "tension"):
-        act, st = a["actual_error"].get(k), a["stated_estimate"].get(k)
-        r = st / act if act and st is not None and math.isfinite(st) else None
-        ratio[k] = {"stated": st, "actual": act, "ratio": r, "within_2x": None if r is None else bool(0.5 <= r <= 2.0),
-                    "resolved": a["check"][k].get("resolved")}
-    return {"cheaper_rung_within_tolerance": cheaper, "estimate_ratio": ratio}
-
-
 def _fmt(d) -> str:
     f = lambda v: "-" if v is None else f"{v:.2g}"
     return "{" + ", ".join(f"{k} {f(v)}" for k, v in (d or {}).items()) + "}"
@@ -420,7 +351,7 @@ def _report(key: str, res: dict) -> None:
         print(f"    reference: Richardson limit of N = {ref.get('segments')}: y_amp {ref['statistics']['y_b_amplitude']:.4f} m, "
               f"top max {ref['statistics']['tension_top_max']:.0f} N, observed order {ref.get('observed_order')}", flush=True)
     for r in res["rows"]:
-        print(f"    {_name(r):18s} {r['integrator']:12s} wall {r['wall_s']:8.3g} s  estimated "
+        print(f"    {run_name(r):18s} {r['integrator']:12s} wall {r['wall_s']:8.3g} s  estimated "
               f"{_fmt({'b': r.get('estimate_body'), 't': r.get('estimate_tension')})} actual "
               f"{_fmt({'b': r.get('error_body'), 't': r.get('error_tension')})} {r.get('failure', '')[:60]}", flush=True)
 

@@ -51,6 +51,7 @@ def _check_dale(out, dale):
     cheaper = dale["cheaper_rung_within_tolerance"]
     name = auto["name"] + (f" N={auto['segments']}" if auto["name"] == "segmented" or auto["segments"] > 1 else "")
     assert cheaper["auto"]["run"] == name and cheaper["auto"]["wall_s"] > 0
+    assert {"beaten", "beaten_at_safety_tolerance", "cheapest_same_integrator"} <= set(cheaper)
     best = cheaper["cheapest"]
     assert best["error_body"] <= tol["body"] and best["error_tension"] <= tol["tension"]
     assert best["wall_s"] == min(r["wall_s"] for r in dale["rows"] if r.get("error_body") is not None
