@@ -108,3 +108,15 @@ def test_hanging_string_frequency_falls_between_its_end_tensions():
     lo, hi = (math.pi / length * math.sqrt(t / m) for t in (t_bot, t_top))
     w1 = peak(s, np.linspace(0.9 * lo, 1.1 * hi, 4001))
     assert lo < w1 < hi
+
+
+def test_drag_shares_are_the_segmented_models_quadrature():
+    # the drag at p mid-points with linear velocity, shared by virtual work: one point gives (1/4, 1/4), many
+    # points the exact integral of the linear shape functions (1/3, 1/6); the shares always add to 1/2
+    # (the element's drag c h split between its two nodes)
+    from cablesys.ladder.continuum import drag_shares
+    assert drag_shares(1) == (0.25, 0.25)
+    assert drag_shares(0) == (1 / 3, 1 / 6)
+    d, o = drag_shares(1000)
+    assert abs(d - 1 / 3) < 1e-6 and abs(o - 1 / 6) < 1e-6
+    assert all(abs(sum(drag_shares(p)) - 0.5) < 1e-15 for p in (1, 2, 3, 5, 10))

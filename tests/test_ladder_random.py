@@ -99,10 +99,11 @@ def check(model, actual, convergence, tol=(0.01, 0.02)):
 KNOWN = {   # measured misses, kept visible (strict: an xfail that starts passing fails)
     # ("short", 1) passes since the integrators scale the states: its actual 0.105 % body error held integration
     # error (one SI atol); 0.081 % now, below a tenth of the tolerance (the estimate states 0.028 %)
-    ("short", 2): "Wang: stated 0.15 % body vs actual 0.39 % (factor 2.6): the linear continuum estimate misses "
+    ("short", 2): "Wang: stated 0.13 % body vs actual 0.39 % (factor 2.9): the linear continuum estimate misses "
                   "what the time-domain comparison holds at this level (nonlinear swing, start-up transient)",
-    ("heavy", 3): "segmented N = 5: actual 1.1 % > 1 % and auto's a-posteriori Richardson (N = 5 vs 2) states 0.20 %: "
-                  "convergence in N is not monotone in a 7-period window while the slow swing mode still rings",
+    # ("heavy", 3) passes since the continuum estimate hangs its string (tension growing toward the top): Wang's
+    # straight cable is estimated at 0.38 % (actual 0.10 %, unresolved) where the mean-tension string said 4.4 %
+    # and auto ran N = 5 (1.1 % actual, 0.20 % stated)
 }
 
 CASES = [("short", 2), ("short", 3), ("short", 1), ("heavy", 1), ("heavy", 2), ("heavy", 3)]
@@ -120,11 +121,14 @@ def test_auto_within_tolerance_and_estimate_within_factor_2(kind, seed):
 
 def test_random_families_span_the_ladder():
     """The families reach both ends of the ladder: a straight-cable rung for short light cables and the
-    segmented cable with N > 1 for heavy cables forced near their string modes (a priori choice only)."""
+    segmented cable with N > 1 for heavy cables forced near their string modes (a priori choice only); a
+    heavy cable whose straight-cable estimate is within the tolerance may run straight (heavy-3: forced at
+    0.37 of its first string mode, Wang's error 0.10 % against N = 16)."""
     from cablesys.ladder import choose
     names = {}
     for kind, seed in CASES:
         c = choose(random_scene(np.random.default_rng(seed), kind))
-        names.setdefault(kind, set()).add((c.name, c.segments))
-    assert all(n in ("quasi-static", "wang", "frequency") for n, _ in names["short"])
-    assert all(n == "segmented" and s > 1 for n, s in names["heavy"])
+        names.setdefault(kind, []).append((c.name, c.segments, c.estimated_error["body"]))
+    assert all(n in ("quasi-static", "wang", "frequency") for n, _, _ in names["short"])
+    assert all((n == "segmented" and s > 1) or e <= 0.01 for n, s, e in names["heavy"])
+    assert sum(n == "segmented" and s > 1 for n, s, _ in names["heavy"]) >= 2

@@ -123,7 +123,20 @@ def hanging_string(mb: Member, omega: float, c: float, cb: float) -> tuple:
 CHAIN_OVERFLOW = 300.0   # |Re(n kappa)| above which cosh(n kappa) nears overflow: the banded solve instead
 
 
-def elements(mb: Member, omega: float, c: float, cb: float, n: int, *, consistent: bool) -> tuple:
+def drag_shares(points: int = 0) -> tuple[float, float]:
+    """(diagonal, off-diagonal) of an element's drag matrix per c h: the drag at ``points`` mid-points
+    of equal parts of the element with the velocity interpolated linearly and the force shared by virtual
+    work, sum over s_k = (k + 1/2) / points of ((1 - s_k)^2, s_k (1 - s_k)) / points, as the segmented model
+    evaluates it (:func:`cablesys.model.segmented.drag_points`); 0: exact integration (1/3, 1/6), the
+    continuous limit. One point per element gives (1/4, 1/4): the rule changes with N (10 points per
+    section shared among the elements), and with it the error, which then converges unevenly in N."""
+    if points <= 0:
+        return 1.0 / 3.0, 1.0 / 6.0
+    s = (np.arange(points) + 0.5) / points
+    return float(np.sum((1 - s) ** 2) / points), float(np.sum(s * (1 - s)) / points)
+
+
+def elements(mb: Member, omega: float, c: float, cb: float, n: int, *, consistent: bool, points: int = 0) -> tuple:
     """(W_b, F_body, F_top) per unit top amplitude of ``n`` linear elements: consistent mass for
     Wang's straight cable (n = 1), lumped mass for the segmented cable; drag shared by virtual work.
 
@@ -143,15 +156,15 @@ def elements(mb: Member, omega: float, c: float, cb: float, n: int, *, consisten
     estimate tabulates n up to 128, issue 12: choosing is part of the user's wait); near overflow
     (|Re(n kappa)| > CHAIN_OVERFLOW) the tridiagonal system is solved (:func:`elements_banded`)."""
     if mb.varies() and not consistent:
-        return elements_banded(mb, omega, c, cb, n, consistent=consistent)
+        return elements_banded(mb, omega, c, cb, n, consistent=consistent, points=points)
     h = mb.length / n
     k_el = mb.stiffness / h
     o_m = mb.mass * h / 6.0 if consistent else 0.0        # off-diagonal mass: consistent (m h / 6) or lumped
-    o = -k_el - omega**2 * o_m + 1j * omega * c * h / 6.0
+    o = -k_el - omega**2 * o_m + 1j * omega * c * h * drag_shares(points)[1]
     delta = -(-omega**2 * mb.mass * h / 2.0 + 1j * omega * c * h / 2.0) / o      # cosh(kappa) - 1
     kappa = 2.0 * cmath.asinh(cmath.sqrt(delta / 2.0))
     if abs((n * kappa).real) > CHAIN_OVERFLOW:
-        return elements_banded(mb, omega, c, cb, n, consistent=consistent)
+        return elements_banded(mb, omega, c, cb, n, consistent=consistent, points=points)
     sk, ch, sh = cmath.sinh(kappa), cmath.cosh(n * kappa), cmath.sinh(n * kappa)
     s_n = sh / sk if sk != 0 else complex(n)
     zb = -mb.end_mass * omega**2 + 1j * omega * cb
@@ -160,7 +173,8 @@ def elements(mb: Member, omega: float, c: float, cb: float, n: int, *, consisten
     return wb, zb * wb, o * (o * sk * sh - zb * ch) / den
 
 
-def elements_banded(mb: Member, omega: float, c: float, cb: float, n: int, *, consistent: bool) -> tuple:
+def elements_banded(mb: Member, omega: float, c: float, cb: float, n: int, *, consistent: bool,
+                    points: int = 0) -> tuple:
     """:func:`elements` by a banded solve of the node equations (any attenuation), each element with the
     stiffness at its mid-point (a string whose tension grows toward the top: :meth:`Member.varies`;
     the consistent single element keeps the mean, Wang's straight cable)."""
@@ -171,8 +185,9 @@ def elements_banded(mb: Member, omega: float, c: float, cb: float, n: int, *, co
     else:
         k = np.full(n, mb.stiffness / h, dtype=complex)
     d_m, o_m = (mb.mass * h / 3.0, mb.mass * h / 6.0) if consistent else (mb.mass * h / 2.0, 0.0)
-    d = k - omega**2 * d_m + 1j * omega * c * h / 3.0          # D00 = D11 of each element
-    o = -k - omega**2 * o_m + 1j * omega * c * h / 6.0         # D01 = D10
+    d_c, o_c = drag_shares(points)
+    d = k - omega**2 * d_m + 1j * omega * c * h * d_c          # D00 = D11 of each element
+    o = -k - omega**2 * o_m + 1j * omega * c * h * o_c         # D01 = D10
     # nodes 1..n free (n: the body), node 0 the top moving with amplitude 1: a tridiagonal system solved
     # banded in O(n): node j gets D11 of element j - 1 and D00 of element j, the body node D11 of the last
     # element and its own mass and drag; node 1 is driven by D10 of element 0 x 1
@@ -187,7 +202,7 @@ def elements_banded(mb: Member, omega: float, c: float, cb: float, n: int, *, co
     return w[-1], zb * w[-1], d[0] + o[0] * w[0]
 
 
-def respond(mb: Member, omega: float, top: complex, model: str, n: int = 1) -> tuple:
+def respond(mb: Member, omega: float, top: complex, model: str, n: int = 1, points: int = 0) -> tuple:
     """(W_b, F_body, F_top) for top amplitude ``top`` (m); ``model`` "exact", "wang" or "segmented".
 
     The drag's equivalent damping follows the member's own response: a fixed point of the body
@@ -204,7 +219,8 @@ def respond(mb: Member, omega: float, top: complex, model: str, n: int = 1) -> t
         v_b, v_c = omega * amp, omega * 0.5 * (abs(top) + amp)
         c = mb.drag * (K_HARMONIC * v_c + 2.0 * mb.current)
         cb = mb.end_drag * (K_HARMONIC * v_b + 2.0 * mb.current)
-        r = exact(mb, omega, c, cb) if model == "exact" else elements(mb, omega, c, cb, n, consistent=(model == "wang"))
+        r = (exact(mb, omega, c, cb) if model == "exact"
+             else elements(mb, omega, c, cb, n, consistent=(model == "wang"), points=points))
         return r, math.log(max(abs(r[0] * top), 1e-300)) - x
 
     x = math.log(abs(top))
@@ -287,14 +303,16 @@ def response(scene: Scene, angle: float, model: str, n: int = 1, forcing=None) -
     dict
         ``x_b``, ``y_b`` (m), ``force_body``, ``force_top`` (N, the largest over sections, axial).
     """
+    from ..model.segmented import drag_points
     comps = top_components(scene) or [(w, a + 0j, a + 0j) for w, a in (forcing or [])]
     st, ct = math.sin(angle), math.cos(angle)
+    points = 0 if model == "exact" else drag_points(scene, n)       # the models' own drag quadrature
     out = {"x_b": 0.0, "y_b": 0.0, "force_body": 0.0, "force_top": 0.0}
     for omega, xs, ys in comps:
         top_t, top_n = xs * st + ys * ct, xs * ct - ys * st      # along and normal to the static line
         for string, rod in members(scene, omega, angle):
-            wb, _, _ = respond(string, omega, top_n, model, n)
-            ub, fb, ft = respond(rod, omega, top_t, model, n)
+            wb, _, _ = respond(string, omega, top_n, model, n, points)
+            ub, fb, ft = respond(rod, omega, top_t, model, n, points)
             out["x_b"] = max(out["x_b"], abs(ub * st + wb * ct))
             out["y_b"] = max(out["y_b"], abs(ub * ct - wb * st))
             out["force_body"] = max(out["force_body"], abs(fb))

@@ -49,7 +49,21 @@ SLACK_MARGIN = 0.05  # a least tension within 5 % of the static tension of the f
 SWING_AMPLIFICATION = 10.0
 HB_PHASES, HB_CONTINUATION = 16, 2   # harmonic balance of linear_response (see there)
 RESOLUTION = 1e-4    # estimates are not resolved below this (start-up transients, reference convergence)
-CONTINUUM_N = (2, 4, 8, 16, 32, 64, 128)   # elements at which the segmented estimate is tabulated
+CONTINUUM_N = (2, 4, 8, 16, 32, 64, 128)   # elements at which the segmented estimate is tabulated (and see
+#                                            continuum_counts: where the segmented model's drag rule changes)
+
+
+def continuum_counts(scene: Scene) -> tuple:
+    """Element counts at which the continuum estimate is tabulated: CONTINUUM_N and both ends of every run
+    of N with the same drag points per element (:func:`cablesys.model.segmented.drag_points`, numerics.drag_segments
+    shared among the elements): the drag rule, and with it the error, jumps between runs (Dale at 2 omega_n:
+    0.31 % at N = 4, 0.18 % at 5, 0.24 % at 8), so the power-law interpolation of :func:`segmented_error`
+    stays within one run."""
+    from ..model.segmented import drag_points
+    top = CONTINUUM_N[-1]
+    pts = [drag_points(scene, n) for n in range(1, top + 2)]          # pts[n - 1] at n elements
+    ends = {n for n in range(2, top + 1) if pts[n - 2] != pts[n - 1] or pts[n] != pts[n - 1]}
+    return tuple(sorted(set(CONTINUUM_N) | ends))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -123,13 +137,13 @@ def static_bow_error(numbers: SceneNumbers) -> float:
 
 
 def continuum_errors(scene: Scene, numbers: SceneNumbers, largest_tension: float) -> dict:
-    """{"wang": {body, tension}, n: {body, tension} for n in CONTINUUM_N} against the continuous cable
-    (:mod:`.continuum`), without floors."""
+    """{"wang": {body, tension}, n: {body, tension} for n in :func:`continuum_counts`} against the
+    continuous cable (:mod:`.continuum`), without floors."""
     angle = static_angle(scene)
     kw = {"forcing": list(numbers.forcing)}
     ref = continuum.response(scene, angle, "exact", **kw)
     out = {"wang": continuum.relative_errors(continuum.response(scene, angle, "wang", **kw), ref, largest_tension)}
-    for n in CONTINUUM_N:
+    for n in continuum_counts(scene):
         out[n] = continuum.relative_errors(continuum.response(scene, angle, "segmented", n, **kw), ref, largest_tension)
     return out
 
@@ -171,7 +185,7 @@ def estimate_errors(scene: Scene, numbers: SceneNumbers, response: LinearRespons
         freq.update(body=math.inf, tension=math.inf, note="no single forcing frequency: no periodic steady state")
     order = SLACK_ORDER if slack else ORDER
     seg = {"body": e_wang if not slack else 1.0, "tension": t_wang if not slack else 1.0, "order": order,
-           "continuum": {str(n): cont[n] for n in CONTINUUM_N} if not slack else {},
+           "continuum": {str(n): v for n, v in cont.items() if n != "wang"} if not slack else {},
            "note": f"N lumped elements vs the continuous cable, at least the straight cable's error x N^-{order:g}"
                    + (" (snap loads converge slowly)" if slack else "")}
     return {"frequency": freq, "quasi-static": qs, "wang": wang, "segmented_1": seg}
