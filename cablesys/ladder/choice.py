@@ -1,4 +1,13 @@
-"""``choose(scene, tolerance)``: the cheapest rung whose estimated error is within the tolerance."""
+"""``choose(scene, tolerance)``: the cheapest rung whose estimated error is within the tolerance.
+
+The ladder, cheapest first: frequency (a steady amplitude only) < quasi-static (straight, N = 1) < wang
+(the two swap when the stretch is within STIFF_RATIO of the forcing, or when nothing drives the swing)
+< quasi-static segmented (N elements, their stretches following the tension) < segmented (N, the node
+model, every element stretch stepped). The quasi-static segmented cable replaces the segmented one where
+the stretch is stiff (omega/omega_ax <= 1/STIFF_RATIO) and the cable stays taut: on the Dale scene (60 s,
+compiled, the same load) N = 4 took 42 ms against 68 ms for the node model, N = 3 30 ms against 54 ms,
+and its tension extremes carry no element-stretch ringing (0.002 % against 0.56 % at rtol 1e-4).
+"""
 
 from __future__ import annotations
 
