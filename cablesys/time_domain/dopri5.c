@@ -1,10 +1,11 @@
-/* cablesys dopri5: Dormand-Prince 5(4) with error control and dense output, one output interval
- * per call, in CasADi's external-function C API (see cablesys/time_domain/dopri5.py).
+/* cablesys dopri5: Dormand-Prince 5(4) with error control and dense output, a block of output
+ * times per call, in CasADi's external-function C API (see cablesys/time_domain/dopri5.py).
  *
  * Appended by cablesys.time_domain.dopri5 to the C that CasADi's CodeGenerator generates for the
  * model's relative-time ODE, after these definitions (prepended by the Python side):
  *   CS_DP5_NX        number of states
  *   CS_DP5_NP        length of the integrator's p (the model's p, then t0 and h)
+ *   CS_DP5_NK        output times per call (a block; the x output is NX x NK)
  *   CS_DP5_RHS       the generated right-hand side, (s, x, z, p, u) -> (x', alg, quad, zero)
  *   CS_DP5_RHS_WORK  its work-size function
  *
@@ -16,24 +17,26 @@
  * the coefficients d_i of Hairer's DOPRI5 code, CONTD5), and sec. IV.2 (the PI controller,
  * beta = 0.04 as in DOPRI5).
  *
- * The carry (input 0 -> output 0) holds the integrator between calls (output intervals):
+ * The carry (input 0 -> output 0) holds the integrator between output times and calls:
  *   [0] s        current (relative) time       [6]  s_fail   time of a failure
  *   [1] h        proposed next step (0: pick)  [7]  s_old    start of the last accepted step
  *   [2] accepted steps                          [8]  err_old  previous error norm (PI control)
  *   [3] rejected steps                          [9]  k1 valid (first same as last)
  *   [4] right-hand-side evaluations             [10] h_last   length of the last accepted step
- *   [5] status (0 ok, 1 too much work, 2 step too small, 3 non-finite)   [11] last step rejected
+ *   [5] status (0 ok, 1 too much work, 2 step too small,   [11] last step rejected
+ *       3 step too small, the last rejection non-finite)   [12] the last rejection was for non-finite stages
  *   then x (NX), k1 = f(s, x) (NX), the 5 NX dense-output coefficients of the last accepted step.
  */
-#define CS_DP5_HEAD 12
+#define CS_DP5_HEAD 13
 #define CS_DP5_NC (CS_DP5_HEAD + 7 * CS_DP5_NX)
 #define CS_DP5_NW (CS_DP5_NC + 8 * CS_DP5_NX)
 
 static const casadi_int cs_dp5_sp_carry[3] = {CS_DP5_NC, 1, 1};
-static const casadi_int cs_dp5_sp_scalar[3] = {1, 1, 1};
+static const casadi_int cs_dp5_sp_times[3] = {CS_DP5_NK, 1, 1};
 static const casadi_int cs_dp5_sp_p[3] = {CS_DP5_NP, 1, 1};
 static const casadi_int cs_dp5_sp_tol[3] = {2, 1, 1};
 static const casadi_int cs_dp5_sp_x[3] = {CS_DP5_NX, 1, 1};
+static const casadi_int cs_dp5_sp_xs[3] = {CS_DP5_NX, CS_DP5_NK, 1};
 
 /* Dormand & Prince (1980), Table 2 (DOPRI5; Hairer et al. Table II.5.2) */
 static const casadi_real cs_dp5_c2 = 1.0 / 5, cs_dp5_c3 = 3.0 / 10, cs_dp5_c4 = 4.0 / 5, cs_dp5_c5 = 8.0 / 9;
@@ -81,25 +84,20 @@ static casadi_real cs_dp5_norm(const casadi_real* v, const casadi_real* x, const
   return sqrt(sum / CS_DP5_NX);
 }
 
-CASADI_SYMBOL_EXPORT int cablesys_dopri5(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w,
-                                         int mem) {
-  const casadi_real *p = arg[2], *atol = arg[4];
-  const casadi_real** sub_arg = arg + 5;
-  casadi_real** sub_res = res + 2;
-  casadi_real* c = w;                       /* the carry, worked on in place */
+/* Advance the carry c (in w) to s_out, at most tol[1] attempted steps, and write x(s_out) to xo. */
+static void cs_dp5_advance(casadi_real s_out, const casadi_real* p, const casadi_real* tol, const casadi_real* atol,
+                           casadi_real* xo, const casadi_real** sub_arg, casadi_real** sub_res, casadi_int* iw,
+                           casadi_real* w) {
+  casadi_real* c = w;                       /* the carry */
   casadi_real* k2 = w + CS_DP5_NC;
   casadi_real *k3 = k2 + CS_DP5_NX, *k4 = k3 + CS_DP5_NX, *k5 = k4 + CS_DP5_NX, *k6 = k5 + CS_DP5_NX,
               *k7 = k6 + CS_DP5_NX, *yt = k7 + CS_DP5_NX, *y1 = yt + CS_DP5_NX;
   casadi_real* rw = w + CS_DP5_NW;          /* the right-hand side's work */
   casadi_real *x = c + CS_DP5_HEAD, *k1 = x + CS_DP5_NX, *r = k1 + CS_DP5_NX;
-  casadi_real s_out = arg[1] ? arg[1][0] : 0;
-  casadi_real rtol = arg[3] ? arg[3][0] : 0;
-  casadi_int max_steps = arg[3] ? (casadi_int)arg[3][1] : 0, taken = 0, i;
+  casadi_real rtol = tol ? tol[0] : 0;
+  casadi_int max_steps = tol ? (casadi_int)tol[1] : 0, taken = 0, i;
   casadi_real s, h, err, fac, fac11, hnew, theta, theta1, span, bound, sk, dnf, dny, der2, h1;
-  int nonfinite = 0;
   if (max_steps <= 0) max_steps = 100000;
-  for (i = 0; i < CS_DP5_NC; ++i) c[i] = arg[0] ? arg[0][i] : 0;
-  if (c[5] != 0) goto done;
   s = c[0];
   if (!c[9]) {                              /* k1 = f(s, x) unless carried over (FSAL) */
     if (cs_dp5_f(s, x, p, k1, sub_arg, sub_res, iw, rw)) { c[5] = 3; c[6] = s; goto done; }
@@ -131,7 +129,7 @@ CASADI_SYMBOL_EXPORT int cablesys_dopri5(const casadi_real** arg, casadi_real** 
     h = c[1];
     bound = fabs(s) > fabs(s_out) ? fabs(s) : fabs(s_out);
     if (taken >= max_steps) { c[5] = 1; c[6] = s; goto done; }
-    if (0.1 * h <= bound * cs_dp5_uround) { c[5] = nonfinite ? 3 : 2; c[6] = s; goto done; }
+    if (0.1 * h <= bound * cs_dp5_uround) { c[5] = c[12] ? 3 : 2; c[6] = s; goto done; }
     ++taken;
     /* stages (Dormand & Prince 1980; Hairer et al. Table II.5.2) */
     for (i = 0; i < CS_DP5_NX; ++i) yt[i] = x[i] + h * cs_dp5_a21 * k1[i];
@@ -158,12 +156,10 @@ CASADI_SYMBOL_EXPORT int cablesys_dopri5(const casadi_real** arg, casadi_real** 
                    + cs_dp5_e6 * k6[i] + cs_dp5_e7 * k7[i]);
     err = cs_dp5_norm(yt, x, y1, rtol, atol);
     if (!cs_dp5_isfinite(err)) {             /* a non-finite stage: retry with a much smaller step */
-      nonfinite = 1;
-      c[3] += 1; c[11] = 1;
+      c[3] += 1; c[11] = 1; c[12] = 1;
       c[1] = h * cs_dp5_fac_min;
       continue;
     }
-    nonfinite = 0;
     /* PI step-size control (Hairer et al. IV.2 eq. 2.43c, DOPRI5): h_new = h / fac,
        fac = err^(1/5 - 0.75 beta) / err_old^beta / safe, bounded to [1/fac_max, 1/fac_min] */
     fac11 = pow(err, 0.2 - cs_dp5_beta * 0.75);
@@ -195,27 +191,36 @@ CASADI_SYMBOL_EXPORT int cablesys_dopri5(const casadi_real** arg, casadi_real** 
       fac = fac11 / cs_dp5_safe;
       c[1] = h / (fac < 1.0 / cs_dp5_fac_min ? fac : 1.0 / cs_dp5_fac_min);
       c[3] += 1;
-      c[11] = 1;
+      c[11] = 1; c[12] = 0;
     }
   }
   goto done;
 rhs_failed:
   c[5] = 3; c[6] = s;
 done:
-  if (res[1]) {
-    if (c[5] != 0) {
-      for (i = 0; i < CS_DP5_NX; ++i) res[1][i] = NAN;
-    } else if (s_out >= c[0] || c[10] <= 0) {
-      for (i = 0; i < CS_DP5_NX; ++i) res[1][i] = x[i];
-    } else {                                 /* dense output inside the last step */
-      theta = (s_out - c[7]) / c[10];
-      theta1 = 1.0 - theta;
-      for (i = 0; i < CS_DP5_NX; ++i)
-        res[1][i] = r[i] + theta * (r[CS_DP5_NX + i] + theta1 * (r[2 * CS_DP5_NX + i] + theta
-                    * (r[3 * CS_DP5_NX + i] + theta1 * r[4 * CS_DP5_NX + i])));
-    }
+  if (!xo) return;
+  if (c[5] != 0) {
+    for (i = 0; i < CS_DP5_NX; ++i) xo[i] = NAN;
+  } else if (s_out >= c[0] || c[10] <= 0) {
+    for (i = 0; i < CS_DP5_NX; ++i) xo[i] = x[i];
+  } else {                                   /* dense output inside the last step */
+    theta = (s_out - c[7]) / c[10];
+    theta1 = 1.0 - theta;
+    for (i = 0; i < CS_DP5_NX; ++i)
+      xo[i] = r[i] + theta * (r[CS_DP5_NX + i] + theta1 * (r[2 * CS_DP5_NX + i] + theta
+              * (r[3 * CS_DP5_NX + i] + theta1 * r[4 * CS_DP5_NX + i])));
   }
-  if (res[0]) for (i = 0; i < CS_DP5_NC; ++i) res[0][i] = c[i];
+}
+
+/* One block of CS_DP5_NK output times (a shorter grid repeats its last time). */
+CASADI_SYMBOL_EXPORT int cablesys_dopri5(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w,
+                                         int mem) {
+  casadi_int i, k;
+  for (i = 0; i < CS_DP5_NC; ++i) w[i] = arg[0] ? arg[0][i] : 0;
+  for (k = 0; k < CS_DP5_NK; ++k)
+    cs_dp5_advance(arg[1] ? arg[1][k] : 0, arg[2], arg[3], arg[4], res[1] ? res[1] + k * CS_DP5_NX : 0,
+                   arg + 5, res + 2, iw, w);
+  if (res[0]) for (i = 0; i < CS_DP5_NC; ++i) res[0][i] = w[i];
   return 0;
 }
 
@@ -225,7 +230,7 @@ CASADI_SYMBOL_EXPORT casadi_int cablesys_dopri5_n_out(void) { return 2; }
 CASADI_SYMBOL_EXPORT const char* cablesys_dopri5_name_in(casadi_int i) {
   switch (i) {
     case 0: return "carry_in";
-    case 1: return "s_out";
+    case 1: return "s_out";     /* CS_DP5_NK output times */
     case 2: return "p";
     case 3: return "tol";
     case 4: return "atol";
@@ -244,7 +249,7 @@ CASADI_SYMBOL_EXPORT const char* cablesys_dopri5_name_out(casadi_int i) {
 CASADI_SYMBOL_EXPORT const casadi_int* cablesys_dopri5_sparsity_in(casadi_int i) {
   switch (i) {
     case 0: return cs_dp5_sp_carry;
-    case 1: return cs_dp5_sp_scalar;
+    case 1: return cs_dp5_sp_times;
     case 2: return cs_dp5_sp_p;
     case 3: return cs_dp5_sp_tol;
     case 4: return cs_dp5_sp_x;
@@ -255,7 +260,7 @@ CASADI_SYMBOL_EXPORT const casadi_int* cablesys_dopri5_sparsity_in(casadi_int i)
 CASADI_SYMBOL_EXPORT const casadi_int* cablesys_dopri5_sparsity_out(casadi_int i) {
   switch (i) {
     case 0: return cs_dp5_sp_carry;
-    case 1: return cs_dp5_sp_x;
+    case 1: return cs_dp5_sp_xs;
     default: return 0;
   }
 }

@@ -18,10 +18,10 @@ DAE function of :mod:`.integrators`, x' = h ode(x, t0 + h s) with p extended by 
 and cached on disk by :func:`cablesys.compiled.compile_functions` (same compiler command, cache
 key = code hash + compiler identity, atomic writes), and loaded as a CasADi function with
 ``casadi.external`` (CasADi's external-function C API: ``cablesys_dopri5``, ``_n_in``,
-``_sparsity_in``, ``_work``, ...). One call advances to one output time; a CasADi ``mapaccum``
-over the output grid carries the integrator (time, step, state, FSAL stage, dense-output
-coefficients, counters, status) from one output time to the next, so a whole chunk of output
-times is one CasADi call with no Python per step.
+``_sparsity_in``, ``_work``, ...). One call advances over a block of :data:`BLOCK` output times;
+a CasADi ``mapaccum`` over the blocks carries the integrator (time, step, state, FSAL stage,
+dense-output coefficients, counters, status) from one block to the next, so a whole chunk of
+output times is one CasADi call with no Python per step.
 
 Why dopri5 at all: the Dale stretch mode (lambda = -0.38 +- 254i 1/s, nearly undamped) lies by
 the imaginary axis, where BDF orders 3-5 are unstable, so CVODES takes ~30-44k steps per 60 s
@@ -62,10 +62,14 @@ log = logging.getLogger(__name__)
 __all__ = ["DRIVER", "Dopri5Integrator", "dopri5_library", "make_dopri5"]
 
 DRIVER = "cablesys_dopri5"
-HEAD = 12                  # carry layout: see dopri5.c
+HEAD = 13                  # carry layout: see dopri5.c
+# output times per driver call: the grid is a mapaccum over blocks of them. CasADi's mapaccum costs
+# time superlinear in its length to build (1024 calls: ~75 ms, 4096: more), the Simulator's chunks
+# are up to 4096 output times long, and one block call costs nothing extra at run time
+BLOCK = 64
 STATUS = {1: ("TOO_MUCH_WORK", "the step budget max_num_steps of one output interval is used up"),
           2: ("ERR_FAILURE", "the step size fell below the rounding level of the time"),
-          3: ("NONFINITE", "the right-hand side or the state is not finite and smaller steps do not help")}
+          3: ("NONFINITE", "the right-hand side or the state became non-finite and smaller steps did not help")}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -102,10 +106,11 @@ def dopri5_library(model: CableModel, compiled: bool = True) -> Compiled:
     def build():
         rhs = _dae_function(model, implicit=False, scaled=False)
         defines = (f"\n#define CS_DP5_NX {2 * model.nq}\n#define CS_DP5_NP {len(model.layout) + 2}\n"
+                   f"#define CS_DP5_NK {BLOCK}\n"
                    f"#define CS_DP5_RHS {rhs.name()}\n#define CS_DP5_RHS_WORK {rhs.name()}_work\n")
         return compile_functions([rhs], jacobians=False, enabled=compiled, extra_c=defines + src.code,
                                  extra_names=(DRIVER,))
-    return model.derive(f"dopri5:{src.digest}:{'compiled' if compiled else 'vm'}", build)
+    return model.derive(f"dopri5:{src.digest}:{BLOCK}:{'compiled' if compiled else 'vm'}", build)
 
 
 class Dopri5Integrator:
@@ -181,15 +186,19 @@ def make_dopri5(model: CableModel, settings, grid, name: str = "F") -> Dopri5Int
         return None
     grid = np.asarray(grid, dtype=float)
     nx, npx, n = 2 * model.nq, len(model.layout) + 2, len(grid) - 1
-    acc = comp.functions[DRIVER].mapaccum(f"{name}_steps", n, [0], [0])
+    nb = -(-n // BLOCK)
+    # blocks of BLOCK output times (columns), the last one padded with the final time (no steps there)
+    s_out = np.concatenate([grid[1:], np.full(nb * BLOCK - n, grid[-1])]).reshape(nb, BLOCK).T
+    acc = comp.functions[DRIVER].mapaccum(f"{name}_steps", nb, [0], [0])
     x0, p = ca.MX.sym("x0", nx), ca.MX.sym("p", npx)
     S = state_scales(model)(p[:-2]) if settings.scaled else ca.DM.ones(nx)
-    head = ca.DM([grid[0], 0, 0, 0, 0, 0, 0, grid[0], 0, 0, 0, 0])
-    carry0 = ca.vertcat(head, x0, ca.DM.zeros(6 * nx))
+    head = np.zeros(HEAD)
+    head[0] = head[7] = grid[0]                     # s and the start of the last step; the rest 0 (dopri5.c)
+    carry0 = ca.vertcat(ca.DM(head), x0, ca.DM.zeros(6 * nx))
     tol = ca.DM([settings.rtol, settings.max_num_steps])
-    C, X = acc(carry0, ca.DM(grid[1:]).T, ca.repmat(p, 1, n), ca.repmat(tol, 1, n),
-               ca.repmat(settings.atol * S, 1, n))
-    F = ca.Function(name, [x0, p], [X, C[:, -1]], ["x0", "p"], ["xf", "carry"])
+    C, X = acc(carry0, ca.DM(s_out), ca.repmat(p, 1, nb), ca.repmat(tol, 1, nb),
+               ca.repmat(settings.atol * S, 1, nb))
+    F = ca.Function(name, [x0, p], [X[:, :n], C[:, -1]], ["x0", "p"], ["xf", "carry"])
     return Dopri5Integrator(F, grid)
 
 
