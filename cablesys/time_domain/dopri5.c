@@ -14,8 +14,8 @@
  * control, initial step and dense output as in Hairer, Norsett & Wanner, Solving Ordinary
  * Differential Equations I (2nd ed. 1993), sec. II.4 (error norm eq. 4.11, step factor eq. 4.13,
  * initial step "starting step size" algorithm), II.5 (Table 5.2), II.6 (dense output of DOPRI5,
- * the coefficients d_i of Hairer's DOPRI5 code, CONTD5), and sec. IV.2 (the PI controller,
- * beta = 0.04 as in DOPRI5).
+ * the coefficients d_i of Hairer's DOPRI5 code, CONTD5), and Hairer & Wanner, Solving ODEs II,
+ * sec. IV.2 (the PI controller, beta = 0.04 as in DOPRI5).
  *
  * The carry (input 0 -> output 0) holds the integrator between output times and calls:
  *   [0] s        current (relative) time       [6]  s_fail   time of a failure
@@ -160,7 +160,7 @@ static void cs_dp5_advance(casadi_real s_out, const casadi_real* p, const casadi
       c[1] = h * cs_dp5_fac_min;
       continue;
     }
-    /* PI step-size control (Hairer et al. IV.2 eq. 2.43c, DOPRI5): h_new = h / fac,
+    /* PI step-size control (Hairer & Wanner, Solving ODEs II, sec. IV.2; DOPRI5): h_new = h / fac,
        fac = err^(1/5 - 0.75 beta) / err_old^beta / safe, bounded to [1/fac_max, 1/fac_min] */
     fac11 = pow(err, 0.2 - cs_dp5_beta * 0.75);
     if (err <= 1.0) {
