@@ -44,9 +44,10 @@ BDF_RTOLS = (1e-3, 1e-4)                   # CVODES BDF(<= 2) candidates (compil
 
 
 def window_start(scene, period: float) -> float:
-    """The first cycle start at or after half the run (cycles counted from the end of the ramp)."""
+    """The last cycle start at or before half the run, cycles counted from the end of the ramp (the
+    ramp's end in a run shorter than twice the ramp)."""
     ramp, dur = scene.top_motion.effective_ramp_s, scene.numerics.duration
-    return ramp + math.floor((dur / 2 - ramp) / period) * period
+    return ramp + max(0, math.floor((dur / 2 - ramp) / period)) * period
 
 
 def cablesys_cycles(result, period: float, t0: float) -> dict:
@@ -107,6 +108,43 @@ def _moordyn_step(sc, n, period, t0, keep: Path | None, key: str) -> tuple[float
     return dt, "probed in this run"
 
 
+def _us_per_rhs(F, x0, pp, n_sub: int, repeats: int) -> float:
+    """Microseconds per right-hand side of an RK4 interval function (best of 3 blocks of calls)."""
+    F(x0, 0.0, 1.0, pp)
+    best = math.inf
+    for _ in range(3):
+        t0 = time.perf_counter()
+        for _ in range(repeats):
+            F(x0, 0.0, 1.0, pp)
+        best = min(best, (time.perf_counter() - t0) / repeats)
+    return 1e6 * best / (4 * n_sub)
+
+
+def rhs_profile(sc, n_sub: int, prepared) -> dict:
+    """Where an RK4 run's time goes: microseconds per right-hand side of the RK4 interval (``n_sub``
+    steps of one output interval) with the element kernel (the model's ``loop_ode``) and with the
+    element-by-element SX ``ode``, compiled with the library's default flags (and the build time of
+    that library, compile included when not cached) and in CasADi's VM."""
+    import dataclasses
+
+    from cablesys.time_domain.integrators import rk4_interval
+    sim, p, x0, _ = prepared(sc, "rk", 1e-6, 1e-9)
+    model = sim.model
+    pp = np.concatenate([p, [0.0, sc.numerics.output_step]])
+    out = {"steps_per_output": n_sub}
+    repeats = max(3, round(2000 / (4 * n_sub * model.n_elements)))
+    for name, m in (("kernel", model), ("sx", dataclasses.replace(model, kernel_ode=None))):
+        for compiled in (True, False):
+            t0 = time.perf_counter()
+            comp = rk4_interval(m, n_sub, compiled)
+            key = f"{name}_{'compiled' if compiled else 'vm'}"
+            out[f"{key}_build_s"] = time.perf_counter() - t0
+            out[f"{key}_cached"] = comp.cached
+            out[f"{key}_us_per_rhs"] = _us_per_rhs(comp.functions["cablesys_rk4_interval"], x0, pp, n_sub,
+                                                   repeats if compiled else max(1, repeats // 5))
+    return out
+
+
 def bench_slack_case(name, scene, period, ns, *, timed_run, prepared, compiled_ctx, segments, keep: Path | None = None):
     """The slack row: per N, MoorDyn and cablesys timed in this run, both measured by cycle means.
 
@@ -139,6 +177,7 @@ def bench_slack_case(name, scene, period, ns, *, timed_run, prepared, compiled_c
         compiled = True                       # RK4's loop is the RHS alone (no Jacobian): compiled at any N
         entry = {"segments": n, "moordyn_dt_s": dt, "moordyn_dt_from": how_dt, "moordyn_s_per_s": md["wall_s"] / dur,
                  "moordyn_step_s_per_s": md["step_wall_s"] / dur, "moordyn_stable": md["stable"],
+                 "moordyn_steps_per_s": dur / dt / md["step_wall_s"], "moordyn_us_per_step": 1e6 * md["step_wall_s"] * dt / dur,
                  "moordyn_cycles": _strip(md_c) if md_c else None,
                  "moordyn_slack_fraction_per_segment": md_c["slack_per_element"] if md_c else None}
         with compiled_ctx(compiled):
@@ -176,10 +215,16 @@ def bench_slack_case(name, scene, period, ns, *, timed_run, prepared, compiled_c
                         best = (res, wall, t)
                 tried.append(t)
                 rk_matched = rk_matched or (meth == "rk" and bool(t.get("matched")))
+            if best and best[2]["method"] == "rk":
+                entry["cablesys_rhs_profile"] = rhs_profile(sc.with_numerics(steps_per_output=best[2]["steps_per_output"]),
+                                                            best[2]["steps_per_output"], prepared)
         entry["cablesys_tried"] = tried
         entry["cablesys_vs_moordyn"] = errors(ref, md_c) if md_c else None
         if best:
             res, wall, how = best
+            if how["method"] == "rk":
+                steps = dur / sc.numerics.output_step * how["steps_per_output"]
+                entry.update(cablesys_steps_per_s=steps / wall, cablesys_us_per_step=1e6 * wall / steps)
             entry.update(cablesys_s_per_s=wall / dur, speedup=md["wall_s"] / wall, cablesys_settings=how,
                          cablesys_compiled=compiled, cablesys_build_s=how["build_s"], cablesys_setup_s=how["setup_s"],
                          cablesys_total_s_per_s=(how["setup_s"] + wall) / dur,
