@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import time
 from pathlib import Path
 
@@ -120,11 +121,12 @@ def _us_per_rhs(F, x0, pp, n_sub: int, repeats: int) -> float:
     return 1e6 * best / (4 * n_sub)
 
 
-def rhs_profile(sc, n_sub: int, prepared) -> dict:
+def rhs_profile(sc, n_sub: int, prepared, flags=()) -> dict:
     """Where an RK4 run's time goes: microseconds per right-hand side of the RK4 interval (``n_sub``
     steps of one output interval) with the element kernel (the model's ``loop_ode``) and with the
     element-by-element SX ``ode``, compiled with the library's default flags (and the build time of
-    that library, compile included when not cached) and in CasADi's VM."""
+    that library, compile included when not cached), with each of ``flags`` (``CABLESYS_CFLAGS``,
+    e.g. "-O3") and in CasADi's VM."""
     import dataclasses
 
     from cablesys.time_domain.integrators import rk4_interval
@@ -133,19 +135,31 @@ def rhs_profile(sc, n_sub: int, prepared) -> dict:
     pp = np.concatenate([p, [0.0, sc.numerics.output_step]])
     out = {"steps_per_output": n_sub}
     repeats = max(3, round(2000 / (4 * n_sub * model.n_elements)))
-    for name, m in (("kernel", model), ("sx", dataclasses.replace(model, kernel_ode=None))):
-        for compiled in (True, False):
-            t0 = time.perf_counter()
-            comp = rk4_interval(m, n_sub, compiled)
-            key = f"{name}_{'compiled' if compiled else 'vm'}"
-            out[f"{key}_build_s"] = time.perf_counter() - t0
-            out[f"{key}_cached"] = comp.cached
-            out[f"{key}_us_per_rhs"] = _us_per_rhs(comp.functions["cablesys_rk4_interval"], x0, pp, n_sub,
-                                                   repeats if compiled else max(1, repeats // 5))
+    old = os.environ.get("CABLESYS_CFLAGS")
+    try:
+        for flag in (None, "vm", *flags):
+            if flag not in (None, "vm"):
+                os.environ["CABLESYS_CFLAGS"] = flag
+            for name in ("kernel", "sx"):
+                # a fresh copy: its own cache of derived functions (a library per flag)
+                m = dataclasses.replace(model, kernel_ode=model.kernel_ode if name == "kernel" else None)
+                t0 = time.perf_counter()
+                comp = rk4_interval(m, n_sub, flag != "vm")
+                key = f"{name}_{'compiled' if flag is None else flag}"
+                out[f"{key}_build_s"] = time.perf_counter() - t0
+                out[f"{key}_cached"] = comp.cached
+                out[f"{key}_us_per_rhs"] = _us_per_rhs(comp.functions["cablesys_rk4_interval"], x0, pp, n_sub,
+                                                       max(1, repeats // 5) if flag == "vm" else repeats)
+    finally:
+        if old is None:
+            os.environ.pop("CABLESYS_CFLAGS", None)
+        else:
+            os.environ["CABLESYS_CFLAGS"] = old
     return out
 
 
-def bench_slack_case(name, scene, period, ns, *, timed_run, prepared, compiled_ctx, segments, keep: Path | None = None):
+def bench_slack_case(name, scene, period, ns, *, timed_run, prepared, compiled_ctx, segments, keep: Path | None = None,
+                     flags=()):
     """The slack row: per N, MoorDyn and cablesys timed in this run, both measured by cycle means.
 
     Parameters
@@ -157,6 +171,8 @@ def bench_slack_case(name, scene, period, ns, *, timed_run, prepared, compiled_c
         its ``segments(scene, n)``.
     keep : Path, optional
         JSON file of MoorDyn steps found by earlier probes (read, and written when a probe runs).
+    flags : sequence of str, optional
+        Compiler flags to profile the RK4 loop with too (:func:`rhs_profile`).
 
     Returns
     -------
@@ -218,7 +234,7 @@ def bench_slack_case(name, scene, period, ns, *, timed_run, prepared, compiled_c
                 rk_matched = rk_matched or (meth == "rk" and bool(t.get("matched")))
             if best and best[2]["method"] == "rk":
                 entry["cablesys_rhs_profile"] = rhs_profile(sc.with_numerics(steps_per_output=best[2]["steps_per_output"]),
-                                                            best[2]["steps_per_output"], prepared)
+                                                            best[2]["steps_per_output"], prepared, flags)
         entry["cablesys_tried"] = tried
         entry["cablesys_vs_moordyn"] = errors(ref, md_c) if md_c else None
         if best:

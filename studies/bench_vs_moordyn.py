@@ -323,10 +323,10 @@ def _rk(sc, tight_stats, period, md_wall):
             "error_vs_own_tight": _diff(_stats(res, period), tight_stats) if res.success else None}
 
 
-def bench_case(name, scene, period, ns, taut, quick, keep=None):
+def bench_case(name, scene, period, ns, taut, quick, keep=None, flags=()):
     if not taut:
         return bench_slack_case(name, scene, period, ns, timed_run=_timed_run, prepared=_prepared,
-                                compiled_ctx=_compiled, segments=_segments, keep=keep)
+                                compiled_ctx=_compiled, segments=_segments, keep=keep, flags=flags)
     dur = scene.numerics.duration
     row = {"case": name, "scene": scene.name, "duration_s": dur, "period_s": period, "taut": taut, "by_n": []}
     n_conv = 2 * max(ns) if taut else max(ns)   # partial slack: 2x the largest N is out of reach here
@@ -487,13 +487,16 @@ def main(argv=None):
     ap.add_argument("--slack-duration", type=float, default=SLACK_DURATION,
                     help="length of the slack case's run (s); its statistics are the cycle means of the second half")
     ap.add_argument("--slack-n", type=int, nargs="+", default=[20, 80], help="element counts of the slack case")
+    ap.add_argument("--slack-flags", type=lambda v: [f for f in v.split(",") if f], default=[],
+                    help="compiler flags to profile the slack case's RK4 loop with too, comma separated "
+                         "(--slack-flags=-O1,-O2,-O3)")
     args = ap.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
     rows = []
     for c in cases(args.quick, args.slack_duration, args.slack_n):
         if args.case and c[0] not in args.case:
             continue
-        rows.append(bench_case(*c, args.quick, keep=args.out / "moordyn_steps.json"))
+        rows.append(bench_case(*c, args.quick, keep=args.out / "moordyn_steps.json", flags=args.slack_flags))
         # written after every case: a long benchmark that is stopped keeps what it measured
         write_json(args.out / "bench_vs_moordyn.json", {"cases": rows, "quick": args.quick, "notes": NOTES})
     plot(rows, args.out / "bench_vs_moordyn.png")
