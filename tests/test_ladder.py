@@ -300,3 +300,20 @@ def test_a_quasi_static_segmented_run_whose_middle_goes_slack_is_rejected():
     with pytest.warns(NumericalWarning, match="went slack"):
         kept, rerun = after_run(scene, qs, run(dip), auto=False)
     assert not rerun and math.isinf(kept.estimated_error["body"])
+
+
+def test_auto_runs_a_chain_of_sections():
+    """Two Dale sections in a chain (outputs labelled tension_1, x_b_2, ...): the choice's linear response and
+    the a-posteriori checks read every section's tensions and bodies, and the error metrics compare them all."""
+    import dataclasses
+    d = dale_scene(duration=4.0)
+    two = dataclasses.replace(d, sections=(d.sections[0], d.sections[0]))
+    c = choose(two)
+    assert set(c.numbers["linear_response"]["tension_mean"]) >= {"tension_top_1", "tension_bottom_2"}
+    r = simulate_auto(two)
+    assert r.success and r.stats["model"]["name"] == c.name
+    st = metrics.statistics(r, 2.0)
+    assert {"x_b_1_amplitude", "x_b_2_amplitude", "tension_top_1_max", "tension_bottom_2_min"} <= set(st)
+    other = dict(st, x_b_2_amplitude=st["x_b_2_amplitude"] * 1.1)
+    largest = max(v for k, v in st.items() if k.endswith("_amplitude"))
+    assert metrics.errors(other, st)["body"] == pytest.approx(0.1 * st["x_b_2_amplitude"] / largest)

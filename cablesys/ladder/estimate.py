@@ -48,6 +48,7 @@ from ..errors import SolverError
 from ..linear import harmonic_response, linearize, steady_state
 from ..linear.periodic import scene_input_amplitude
 from ..scene import Scene
+from ..scene.labels import section_suffix
 from . import continuum
 from .indicators import SceneNumbers, static_angle
 from .rungs import build_rung, rung_scene
@@ -102,7 +103,12 @@ def linear_response(scene: Scene, numbers: SceneNumbers, model=None) -> LinearRe
     sc = rung_scene(scene, "wang")
     model = model or build_rung(sc, "wang")
     p = model.parameters(sc)
-    keys = ("tension_top", "tension_bottom", "tension")      # "tension": Wang's F_bc, the slack switch (eq. 54)
+    # every section's tensions ("tension": Wang's F_bc, the slack switch, eq. 54) and bodies; a chain of
+    # sections labels them tension_2, x_b_2, ... (cablesys.scene.labels.section_suffix)
+    sfx = [section_suffix(scene, i) for i in range(len(scene.sections))]
+    keys = tuple(k + x for x in sfx for k in ("tension_top", "tension_bottom", "tension"))
+    bodies = tuple(k + x for x in sfx for k in ("x_b", "y_b"))
+    stretches = tuple("u" + x for x in sfx)
     if numbers.single_frequency and not scene.environment.waves:
         omega, Z = scene_input_amplitude(sc)
         # 16 phase samples and 2 continuation steps: the same amplitudes to 4 digits as 64 and 6 on the
@@ -113,9 +119,9 @@ def linear_response(scene: Scene, numbers: SceneNumbers, model=None) -> LinearRe
             lab = list(h.output_labels)
             amp = lambda k: float(abs(h.output_amplitude[0][lab.index(k)]))
             mean = lambda k: float(np.real(h.output_mean[0][lab.index(k)]))
-            return LinearResponse(omega=omega, body_amplitude=max(amp("x_b"), amp("y_b")),
+            return LinearResponse(omega=omega, body_amplitude=max(amp(k) for k in bodies),
                                   tension_mean={k: mean(k) for k in keys}, tension_amplitude={k: amp(k) for k in keys},
-                                  stretch_amplitude=amp("u"), method="harmonic (describing function)")
+                                  stretch_amplitude=max(amp(k) for k in stretches), method="harmonic (describing function)")
     st = steady_state(model, p)
     lin = linearize(model, p, steady=st)
     omegas = np.array([w for w, _ in numbers.forcing]) if numbers.forcing else np.array([1e-6])
@@ -123,9 +129,9 @@ def linear_response(scene: Scene, numbers: SceneNumbers, model=None) -> LinearRe
     _, Y = lin.transfer(omegas)
     lab = list(lin.output_labels)
     gain = lambda k: float(np.sum(np.max(np.abs(Y[:, lab.index(k), :2]), axis=1) * amps))
-    return LinearResponse(omega=numbers.omega_forcing, body_amplitude=max(gain("x_b"), gain("y_b")),
+    return LinearResponse(omega=numbers.omega_forcing, body_amplitude=max(gain(k) for k in bodies),
                           tension_mean={k: float(st.outputs[k]) for k in keys},
-                          tension_amplitude={k: gain(k) for k in keys}, stretch_amplitude=gain("u"),
+                          tension_amplitude={k: gain(k) for k in keys}, stretch_amplitude=max(gain(k) for k in stretches),
                           method="exact linearization (undamped; a bound away from resonance)")
 
 

@@ -8,10 +8,25 @@ extremes relative to the largest reference tension.
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 BODY = ("x_b", "y_b")
 TENSIONS = ("tension_top", "tension_bottom")
+_SUFFIX = re.compile(r"_\d+$")
+
+
+def base_label(label: str) -> str:
+    """``label`` without its section suffix (``tension_top_2`` -> ``tension_top``; a chain of sections labels
+    its outputs with :func:`cablesys.scene.labels.section_suffix`)."""
+    return _SUFFIX.sub("", label)
+
+
+def _labels(result, bases) -> list:
+    """The labels of ``result`` with these base names (a record without ``labels``: the bases themselves)."""
+    labels = getattr(result, "labels", None)
+    return list(bases) if labels is None else [k for k in labels if base_label(k) in bases]
 
 
 def window(time: np.ndarray, period: float | None, n_periods: int = 5) -> np.ndarray:
@@ -22,13 +37,14 @@ def window(time: np.ndarray, period: float | None, n_periods: int = 5) -> np.nda
 
 
 def statistics(result, period: float | None) -> dict:
-    """Body amplitudes and tension extremes of ``result`` (a TimeResult) over the window."""
+    """Body amplitudes and tension extremes of ``result`` (a TimeResult) over the window (every section's
+    bodies and end tensions in a chain: ``x_b_2_amplitude``, ``tension_top_2_max``, ...)."""
     w = window(np.asarray(result.time), period)
     out = {}
-    for k in BODY:
+    for k in _labels(result, BODY):
         y = np.asarray(result[k])[w]
         out[f"{k}_amplitude"] = 0.5 * float(y.max() - y.min())
-    for k in TENSIONS:
+    for k in _labels(result, TENSIONS):
         y = np.asarray(result[k])[w]
         out[f"{k}_max"], out[f"{k}_min"] = float(y.max()), float(y.min())
     return out
@@ -36,10 +52,13 @@ def statistics(result, period: float | None) -> dict:
 
 def errors(stats: dict, reference: dict) -> dict:
     """{"body": e, "tension": e} of ``stats`` against ``reference`` (both from :func:`statistics`)."""
-    a_ref = max(reference[f"{k}_amplitude"] for k in BODY)
-    t_ref = max(reference[f"{k}_max"] for k in TENSIONS)
-    body = max(abs(stats[f"{k}_amplitude"] - reference[f"{k}_amplitude"]) for k in BODY) / max(a_ref, 1e-300)
-    tension = max(abs(stats[f"{k}_{e}"] - reference[f"{k}_{e}"]) for k in TENSIONS for e in ("max", "min")) / max(t_ref, 1e-300)
+    amps = [k for k in reference if k.endswith("_amplitude")]
+    tops = [k for k in reference if k.endswith("_max")]
+    ext = tops + [k for k in reference if k.endswith("_min")]
+    a_ref = max(reference[k] for k in amps)
+    t_ref = max(reference[k] for k in tops)
+    body = max(abs(stats[k] - reference[k]) for k in amps) / max(a_ref, 1e-300)
+    tension = max(abs(stats[k] - reference[k]) for k in ext) / max(t_ref, 1e-300)
     return {"body": float(body), "tension": float(tension)}
 
 
