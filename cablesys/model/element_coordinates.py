@@ -108,6 +108,43 @@ def _kinematics(q, z, h0):
     return ca.vertcat(*pos)
 
 
+def _block_diagonal(sp: ca.Sparsity, n: int) -> bool:
+    """Whether a (2n x 2n) sparsity couples only the two coordinates of each node."""
+    rows, cols = sp.get_triplet()
+    return sp.size1() == 2 * n and all(r // 2 == c // 2 for r, c in zip(rows, cols))
+
+
+def _chain_transform(q, h0, M_n, g):
+    """J^T M_n J and J^T g for a 2 x 2 block-diagonal M_n, by the chain's structure: coordinate k (phi_k or
+    u_k) moves every node below element k by the same vector c (dR/dphi_k = l_k de_t/dphi, dR/du_k = e_t),
+    so with the suffix sums S_k = sum_{j > k} M_j and G_k = sum_{j > k} g_j (nodes below element k),
+    (J^T M_n J)_{ab} = c_a^T S_max(k_a, k_b) c_b and (J^T g)_a = c_a^T G_k: O(N^2) and O(N) operations
+    where the dense product is O(N^3) (the same numbers, tests/test_quasistatic_segmented.py)."""
+    n = len(h0)
+    cols = []                                       # (element, 2-vector) per coordinate, phi_k then u_k
+    for k, h in enumerate(h0):
+        c, s_ = ca.cos(q[2 * k]), ca.sin(q[2 * k])
+        cols += [(k, ca.vertcat(-(h + q[2 * k + 1]) * c, -(h + q[2 * k + 1]) * s_)), (k, ca.vertcat(-s_, c))]
+    S, G = [None] * n, [None] * n
+    acc_S, acc_G = ca.SX.zeros(2, 2), ca.SX.zeros(2, 1)
+    for k in reversed(range(n)):                    # node k + 1 is the first below element k
+        acc_S = acc_S + M_n[2 * k:2 * k + 2, 2 * k:2 * k + 2]
+        acc_G = acc_G + g[2 * k:2 * k + 2]
+        S[k], G[k] = acc_S, acc_G
+    nq = 2 * n
+    M = ca.SX.zeros(nq, nq)
+    f = ca.SX.zeros(nq, 1)
+    for a in range(nq):
+        ka, ca_ = cols[a]
+        f[a] = ca.dot(ca_, G[ka])
+        Sa = [ca.mtimes(S[m], ca_) for m in range(n)]   # S_m c_a
+        for b in range(a + 1):
+            kb, cb = cols[b]
+            M[a, b] = ca.dot(cb, Sa[max(ka, kb)])
+            M[b, a] = M[a, b]
+    return M, f
+
+
 def build_element_model(scene: Scene, node: CableModel | None = None) -> ElementModel:
     """The segmented cable of ``scene`` in element coordinates (same ``p`` as the node model).
 
@@ -141,8 +178,11 @@ def build_element_model(scene: Scene, node: CableModel | None = None) -> Element
     v = Jqd + ca.repmat(zd, n, 1)                                  # r' = Z z' + J q'
     known = ca.jtimes(Jqd, q, qd) + ca.repmat(zdd, n, 1)           # r'' - J q'' = J' q' + Z z''
     M_n, f_n = node.dynamics(R, v, e, p)
-    M = ca.mtimes([J.T, M_n, J])                                   # virtual work: J^T M_n J
-    f = ca.mtimes(J.T, f_n - ca.mtimes(M_n, known))
+    if _block_diagonal(node.dynamics.sparsity_out(0), n):
+        M, f = _chain_transform(q, h0, M_n, f_n - ca.mtimes(M_n, known))
+    else:                                                          # any node mass matrix: dense
+        M = ca.mtimes([J.T, M_n, J])                               # virtual work: J^T M_n J
+        f = ca.mtimes(J.T, f_n - ca.mtimes(M_n, known))
     x = ca.vertcat(q, qd)
     x_n = ca.vertcat(R, v)
 
