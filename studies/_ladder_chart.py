@@ -42,23 +42,36 @@ def reference_text(res: dict) -> str:
     return f"reference: segmented N = {ref['segments']} (CVODES), last 5 forcing periods"
 
 
-def _labels(ax, ok: list, key: str, wall) -> None:
-    """One label per rung and N at its fastest run, moved down in steps of a line while it would
-    overlap a label already placed (positions compared in axes fractions of the log axes)."""
-    import numpy as np
-    (x0, x1), (y0, y1) = (np.log10(ax.get_xlim()), np.log10(ax.get_ylim()))
-    pt = 1.0 / (ax.get_window_extent().height * 72.0 / ax.figure.dpi)        # one point in axes fraction
-    placed = []
+CANDIDATES = ((7, 2, "left"), (7, -11, "left"), (-7, 2, "right"), (-7, -11, "right"), (0, 8, "center"),
+              (0, -18, "center"), (12, 14, "left"), (12, -24, "left"), (-12, 14, "right"), (-12, -24, "right"),
+              (0, 22, "center"), (0, -32, "center"))
+
+
+def _labels(ax, ok: list, key: str, wall, renderer) -> None:
+    """One label per rung and N, at its fastest run: the first of CANDIDATES offsets whose text box
+    overlaps no marker and no label already placed (measured on the drawn figure); a leader line
+    when it sits beyond the first four offsets."""
+    from matplotlib.transforms import Bbox
+    pts = ax.transData.transform([(wall(r), max(r[key], FLOOR)) for r in ok])
+    r_px = 5.0 * ax.figure.dpi / 72.0
+    taken = [Bbox.from_extents(x - r_px, y - r_px, x + r_px, y + r_px) for x, y in pts]
+    frame = ax.get_window_extent(renderer)
     for lab in dict.fromkeys(_label(r) for r in ok):
         r = min((q for q in ok if _label(q) == lab), key=wall)
-        x = (np.log10(wall(r)) - x0) / (x1 - x0)
-        dy = 4.0
-        y = (np.log10(max(r[key], FLOOR)) - y0) / (y1 - y0)
-        while any(abs(x - px) < 0.02 + 0.009 * len(lab) and abs(y + dy * pt - py) < 10 * pt for px, py in placed):
-            dy -= 10.0
-        placed.append((x, y + dy * pt))
-        ax.annotate(lab, (wall(r), max(r[key], FLOOR)), textcoords="offset points", xytext=(7, dy), fontsize=7.5,
-                    color=RUNG_COLOURS[_kind(r)], arrowprops=None)
+        xy = (wall(r), max(r[key], FLOOR))
+        for i, (dx, dy, ha) in enumerate(CANDIDATES):
+            t = ax.annotate(lab, xy, textcoords="offset points", xytext=(dx, dy), ha=ha, fontsize=7.5,
+                            color=RUNG_COLOURS[_kind(r)],
+                            arrowprops={"arrowstyle": "-", "color": "0.35", "lw": 0.6} if i >= 4 else None)
+            box = t.get_window_extent(renderer)
+            inside = frame.contains(box.x0, box.y0) and frame.contains(box.x1, box.y1)
+            if inside and not any(box.overlaps(b) for b in taken):
+                taken.append(box)
+                break
+            if i < len(CANDIDATES) - 1:
+                t.remove()
+            else:
+                taken.append(box)       # nowhere free: the last candidate stays
 
 
 def plot_case(res: dict, path: Path):
@@ -82,6 +95,12 @@ def plot_case(res: dict, path: Path):
                       ms=8, alpha=0.8)
         for r in bad:
             ax.plot(wall(r), FAIL_Y, "x", color=RUNG_COLOURS[_kind(r)], ms=10, mew=2)
+        if bad and ax is axes[0]:                # which runs failed, grouped by integrator
+            groups = {}
+            for r in bad:
+                groups.setdefault(INTEGRATOR_LABELS.get(r["integrator"], r["integrator"]), []).append(_label(r))
+            text = "\n".join(f"failed, {k}: " + ", ".join(v) for k, v in groups.items())
+            ax.text(0.02, 0.9, text, transform=ax.transAxes, fontsize=7, color="tab:red", va="top")
         if hit:
             h = hit[0]
             ax.loglog(wall(h), max(h[key], FLOOR), "*", color="k", ms=20, mfc="none", mew=1.6, zorder=5)
@@ -92,9 +111,8 @@ def plot_case(res: dict, path: Path):
         ax.annotate(f"tolerance {tl:.0%}", (0.01, tl), xycoords=("axes fraction", "data"), xytext=(0, 3),
                     textcoords="offset points", fontsize=8, color="grey")
         ax.axhline(FAIL_Y, ls=":", color="red", lw=0.8)
-        lo = min([max(r[key], FLOOR) for r in ok] + [tl]) / 2
+        lo = min([max(r[key], FLOOR) for r in ok] + [tl]) / 4     # room below the lowest point for its label
         ax.set_ylim(lo, 2.0)
-        _labels(ax, ok, key, wall)
         ax.set_title(title)
         ax.set_xlabel("wall time of the integration [s] (CasADi VM, build apart)")
         ax.set_ylabel("relative error vs reference")
@@ -112,4 +130,9 @@ def plot_case(res: dict, path: Path):
                 Line2D([], [], color="k", marker="x", ls="", label=f"failed run (drawn at error = {FAIL_Y:g})")]
     fig.legend(handles=handles, fontsize=8, loc="outside lower center", ncol=math.ceil(len(handles) / 3))
     fig.suptitle(f"{res['scene']}: model ladder work-precision\n{reference_text(res)}", fontsize=11)
+    fig.canvas.draw()                    # lay out once, then keep it: labels are placed on the drawn axes
+    fig.set_layout_engine("none")
+    renderer = fig.canvas.get_renderer()
+    for ax, key in zip(axes, ("error_body", "error_tension")):
+        _labels(ax, ok, key, wall, renderer)
     return save_figure(fig, path, dpi=110)
