@@ -132,3 +132,20 @@ def test_random_families_span_the_ladder():
     assert all(n in ("quasi-static", "wang", "frequency") for n, _, _ in names["short"])
     assert all((n == "segmented" and s > 1) or e <= 0.01 for n, s, e in names["heavy"])
     assert sum(n == "segmented" and s > 1 for n, s, _ in names["heavy"]) >= 2
+
+
+STIFF = [("heavy", 2), ("current", 3)]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("kind,seed", STIFF)
+def test_stiff_cables_run_quasi_static_segmented_within_tolerance(kind, seed):
+    """The same scenes with AE x 300 (static strain 3e-6 to 3e-5, omega/omega_ax < 1/30): auto takes the
+    quasi-static segmented cable, and against the node-model segmented reference (its element stretches
+    stepped) its error is within the tolerance and its estimate within a factor of 2."""
+    scene = random_scene(np.random.default_rng(seed), kind)
+    scene = scene.replace_section(0, cable={"ae": scene.cable.ae * 300})
+    model, actual, conv = auto_against_reference(scene)
+    assert model["name"] == "quasi-static" and model["segments"] > 1, model["reason"]
+    bad = check(model, actual, conv)
+    assert not bad, (model["segments"], bad)
