@@ -200,3 +200,18 @@ def test_default_chord_iterations_meet_their_tolerance():
     T = [np.asarray(simulate(sc, model=qs, rtol=1e-10, atol=1e-12).profiles["element_tension"])
          for qs in (build_rung(sc, "quasi-static", segments=4), build_quasistatic(sc, iterations=8))]
     assert np.max(np.abs(T[0] - T[1])) <= CHORD_TOLERANCE * np.max(T[1])
+
+
+def test_steady_state_in_a_current_is_the_node_models_catenary():
+    """Statics: the quasi-static segmented cable's equilibrium in a 0.3 m/s current (every element inclined,
+    drag-bowed: 0.70 rad at the top, 0.22 at the body) is the node model's elastic catenary (its own
+    rootfinder, node coordinates): body position and end tensions within 1e-6."""
+    from cablesys.statics.steady import steady_state
+    sc, _ = _dale(4, 10.0)
+    sc = dataclasses.replace(sc, environment=dataclasses.replace(sc.environment, current_speeds=(0.3,)))
+    qs, node = build_rung(sc, "quasi-static", segments=4), build_model(sc)
+    p = qs.parameters(sc)
+    a, b = steady_state(qs, p), steady_state(node, p)
+    assert a.q[0] < a.q[-1] < -0.1                       # bowed: the top element inclines most
+    for k in ("x_b", "y_b", "tension_top", "tension_bottom"):
+        assert a.outputs[k] == pytest.approx(b.outputs[k], rel=1e-6)
