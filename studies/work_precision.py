@@ -204,7 +204,7 @@ def main(argv=None) -> int:
 
 STYLE = {"cvodes": ("tab:blue", "o"), "cvodes-bdf2": ("tab:cyan", "P"), "cvodes-adams": ("tab:orange", "s"),
          "idas": ("tab:green", "^"),
-         "rk": ("tab:red", "D"), "collocation": ("tab:purple", "v")}
+         "rk": ("tab:red", "D"), "collocation": ("tab:purple", "v"), "dopri5": ("tab:brown", "X")}
 
 
 def plot_wp(path, wp):
