@@ -167,18 +167,22 @@ def build_quasistatic(scene: Scene, *, full: CableModel | None = None,
     Parameters
     ----------
     scene : Scene
-        Any scene Wang's model accepts (one section or a chain).
+        Any scene Wang's model accepts (one section or a chain); with ``cable.segments = N > 1``
+        the segmented cable of N elements per section (its stretches quasi-static).
     full : CableModel, optional
-        The 2-DOF model of the scene, if already built.
+        The model reduced, if already built: Wang's 2-DOF model, or an
+        :class:`~.element_coordinates.ElementModel` (default: built from ``scene``).
     iterations : int, optional
-        Newton iterations for the stretch (default :func:`newton_iterations`).
+        Iterations of the stretch solve (default :func:`default_iterations`: Newton's for Wang's
+        cable, the chord method's for elements).
 
     Returns
     -------
     CableModel
-        ``q_labels`` are the angles only; ``outputs`` has the 2-DOF labels (the stretch rate is
-        the quasi-static one, du/dt along the motion without the top jerk); ``kind`` is
-        ``"quasi-static"``.
+        ``q_labels`` are the angles only (``phi[k]`` per element for N > 1); ``outputs`` has the
+        labels of the model reduced (2-DOF, or the segmented profiles ``element_tension[k]``...; the
+        stretch rate is the quasi-static one, du/dt along the motion without the top jerk); ``kind``
+        is ``"quasi-static"``; for N > 1 an ``ElementModel`` with ``elements`` and ``n_elements``.
     """
     iterations = iterations or default_iterations(scene)
     # a structure built before is loaded from the disk cache (model/store.py), like build_model's
