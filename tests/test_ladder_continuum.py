@@ -120,3 +120,27 @@ def test_drag_shares_are_the_segmented_models_quadrature():
     d, o = drag_shares(1000)
     assert abs(d - 1 / 3) < 1e-6 and abs(o - 1 / 6) < 1e-6
     assert all(abs(sum(drag_shares(p)) - 0.5) < 1e-15 for p in (1, 2, 3, 5, 10))
+
+
+def test_local_drag_string_agrees_with_the_one_damping_string_where_every_element_moves_alike():
+    # far below the string's first mode with a light body the string moves as one piece: every element's
+    # speed is the ends' mean, so the element-by-element linearization gives the one-damping answer
+    from cablesys.ladder import local_drag
+    s = Member(length=10.0, stiffness=complex(1e6), mass=0.5, drag=5.0, end_mass=1.0, end_drag=1.0, current=0.0)
+    w, top = 0.5, 0.2 + 0j
+    for n in (2, 5):
+        one = respond(s, w, top, "segmented", n)[0]
+        assert abs(local_drag.chain(s, w, top, n) - one) < 1e-6 * abs(one)
+
+
+def test_local_drag_string_converges_to_its_extrapolated_limit_at_second_order():
+    # a string forced near its first mode (bulging: the element-by-element drag differs from the ends' mean)
+    from cablesys.ladder import local_drag
+    s = Member(length=100.0, stiffness=complex(1e4), mass=2.0, drag=0.5, end_mass=500.0, end_drag=50.0, current=0.0,
+               gradient=30.0)
+    w1 = math.pi / 100.0 * math.sqrt(1e4 / 2.0)
+    w, top = 0.8 * w1, 0.3 + 0j
+    ref = local_drag.reference(s, w, top)
+    err = [abs(local_drag.chain(s, w, top, n) - ref) for n in (8, 16, 32)]
+    rates = np.log2(np.array(err[:-1]) / np.array(err[1:]))
+    assert np.all(np.abs(rates - 2.0) < 0.3), rates

@@ -49,7 +49,7 @@ from ..linear import harmonic_response, linearize, steady_state
 from ..linear.periodic import scene_input_amplitude
 from ..scene import Scene
 from ..scene.labels import section_suffix
-from . import continuum
+from . import continuum, local_drag
 from .indicators import SceneNumbers, static_angle
 from .rungs import build_rung, rung_scene
 
@@ -58,6 +58,8 @@ SLACK_ORDER = 1.0   # with partial slack and snap loads (300 m wire at T = 6 s: 
 SLACK_MARGIN = 0.05  # a least tension within 5 % of the static tension of the floor counts as slack
 SWING_AMPLIFICATION = 10.0
 HB_PHASES, HB_CONTINUATION = 16, 1   # harmonic balance of linear_response (see there)
+LOCAL_STRING_RATIO = 0.3     # omega / omega_string above which the string's drag is also linearized per element
+LOCAL_MAX_N = 16             # the element-by-element table stops here (one drag point per element beyond ~7)
 RESOLUTION = 1e-4    # estimates are not resolved below this (start-up transients, reference convergence)
 CONTINUUM_N = (2, 4, 8, 16, 32, 64, 128)   # elements at which the segmented estimate is tabulated (and see
 #                                            continuum_counts: where the segmented model's drag rule changes)
@@ -159,8 +161,18 @@ def continuum_errors(scene: Scene, numbers: SceneNumbers, largest_tension: float
     kw = {"forcing": list(numbers.forcing)}
     ref = continuum.response(scene, angle, "exact", **kw)
     out = {"wang": continuum.relative_errors(continuum.response(scene, angle, "wang", **kw), ref, largest_tension)}
-    for n in continuum_counts(scene):
+    counts = continuum_counts(scene)
+    for n in counts:
         out[n] = continuum.relative_errors(continuum.response(scene, angle, "segmented", n, **kw), ref, largest_tension)
+    if numbers.string_ratio > LOCAL_STRING_RATIO:
+        # near a string mode the string bulges between its ends: its drag linearized element by element too
+        from ..model.segmented import drag_points
+        ref_l = local_drag.body_response(scene, angle, forcing=kw["forcing"])
+        a_ref = max(ref_l["x_b"], ref_l["y_b"], 1e-300)
+        out["local"] = {}
+        for n in (k for k in counts if k <= LOCAL_MAX_N):
+            got = local_drag.body_response(scene, angle, n, drag_points(scene, n), forcing=kw["forcing"])
+            out["local"][n] = {"body": max(abs(got[k] - ref_l[k]) for k in ("x_b", "y_b")) / a_ref, "tension": 0.0}
     return out
 
 
@@ -201,9 +213,16 @@ def estimate_errors(scene: Scene, numbers: SceneNumbers, response: LinearRespons
         freq.update(body=math.inf, tension=math.inf, note="no single forcing frequency: no periodic steady state")
     order = SLACK_ORDER if slack else ORDER
     seg = {"body": e_wang if not slack else 1.0, "tension": t_wang if not slack else 1.0, "order": order,
-           "continuum": {str(n): v for n, v in cont.items() if n != "wang"} if not slack else {},
-           "note": f"N lumped elements vs the continuous cable, at least the straight cable's error x N^-{order:g}"
-                   + (" (snap loads converge slowly)" if slack else "")}
+           "continuum": {str(n): v for n, v in cont.items() if isinstance(n, int)} if not slack else {},
+           "continuum_local": {str(n): v for n, v in cont.get("local", {}).items()} if not slack else {},
+           # at least: below the first string mode the static bow's polygon error; at or above it, where the
+           # cable's own string resonances are forced, the straight cable's error (see segmented_error)
+           "floor": e_wang if numbers.string_ratio >= 1.0 else static_bow_error(numbers),
+           "note": (("N lumped elements vs the continuous cable (one drag damping, and element by element near a "
+                     "string mode), at least " + ("the straight cable's error x N^-2 (forced above the first string "
+                     "mode)" if numbers.string_ratio >= 1.0 else "the static bow's polygon error x N^-2"))
+                    if not slack else
+                    f"partial slack: the straight cable's O(1) error x N^-{order:g} (snap loads converge slowly)")}
     return {"frequency": freq, "quasi-static": qs, "wang": wang, "segmented_1": seg}
 
 
@@ -226,13 +245,24 @@ def _continuum_at(table: dict, n: int, key: str) -> float:
 
 
 def segmented_error(errors: dict, n: int) -> dict:
-    """Estimated errors of the segmented rung with ``n`` elements per section: the larger of the
-    straight cable's error x n^-order and the continuum estimate at ``n`` (:func:`_continuum_at`)."""
+    """Estimated errors of the segmented rung with ``n`` elements per section: the continuum estimates at
+    ``n`` (:func:`_continuum_at`; the larger of the one-damping string's and, near a string mode, the
+    element-by-element one's, :mod:`.local_drag`), and no less than ``floor`` x n^-ORDER: below the first
+    string mode the static bow's error (a polygon of n chords inscribed in the bowed cable leaves 1 / n^2
+    of its sag, which the straight-line continuum does not have); forced at or above it the straight
+    cable's error, as Richardson from N = 1: there the cable's own string resonances are forced, and the
+    linear estimates fall 5-10x short (random heavy-6, omega/omega_string = 1.55: 4.4 / 0.46 / 1.9 % at
+    N = 4 / 6 / 8 against N = 64, the continuum 0.47 / 0.17 / 0.22 %, the floor 0.97 / 0.43 / 0.24 %).
+    Under partial slack (no continuum table) the straight cable's error x n^-SLACK_ORDER."""
     base = errors["segmented_1"]
-    scale = float(n) ** -base.get("order", ORDER)
-    table = base.get("continuum", {})
-    return ({k: max(base[k] * scale, _continuum_at(table, n, k), RESOLUTION) for k in ("body", "tension")}
-            | {"note": base["note"]})
+    table, local = base.get("continuum", {}), base.get("continuum_local", {})
+    if not table:
+        scale = float(n) ** -base.get("order", ORDER)
+        return {k: max(base[k] * scale, RESOLUTION) for k in ("body", "tension")} | {"note": base["note"]}
+    bow = base.get("floor", 0.0) * float(n) ** -ORDER
+    out = {k: max(_continuum_at(table, n, k), RESOLUTION) for k in ("body", "tension")}
+    out["body"] = max(out["body"], _continuum_at(local, n, "body") if local else 0.0, bow)
+    return out | {"note": base["note"]}
 
 
 def quasistatic_segmented_error(errors: dict, n: int) -> dict:
