@@ -22,14 +22,11 @@ tension).
   each element at its own tension on a hanging cable, the drag at the segmented model's own points,
   whose number per element changes with N, so the error converges unevenly: Dale at 2 omega_n
   0.31 / 0.18 / 0.24 % at N = 4 / 5 / 8), tabulated at :func:`continuum_counts` and interpolated as a
-  power law within one drag rule; and no less than the straight cable's error scaled by N^-ORDER
-  (Richardson from N = 1). That floor is kept for what the steady linear comparison leaves out: the
-  random heavy scenes, 7 forcing periods long, hold the slow swing's start-up transient in their
-  window (heavy-1: sway amplitude 0.089 m in the run against 0.066 m steady) and err 2-3x above the
-  continuum at N = 2-3 (0.97 / 0.21 % against 0.34 / 0.07 %); its cost is a pessimistic estimate where
-  the window is settled (Dale at 2 omega_n: N = 5, 0.34 % stated, 0.18 % actual, where N = 3 gives 0.38 %).
-  With partial slack N^-SLACK_ORDER from the straight cable's O(1) error (checked a posteriori by the
-  run at N/2, :mod:`.auto`);
+  power law within one drag rule; near a string mode also with the drag linearized element by element
+  (:mod:`.local_drag`), the larger stated; and no less than a floor x N^-ORDER (:func:`segmented_error`:
+  the static bow below the first string mode, the straight cable's error at or above it). With partial
+  slack N^-SLACK_ORDER from the straight cable's O(1) error (checked a posteriori by the run at N/2,
+  :mod:`.auto`);
 - quasi-static segmented with N elements: the segmented estimate at N plus the quasi-static stretch's
   part (above), :func:`quasistatic_segmented_error`.
 
