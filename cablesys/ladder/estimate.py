@@ -164,12 +164,11 @@ def continuum_errors(scene: Scene, numbers: SceneNumbers, largest_tension: float
     if numbers.string_ratio > LOCAL_STRING_RATIO:
         # near a string mode the string bulges between its ends: its drag linearized element by element too
         from ..model.segmented import drag_points
-        ref_l = local_drag.body_response(scene, angle, forcing=kw["forcing"])
+        ref_l, table = local_drag.body_responses(scene, angle, [k for k in counts if k <= LOCAL_MAX_N],
+                                                 lambda n: drag_points(scene, n), forcing=kw["forcing"])
         a_ref = max(ref_l["x_b"], ref_l["y_b"], 1e-300)
-        out["local"] = {}
-        for n in (k for k in counts if k <= LOCAL_MAX_N):
-            got = local_drag.body_response(scene, angle, n, drag_points(scene, n), forcing=kw["forcing"])
-            out["local"][n] = {"body": max(abs(got[k] - ref_l[k]) for k in ("x_b", "y_b")) / a_ref, "tension": 0.0}
+        out["local"] = {n: {"body": max(abs(got[k] - ref_l[k]) for k in ("x_b", "y_b")) / a_ref, "tension": 0.0}
+                        for n, got in table.items()}
     return out
 
 

@@ -27,16 +27,12 @@ from .continuum import K_HARMONIC, Member, drag_shares, members, respond, top_co
 
 REFERENCE_N = 256           # elements of the extrapolated continuous string
 ITERATIONS = 40             # fixed-point iterations at most
-TOLERANCE = 1e-7            # largest relative change of a node amplitude at which the fixed point stops
+TOLERANCE = 1e-6            # largest relative change of a node amplitude at which the fixed point stops
 
 
-def chain(mb: Member, omega: float, top: complex, n: int, points: int = 0) -> complex:
-    """Body amplitude W_b (m) of ``n`` lumped string elements (each at its own tension, :meth:`Member.varies`)
-    driven by ``top`` (m) at ``omega``, each element damped by the describing function of its own mean
-    speed amplitude (module docstring); ``points``: the drag points per element
-    (:func:`~.continuum.drag_shares`, 0: exact shares)."""
-    if top == 0 or omega <= 0:
-        return 0j
+def _solve(mb: Member, omega: float, top: complex, n: int, points: int, start=None) -> tuple:
+    """(W_b, node amplitudes) of :func:`chain`; ``start``: node amplitudes of another N (top to body), the
+    first guess interpolated along the string (the fixed point moves little with N)."""
     h = mb.length / n
     if mb.varies():
         t_top, t_bot = mb.end_stiffness()
@@ -44,7 +40,10 @@ def chain(mb: Member, omega: float, top: complex, n: int, points: int = 0) -> co
     else:
         k = np.full(n, mb.stiffness / h, dtype=complex)
     d_c, o_c = drag_shares(points)
-    amp = np.full(n + 1, abs(top))                      # node amplitudes, 0 the top
+    if start is None:
+        amp = np.full(n + 1, abs(top))                  # node amplitudes, 0 the top
+    else:
+        amp = np.interp(np.linspace(0.0, 1.0, n + 1), np.linspace(0.0, 1.0, len(start)), start)
     w = np.zeros(n, complex)
     for _ in range(ITERATIONS):
         c = mb.drag * (K_HARMONIC * omega * 0.5 * (amp[:-1] + amp[1:]) + 2.0 * mb.current)
@@ -63,28 +62,49 @@ def chain(mb: Member, omega: float, top: complex, n: int, points: int = 0) -> co
         amp[1:] = new
         if done:
             break
-    return complex(w[-1])
+    return complex(w[-1]), amp
 
 
-def reference(mb: Member, omega: float, top: complex) -> complex:
-    """W_b of the continuous string with the local drag: :func:`chain` at REFERENCE_N and REFERENCE_N / 2
-    elements with exact drag shares, extrapolated as (4 W_N - W_N/2) / 3."""
-    fine, coarse = chain(mb, omega, top, REFERENCE_N), chain(mb, omega, top, REFERENCE_N // 2)
-    return (4.0 * fine - coarse) / 3.0
+def chain(mb: Member, omega: float, top: complex, n: int, points: int = 0, start=None) -> complex:
+    """Body amplitude W_b (m) of ``n`` lumped string elements (each at its own tension, :meth:`Member.varies`)
+    driven by ``top`` (m) at ``omega``, each element damped by the describing function of its own mean
+    speed amplitude (module docstring); ``points``: the drag points per element
+    (:func:`~.continuum.drag_shares`, 0: exact shares); ``start``: node amplitudes to start from."""
+    if top == 0 or omega <= 0:
+        return 0j
+    return _solve(mb, omega, top, n, points, start)[0]
 
 
-def body_response(scene: Scene, angle: float, n: int | None = None, points: int = 0, forcing=None) -> dict:
-    """Body amplitudes |x_b|, |y_b| (m) with the strings' drag linearized element by element: the
-    continuous string (``n`` None) or ``n`` elements with ``points`` drag points each; the rods as
-    :func:`~.continuum.respond` (exact, or ``n`` lumped elements)."""
+def reference(mb: Member, omega: float, top: complex) -> tuple:
+    """(W_b, node amplitudes) of the continuous string with the local drag: :func:`chain` at REFERENCE_N
+    and REFERENCE_N / 2 elements with exact drag shares, extrapolated as (4 W_N - W_N/2) / 3."""
+    if top == 0 or omega <= 0:
+        return 0j, None
+    coarse, amp = _solve(mb, omega, top, REFERENCE_N // 2, 0)
+    fine, amp = _solve(mb, omega, top, REFERENCE_N, 0, amp)
+    return (4.0 * fine - coarse) / 3.0, amp
+
+
+def body_responses(scene: Scene, angle: float, counts, points, forcing=None) -> tuple:
+    """Body amplitudes {x_b, y_b} (m) with the strings' drag linearized element by element: (the continuous
+    string's, {n: those of n elements with ``points(n)`` drag points each} for n in ``counts``); the rods as
+    :func:`~.continuum.respond` (exact, or n lumped elements). Each element chain starts from the continuous
+    string's node amplitudes."""
     comps = top_components(scene) or [(w, a + 0j, a + 0j) for w, a in (forcing or [])]
     st, ct = math.sin(angle), math.cos(angle)
-    out = {"x_b": 0.0, "y_b": 0.0}
+    ref = {"x_b": 0.0, "y_b": 0.0}
+    out = {n: {"x_b": 0.0, "y_b": 0.0} for n in counts}
+
+    def add(d, ub, wb):
+        d["x_b"] = max(d["x_b"], abs(ub * st + wb * ct))
+        d["y_b"] = max(d["y_b"], abs(ub * ct - wb * st))
+
     for omega, xs, ys in comps:
         top_t, top_n = xs * st + ys * ct, xs * ct - ys * st
         for string, rod in members(scene, omega, angle):
-            wb = reference(string, omega, top_n) if n is None else chain(string, omega, top_n, n, points)
-            ub = respond(rod, omega, top_t, "exact")[0] if n is None else respond(rod, omega, top_t, "segmented", n, points)[0]
-            out["x_b"] = max(out["x_b"], abs(ub * st + wb * ct))
-            out["y_b"] = max(out["y_b"], abs(ub * ct - wb * st))
-    return out
+            wb, amp = reference(string, omega, top_n)
+            add(ref, respond(rod, omega, top_t, "exact")[0], wb)
+            for n in counts:
+                p = points(n)
+                add(out[n], respond(rod, omega, top_t, "segmented", n, p)[0], chain(string, omega, top_n, n, p, start=amp))
+    return ref, out
