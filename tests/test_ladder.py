@@ -276,6 +276,9 @@ def test_auto_takes_the_quasi_static_segmented_cable_where_the_stretch_is_stiff(
         assert choose(_wire_300m(6.0)).name == "segmented"
     forced = ch.forced(dale, "quasi-static", 5)
     assert forced.segments == 5 and forced.estimated_error["body"] < 0.01
+    # the scene's own `segments = N` with model = "quasi-static" (as `cablesys run --model quasi-static`)
+    assert ch.forced(dale.replace_section(0, cable={"segments": 6}), "quasi-static").segments == 6
+    assert ch.forced(dale, "quasi-static").segments == 1
 
 
 def test_a_quasi_static_segmented_run_whose_middle_goes_slack_is_rejected():

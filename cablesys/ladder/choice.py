@@ -203,8 +203,9 @@ def forced(scene: Scene, name: str, segments: int | None = None, tolerance=None,
     name : str
         A rung of :data:`~cablesys.ladder.rungs.RUNGS`.
     segments : int, optional
-        Elements per section for the segmented rung (default: chosen for the tolerance), or for the
-        quasi-static rung (> 1: the quasi-static segmented cable; default 1, the straight cable).
+        Elements per section for the segmented rung (default: the scene's ``segments``, else chosen for
+        the tolerance), or for the quasi-static rung (> 1: the quasi-static segmented cable; default the
+        scene's ``segments``, 1 the straight cable).
     tolerance : float or (float, float), optional
         See :func:`tolerances`.
     cache : RungCache, optional
@@ -217,11 +218,11 @@ def forced(scene: Scene, name: str, segments: int | None = None, tolerance=None,
     """
     tol = tolerances(scene, tolerance)
     _, _, errs, info = _assess(scene, tol, cache)
+    scene_n = max(s.cable.segments for s in scene.sections)          # the user's own `segments = N`
     if name == "segmented":
-        scene_n = max(s.cable.segments for s in scene.sections)      # the user's own `segments = N`
         n = segments or (scene_n if scene_n > 1 else segments_for(errs, tol))
-    elif name == "quasi-static" and segments and segments > 1 and quasistatic_segments_available(scene):
-        n = segments                                                 # the quasi-static segmented rung
+    elif name == "quasi-static" and quasistatic_segments_available(scene):
+        n = segments or scene_n                                      # > 1: the quasi-static segmented rung
     else:
         n = 1
     e = est.rung_error(errs, name, n)
