@@ -20,10 +20,17 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import scipy.linalg
 
 from ..scene import Scene
-from .continuum import K_HARMONIC, Member, drag_shares, members, respond, top_components
+from .continuum import (
+    K_HARMONIC,
+    Member,
+    drag_shares,
+    members,
+    respond,
+    solve_tridiagonal,
+    top_components,
+)
 
 REFERENCE_N = 256           # elements of the extrapolated continuous string
 ITERATIONS = 40             # fixed-point iterations at most
@@ -50,13 +57,12 @@ def _solve(mb: Member, omega: float, top: complex, n: int, points: int, start=No
         cb = mb.end_drag * (K_HARMONIC * omega * amp[-1] + 2.0 * mb.current)
         d = k - omega**2 * mb.mass * h / 2.0 + 1j * omega * c * h * d_c
         o = -k + 1j * omega * c * h * o_c
-        ab = np.zeros((3, n), complex)
-        ab[1, :-1] = d[:-1] + d[1:]
-        ab[1, -1] = d[-1] - mb.end_mass * omega**2 + 1j * omega * cb
-        ab[0, 1:], ab[2, :-1] = o[1:], o[1:]
+        diag = np.empty(n, complex)
+        diag[:-1] = d[:-1] + d[1:]
+        diag[-1] = d[-1] - mb.end_mass * omega**2 + 1j * omega * cb
         f = np.zeros(n, complex)
         f[0] = -o[0] * top
-        w = scipy.linalg.solve_banded((1, 1), ab, f, check_finite=False)
+        w = solve_tridiagonal(o[1:], diag, f)
         new = np.sqrt(amp[1:] * np.maximum(np.abs(w), 1e-300))          # geometric relaxation (see respond)
         done = np.max(np.abs(new - amp[1:]) / np.maximum(new, 1e-300)) <= TOLERANCE
         amp[1:] = new
