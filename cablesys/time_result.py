@@ -158,7 +158,7 @@ class TimeResult(ResultBase):
         info = dict(self.model_info)
         if not info:
             n_el = self.profiles["element_tension"].shape[1] if "element_tension" in self.profiles else None
-            info = {"name": "segmented" if n_el else "wang-2dof", "segments": n_el or 1}
+            info = {"name": "segmented" if n_el else "wang", "segments": n_el or 1}
         out["model"] = info
         return out
 

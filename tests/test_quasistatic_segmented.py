@@ -185,6 +185,9 @@ def test_dale_quasistatic_matches_node_model():
     assert e["body"] < 2e-3 and e["tension"] < 2e-3
     assert least_tension_margin(b, sc) > 0
     assert b.stats["nsteps"] * 4 < a.stats["nsteps"]
+    # simulate() says which model ran, with its elements (no node profiles to infer it from)
+    assert b.summary()["model"] == {"name": "quasi-static", "segments": 4}
+    assert a.summary()["model"] == {"name": "segmented", "segments": 4}
     w = M.window(np.asarray(a.time), period)
     ta, tb = np.asarray(a.profiles["element_tension"])[w], np.asarray(b.profiles["element_tension"])[w]
     assert np.max(np.abs(tb - ta)) < 2e-3 * np.max(ta)

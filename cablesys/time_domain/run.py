@@ -393,14 +393,17 @@ def simulate(scene: Scene, *, model: CableModel | None = None, method: str | Non
     try:
         record = simulator.run(p, x0, on_block=on_block, progress=progress)
     except RunInterrupted as err:
-        raise RunInterrupted(_named(err.result, scene, build_s, built_here)) from None
+        raise RunInterrupted(_named(err.result, scene, model, build_s, built_here)) from None
     if not record.success:
         log.warning(record.message)
-    return _named(record, scene, build_s, built_here)
+    return _named(record, scene, model, build_s, built_here)
 
 
-def _named(record: RunRecord, scene: Scene, build_s: float, built_here: bool) -> RunRecord:
+def _named(record: RunRecord, scene: Scene, model: CableModel, build_s: float, built_here: bool) -> RunRecord:
     # build_s apart from load_s (issue 13): the library's load is inside build_s when the simulator was
     # made here; a caller's simulator was built (and its library loaded) before this call
     load = record.stats.get("load_s", 0.0) if built_here else 0.0
-    return dataclasses.replace(record, scene_name=scene.name, stats={**record.stats, "build_s": build_s - load})
+    # which model ran (the rung, and its elements: a quasi-static segmented run has no node profiles to infer it from)
+    info = {"name": model.kind, "segments": int(getattr(model, "n_elements", 1) or 1)}
+    return dataclasses.replace(record, scene_name=scene.name, model_info=record.model_info or info,
+                               stats={**record.stats, "build_s": build_s - load})
