@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import cmath
 import dataclasses
+import functools
 import math
 
 import numpy as np
@@ -123,6 +124,7 @@ def hanging_string(mb: Member, omega: float, c: float, cb: float) -> tuple:
 CHAIN_OVERFLOW = 300.0   # |Re(n kappa)| above which cosh(n kappa) nears overflow: the banded solve instead
 
 
+@functools.lru_cache(maxsize=64)
 def drag_shares(points: int = 0) -> tuple[float, float]:
     """(diagonal, off-diagonal) of an element's drag matrix per c h: the drag at ``points`` mid-points
     of equal parts of the element with the velocity interpolated linearly and the force shared by virtual
