@@ -35,7 +35,9 @@ error, which the compiled ``rk`` loop (h |lambda| up to 2.8, 4 evaluations per s
 
 Where it helps (measured 60 s, ramped start, second runs, loaded 2-core machine): Wang's 2-DOF
 model, whose only fast mode is the stretch mode: Dale at SciPy LSODA's accuracy (rtol 1e-4,
-11.4k steps, 1.8e-9 m) ~115-135x LSODA against ~27x for CVODES (``studies/bench_time_domain.py``).
+11.4k steps, 85k right-hand sides, 1.8e-9 m; ~20 ms) 107-135x LSODA in interleaved rounds, median
+132x, against 20-29x for CVODES (``studies/bench_time_domain.py``; the load slows SciPy more
+than compiled code, so expect ~100-115x on a quiet machine, where LSODA takes ~2.4 s).
 Not on segmented cables: their axial element modes are fast and as undamped (segmented Dale
 N = 4: |lambda| ~ 6000 1/s, 220-380k steps, 1.5-2.3 s against 50-170 ms for ``cvodes-bdf2`` and
 0.57 s for ``rk``; at rtol 1e-3 the top tension is wrong by hundreds of times its range, since rtol
