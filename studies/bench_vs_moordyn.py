@@ -12,6 +12,14 @@ Per case and element count N:
 - Wang's 2-DOF model (``wang``) and the model ladder's ``auto`` choice, each against a converged
   segmented reference (2 x the largest N): ``wang_speedup``, ``auto_speedup``, ``auto_error``
   against MoorDyn at the smallest N of the case (issues 12 and 13).
+The slack case (heave at T = 6 s) is measured differently (``_bench_slack``): it settles only after
+~100-150 s and the extremes of single cycles scatter by 3-14 %, so it runs 360 s sampled at 0.01 s
+and every figure is a mean over the whole forcing cycles of the second half (``_cycles``), for both
+codes; matched accuracy is judged on those means against cablesys's RK4 run at half its stable step,
+candidates are RK4 at its largest stable step (the compiled loop over the element kernel,
+``cablesys.model.segmented_kernel``) and CVODES BDF(<= 2); ``cablesys_rhs_profile`` gives the cost
+of one right-hand side (kernel and SX forms, compiled and VM; ``--slack-flags`` adds compiler flags).
+``--case heave_T6`` runs it alone; ``--slack-duration`` and ``--slack-n`` shorten it.
 Times are seconds of wall time per simulated second of the time stepping and its outputs, as
 MoorDyn's are of its steps: ``cablesys_s_per_s`` is a second ``Simulator.run`` of a simulator built
 once; the setup (SX model, integrators, compiled code, the catenary statics) is reported apart, as
@@ -37,7 +45,7 @@ and its end nodes carry half a segment as ours do. Compared as the same quantity
 element tension against MoorDyn's end segment tension: ``cablesys_vs_moordyn_segments``) the codes
 agree within 0.1 % on the taut heave case.
 
-    python studies/bench_vs_moordyn.py --out DIR [--quick]
+    python studies/bench_vs_moordyn.py --out DIR [--quick] [--case heave_T6 [--slack-flags=-O1,-O2,-O3]]
 """
 
 from __future__ import annotations
@@ -128,6 +136,20 @@ NOTES = {
                          "N = 10, 40, 80). Under the 2 % of the issue (about 1.1 % of the top tension); not "
                          "explained here (candidates: MoorDyn's node-averaged tangents for drag and added mass on "
                          "this drag-bowed, undamped (C_I = 0) line).",
+    "slack": "heave_T6 (slack and snap), _bench_slack: 360 s sampled at 0.01 s, cycle means over 180-360 s (30 cycles). "
+             "Run of 2026-11-30 08:52-09:13 UTC, load average 4-6 on 2 cores (other studies running): N = 20: cablesys "
+             "RK4 (compiled loop over the element kernel) at its largest stable step 5 ms (h |lambda|max = 2.66), "
+             "0.0080 s/s, MoorDyn at 2.88 ms 0.0313 s/s: 3.9x; N = 80: RK4 at 0.2 ms (h |lambda|max = 2.73) 0.211 s/s, "
+             "MoorDyn at 0.18 ms 0.353 s/s: 1.67x (before the kernel and the flags rule: 0.9x and 0.22x). Matched "
+             "accuracy against RK4 at half the step: body 0, tension <= 7e-4 of the largest maximum. CVODES BDF(<= 2) at "
+             "rtol 1e-3 and 1e-4 misses it at N = 20 (tension 5-6 %: body-end maximum and top minimum; its round-off "
+             "lets the bunched slack part buckle sideways, x amplitude 1.2-1.5 % of the heave). Per right-hand side "
+             "(us, same run): kernel compiled (-O2) 6.4 / 13.6 at N = 20 / 80, the SX ode's loop compiled by the "
+             "size rule (-O0, 2.2 / 9 MB serialized) 12.8 / 59.2, CasADi's VM 27.7 / 124 (SX) and 29 / 92 (kernel); "
+             "MoorDyn 60 us per RK4 step (4 stages) under that load, 33 us at N = 80 on a quiet machine. Results: "
+             "MoorDyn's body amplitude is 25 % smaller and its top maximum 58 % smaller, its body-end element slack "
+             "72 % of the time against 92 %: its slack law differs (damping acts on slack segments and pushes, -1.1 kN "
+             "at the body end; see segmented_convergence), not its numerics.",
     "speed": "Where a run's time goes (cablesys_profile): CVODES BDF(<= 2) steps, each one or two right-hand sides "
              "and a Jacobian every ~7 steps (the Jacobian costs ~8 right-hand sides: 12 colours of a banded "
              "matrix); RHS, Jacobian and CVODES (error control, sparse QR factorizations and solves) about a third "
