@@ -17,7 +17,7 @@ from cablesys.ladder import metrics as M
 from cablesys.ladder.rungs import build_rung, rung_scene
 from cablesys.linear import linearize, modes
 from cablesys.model import build_model
-from cablesys.model.element_coordinates import build_element_model, initial_state
+from cablesys.model.element_coordinates import build_element_model
 from cablesys.model.quasistatic import (
     CHORD_TOLERANCE,
     axial_frequencies,
@@ -29,6 +29,7 @@ from cablesys.model.segmented import build_segmented_model
 from cablesys.scene import Body, Cable, Environment, Numerics, dale_scene
 from cablesys.scene.scene import single_section_scene
 from cablesys.time_domain import simulate
+from cablesys.time_domain.initial import initial_state
 
 
 def _dale(n, duration):

@@ -20,7 +20,8 @@ Tension, drag, weight and the inertial forces of the added mass all come with f_
 written twice. The model is the building block of the quasi-static segmented rung
 (:mod:`.quasistatic`), whose split into slow (``phi``) and fast (``u``) coordinates needs exactly
 these coordinates. Its outputs are the node model's (the state mapped back to node positions and
-velocities). Runs of it start from the node model's elastic catenary mapped by :func:`initial_state`.
+velocities). Runs of it start from the node model's elastic catenary mapped by ``from_nodes``
+(:func:`cablesys.time_domain.initial.initial_state`).
 """
 
 from __future__ import annotations
@@ -28,7 +29,6 @@ from __future__ import annotations
 import dataclasses
 
 import casadi as ca
-import numpy as np
 
 from ..scene import Scene
 from .cable_model import CableModel
@@ -219,28 +219,3 @@ def build_element_model(scene: Scene, node: CableModel | None = None) -> Element
                         elements=tuple(s.cable.segments for s in scene.sections),
                         to_nodes=to_nodes, from_nodes=from_nodes, node_model=node)
 
-
-def initial_state(scene: Scene, model: ElementModel, p) -> np.ndarray:
-    """x0 = (q, q') of ``model``: the node model's initial state (its elastic catenary, or the scene's
-    ``initial`` table) mapped to element coordinates.
-
-    Parameters
-    ----------
-    scene : Scene
-        The scene.
-    model : ElementModel
-        Its element-coordinates model.
-    p : array_like
-        Parameter vector (``model.parameters(scene)``).
-
-    Returns
-    -------
-    ndarray
-        x0 in SI (rad, m, rad/s, m/s).
-    """
-    from ..time_domain.initial import initial_state as node_initial_state
-    p = np.asarray(p, dtype=float)
-    x_n = node_initial_state(scene, model.node_model, p)
-    t0 = float(scene.output_times[0]) if hasattr(scene, "output_times") else 0.0
-    e = np.array(model.top(t0, p)).ravel()
-    return np.array(model.from_nodes(x_n, e, p)).ravel()

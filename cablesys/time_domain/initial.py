@@ -26,6 +26,10 @@ def initial_state(scene: Scene, model: CableModel, p) -> np.ndarray:
     ndarray
         x0 = (q, q') in SI.
     """
+    if model.kind == "element-coordinates":   # the node model's state mapped to (phi_k, u_k)
+        x_n = initial_state(scene, model.node_model, p)
+        e = np.array(model.top(float(scene.output_times[0]), p)).ravel()
+        return np.array(model.from_nodes(x_n, e, np.asarray(p, dtype=float))).ravel()
     if getattr(model, "segments", None):      # node coordinates: the segmented cable
         from ..statics.catenary import segmented_initial_state
         return segmented_initial_state(scene, model, p)
