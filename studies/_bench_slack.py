@@ -109,16 +109,19 @@ def _moordyn_step(sc, n, period, t0, keep: Path | None, key: str) -> tuple[float
     return dt, "probed in this run"
 
 
-def _us_per_rhs(F, x0, pp, n_sub: int, repeats: int) -> float:
-    """Microseconds per right-hand side of an RK4 interval function (best of 3 blocks of calls)."""
-    F(x0, 0.0, 1.0, pp)
+def _us_per_rhs(F, x0, pp, n_sub: int, intervals: int) -> float:
+    """Microseconds per right-hand side of an RK4 interval function ``F(x, s0, ds, p)``, evaluated as
+    the simulator does (a ``mapaccum`` over ``intervals`` output intervals in one call: no Python
+    call per interval, whose ~30 us would be a large part of a 2-step interval); best of 3."""
+    over = F.mapaccum("intervals", intervals, [0], [0])
+    args = (x0, np.arange(intervals, dtype=float)[None, :], np.ones((1, intervals)), np.tile(pp[:, None], (1, intervals)))
+    over(*args)
     best = math.inf
     for _ in range(3):
         t0 = time.perf_counter()
-        for _ in range(repeats):
-            F(x0, 0.0, 1.0, pp)
-        best = min(best, (time.perf_counter() - t0) / repeats)
-    return 1e6 * best / (4 * n_sub)
+        over(*args)
+        best = min(best, time.perf_counter() - t0)
+    return 1e6 * best / (4 * n_sub * intervals)
 
 
 def rhs_profile(sc, n_sub: int, prepared, flags=()) -> dict:
@@ -134,7 +137,7 @@ def rhs_profile(sc, n_sub: int, prepared, flags=()) -> dict:
     model = sim.model
     pp = np.concatenate([p, [0.0, sc.numerics.output_step]])
     out = {"steps_per_output": n_sub}
-    repeats = max(3, round(2000 / (4 * n_sub * model.n_elements)))
+    intervals = 256                      # the simulator's first chunk (Simulator.CHUNKS)
     old = os.environ.get("CABLESYS_CFLAGS")
     try:
         for flag in (None, "vm", *flags):
@@ -149,7 +152,7 @@ def rhs_profile(sc, n_sub: int, prepared, flags=()) -> dict:
                 out[f"{key}_build_s"] = time.perf_counter() - t0
                 out[f"{key}_cached"] = comp.cached
                 out[f"{key}_us_per_rhs"] = _us_per_rhs(comp.functions["cablesys_rk4_interval"], x0, pp, n_sub,
-                                                       max(1, repeats // 5) if flag == "vm" else repeats)
+                                                       16 if flag == "vm" else intervals)
     finally:
         if old is None:
             os.environ.pop("CABLESYS_CFLAGS", None)
