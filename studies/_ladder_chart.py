@@ -28,6 +28,13 @@ def _kind(r: dict) -> str:
     return "quasi-static N" if r["rung"] == "quasi-static" and r["segments"] > 1 else r["rung"]
 
 
+def _reason(failure: str) -> str:
+    """The gist of a failure message: 'nonfinite' for an unstable fixed step, else its first clause."""
+    if "nonfinite" in failure:
+        return "unstable step (nonfinite)"
+    return failure.split(":")[0].split("(")[0].strip()[:45]
+
+
 def _label(r: dict) -> str:
     return r["rung"] + (f" N={r['segments']}" if r["rung"] == "segmented" or r["segments"] > 1 else "")
 
@@ -96,11 +103,14 @@ def plot_case(res: dict, path: Path):
         for r in bad:
             ax.plot(wall(r), FAIL_Y, "x", color=RUNG_COLOURS[_kind(r)], ms=10, mew=2)
         if bad and ax is axes[0]:                # which runs failed, grouped by integrator
-            groups = {}
+            groups, why = {}, {}
             for r in bad:
-                groups.setdefault(INTEGRATOR_LABELS.get(r["integrator"], r["integrator"]), []).append(_label(r))
-            text = "\n".join(f"failed, {k}: " + ", ".join(v) for k, v in groups.items())
-            ax.text(0.02, 0.9, text, transform=ax.transAxes, fontsize=7, color="tab:red", va="top")
+                k = INTEGRATOR_LABELS.get(r["integrator"], r["integrator"])
+                groups.setdefault(k, []).append(_label(r))
+                why.setdefault(k, _reason(r.get("failure", "")))
+            text = "\n".join(f"failed ({k}): " + ", ".join(v) + f" - {why[k]}" for k, v in groups.items())
+            ax.annotate(text, (0.98, FAIL_Y), xycoords=("axes fraction", "data"), xytext=(0, -5),
+                        textcoords="offset points", ha="right", va="top", fontsize=7, color="tab:red")
         if hit:
             h = hit[0]
             ax.loglog(wall(h), max(h[key], FLOOR), "*", color="k", ms=20, mfc="none", mew=1.6, zorder=5)

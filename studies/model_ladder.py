@@ -31,6 +31,17 @@ model_ladder.json and makes auto's choice, the estimates and the checks again). 
 an x at the top of the chart with its reason in the JSON. Auto's choice (:func:`cablesys.ladder.choose`)
 is a star, with its stated estimate next to the actual error.
 
+Findings (2026-11-30, full run, CasADi VM on the shared 2-core machine; numbers in the JSON):
+- slack scene: the Richardson limit of N = 20, 40 (RK4, planar) is 1.4037 m body heave amplitude and
+  54.36 kN top maximum (issue 11: 1.403 m, 54.3 kN), observed order 0.98-1.03; no rung is within the
+  1 % / 2 % tolerance (segmented N = 40: 3.3 % body, 3-5 % tension); Wang's and the quasi-static rung
+  miss by 27 % (body) and 78 % (tension). CVODES and IDAS runs buckle sideways (x amplitude 7-13 mm)
+  and their cycle maxima spread by up to 6 kN at N = 40; RK4 at 10 steps per output is past its
+  stability step at N = 40 and runs on with 15 % tension error. The whole scene took 30 min.
+- taut scenes: auto's choice is never beaten by a run within half the tolerance at half its wall
+  time; at the full tolerance a cheaper run is within it on the 1000 m scene (N = 5 at 0.66 %, auto's
+  N = 10 at 0.90 %: that scene's error is not monotone in N).
+
 Per scene the JSON holds issue 12's checks: ``cheaper_rung_within_tolerance`` (the cheapest run
 within the tolerance against auto's, with wall times) and ``estimate_ratio`` (auto's stated
 estimate over its actual error, within 2x or not).
@@ -378,7 +389,7 @@ def main(argv=None) -> int:
             res.update(verdicts(res))
         else:
             res = study_case(case)
-        res["study_s"] = time.perf_counter() - t0
+            res["study_s"] = time.perf_counter() - t0        # the whole scene: every run, build included
         out[case["key"]] = res
         if res["rows"] and "auto" in res:
             plot_case(res, args.out / f"model_ladder_{case['key']}.png")
