@@ -55,9 +55,9 @@ CANDIDATES = ((7, 2, "left"), (7, -11, "left"), (-7, 2, "right"), (-7, -11, "rig
 
 
 def _labels(ax, ok: list, key: str, wall, renderer) -> None:
-    """One label per rung and N, at its fastest run: the first of CANDIDATES offsets whose text box
-    overlaps no marker and no label already placed (measured on the drawn figure); a leader line
-    when it sits beyond the first four offsets."""
+    """One label per rung and N, at its fastest run: the first of CANDIDATES offsets whose text box lies
+    inside the axes and overlaps no marker and no label already placed (measured on the drawn figure),
+    else the inside one with the fewest overlaps; a leader line beyond the first four offsets."""
     from matplotlib.transforms import Bbox
     pts = ax.transData.transform([(wall(r), max(r[key], FLOOR)) for r in ok])
     r_px = 5.0 * ax.figure.dpi / 72.0
@@ -66,19 +66,25 @@ def _labels(ax, ok: list, key: str, wall, renderer) -> None:
     for lab in dict.fromkeys(_label(r) for r in ok):
         r = min((q for q in ok if _label(q) == lab), key=wall)
         xy = (wall(r), max(r[key], FLOOR))
+        best = None                     # (overlaps, candidate) of the candidates inside the axes
         for i, (dx, dy, ha) in enumerate(CANDIDATES):
-            t = ax.annotate(lab, xy, textcoords="offset points", xytext=(dx, dy), ha=ha, fontsize=7.5,
-                            color=RUNG_COLOURS[_kind(r)],
-                            arrowprops={"arrowstyle": "-", "color": "0.35", "lw": 0.6} if i >= 4 else None)
+            t = _place(ax, lab, xy, r, i, dx, dy, ha)
             box = t.get_window_extent(renderer)
+            t.remove()
             inside = frame.contains(box.x0, box.y0) and frame.contains(box.x1, box.y1)
-            if inside and not any(box.overlaps(b) for b in taken):
-                taken.append(box)
+            hits = sum(box.overlaps(b) for b in taken)
+            if inside and (best is None or hits < best[0]):
+                best = (hits, i)
+            if inside and hits == 0:
                 break
-            if i < len(CANDIDATES) - 1:
-                t.remove()
-            else:
-                taken.append(box)       # nowhere free: the last candidate stays
+        i = best[1] if best else 0      # nowhere inside: the first offset
+        taken.append(_place(ax, lab, xy, r, i, *CANDIDATES[i]).get_window_extent(renderer))
+
+
+def _place(ax, lab, xy, r, i, dx, dy, ha):
+    return ax.annotate(lab, xy, textcoords="offset points", xytext=(dx, dy), ha=ha, fontsize=7.5,
+                       color=RUNG_COLOURS[_kind(r)],
+                       arrowprops={"arrowstyle": "-", "color": "0.35", "lw": 0.6} if i >= 4 else None)
 
 
 def plot_case(res: dict, path: Path):
