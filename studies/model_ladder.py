@@ -39,8 +39,10 @@ Findings (2026-11-30, full run, CasADi VM on the shared 2-core machine; numbers 
   and their cycle maxima spread by up to 6 kN at N = 40; RK4 at 10 steps per output is past its
   stability step at N = 40 and runs on with 15 % tension error. The whole scene took 30 min.
 - taut scenes: auto's choice is never beaten by a run within half the tolerance at half its wall
-  time; at the full tolerance a cheaper run is within it on the 1000 m scene (N = 5 at 0.66 %, auto's
-  N = 10 at 0.90 %: that scene's error is not monotone in N).
+  time (Dale: quasi-static N = 3, 0.38 % body vs 0.37 % stated, 0.13 s; 300 m T = 10 s: Wang's model);
+  at the full tolerance the 1000 m scene has a cheaper run within it (N = 5 at 0.66 % in 0.11 s vs
+  auto's N = 10 at 0.90 % in 0.21 s, a 1.9-2x wall ratio at the noise threshold; the error there is
+  not monotone in N and auto's a-priori 0.47 % is half the actual).
 
 Per scene the JSON holds issue 12's checks: ``cheaper_rung_within_tolerance`` (the cheapest run
 within the tolerance against auto's, with wall times) and ``estimate_ratio`` (auto's stated
