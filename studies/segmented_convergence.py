@@ -72,7 +72,7 @@ HEAVE_SCENE = Path(cablesys.__file__).parent / "data" / "heave_300m.toml"
 METRICS = ("x_amp", "y_amp", "top_max", "top_min")
 
 
-def _steps_per_output(model, scene, x0, margin: float = 2.5) -> int:
+def rk4_steps_per_output(model, scene, x0, margin: float = 2.5) -> int:
     """RK4 steps per output interval that keep h |lambda|_max below 2.5 (RK4 is stable to 2.78): the
     undamped axial modes of a lumped cable make BDF resolve them anyway, so a fixed explicit step at
     the stability limit is the cheaper method for these scenes."""
@@ -89,7 +89,7 @@ def measure(scene, period: float, n_periods: int = 3) -> dict:
     t0 = time.perf_counter()
     model = build_model(scene)
     x0 = initial_state(scene, model, model.parameters(scene))
-    spo = _steps_per_output(model, scene, x0)
+    spo = rk4_steps_per_output(model, scene, x0)
     sim = Simulator(model, scene.output_times, IntegratorSettings(method="rk", steps_per_output=spo, compiled=False))
     r = simulate(scene, model=model, simulator=sim, x0=x0)
     wall = time.perf_counter() - t0
@@ -167,7 +167,7 @@ def run_slack(scene, n: int, period: float, t0: float, *, refine: int = 1) -> di
     t_wall = time.perf_counter()
     model = build_model(sc)
     x0 = initial_state(sc, model, model.parameters(sc))
-    spo = refine * _steps_per_output(model, sc, x0, margin=2.0)
+    spo = refine * rk4_steps_per_output(model, sc, x0, margin=2.0)
     compiled = n <= COMPILE_MAX_SLACK
     settings = IntegratorSettings(method="rk", steps_per_output=spo, compiled=compiled)
     Simulator(model, sc.output_times[:3], settings).run(model.parameters(sc), x0)   # builds (compiles) the RK4 step loop
