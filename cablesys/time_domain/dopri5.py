@@ -66,15 +66,17 @@ import casadi as ca
 import numpy as np
 
 from ..compiled import Compiled, compile_functions
-from ..errors import SolverError
+from ..errors import ParameterError, SolverError
 from ..model import CableModel
 from ..model.scales import state_scales
 
 log = logging.getLogger(__name__)
 
-__all__ = ["DRIVER", "Dopri5Integrator", "dopri5_library", "make_dopri5"]
+__all__ = ["DRIVER", "PAIRS", "Dopri5Integrator", "dopri5_library", "make_dopri5"]
 
 DRIVER = "cablesys_dopri5"
+# the pairs of the driver (dopri5.c): method name -> (CS_ERK_METHOD, exported driver name)
+PAIRS = {"dopri5": (1, DRIVER), "rk23": (2, "cablesys_rk23")}
 HEAD = 13                  # carry layout: see dopri5.c
 # output times per driver call: the grid is a mapaccum over blocks of them. CasADi's mapaccum costs
 # time superlinear in its length to build (1024 calls: ~75 ms, 4096: more), the Simulator's chunks
@@ -96,9 +98,9 @@ def _driver_source() -> _Source:
     return _Source(code, hashlib.sha256(code.encode()).hexdigest()[:16])
 
 
-def dopri5_library(model: CableModel, compiled: bool = True) -> Compiled:
-    """The model's relative-time ODE and the DOPRI5 driver in one compiled library (built once
-    per model, cached on disk).
+def dopri5_library(model: CableModel, compiled: bool = True, method: str = "dopri5") -> Compiled:
+    """The model's relative-time ODE and the driver of one explicit pair in one compiled library
+    (built once per model and pair, cached on disk).
 
     Parameters
     ----------
@@ -106,28 +108,41 @@ def dopri5_library(model: CableModel, compiled: bool = True) -> Compiled:
         The model (its explicit ODE; any kind).
     compiled : bool, optional
         False returns the uncompiled Compiled (no driver: the caller falls back).
+    method : str, optional
+        The pair, a key of :data:`PAIRS`: ``"dopri5"`` (Dormand-Prince 5(4)) or ``"rk23"``
+        (Bogacki-Shampine 3(2)).
 
     Returns
     -------
     Compiled
-        ``functions[DRIVER]`` is the driver (when ``compiled``); build and load times.
+        ``functions[PAIRS[method][1]]`` is the driver (when ``compiled``); build and load times.
     """
     from .integrators import _dae_function  # the integrators' shared relative-time DAE
 
+    number, driver = _pair(method)
     src = _driver_source()
 
     def build():
         rhs = _dae_function(model, implicit=False, scaled=False)
-        defines = (f"\n#define CS_DP5_NX {2 * model.nq}\n#define CS_DP5_NP {len(model.layout) + 2}\n"
-                   f"#define CS_DP5_NK {BLOCK}\n"
-                   f"#define CS_DP5_RHS {rhs.name()}\n#define CS_DP5_RHS_WORK {rhs.name()}_work\n")
+        defines = (f"\n#define CS_ERK_METHOD {number}\n#define CS_ERK_NAME {driver}\n"
+                   f"#define CS_ERK_NX {2 * model.nq}\n#define CS_ERK_NP {len(model.layout) + 2}\n"
+                   f"#define CS_ERK_NK {BLOCK}\n"
+                   f"#define CS_ERK_RHS {rhs.name()}\n#define CS_ERK_RHS_WORK {rhs.name()}_work\n")
         return compile_functions([rhs], jacobians=False, enabled=compiled, extra_c=defines + src.code,
-                                 extra_names=(DRIVER,))
-    return model.derive(f"dopri5:{src.digest}:{BLOCK}:{'compiled' if compiled else 'vm'}", build)
+                                 extra_names=(driver,))
+    return model.derive(f"{method}:{src.digest}:{BLOCK}:{'compiled' if compiled else 'vm'}", build)
+
+
+def _pair(method: str) -> tuple[int, str]:
+    try:
+        return PAIRS[method]
+    except KeyError:
+        raise ParameterError("method", method, f"an explicit pair of the compiled driver: {tuple(PAIRS)}") from None
 
 
 class Dopri5Integrator:
-    """DOPRI5 over a fixed relative grid, called like a CasADi integrator.
+    """An explicit pair of the compiled driver (DOPRI5 or BS3) over a fixed relative grid, called
+    like a CasADi integrator.
 
     ``F(x0=..., p=...)`` (or positional) -> ``{"xf": DM (nx, len(grid) - 1)}``; ``stats()`` of
     the last call: ``nsteps`` (accepted), ``n_rejected``, ``nfevals``, ``status``. A failure
@@ -140,10 +155,12 @@ class Dopri5Integrator:
         ``(x0, p) -> (xf, carry)``: the driver mapped over the grid.
     grid : array_like
         The relative output grid (first entry the start).
+    method : str, optional
+        The pair's name, for messages (``"dopri5"``, ``"rk23"``).
     """
 
-    def __init__(self, function: ca.Function, grid):
-        self.function, self.grid = function, np.asarray(grid, dtype=float)
+    def __init__(self, function: ca.Function, grid, method: str = "dopri5"):
+        self.function, self.grid, self.method = function, np.asarray(grid, dtype=float), method
         self._stats = None
 
     def __call__(self, *args, **kw) -> dict:
@@ -159,7 +176,7 @@ class Dopri5Integrator:
             s_fail = float(c[6])
             n_ok = int(np.argmin(np.all(np.isfinite(X), axis=0))) if not np.all(np.isfinite(X)) else X.shape[1]
             err = SolverError(
-                f'dopri5 returned "{flag}" at t = {h * (s_fail - self.grid[0]):.9g} (s from the start of the call; '
+                f'{self.method} returned "{flag}" at t = {h * (s_fail - self.grid[0]):.9g} (s from the start of the call; '
                 f"time {t0 + h * s_fail:.9g} s): {why} (after {c[2]:.0f} accepted and {c[3]:.0f} rejected steps); "
                 f"the states at the first {n_ok} output times are kept")
             err.flag, err.time, err.states, err.times = flag, float(t0 + h * s_fail), X[:, :n_ok], self.grid[1:n_ok + 1]
@@ -170,21 +187,22 @@ class Dopri5Integrator:
     def stats(self) -> dict:
         """Counters of the last call (RuntimeError before any, as CasADi's integrators)."""
         if self._stats is None:
-            raise RuntimeError("dopri5: no statistics before a first evaluation")
+            raise RuntimeError(f"{self.method}: no statistics before a first evaluation")
         return dict(self._stats)
 
 
 def make_dopri5(model: CableModel, settings, grid, name: str = "F") -> Dopri5Integrator | None:
-    """The DOPRI5 integrator of ``model`` over the relative ``grid``, or None without a compiled
-    library (the caller falls back to CVODES).
+    """The integrator of ``model`` by the explicit pair ``settings.method`` (``dopri5`` or
+    ``rk23``, :data:`PAIRS`) over the relative ``grid``, or None without a compiled library (the
+    caller falls back to CVODES).
 
     Parameters
     ----------
     model : CableModel
         The model.
     settings : IntegratorSettings
-        ``rtol``, ``atol`` (per state atol x S_i(p) when ``scaled``), ``max_num_steps`` (per
-        output interval), ``compiled``/``jit``.
+        ``method`` (a key of :data:`PAIRS`), ``rtol``, ``atol`` (per state atol x S_i(p) when
+        ``scaled``), ``max_num_steps`` (per output interval), ``compiled``/``jit``.
     grid : array_like
         Relative output grid s (t = t0 + h s, (t0, h) appended to p); outputs at grid[1:].
     name : str, optional
@@ -194,7 +212,8 @@ def make_dopri5(model: CableModel, settings, grid, name: str = "F") -> Dopri5Int
     -------
     Dopri5Integrator or None
     """
-    comp = dopri5_library(model, bool(settings.compiled or settings.jit))
+    method = settings.method
+    comp = dopri5_library(model, bool(settings.compiled or settings.jit), method)
     if not comp.compiled:
         return None
     grid = np.asarray(grid, dtype=float)
@@ -202,7 +221,7 @@ def make_dopri5(model: CableModel, settings, grid, name: str = "F") -> Dopri5Int
     nb = -(-n // BLOCK)
     # blocks of BLOCK output times (columns), the last one padded with the final time (no steps there)
     s_out = np.concatenate([grid[1:], np.full(nb * BLOCK - n, grid[-1])]).reshape(nb, BLOCK).T
-    acc = comp.functions[DRIVER].mapaccum(f"{name}_steps", nb, [0], [0])
+    acc = comp.functions[_pair(method)[1]].mapaccum(f"{name}_steps", nb, [0], [0])
     x0, p = ca.MX.sym("x0", nx), ca.MX.sym("p", npx)
     S = state_scales(model)(p[:-2]) if settings.scaled else ca.DM.ones(nx)
     head = np.zeros(HEAD)
@@ -212,26 +231,29 @@ def make_dopri5(model: CableModel, settings, grid, name: str = "F") -> Dopri5Int
     C, X = acc(carry0, ca.DM(s_out), ca.repmat(p, 1, nb), ca.repmat(tol, 1, nb),
                ca.repmat(settings.atol * S, 1, nb))
     F = ca.Function(name, [x0, p], [X[:, :n], C[:, -1]], ["x0", "p"], ["xf", "carry"])
-    return Dopri5Integrator(F, grid)
+    return Dopri5Integrator(F, grid, method)
 
 
 def fallback_settings(model: CableModel, settings):
-    """The settings CVODES runs instead of ``dopri5`` when its driver is not compiled (no C
-    compiler, ``CABLESYS_COMPILE=0``, or ``compiled=False``); one logged notice per model.
+    """The settings CVODES runs instead of ``dopri5`` or ``rk23`` when its driver is not compiled
+    (no C compiler, ``CABLESYS_COMPILE=0``, or ``compiled=False``); one logged notice per model
+    and pair.
 
     Parameters
     ----------
     model : CableModel
         The model (the notice is logged once per model).
     settings : IntegratorSettings
-        The ``dopri5`` settings.
+        The ``dopri5`` or ``rk23`` settings.
 
     Returns
     -------
     IntegratorSettings
         The same tolerances, scaling and step budget with ``method="cvodes"``.
     """
-    comp = dopri5_library(model, bool(settings.compiled or settings.jit))
-    model.derive("dopri5:fallback-notice", lambda: log.warning(
-        "dopri5 needs its compiled C driver (%s): running CVODES (BDF) instead", comp.note or "not compiled") or True)
+    method = settings.method
+    comp = dopri5_library(model, bool(settings.compiled or settings.jit), method)
+    model.derive(f"{method}:fallback-notice", lambda: log.warning(
+        "%s needs its compiled C driver (%s): running CVODES (BDF) instead", method,
+        comp.note or "not compiled") or True)
     return dataclasses.replace(settings, method="cvodes")
