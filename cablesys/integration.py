@@ -93,6 +93,9 @@ METHODS = {m.name: m for m in (
     # Dormand-Prince 5(4), explicit, error-controlled: cablesys's own compiled C driver (not a
     # casadi.integrator plugin; time_domain/dopri5.py); CVODES when nothing is compiled
     IntegratorMethod(name="dopri5", plugin="dopri5"),
+    # Bogacki-Shampine 3(2) (SciPy's RK23, MATLAB's ode23), explicit, error-controlled, in the same
+    # compiled driver: 3 evaluations a step and stable on the imaginary axis to |h lambda| = sqrt(3)
+    IntegratorMethod(name="rk23", plugin="rk23"),
     # fixed-step Radau collocation (implicit), for comparison
     IntegratorMethod(name="collocation", plugin="collocation", adaptive=False,
                      options={"collocation_scheme": "radau", "interpolation_order": 3}),
