@@ -7,6 +7,8 @@
                     fastest choice when the step is below the stability limit (no error control);
 - ``dopri5``        Dormand-Prince 5(4), explicit with error control and dense output, a compiled C
                     driver (:mod:`.dopri5`); CVODES when nothing is compiled;
+- ``rk23``          Bogacki-Shampine 3(2), the same compiled driver: 3 evaluations a step, stable on the
+                    imaginary axis to |h lambda| = sqrt(3) (undamped stiff modes); CVODES without compiler;
 - ``collocation``   fixed-step Radau collocation (implicit), for comparison.
 
 Every integrator runs in relative time s with the parameter vector extended by (t_0, h):
@@ -191,9 +193,9 @@ def compiled_dae(model: CableModel, settings: IntegratorSettings) -> Compiled:
     interval for ``rk``), with its first build/load times."""
     if settings.method == "rk" and settings.custom is None:
         return rk4_interval(model, int(settings.steps_per_output), settings.compiled or settings.jit)
-    if settings.method == "dopri5" and settings.custom is None:
+    if settings.method in ("dopri5", "rk23") and settings.custom is None:
         from .dopri5 import dopri5_library, fallback_settings
-        comp = dopri5_library(model, settings.compiled or settings.jit)
+        comp = dopri5_library(model, settings.compiled or settings.jit, settings.method)
         if comp.compiled:
             return comp
         settings = fallback_settings(model, settings)
@@ -322,7 +324,7 @@ def make_integrator(model: CableModel, settings: IntegratorSettings, grid, name:
     """
     if settings.method == "rk" and settings.custom is None:
         return _rk4_integrator(model, settings, np.asarray(grid, dtype=float), name)
-    if settings.method == "dopri5" and settings.custom is None:
+    if settings.method in ("dopri5", "rk23") and settings.custom is None:
         from .dopri5 import fallback_settings, make_dopri5
         F = make_dopri5(model, settings, np.asarray(grid, dtype=float), name)
         if F is not None:
