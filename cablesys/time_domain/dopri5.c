@@ -27,7 +27,7 @@
  * (dense output: the cubic Hermite interpolant of (x_n, f_n, x_n+1, f_n+1), third order, which
  * is BS3's (as SciPy's RK23), plus for DOPRI5 the quartic correction with the coefficients d_i of
  * Hairer's DOPRI5 code, CONTD5), and Hairer & Wanner, Solving ODEs II, sec. IV.2 (the PI
- * controller, beta = 0.04 as in DOPRI5).
+ * controller; beta = 0.04 as in DOPRI5, 0.08 for BS3, measured below).
  *
  * The carry (input 0 -> output 0) holds the integrator between output times and calls:
  *   [0] s        current (relative) time       [6]  s_fail   time of a failure
@@ -85,7 +85,8 @@ static const casadi_real cs_bs3_e1 = -5.0 / 72, cs_bs3_e2 = 1.0 / 12, cs_bs3_e3 
 #define CS_ERK_S 4
 #define CS_ERK_P 3
 #define CS_ERK_Q 2                 /* step factor err^(1/3) */
-#define CS_ERK_BETA 0.04
+#define CS_ERK_BETA 0.08           /* measured on the ramped Dale scene, rtol 1e-3-1e-4: 1.9-2.2k rejections per
+                                      9k steps against 2.7-3.0k with 0.04 and 3.5k with 0 (3-7 % fewer evaluations) */
 #define CS_ERK_C {0, cs_bs3_c2, cs_bs3_c3, 1}
 #define CS_ERK_A {{0}, {cs_bs3_a21}, {0, cs_bs3_a32}, {cs_bs3_a41, cs_bs3_a42, cs_bs3_a43}}
 #define CS_ERK_E {cs_bs3_e1, cs_bs3_e2, cs_bs3_e3, cs_bs3_e4}
