@@ -28,15 +28,18 @@ output times. Timed, in one run, best of several repeats (the machine may be sha
   A-stable), CVODES Adams, the fixed-step RK4 loop (``rk``, 5 steps per 0.05 s output: the
   fewest inside RK4's stability limit for the stretch mode, h |lambda| = 2.5 < 2.785) and
   ``dopri5`` (Dormand-Prince 5(4), error-controlled, cablesys's compiled C driver: stability-bound
-  on the stretch mode at h |lambda| ~ 1.35, ~11k steps per 60 s at any rtol);
+  on the stretch mode at h |lambda| ~ 1.35, ~11k steps per 60 s at any rtol) and ``rk23``
+  (Bogacki-Shampine 3(2) in the same driver: stable on the imaginary axis to h |lambda| = sqrt(3),
+  ~9k steps per 60 s at rtol 1e-3-1e-4, 3 new right-hand sides a step against DOPRI5's 6);
 - ``abrupt``, ``abrupt_bdf2``: the abrupt start (ramp_s = 0), steps the stretch ringing costs;
-- ``work_precision``: cvodes, cvodes-bdf2 and dopri5 over rtol 1e-3 ... 1e-8 (atol = rtol / 10, scaled),
+- ``work_precision``: cvodes, cvodes-bdf2, dopri5 and rk23 over rtol 1e-3 ... 1e-8 (atol = rtol / 10, scaled),
   RK4 over 5, 10, 20 steps per output; ``scipy_runs``: LSODA at rtol 1e-6, 1e-3, 1e-4;
 - ``equal_accuracy``: for each SciPy run, the fastest cablesys run of the sweep whose body position
-  error is not larger, and the fastest error-controlled one (cvodes, cvodes-bdf2, dopri5;
+  error is not larger, and the fastest error-controlled one (cvodes, cvodes-bdf2, dopri5, rk23;
   ``speedup_vs_scipy_equal_accuracy``, ``..._adaptive``: against SciPy at rtol 1e-6);
-- ``interleaved``: the headline runs (SciPy at rtol 1e-6, cvodes, cvodes-bdf2, RK4, dopri5; dopri5
-  also at the loosest rtol of the sweep whose error is not larger than SciPy's) timed again in
+- ``interleaved``: the headline runs (SciPy at rtol 1e-6, cvodes, cvodes-bdf2, RK4, dopri5, rk23;
+  dopri5 and rk23 also at the loosest rtol of the sweep whose error is not larger than SciPy's,
+  ``explicit_equal_accuracy`` their steps, right-hand sides and errors there) timed again in
   alternating rounds, ``median_speedup`` per method: steadier than one ratio of measurements taken
   minutes apart while the load of a shared machine drifts;
 - per-state absolute tolerances are the integrators' state scaling (the default; measured scaled vs
@@ -229,6 +232,7 @@ def main(argv=None) -> int:
         "rk4": variant(IntegratorSettings(method="rk", steps_per_output=RK_STEPS)),
         # without a compiler (or CABLESYS_COMPILE=0) dopri5 runs CVODES: "compiled" says which
         "dopri5": variant(IntegratorSettings(method="dopri5", rtol=RTOL, atol=ATOL_CS)),
+        "rk23": variant(IntegratorSettings(method="rk23", rtol=RTOL, atol=ATOL_CS)),
     }
     for k, v in res["compiled"].items():
         print(f"cablesys {k} (compiled): {v['ms']:.1f} ms, {v['steps'] or '-'} steps, "
@@ -241,7 +245,8 @@ def main(argv=None) -> int:
 
     # -- work-precision of the cablesys methods (same ramped problem, same reference) ----------
     wp = []
-    for method, rtols in (("cvodes", WP_RTOLS), ("cvodes-bdf2", WP_RTOLS), ("dopri5", WP_RTOLS)):
+    for method, rtols in (("cvodes", WP_RTOLS), ("cvodes-bdf2", WP_RTOLS), ("dopri5", WP_RTOLS),
+                          ("rk23", WP_RTOLS)):
         for r in rtols[::2] if args.quick else rtols:
             v = variant(IntegratorSettings(method=method, rtol=r, atol=r * ATOL_CS / RTOL))
             wp.append({"method": method, "rtol": r, "atol": r * ATOL_CS / RTOL, **v})
@@ -283,14 +288,20 @@ def main(argv=None) -> int:
     # measurements taken seconds apart is steadier than one of measurements minutes apart
     heads = {"cvodes": sim, "cvodes-bdf2": Simulator(model, times, IntegratorSettings(method="cvodes-bdf2", rtol=RTOL, atol=ATOL_CS)),
              "rk4": Simulator(model, times, IntegratorSettings(method="rk", steps_per_output=RK_STEPS)),
-             "dopri5": Simulator(model, times, IntegratorSettings(method="dopri5", rtol=RTOL, atol=ATOL_CS))}
-    # dopri5 at the loosest rtol of the sweep that is as accurate as SciPy at rtol 1e-6 (its equal-accuracy run)
-    dp_ok = [r for r in wp if r["method"] == "dopri5" and r["errors"]["body_position_m"] <= res["scipy_errors"]["body_position_m"]]
-    if dp_ok:
-        r_eq = max(r["rtol"] for r in dp_ok)
-        heads["dopri5_equal_accuracy"] = Simulator(model, times, IntegratorSettings(method="dopri5", rtol=r_eq,
-                                                                                    atol=r_eq * ATOL_CS / RTOL))
-        res["interleaved_dopri5_equal_accuracy_rtol"] = r_eq
+             "dopri5": Simulator(model, times, IntegratorSettings(method="dopri5", rtol=RTOL, atol=ATOL_CS)),
+             "rk23": Simulator(model, times, IntegratorSettings(method="rk23", rtol=RTOL, atol=ATOL_CS))}
+    # the explicit pairs at the loosest rtol of the sweep that is as accurate as SciPy at rtol 1e-6
+    # (their equal-accuracy runs)
+    res["explicit_equal_accuracy"] = {}
+    for m in ("dopri5", "rk23"):
+        ok = [r for r in wp if r["method"] == m and r["errors"]["body_position_m"] <= res["scipy_errors"]["body_position_m"]]
+        if ok:
+            r_eq = max(r["rtol"] for r in ok)
+            heads[f"{m}_equal_accuracy"] = Simulator(model, times, IntegratorSettings(method=m, rtol=r_eq,
+                                                                                       atol=r_eq * ATOL_CS / RTOL))
+            res[f"interleaved_{m}_equal_accuracy_rtol"] = r_eq
+            row = next(r for r in ok if r["rtol"] == r_eq)
+            res["explicit_equal_accuracy"][m] = {k: row[k] for k in ("rtol", "steps", "rhs_evals", "ms", "errors")}
     rounds = []
     for _ in range(1 if args.quick else 3):
         w_s, _sol = best_of(run_scipy, 1, budget_s=0.0)
@@ -298,6 +309,9 @@ def main(argv=None) -> int:
     res["interleaved"] = {"rounds": rounds, "median_speedup": {k: float(np.median([r[k] for r in rounds])) for k in heads}}
     print("interleaved rounds, median speedup vs SciPy: "
           + ", ".join(f"{k} {v:.0f}x" for k, v in res["interleaved"]["median_speedup"].items()))
+    for m, r in res["explicit_equal_accuracy"].items():
+        print(f"  {m} at equal accuracy: rtol {r['rtol']:g}, {r['steps']} steps, {r['rhs_evals']} RHS evaluations, "
+              f"body position error {r['errors']['body_position_m']:.1e} m")
 
     res["speedup_vs_scipy"] = res["scipy_ms"] / res["cablesys_ms"]
     res["speedup_vs_scipy_vm"] = res["scipy_ms"] / res["vm"]["ms"]
@@ -368,12 +382,13 @@ def plot(path, res):
     names = ["SciPy LSODA\n+ NumPy", "CVODES\nvirtual\nmachine", "CVODES\ncompiled\n(default)"]
     vals = [res["scipy_ms"], res["vm"]["ms"], res["cablesys_ms"]]
     errs = [res["scipy_errors"], res["vm"]["errors"], res["cablesys_errors"]]
-    short = {"cvodes-bdf2": "BDF <= 2", "cvodes-adams": "Adams", "rk4": f"RK4 {RK_STEPS}/out", "dopri5": "DOPRI5"}
+    short = {"cvodes-bdf2": "BDF <= 2", "cvodes-adams": "Adams", "rk4": f"RK4 {RK_STEPS}/out", "dopri5": "DOPRI5",
+             "rk23": "BS3 (rk23)"}
     for k, v in res["compiled"].items():
         names.append(short.get(k, k) + "\ncompiled")
         vals.append(v["ms"])
         errs.append(v["errors"])
-    colors = ["tab:gray", "tab:purple", "tab:blue", "tab:orange", "tab:green", "tab:red", "tab:brown"]
+    colors = ["tab:gray", "tab:purple", "tab:blue", "tab:orange", "tab:green", "tab:red", "tab:brown", "tab:olive"]
     bars = ax1.bar(range(len(vals)), vals, color=colors[: len(vals)])
     for b, v, e in zip(bars, vals, errs):
         ax1.text(b.get_x() + b.get_width() / 2, v * 1.1, f"{v:.0f} ms\n({vals[0] / v:.0f}x)\nerr {e['body_position_m']:.0e} m",
@@ -384,7 +399,7 @@ def plot(path, res):
     ax1.set_ylabel("wall time (ms, log scale)")
     ax1.set_title(f"{res['duration_s']:g} s of the Dale scene (ramped start), rtol {RTOL:g}, atol {ATOL:g}", fontsize=10)
     style = {"cvodes": ("tab:blue", "o"), "cvodes-bdf2": ("tab:orange", "s"), "rk4": ("tab:red", "^"),
-             "dopri5": ("tab:brown", "v")}
+             "dopri5": ("tab:brown", "v"), "rk23": ("tab:olive", "P")}
     for method, (c, mk) in style.items():
         rows = [r for r in res["work_precision"] if r["method"] == method]
         ax2.loglog([r["errors"]["body_position_m"] for r in rows], [r["ms"] for r in rows], marker=mk, color=c,

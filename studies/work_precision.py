@@ -204,7 +204,9 @@ def main(argv=None) -> int:
 
 STYLE = {"cvodes": ("tab:blue", "o"), "cvodes-bdf2": ("tab:cyan", "P"), "cvodes-adams": ("tab:orange", "s"),
          "idas": ("tab:green", "^"),
-         "rk": ("tab:red", "D"), "collocation": ("tab:purple", "v"), "dopri5": ("tab:brown", "X")}
+         "rk": ("tab:red", "D"), "collocation": ("tab:purple", "v"), "dopri5": ("tab:brown", "X"),
+         "rk23": ("tab:olive", "*")}
+DEFAULT_STYLE = ("tab:gray", ".")      # a registered method without its own style still plots
 
 
 def plot_wp(path, wp):
@@ -215,7 +217,7 @@ def plot_wp(path, wp):
             ok = [r for r in rows if r["success"]]
             if not ok:
                 continue
-            c, mk = STYLE[method]
+            c, mk = STYLE.get(method, DEFAULT_STYLE)
             failed = [r for r in rows if not r["success"]]
             lbl = method + (" (rtol sweep)" if method in ADAPTIVE else " (steps/output sweep)")
             if failed:
