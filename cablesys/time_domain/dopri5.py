@@ -1,4 +1,24 @@
-"""``dopri5``: Dormand-Prince 5(4) with error control, run entirely in compiled C.
+"""``dopri5`` and ``rk23``: explicit Runge-Kutta pairs with error control, run entirely in compiled C.
+
+One C driver (``dopri5.c``) holds both pairs as small tables (stages, a_ij, c_i, error weights,
+orders, PI beta, dense-output rule) selected by a preprocessor define (:data:`PAIRS`), so each
+model gets one library per pair and everything but the table is shared: ``dopri5``, below, and
+``rk23``, the Bogacki-Shampine 3(2) pair (Bogacki & Shampine 1989, "A 3(2) pair of Runge-Kutta
+formulas", Appl. Math. Lett. 2(4), 321-325; SciPy's RK23, MATLAB's ode23): 4 stages, first same
+as last (3 new right-hand sides a step), step exponent 1/3 of its 2nd-order estimate, PI beta
+0.08, dense output by the cubic Hermite interpolant of (x_n, f_n, x_n+1, f_n+1) (third order;
+SciPy's RK23 uses the same). Why rk23 on Wang's model: its stability function 1 + z + z^2/2 +
+z^3/6 is stable on the imaginary axis up to |h lambda| = sqrt(3), so on the undamped Dale
+stretch mode (254 rad/s) the step settles at ~60 x 254 / 1.7 = 9k steps per 60 s at rtol
+1e-3-1e-4, ~33k right-hand sides against DOPRI5's ~85k, while the slow swing is resolved to
+~1e-9 m at that step anyway. Measured (``studies/bench_time_domain.py``, 60 s ramped Dale,
+load ~1, interleaved rounds against SciPy LSODA at rtol 1e-6, 2.46 s, body error 4.9e-9 m):
+at equal accuracy rk23 (rtol 1e-3: 9.0k steps, 32.5k right-hand sides, 3.6e-9 m, 12 ms) median
+220x, dopri5 (rtol 1e-4: 11.4k steps, 85k, 1.8e-9 m, 25 ms) 102x; at rtol 1e-6 rk23 104x
+(23k steps: there its accuracy, not stability, sets the step) and dopri5 90x. Below rtol ~1e-6
+DOPRI5's higher order wins (rk23 at 1e-8: 114k steps).
+
+The DOPRI5 pair:
 
 The method is the explicit embedded Runge-Kutta pair of Dormand & Prince (1980) ("A family of
 embedded Runge-Kutta formulae", J. Comput. Appl. Math. 6, 19-26) with the step control of
