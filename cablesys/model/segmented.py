@@ -72,8 +72,11 @@ class SegmentedModel(CableModel):
     def loop_ode(self) -> ca.Function:
         """The ``ode`` a compiled explicit loop (RK4) should evaluate: the element kernel mapped over
         the elements (:mod:`.segmented_kernel`, MX: C of constant size) from
-        :data:`KERNEL_MIN_ELEMENTS` elements, else the element-by-element SX ``ode``."""
-        if self.kernel_ode is not None and self.n_elements >= KERNEL_MIN_ELEMENTS:
+        :data:`KERNEL_MIN_ELEMENTS` elements, else the element-by-element SX ``ode``. A copy made with
+        another ``ode`` (``dataclasses.replace``) must replace or clear ``kernel_ode`` too; one whose
+        state size no longer matches falls back to its ``ode``."""
+        if (self.kernel_ode is not None and self.n_elements >= KERNEL_MIN_ELEMENTS
+                and self.kernel_ode.sparsity_in(0) == self.ode.sparsity_in(0)):
             return self.kernel_ode
         return self.ode
 
