@@ -353,3 +353,27 @@ def test_large_segmented_models_run_in_the_vm_by_default(cache):
     assert not list(cache_dir().glob("*.so"))                  # nothing was handed to the compiler
     small = simulate(with_segments(scene, 2))
     assert small.success and small.stats["compiled"] is True
+
+
+def test_the_rk_loop_of_a_large_segmented_model_compiles_its_kernel_alone(cache):
+    """Past COMPILE_MAX_ELEMENTS the fixed-step RK4 loop still compiles: it steps the mapped element
+    kernel, whose C does not grow with N; the output functions, which do, stay in the VM. The compiled
+    run gives the VM run's states."""
+    from cablesys.ladder.rungs import with_segments
+    from cablesys.model import build_model
+    from cablesys.scene import dale_scene
+    from cablesys.time_domain import IntegratorSettings, Simulator, simulate
+    from cablesys.time_domain.integrators import (
+        COMPILE_MAX_ELEMENTS,
+        compiled_by_default,
+    )
+    scene = with_segments(dale_scene().with_numerics(duration=0.02, output_step=0.01, steps_per_output=160),
+                          COMPILE_MAX_ELEMENTS + 1)
+    model = build_model(scene)
+    assert compiled_by_default(model, "rk") and not compiled_by_default(model, "cvodes")
+    run = simulate(scene, model=model, method="rk")
+    assert run.success and run.stats["compiled"] is True
+    assert len(list(cache_dir().glob("*.so"))) == 1              # the loop alone
+    ref = Simulator(model, scene.output_times, IntegratorSettings(method="rk", steps_per_output=160, compiled=False))
+    x_vm = ref.run(model.parameters(scene), run.states[:, 0]).states
+    np.testing.assert_allclose(run.states, x_vm, rtol=1e-9, atol=1e-12)

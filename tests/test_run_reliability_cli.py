@@ -131,7 +131,8 @@ def test_a_failed_run_replaces_the_old_summary_and_another_scene_needs_overwrite
     assert main(["run", str(stiff), "--out", str(out)]) == 2             # another scene's results
     assert "--overwrite" in capsys.readouterr().err
     assert json.loads((out / "summary.json").read_text())["status"] == "success"    # untouched
-    assert main(["run", str(stiff), "--out", str(out), "--overwrite", "--max-steps", "1000"]) == 1
+    # Wang's model forced: auto would run the quasi-static segmented cable, which has no stiff stretch mode
+    assert main(["run", str(stiff), "--out", str(out), "--overwrite", "--max-steps", "1000", "--model", "wang"]) == 1
     doc = json.loads((out / "summary.json").read_text())
     assert doc["status"] == "failed" and doc["success"] is False
     assert "step budget exhausted" in doc["message"] and doc["stats"]["max_num_steps"] == 1000

@@ -138,20 +138,38 @@ def _dae_function(model: CableModel, implicit: bool, scaled: bool = False) -> ca
 COMPILE_MAX_ELEMENTS = 20
 
 
-def compiled_by_default(model: CableModel) -> bool:
-    """Whether a run of ``model`` compiles by default: up to :data:`COMPILE_MAX_ELEMENTS` elements.
+def compiled_by_default(model: CableModel, method=None) -> bool:
+    """Whether a run of ``model`` compiles by default: up to :data:`COMPILE_MAX_ELEMENTS` elements, and
+    the fixed-step ``rk`` loop of a segmented model at any size (it steps the mapped element kernel,
+    :mod:`cablesys.model.segmented_kernel`, whose C is ~30 kB whatever N: gcc under 2 s at N = 80, and
+    a right-hand side 8x cheaper than the VM's, ``studies/bench_vs_moordyn.py`` slack row).
 
     Parameters
     ----------
     model : CableModel
         The model (a segmented model counts its elements; the 2-DOF models count as one).
+    method : str, optional
+        The integration method of the run.
 
     Returns
     -------
     bool
-        True to compile (and cache) its functions, False to run them in CasADi's virtual machine.
+        True to compile (and cache) the integrator's functions, False to run them in CasADi's
+        virtual machine (the Simulator's output functions follow the element rule alone:
+        :func:`helpers_compiled`).
     """
-    return int(getattr(model, "n_elements", 1)) <= COMPILE_MAX_ELEMENTS
+    if int(getattr(model, "n_elements", 1)) <= COMPILE_MAX_ELEMENTS:
+        return True
+    return method == "rk" and getattr(model, "kernel_ode", None) is not None
+
+
+def helpers_compiled(model: CableModel, settings: IntegratorSettings) -> IntegratorSettings:
+    """``settings`` for the functions a run evaluates at the output times (slack gaps, top motion,
+    outputs): compiled as the integrator is, but past :data:`COMPILE_MAX_ELEMENTS` elements only when
+    ``jit`` asks (their SX code grows with N: the outputs of 80 elements are 2.4 MB of C)."""
+    if settings.compiled and not settings.jit and int(getattr(model, "n_elements", 1)) > COMPILE_MAX_ELEMENTS:
+        return dataclasses.replace(settings, compiled=False)
+    return settings
 
 
 def dae_function(model: CableModel, implicit: bool, compiled: bool = True, scaled: bool = False) -> Compiled:

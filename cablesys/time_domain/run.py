@@ -31,6 +31,7 @@ from .integrators import (
     compiled_by_default,
     compiled_dae,
     compiled_functions,
+    helpers_compiled,
     make_integrator,
 )
 from .record import (
@@ -83,7 +84,7 @@ class Simulator(ev.EventLocator):
         self._gap_and_rate = ca.Function("gap_rate", [x, t, p], [g, g1])
         self._gap_rates = ca.Function("gap_rates", [x, t, p], [g, g1, g2])
         self._gap_and_rate, self._top_c, self._outputs_c = compiled_functions(   # one cached library
-            model, self.settings, [self._gap_and_rate, model.top, model.outputs])
+            model, helpers_compiled(model, self.settings), [self._gap_and_rate, model.top, model.outputs])
         # the same functions over many output times, numpy in and out (no DM conversion, no map per call)
         self._gap_cols, self._top_cols, self._outputs_cols = (
             Columns(f) for f in (self._gap_and_rate, self._top_c, self._outputs_c))
@@ -385,7 +386,8 @@ def simulate(scene: Scene, *, model: CableModel | None = None, method: str | Non
         extra = {} if max_num_steps is None else {"max_num_steps": int(max_num_steps)}
         settings = IntegratorSettings(method=method or num.integrator, rtol=rtol or num.rtol, atol=atol or num.atol,
                                       steps_per_output=num.steps_per_output, jit=jit,
-                                      compiled=compiled_by_default(model), **extra)   # jit=True compiles any size
+                                      compiled=compiled_by_default(model, method or num.integrator),
+                                      **extra)   # jit=True compiles any size
         simulator = Simulator(model, scene.output_times if times is None else times, settings)
     build_s = _time.perf_counter() - t_build
     p = model.parameters(scene)
