@@ -101,3 +101,29 @@ def test_agrees_with_wang_on_dale_in_far_fewer_steps():
         assert b[lbl][late].max() == pytest.approx(a[lbl][late].max(), rel=1e-3)
         assert b[lbl][late].min() == pytest.approx(a[lbl][late].min(), rel=1e-3)
     assert a.stats["nsteps"] > 5 * b.stats["nsteps"]
+
+
+@pytest.mark.parametrize("ae_lb", [5.0, 1000.0])
+def test_stretch_rate_is_the_derivative_of_the_stretch_along_the_motion(ae_lb):
+    """The quasi-static u' (implicit-function theorem at the converged stretch) is du/dt along the
+    motion: a central difference of u over (s + eps s', s' + eps s'', z + eps z', z' + eps z'') at a
+    swinging, drag-loaded state of the Dale scene (soft and stiff cable) agrees to O(eps^2)."""
+    scene = dale_scene(ae_lb=ae_lb)
+    qs = build_quasistatic(scene)
+    p = qs.parameters(scene)
+    labels = list(qs.output_labels)
+    iu, iud = labels.index("u"), labels.index("u_rate")
+    x = np.array([0.2, 0.5])                      # phi, phi' (rad, rad/s)
+    t = 1.3
+    e = np.array(qs.top(t, p)).ravel()            # (t, z, z', z'')
+    sdd = float(np.array(qs.ode(x, t, p)).ravel()[1])
+    direction_x = np.array([x[1], sdd])
+    direction_e = np.concatenate([[0.0], e[3:5], e[5:7], [0.0, 0.0]])
+
+    def u_at(eps):
+        return float(np.array(qs.outputs(x + eps * direction_x, e + eps * direction_e, p)).ravel()[iu])
+    eps = 1e-5
+    fd = (u_at(eps) - u_at(-eps)) / (2 * eps)
+    ud = float(np.array(qs.outputs(x, e, p)).ravel()[iud])
+    assert abs(ud) > 0
+    assert ud == pytest.approx(fd, rel=1e-5, abs=1e-12)

@@ -122,7 +122,7 @@ def _assemble(n, slow, fast, s_vals, u_vals):
 
 
 def _stretch_solution(full: CableModel, slow, fast, s, sd, e, p, iterations: int, start=None, stiffness=None):
-    """(u, s'', M_ss, f_s): the stretch satisfying the u-rows with u'' = u' = 0.
+    """(u, s'', M_ss, f_s, u'): the stretch satisfying the u-rows with u'' = u' = 0, and its rate along the motion.
 
     Wang's cable (``stiffness`` None): Newton with the exact AD Jacobian from the zero-tension length.
     Elements: the chord method u <- u + r / k_e from ``start`` (both SX of p), one evaluation of the
@@ -151,13 +151,19 @@ def _stretch_solution(full: CableModel, slow, fast, s, sd, e, p, iterations: int
         r_t = ca.jtimes(r, ca.vertcat(s, sd, e), ca.vertcat(sd, sdd, 0.0, zd, zdd, 0.0, 0.0))
         ud = ca.Function("rows_rate", [u_sym, s, sd, e, p], [r_t])(u_last, s, sd, e, p) / stiffness
         return u, sdd_u, M_s, f_s, ud
-    step = ca.solve(ca.jacobian(r, u_sym), r)
-    newton = ca.Function("newton", [u_sym, s, sd, e, p], [u_sym - step])
+    J = ca.jacobian(r, u_sym)
+    newton = ca.Function("newton", [u_sym, s, sd, e, p], [u_sym - ca.solve(J, r)])
     u = ca.SX.zeros(nf) if start is None else start          # default: zero-tension length (eq. 1)
     for _ in range(iterations):
         u = newton(u, s, sd, e, p)
     M_s, f_s, sdd_s = (ca.substitute(v, u_sym, u) for v in (M_ss, f[slow], sdd))
-    return u, sdd_s, M_s, f_s
+    # u' along the motion by the implicit-function theorem at the converged stretch: r(u, s, s', z, z') = 0
+    # gives dr/du u' = -(dr/dt at fixed u) (one forward sweep and an nf x nf solve, instead of AD through
+    # the unrolled Newton iterations: the heave scene's outputs 15.5k -> ~4k operations)
+    zd, zdd = e[3:5], e[5:7]
+    r_t = ca.jtimes(r, ca.vertcat(s, sd, e), ca.vertcat(sd, sdd, 0.0, zd, zdd, 0.0, 0.0))
+    ud = ca.Function("rows_rate", [u_sym, s, sd, e, p], [-ca.solve(J, r_t)])(u, s, sd, e, p)
+    return u, sdd_s, M_s, f_s, ud
 
 
 def build_quasistatic(scene: Scene, *, full: CableModel | None = None,
@@ -207,18 +213,13 @@ def _build_quasistatic(scene: Scene, full: CableModel | None, iterations: int) -
     # tension law max(TENS, ...) (eq. 54) is flat below the floor, so they start from the hanging stretch
     elements = isinstance(full, ElementModel)
     start, stiffness = (hanging_stretch(scene, full.layout)(p), element_stiffness(scene, full.layout)(p)) if elements else (None, None)
-    u, sdd, M_s, f_s, *ud = _stretch_solution(full, slow, fast, s, sd, e, p, iterations, start, stiffness)
-    opts = {"cse": True} if elements else {}    # the chord's evaluations share many terms
+    u, _, M_s, f_s, ud = _stretch_solution(full, slow, fast, s, sd, e, p, iterations, start, stiffness)
+    opts = {"cse": True}    # the chord's or Newton's evaluations share many terms
     dynamics = ca.Function("dynamics", [s, sd, e, p], [M_s, f_s], ["q", "qd", "e", "p"], ["M", "f"], opts)
 
     # u' along the motion: du/dt = du/ds s' + du/ds' s'' + du/dz z' + du/dz' z'' (the jerk and the
-    # explicit time dependence of waves are left out: they are higher order in omega / omega_ax)
-    z, zd, zdd = e[1:3], e[3:5], e[5:7]
-    if elements:
-        ud = ud[0]
-    else:
-        ud = (ca.mtimes(ca.jacobian(u, s), sd) + ca.mtimes(ca.jacobian(u, sd), sdd)
-              + ca.mtimes(ca.jacobian(u, z), zd) + ca.mtimes(ca.jacobian(u, zd), zdd))
+    # explicit time dependence of waves are left out: they are higher order in omega / omega_ax):
+    # ud from _stretch_solution
     x_full = ca.vertcat(_assemble(n, slow, fast, [s[k] for k in range(ns)], [u[k] for k in range(len(fast))]),
                         _assemble(n, slow, fast, [sd[k] for k in range(ns)], [ud[k] for k in range(len(fast))]))
     x = ca.vertcat(s, sd)
