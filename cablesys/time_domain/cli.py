@@ -333,6 +333,6 @@ def _dale_model(scene) -> dict:
     wang, auto = forced(scene, "wang", cache=cache), choose(scene, cache=cache)
     d = wang.as_dict()
     d["reason"] = (f"Wang's 2-DOF model, as Wang (1971) Table 2 compares it with the experiment; the model ladder "
-                   f"would run {auto.name}" + (f" N = {auto.segments}" if auto.name == "segmented" else "")
+                   f"would run {auto.name}" + (f" N = {auto.segments}" if auto.segments > 1 else "")
                    + " for a scene file with model = auto")
     return d
