@@ -158,25 +158,47 @@ def _oscillator_exact(t, w, zeta):
     return np.vstack([x, v])
 
 
+def oscillator_error(method, rtol, zeta):
+    """(largest global error relative to the amplitude, stats) of ``method`` on the linear oscillator
+    (closed form) over 10 periods, 200 outputs, atol = rtol on the unscaled states."""
+    model, w = _Oscillator(), 2 * math.pi
+    grid = np.linspace(0.0, 10.0, 201)
+    F = make_integrator(model, IntegratorSettings(method=method, rtol=rtol, atol=rtol, scaled=False,
+                                                  max_num_steps=10**5), grid)
+    assert isinstance(F, Dopri5Integrator)
+    X = np.array(F(x0=[1.0, 0.0], p=np.array([w, zeta, 0.0, 1.0]))["xf"])
+    scale = np.array([[1.0], [w]])
+    return float(np.max(np.abs(X - _oscillator_exact(grid[1:], w, zeta)) / scale)), F.stats()
+
+
+def as_accurate_as_cvodes(dale_ramped, method):
+    """Wang's model, ramped Dale, 20 s: ``method`` at rtol 1e-6 is at least as accurate (within 2x per
+    state) as CVODES at rtol 1e-6 (same atol, scaled) against CVODES at rtol 1e-12."""
+    scene, model, p, x0 = dale_ramped
+    times = scene.output_times[scene.output_times <= 20.0 + 1e-9]
+
+    def run(name, rtol, atol):
+        rec = Simulator(model, times, IntegratorSettings(method=name, rtol=rtol, atol=atol,
+                                                         max_num_steps=10**6)).run(p, x0)
+        assert rec.success, rec.message
+        return rec
+    ref = run("cvodes", 1e-12, 1e-13).states
+    cv, ex = run("cvodes", 1e-6, 1e-7), run(method, 1e-6, 1e-7)
+    assert ex.stats["compiled"] and ex.stats["nsteps"] > 0
+    e_cv, e_ex = (np.max(np.abs(r.states - ref), axis=1) for r in (cv, ex))
+    assert np.all(e_ex <= 2 * e_cv), (e_ex, e_cv)
+
+
 @needs_cc
 @pytest.mark.parametrize("zeta", [0.0, 0.05])
 def test_global_error_follows_the_tolerance(compiling, zeta):
     """Linear oscillator over 10 periods, closed form: the largest global error (relative to the
     amplitude) is within a small multiple of rtol and falls ~ in proportion with it (rtol from
     1e-4 to 1e-9: the error falls by more than 1e4 and less than 1e6.5)."""
-    model, w = _Oscillator(), 2 * math.pi
-    grid = np.linspace(0.0, 10.0, 201)
-    p = np.array([w, zeta, 0.0, 1.0])
-    exact = _oscillator_exact(grid[1:], w, zeta)
-    scale = np.array([[1.0], [w]])
     errs = {}
     for rtol in (1e-4, 1e-6, 1e-9):
-        F = make_integrator(model, IntegratorSettings(method="dopri5", rtol=rtol, atol=rtol, scaled=False,
-                                                      max_num_steps=10**5), grid)
-        assert isinstance(F, Dopri5Integrator)
-        X = np.array(F(x0=[1.0, 0.0], p=p)["xf"])
-        errs[rtol] = float(np.max(np.abs(X - exact) / scale))
-        assert F.stats()["status"] == 0 and F.stats()["nsteps"] > 0
+        errs[rtol], st = oscillator_error("dopri5", rtol, zeta)
+        assert st["status"] == 0 and st["nsteps"] > 0
         assert errs[rtol] < 50 * rtol, (rtol, errs[rtol])
     ratio = errs[1e-4] / errs[1e-9]
     assert 1e4 < ratio < 10 ** 6.5, errs
@@ -206,20 +228,7 @@ def _lambda_max(model, x, p):
 def test_wang_dale_as_accurate_as_cvodes(dale_ramped):
     """Wang's model, ramped Dale, 20 s: dopri5 at rtol 1e-6 is at least as accurate as CVODES at
     rtol 1e-6 (same atol, scaled) against CVODES at rtol 1e-12 (each state's largest error)."""
-    scene, model, p, x0 = dale_ramped
-    times = scene.output_times[scene.output_times <= 20.0 + 1e-9]
-
-    def run(method, rtol, atol):
-        sim = Simulator(model, times, IntegratorSettings(method=method, rtol=rtol, atol=atol, max_num_steps=10**6))
-        rec = sim.run(p, x0)
-        assert rec.success, rec.message
-        return rec
-    ref = run("cvodes", 1e-12, 1e-13).states
-    cv, dp = run("cvodes", 1e-6, 1e-7), run("dopri5", 1e-6, 1e-7)
-    assert dp.stats["compiled"] and dp.stats["nsteps"] > 0
-    e_cv = np.max(np.abs(cv.states - ref), axis=1)
-    e_dp = np.max(np.abs(dp.states - ref), axis=1)
-    assert np.all(e_dp <= 2 * e_cv), (e_dp, e_cv)
+    as_accurate_as_cvodes(dale_ramped, "dopri5")
 
 
 @needs_cc

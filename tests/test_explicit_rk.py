@@ -14,12 +14,13 @@ import pytest
 from test_dopri5 import (
     C_SOURCE,
     _lambda_max,
-    _Oscillator,
     _oscillator_exact,
     _ramped_dale,
+    as_accurate_as_cvodes,
     compiling,  # noqa: F401  (fixture)
     dale_ramped,  # noqa: F401  (fixture)
     needs_cc,
+    oscillator_error,
 )
 
 from cablesys.errors import SolverError
@@ -120,19 +121,13 @@ def test_global_error_follows_the_tolerance(compiling, zeta):  # noqa: F811
     SciPy's RK23 (the same pair, error norm and step control) at the same tolerances."""
     from scipy.integrate import solve_ivp
 
-    model, w = _Oscillator(), 2 * math.pi
+    w = 2 * math.pi
     grid = np.linspace(0.0, 10.0, 201)
-    p = np.array([w, zeta, 0.0, 1.0])
     exact = _oscillator_exact(grid[1:], w, zeta)
     scale = np.array([[1.0], [w]])
     errs = {}
     for rtol in (1e-4, 1e-6, 1e-8):
-        F = make_integrator(model, IntegratorSettings(method="rk23", rtol=rtol, atol=rtol, scaled=False,
-                                                      max_num_steps=10**5), grid)
-        assert isinstance(F, Dopri5Integrator)
-        X = np.array(F(x0=[1.0, 0.0], p=p)["xf"])
-        errs[rtol] = float(np.max(np.abs(X - exact) / scale))
-        st = F.stats()
+        errs[rtol], st = oscillator_error("rk23", rtol, zeta)
         assert st["status"] == 0 and st["nfevals"] <= 3 * (st["nsteps"] + st["n_rejected"]) + 2
         assert errs[rtol] < 200 * rtol, (rtol, errs[rtol])
         sp = solve_ivp(lambda t, y: [y[1], -w * w * y[0] - 2 * zeta * w * y[1]], (0.0, 10.0), [1.0, 0.0],
@@ -146,19 +141,7 @@ def test_global_error_follows_the_tolerance(compiling, zeta):  # noqa: F811
 def test_wang_dale_as_accurate_as_cvodes(dale_ramped):  # noqa: F811
     """Wang's model, ramped Dale, 20 s: rk23 at rtol 1e-6 is at least as accurate as CVODES at
     rtol 1e-6 (same atol, scaled) against CVODES at rtol 1e-12 (each state's largest error)."""
-    scene, model, p, x0 = dale_ramped
-    times = scene.output_times[scene.output_times <= 20.0 + 1e-9]
-
-    def run(method, rtol, atol):
-        rec = Simulator(model, times, IntegratorSettings(method=method, rtol=rtol, atol=atol,
-                                                         max_num_steps=10**6)).run(p, x0)
-        assert rec.success, rec.message
-        return rec
-    ref = run("cvodes", 1e-12, 1e-13).states
-    cv, bs = run("cvodes", 1e-6, 1e-7), run("rk23", 1e-6, 1e-7)
-    assert bs.stats["compiled"] and bs.stats["nsteps"] > 0
-    e_cv, e_bs = (np.max(np.abs(r.states - ref), axis=1) for r in (cv, bs))
-    assert np.all(e_bs <= 2 * e_cv), (e_bs, e_cv)
+    as_accurate_as_cvodes(dale_ramped, "rk23")
 
 
 @needs_cc
