@@ -9,8 +9,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import subprocess
 import sys
 from pathlib import Path
 
@@ -40,13 +38,10 @@ def test_moordyn_input_keeps_spring_mass_and_weight():
 
 
 @pytest.mark.slow
-def test_quick_benchmark_agrees_with_moordyn(tmp_path):
-    env = dict(os.environ, MPLBACKEND="Agg")
-    proc = subprocess.run([sys.executable, str(ROOT / "studies" / "bench_vs_moordyn.py"), "--out", str(tmp_path), "--quick"],
-                          check=False, cwd=ROOT, env=env, capture_output=True, text=True)
-    assert proc.returncode == 0, proc.stderr[-3000:]
-    data = json.loads((tmp_path / "bench_vs_moordyn.json").read_text())
-    assert (tmp_path / "bench_vs_moordyn.png").stat().st_size > 10_000
+def test_quick_benchmark_agrees_with_moordyn(run_study):
+    out = run_study("bench_vs_moordyn", "--quick")
+    data = json.loads((out / "bench_vs_moordyn.json").read_text())
+    assert (out / "bench_vs_moordyn.png").stat().st_size > 10_000
     (case,) = data["cases"]
     (e,) = case["by_n"]
     assert e["moordyn_stable"]

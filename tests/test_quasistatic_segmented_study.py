@@ -1,21 +1,12 @@
 """The quasi-static segmented study (issue 12) in --quick mode: JSON, chart, and what it must show."""
 
 import json
-import os
-import subprocess
-import sys
-from pathlib import Path
-
-ROOT = Path(__file__).resolve().parents[1]
 
 
-def test_quick_study(tmp_path):
-    env = dict(os.environ, MPLBACKEND="Agg")
-    proc = subprocess.run([sys.executable, str(ROOT / "studies" / "quasistatic_segmented.py"), "--out", str(tmp_path), "--quick"],
-                          check=False, cwd=ROOT, env=env, capture_output=True, text=True)
-    assert proc.returncode == 0, proc.stderr[-3000:]
-    doc = json.loads((tmp_path / "quasistatic_segmented.json").read_text())
-    assert (tmp_path / "quasistatic_segmented_dale.png").stat().st_size > 10_000
+def test_quick_study(run_study):
+    out = run_study("quasistatic_segmented", "--quick")
+    doc = json.loads((out / "quasistatic_segmented.json").read_text())
+    assert (out / "quasistatic_segmented_dale.png").stat().st_size > 10_000
     (case,) = doc["cases"]
     assert case["reference"]["success"]
     for e in case["by_n"]:
