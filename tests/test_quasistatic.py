@@ -31,6 +31,17 @@ def _pendulum(ae=1e9, cd=0.0, cda=0.0, heave=None, duration=20.0):
                                 top_motion=top, numerics=Numerics(duration=duration, output_step=0.05))
 
 
+
+def heave_tension_amplitudes(models, p, omega):
+    """{model.kind: |tension / y_s|} of each model's linearization at the heave frequency ``omega``
+    (the body-end tension per metre of top heave, N/m)."""
+    amp = {}
+    for m in models:
+        lin = linearize(m, p)
+        _, Y = lin.transfer([omega])
+        amp[m.kind] = abs(Y[0, lin.output_labels.index("tension"), lin.input_labels.index("y_s")])
+    return amp
+
 def test_rigid_compound_pendulum_frequency():
     """A stiff cable swings as a compound pendulum: omega^2 = (W_b + W_c/2) l / (M_bvx l^2 + M_cv l^2 / 3),
     M_cv the cable mass plus its added mass (Wang 1971 eq. 22-25)."""
@@ -55,11 +66,7 @@ def test_quasistatic_spring_amplification(ratio):
     qs = build_quasistatic(scene, full=full)
     p = full.parameters(scene)
     omega = ratio * w_ax
-    amp = {}
-    for m in (full, qs):
-        lin = linearize(m, p)
-        _, Y = lin.transfer([omega])
-        amp[m.kind] = abs(Y[0, lin.output_labels.index("tension"), lin.input_labels.index("y_s")])
+    amp = heave_tension_amplitudes((full, qs), p, omega)
     c, b = scene.cable, scene.body
     assert amp["quasi-static"] == pytest.approx((b.mass_y + c.total_mass / 2) * omega**2, rel=1e-9)
     assert amp["wang"] / amp["quasi-static"] == pytest.approx(1.0 / (1.0 - ratio**2), rel=1e-9)

@@ -12,6 +12,7 @@ import math
 import numpy as np
 import pytest
 from scipy.special import jn_zeros
+from test_quasistatic import heave_tension_amplitudes
 
 from cablesys.ladder import metrics as M
 from cablesys.ladder.rungs import build_rung, rung_scene
@@ -132,11 +133,7 @@ def test_one_element_spring_amplification(ratio):
     mass = b.mass_y + c.total_mass / 2
     w1 = math.sqrt(c.ae / c.length / mass)
     omega = ratio * w1
-    amp = {}
-    for m in (node, qs):
-        lin = linearize(m, p)
-        _, Y = lin.transfer([omega])
-        amp[m.kind] = abs(Y[0, lin.output_labels.index("tension"), lin.input_labels.index("y_s")])
+    amp = heave_tension_amplitudes((node, qs), p, omega)
     assert amp["quasi-static"] == pytest.approx(mass * omega**2, rel=1e-9)
     assert amp["segmented"] / amp["quasi-static"] == pytest.approx(1 / (1 - ratio**2), rel=1e-9)
 
@@ -153,11 +150,7 @@ def test_four_elements_spring_amplification_is_second_order():
     w_ax = axial_frequencies(sc)[0]
     for ratio in (0.05, 0.1):
         omega = ratio * w_ax
-        amp = {}
-        for m in (node, qs):
-            lin = linearize(m, p)
-            _, Y = lin.transfer([omega])
-            amp[m.kind] = abs(Y[0, lin.output_labels.index("tension"), lin.input_labels.index("y_s")])
+        amp = heave_tension_amplitudes((node, qs), p, omega)
         assert amp["quasi-static"] == pytest.approx((b.mass_y + c.total_mass / 8) * omega**2, rel=1e-9)
         assert (amp["segmented"] / amp["quasi-static"] - 1) / ratio**2 == pytest.approx(1.0, rel=0.1)
 
