@@ -58,6 +58,7 @@ from ..compiled import Compiled, compilation_enabled, compile_functions, generat
 from ..integration import METHODS, IntegratorMethod, resolve
 from ..model import CableModel
 from ..model.scales import state_scales
+from .dopri5 import PAIRS, dopri5_library, fallback_settings, make_dopri5
 
 # the registry and the protocol of a user method live in cablesys.integration (the scene checks names there)
 ADAPTIVE = tuple(name for name, m in METHODS.items() if m.adaptive)
@@ -206,13 +207,17 @@ def uses_scaling(settings: IntegratorSettings) -> bool:
         settings.method == "rk" and settings.custom is None)
 
 
+def _explicit_pair(settings: IntegratorSettings) -> bool:
+    """Whether ``settings`` name a pair of the compiled explicit driver (:data:`.dopri5.PAIRS`)."""
+    return settings.custom is None and settings.method in PAIRS
+
+
 def compiled_dae(model: CableModel, settings: IntegratorSettings) -> Compiled:
     """The compiled model code :func:`make_integrator` uses for ``settings`` (the DAE, or the RK4
     interval for ``rk``), with its first build/load times."""
     if settings.method == "rk" and settings.custom is None:
         return rk4_interval(model, int(settings.steps_per_output), settings.compiled or settings.jit)
-    if settings.method in ("dopri5", "rk23") and settings.custom is None:
-        from .dopri5 import dopri5_library, fallback_settings
+    if _explicit_pair(settings):
         comp = dopri5_library(model, settings.compiled or settings.jit, settings.method)
         if comp.compiled:
             return comp
@@ -344,8 +349,7 @@ def make_integrator(model: CableModel, settings: IntegratorSettings, grid, name:
     """
     if settings.method == "rk" and settings.custom is None:
         return _rk4_integrator(model, settings, np.asarray(grid, dtype=float), name)
-    if settings.method in ("dopri5", "rk23") and settings.custom is None:
-        from .dopri5 import fallback_settings, make_dopri5
+    if _explicit_pair(settings):
         F = make_dopri5(model, settings, np.asarray(grid, dtype=float), name)
         if F is not None:
             return F
