@@ -38,7 +38,7 @@ from _cycles import cycle_statistics
 from _moordyn import largest_stable_dt, run_moordyn
 
 from cablesys.ladder import metrics as M
-from cablesys.time_domain.failures import RK4_LIMIT
+from cablesys.time_domain.failures import largest_rate, rk4_steps_per_output
 from cablesys.time_domain.integrators import COMPILE_MAX_ELEMENTS
 
 BODY_TOL, TENSION_TOL = 0.005, 0.01        # matched accuracy (issue 11)
@@ -88,8 +88,8 @@ def _stable_spo(sc, timed_run_prepared) -> tuple[int, float]:
     """RK4 steps per output interval at the largest stable step (h |lambda|_max = RK4_LIMIT at the
     initial state, the largest eigenvalue of the ODE Jacobian) and lambda_max."""
     sim, p, x0, _ = timed_run_prepared(sc, "rk", 1e-6, 1e-9)
-    lam = float(np.max(np.abs(np.linalg.eigvals(np.array(sim._jac(x0, sc.output_times[0], p))))))
-    return math.ceil(sc.numerics.output_step * lam / RK4_LIMIT), lam
+    lam = largest_rate(sim.model, x0, sc.output_times[0], p)
+    return rk4_steps_per_output(lam, sc.numerics.output_step), lam
 
 
 def _moordyn_step(sc, n, period, t0, keep: Path | None, key: str) -> tuple[float, str]:

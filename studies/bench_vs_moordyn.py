@@ -72,7 +72,7 @@ from cablesys.ladder import simulate_auto  # noqa: E402
 from cablesys.model import build_model  # noqa: E402
 from cablesys.scene import dale_scene, load_scene  # noqa: E402
 from cablesys.time_domain import simulate  # noqa: E402
-from cablesys.time_domain.failures import RK4_LIMIT  # noqa: E402
+from cablesys.time_domain.failures import largest_rate, rk4_steps_per_output  # noqa: E402
 from cablesys.time_domain.initial import initial_state  # noqa: E402
 from cablesys.time_domain.integrators import COMPILE_MAX_ELEMENTS, IntegratorSettings, make_integrator  # noqa: E402
 from cablesys.time_domain.run import Simulator  # noqa: E402
@@ -338,9 +338,9 @@ def _rk(sc, tight_stats, period, md_wall):
     h |lambda|_max = 2.78 for the largest eigenvalue of the Jacobian at the initial state."""
     dur = sc.numerics.duration
     sim, p, x0, _ = _prepared(sc, "rk", 1e-6, 1e-9)
-    lam = float(np.max(np.abs(np.linalg.eigvals(np.array(sim._jac(x0, sc.output_times[0], p))))))
+    lam = largest_rate(sim.model, x0, sc.output_times[0], p)
     h_out = float(sc.numerics.output_step)
-    spo = math.ceil(h_out * lam / RK4_LIMIT)
+    spo = rk4_steps_per_output(lam, h_out)
     if spo > 100:
         return {"skipped": f"RK4's stable step {h_out / spo:.3g} s needs {spo} steps per output", "lambda_max": lam}
     sc_rk = sc.with_numerics(steps_per_output=spo)

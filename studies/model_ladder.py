@@ -71,7 +71,7 @@ from _cycles import (
 )
 from _ladder_chart import plot_case
 from _ladder_checks import cheaper_within, find_row, run_name, verdicts
-from segmented_convergence import rk4_steps_per_output, slack_scene
+from segmented_convergence import slack_scene, stable_steps_per_output
 
 from cablesys import units as U
 from cablesys.errors import NumericalWarning
@@ -180,7 +180,7 @@ def _run(scene, rung: str, n: int, method: str | None, cache: RungCache) -> tupl
             warnings.simplefilter("ignore", NumericalWarning)
             if method == "rk-stable":
                 model, sc = cache.model(scene, rung, n), rung_scene(scene, rung, n)
-                spo = rk4_steps_per_output(model, sc, initial_state(sc, model, model.parameters(sc)), margin=2.0)
+                spo = stable_steps_per_output(model, sc, initial_state(sc, model, model.parameters(sc)), margin=2.0)
                 row["steps_per_output"] = spo = max(spo, scene.numerics.steps_per_output)
                 scene, method = scene.with_numerics(steps_per_output=spo), "rk"
             t0 = time.perf_counter()

@@ -53,7 +53,6 @@ import sys
 import time
 from pathlib import Path
 
-import casadi as ca
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -65,6 +64,7 @@ from cablesys.model import build_model
 from cablesys.plots import save_figure
 from cablesys.scene import OMEGA_N_MEASURED, dale_scene, load_scene
 from cablesys.time_domain import simulate
+from cablesys.time_domain.failures import largest_rate, rk4_steps_per_output
 from cablesys.time_domain.integrators import IntegratorSettings
 from cablesys.time_domain.run import Simulator, initial_state
 
@@ -72,15 +72,12 @@ HEAVE_SCENE = Path(cablesys.__file__).parent / "data" / "heave_300m.toml"
 METRICS = ("x_amp", "y_amp", "top_max", "top_min")
 
 
-def rk4_steps_per_output(model, scene, x0, margin: float = 2.5) -> int:
+def stable_steps_per_output(model, scene, x0, margin: float = 2.5) -> int:
     """RK4 steps per output interval that keep h |lambda|_max below 2.5 (RK4 is stable to 2.78): the
     undamped axial modes of a lumped cable make BDF resolve them anyway, so a fixed explicit step at
     the stability limit is the cheaper method for these scenes."""
-    p = model.parameters(scene)
-    x, t = model.sym("x", 2 * model.nq), model.sym("t")
-    jac = ca.Function("ode_jacobian", [x, t], [ca.jacobian(model.ode(x, t, p), x)])
-    lam = float(np.max(np.abs(np.linalg.eigvals(np.array(jac(x0, 0.0))))))
-    return max(1, math.ceil(scene.numerics.output_step * lam / margin))
+    lam = largest_rate(model, x0, 0.0, model.parameters(scene))
+    return rk4_steps_per_output(lam, scene.numerics.output_step, margin)
 
 
 def measure(scene, period: float, n_periods: int = 3) -> dict:
@@ -89,7 +86,7 @@ def measure(scene, period: float, n_periods: int = 3) -> dict:
     t0 = time.perf_counter()
     model = build_model(scene)
     x0 = initial_state(scene, model, model.parameters(scene))
-    spo = rk4_steps_per_output(model, scene, x0)
+    spo = stable_steps_per_output(model, scene, x0)
     sim = Simulator(model, scene.output_times, IntegratorSettings(method="rk", steps_per_output=spo, compiled=False))
     r = simulate(scene, model=model, simulator=sim, x0=x0)
     wall = time.perf_counter() - t0
@@ -167,7 +164,7 @@ def run_slack(scene, n: int, period: float, t0: float, *, refine: int = 1) -> di
     t_wall = time.perf_counter()
     model = build_model(sc)
     x0 = initial_state(sc, model, model.parameters(sc))
-    spo = refine * rk4_steps_per_output(model, sc, x0, margin=2.0)
+    spo = refine * stable_steps_per_output(model, sc, x0, margin=2.0)
     compiled = n <= COMPILE_MAX_SLACK
     settings = IntegratorSettings(method="rk", steps_per_output=spo, compiled=compiled)
     Simulator(model, sc.output_times[:3], settings).run(model.parameters(sc), x0)   # builds (compiles) the RK4 step loop

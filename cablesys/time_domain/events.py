@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..results import SnapLoad
+from .failures import ode_jacobian
 
 HERMITE_SAMPLES = np.linspace(0.0, 1.0, 33)[1:]
 
@@ -84,7 +85,7 @@ class EventLocator:
     """Switch and snap-load location for :class:`~cablesys.time_domain.run.Simulator` (a mixin).
 
     Uses the simulator's ``_advance``, ``_call``, ``_dense``, ``_gap_and_rate``, ``_gap_rates``
-    and ``_jac``.
+    and ``model``.
     """
 
     DENSE = 32     # points of the dense grid used to bracket a switch inside one interval
@@ -145,7 +146,7 @@ class EventLocator:
 
     def _snap(self, x, t_star, pm, i_sec, t_end):
         """First tension maximum after section ``i_sec`` went taut at ``t_star`` (dg/dt = 0, d2g/dt2 < 0)."""
-        J = np.array(self._jac(x, t_star, pm))
+        J = np.array(ode_jacobian(self.model)(x, t_star, pm))
         iu = self.model.q_labels.index(self.model.label("u", i_sec))
         w2 = max(-J[self.model.nq + iu, iu], 1e-12)
         window = min(t_end - t_star, 2.0 * np.pi / np.sqrt(w2))      # within one stretch period

@@ -6,8 +6,10 @@ this module reads the flag and time from it and words the message users see.
 
 from __future__ import annotations
 
+import math
 import re
 
+import casadi as ca
 import numpy as np
 
 REMEDIES = {
@@ -109,3 +111,52 @@ def rk4_stability_note(h: float, lam_max: float, steps_per_output: int) -> str:
     return (f"the fixed RK4 step h = {h:.3g} s times the largest eigenvalue |lambda| = {lam_max:.4g} 1/s "
             f"is {ratio:.3g} > {RK4_LIMIT} (RK4 stability limit): expect growth; use steps_per_output >= {need} "
             "or an implicit method ('cvodes', 'collocation')")
+
+
+def ode_jacobian(model) -> ca.Function:
+    """dx'/dx of ``model``'s ODE, ``(x, t, p) -> J``, built once per model (``model.derive``; ~100 ms
+    of AD for 20 elements, so only when asked: RK4's stability check, slack events, studies)."""
+    x, t, p = model.sym("x", 2 * model.nq), model.sym("t"), model.sym("p", len(model.layout))
+    return model.derive("ode_jacobian", lambda: ca.Function("ode_jacobian", [x, t, p], [ca.jacobian(model.ode(x, t, p), x)]))
+
+
+def largest_rate(model, x, t: float, p) -> float:
+    """|lambda|_max of the ODE Jacobian of ``model`` at state ``x``, time ``t`` (1/s).
+
+    Parameters
+    ----------
+    model : CableModel
+        The model.
+    x : array_like
+        State (SI).
+    t : float
+        Time (s).
+    p : array_like
+        Parameter vector.
+
+    Returns
+    -------
+    float
+        The largest eigenvalue modulus.
+    """
+    return float(np.max(np.abs(np.linalg.eigvals(np.array(ode_jacobian(model)(x, t, p))))))
+
+
+def rk4_steps_per_output(lam_max: float, output_step: float, limit: float = RK4_LIMIT) -> int:
+    """Fewest RK4 steps per output interval that keep h |lambda|_max <= ``limit`` (at most RK4_LIMIT).
+
+    Parameters
+    ----------
+    lam_max : float
+        Largest eigenvalue modulus (1/s), e.g. :func:`largest_rate`.
+    output_step : float
+        Output interval (s).
+    limit : float, optional
+        The bound on h |lambda|_max (a margin below RK4_LIMIT).
+
+    Returns
+    -------
+    int
+        Steps per output interval (>= 1).
+    """
+    return max(1, math.ceil(output_step * lam_max / limit))
