@@ -58,6 +58,13 @@ class RunRecord(TimeResult):
         """Number of output times reached."""
         return int(self.time.size)
 
+    def named(self, scene_name: str, model, build_s: float) -> RunRecord:
+        """A copy naming the scene and the model that ran (its rung ``kind`` and elements: a quasi-static
+        segmented run has no node profiles to infer them from), with the setup time ``build_s`` (s)."""
+        info = {"name": model.kind, "segments": int(getattr(model, "n_elements", 1) or 1)}
+        return dataclasses.replace(self, scene_name=scene_name, model_info=self.model_info or info,
+                                   stats={**self.stats, "build_s": build_s})
+
     def amplitudes(self, period: float, n_periods: int = 3, labels=None) -> dict:
         """Steady amplitudes (half peak-to-peak over the last ``n_periods`` periods) of several series.
 

@@ -9,7 +9,6 @@ message (it is not silently multiplied).
 
 from __future__ import annotations
 
-import dataclasses
 import logging
 import time as _time
 import warnings
@@ -23,7 +22,13 @@ from ..results import SlackEvent
 from ..scene import Scene
 from . import events as ev
 from .columns import Columns
-from .failures import REMEDIES, failure_message, failure_reason, rk4_stability_note
+from .failures import (
+    REMEDIES,
+    failure_message,
+    failure_reason,
+    largest_rate,
+    rk4_stability_note,
+)
 from .initial import initial_state
 from .integrators import (
     ADAPTIVE,
@@ -93,13 +98,6 @@ class Simulator(ev.EventLocator):
         self._stats = {}
 
     # -- helpers -------------------------------------------------------------------------
-    @property
-    def _jac(self) -> ca.Function:
-        """dx'/dx (RK4 stability check, events), built on first use: ~100 ms of AD for 20 elements, rarely needed."""
-        m = self.model
-        x, t, p = m.sym("x", 2 * m.nq), m.sym("t"), m.sym("p", len(m.layout))
-        return m.derive("ode_jacobian", lambda: ca.Function("ode_jacobian", [x, t, p], [ca.jacobian(m.ode(x, t, p), x)]))
-
     def _chunk_integrator(self, m: int) -> ca.Function:
         """The integrator over ``m`` output intervals from a chunk start (built once per length)."""
         if m not in self._chunks:
@@ -144,9 +142,9 @@ class Simulator(ev.EventLocator):
         """For 'rk': warn when h |lambda|_max at the start exceeds RK4's stability limit."""
         if self.settings.method != "rk":
             return ""
-        lam = np.linalg.eigvals(np.array(self._jac(x0, self.times[0], self._with_mode(p, np.zeros(len(self.model.slack_index))))))
+        lam = largest_rate(self.model, x0, self.times[0], self._with_mode(p, np.zeros(len(self.model.slack_index))))
         h = float(np.min(np.diff(self.times))) / self.settings.steps_per_output
-        note = rk4_stability_note(h, float(np.max(np.abs(lam))), self.settings.steps_per_output)
+        note = rk4_stability_note(h, lam, self.settings.steps_per_output)
         if note:
             warnings.warn(note, NumericalWarning, stacklevel=4)
         return note
@@ -393,19 +391,14 @@ def simulate(scene: Scene, *, model: CableModel | None = None, method: str | Non
     p = model.parameters(scene)
     x0 = initial_state(scene, model, p) if x0 is None else np.asarray(x0, float)
     try:
-        record = simulator.run(p, x0, on_block=on_block, progress=progress)
+        record, interrupted = simulator.run(p, x0, on_block=on_block, progress=progress), False
     except RunInterrupted as err:
-        raise RunInterrupted(_named(err.result, scene, model, build_s, built_here)) from None
+        record, interrupted = err.result, True
+    # build_s apart from load_s (issue 13): a caller's simulator was built (and its library loaded) before this call
+    record = record.named(scene.name, model, build_s - (record.stats.get("load_s", 0.0) if built_here else 0.0))
+    if interrupted:
+        raise RunInterrupted(record) from None
     if not record.success:
         log.warning(record.message)
-    return _named(record, scene, model, build_s, built_here)
+    return record
 
-
-def _named(record: RunRecord, scene: Scene, model: CableModel, build_s: float, built_here: bool) -> RunRecord:
-    # build_s apart from load_s (issue 13): the library's load is inside build_s when the simulator was
-    # made here; a caller's simulator was built (and its library loaded) before this call
-    load = record.stats.get("load_s", 0.0) if built_here else 0.0
-    # which model ran (the rung, and its elements: a quasi-static segmented run has no node profiles to infer it from)
-    info = {"name": model.kind, "segments": int(getattr(model, "n_elements", 1) or 1)}
-    return dataclasses.replace(record, scene_name=scene.name, model_info=record.model_info or info,
-                               stats={**record.stats, "build_s": build_s - load})
