@@ -34,6 +34,7 @@ from typing import ClassVar
 import casadi as ca
 import numpy as np
 
+from ..compiled import compile_functions
 from ..errors import ParameterError
 from ..model import CableModel
 from ..results import ResultBase, timed
@@ -108,11 +109,27 @@ def _build_hb1(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Functio
     g = ca.vertcat(ca.mtimes(R, np.full(n_theta, 1.0 / n_theta)),
                    ca.mtimes(R, 2.0 / n_theta * np.cos(theta)),
                    ca.mtimes(R, -2.0 / n_theta * np.sin(theta)))
-    G = ca.Function("hb1", [v, ca.vertcat(w, Zr, Zi, p)], [g])
+    G = ca.Function(f"hb1_{n_theta}", [v, ca.vertcat(w, Zr, Zi, p)], [g], ["v", "par"], ["g"])
+    # compiled with its v-Jacobian (C, cached on disk): KINSOL's residual and Jacobian evaluations in
+    # CasADi's VM were 1.4 ms of a 1.5 ms solve (Dale, 16 phases); the VM without a compiler
+    G = compile_functions([G], jacobians=("v",)).functions[G.name()]
     rf = ca.rootfinder("hb1_solve", "kinsol", G, {"strategy": "linesearch", "abstol": 1e-13,
                                                   "error_on_fail": False, "print_level": 0,
                                                   "disable_internal_warnings": True})
     return rf, G
+
+
+def _orbit_jacobians(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Function]:
+    """dr/dxi and (y, dy/dxi) at ``n_theta`` columns of xi: the linearization's functions mapped once
+    and compiled (cached on disk), not mapped anew on every call (in the VM, a map per call, these
+    cost 0.8 ms of the Dale scene's describing function)."""
+    def build():
+        fns = functions(model)
+        maps = [fns["jac"].map(f"orbit_jac_{n_theta}", "serial", n_theta, [1], []),
+                fns["out_jac"].map(f"orbit_out_jac_{n_theta}", "serial", n_theta, [1], [])]
+        out = compile_functions(maps, jacobians=False).functions
+        return tuple(out[m.name()] for m in maps)
+    return model.cache.get(f"orbit_jacobians_{n_theta}", build)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -209,8 +226,7 @@ def harmonic_response(model: CableModel, p, omega, input_amplitude, *, n_theta: 
     Q0, _ = lin0.transfer(pre[:1])
     v = np.concatenate([st.q, (Q0[0] @ Z).real, (Q0[0] @ Z).imag])
     theta = 2 * np.pi * np.arange(n_theta) / n_theta
-    fns = functions(model)
-    jac_map, out_map = fns["jac"].map(n_theta), fns["out_jac"].map(n_theta)
+    jac_map, out_map = _orbit_jacobians(model, n_theta)
     xi0 = operating_xi(model, st.q)
     res = {}
     for k, w in enumerate(list(pre) + list(omega[order])):
