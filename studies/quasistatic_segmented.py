@@ -175,9 +175,9 @@ def plot_case(res: dict, path: Path) -> None:
         ns = [n for n, _ in pts]
         label = "quasi-static segmented" if kind == "quasi-static" else "segmented (node model)"
         axes[0].plot(ns, [1e3 * b["wall_s"] for _, b in pts], marker=marker, color=color, label=label)
-        for n, b in pts:
+        for i, (n, b) in enumerate(pts):      # labels alternate above / below: neighbours at N, N + 1 overlap otherwise
             axes[0].annotate(f"{b['method']}\nrtol {b['rtol']:g}", (n, 1e3 * b["wall_s"]), textcoords="offset points",
-                             xytext=(4, 4), fontsize=7, color=color)
+                             xytext=(4, 4 if i % 2 == 0 else -20), fontsize=7, color=color)
         axes[1].plot(ns, [b["nsteps"] for _, b in pts], marker=marker, color=color, label=label)
         axes[2].plot(ns, [b["error"]["body"] / TOLERANCE[0] for _, b in pts], marker=marker, color=color,
                      label=f"{label}: body amplitude / 1 %")
