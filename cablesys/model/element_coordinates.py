@@ -57,26 +57,30 @@ class ElementModel(CableModel):
         return int(sum(self.elements))
 
 
+def _sections(scene: Scene, layout: ParameterLayout):
+    """(SectionParameters, elements) of every section, top to bottom: the one loop over the sections
+    that the per-element tables below share."""
+    n_sec = len(scene.sections)
+    return [(SectionParameters.from_layout(layout, section_prefix(n_sec, i), sec.body.is_sphere), sec.cable.segments)
+            for i, sec in enumerate(scene.sections)]
+
+
+def _per_element(scene: Scene, layout: ParameterLayout, value) -> list:
+    """``value(P, n)`` of each section repeated for its n equal elements, top to bottom."""
+    return [v for P, n in _sections(scene, layout) for v in [value(P, n)] * n]
+
+
 def zero_tension_lengths(scene: Scene, layout: ParameterLayout) -> list:
     """h_0 = l_0 / N of every element, top to bottom (Wang 1971 eq. 1), SX of ``layout.symbol``."""
-    n_sec = len(scene.sections)
-    out = []
-    for i, sec in enumerate(scene.sections):
-        P = SectionParameters.from_layout(layout, section_prefix(n_sec, i), sec.body.is_sphere)
-        out += [P.l_0 / sec.cable.segments] * sec.cable.segments
-    return out
+    return _per_element(scene, layout, lambda P, n: P.l_0 / n)
 
 
 def hanging_stretch(scene: Scene, layout: ParameterLayout) -> ca.Function:
     """``(p) -> u``: every element's stretch hanging still and vertical, u_k = T_k h_r / (AE)_r with
     T_k the weight in water below the element's mid-point (eq. 12, 46): a starting point for Newton."""
-    n_sec = len(scene.sections)
     p = layout.symbol
     us, below = [], 0.0
-    for i in reversed(range(n_sec)):
-        sec = scene.sections[i]
-        P = SectionParameters.from_layout(layout, section_prefix(n_sec, i), sec.body.is_sphere)
-        n = sec.cable.segments
+    for P, n in reversed(_sections(scene, layout)):
         h_r, w_el = P.l_r / n, P.w_r * P.l_r / n
         below = below + P.w_b
         sec_u = []
@@ -90,11 +94,7 @@ def hanging_stretch(scene: Scene, layout: ParameterLayout) -> ca.Function:
 def element_stiffness(scene: Scene, layout: ParameterLayout) -> ca.Function:
     """``(p) -> k``: every element's axial stiffness k_e = (AE)_r / h_r, h_r = l_r / N (Wang 1971 eq. 46
     per element), top to bottom."""
-    n_sec = len(scene.sections)
-    k = []
-    for i, sec in enumerate(scene.sections):
-        P = SectionParameters.from_layout(layout, section_prefix(n_sec, i), sec.body.is_sphere)
-        k += [P.ae * sec.cable.segments / P.l_r] * sec.cable.segments
+    k = _per_element(scene, layout, lambda P, n: P.ae * n / P.l_r)
     return ca.Function("element_stiffness", [layout.symbol], [ca.vertcat(*k)], ["p"], ["k"])
 
 
