@@ -30,8 +30,10 @@ import warnings
 
 import numpy as np
 
+from ..compiled import compilation_enabled
 from ..errors import NumericalWarning
 from ..scene import Numerics, Scene
+from ..time_domain.initial import initial_state
 from ..time_domain.integrators import (
     COMPILE_MAX_ELEMENTS,  # one rule, simulate's default too
 )
@@ -47,6 +49,7 @@ from .choice import (
     tolerances,
 )
 from .rungs import RungCache, check_rung, rung_scene
+from .stiffness import explicit_fit
 
 log = logging.getLogger(__name__)
 
@@ -54,7 +57,18 @@ AUTO_METHOD = "cvodes-bdf2"   # A-stable BDF steps over the undamped stretch mod
 # the quasi-static rungs have no stretch modes left (eliminated): BDF of variable order up to 5 takes fewer
 # steps at the same rtol, with a smaller error (Dale 60 s at rtol 1e-4, vs its own rtol 1e-10 run: straight
 # 1748 -> 592 steps, body error 1e-3 -> 1.5e-4; N = 3: 2623 -> 1363 steps, 5e-4 -> 4e-6)
-QUASI_STATIC_METHOD = "cvodes"
+# Without a compiler, or where their stiffness guard refuses, they still do (QUASI_STATIC_FALLBACK); elsewhere
+# the compiled explicit Bogacki-Shampine pair: its step is the accuracy step where stability does not set it
+# (:func:`.stiffness.explicit_fit`: the Jacobian's eigenvalues at the start and moving at the rate scales
+# against the pair's stability region). Dale 60 s, quasi-static N = 4, rtol 1e-4 (compiled, second runs, load
+# ~0.2): rk23 1438 steps, 4.7k right-hand sides, run 8.1 ms; dopri5 926 steps, 5.7k, 8.8 ms; cvodes 1762 steps,
+# 13.5 ms (of which ~5.5 ms are the outputs and the Simulator's own work, the same for all three). Body / tension
+# error vs its own rtol 1e-10 run: rk23 8.7e-6 / 3.6e-7, cvodes 6.7e-7 / 4.2e-7, against the stated model error
+# 4.0e-3 / 1.0e-4. The guard refuses N = 8 (string modes at 56.5 rad/s: rk23's stable step 0.031 s below its
+# accuracy step 0.041 s; it takes 1950 steps whatever rtol). rk23 over dopri5: 3 right-hand sides a step
+# against 6, and on the imaginary axis stable to sqrt(3) where DOPRI5 only touches it
+QUASI_STATIC_METHOD = "rk23"
+QUASI_STATIC_FALLBACK = "cvodes"
 AUTO_RTOL = 1e-4     # at most; rtol = body tolerance / 100 (Dale, N = 3: 1e-4 leaves 0.01 % body, 0.2 % tension
 #                      vs its own tight run; 1e-3 leaves 9 % on the tension extremes from the element ringing)
 _SIMULATE_KEYS = ("x0", "on_block", "progress")
@@ -68,7 +82,7 @@ def _scene_sets_integrator(scene: Scene) -> bool:
 
 
 def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rtol=None, atol=None,
-                        max_num_steps=None, jit: bool = False, rung: str | None = None):
+                        max_num_steps=None, jit: bool = False, rung: str | None = None, model=None, x0=None):
     """The integrator settings of a ladder run.
 
     Parameters
@@ -82,7 +96,11 @@ def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rt
     method, rtol, atol, max_num_steps, jit : optional
         The caller's choices (they win).
     rung : str, optional
-        The rung run: the quasi-static rungs step with QUASI_STATIC_METHOD (no stretch modes to damp).
+        The rung run: the quasi-static rungs step with QUASI_STATIC_METHOD (no stretch modes to damp)
+        where its guard accepts ``model`` at ``x0``, else QUASI_STATIC_FALLBACK.
+    model, x0 : optional
+        The rung's model (of ``scene``) and its initial state, for the quasi-static rungs' guard
+        (:func:`_quasi_static_method`); without them those rungs run QUASI_STATIC_FALLBACK.
 
     Returns
     -------
@@ -96,8 +114,8 @@ def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rt
     from ..time_domain import IntegratorSettings
     num = scene.numerics
     if method is None and rtol is None and atol is None and not _scene_sets_integrator(scene):
-        method = QUASI_STATIC_METHOD if rung == "quasi-static" else AUTO_METHOD
         rtol = min(AUTO_RTOL, tol[0] / 100.0)
+        method = _quasi_static_method(scene, model, x0, rtol, elements) if rung == "quasi-static" else AUTO_METHOD
         # scaled states: atol x S_i per state (rtol / 1000 in SI was 3 % of the Dale stretch's dynamic
         # range); rtol / 10 scaled matches or beats the old accuracy with fewer steps
         # on the ramped scenes (300 m heave N = 20: 502 vs 742 steps; Dale N = 10: 6.8k vs 7.8k)
@@ -106,6 +124,16 @@ def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rt
     return IntegratorSettings(method=method or num.integrator, rtol=rtol or num.rtol, atol=atol or num.atol,
                               steps_per_output=num.steps_per_output, compiled=elements <= COMPILE_MAX_ELEMENTS,
                               jit=jit, **extra)
+
+
+def _quasi_static_method(scene: Scene, model, x0, rtol: float, elements: int) -> str:
+    """QUASI_STATIC_METHOD where :func:`.stiffness.explicit_fit` accepts ``model`` at ``x0`` (compiled runs
+    only: uncompiled, the explicit pair would fall back to CVODES anyway), else QUASI_STATIC_FALLBACK."""
+    if model is None or x0 is None or elements > COMPILE_MAX_ELEMENTS or not compilation_enabled():
+        return QUASI_STATIC_FALLBACK
+    fit = explicit_fit(model, model.parameters(scene), x0, rtol, QUASI_STATIC_METHOD)
+    log.debug("quasi-static rung: %s", fit.reason)
+    return QUASI_STATIC_METHOD if fit.accepted else QUASI_STATIC_FALLBACK
 
 
 def run_options(scene: Scene, choice: Choice, tolerance=None, *, method=None) -> dict:
@@ -171,12 +199,15 @@ def _run(scene: Scene, choice: Choice, tol, cache: RungCache, kw: dict):
     sc = rung_scene(scene, choice.name, choice.segments)
     model = cache.model(scene, choice.name, choice.segments)
     elements = sum(s.cable.segments for s in sc.sections)
+    opts = {k: kw[k] for k in _SIMULATE_KEYS if k in kw}
+    if choice.name == "quasi-static" and "x0" not in opts:   # once: the integrator's guard probes it, the run starts there
+        opts["x0"] = initial_state(sc, model, model.parameters(sc))
     settings = integrator_settings(sc, tol, elements, method=kw.get("method"), rtol=kw.get("rtol"),
                                    atol=kw.get("atol"), max_num_steps=kw.get("max_num_steps"), jit=kw.get("jit", False),
-                                   rung=choice.name)
+                                   rung=choice.name, model=model, x0=opts.get("x0"))
     times = kw.get("times")
     sim = cache.simulator(model, sc.output_times if times is None else times, settings)
-    return simulate(sc, model=model, simulator=sim, **{k: kw[k] for k in _SIMULATE_KEYS if k in kw})
+    return simulate(sc, model=model, simulator=sim, **opts)
 
 
 def _periodic_run(scene: Scene, cache: RungCache):
