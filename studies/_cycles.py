@@ -17,16 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-
-def _refined_extreme(y: np.ndarray, i: int, sign: float) -> float:
-    """The vertex of the parabola through samples i-1, i, i+1 (equal spacing), or y[i] at an end."""
-    if i == 0 or i == len(y) - 1:
-        return float(y[i])
-    a, b, c = y[i - 1], y[i], y[i + 1]
-    den = a - 2 * b + c
-    if sign * den <= 0:          # not a strict extreme of the parabola
-        return float(b)
-    return float(b - (c - a) ** 2 / (8 * den))
+from cablesys.ladder.extrapolation import refined_maximum
 
 
 def cycle_statistics(time, series: dict, period: float, t0: float, t1: float | None = None,
@@ -73,7 +64,7 @@ def cycle_statistics(time, series: dict, period: float, t0: float, t1: float | N
         for name, key in (("top", "tension_top"), ("bottom", "tension_bottom")):
             full = np.asarray(series[key])
             i_max, i_min = m[np.argmax(full[m])], m[np.argmin(full[m])]
-            per[f"{name}_max"].append(_refined_extreme(full, i_max, -1.0))
+            per[f"{name}_max"].append(refined_maximum(full, i_max))
             per[f"{name}_min"].append(float(full[i_min]))
     out = {"window_s": [t0, t0 + n_cyc * period], "cycles": n_cyc}
     for k, v in per.items():

@@ -38,7 +38,7 @@ from ..time_domain.integrators import (
     COMPILE_MAX_ELEMENTS,  # one rule, simulate's default too
 )
 from . import estimate as est
-from . import metrics
+from . import extrapolation, metrics
 from .choice import (
     MAX_SEGMENTS,
     SAFETY,
@@ -295,11 +295,14 @@ def simulate_auto(scene: Scene, *, model: str | None = None, tolerance=None, seg
     t0, b0 = time.perf_counter(), cache.build_s
     choice, tol, auto = _decide(scene, model, tolerance, segments, cache)
     t1, b1 = time.perf_counter(), cache.build_s
-    result = _run(scene, choice, tol, cache, kw)
+    if extrapolation.applies(choice, auto):      # first order in N: RK4 runs at N, N / 2, N / 4 (extrapolation)
+        result = extrapolation.run(scene, choice.segments, cache, kw)
+    else:
+        result = _run(scene, choice, tol, cache, kw)
     t2, b2 = time.perf_counter(), cache.build_s
     result, choice = _check(scene, choice, tol, result, cache, kw, auto=auto)
     t3, b3 = time.perf_counter(), cache.build_s
-    result.stats["model"] = choice.as_dict()
+    result.stats["model"] = extrapolation.model_dict(choice)
     result.stats["ladder_timing"] = {"choose_s": (t1 - t0) - (b1 - b0), "build_s": b3 - b0,
                                      "run_s": (t2 - t1) - (b2 - b1), "check_s": (t3 - t2) - (b3 - b2),
                                      "total_s": t3 - t0}
@@ -309,6 +312,8 @@ def simulate_auto(scene: Scene, *, model: str | None = None, tolerance=None, seg
 
 def _check(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict, *, auto: bool):
     """A posteriori checks of ``result`` (see the module docstring): (result, choice) to keep."""
+    if extrapolation.applies(choice, auto):
+        return _extrapolated(scene, choice, tol, result, cache, kw)
     while True:
         choice, again = after_run(scene, choice, result, auto=auto)
         if not again:
@@ -320,6 +325,18 @@ def _check(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict
     if choice.name in ("segmented", "quasi-static") and choice.segments >= 4 and not sure:
         return _richardson(scene, choice, tol, result, cache, kw, auto=auto)
     return result, choice
+
+
+def _extrapolated(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict):
+    """The coarse runs and the extrapolated statistics (:func:`.extrapolation.complete`), N doubling while
+    the runs are not in the asymptotic range or the extrapolated statistics miss the tolerance."""
+    known: dict = {}
+    while True:
+        choice, _, again = extrapolation.complete(scene, choice, result, tol, cache, kw, known)
+        if not again:
+            return result, choice
+        log.info("extrapolation: running the segmented cable with N = %d", choice.segments)
+        result = extrapolation.run(scene, choice.segments, cache, kw)
 
 
 def _richardson(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict, *, auto: bool):
@@ -380,5 +397,13 @@ def describe(choice_dict: dict) -> str:
     e = choice_dict.get("estimated_error", {})
     fmt = lambda v: "n/a" if v is None else f"{100 * v:.2g} %"
     seg = f", N = {choice_dict['segments']}" if (choice_dict.get("segments") or 1) > 1 else ""
+    x = choice_dict.get("extrapolated")
+    if x:           # the headline is the extrapolated statistics' error; the time series' own is said too
+        ts = choice_dict.get("estimated_error_time_series", {})
+        ns = ", ".join(str(n) for n in x["segments"])
+        return (f"model {choice_dict.get('name')}{seg}, statistics extrapolated from N = {ns}: estimated error of the "
+                f"extrapolated statistics body {fmt(e.get('body'))}, tension {fmt(e.get('tension'))} (the N = "
+                f"{choice_dict['segments']} time series: body {fmt(ts.get('body'))}, tension {fmt(ts.get('tension'))}); "
+                f"{choice_dict.get('reason', '')}")
     return (f"model {choice_dict.get('name')}{seg}: estimated error body {fmt(e.get('body'))}, tension "
             f"{fmt(e.get('tension'))}; {choice_dict.get('reason', '')}")

@@ -123,26 +123,39 @@ def _run(args) -> int:
     from ..export import units_of_file
     units = args.units or units_of_file(args.scene)
     with outdir.start(scene=scene.name, scene_file=str(args.scene)):
+        from ..ladder import extrapolation
         from ..ladder.auto import (  # the model ladder (issue 12)
             after_run,
             plan_run,
             run_options,
             simulate_auto,
         )
+        from ..ladder.choice import tolerances
+        from ..ladder.rungs import RungCache, rung_scene
         auto = (getattr(args, "model", None) or scene.numerics.model) == "auto"
-        scene_run, model, choice = plan_run(scene, getattr(args, "model", None))
+        cache = RungCache()            # the chosen rung's model, and the extrapolation's coarse runs
+        scene_run, model, choice = plan_run(scene, getattr(args, "model", None), cache=cache)
+        known: dict = {}               # statistics of the extrapolation's runs by N
         while True:
             if model is None:          # the frequency rung: no time-domain model to stream
                 result = simulate_auto(scene, model="frequency", method=args.method)
                 break
+            extra = extrapolation.applies(choice, auto)     # partial slack: RK4 at N, then N / 2, N / 4
+            if extra:
+                scene_run, opts = extrapolation.stream_options(scene, choice.segments, model, args.method)
+            else:
+                opts = run_options(scene, choice, method=args.method)    # the ladder's integrator (issue 12)
             result = _simulate_into(outdir, scene_run, units=units, model=model, jit=args.jit, max_num_steps=args.max_steps,
-                                    **run_options(scene, choice, method=args.method))   # the ladder's integrator (issue 12)
-            choice, again = after_run(scene, choice, result, auto=auto)
+                                    **opts)
+            if extra:                  # the coarse runs and the extrapolated statistics (as simulate_auto)
+                choice, _, again = extrapolation.complete(scene, choice, result, tolerances(scene), cache,
+                                                          {"method": args.method, "max_num_steps": args.max_steps}, known)
+            else:
+                choice, again = after_run(scene, choice, result, auto=auto)
             if not again:
                 break
-            from ..ladder.rungs import build_rung, rung_scene
             scene_run = rung_scene(scene, choice.name, choice.segments)
-            model = build_rung(scene_run, choice.name, choice.segments)
+            model = cache.model(scene, choice.name, choice.segments)
         if hasattr(result, "window_s"):         # the statistics window of the summary groups
             import dataclasses
             result = dataclasses.replace(result, window_s=tuple(args.window) if getattr(args, "window", None) else None,
@@ -151,7 +164,7 @@ def _run(args) -> int:
         summary = write_run(scene_run or scene, result, outdir, series_on_disk=model is not None, units=units)
         if model is not None:          # the model was built (or loaded from the cache) for this run
             summary["timing"]["build_s"] += float(model.build_info.get("build_s", 0.0))
-        summary["model"] = result.stats.get("model") or choice.as_dict()
+        summary["model"] = result.stats.get("model") or extrapolation.model_dict(choice)
         outdir.finish(getattr(result, "status", "success" if result.success else "failed"), **summary)   # periodic: a TimeResult
     _print_summary(summary, units)
     print(f"wrote {out}/ ({', '.join(outdir.files)}, summary.json)")

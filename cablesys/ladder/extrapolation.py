@@ -1,0 +1,297 @@
+"""Richardson extrapolation of the segmented cable's statistics where it converges at first order.
+
+Under partial slack the snap front is resolved to one element and the segmented cable converges at
+first order in N (300 m wire, 2 t sphere, T = 6 s: observed 0.98-1.03 from N = 10, 20, 40, 80), so
+the tolerance would need hundreds of elements. The statistics the tolerance speaks of (body
+amplitudes, tension extremes, :mod:`.metrics`) are extrapolated instead (Richardson 1911), from
+three runs at N / 4, N / 2 and N (RK4 at its stable step: :func:`settings`).
+
+With f(N) = f* + a N^-1 + b N^-q + ... (q > 1, the remainder's order; q = 2 for an expansion in
+integer powers), the first-order limit of (N / 2, N) is
+
+    L(N) = f(N) + (f(N) - f(N / 2)) / (2 - 1) = f* + c N^-q,  c = b (2 - 2^q),
+
+and L(N / 2) = f* + c 2^q N^-q, so L(N / 2) - L(N) = c N^-q (2^q - 1) and the error of the
+extrapolated value is
+
+    L(N) - f* = (L(N / 2) - L(N)) / (2^q - 1)          (factor 1/3 for q = 2).
+
+That holds whatever a is, also when a = 0 (a sequence converging at second order: the limit then
+does not gain, and the estimate still states its error). The observed order of the three runs,
+p = log2(|f(N/4) - f(N/2)| / |f(N/2) - f(N)|), tells whether they are in the asymptotic range of
+the first-order term: outside [ORDER_RANGE] (300 m slack scene at N = 4, 8, 16: p = -0.9 on the
+body amplitude; at 8, 16, 32: 0.98) N doubles (one more run), up to MAX_SEGMENTS; at the cap the
+stated error is the whole difference of the two limits (factor 1), with a warning.
+
+The time series the user gets is the N run's: its own first-order Richardson estimate
+|f(N) - L(N)| is stated apart (``time_series_error``), so nothing is hidden.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import warnings
+
+import numpy as np
+
+from ..errors import NumericalWarning
+from ..scene import Scene
+from . import estimate as est
+from . import metrics
+from .rungs import RungCache, rung_scene
+
+ORDER = 1.0                 # the leading order extrapolated away (estimate.SLACK_ORDER)
+REMAINDER_ORDER = 2.0       # q of the next term (an expansion in integer powers of 1/N)
+ORDER_RANGE = (0.5, 3.0)    # observed orders accepted as asymptotic (above 1: the remainder dominates, still N^-q)
+MAX_SEGMENTS = 80           # doubling stops here (RK4, compiled kernel: 0.14 s per simulated s at N = 80)
+RK4_MARGIN = 2.0            # h |lambda|_max of the stable step (RK4's boundary is 2.78; issue 11's choice)
+SAMPLES_PER_SNAP = 6        # output samples per axial travel time in the statistics runs (see statistics_step)
+_PASS = ("x0", "max_num_steps")
+
+
+def applies(choice, auto: bool) -> bool:
+    """True when auto chose the segmented cable in its first-order regime (partial slack predicted:
+    the segmented estimate's ``order`` below :data:`estimate.ORDER`)."""
+    order = choice.numbers.get("estimates", {}).get("segmented_1", {}).get("order", est.ORDER)
+    return bool(auto and choice.name == "segmented" and order < est.ORDER)
+
+
+def settings(scene_run: Scene, model, method: str | None = None, **kw):
+    """Integrator settings of one extrapolation run: RK4 at its stable step (h |lambda|_max <= RK4_MARGIN
+    at the static state, and at least the scene's steps per output), compiled (the element kernel),
+    unless the caller names another method (then :func:`.auto.integrator_settings`).
+
+    Parameters
+    ----------
+    scene_run : Scene
+        The segmented rung's scene.
+    model : CableModel
+        Its model.
+    method : str, optional
+        The caller's method (default "rk" at its stable step).
+    **kw
+        ``rtol``, ``atol``, ``max_num_steps`` for another method.
+
+    Returns
+    -------
+    IntegratorSettings
+    """
+    from ..time_domain import IntegratorSettings
+    from ..time_domain.failures import largest_rate, rk4_steps_per_output
+    from ..time_domain.integrators import compiled_by_default
+    if method not in (None, "rk"):
+        from .auto import integrator_settings
+        # the caller's method and tolerances (the model tolerance only sets rtol without a method)
+        return integrator_settings(scene_run, (1.0, 1.0), int(getattr(model, "n_elements", 1)), method=method, **kw)
+    from ..time_domain.run import initial_state
+    p = model.parameters(scene_run)
+    lam = largest_rate(model, initial_state(scene_run, model, p), 0.0, p)
+    num = scene_run.numerics
+    spo = max(num.steps_per_output, rk4_steps_per_output(lam, num.output_step, RK4_MARGIN))
+    extra = {} if kw.get("max_num_steps") is None else {"max_num_steps": int(kw["max_num_steps"])}
+    return IntegratorSettings(method="rk", steps_per_output=spo, compiled=compiled_by_default(model, "rk"), **extra)
+
+
+def stream_options(scene: Scene, n: int, model, method: str | None = None) -> tuple:
+    """(scene to run, ``simulate`` keyword arguments) of the N run for a caller that streams it (the
+    ``run`` command): RK4's stable steps per output go into the scene's numerics."""
+    sc = rung_scene(scene, "segmented", n)
+    s = settings(sc, model, method)
+    return sc.with_numerics(steps_per_output=s.steps_per_output), {"method": s.method, "rtol": s.rtol, "atol": s.atol}
+
+
+def run(scene: Scene, n: int, cache: RungCache, kw: dict | None = None):
+    """One run of the segmented cable at ``n`` elements with :func:`settings` (models and simulators
+    from ``cache``). ``kw``: ``method``, ``rtol``, ``atol``, ``max_num_steps``, ``times``, ``x0``,
+    ``on_block``, ``progress`` as :func:`.auto.simulate_auto` takes them."""
+    from ..time_domain import simulate
+    kw = kw or {}
+    sc = rung_scene(scene, "segmented", n)
+    model = cache.model(scene, "segmented", n)
+    s = settings(sc, model, kw.get("method"), **{k: kw.get(k) for k in ("rtol", "atol", "max_num_steps")})
+    times = kw.get("times")
+    sim = cache.simulator(model, sc.output_times if times is None else times, s)
+    return simulate(sc, model=model, simulator=sim, **{k: kw[k] for k in ("x0", "on_block", "progress") if k in kw})
+
+
+def statistics_step(scene: Scene) -> float:
+    """Output step (s) of the runs whose statistics are extrapolated: the scene's, or the largest integer
+    fraction of it within the axial travel time / SAMPLES_PER_SNAP. A snap load lasts about the axial
+    wave's travel time along the cable, sum L sqrt(m / AE) (300 m of steel wire: 0.075 s); a sampled
+    maximum of a coarser series depends on where the samples fall (at the scene file's 0.05 s the
+    extrapolated top maximum was 15 % low and not convergent), and the parabola through the largest of
+    6 samples per pulse and its neighbours (:func:`refined_maximum`) gives its peak."""
+    travel = sum(s.cable.length * math.sqrt(s.cable.mass_per_length / s.cable.ae) for s in scene.sections)
+    h = scene.numerics.output_step
+    return h / max(1, math.ceil(h * SAMPLES_PER_SNAP / travel - 1e-9))
+
+
+def refined_maximum(y, i: int) -> float:
+    """The vertex of the parabola through samples i - 1, i, i + 1 (equally spaced) of a maximum at i, or y[i]
+    at an end or where the three samples do not bend down. (A minimum is not refined: a tension minimum
+    sits on the kink of the tension floor, where the parabola overshoots below it.)"""
+    y = np.asarray(y, dtype=float)
+    if i == 0 or i == len(y) - 1:
+        return float(y[i])
+    a, b, c = y[i - 1], y[i], y[i + 1]
+    den = a - 2 * b + c
+    return float(b) if den >= 0 else float(b - (c - a) ** 2 / (8 * den))
+
+
+def statistics(result, period: float | None) -> dict:
+    """:func:`.metrics.statistics` of ``result`` with the tension maxima refined between samples
+    (:func:`refined_maximum`)."""
+    st = metrics.statistics(result, period)
+    t = np.asarray(result.time)
+    idx = np.nonzero(metrics.window(t, period))[0]
+    for k in result.labels:
+        if metrics.base_label(k) in metrics.TENSIONS:
+            y = np.asarray(result[k])
+            st[f"{k}_max"] = refined_maximum(y, int(idx[np.argmax(y[idx])]))
+    return st
+
+
+def limits(coarse: dict, fine: dict, order: float = ORDER) -> dict:
+    """Richardson limit f + (f - f_c) / (2^p - 1) of every number of ``fine`` (N) and ``coarse`` (N / 2)."""
+    return {k: v + (v - coarse[k]) / (2.0**order - 1.0) for k, v in fine.items() if k in coarse}
+
+
+def observed_orders(f4: dict, f2: dict, f1: dict) -> dict:
+    """log2(|f(N/4) - f(N/2)| / |f(N/2) - f(N)|) per number (None where a difference is zero)."""
+    out = {}
+    for k, v in f1.items():
+        a, b = abs(f4[k] - f2[k]), abs(f2[k] - v)
+        out[k] = float(math.log2(a / b)) if a > 0 and b > 0 else None
+    return out
+
+
+def _leading(stats: dict) -> list:
+    """The numbers whose order decides the asymptotic range: the largest body amplitude and the largest
+    tension maximum (the scales of the relative errors)."""
+    amps = [k for k in stats if k.endswith("_amplitude")]
+    tops = [k for k in stats if k.endswith("_max")]
+    return [max(amps, key=stats.get), max(tops, key=stats.get)]
+
+
+def extrapolate(stats: dict, n: int, floor: float = 0.0) -> dict:
+    """The extrapolated statistics of the runs at ``n`` / 4, ``n`` / 2, ``n`` and their estimated errors.
+
+    Parameters
+    ----------
+    stats : dict
+        {N: :func:`.metrics.statistics` of the run at N} holding n / 4, n / 2 and n.
+    n : int
+        The finest run.
+    floor : float, optional
+        The tension floor (N): an extrapolated tension minimum below it is set to it (the true one is not lower).
+
+    Returns
+    -------
+    dict
+        ``segments`` [n/4, n/2, n]; ``statistics``: first-order limits of (n/2, n); ``statistics_coarse``:
+        of (n/4, n/2); ``observed_order`` per number and ``asymptotic`` (the leading numbers' orders within
+        ORDER_RANGE); ``estimated_error`` {body, tension} of ``statistics``: |L(n/2) - L(n)| / (2^q - 1)
+        (``remainder_factor``; 1 when not asymptotic); ``time_series_error``: the n run's own,
+        |f(n) - L(n)| relative (:func:`.metrics.errors`).
+    """
+    f4, f2, f1 = stats[n // 4], stats[n // 2], stats[n]
+    fine, coarse = limits(f2, f1), limits(f4, f2)
+    for lim in (fine, coarse):
+        for k in lim:
+            if k.endswith("_min"):
+                lim[k] = max(lim[k], floor)
+            elif k.endswith("_amplitude"):
+                lim[k] = max(lim[k], 0.0)
+    orders = observed_orders(f4, f2, f1)
+    lead = {k: orders.get(k) for k in _leading(f1)}
+    asymptotic = all(p is not None and ORDER_RANGE[0] <= p <= ORDER_RANGE[1] for p in lead.values())
+    factor = 1.0 / (2.0**REMAINDER_ORDER - 1.0) if asymptotic else 1.0
+    diff = metrics.errors(coarse, fine)
+    return {"segments": [n // 4, n // 2, n], "order_assumed": ORDER, "remainder_order": REMAINDER_ORDER,
+            "remainder_factor": factor, "statistics": fine, "statistics_coarse": coarse,
+            "observed_order": orders, "leading_orders": lead, "asymptotic": asymptotic,
+            "estimated_error": {k: v * factor for k, v in diff.items()},
+            "time_series_error": metrics.errors(f1, fine)}
+
+
+def model_dict(choice) -> dict:
+    """``choice.as_dict()`` with, after an extrapolation, ``extrapolated`` (the block of :func:`extrapolate`),
+    ``estimated_error_time_series`` (the N run's own estimated error) and ``estimated_error_refers_to``."""
+    d = choice.as_dict()
+    block = choice.numbers.get("extrapolated")
+    if block is not None:
+        d.update(estimated_error_refers_to="the extrapolated statistics (model.extrapolated.statistics)",
+                 estimated_error_time_series=dict(block["time_series_error"]), extrapolated=block)
+    return d
+
+
+def _within(e: dict, tol) -> bool:
+    return e["body"] <= tol[0] and e["tension"] <= tol[1]
+
+
+def complete(scene: Scene, choice, result, tol, cache: RungCache, kw: dict | None = None,
+             known: dict | None = None) -> tuple:
+    """After the run at ``choice.segments``: the coarse runs, the extrapolated block, and whether N must double.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    choice : Choice
+        The segmented choice (:func:`applies`).
+    result : TimeResult
+        Its run at N (by :func:`run`, or streamed with :func:`stream_options`).
+    tol : (float, float)
+        Body and tension tolerances.
+    cache : RungCache
+        Models and simulators of the coarse runs.
+    kw : dict, optional
+        Run options (see :func:`run`; ``on_block`` and ``progress`` are not passed to the coarse runs).
+    known : dict, optional
+        {N: statistics} of runs already made (updated in place).
+
+    Returns
+    -------
+    (Choice, dict or None, bool)
+        The updated choice (``estimated_error``: the extrapolated statistics'; ``numbers["extrapolated"]``:
+        the block, see :func:`extrapolate`, with ``window_s`` and ``wall_s`` of the coarse runs), the
+        block (None when a run failed: the choice is returned with its first-order a-priori estimate),
+        and True when the runs are not in the asymptotic range or miss the tolerance and N can double
+        (the caller runs 2 N and calls again with ``known``).
+    """
+    known = {} if known is None else known
+    period = metrics.forcing_period(scene)
+    n = choice.segments
+    if not result.success:
+        return choice, None, False
+    fine = scene.with_numerics(output_step=statistics_step(scene))
+    coarse_kw = {k: v for k, v in (kw or {}).items() if k not in ("on_block", "progress", "x0", "times")}
+    if fine.numerics.output_step == scene.numerics.output_step and (kw or {}).get("times") is None:
+        known[n] = statistics(result, period)
+    for m in (n, n // 2, n // 4):       # the N run again only when its output step does not resolve the snaps
+        if m not in known:
+            r = run(fine, m, cache, coarse_kw)
+            if not r.success:
+                reason = choice.reason + f"; extrapolation failed: the run at N = {m} failed ({r.message})"
+                return dataclasses.replace(choice, reason=reason), None, False
+            known[m] = statistics(r, period)
+    block = extrapolate(known, n, max(s.cable.tension_floor for s in scene.sections))
+    w = metrics.window(np.asarray(result.time), period)
+    block["window_s"] = [float(np.asarray(result.time)[w][0]), float(result.time[-1])]
+    e = block["estimated_error"]
+    if (not block["asymptotic"] or not _within(e, tol)) and 2 * n <= MAX_SEGMENTS:
+        return dataclasses.replace(choice, segments=2 * n), block, True
+    reason = (choice.reason + f"; statistics extrapolated (Richardson, order 1) from N = {n // 4}, {n // 2}, {n}: "
+              f"estimated error of the extrapolated statistics body {e['body']:.2g}, tension {e['tension']:.2g} "
+              f"(their difference to the limits of N = {n // 4}, {n // 2} x {block['remainder_factor']:.3g}); the time "
+              f"series is the N = {n} run's, estimated error body {block['time_series_error']['body']:.2g}, "
+              f"tension {block['time_series_error']['tension']:.2g}")
+    if not block["asymptotic"]:
+        reason += (f"; NOT in the asymptotic range (observed orders {block['leading_orders']}): the stated error "
+                   "is the whole difference of the two limits")
+        warnings.warn(f"model auto: {reason}", NumericalWarning, stacklevel=3)
+    elif not _within(e, tol):
+        warnings.warn(f"model auto: tolerance not reached at N = {n}: {reason}", NumericalWarning, stacklevel=3)
+    numbers = dict(choice.numbers, extrapolated=block)
+    return dataclasses.replace(choice, reason=reason, estimated_error=dict(e), numbers=numbers), block, False
