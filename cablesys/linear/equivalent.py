@@ -42,7 +42,6 @@ from .frequency_response import RAO
 from .linearization import (
     from_jacobian,
     functions,
-    linearize,
     operating_xi,
     taut_parameters,
     xi_blocks,
@@ -119,14 +118,16 @@ def _build_hb1(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Functio
     return rf, G
 
 
-def _orbit_jacobians(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Function]:
-    """dr/dxi and (y, dy/dxi) at ``n_theta`` columns of xi: the linearization's functions mapped once
-    and compiled (cached on disk), not mapped anew on every call (in the VM, a map per call, these
-    cost 0.8 ms of the Dale scene's describing function)."""
+def _orbit_jacobians(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Function, ca.Function]:
+    """dr/dxi and (y, dy/dxi) at ``n_theta`` columns of xi, and dr/dxi at one: the linearization's functions
+    mapped once and compiled (cached on disk), not mapped anew on every call (in the VM, a map per call,
+    these cost 0.8 ms of the Dale scene's describing function)."""
     def build():
         fns = functions(model)
+        xi, p = fns["jac"].mx_in()
         maps = [fns["jac"].map(f"orbit_jac_{n_theta}", "serial", n_theta, [1], []),
-                fns["out_jac"].map(f"orbit_out_jac_{n_theta}", "serial", n_theta, [1], [])]
+                fns["out_jac"].map(f"orbit_out_jac_{n_theta}", "serial", n_theta, [1], []),
+                ca.Function(f"static_jac_{n_theta}", [xi, p], fns["jac"].call([xi, p]))]
         out = compile_functions(maps, jacobians=False).functions
         return tuple(out[m.name()] for m in maps)
     return model.cache.get(f"orbit_jacobians_{n_theta}", build)
@@ -213,7 +214,11 @@ def harmonic_response(model: CableModel, p, omega, input_amplitude, *, n_theta: 
     """
     p = taut_parameters(model, p)
     st = steady_state(model, p)
-    lin0 = linearize(model, p, steady=st)
+    jac_map, out_map, jac_static = _orbit_jacobians(model, n_theta)
+    xi0 = operating_xi(model, st.q)
+    # the exact linearization's dq response (the continuation's start); its outputs are not needed
+    ny = len(model.output_labels)
+    lin0 = from_jacobian(model, jac_static(xi0, p).full(), np.zeros((ny, xi0.size)), st.q, np.zeros(ny), kind="exact")
     omega = np.atleast_1d(np.asarray(omega, float))
     Z = np.asarray(input_amplitude, complex)
     if Z.shape != (len(lin0.input_labels),):
@@ -226,16 +231,13 @@ def harmonic_response(model: CableModel, p, omega, input_amplitude, *, n_theta: 
     Q0, _ = lin0.transfer(pre[:1])
     v = np.concatenate([st.q, (Q0[0] @ Z).real, (Q0[0] @ Z).imag])
     theta = 2 * np.pi * np.arange(n_theta) / n_theta
-    jac_map, out_map = _orbit_jacobians(model, n_theta)
-    xi0 = operating_xi(model, st.q)
     res = {}
     for k, w in enumerate(list(pre) + list(omega[order])):
         par = np.concatenate([[w], Z.real, Z.imag, p])
         v_new = np.array(rf(v, par)).ravel()
-        r = float(np.max(np.abs(np.array(G(v_new, par)))))
         v = v_new if np.all(np.isfinite(v_new)) else v
-        if k >= len(pre):
-            res[k - len(pre)] = (v.copy(), r)
+        if k >= len(pre):           # the residual of the requested frequencies (the continuation's are not reported)
+            res[k - len(pre)] = (v.copy(), float(np.max(np.abs(np.array(G(v_new, par))))))
     Qa, Qm, Ya, Ym, R, lins = [], [], [], [], [], []
     for j in range(len(omega)):
         v, r = res[int(np.where(order == j)[0][0])]
