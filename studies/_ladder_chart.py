@@ -16,10 +16,12 @@ RUNG_COLOURS = {"frequency": "tab:purple", "quasi-static": "tab:green", "quasi-s
                 "wang": "tab:blue", "segmented": "tab:orange"}
 RUNG_LABELS = {"frequency": "frequency domain (periodic orbit)", "quasi-static": "quasi-static stretch",
                "quasi-static N": "quasi-static segmented", "wang": "Wang 2-DOF", "segmented": "segmented"}
-MARKERS = {"cvodes": "o", "cvodes-adams": "s", "idas": "D", "rk": "^", "rk-stable": "v", "periodic": "P"}
+MARKERS = {"cvodes": "o", "cvodes-adams": "s", "idas": "D", "rk": "^", "rk-stable": "v", "periodic": "P",
+           "auto-extrapolated": "h"}
 INTEGRATOR_LABELS = {"cvodes": "CVODES BDF", "cvodes-adams": "CVODES Adams", "idas": "IDAS",
                      "rk": "RK4, 10 steps/output", "rk-stable": "RK4 at its stability step",
-                     "periodic": "Fourier collocation"}
+                     "periodic": "Fourier collocation",
+                     "auto-extrapolated": "auto: RK4 at N/4, N/2, N, statistics extrapolated (slack)"}
 FLOOR = 1e-7          # errors below are drawn at the floor
 FAIL_Y = 1.0          # failed runs are drawn here
 
@@ -36,6 +38,8 @@ def _reason(failure: str) -> str:
 
 
 def _label(r: dict) -> str:
+    if r["integrator"] == "auto-extrapolated":          # auto's slack runs: the N of every run
+        return "auto: N = " + ", ".join(str(n) for n in r.get("runs", [r["segments"]])) + " extrapolated"
     return r["rung"] + (f" N={r['segments']}" if r["rung"] == "segmented" or r["segments"] > 1 else "")
 
 
@@ -127,10 +131,13 @@ def plot_case(res: dict, path: Path):
         ax.annotate(f"tolerance {tl:.0%}", (0.01, tl), xycoords=("axes fraction", "data"), xytext=(0, 3),
                     textcoords="offset points", fontsize=8, color="grey")
         ax.axhline(FAIL_Y, ls=":", color="red", lw=0.8)
-        lo = min([max(r[key], FLOOR) for r in ok] + [tl]) / 4     # room below the lowest point for its label
+        stated = (a.get("stated_estimate") or {}).get(key.removeprefix("error_")) if hit else None
+        lows = [max(r[key], FLOOR) for r in ok] + [tl] + ([max(stated, FLOOR)] if stated and math.isfinite(stated) else [])
+        lo = min(lows) / 4     # room below the lowest point (and auto's stated estimate) for its label
         ax.set_ylim(lo, 2.0)
         ax.set_title(title)
-        ax.set_xlabel("wall time of the integration [s] (CasADi VM, build apart)")
+        ax.set_xlabel("wall time of the integration [s] (CasADi VM, build apart"
+                      + ("; auto compiled)" if a.get("compiled") else ")"))
         ax.set_ylabel("relative error vs reference")
         ax.grid(True, which="both", alpha=0.3)
         xl = ax.get_xlim()

@@ -42,6 +42,26 @@ def cheaper_within(rows, choice, tol, integrators) -> list:
             and r["error_body"] <= 0.5 * tol["body"] and r["error_tension"] <= 0.5 * tol["tension"]]
 
 
+def estimate_check(act: dict, stated: dict, tol: dict, conv: dict, resolved_fraction: float) -> dict:
+    """Per figure (body, tension): whether auto's stated estimate is within a factor 2 of its actual error
+    where that is resolved (above ``resolved_fraction`` of the tolerance and twice the reference's own
+    uncertainty ``conv``), else whether the estimate is within the tolerance too; and ``within_tolerance``."""
+    check = {}
+    for k in ("body", "tension"):
+        a, e = act[k], stated[k]
+        floor = max(resolved_fraction * tol[k], 2 * (conv.get(k) or 0.0))
+        if a is None or e is None or not math.isfinite(e):
+            check[k] = {"resolved": None, "ratio": None, "pass": None}
+            continue
+        resolved = a > floor
+        ratio = e / a if a > 0 else math.inf
+        ok = (0.5 <= ratio <= 2.0) if resolved else (e <= tol[k])
+        check[k] = {"resolved": resolved, "resolution": floor, "ratio": ratio, "pass": bool(ok),
+                    "strict_pass": bool(0.5 <= ratio <= 2.0)}
+    check["within_tolerance"] = None if act["body"] is None else bool(act["body"] <= tol["body"] and act["tension"] <= tol["tension"])
+    return check
+
+
 def _brief(r: dict | None) -> dict | None:
     return None if r is None else {"run": run_name(r), "integrator": r["integrator"], "wall_s": r["wall_s"],
                                    "error_body": r.get("error_body"), "error_tension": r.get("error_tension")}

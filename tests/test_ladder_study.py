@@ -63,25 +63,35 @@ def _check_dale(out, dale):
 
 def _check_slack(out, slack):
     """The slack scene is measured on cycle means of its settled window against the first-order
-    Richardson limit of the finest two N (a short run at coarse N in quick mode)."""
+    Richardson limit of RK4 runs finer than auto's (a short run at coarse N in quick mode), and auto on
+    what it reports: its statistics extrapolated from N / 4, N / 2, N (capped at N = 16 in quick mode)."""
+    from cablesys.ladder import metrics
     assert (out / "model_ladder_wire300_T6.png").stat().st_size > 20_000
     ref = slack["reference"]
-    assert ref["kind"] == "richardson" and ref["segments"] == [4, 8] and ref["order_assumed"] == 1.0
-    rows = {(r["rung"], r["segments"], r["integrator"]): r for r in slack["rows"]}
-    f4, f8 = (rows[("segmented", n, "rk-stable")]["statistics"] for n in (4, 8))
+    assert ref["kind"] == "richardson" and ref["segments"] == [16, 32] and ref["order_assumed"] == 1.0
+    f16, f32 = (ref["runs"][str(n)]["statistics"] for n in (16, 32))
     for k in ("y_b_amplitude", "tension_top_max", "tension_bottom_max"):
-        assert ref["statistics"][k] == pytest.approx(2 * f8[k] - f4[k], rel=1e-12)   # (2^1 f_2N - f_N) / (2^1 - 1)
-        assert ref["observed_order"][k] is not None
-    # every figure is a mean over whole forcing cycles after the smooth start (3 periods of 6 s)
+        assert ref["statistics"][k] == pytest.approx(2 * f32[k] - f16[k], rel=1e-12)   # (2^1 f_2N - f_N) / (2^1 - 1)
+        assert ref["observed_order"][k] is not None                # from the table's N = 8 and the two runs
+    rows = {(r["rung"], r["segments"], r["integrator"]): r for r in slack["rows"]}
+    # every table figure is a mean over whole forcing cycles after the smooth start (3 periods of 6 s)
     for r in slack["rows"]:
-        if "statistics" in r:
+        if "statistics" in r and r["integrator"] != "auto-extrapolated":
             assert r["statistics"]["window_s"][0] == pytest.approx(18.0) and r["statistics"]["cycles"] == 2
-    # the finest N's error against the first-order limit is the change from N/2 (first order)
-    # (planar RK4 runs: no sway, so the body error is the heave amplitude's)
-    e8 = rows[("segmented", 8, "rk-stable")]["error_body"]
-    assert e8 == pytest.approx(abs(f8["y_b_amplitude"] - f4["y_b_amplitude"]) / ref["statistics"]["y_b_amplitude"],
-                               rel=1e-9)
+    f8 = rows[("segmented", 8, "rk-stable")]["statistics"]
+    e8 = rows[("segmented", 8, "rk-stable")]["error_body"]       # planar RK4: the body error is the heave amplitude's
+    assert e8 == pytest.approx(abs(f8["y_b_amplitude"] - ref["statistics"]["y_b_amplitude"])
+                               / ref["statistics"]["y_b_amplitude"], rel=1e-9)
     # the straight cable misses the snap loads (issue 11: 3-5x in peak tension)
     assert rows[("wang", 1, "cvodes")]["error_tension"] > 0.3
     assert not rows[("frequency", 1, "periodic")]["success"]          # no smooth periodic orbit when slack
+    # auto: its extrapolated statistics against the reference in its own terms (last 5 periods)
+    auto = slack["auto"]
+    assert auto["integrator"] == "auto-extrapolated" and auto["extrapolated"]["segments"] == [4, 8, 16]
+    assert auto["actual_error"] == pytest.approx(metrics.errors(auto["extrapolated"]["statistics"], ref["auto_statistics"]))
+    assert auto["stated_estimate"] == pytest.approx(auto["extrapolated"]["estimated_error"])
+    assert set(auto["stated_estimate_time_series"]) == {"body", "tension"}
+    mine = rows[("segmented", 16, "auto-extrapolated")]
+    assert mine["runs"] == [4, 8, 16] and mine["wall_s"] > 0
     assert {"cheaper_rung_within_tolerance", "estimate_ratio"} <= set(slack)
+    assert slack["cheaper_rung_within_tolerance"]["auto"]["integrator"] == "auto-extrapolated"
