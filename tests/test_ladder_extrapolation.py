@@ -127,7 +127,7 @@ def test_auto_extrapolates_closer_to_a_finer_reference():
 
 
 @pytest.mark.slow
-def test_run_command_writes_the_extrapolated_block(tmp_path):
+def test_run_command_writes_the_extrapolated_block(tmp_path, capsys):
     from cablesys.cli import main
     from cablesys.scene import dump_scene
     path = tmp_path / "slack.toml"
@@ -141,3 +141,5 @@ def test_run_command_writes_the_extrapolated_block(tmp_path):
     assert model["estimated_error_time_series"] == pytest.approx(block["time_series_error"])
     assert "extrapolated" in model["estimated_error_refers_to"] and "extrapolated" in model["reason"]
     assert set(KEYS) <= set(block["statistics"]) and block["window_s"][1] == pytest.approx(24.0)
+    # the console line: the extrapolated statistics' error first, the N run's series' own apart
+    assert "statistics extrapolated from N = " + ", ".join(map(str, block["segments"])) in capsys.readouterr().out

@@ -10,7 +10,11 @@ The choice (:func:`~cablesys.ladder.choice.choose`) is checked a posteriori:
 - segmented with N: N is chosen for SAFETY x the tolerance (:func:`~.choice.segments_for`); only
   when the estimate at N is not that far within the tolerance (N capped, or forced by the user) does
   a second run with N/2 give the Richardson estimate |y_N - y_N/2| / (2^p - 1), N doubling while it
-  exceeds the tolerance (a second run costs as much as the first: it is not spent on a sure case).
+  exceeds the tolerance (a second run costs as much as the first: it is not spent on a sure case);
+- segmented under predicted partial slack (first order in N): RK4 runs at N, N/2, N/4 and the statistics
+  are extrapolated (:mod:`.extrapolation`), N doubling while the runs are not asymptotic or miss the
+  tolerance; ``estimated_error`` is then the extrapolated statistics' (``extrapolated`` holds them) and
+  ``estimated_error_time_series`` the N run's own.
 The result's ``stats["model"]`` holds ``{name, segments, reason, estimated_error}``, and
 ``stats["ladder_timing"]`` the wall time of choosing, building, the run and its checks.
 
@@ -313,7 +317,7 @@ def simulate_auto(scene: Scene, *, model: str | None = None, tolerance=None, seg
 def _check(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict, *, auto: bool):
     """A posteriori checks of ``result`` (see the module docstring): (result, choice) to keep."""
     if extrapolation.applies(choice, auto):
-        return _extrapolated(scene, choice, tol, result, cache, kw)
+        return extrapolation.until_done(scene, choice, tol, result, cache, kw)
     while True:
         choice, again = after_run(scene, choice, result, auto=auto)
         if not again:
@@ -325,18 +329,6 @@ def _check(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict
     if choice.name in ("segmented", "quasi-static") and choice.segments >= 4 and not sure:
         return _richardson(scene, choice, tol, result, cache, kw, auto=auto)
     return result, choice
-
-
-def _extrapolated(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict):
-    """The coarse runs and the extrapolated statistics (:func:`.extrapolation.complete`), N doubling while
-    the runs are not in the asymptotic range or the extrapolated statistics miss the tolerance."""
-    known: dict = {}
-    while True:
-        choice, _, again = extrapolation.complete(scene, choice, result, tol, cache, kw, known)
-        if not again:
-            return result, choice
-        log.info("extrapolation: running the segmented cable with N = %d", choice.segments)
-        result = extrapolation.run(scene, choice.segments, cache, kw)
 
 
 def _richardson(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict, *, auto: bool):
@@ -397,13 +389,7 @@ def describe(choice_dict: dict) -> str:
     e = choice_dict.get("estimated_error", {})
     fmt = lambda v: "n/a" if v is None else f"{100 * v:.2g} %"
     seg = f", N = {choice_dict['segments']}" if (choice_dict.get("segments") or 1) > 1 else ""
-    x = choice_dict.get("extrapolated")
-    if x:           # the headline is the extrapolated statistics' error; the time series' own is said too
-        ts = choice_dict.get("estimated_error_time_series", {})
-        ns = ", ".join(str(n) for n in x["segments"])
-        return (f"model {choice_dict.get('name')}{seg}, statistics extrapolated from N = {ns}: estimated error of the "
-                f"extrapolated statistics body {fmt(e.get('body'))}, tension {fmt(e.get('tension'))} (the N = "
-                f"{choice_dict['segments']} time series: body {fmt(ts.get('body'))}, tension {fmt(ts.get('tension'))}); "
-                f"{choice_dict.get('reason', '')}")
+    if choice_dict.get("extrapolated"):      # the extrapolated statistics' error first, the time series' too
+        return extrapolation.describe(choice_dict, fmt, seg)
     return (f"model {choice_dict.get('name')}{seg}: estimated error body {fmt(e.get('body'))}, tension "
             f"{fmt(e.get('tension'))}; {choice_dict.get('reason', '')}")
