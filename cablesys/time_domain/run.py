@@ -235,8 +235,10 @@ class Simulator(ev.EventLocator):
             cols = np.column_stack([x, Xs])
             finite = np.all(np.isfinite(cols), axis=0)
             n_ok = int(np.argmin(finite)) if not finite.all() else m + 1
-            G, D = self._gap_cols(cols[:, :n_ok], times[None, k:k + n_ok], pm)
-            j_bad = ev.first_bad_interval(G, D, np.diff(times[k:k + n_ok]), mode == 1.0)
+            j_bad = None
+            if len(self.model.slack_index):     # a model without slack switches (quasi-static N > 1) has no gap to watch
+                G, D = self._gap_cols(cols[:, :n_ok], times[None, k:k + n_ok], pm)
+                j_bad = ev.first_bad_interval(G, D, np.diff(times[k:k + n_ok]), mode == 1.0)
             n_keep = j_bad if j_bad is not None else n_ok       # columns 0 .. n_keep-1 are accepted
             if n_keep > 1:
                 track.add(cols[:, 1:n_keep], mode)
