@@ -56,19 +56,18 @@ import math
 import os
 import sys
 import time
-import warnings
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _bench_auto import auto_row, wang_row  # noqa: E402
 from _bench_slack import bench_slack_case  # noqa: E402
 from _common import setup_matplotlib, write_json  # noqa: E402
 from _moordyn import largest_stable_dt, run_moordyn  # noqa: E402
 
 import cablesys  # noqa: E402
 from cablesys.ladder import metrics as M  # noqa: E402
-from cablesys.ladder import simulate_auto  # noqa: E402
 from cablesys.model import build_model  # noqa: E402
 from cablesys.scene import dale_scene, load_scene  # noqa: E402
 from cablesys.time_domain import simulate  # noqa: E402
@@ -406,69 +405,17 @@ def bench_case(name, scene, period, ns, taut, quick, keep=None, flags=()):
             md_small = (n, md["wall_s"])
     # Wang's 2-DOF model and the ladder's auto choice: matched accuracy against their own tight runs,
     # error against the converged segmented reference, speed against MoorDyn at the smallest N
-    wang_scene = _segments(scene, 1)    # Wang's 2-DOF model itself (issue 13), whatever the scene's own segments
-    wang_model = build_model(wang_scene)
-    for label in ("wang",):
-        run = lambda meth, rtol: simulate(wang_scene, model=wang_model, method=meth, rtol=rtol, atol=rtol * 1e-3)
-        compiled = True
-        try:
-            with warnings.catch_warnings(), _compiled(compiled):
-                warnings.simplefilter("ignore")
-                tight = run("cvodes", 1e-8)
-                # timed as the segmented runs and MoorDyn: the stepping and outputs, setup apart
-                m = _matched(run, _stats(tight, period), period,
-                             timed=lambda meth, rtol: _timed_run(wang_scene, meth, rtol, rtol * 1e-3))
-        except Exception as err:          # noqa: BLE001 - a failing rung is a result of the benchmark
-            row[label] = {"failed": f"{type(err).__name__}: {err}"}
-            continue
-        if m is None:
-            row[label] = {"failed": "no setting met matched accuracy", "error": _diff(_stats(tight, period), ref_stats)}
-            continue
-        res, wall, first, how = m
-        row[label] = {"s_per_s": wall / dur, "build_s": first - wall, "compiled": compiled, "error": _diff(_stats(res, period), ref_stats),
-                      "settings": how, "steps": res.stats.get("nsteps"), "model": res.stats.get("model"),
-                      "speedup_vs_moordyn_n": md_small[0], "speedup": md_small[1] / wall}
-    row["auto"] = _auto(scene, period, ref_stats, md_small)
+    helpers = {"stats": _stats, "diff": _diff, "compiled_ctx": _compiled}
+    # Wang's 2-DOF model itself (issue 13), whatever the scene's own segments
+    row["wang"] = wang_row(_segments(scene, 1), period, ref_stats, md_small, matched=_matched, timed_run=_timed_run,
+                           **helpers)
+    row["auto"] = auto_row(scene, period, ref_stats, md_small, **helpers)
     row["wang_speedup"] = row["wang"].get("speedup")
     row["auto_speedup"] = row["auto"].get("speedup")            # with the choice (what the user waits for)
     row["auto_speedup_run_only"] = row["auto"].get("speedup_run_only")
     row["auto_choose_s"] = row["auto"].get("choose_s")
     row["auto_error"] = row["auto"].get("error")
     return row
-
-
-AUTO_REPEATS = 3
-
-
-def _auto(scene, period, ref_stats, md_small):
-    """Model auto at the default tolerance as a user runs it: its own rung, element count and
-    integrator settings (issue 12), one RungCache for the calls. The first call builds (models,
-    compiled code, the describing-function solver); the best of AUTO_REPEATS further calls gives
-    ``choose_s`` (steady state, describing function, estimates), ``check_s`` (a posteriori runs) and
-    ``run_s`` (the chosen run: stepping and outputs, as MoorDyn's time is). ``speedup`` counts the
-    choice and the checks (choose_s + check_s + run_s), ``speedup_run_only`` the run alone; both
-    against MoorDyn at the smallest N of the case. ``error``: against the converged reference."""
-    from cablesys.ladder.rungs import RungCache
-    cache = RungCache()
-    dur = scene.numerics.duration
-    try:
-        with warnings.catch_warnings(), _compiled(True):    # auto compiles up to 20 elements, the VM above
-            warnings.simplefilter("ignore")
-            t0 = time.perf_counter()
-            simulate_auto(scene, model="auto", cache=cache)
-            cold = time.perf_counter() - t0
-            runs = [simulate_auto(scene, model="auto", cache=cache) for _ in range(AUTO_REPEATS)]
-    except Exception as err:          # noqa: BLE001 - a failing rung is a result of the benchmark
-        return {"failed": f"{type(err).__name__}: {err}"}
-    res = min(runs, key=lambda r: r.stats["ladder_timing"]["total_s"])
-    t = res.stats["ladder_timing"]
-    waited = t["choose_s"] + t["check_s"] + t["run_s"]
-    return {"s_per_s": waited / dur, "run_s_per_s": t["run_s"] / dur, "choose_s": t["choose_s"], "check_s": t["check_s"],
-            "run_s": t["run_s"], "build_s": cold - t["total_s"], "first_call_s": cold,
-            "error": _diff(_stats(res, period), ref_stats) if res.success else None, "success": bool(res.success),
-            "model": res.stats.get("model"), "method": res.stats.get("method"), "steps": res.stats.get("nsteps"),
-            "compiled": res.stats.get("compiled"), "speedup_vs_moordyn_n": md_small[0],
-            "speedup": md_small[1] / waited, "speedup_run_only": md_small[1] / t["run_s"]}
 
 
 def plot(rows, path):
