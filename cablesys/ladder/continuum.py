@@ -321,7 +321,14 @@ def top_components(scene: Scene) -> list[tuple[float, complex, complex]]:
     return [tuple(v) for v in comps.values()]
 
 
-def response(scene: Scene, angle: float, model: str, n: int = 1, forcing=None) -> dict:
+def forcing_members(scene: Scene, angle: float, forcing=None) -> list:
+    """[(omega, X_s, Y_s, :func:`members`)] per forcing component: what :func:`response` needs of the scene,
+    built once for the many responses of one estimate (``parts``)."""
+    comps = top_components(scene) or [(w, a + 0j, a + 0j) for w, a in (forcing or [])]
+    return [(omega, xs, ys, members(scene, omega, angle)) for omega, xs, ys in comps]
+
+
+def response(scene: Scene, angle: float, model: str, n: int = 1, forcing=None, parts=None) -> dict:
     """Body amplitudes |x_b|, |y_b| (m) and end-force amplitudes (N) summed over the forcing components.
 
     Parameters
@@ -336,6 +343,8 @@ def response(scene: Scene, angle: float, model: str, n: int = 1, forcing=None) -
         Elements per section of the segmented cable.
     forcing : list of (omega, amplitude), optional
         Used (in both directions) when the top motion has no sinusoids (a series, waves).
+    parts : list, optional
+        :func:`forcing_members` of the same scene, angle and forcing (built here when omitted).
 
     Returns
     -------
@@ -343,13 +352,12 @@ def response(scene: Scene, angle: float, model: str, n: int = 1, forcing=None) -
         ``x_b``, ``y_b`` (m), ``force_body``, ``force_top`` (N, the largest over sections, axial).
     """
     from ..model.segmented import drag_points
-    comps = top_components(scene) or [(w, a + 0j, a + 0j) for w, a in (forcing or [])]
     st, ct = math.sin(angle), math.cos(angle)
     points = 0 if model == "exact" else drag_points(scene, n)       # the models' own drag quadrature
     out = {"x_b": 0.0, "y_b": 0.0, "force_body": 0.0, "force_top": 0.0}
-    for omega, xs, ys in comps:
+    for omega, xs, ys, pairs in (parts if parts is not None else forcing_members(scene, angle, forcing)):
         top_t, top_n = xs * st + ys * ct, xs * ct - ys * st      # along and normal to the static line
-        for string, rod in members(scene, omega, angle):
+        for string, rod in pairs:
             wb, _, _ = respond(string, omega, top_n, model, n, points)
             ub, fb, ft = respond(rod, omega, top_t, model, n, points)
             out["x_b"] = max(out["x_b"], abs(ub * st + wb * ct))
