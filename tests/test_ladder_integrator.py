@@ -117,6 +117,21 @@ def test_settings_fall_back_to_cvodes_without_compilation_or_a_model(rungs, monk
     assert auto.integrator_settings(sc, tol, 4, rung="quasi-static", model=model, x0=x0, method="rk").method == "rk"
 
 
+def test_quasi_static_rtol_stays_well_below_the_stated_error(rungs):
+    """The quasi-static rungs' rtol is at most the stated body error / STATED_ROOM, rounded down to a decade (the
+    run must not add an error comparable to the one it states; one simulator per decade); other rungs and a
+    stated error that leaves room keep rtol = min(AUTO_RTOL, body tolerance / 100)."""
+    sc, model, _, x0 = rungs[4]
+    tol = (0.01, 0.02)
+    s = lambda stated, rung="quasi-static": auto.integrator_settings(sc, tol, 4, rung=rung, model=model, x0=x0,
+                                                                      stated=stated)
+    assert s(4e-3).rtol == auto.AUTO_RTOL                       # Dale's stated 0.4 %: room enough
+    assert s(1.26e-4).rtol == pytest.approx(1e-6)        # random short-3's, at the floor: 6.3e-6 -> 1e-6
+    assert s(3e-4).rtol == s(1e-3).rtol == pytest.approx(1e-5)
+    assert s(1.26e-4).atol == pytest.approx(s(1.26e-4).rtol / 10)
+    assert s(1.26e-4, rung="wang").rtol == auto.AUTO_RTOL
+
+
 # --------------------------------------------------------------------------------------------------
 # compiled
 # --------------------------------------------------------------------------------------------------

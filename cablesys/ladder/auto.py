@@ -21,7 +21,9 @@ The result's ``stats["model"]`` holds ``{name, segments, reason, estimated_error
 Speed (issue 12): models and simulators are built once per call, or once for many calls through a
 :class:`~cablesys.ladder.rungs.RungCache`; without a method or tolerances from the caller or the
 scene, the rung runs with :func:`integrator_settings` (BDF of order <= 2, rtol a hundredth of the
-body tolerance, compiled C up to COMPILE_MAX_ELEMENTS elements).
+body tolerance, compiled C up to COMPILE_MAX_ELEMENTS elements; the quasi-static rungs by the compiled
+explicit rk23 pair where its stiffness guard, :mod:`.stiffness`, accepts them, at an rtol also well below
+their stated error).
 """
 
 from __future__ import annotations
@@ -73,6 +75,13 @@ AUTO_METHOD = "cvodes-bdf2"   # A-stable BDF steps over the undamped stretch mod
 # against 6, and on the imaginary axis stable to sqrt(3) where DOPRI5 only touches it
 QUASI_STATIC_METHOD = "rk23"
 QUASI_STATIC_FALLBACK = "cvodes"
+# their rtol is also at most the stated body error / STATED_ROOM: the run must not add an error comparable to
+# the model error it states. At rtol 1e-4 the body error of rk23 against its own tight run was 0.09 rtol on Dale
+# (N = 4, stated 4e-3: rtol stays 1e-4), 0.75 rtol on random short-3 (N = 1, stated 1.26e-4: 59 % of it; CVODES
+# 1.08 rtol, 86 %) and up to 7 rtol forced at a lightly damped swing resonance (short-2 run quasi-static); the
+# tension's is 10-10^4 times smaller. STATED_ROOM = 20 (rtol rounded down to a decade) keeps it to a few % of
+# the stated error (short-3 at rtol 1e-6: ~5e-8) and leaves Dale's rtol alone
+STATED_ROOM = 20.0
 AUTO_RTOL = 1e-4     # at most; rtol = body tolerance / 100 (Dale, N = 3: 1e-4 leaves 0.01 % body, 0.2 % tension
 #                      vs its own tight run; 1e-3 leaves 9 % on the tension extremes from the element ringing)
 _SIMULATE_KEYS = ("x0", "on_block", "progress")
@@ -86,7 +95,8 @@ def _scene_sets_integrator(scene: Scene) -> bool:
 
 
 def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rtol=None, atol=None,
-                        max_num_steps=None, jit: bool = False, rung: str | None = None, model=None, x0=None):
+                        max_num_steps=None, jit: bool = False, rung: str | None = None, model=None, x0=None,
+                        stated: float | None = None):
     """The integrator settings of a ladder run.
 
     Parameters
@@ -105,6 +115,8 @@ def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rt
     model, x0 : optional
         The rung's model (of ``scene``) and its initial state, for the quasi-static rungs' guard
         (:func:`_quasi_static_method`); without them those rungs run QUASI_STATIC_FALLBACK.
+    stated : float, optional
+        The rung's stated body error: the quasi-static rungs' rtol is at most stated / STATED_ROOM.
 
     Returns
     -------
@@ -119,7 +131,12 @@ def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rt
     num = scene.numerics
     if method is None and rtol is None and atol is None and not _scene_sets_integrator(scene):
         rtol = min(AUTO_RTOL, tol[0] / 100.0)
-        method = _quasi_static_method(scene, model, x0, rtol, elements) if rung == "quasi-static" else AUTO_METHOD
+        if rung == "quasi-static":
+            # in decades: a simulator is built per rtol, and scenes of one structure share it (RungCache)
+            rtol = min(rtol, 10.0 ** math.floor(math.log10(stated / STATED_ROOM))) if stated else rtol
+            method = _quasi_static_method(scene, model, x0, rtol, elements)
+        else:
+            method = AUTO_METHOD
         # scaled states: atol x S_i per state (rtol / 1000 in SI was 3 % of the Dale stretch's dynamic
         # range); rtol / 10 scaled matches or beats the old accuracy with fewer steps
         # on the ramped scenes (300 m heave N = 20: 502 vs 742 steps; Dale N = 10: 6.8k vs 7.8k)
@@ -208,7 +225,8 @@ def _run(scene: Scene, choice: Choice, tol, cache: RungCache, kw: dict):
         opts["x0"] = initial_state(sc, model, model.parameters(sc))
     settings = integrator_settings(sc, tol, elements, method=kw.get("method"), rtol=kw.get("rtol"),
                                    atol=kw.get("atol"), max_num_steps=kw.get("max_num_steps"), jit=kw.get("jit", False),
-                                   rung=choice.name, model=model, x0=opts.get("x0"))
+                                   rung=choice.name, model=model, x0=opts.get("x0"),
+                                   stated=choice.estimated_error.get("body"))
     times = kw.get("times")
     sim = cache.simulator(model, sc.output_times if times is None else times, settings)
     return simulate(sc, model=model, simulator=sim, **opts)
