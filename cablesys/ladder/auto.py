@@ -133,7 +133,8 @@ def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rt
         rtol = min(AUTO_RTOL, tol[0] / 100.0)
         if rung == "quasi-static":
             # in decades: a simulator is built per rtol, and scenes of one structure share it (RungCache)
-            rtol = min(rtol, 10.0 ** math.floor(math.log10(stated / STATED_ROOM))) if stated else rtol
+            if stated is not None and 0.0 < stated < math.inf:
+                rtol = min(rtol, 10.0 ** math.floor(math.log10(stated / STATED_ROOM)))
             method = _quasi_static_method(scene, model, x0, rtol, elements)
         else:
             method = AUTO_METHOD
@@ -179,7 +180,8 @@ def run_options(scene: Scene, choice: Choice, tolerance=None, *, method=None) ->
     """
     sc = rung_scene(scene, choice.name, choice.segments)
     elements = sum(s.cable.segments for s in sc.sections)
-    s = integrator_settings(sc, tolerances(scene, tolerance), elements, method=method, rung=choice.name)
+    s = integrator_settings(sc, tolerances(scene, tolerance), elements, method=method, rung=choice.name,
+                            stated=choice.estimated_error.get("body"))
     return {"method": s.method, "rtol": s.rtol, "atol": s.atol}
 
 
