@@ -154,6 +154,15 @@ NOTES = {
              "body amplitude is 25 % smaller and its top maximum 58 % smaller, its body-end element slack 72 % of the "
              "time against 92 %: its slack law differs (damping acts on slack segments and pushes, -1.1 kN at the "
              "body end; see segmented_convergence), not its numerics.",
+    "auto": "Run of 2026-11-30 11:34-11:40 UTC (load average 2.0 on 2 cores: another study on one core), --case dale "
+            "--case heave_T10. Dale (60 s): auto runs the quasi-static segmented cable N = 4 with rk23 (its stiffness "
+            "guard accepts: stability step 0.048 s vs accuracy step 0.041 s), 1438 steps: choose 3.4 ms + run 6.8 ms "
+            "(stepping ~2.6, outputs ~2.2, start and guard ~0.45) + checks 0.05 ms = 10.2 ms against MoorDyn N = 10's "
+            "3.54 s: 346x (519x run only); error vs the converged reference (N = 80) body 0.55 %, tension 0.002 % "
+            "(stated 0.40 % / 0.010 %; MoorDyn N = 10: 0.29 % / 1.05 %). heave_T10: quasi-static N = 1 (nothing "
+            "drives the swing), 18 rk23 steps, choose 2.4 ms + run 4.0 ms: 58x (93x run only), error 0.010 % / 0.15 %. "
+            "Before (CVODES on the quasi-static rungs, the describing function's KINSOL in CasADi's VM): Dale 158x "
+            "(choose 7.9 ms, run 14.2 ms), heave_T10 35x.",
     "speed": "Where a run's time goes (cablesys_profile): CVODES BDF(<= 2) steps, each one or two right-hand sides "
              "and a Jacobian every ~7 steps (the Jacobian costs ~8 right-hand sides: 12 colours of a banded "
              "matrix); RHS, Jacobian and CVODES (error control, sparse QR factorizations and solves) about a third "
