@@ -23,7 +23,16 @@ rung runs CVODES (BDF, whose step does not depend on the fast modes' stability).
 taken of the rung's ODE Jacobian at its initial (static) state and there with every rate at its
 natural scale (:mod:`cablesys.model.scales`: the forcing frequency times the angle scale, the size of
 the motion the tolerances are relative to) times ``motion`` (the linear response's amplification of
-the body motion over the top's, at least 1): the drag slope grows with the speed.
+the body motion over the top's, at least 1): the drag slope grows with the speed. Along the Dale run the
+largest |lambda| was 33 1/s (rates up to 0.85 of their scales) against the probe's 52 1/s: the guard errs
+on the side of refusing.
+
+Why the ladder uses rk23 and not dopri5 (both guarded alike): at rest, without current, the string modes lie
+on the imaginary axis (Dale N = 4: 11-27 rad/s), which rk23's region contains up to sqrt(3) but DOPRI5's
+only touches, so DOPRI5's stability step there is 1.0 / 26.6 s and the guard refuses it, although in motion
+the drag damps those modes and DOPRI5 ran Dale in 926 steps (mean 0.065 s). Measured run times are close
+(Dale: rk23 6.7-7.3 ms, dopri5 7.5 ms); dopri5 is 5-15x more accurate at equal rtol, which the ladder gets
+instead by tightening rtol where the stated error is small (:data:`cablesys.ladder.auto.STATED_ROOM`).
 """
 
 from __future__ import annotations
