@@ -60,27 +60,13 @@ from .stiffness import explicit_fit
 log = logging.getLogger(__name__)
 
 AUTO_METHOD = "cvodes-bdf2"   # A-stable BDF steps over the undamped stretch modes (Dale: 1.7k steps vs 41k)
-# the quasi-static rungs have no stretch modes left (eliminated): BDF of variable order up to 5 takes fewer
-# steps at the same rtol, with a smaller error (Dale 60 s at rtol 1e-4, vs its own rtol 1e-10 run: straight
-# 1748 -> 592 steps, body error 1e-3 -> 1.5e-4; N = 3: 2623 -> 1363 steps, 5e-4 -> 4e-6)
-# Without a compiler, or where their stiffness guard refuses, they still do (QUASI_STATIC_FALLBACK); elsewhere
-# the compiled explicit Bogacki-Shampine pair: its step is the accuracy step where stability does not set it
-# (:func:`.stiffness.explicit_fit`: the Jacobian's eigenvalues at the start and moving at the rate scales
-# against the pair's stability region). Dale 60 s, quasi-static N = 4, rtol 1e-4 (compiled, second runs, load
-# ~0.2): rk23 1438 steps, 4.7k right-hand sides, run 8.1 ms; dopri5 926 steps, 5.7k, 8.8 ms; cvodes 1762 steps,
-# 13.5 ms (of which ~5.5 ms are the outputs and the Simulator's own work, the same for all three). Body / tension
-# error vs its own rtol 1e-10 run: rk23 8.7e-6 / 3.6e-7, cvodes 6.7e-7 / 4.2e-7, against the stated model error
-# 4.0e-3 / 1.0e-4. The guard refuses N = 8 (string modes at 56.5 rad/s: rk23's stable step 0.031 s below its
-# accuracy step 0.041 s; it takes 1950 steps whatever rtol). rk23 over dopri5: 3 right-hand sides a step
-# against 6, and on the imaginary axis stable to sqrt(3) where DOPRI5 only touches it
+# the quasi-static rungs have no stretch modes left (eliminated): the compiled explicit rk23 pair where its
+# stiffness guard accepts them (Dale 60 s, N = 4: 1438 steps, run 8.1 ms against CVODES's 13.5 ms), else
+# variable-order BDF (fewer steps than BDF2 at the same rtol); measurements in :mod:`.stiffness`. Their rtol is
+# at most the stated body error / STATED_ROOM, rounded down to a decade: the run must not add an error
+# comparable to the one it states (:mod:`.stiffness`, accuracy)
 QUASI_STATIC_METHOD = "rk23"
 QUASI_STATIC_FALLBACK = "cvodes"
-# their rtol is also at most the stated body error / STATED_ROOM: the run must not add an error comparable to
-# the model error it states. At rtol 1e-4 the body error of rk23 against its own tight run was 0.09 rtol on Dale
-# (N = 4, stated 4e-3: rtol stays 1e-4), 0.75 rtol on random short-3 (N = 1, stated 1.26e-4: 59 % of it; CVODES
-# 1.08 rtol, 86 %) and up to 7 rtol forced at a lightly damped swing resonance (short-2 run quasi-static); the
-# tension's is 10-10^4 times smaller. STATED_ROOM = 20 (rtol rounded down to a decade) keeps it to a few % of
-# the stated error (short-3 at rtol 1e-6: ~5e-8) and leaves Dale's rtol alone
 STATED_ROOM = 20.0
 AUTO_RTOL = 1e-4     # at most; rtol = body tolerance / 100 (Dale, N = 3: 1e-4 leaves 0.01 % body, 0.2 % tension
 #                      vs its own tight run; 1e-3 leaves 9 % on the tension extremes from the element ringing)
@@ -121,9 +107,8 @@ def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rt
     Returns
     -------
     IntegratorSettings
-        Without any choice from the caller or the scene: AUTO_METHOD (QUASI_STATIC_METHOD for the
-        quasi-static rungs) with rtol = min(AUTO_RTOL,
-        tol[0] / 100) and atol = rtol / 10 relative to each state's natural scale (the integrators
+        Without any choice from the caller or the scene: AUTO_METHOD (see ``rung``) with rtol =
+        min(AUTO_RTOL, tol[0] / 100) and atol = rtol / 10 relative to each state's natural scale (the integrators
         scale the states by :mod:`cablesys.model.scales`: stretch by its static value, angle by the
         top's amplitude over the length, rates by these times the forcing frequency).
     """
