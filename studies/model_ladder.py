@@ -41,12 +41,12 @@ Findings (2026-11-30, full run, CasADi VM on the shared 2-core machine; numbers 
   (segmented N = 40: 3.3-3.5 % body, 3-5 % tension); Wang's and the quasi-static rung miss by 27 % (body)
   and 78 % (tension). Auto extrapolates from N = 8, 16, 32 (N = 16 first: the runs 4, 8, 16 are not in
   the asymptotic range, observed order -0.9, so N doubled): actual 0.025 % body / 0.28 % tension against
-  a stated 0.037 % / 0.059 % (both below the resolution, 0.1 % / 0.33 %), in 12-21 s of compiled runs; its
+  a stated 0.037 % / 0.059 % (both below the resolution, 0.1 % / 0.31 %), in 10-21 s of compiled runs; its
   N = 32 time series states 4.26 % / 3.84 % against an actual 4.28 % / 3.83 %. RK4 at its stable step vs
   half of it: < 1e-5 on every statistic at N = 8, 16, 32. CVODES and IDAS runs buckle sideways (x
   amplitude 7-13 mm) and their cycle maxima spread by up to 6 kN at N = 40; RK4 at 10 steps per output
-  is past its stability step at N = 40 and runs on with 15 % tension error. The whole scene took 30 min
-  (the two compiled reference runs add 90 s).
+  is past its stability step at N = 40 and runs on with 15 % tension error. The whole scene took 19 min
+  (30 min in an earlier run on a busier machine); the two compiled reference runs are 150 s of it.
 - taut scenes: auto's choice is never beaten by a run within half the tolerance at half its wall
   time (Dale: quasi-static N = 3, 0.38 % body vs 0.37 % stated, 0.13 s; 300 m T = 10 s: Wang's model);
   at the full tolerance the 1000 m scene has a cheaper run within it (N = 5 at 0.66 % in 0.11 s vs
