@@ -117,6 +117,22 @@ def test_settings_fall_back_to_cvodes_without_compilation_or_a_model(rungs, monk
     assert auto.integrator_settings(sc, tol, 4, rung="quasi-static", model=model, x0=x0, method="rk").method == "rk"
 
 
+def test_run_options_give_the_cli_the_guarded_pair_and_its_start(rungs, monkeypatch):
+    """``cablesys run`` streams the run itself with :func:`auto.run_options`: given the rung's model, the options
+    carry the pair the guard accepts (compiled) and the start state it probed; without the model, the fallback."""
+    from cablesys.ladder.choice import choose
+    scene = _ramped_dale()
+    choice = choose(scene)
+    sc, model, _, x0 = rungs[choice.segments] if choice.segments in rungs else (None, None, None, None)
+    assert choice.name == "quasi-static" and model is not None, choice.reason
+    monkeypatch.setenv("CABLESYS_COMPILE", "1")
+    opts = auto.run_options(scene, choice, model=model)
+    assert opts["method"] == auto.QUASI_STATIC_METHOD
+    np.testing.assert_allclose(opts["x0"], x0, rtol=0, atol=0)
+    assert auto.run_options(scene, choice)["method"] == auto.QUASI_STATIC_FALLBACK
+    assert "x0" not in auto.run_options(scene, choice, model=model, method="cvodes")
+
+
 def test_quasi_static_rtol_stays_well_below_the_stated_error(rungs):
     """The quasi-static rungs' rtol is at most the stated body error / STATED_ROOM, rounded down to a decade (the
     run must not add an error comparable to the one it states; one simulator per decade); other rungs and a

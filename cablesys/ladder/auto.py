@@ -123,10 +123,7 @@ def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rt
             method = _quasi_static_method(scene, model, x0, rtol, elements)
         else:
             method = AUTO_METHOD
-        # scaled states: atol x S_i per state (rtol / 1000 in SI was 3 % of the Dale stretch's dynamic
-        # range); rtol / 10 scaled matches or beats the old accuracy with fewer steps
-        # on the ramped scenes (300 m heave N = 20: 502 vs 742 steps; Dale N = 10: 6.8k vs 7.8k)
-        atol = rtol / 10
+        atol = rtol / 10   # scaled states (rtol / 1000 in SI was 3 % of Dale's dynamic stretch; 300 m N = 20: 502 vs 742 steps)
     extra = {} if max_num_steps is None else {"max_num_steps": int(max_num_steps)}
     return IntegratorSettings(method=method or num.integrator, rtol=rtol or num.rtol, atol=atol or num.atol,
                               steps_per_output=num.steps_per_output, compiled=elements <= COMPILE_MAX_ELEMENTS,
@@ -143,7 +140,7 @@ def _quasi_static_method(scene: Scene, model, x0, rtol: float, elements: int) ->
     return QUASI_STATIC_METHOD if fit.accepted else QUASI_STATIC_FALLBACK
 
 
-def run_options(scene: Scene, choice: Choice, tolerance=None, *, method=None) -> dict:
+def run_options(scene: Scene, choice: Choice, tolerance=None, *, method=None, model=None) -> dict:
     """``method``, ``rtol``, ``atol`` for :func:`cablesys.time_domain.simulate` of ``choice``'s run, for a
     caller that runs it itself (the ``run`` command): :func:`integrator_settings` of the rung's scene.
 
@@ -157,17 +154,21 @@ def run_options(scene: Scene, choice: Choice, tolerance=None, *, method=None) ->
         The model tolerance (default the scene's).
     method : str, optional
         The caller's method (it wins; the tolerances are then the scene's).
+    model : CableModel, optional
+        The rung's model: the quasi-static rungs' guard needs it to accept the explicit pair.
 
     Returns
     -------
     dict
-        Keyword arguments ``method``, ``rtol``, ``atol``.
+        Keyword arguments ``method``, ``rtol``, ``atol`` (and ``x0``, the start the guard probed).
     """
     sc = rung_scene(scene, choice.name, choice.segments)
     elements = sum(s.cable.segments for s in sc.sections)
+    probe = model is not None and method is None and choice.name == "quasi-static"
+    x0 = initial_state(sc, model, model.parameters(sc)) if probe else None
     s = integrator_settings(sc, tolerances(scene, tolerance), elements, method=method, rung=choice.name,
-                            stated=choice.estimated_error.get("body"))
-    return {"method": s.method, "rtol": s.rtol, "atol": s.atol}
+                            model=model, x0=x0, stated=choice.estimated_error.get("body"))
+    return {"method": s.method, "rtol": s.rtol, "atol": s.atol, **({"x0": x0} if probe else {})}
 
 
 def run_rung(scene: Scene, name: str, segments: int = 1, *, cache: RungCache | None = None, **kw):
