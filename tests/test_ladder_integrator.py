@@ -133,10 +133,10 @@ def test_run_options_give_the_cli_the_guarded_pair_and_its_start(rungs, monkeypa
     assert "x0" not in auto.run_options(scene, choice, model=model, method="cvodes")
 
 
-def test_quasi_static_rtol_stays_well_below_the_stated_error(rungs):
-    """The quasi-static rungs' rtol is at most the stated body error / STATED_ROOM, rounded down to a decade (the
-    run must not add an error comparable to the one it states; one simulator per decade); other rungs and a
-    stated error that leaves room keep rtol = min(AUTO_RTOL, body tolerance / 100)."""
+def test_rtol_stays_well_below_the_stated_error(rungs):
+    """Every rung's rtol is at most the stated body error / STATED_ROOM, rounded down to a decade (the run must
+    not add an error comparable to the one it states; one simulator per decade); a stated error that leaves
+    room, or none, keeps rtol = min(AUTO_RTOL, body tolerance / 100)."""
     sc, model, _, x0 = rungs[4]
     tol = (0.01, 0.02)
     s = lambda stated, rung="quasi-static": auto.integrator_settings(sc, tol, 4, rung=rung, model=model, x0=x0,
@@ -145,7 +145,8 @@ def test_quasi_static_rtol_stays_well_below_the_stated_error(rungs):
     assert s(1.26e-4).rtol == pytest.approx(1e-6)        # random short-3's, at the floor: 6.3e-6 -> 1e-6
     assert s(3e-4).rtol == s(1e-3).rtol == pytest.approx(1e-5)
     assert s(1.26e-4).atol == pytest.approx(s(1.26e-4).rtol / 10)
-    assert s(1.26e-4, rung="wang").rtol == auto.AUTO_RTOL
+    assert s(1.34e-3, rung="wang").rtol == pytest.approx(1e-5)   # random short-2's (BDF2 at a swing resonance)
+    assert s(4e-3, rung="wang").rtol == s(None, rung="segmented").rtol == auto.AUTO_RTOL
 
 
 # --------------------------------------------------------------------------------------------------
