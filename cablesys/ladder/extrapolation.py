@@ -318,8 +318,11 @@ def complete(scene: Scene, choice, result, tol, cache: RungCache, kw: dict | Non
               f"series is the N = {n} run's, estimated error body {block['time_series_error']['body']:.2g}, "
               f"tension {block['time_series_error']['tension']:.2g}")
     if not block["asymptotic"]:
-        reason += (f"; NOT in the asymptotic range (observed orders {block['leading_orders']}): the stated error "
-                   "is the larger of the whole difference of the two limits and the extrapolation's correction")
+        orders = ", ".join(f"{k} {v:.2g}" if v is not None else f"{k} n/a" for k, v in block["leading_orders"].items())
+        reason += (f"; NOT in the asymptotic range (observed orders {orders}): the stated error is the larger of the "
+                   "whole difference of the two limits and the extrapolation's correction; a statistics window that "
+                   "still holds the start-up transient does not converge smoothly in N (slack scenes settle slowly): "
+                   "a longer duration helps")
         warnings.warn(f"model auto: {reason}", NumericalWarning, stacklevel=3)
     elif not _within(e, tol):
         warnings.warn(f"model auto: tolerance not reached at N = {n}: {reason}", NumericalWarning, stacklevel=3)
