@@ -91,7 +91,7 @@ METHODS = {m.name: m for m in (
     # classical fixed-step Runge-Kutta 4 (cablesys compiles it as one loop)
     IntegratorMethod(name="rk", plugin="rk", adaptive=False),
     # Dormand-Prince 5(4), explicit, error-controlled: cablesys's own compiled C driver (not a
-    # casadi.integrator plugin; time_domain/dopri5.py); CVODES when nothing is compiled
+    # casadi.integrator plugin; time_domain/explicit_rk.py); CVODES when nothing is compiled
     IntegratorMethod(name="dopri5", plugin="dopri5"),
     # Bogacki-Shampine 3(2) (SciPy's RK23, MATLAB's ode23), explicit, error-controlled, in the same
     # compiled driver: 3 evaluations a step and stable on the imaginary axis to |h lambda| = sqrt(3)

@@ -1,4 +1,4 @@
-"""The compiled Dormand-Prince 5(4) integrator (cablesys.time_domain.dopri5): its coefficients'
+"""The compiled Dormand-Prince 5(4) integrator (cablesys.time_domain.explicit_rk): its coefficients'
 order, its error control against closed forms, Wang's model against a tight CVODES run, its step
 count at the stability limit of the undamped stretch mode, failures and the fallback."""
 
@@ -18,11 +18,11 @@ from cablesys.errors import SolverError
 from cablesys.model import build_model
 from cablesys.scene import TopMotion, dale_scene
 from cablesys.time_domain import IntegratorSettings, Simulator
-from cablesys.time_domain.dopri5 import Dopri5Integrator
+from cablesys.time_domain.explicit_rk import ExplicitRKIntegrator
 from cablesys.time_domain.integrators import compiled_dae, make_integrator
 from cablesys.time_domain.run import initial_state
 
-C_SOURCE = Path(__file__).resolve().parents[1] / "cablesys" / "time_domain" / "dopri5.c"
+C_SOURCE = Path(__file__).resolve().parents[1] / "cablesys" / "time_domain" / "explicit_rk.c"
 needs_cc = pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler")
 
 
@@ -39,7 +39,7 @@ def compiling(tmp_path_factory):
 
 
 def _tableau():
-    """The coefficients as written in dopri5.c (a_ij, c_i, e_i = b_i - b^_i, d_i)."""
+    """The coefficients as written in explicit_rk.c (a_ij, c_i, e_i = b_i - b^_i, d_i)."""
     text = C_SOURCE.read_text()
     co = {}
     for name, num, den in re.findall(r"cs_dp5_([a-e]\d+) = (-?[\d.]+) / ([\d.]+)", text):
@@ -165,7 +165,7 @@ def oscillator_error(method, rtol, zeta):
     grid = np.linspace(0.0, 10.0, 201)
     F = make_integrator(model, IntegratorSettings(method=method, rtol=rtol, atol=rtol, scaled=False,
                                                   max_num_steps=10**5), grid)
-    assert isinstance(F, Dopri5Integrator)
+    assert isinstance(F, ExplicitRKIntegrator)
     X = np.array(F(x0=[1.0, 0.0], p=np.array([w, zeta, 0.0, 1.0]))["xf"])
     scale = np.array([[1.0], [w]])
     return float(np.max(np.abs(X - _oscillator_exact(grid[1:], w, zeta)) / scale)), F.stats()
@@ -308,13 +308,13 @@ def test_without_compilation_falls_back_to_cvodes_with_one_notice(caplog, monkey
     model = build_model(scene)
     p = model.parameters(scene)
     st = IntegratorSettings(method="dopri5", rtol=1e-6, atol=1e-7)
-    with caplog.at_level(logging.WARNING, logger="cablesys.time_domain.dopri5"):
+    with caplog.at_level(logging.WARNING, logger="cablesys.time_domain.explicit_rk"):
         sim = Simulator(model, scene.output_times, st)
         rec = sim.run(p, initial_state(scene, model, p))
     assert rec.success and not rec.stats["compiled"]
     notices = [r for r in caplog.records if "running CVODES" in r.getMessage()]
     assert len(notices) == 1
-    assert not isinstance(make_integrator(model, st, [0.0, 1.0]), Dopri5Integrator)
+    assert not isinstance(make_integrator(model, st, [0.0, 1.0]), ExplicitRKIntegrator)
     assert compiled_dae(model, st).compiled is False
 
 

@@ -1,5 +1,5 @@
 """The Bogacki-Shampine 3(2) pair (``rk23``) of the compiled explicit-RK driver
-(cablesys.time_domain.dopri5, dopri5.c): its coefficients' order and stability on the imaginary
+(cablesys.time_domain.explicit_rk, explicit_rk.c): its coefficients' order and stability on the imaginary
 axis, its error control against closed forms, Wang's model against a tight CVODES run, its step
 count at the stability limit of the undamped stretch mode, failures and the fallback. The
 DOPRI5 pair of the same driver is tested in test_dopri5.py, whose helpers this module shares."""
@@ -26,13 +26,13 @@ from test_dopri5 import (
 from cablesys.errors import SolverError
 from cablesys.model import build_model
 from cablesys.time_domain import IntegratorSettings, Simulator
-from cablesys.time_domain.dopri5 import Dopri5Integrator
+from cablesys.time_domain.explicit_rk import ExplicitRKIntegrator
 from cablesys.time_domain.integrators import compiled_dae, make_integrator
 from cablesys.time_domain.run import initial_state
 
 
 def _tableau():
-    """BS3's coefficients as written in dopri5.c (a_ij, c_i, e_i = b_i - b^_i; b = a_4j)."""
+    """BS3's coefficients as written in explicit_rk.c (a_ij, c_i, e_i = b_i - b^_i; b = a_4j)."""
     co = {name: Fraction(int(float(num)), int(float(den)))
           for name, num, den in re.findall(r"cs_bs3_([a-e]\d+) = (-?[\d.]+) / ([\d.]+)", C_SOURCE.read_text())}
     A = [[co.get(f"a{i}{j}", Fraction(0)) for j in range(1, 5)] for i in range(1, 5)]
@@ -194,9 +194,9 @@ def test_without_compilation_falls_back_to_cvodes_with_one_notice(caplog, monkey
     model = build_model(scene)
     p = model.parameters(scene)
     st = IntegratorSettings(method="rk23", rtol=1e-6, atol=1e-7)
-    with caplog.at_level(logging.WARNING, logger="cablesys.time_domain.dopri5"):
+    with caplog.at_level(logging.WARNING, logger="cablesys.time_domain.explicit_rk"):
         rec = Simulator(model, scene.output_times, st).run(p, initial_state(scene, model, p))
     assert rec.success and not rec.stats["compiled"]
     assert len([r for r in caplog.records if "rk23 needs" in r.getMessage()]) == 1
-    assert not isinstance(make_integrator(model, st, [0.0, 1.0]), Dopri5Integrator)
+    assert not isinstance(make_integrator(model, st, [0.0, 1.0]), ExplicitRKIntegrator)
     assert compiled_dae(model, st).compiled is False

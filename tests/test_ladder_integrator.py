@@ -25,7 +25,7 @@ RTOL = 1e-4          # auto's rtol at the default 1 % body tolerance (auto.AUTO_
 
 def test_stability_polynomials_are_the_pairs():
     """rk23: 3 stages of order 3, R = the exponential's Taylor polynomial of degree 3 (unique); dopri5: order
-    5 (1/k! up to z^5) and its z^6 coefficient b^T A^5 1 from the tableau in dopri5.c, 1/600."""
+    5 (1/k! up to z^5) and its z^6 coefficient b^T A^5 1 from the tableau in explicit_rk.c, 1/600."""
     assert G.STABILITY_POLYNOMIALS["rk23"] == tuple(1 / math.factorial(k) for k in range(4))
     c = G.STABILITY_POLYNOMIALS["dopri5"]
     assert c[:6] == pytest.approx([1 / math.factorial(k) for k in range(6)], rel=1e-15)

@@ -6,7 +6,7 @@
 - ``rk``            classical fixed-step Runge-Kutta 4 (compiled loop, :func:`rk4_interval`): the
                     fastest choice when the step is below the stability limit (no error control);
 - ``dopri5``        Dormand-Prince 5(4), explicit with error control and dense output, a compiled C
-                    driver (:mod:`.dopri5`); CVODES when nothing is compiled;
+                    driver (:mod:`.explicit_rk`); CVODES when nothing is compiled;
 - ``rk23``          Bogacki-Shampine 3(2), the same compiled driver: 3 evaluations a step, stable on the
                     imaginary axis to |h lambda| = sqrt(3) (undamped stiff modes); CVODES without compiler;
 - ``collocation``   fixed-step Radau collocation (implicit), for comparison.
@@ -58,7 +58,7 @@ from ..compiled import Compiled, compilation_enabled, compile_functions, generat
 from ..integration import METHODS, IntegratorMethod, resolve
 from ..model import CableModel
 from ..model.scales import state_scales
-from .dopri5 import PAIRS, dopri5_library, fallback_settings, make_dopri5
+from .explicit_rk import PAIRS, explicit_rk_library, fallback_settings, make_explicit_rk
 
 # the registry and the protocol of a user method live in cablesys.integration (the scene checks names there)
 ADAPTIVE = tuple(name for name, m in METHODS.items() if m.adaptive)
@@ -208,7 +208,7 @@ def uses_scaling(settings: IntegratorSettings) -> bool:
 
 
 def _explicit_pair(settings: IntegratorSettings) -> bool:
-    """Whether ``settings`` name a pair of the compiled explicit driver (:data:`.dopri5.PAIRS`)."""
+    """Whether ``settings`` name a pair of the compiled explicit driver (:data:`.explicit_rk.PAIRS`)."""
     return settings.custom is None and settings.method in PAIRS
 
 
@@ -218,7 +218,7 @@ def compiled_dae(model: CableModel, settings: IntegratorSettings) -> Compiled:
     if settings.method == "rk" and settings.custom is None:
         return rk4_interval(model, int(settings.steps_per_output), settings.compiled or settings.jit)
     if _explicit_pair(settings):
-        comp = dopri5_library(model, settings.compiled or settings.jit, settings.method)
+        comp = explicit_rk_library(model, settings.compiled or settings.jit, settings.method)
         if comp.compiled:
             return comp
         settings = fallback_settings(model, settings)
@@ -350,7 +350,7 @@ def make_integrator(model: CableModel, settings: IntegratorSettings, grid, name:
     if settings.method == "rk" and settings.custom is None:
         return _rk4_integrator(model, settings, np.asarray(grid, dtype=float), name)
     if _explicit_pair(settings):
-        F = make_dopri5(model, settings, np.asarray(grid, dtype=float), name)
+        F = make_explicit_rk(model, settings, np.asarray(grid, dtype=float), name)
         if F is not None:
             return F
         settings = fallback_settings(model, settings)

@@ -1,6 +1,6 @@
 """``dopri5`` and ``rk23``: explicit Runge-Kutta pairs with error control, run entirely in compiled C.
 
-One C driver (``dopri5.c``) holds both pairs as small tables (stages, a_ij, c_i, error weights,
+One C driver (``explicit_rk.c``) holds both pairs as small tables (stages, a_ij, c_i, error weights,
 orders, PI beta, dense-output rule) selected by a preprocessor define (:data:`PAIRS`), so each
 model gets one library per pair and everything but the table is shared: ``dopri5``, below, and
 ``rk23``, the Bogacki-Shampine 3(2) pair (Bogacki & Shampine 1989, "A 3(2) pair of Runge-Kutta
@@ -29,7 +29,7 @@ beta = 0.04, safety 0.9, step ratio in [0.2, 10], no increase right after a reje
 starting step (sec. II.4), first-same-as-last, and DOPRI5's 4th-order dense output (sec. II.6,
 Shampine 1986's coefficients) for the output times, so the steps are
 never shortened to land on an output time (on the Dale grid, 0.05 s outputs and ~0.01 s steps,
-clipping would add up to a step per output). The driver is ``dopri5.c`` next to this module.
+clipping would add up to a step per output). The driver is ``explicit_rk.c`` next to this module.
 
 Why hand-written C: CasADi (3.8) offers no error-controlled explicit integrator (its ``rk``
 plugin takes fixed steps), SUNDIALS ARKODE is not exposed through ``casadi.integrator``, and a
@@ -92,12 +92,12 @@ from ..model.scales import state_scales
 
 log = logging.getLogger(__name__)
 
-__all__ = ["DRIVER", "PAIRS", "Dopri5Integrator", "dopri5_library", "make_dopri5"]
+__all__ = ["DRIVER", "PAIRS", "ExplicitRKIntegrator", "explicit_rk_library", "make_explicit_rk"]
 
 DRIVER = "cablesys_dopri5"
-# the pairs of the driver (dopri5.c): method name -> (CS_ERK_METHOD, exported driver name)
+# the pairs of the driver (explicit_rk.c): method name -> (CS_ERK_METHOD, exported driver name)
 PAIRS = {"dopri5": (1, DRIVER), "rk23": (2, "cablesys_rk23")}
-HEAD = 13                  # carry layout: see dopri5.c
+HEAD = 13                  # carry layout: see explicit_rk.c
 # output times per driver call: the grid is a mapaccum over blocks of them. CasADi's mapaccum costs
 # time superlinear in its length to build (1024 calls: ~75 ms, 4096: more), the Simulator's chunks
 # are up to 4096 output times long, and one block call costs nothing extra at run time
@@ -114,11 +114,11 @@ class _Source:
 
 
 def _driver_source() -> _Source:
-    code = resources.files(__package__).joinpath("dopri5.c").read_text()
+    code = resources.files(__package__).joinpath("explicit_rk.c").read_text()
     return _Source(code, hashlib.sha256(code.encode()).hexdigest()[:16])
 
 
-def dopri5_library(model: CableModel, compiled: bool = True, method: str = "dopri5") -> Compiled:
+def explicit_rk_library(model: CableModel, compiled: bool = True, method: str = "dopri5") -> Compiled:
     """The model's relative-time ODE and the driver of one explicit pair in one compiled library
     (built once per model and pair, cached on disk).
 
@@ -160,7 +160,7 @@ def _pair(method: str) -> tuple[int, str]:
         raise ParameterError("method", method, f"an explicit pair of the compiled driver: {tuple(PAIRS)}") from None
 
 
-class Dopri5Integrator:
+class ExplicitRKIntegrator:
     """An explicit pair of the compiled driver (DOPRI5 or BS3) over a fixed relative grid, called
     like a CasADi integrator.
 
@@ -211,7 +211,7 @@ class Dopri5Integrator:
         return dict(self._stats)
 
 
-def make_dopri5(model: CableModel, settings, grid, name: str = "F") -> Dopri5Integrator | None:
+def make_explicit_rk(model: CableModel, settings, grid, name: str = "F") -> ExplicitRKIntegrator | None:
     """The integrator of ``model`` by the explicit pair ``settings.method`` (``dopri5`` or
     ``rk23``, :data:`PAIRS`) over the relative ``grid``, or None without a compiled library (the
     caller falls back to CVODES).
@@ -230,10 +230,10 @@ def make_dopri5(model: CableModel, settings, grid, name: str = "F") -> Dopri5Int
 
     Returns
     -------
-    Dopri5Integrator or None
+    ExplicitRKIntegrator or None
     """
     method = settings.method
-    comp = dopri5_library(model, bool(settings.compiled or settings.jit), method)
+    comp = explicit_rk_library(model, bool(settings.compiled or settings.jit), method)
     if not comp.compiled:
         return None
     grid = np.asarray(grid, dtype=float)
@@ -245,13 +245,13 @@ def make_dopri5(model: CableModel, settings, grid, name: str = "F") -> Dopri5Int
     x0, p = ca.MX.sym("x0", nx), ca.MX.sym("p", npx)
     S = state_scales(model)(p[:-2]) if settings.scaled else ca.DM.ones(nx)
     head = np.zeros(HEAD)
-    head[0] = head[7] = grid[0]                     # s and the start of the last step; the rest 0 (dopri5.c)
+    head[0] = head[7] = grid[0]                     # s and the start of the last step; the rest 0 (explicit_rk.c)
     carry0 = ca.vertcat(ca.DM(head), x0, ca.DM.zeros(6 * nx))
     tol = ca.DM([settings.rtol, settings.max_num_steps])
     C, X = acc(carry0, ca.DM(s_out), ca.repmat(p, 1, nb), ca.repmat(tol, 1, nb),
                ca.repmat(settings.atol * S, 1, nb))
     F = ca.Function(name, [x0, p], [X[:, :n], C[:, -1]], ["x0", "p"], ["xf", "carry"])
-    return Dopri5Integrator(F, grid, method)
+    return ExplicitRKIntegrator(F, grid, method)
 
 
 def fallback_settings(model: CableModel, settings):
@@ -272,7 +272,7 @@ def fallback_settings(model: CableModel, settings):
         The same tolerances, scaling and step budget with ``method="cvodes"``.
     """
     method = settings.method
-    comp = dopri5_library(model, bool(settings.compiled or settings.jit), method)
+    comp = explicit_rk_library(model, bool(settings.compiled or settings.jit), method)
     model.derive(f"{method}:fallback-notice", lambda: log.warning(
         "%s needs its compiled C driver (%s): running CVODES (BDF) instead", method,
         comp.note or "not compiled") or True)

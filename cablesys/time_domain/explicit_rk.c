@@ -1,5 +1,5 @@
 /* cablesys explicit Runge-Kutta pairs with error control and dense output, a block of output
- * times per call, in CasADi's external-function C API (see cablesys/time_domain/dopri5.py).
+ * times per call, in CasADi's external-function C API (see cablesys/time_domain/explicit_rk.py).
  * One driver, two embedded pairs (the file keeps its first pair's name):
  *   CS_ERK_METHOD 1  DOPRI5: Dormand & Prince (1980) 5(4), 7 stages, FSAL (6 new evaluations a step)
  *   CS_ERK_METHOD 2  BS3:    Bogacki & Shampine (1989) 3(2), 4 stages, FSAL (3 new evaluations a step)
@@ -7,7 +7,7 @@
  * propagated solution for the starting step, the order of the embedded one for the step exponent,
  * the PI beta, and optional dense-output weights d_i); everything else is shared.
  *
- * Appended by cablesys.time_domain.dopri5 to the C that CasADi's CodeGenerator generates for the
+ * Appended by cablesys.time_domain.explicit_rk to the C that CasADi's CodeGenerator generates for the
  * model's relative-time ODE, after these definitions (prepended by the Python side):
  *   CS_ERK_METHOD    the pair (1 or 2, above)
  *   CS_ERK_NAME      the exported driver's name (cablesys_dopri5, cablesys_rk23)
