@@ -7,10 +7,15 @@ N of the case (``md_small`` = (N, MoorDyn wall seconds)). The helpers of the mai
 
 from __future__ import annotations
 
+import math
 import os
 import time
 import warnings
 
+from _cycles import richardson_limit
+
+from cablesys.ladder import extrapolation as X
+from cablesys.ladder import metrics as M
 from cablesys.ladder import simulate_auto
 from cablesys.ladder.rungs import RungCache
 from cablesys.model import build_model
@@ -41,7 +46,7 @@ def wang_row(wang_scene, period, ref_stats, md_small, *, matched, timed_run, sta
             "speedup_vs_moordyn_n": md_small[0], "speedup": md_small[1] / wall}
 
 
-def auto_row(scene, period, ref_stats, md_small, *, stats, diff, compiled_ctx) -> dict:
+def auto_row(scene, period, ref_stats, md_small, *, stats, diff, compiled_ctx, repeats=AUTO_REPEATS, more=None) -> dict:
     """Model auto at the default tolerance as a user runs it: its own rung, element count and
     integrator settings (issue 12), one RungCache for the calls. The first call builds (models,
     compiled code, the describing-function solver); the best of AUTO_REPEATS further calls gives
@@ -49,7 +54,8 @@ def auto_row(scene, period, ref_stats, md_small, *, stats, diff, compiled_ctx) -
     ``run_s`` (the chosen run with its integrator guard and start: stepping and outputs, as MoorDyn's
     time is). ``speedup`` counts the choice and the checks (choose_s + check_s + run_s),
     ``speedup_run_only`` the run alone; both against MoorDyn at the smallest N of the case. ``error``:
-    against the converged reference. ``load_average``: the machine's 1-minute load when measured."""
+    against the converged reference of ``stats(result, period)`` (what auto reports). ``load_average``:
+    the machine's 1-minute load when measured. ``more(result)``: further entries of the row."""
     cache = RungCache()
     dur = scene.numerics.duration
     try:
@@ -58,7 +64,7 @@ def auto_row(scene, period, ref_stats, md_small, *, stats, diff, compiled_ctx) -
             t0 = time.perf_counter()
             simulate_auto(scene, model="auto", cache=cache)
             cold = time.perf_counter() - t0
-            runs = [simulate_auto(scene, model="auto", cache=cache) for _ in range(AUTO_REPEATS)]
+            runs = [simulate_auto(scene, model="auto", cache=cache) for _ in range(repeats)]
     except Exception as err:          # noqa: BLE001 - a failing rung is a result of the benchmark
         return {"failed": f"{type(err).__name__}: {err}"}
     res = min(runs, key=lambda r: r.stats["ladder_timing"]["total_s"])
@@ -70,4 +76,90 @@ def auto_row(scene, period, ref_stats, md_small, *, stats, diff, compiled_ctx) -
             "model": res.stats.get("model"), "method": res.stats.get("method"), "steps": res.stats.get("nsteps"),
             "compiled": res.stats.get("compiled"), "speedup_vs_moordyn_n": md_small[0],
             "speedup": md_small[1] / waited, "speedup_run_only": md_small[1] / t["run_s"],
-            "load_average": os.getloadavg()[0]}
+            "load_average": os.getloadavg()[0], "repeats": repeats, **(more(res) if more and res.success else {})}
+
+
+# -- the slack row (heave at T = 6 s, _bench_slack): auto reports extrapolated statistics -------------------
+
+DEFAULT_TOLERANCE = {"body": 0.01, "tension": 0.02}     # auto's default model tolerance (issue 12)
+
+
+def reported_statistics(result, period) -> dict:
+    """What auto reports on a slack scene: the statistics extrapolated from its runs at N / 4, N / 2, N
+    (:mod:`cablesys.ladder.extrapolation`), else its N run's (same definition: the last 5 periods,
+    maxima refined between samples, :func:`cablesys.ladder.extrapolation.statistics`)."""
+    block = (result.stats.get("model") or {}).get("extrapolated")
+    return dict(block["statistics"]) if block else X.statistics(result, period)
+
+
+def moordyn_for(md: dict, targets: dict, auto_wall: float) -> dict:
+    """The MoorDyn N (and wall time) for a given accuracy, from its own runs at two N.
+
+    MoorDyn's converged answer is taken as the first-order Richardson limit of its two runs
+    (f + (f - f_c) / (r - 1), r the ratio of the N; first order as the segmented cable's on this scene,
+    an assumption: two runs cannot verify an order), so its error is C / N with C from the finer run;
+    the N for an error e is N_fine e_fine / e (body and tension, the larger), its wall time
+    w_fine (N / N_fine)^k with k the exponent the two runs' walls give (about 2: the stable step
+    ~ 1 / N, the cost of a step ~ N).
+
+    Parameters
+    ----------
+    md : dict
+        {N: {"stats", "cycle_means", "wall_s"}} of MoorDyn's runs (auto's statistics definition,
+        the cycle means in the ladder's names, the best wall in s).
+    targets : dict
+        {name: {"body", "tension"}}: the accuracies to meet.
+    auto_wall : float
+        Auto's wall (s) to compare with.
+
+    Returns
+    -------
+    dict
+        Per statistics definition its error at each N against its own limit and, per target, ``segments``,
+        ``wall_s`` (extrapolated) and ``auto_speedup`` at that accuracy.
+    """
+    ns = sorted(md)
+    if len(ns) < 2:
+        return {"estimated": False, "why": "MoorDyn ran at one N only: its convergence in N is unknown"}
+    lo, hi = ns[0], ns[-1]
+    ratio = hi / lo
+    k = math.log(md[hi]["wall_s"] / md[lo]["wall_s"]) / math.log(ratio)
+    out = {"estimated": True, "segments_used": [lo, hi], "order_assumed": 1.0, "wall_exponent": k,
+           "assumption": "MoorDyn's converged answer = first-order Richardson limit of its two runs; error ~ 1/N"}
+    for name in ("stats", "cycle_means"):
+        lim = richardson_limit(md[lo][name], md[hi][name], ratio=ratio)
+        e_hi = M.errors(md[hi][name], lim)
+        d = {"error_at_n": {lo: M.errors(md[lo][name], lim), hi: e_hi}}
+        for tname, t in targets.items():
+            n = max(math.ceil(hi * e_hi[q] / max(t[q], 1e-9) * (1 - 1e-12)) for q in ("body", "tension"))  # round-off
+            wall = md[hi]["wall_s"] * (n / hi) ** k
+            d[tname] = {"segments": n, "wall_s": wall, "auto_speedup": wall / auto_wall}
+        out[name] = d
+    return out
+
+
+def slack_auto_row(scene, period, ref: dict, md: dict, *, compiled_ctx, cycle_means) -> dict:
+    """Auto's row on the slack scene: timed as :func:`auto_row` (one warm call after the cold one: 10-20 s
+    each), its ``error`` on what it reports (:func:`reported_statistics`) against ``ref["stats"]`` (the
+    bench's converged reference in the same definition), the N run's own time-series errors (auto's
+    definition and the cycle means, ``cycle_means(result)``, against ``ref["cycle_means"]``), and
+    the MoorDyn N for auto's accuracy and for the default tolerance (:func:`moordyn_for`).
+    ``md``: {N: MoorDyn's runs as :func:`moordyn_for` takes them}, the speedup against the smallest N."""
+    def more(res):
+        m = res.stats.get("model") or {}
+        block = m.get("extrapolated") or {}
+        return {"reported": "extrapolated statistics" if block else "the N run's statistics",
+                "segments": m.get("segments"), "extrapolated_from": block.get("segments"),
+                "asymptotic": block.get("asymptotic"), "observed_order": block.get("leading_orders"),
+                "estimated_error": m.get("estimated_error"),
+                "estimated_error_time_series": m.get("estimated_error_time_series"),
+                "error_time_series": M.errors(X.statistics(res, period), ref["stats"]),
+                "error_time_series_cycle_means": M.errors(cycle_means(res), ref["cycle_means"])}
+    n0 = min(md)
+    row = auto_row(scene, period, ref["stats"], (n0, md[n0]["wall_s"]), stats=reported_statistics, diff=M.errors,
+                   compiled_ctx=compiled_ctx, repeats=1, more=more)
+    if row.get("error"):
+        waited = row["s_per_s"] * scene.numerics.duration
+        row["moordyn_equal_accuracy"] = moordyn_for(md, {"auto_error": row["error"], "default_tolerance": DEFAULT_TOLERANCE},
+                                                    waited)
+    return row

@@ -34,9 +34,16 @@ import time
 from pathlib import Path
 
 import numpy as np
-from _cycles import cycle_statistics
+from _bench_auto import slack_auto_row
+from _cycles import (
+    cycle_statistics,
+    ladder_statistics,
+    observed_orders,
+    richardson_limit,
+)
 from _moordyn import largest_stable_dt, run_moordyn
 
+from cablesys.ladder import extrapolation as X
 from cablesys.ladder import metrics as M
 from cablesys.time_domain.failures import largest_rate, rk4_steps_per_output
 from cablesys.time_domain.integrators import COMPILE_MAX_ELEMENTS
@@ -78,6 +85,77 @@ def errors(a: dict, b: dict) -> dict:
     keys = ("y_amp", "x_amp", "y_min", "y_max", "top_max", "top_min", "bottom_max", "bottom_min", "slack_bottom", "slack_top")
     e["each"] = {k: (a[k] - b[k]) / abs(b[k]) if abs(b[k]) > 1e-12 else a[k] - b[k] for k in keys if k in a and k in b}
     return e
+
+
+class _Run:
+    """A MoorDyn run (:func:`_moordyn.run_moordyn`) read as a cablesys result by label and time."""
+    labels = ("x_b", "y_b", "tension_top", "tension_bottom")
+
+    def __init__(self, run: dict):
+        self.time, self._run = run["time"], run
+
+    def __getitem__(self, key):
+        return self._run[key]
+
+
+def _both(result, period: float, t0: float) -> dict:
+    """A run's statistics in auto's definition (last 5 periods, maxima refined:
+    :func:`cablesys.ladder.extrapolation.statistics`) and its cycle means over [t0, end] in the same names."""
+    return {"stats": X.statistics(result, period), "cycle_means": ladder_statistics(result, period, t0)}
+
+
+def _tight_run(sc, prepared):
+    """(result, RK4 steps per output at the stable step, lambda_max, wall) of cablesys's tight run at the
+    scene's N: RK4 at half its largest stable step, run once (a reference: not timed against MoorDyn)."""
+    spo, lam = _stable_spo(sc, prepared)
+    t = time.perf_counter()
+    sim, p, x0, _ = prepared(sc.with_numerics(steps_per_output=2 * spo), "rk", 1e-6, 1e-9)
+    tight = sim.run(p, x0)
+    return tight, spo, lam, time.perf_counter() - t
+
+
+def reference(scene, tights: dict, ns) -> dict:
+    """The case's converged reference: the first-order Richardson limit of cablesys's tight runs at the
+    largest N and half of it (the segmented cable converges at first order on this scene: observed
+    0.98-1.03, :mod:`cablesys.ladder.extrapolation`), minima at least the tension floor, in auto's
+    statistics (``stats``) and in cycle means (``cycle_means``); with a third N (a quarter) the observed
+    order and the limit's own uncertainty (the previous pair's limit against it, / 3 for a remainder ~ N^-2)."""
+    hi = max(ns)
+    lo = hi // 2
+    floor = max(s.cable.tension_floor for s in scene.sections)
+    out = {"kind": "richardson", "segments": [lo, hi], "order_assumed": 1.0, "integrator": "rk, half the stable step"}
+    for name in ("stats", "cycle_means"):
+        lim = richardson_limit(tights[lo][name], tights[hi][name], ratio=2.0)
+        lim.update({k: max(v, floor) for k, v in lim.items() if k.endswith("_min")})
+        out[name] = lim
+        if lo // 2 in tights:
+            prev = richardson_limit(tights[lo // 2][name], tights[lo][name], ratio=2.0)
+            out.setdefault("observed_order", {})[name] = observed_orders(tights[lo // 2][name], tights[lo][name],
+                                                                        tights[hi][name])
+            out.setdefault("uncertainty", {})[name] = {k: v / 3.0 for k, v in M.errors(prev, lim).items()}
+    return out
+
+
+def _auto(row, scene, period, t0, ns, tights, mds, prepared, compiled_ctx, segments):
+    """Model auto's row of the slack case (:func:`_bench_auto.slack_auto_row`) and the case's converged
+    reference (:func:`reference`; the tight runs it needs besides the case's N are run here, compiled)."""
+    hi = max(ns)
+    for n in (hi // 2, hi // 4):
+        if n >= 2 and n not in tights:
+            with compiled_ctx(True):
+                tight = _tight_run(segments(scene, n), prepared)[0]
+            if tight.success:
+                tights[n] = _both(tight, period, t0)
+    if hi // 2 not in tights or hi not in tights:
+        row["auto"] = {"failed": "no converged reference: a tight run failed"}
+        return
+    ref = reference(scene, tights, ns)
+    row["reference"] = ref
+    row["auto"] = slack_auto_row(scene, period, ref, mds, compiled_ctx=compiled_ctx,
+                                 cycle_means=lambda r: ladder_statistics(r, period, t0))
+    for key in ("speedup", "speedup_run_only", "choose_s", "error"):
+        row[f"auto_{key}"] = row["auto"].get(key)
+    row["auto_moordyn_equal_accuracy"] = row["auto"].get("moordyn_equal_accuracy")
 
 
 def _strip(c: dict) -> dict:
@@ -189,7 +267,7 @@ def _interleaved(sc, n, dt, md, best, prepared):
 
 
 def bench_slack_case(name, scene, period, ns, *, timed_run, prepared, compiled_ctx, segments, keep: Path | None = None,
-                     flags=()):
+                     flags=(), auto=True):
     """The slack row: per N, MoorDyn and cablesys timed in this run, both measured by cycle means.
 
     Parameters
@@ -203,6 +281,8 @@ def bench_slack_case(name, scene, period, ns, *, timed_run, prepared, compiled_c
         JSON file of MoorDyn steps found by earlier probes (read, and written when a probe runs).
     flags : sequence of str, optional
         Compiler flags to profile the RK4 loop with too (:func:`rhs_profile`).
+    auto : bool, optional
+        Add model auto's row (:func:`_auto`: ``reference``, ``auto``, ``auto_speedup``, ``auto_error``).
 
     Returns
     -------
@@ -215,11 +295,14 @@ def bench_slack_case(name, scene, period, ns, *, timed_run, prepared, compiled_c
     t0 = window_start(scene, period)
     row = {"case": name, "scene": scene.name, "duration_s": dur, "period_s": period, "taut": False,
            "window_s": [t0, dur], "measured_by": "cycle means over the window (_cycles.cycle_statistics)", "by_n": []}
+    tights, mds = {}, {}          # {N: both statistics} of cablesys's tight runs and MoorDyn's runs (auto's row)
     for n in ns:
         sc = segments(scene, n)
         dt, how_dt = _moordyn_step(sc, n, period, t0, keep, f"{name}:{n}:{dur:g}:{sc.numerics.output_step:g}")
         md = run_moordyn(sc, n, dt)
         md_c = moordyn_cycles(md, period, t0) if md["stable"] else None
+        if md_c:
+            mds[n] = {**_both(_Run(md), period, t0), "wall_s": md["wall_s"]}
         compiled = True                       # RK4's loop is the RHS alone (no Jacobian): compiled at any N
         entry = {"segments": n, "moordyn_dt_s": dt, "moordyn_dt_from": how_dt, "moordyn_s_per_s": md["wall_s"] / dur,
                  "moordyn_step_s_per_s": md["step_wall_s"] / dur, "moordyn_stable": md["stable"],
@@ -227,16 +310,13 @@ def bench_slack_case(name, scene, period, ns, *, timed_run, prepared, compiled_c
                  "moordyn_cycles": _strip(md_c) if md_c else None,
                  "moordyn_slack_fraction_per_segment": md_c["slack_per_element"] if md_c else None}
         with compiled_ctx(compiled):
-            spo, lam = _stable_spo(sc, prepared)
-            t_tight = time.perf_counter()
-            sim, p, x0, _ = prepared(sc.with_numerics(steps_per_output=2 * spo), "rk", 1e-6, 1e-9)
-            tight = sim.run(p, x0)                     # one run: the reference is not timed
-            t_tight = time.perf_counter() - t_tight
+            tight, spo, lam, t_tight = _tight_run(sc, prepared)
             if not tight.success:
                 entry.update(note=f"cablesys's tight run failed: {tight.message}")
                 row["by_n"].append(entry)
                 continue
             ref = cablesys_cycles(tight, period, t0)
+            tights[n] = _both(tight, period, t0)
             entry.update(cablesys_tight={"method": "rk", "steps_per_output": 2 * spo, "step_s": sc.numerics.output_step / (2 * spo),
                                          "lambda_max": lam, "wall_s": t_tight},
                          cablesys_cycles=_strip(ref), cablesys_slack_fraction_per_element=ref["slack_per_element"])
@@ -286,4 +366,8 @@ def bench_slack_case(name, scene, period, ns, *, timed_run, prepared, compiled_c
         else:
             entry.update(cablesys_s_per_s=None, speedup=None, note="no setting met matched accuracy on the cycle means")
         row["by_n"].append(entry)
+        if n in mds and "moordyn_walls_s" in entry:           # the best of the interleaved timings
+            mds[n]["wall_s"] = min(entry["moordyn_walls_s"])
+    if auto:
+        _auto(row, scene, period, t0, ns, tights, mds, prepared, compiled_ctx, segments)
     return row

@@ -82,3 +82,32 @@ def test_slack_row_alone_by_cycle_means(tmp_path):
     assert e["speedup"] > 0 and e["cablesys_rhs_profile"]["kernel_compiled_us_per_rhs"] > 0
     # the probed step is kept for a rerun of the case (timed again, not probed again)
     assert json.loads((tmp_path / "moordyn_steps.json").read_text())["heave_T6:10:30:0.01"] == e["moordyn_dt_s"]
+    # model auto's row (issue 12): its error is on what it reports, the statistics extrapolated from its
+    # runs at N / 4, N / 2, N, against the case's reference (Richardson limit of the tight runs at 5, 10)
+    from cablesys.ladder import metrics as M
+    ref, a = case["reference"], case["auto"]
+    assert ref["segments"] == [5, 10] and a["success"] and a["reported"] == "extrapolated statistics"
+    assert a["extrapolated_from"] == [a["segments"] // 4, a["segments"] // 2, a["segments"]]
+    assert case["auto_error"] == a["error"] == M.errors(a["model"]["extrapolated"]["statistics"], ref["stats"])
+    assert all(a[k] >= 0.0 for k in ("choose_s", "build_s", "run_s", "check_s")) and case["auto_speedup"] > 0
+    assert a["speedup_vs_moordyn_n"] == 10 and not case["auto_moordyn_equal_accuracy"]["estimated"]   # one N
+
+
+def test_moordyn_n_for_an_accuracy_first_order():
+    """MoorDyn's N for an accuracy from two runs, f(N) = f* + c / N exactly: its limit is f*, its error at
+    N = 80 c / (80 f*), so body 0.025 and tension 0.0625 (the top maximum's over the largest maximum);
+    1e-3 body needs N = 80 x 0.025 / 1e-3 = 2000 (the tension's 0.02 only 250), and walls ~ N^2 give
+    16 s x 25^2 at N = 2000."""
+    from _bench_auto import moordyn_for
+
+    def run(n, wall):
+        st = {"y_b_amplitude": 1.0 + 2.0 / n, "tension_top_max": 10.0 + 50.0 / n, "tension_top_min": 1.0}
+        return {"stats": st, "cycle_means": st, "wall_s": wall}
+    out = moordyn_for({20: run(20, 1.0), 80: run(80, 16.0)}, {"t": {"body": 1e-3, "tension": 0.02}}, 2.0)
+    assert out["wall_exponent"] == pytest.approx(2.0)
+    for name in ("stats", "cycle_means"):
+        assert out[name]["error_at_n"][80]["body"] == pytest.approx(0.025)
+        assert out[name]["error_at_n"][80]["tension"] == pytest.approx(0.0625)
+        assert out[name]["t"]["segments"] == 2000
+        assert out[name]["t"]["wall_s"] == pytest.approx(16.0 * 25.0**2)
+        assert out[name]["t"]["auto_speedup"] == pytest.approx(16.0 * 25.0**2 / 2.0)
