@@ -2,7 +2,8 @@
 
 Colour is the rung (the quasi-static segmented cable apart from the straight quasi-static rung),
 marker the integrator; failed runs are crosses at error = 1 (their wall time up to the failure),
-auto's choice a black star with its stated estimate as a bar at the same wall time.
+auto's own run (simulate_auto as a user calls it, compiled in full mode, its wall time choose + run +
+checks) a black star with its stated estimate as a bar at the same wall time.
 """
 
 from __future__ import annotations
@@ -24,6 +25,11 @@ INTEGRATOR_LABELS = {"cvodes": "CVODES BDF", "cvodes-adams": "CVODES Adams", "id
                      "auto-extrapolated": "auto: RK4 at N/4, N/2, N, statistics extrapolated (slack)"}
 FLOOR = 1e-7          # errors below are drawn at the floor
 FAIL_Y = 1.0          # failed runs are drawn here
+
+
+def _marker(integrator: str) -> str:
+    """The integrator's marker; auto's own run (``auto (<method> rtol <r>, compiled)``) a hexagon."""
+    return MARKERS.get(integrator, "h" if integrator.startswith("auto") else "o")
 
 
 def _kind(r: dict) -> str:
@@ -108,7 +114,7 @@ def plot_case(res: dict, path: Path):
     for ax, key, tl, title in ((axes[0], "error_body", tol["body"], "body amplitude error"),
                                (axes[1], "error_tension", tol["tension"], "tension-extremes error")):
         for r in ok:
-            ax.loglog(wall(r), max(r[key], FLOOR), MARKERS.get(r["integrator"], "o"), color=RUNG_COLOURS[_kind(r)],
+            ax.loglog(wall(r), max(r[key], FLOOR), _marker(r["integrator"]), color=RUNG_COLOURS[_kind(r)],
                       ms=8, alpha=0.8)
         for r in bad:
             ax.plot(wall(r), FAIL_Y, "x", color=RUNG_COLOURS[_kind(r)], ms=10, mew=2)
@@ -137,7 +143,7 @@ def plot_case(res: dict, path: Path):
         ax.set_ylim(lo, 2.0)
         ax.set_title(title)
         ax.set_xlabel("wall time of the integration [s] (CasADi VM, build apart"
-                      + ("; auto compiled)" if a.get("compiled") else ")"))
+                      + ("; auto: compiled, choose + run + checks)" if a.get("compiled") else "; auto: choose + run + checks)"))
         ax.set_ylabel("relative error vs reference")
         ax.grid(True, which="both", alpha=0.3)
         xl = ax.get_xlim()
@@ -147,8 +153,10 @@ def plot_case(res: dict, path: Path):
     handles += [Line2D([], [], color="k", marker=m, ls="", label=INTEGRATOR_LABELS[k]) for k, m in MARKERS.items()
                 if any(r["integrator"] == k for r in res["rows"])]
     auto = f"auto's choice: {a['name']}" + (f" N={a['segments']}" if a["name"] in ("segmented",) or a["segments"] > 1 else "")
+    how = a.get("settings") or a.get("integrator", "")
+    how = how.removeprefix("auto ").strip("()") if how.startswith("auto (") else ""
     handles += [Line2D([], [], color="k", marker="*", mfc="none", ls="", ms=12,
-                       label=auto + ("" if hit else " (not measured)")),
+                       label=auto + (f", run as a user runs it: {how}" if how else "") + ("" if hit else " (not measured)")),
                 Line2D([], [], color="k", marker="_", ls="", ms=14, mew=2.5, label="auto's stated estimate"),
                 Line2D([], [], color="k", marker="x", ls="", label=f"failed run (drawn at error = {FAIL_Y:g})")]
     fig.legend(handles=handles, fontsize=8, loc="outside lower center", ncol=math.ceil(len(handles) / 3))

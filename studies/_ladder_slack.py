@@ -15,34 +15,18 @@ from __future__ import annotations
 
 import contextlib
 import dataclasses
-import os
 import time
 import warnings
 
 from _cycles import ladder_statistics, observed_orders, richardson_limit
+from _ladder_auto import auto_row, candidates, compiling, run_auto
 from _ladder_checks import cheaper_within, estimate_check
 
 from cablesys.errors import NumericalWarning
-from cablesys.ladder import RungCache, metrics, simulate_auto
+from cablesys.ladder import RungCache, metrics
 from cablesys.ladder import extrapolation as X
 
 AUTO_INTEGRATOR = "auto-extrapolated"     # auto's row: RK4 at N / 4, N / 2, N, statistics extrapolated
-
-
-@contextlib.contextmanager
-def compiling(on: bool):
-    """CABLESYS_COMPILE=1 inside when ``on`` (the study runs its table in CasADi's VM)."""
-    old = os.environ.get("CABLESYS_COMPILE")
-    if on:
-        os.environ["CABLESYS_COMPILE"] = "1"
-    try:
-        yield
-    finally:
-        if on:
-            if old is None:
-                os.environ.pop("CABLESYS_COMPILE", None)
-            else:
-                os.environ["CABLESYS_COMPILE"] = old
 
 
 @contextlib.contextmanager
@@ -106,31 +90,32 @@ def assess_slack_auto(case: dict, res: dict, choice, choose_s: float, resolved_f
     Auto's row (integrator AUTO_INTEGRATOR, wall time of its three or more runs) joins ``res["rows"]``."""
     scene, period, rows = case["scene"], res["period_s"], res["rows"]
     ref = res["reference"]["auto_statistics"]
-    with compiling(case.get("compile_reference", False)), capped(case.get("max_segments")), warnings.catch_warnings():
-        warnings.simplefilter("ignore", NumericalWarning)
-        r = simulate_auto(scene, cache=cache if cache is not None else RungCache())
-    m, lt = r.stats["model"], r.stats["ladder_timing"]
+    with capped(case.get("max_segments")):
+        r, info = run_auto(scene, bool(case.get("compile_reference")))
+    m, lt = r.stats["model"], info["ladder_timing"]
     x = m.get("extrapolated")
     got = x["statistics"] if x else X.statistics(r, period)
     act, act_ts = metrics.errors(got, ref), metrics.errors(X.statistics(r, period), ref)
     stated = dict(m["estimated_error"])
     tol = choice.numbers["tolerance"]
-    row = {"rung": m["name"], "segments": m["segments"], "integrator": AUTO_INTEGRATOR, "success": bool(r.success),
-           "failure": "" if r.success else r.message[:300], "wall_s": lt["run_s"] + lt["check_s"],
-           "total_s": lt["total_s"], "error_body": act["body"], "error_tension": act["tension"],
-           "estimate_body": stated["body"], "estimate_tension": stated["tension"],
-           "runs": x["segments"] if x else [m["segments"]], "statistics": got}
-    rows[:] = [q for q in rows if q["integrator"] != AUTO_INTEGRATOR] + [row]
+    settings, info["integrator"] = info["integrator"], AUTO_INTEGRATOR
+    row = auto_row(scene, info, r, act, stated, runs=x["segments"] if x else [m["segments"]], statistics=got,
+                   settings=settings)
+    rows[:] = [q for q in rows if q["integrator"] != AUTO_INTEGRATOR and not q.get("auto")] + [row]
     conv = res["reference"].get("convergence_vs_half") or {}
     check = estimate_check(act, stated, tol, conv, resolved_fraction)
     check["time_series"] = estimate_check(act_ts, m.get("estimated_error_time_series", stated), tol, conv,
                                           resolved_fraction)
     check["lower_rungs_within_half_tolerance"] = cheaper_within(rows, dataclasses.replace(choice, segments=m["segments"]),
-                                                                tol, (AUTO_INTEGRATOR,))
+                                                                tol, ("rk-stable",))
+    # the rungs within the tolerance run forced as auto runs them (none in the full run: no single run is)
+    stats_of = lambda q: X.statistics(q, period)
+    cands = candidates(scene, rows, ("segmented", m["segments"]), tol, stats_of, ref, bool(case.get("compile_reference")), 1)
     how = (f"a posteriori: statistics extrapolated from N = {', '.join(map(str, x['segments']))} (RK4), the "
            f"difference of the two limits x {x['remainder_factor']:.3g}" if x else "a priori")
     return {"name": m["name"], "segments": m["segments"], "integrator": AUTO_INTEGRATOR, "reason": m["reason"],
             "estimated_error": choice.estimated_error, "stated_estimate": stated, "stated_how": how,
             "stated_estimate_time_series": m.get("estimated_error_time_series"), "actual_error": act,
-            "actual_error_time_series": act_ts, "extrapolated": x, "choose_s": choose_s,
-            "ladder_timing": lt, "compiled": bool(case.get("compile_reference")), "estimates": choice.numbers["estimates"], "tolerance": tol, "check": check}
+            "actual_error_time_series": act_ts, "extrapolated": x, "choose_s": choose_s, "candidates": cands,
+            "ladder_timing": lt, "ladder_timing_first": info["ladder_timing_first"], "wall_s": info["wall_s"],
+            "compiled": info["compiled"], "settings": settings, "estimates": choice.numbers["estimates"], "tolerance": tol, "check": check}

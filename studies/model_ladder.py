@@ -62,19 +62,22 @@ Usage: python studies/model_ladder.py --out DIR [--quick]
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import os
+import re
 import sys
 import time
 import warnings
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import _ladder_auto as auto_run
 from _common import parse_args, write_json
 from _cycles import ladder_statistics, settled_window_start
 from _ladder_chart import plot_case
-from _ladder_checks import cheaper_within, estimate_check, find_row, run_name, verdicts
+from _ladder_checks import cheaper_within, estimate_check, run_name, verdicts
 from _ladder_slack import assess_slack_auto, slack_reference
 from segmented_convergence import slack_scene, stable_steps_per_output
 
@@ -82,7 +85,6 @@ from cablesys import units as U
 from cablesys.errors import NumericalWarning
 from cablesys.ladder import RungCache, choose, metrics, run_rung
 from cablesys.ladder import estimate as est
-from cablesys.ladder.choice import SAFETY
 from cablesys.ladder.rungs import rung_scene
 from cablesys.scene import (
     Body,
@@ -141,14 +143,15 @@ def cases(quick: bool) -> list[dict]:
                 _slack_case(30.0, 0.02, (2, 4, 8), ("cvodes", "rk-stable"), (16, 32), True)]
     # Dale's reference N = 32: N = 16 is 0.05 % from it in body amplitude, but 0.19 % from N = 8, which as the
     # reference's own convergence left auto's 0.1-0.3 % errors unresolved (settled: 40 and 80 s runs agree)
+    full = {"compile_auto": True, "auto_repeats": auto_run.REPEATS}     # auto and its rivals compiled, as a user runs them
     return [
         {"key": "dale", "scene": dale_scene(omega_ratio=2.0, duration=40.0), "segments": (2, 4, 8), "n_ref": 32,
-         "qs_segments": (2, 4, 8), "integrators": INTEGRATORS},
+         "qs_segments": (2, 4, 8), "integrators": INTEGRATORS, **full},
         {"key": "wire300_T10", "scene": heave_300m(10.0, 40.0), "segments": (5, 10, 20), "n_ref": 40,
-         "qs_segments": (5, 10, 20), "integrators": INTEGRATORS},
+         "qs_segments": (5, 10, 20), "integrators": INTEGRATORS, **full},
         _slack_case(360.0, 0.01, (5, 10, 20, 40), INTEGRATORS, (40, 80), False),
         {"key": "heavy1000", "scene": heavy_cable(40.0), "segments": (5, 10, 20), "n_ref": 40,
-         "qs_segments": (5, 10, 20), "integrators": INTEGRATORS},
+         "qs_segments": (5, 10, 20), "integrators": INTEGRATORS, **full},
     ]
 
 
@@ -270,14 +273,15 @@ def _row_estimate(errs: dict, r: dict) -> dict:
 
 
 def assess_auto(case: dict, res: dict, ref_stats: dict | None, cache: RungCache | None = None) -> dict:
-    """Auto's choice, its a-priori estimate, the estimate it states and the verdicts of issue 12's checks.
+    """Auto's choice, the estimate it states, its actual error and the verdicts of issue 12's checks.
 
-    Every row gets the a-priori estimate of its rung (``estimate_body``, ``estimate_tension``). The
-    stated estimate is the a-priori one, except for a segmented choice with N >= 4, for which auto
-    states the Richardson estimate |y_N - y_N/2| / (2^p - 1) of its run at N/2 (:mod:`cablesys.ladder.auto`).
-    The factor-2 check applies where the actual error is resolved: above RESOLVED_FRACTION of the
-    tolerance and above twice the reference's own uncertainty; below that the estimate must only be
-    within the tolerance too. Rows that are not run again come from ``res``.
+    Every row gets the a-priori estimate of its rung (``estimate_body``, ``estimate_tension``). Auto is
+    measured on its own run (:mod:`_ladder_auto`: ``simulate_auto`` as a user calls it, with its integrator,
+    rtol and a posteriori checks, compiled in full mode), on the rows' statistics against the same reference;
+    its stated estimate is what it reports (a posteriori where it checked). The factor-2 check applies where
+    the actual error is resolved: above RESOLVED_FRACTION of the tolerance and above twice the reference's
+    own uncertainty; below that the estimate must only be within the tolerance too. The rungs it is
+    compared with for "beaten" run forced, the same way (:func:`_ladder_auto.candidates`).
     """
     scene, period, rows = case["scene"], res.get("period_s"), res["rows"]
     cache = cache if cache is not None else RungCache()
@@ -290,49 +294,29 @@ def assess_auto(case: dict, res: dict, ref_stats: dict | None, cache: RungCache 
         r["estimate_body"], r["estimate_tension"] = e.get("body"), e.get("tension")
     if case.get("reference") == "richardson":       # auto extrapolates: measured on what it reports
         return assess_slack_auto(case, res, choice, choose_s, RESOLVED_FRACTION, cache)
-    integ = (scene.numerics.integrator, "periodic")
-    actual = find_row(rows, choice.name, choice.segments, integ)
-    # auto wants the reference's own N (or, for a Richardson reference, more than its finest N, where the
-    # limit's own uncertainty is no smaller than the error measured): not measured
-    finest = case["n_ref"] if case.get("reference") != "richardson" else max(case["segments"]) + 1
-    at_reference = choice.name == "segmented" and choice.segments >= finest
-    if at_reference:
-        ref_stats = None
-    if actual is None and ref_stats is not None:
-        actual = _with_errors(_measured(case, scene, choice.name, choice.segments, scene.numerics.integrator,
-                                        period, cache), ref_stats)
-        actual.update(estimate_body=choice.estimated_error["body"], estimate_tension=choice.estimated_error["tension"])
-        rows.append(actual)
-    stated, how = dict(choice.estimated_error), "a priori"
+    # auto's own run, as a user runs it (compiled in full mode), on the table's statistics and reference;
+    # a choice at the reference's own N is not measured
+    compiled, repeats = case.get("compile_auto", False), case.get("auto_repeats", 1)
+    stats_of = lambda r: _statistics(case, r, period)
+    result, info, got, act, stated = auto_run.assess(scene, stats_of, ref_stats, compiled, repeats)
+    m = result.stats["model"]
+    if m["name"] == "segmented" and m["segments"] >= case["n_ref"]:
+        act = {"body": None, "tension": None}
+    rows[:] = [r for r in rows if not r.get("auto")] + [auto_run.auto_row(scene, info, result, act, stated, statistics=got)]
+    mine = (m["name"], m["segments"] if m["name"] in ("segmented", "quasi-static") else 1)
     tol = choice.numbers["tolerance"]
-    sure = all(choice.estimated_error[k] <= SAFETY * tol[k] for k in ("body", "tension"))
-    if choice.name in ("segmented", "quasi-static") and choice.segments >= 4 and not sure and ref_stats is not None:
-        # as simulate_auto: a second run at N / 2 when the a-priori estimate is not well within the tolerance
-        half = find_row(rows, choice.name, choice.segments // 2, integ)
-        if half is None:
-            half = _with_errors(_measured(case, scene, choice.name, choice.segments // 2, scene.numerics.integrator,
-                                          period, cache), ref_stats)
-            rows.append(half)
-        if actual and actual.get("error_body") is not None and half.get("error_body") is not None:
-            p = errs["segmented_1"].get("order", est.ORDER)
-            # auto's a-posteriori estimate from the two runs' statistics (rows of an older JSON without them:
-            # |e_N/2 - e_N|, a lower bound of the same difference)
-            if "statistics" in half and "statistics" in actual:
-                diff = metrics.errors(half["statistics"], actual["statistics"])
-            else:
-                diff = {k: abs(half[f"error_{k}"] - actual[f"error_{k}"]) for k in ("body", "tension")}
-            stated = {k: v / (2**p - 1) for k, v in diff.items()}
-            how = f"a posteriori (N = {choice.segments} vs {choice.segments // 2}, order {p:g})"
-    if at_reference:
-        actual = None
-    act = {"body": (actual or {}).get("error_body"), "tension": (actual or {}).get("error_tension")}
+    cands = auto_run.candidates(scene, rows, mine, tol, stats_of, ref_stats, compiled, repeats)
     conv = res.get("reference", {}).get("convergence_vs_half") or {}
     check = estimate_check(act, stated, tol, conv, RESOLVED_FRACTION)
-    check["lower_rungs_within_half_tolerance"] = cheaper_within(rows, choice, tol, integ)
-    return {"name": choice.name, "segments": choice.segments, "integrator": scene.numerics.integrator,
-            "reason": choice.reason, "estimated_error": choice.estimated_error, "stated_estimate": stated,
-            "stated_how": how, "choose_s": choose_s, "actual_error": act, "estimates": errs, "tolerance": tol,
-            "check": check}
+    final = dataclasses.replace(choice, name=m["name"], segments=m["segments"])
+    check["lower_rungs_within_half_tolerance"] = cheaper_within(rows, final, tol, (scene.numerics.integrator,))
+    how = re.search(r"a posteriori \([^)]*\)", m["reason"])
+    how = how.group(0) if how else "a priori"
+    return {"name": m["name"], "segments": m["segments"], "integrator": info["integrator"], "reason": m["reason"],
+            "estimated_error": choice.estimated_error, "stated_estimate": stated, "stated_how": how,
+            "choose_s": choose_s, "actual_error": act, "estimates": errs, "tolerance": tol, "check": check,
+            "candidates": cands, **{k: info[k] for k in ("ladder_timing", "ladder_timing_first", "wall_s", "compiled",
+                                                          "methods", "rtols", "calls")}}
 
 
 def _fmt(d) -> str:

@@ -51,14 +51,41 @@ def _check_dale(out, dale):
     cheaper = dale["cheaper_rung_within_tolerance"]
     name = auto["name"] + (f" N={auto['segments']}" if auto["name"] == "segmented" or auto["segments"] > 1 else "")
     assert cheaper["auto"]["run"] == name and cheaper["auto"]["wall_s"] > 0
-    assert {"beaten", "beaten_at_safety_tolerance", "cheapest_same_integrator"} <= set(cheaper)
+    assert {"beaten", "beaten_at_safety_tolerance", "candidates", "rule"} <= set(cheaper)
     best = cheaper["cheapest"]
     assert best["error_body"] <= tol["body"] and best["error_tension"] <= tol["tension"]
     assert best["wall_s"] == min(r["wall_s"] for r in dale["rows"] if r.get("error_body") is not None
-                                 and r["rung"] != "frequency" and r["error_body"] <= tol["body"]
+                                 and not r.get("auto") and r["rung"] != "frequency" and r["error_body"] <= tol["body"]
                                  and r["error_tension"] <= tol["tension"])
+    _check_auto_run(dale, auto)
     ratio = dale["estimate_ratio"]["body"]
     assert ratio["ratio"] == pytest.approx(auto["stated_estimate"]["body"] / auto["actual_error"]["body"])
+
+
+def _check_auto_run(res, auto):
+    """Auto's row is its own run (simulate_auto, as a user calls it): its statistics on the table's window
+    against the same reference, the estimate it reports, its ladder timing; the rungs within the
+    tolerance run forced the same way, and "beaten" compares those runs' timings with auto's."""
+    from cablesys.ladder import metrics
+    mine = [r for r in res["rows"] if r.get("auto")]
+    assert len(mine) == 1 and mine[0]["integrator"] == auto["integrator"] and auto["integrator"].startswith("auto (")
+    row = mine[0]
+    assert (row["rung"], row["segments"]) == (auto["name"], auto["segments"])
+    assert auto["actual_error"] == pytest.approx(metrics.errors(row["statistics"], res["reference_statistics"]))
+    assert row["estimate_body"] == auto["stated_estimate"]["body"]
+    t = auto["ladder_timing"]
+    assert {"choose_s", "run_s", "check_s", "total_s"} <= set(t) and t["run_s"] > 0
+    assert row["wall_s"] == auto["wall_s"] and 0 < auto["wall_s"] <= auto["ladder_timing_first"]["total_s"]
+    tol, cheaper = auto["tolerance"], res["cheaper_rung_within_tolerance"]
+    table = {(r["rung"], r["segments"]) for r in res["rows"] if r.get("error_body") is not None and not r.get("auto")
+             and r["rung"] != "frequency" and r["error_body"] <= tol["body"] and r["error_tension"] <= tol["tension"]}
+    assert {(c["rung"], c["segments"]) for c in auto["candidates"]} == table - {(auto["name"], auto["segments"])}
+    for c in auto["candidates"]:
+        assert c["integrator"].startswith("auto (") and c["ladder_timing"]["run_s"] > 0
+    within = [c for c in auto["candidates"] if c["error_body"] <= tol["body"] and c["error_tension"] <= tol["tension"]]
+    faster = [c["run"] for c in within if 2 * c["ladder_timing"]["run_s"] < t["run_s"]
+              or 2 * (c["ladder_timing"]["run_s"] + c["ladder_timing"]["check_s"]) < t["run_s"] + t["check_s"]]
+    assert cheaper["beaten_by"] == faster and cheaper["beaten"] == bool(faster)
 
 
 def _check_slack(out, slack):

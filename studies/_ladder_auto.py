@@ -1,0 +1,136 @@
+"""Auto's row of studies/model_ladder.py: auto run as a user runs it, and the runs it is compared with.
+
+:func:`run_auto` calls :func:`cablesys.ladder.simulate_auto` itself (compiled in full mode, CasADi's
+VM in quick mode), so auto's row is what a user gets: the rung and N it ends with after its a
+posteriori checks, the integrator and rtol it picks (recorded from the simulators it builds,
+:class:`RecordingCache`), its stated estimate (``stats["model"]["estimated_error"]``, a posteriori
+where auto made its check) and its wall time (``stats["ladder_timing"]``). The first call is on a
+fresh cache (``ladder_timing_first``, building included); every figure of ``ladder_timing`` is the
+least over ``repeats`` calls, and ``wall_s`` the least choose + run + check (total less building).
+
+The table rows run in the VM at the study's rtol, so their wall times are not auto's. The "beaten"
+check compares like with like instead (:func:`candidates`): every other rung and N of the table
+whose actual errors are within the tolerance runs forced (``simulate_auto(scene, model=rung,
+segments=N)``: the same code, integrator rule and a posteriori check as auto's rung, compiled as
+auto), and its errors and timing come from that run.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import warnings
+
+from _ladder_checks import run_name
+
+from cablesys.errors import NumericalWarning
+from cablesys.ladder import RungCache, metrics, simulate_auto
+
+REPEATS = 3           # calls per run on a warm cache: the least time of each figure (ms runs on a shared machine)
+TIMES = ("choose_s", "build_s", "run_s", "check_s", "total_s")
+
+
+@contextlib.contextmanager
+def compiling(on: bool):
+    """CABLESYS_COMPILE=1 inside when ``on`` (the study runs its table in CasADi's VM)."""
+    old = os.environ.get("CABLESYS_COMPILE")
+    if on:
+        os.environ["CABLESYS_COMPILE"] = "1"
+    try:
+        yield
+    finally:
+        if on:
+            if old is None:
+                os.environ.pop("CABLESYS_COMPILE", None)
+            else:
+                os.environ["CABLESYS_COMPILE"] = old
+
+
+class RecordingCache(RungCache):
+    """A RungCache that keeps the integrator settings of every simulator asked of it (auto's runs)."""
+
+    def __init__(self):
+        super().__init__()
+        self.settings = []
+
+    def simulator(self, model, times, settings):
+        self.settings.append(settings)
+        return super().simulator(model, times, settings)
+
+
+def integrator_text(settings: list, compiled: bool) -> str:
+    """'auto (rk23 rtol 1e-04, compiled)': the distinct methods and rtols of auto's runs."""
+    used = list(dict.fromkeys((s.method, s.rtol) for s in settings)) or [("periodic", None)]
+    what = "; ".join(m + ("" if r is None else f" rtol {r:.0e}") for m, r in used)
+    return f"auto ({what}, {'compiled' if compiled else 'VM'})"
+
+
+def run_auto(scene, compiled: bool, repeats: int = 1, **kw) -> tuple:
+    """(first result, info) of ``simulate_auto(scene, **kw)`` called ``repeats`` times on one cache.
+
+    ``info``: ``integrator`` (:func:`integrator_text` of the first call), ``method``/``rtol`` lists,
+    ``ladder_timing_first`` (fresh cache), ``ladder_timing`` (least of each figure over the calls),
+    ``wall_s`` (least total less building: choose + run + check), ``compiled``."""
+    cache = RecordingCache()
+    with compiling(compiled), warnings.catch_warnings():
+        warnings.simplefilter("ignore", NumericalWarning)
+        result = simulate_auto(scene, cache=cache, **kw)
+        used = list(cache.settings)
+        timings = [dict(result.stats["ladder_timing"])]
+        for _ in range(repeats - 1):
+            timings.append(dict(simulate_auto(scene, cache=cache, **kw).stats["ladder_timing"]))
+    best = {k: min(t[k] for t in timings) for k in TIMES}
+    return result, {"integrator": integrator_text(used, compiled), "methods": [s.method for s in used],
+                    "rtols": [s.rtol for s in used], "ladder_timing_first": timings[0], "ladder_timing": best,
+                    "wall_s": min(t["total_s"] - t["build_s"] for t in timings), "calls": len(timings),
+                    "compiled": compiled}
+
+
+def _errors(result, statistics, ref_stats) -> dict:
+    if not result.success or ref_stats is None:
+        return {"body": None, "tension": None}
+    return metrics.errors(statistics(result), ref_stats)
+
+
+def auto_row(scene, info: dict, result, act: dict, stated: dict, **extra) -> dict:
+    """Auto's row of the table (integrator: :func:`integrator_text`; wall time: ``info["wall_s"]``)."""
+    m = result.stats["model"]
+    return {"rung": m["name"], "segments": m["segments"], "integrator": info["integrator"],
+            "success": bool(result.success), "failure": "" if result.success else result.message[:300],
+            "wall_s": info["wall_s"], "total_s": info["ladder_timing"]["total_s"],
+            "nsteps": int(result.stats.get("nsteps", 0) or 0), "error_body": act["body"],
+            "error_tension": act["tension"], "estimate_body": stated.get("body"),
+            "estimate_tension": stated.get("tension"), "auto": True, **extra}
+
+
+def candidates(scene, rows: list, mine: tuple, tol: dict, statistics, ref_stats, compiled: bool,
+               repeats: int) -> list:
+    """Every other (rung, N) with a table row within the tolerance, forced and run as auto runs its rung.
+
+    Each entry: ``run``, ``integrator``, its own actual errors (``error_body``, ``error_tension``: the
+    forced run's, which may differ from the table row's at the study's rtol), the table row's, its
+    stated estimate and ``ladder_timing`` / ``wall_s`` as :func:`run_auto`."""
+    seen = {}
+    for r in rows:
+        if r.get("error_body") is None or r["rung"] == "frequency" or r.get("auto"):
+            continue
+        key = (r["rung"], r["segments"] if r["rung"] in ("segmented", "quasi-static") else 1)
+        if key != mine and key not in seen and r["error_body"] <= tol["body"] and r["error_tension"] <= tol["tension"]:
+            seen[key] = r
+    out = []
+    for (rung, n), r in seen.items():
+        res, info = run_auto(scene, compiled, repeats, model=rung, segments=n if rung != "wang" else None)
+        e = _errors(res, statistics, ref_stats)
+        out.append({"run": run_name(r), "rung": rung, "segments": n, "integrator": info["integrator"],
+                    "error_body": e["body"], "error_tension": e["tension"], "table_error_body": r["error_body"],
+                    "table_error_tension": r["error_tension"], "stated": res.stats["model"]["estimated_error"],
+                    "ladder_timing": info["ladder_timing"], "wall_s": info["wall_s"], "nsteps": res.stats.get("nsteps")})
+    return out
+
+
+def assess(scene, statistics, ref_stats, compiled: bool, repeats: int) -> tuple:
+    """(result, info, its statistics, actual errors against ``ref_stats``, stated estimate) of auto's own run."""
+    result, info = run_auto(scene, compiled, repeats)
+    got = statistics(result) if result.success else None
+    act = metrics.errors(got, ref_stats) if got is not None and ref_stats is not None else {"body": None, "tension": None}
+    return result, info, got, act, dict(result.stats["model"]["estimated_error"])
