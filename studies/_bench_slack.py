@@ -119,7 +119,8 @@ def reference(scene, tights: dict, ns) -> dict:
     largest N and half of it (the segmented cable converges at first order on this scene: observed
     0.98-1.03, :mod:`cablesys.ladder.extrapolation`), minima at least the tension floor, in auto's
     statistics (``stats``) and in cycle means (``cycle_means``); with a third N (a quarter) the observed
-    order and the limit's own uncertainty (the previous pair's limit against it, / 3 for a remainder ~ N^-2)."""
+    order and the limit's own uncertainty (the previous pair's limit against it, / 3 for a remainder ~ N^-2);
+    ``error_at_n``: each tight run's error against the limit."""
     hi = max(ns)
     lo = hi // 2
     floor = max(s.cable.tension_floor for s in scene.sections)
@@ -128,6 +129,8 @@ def reference(scene, tights: dict, ns) -> dict:
         lim = richardson_limit(tights[lo][name], tights[hi][name], ratio=2.0)
         lim.update({k: max(v, floor) for k, v in lim.items() if k.endswith("_min")})
         out[name] = lim
+        # each tight run's own error against the limit (as MoorDyn's against its own: _bench_auto.moordyn_for)
+        out.setdefault("error_at_n", {})[name] = {n: M.errors(t[name], lim) for n, t in sorted(tights.items())}
         if lo // 2 in tights:
             prev = richardson_limit(tights[lo // 2][name], tights[lo][name], ratio=2.0)
             out.setdefault("observed_order", {})[name] = observed_orders(tights[lo // 2][name], tights[lo][name],
