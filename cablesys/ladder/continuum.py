@@ -375,3 +375,15 @@ def relative_errors(got: dict, ref: dict, largest_tension: float) -> dict:
     body = max(abs(got[k] - ref[k]) for k in ("x_b", "y_b")) / a_ref
     tension = max(abs(got[k] - ref[k]) for k in ("force_body", "force_top")) / max(largest_tension, 1e-300)
     return {"body": float(body), "tension": float(tension)}
+
+
+def string_travel_time(mb: Member) -> float:
+    """Time (s) a transverse wave takes from the top to the body along the string ``mb``: the integral of
+    ds / c(s), c = sqrt(T(s) / m_v) (m_v with the added mass, Wang 1971 eq. 23-24). For the hanging
+    string, T = T_b + g s (:meth:`Member.varies`), this is 2 sqrt(m_v) (sqrt(T_top) - sqrt(T_b)) / g
+    (Irvine 1981, ch. 4: the hanging chain); for the uniform string L sqrt(m_v / T)."""
+    t = mb.stiffness.real
+    if not mb.varies():
+        return mb.length * math.sqrt(mb.mass / t)
+    t_top, t_bot = mb.end_stiffness()
+    return 2.0 * math.sqrt(mb.mass) * (math.sqrt(t_top) - math.sqrt(t_bot)) / mb.gradient
