@@ -3,16 +3,25 @@
 :mod:`.continuum` gives the whole string one equivalent damping, from the mean of its end speeds. Where
 the forcing nears a string mode (omega / omega_string ~ 0.5-1, the random heavy cables) the string bulges
 between its ends and its drag follows the local speed, so each element here gets the describing function
-of its own mean speed amplitude, c_e = (8 / 3 pi) 1/2 rho C_D d |V_e| (+ the current's slope; Roberts &
-Spanos, "Random Vibration and Statistical Linearization", ch. 5, applied per element), a fixed point on
-the node amplitudes. The continuous string is its limit: N = REFERENCE_N and N / 2 elements with the
-exact drag shares, extrapolated (Richardson, second order). Against time-domain runs (tight, vs N = 32)
-the body error at N = 2 / 3 / 4 / 5 / 6 / 8 elements: heavy-1 0.62 / 0.23 / 0.017 / 0.010 / 0.005 / 0.145 %
-here against 0.97 / 0.21 / 0.014 / 0.009 / 0.009 / 0.091 % measured (the one-damping string: 0.34 / 0.07
-/ 0.08 / 0.05 / 0.03 / 0.19 %), heavy-2 1.20 / 0.46 / 0.19 / 0.10 / 0.06 / 0.008 % against 1.68 / 0.49 /
-0.21 / 0.10 / 0.076 / 0.008 %. On the Dale scene at 2 omega_n the one-damping string is the closer
-(0.81 / 0.37 / 0.32 % against 0.88 / 0.38 / 0.31 % at N = 2 / 3 / 4; here 1.68 / 0.01 / 0.07 %): neither
-linearization holds everywhere, so :mod:`.estimate` states the larger of the two.
+of its own speed amplitude, c = (8 / 3 pi) 1/2 rho C_D d |V| (+ the current's slope; Roberts & Spanos,
+"Random Vibration and Statistical Linearization", ch. 5, applied per element), a fixed point on the node
+amplitudes. With the segmented model's drag points (:func:`cablesys.model.segmented.drag_points`) |V| is
+taken at each point from the complex velocity interpolated there (:func:`_solve`): where the nodes differ
+in phase, as in a drag-controlled travelling wave, one mid-point sees less speed than the mean of its
+nodes' amplitudes and damps the element less. The continuous string is its limit: N = REFERENCE_N and
+N / 2 elements with the exact drag shares, extrapolated (Richardson, second order).
+
+Against time-domain runs: the 1000 m wire surged and heaved 1 m at T = 10 s (settled, 100-120 s), body
+surge x_b at N = 4 / 5 / 6 (two drag points per element) 0.0071 / 0.0107 / 0.0150 m here against 0.0074 /
+0.0113 / 0.0157 measured, at N = 7 / 8 / 10 / 20 (one) 0.0324 / 0.0301 / 0.0266 / 0.0242 against 0.0345 /
+0.0318 / 0.0275 / 0.0235 (surge alone 0.0340 / - / 0.0266 / 0.0244); the mean node amplitude per element
+gave 0.0056 / 0.0071 / 0.0111 and 0.0244 / 0.0240 / 0.0237 / 0.0236 (tests/test_ladder_settling.py: a
+500 m wire). The random heavy cables (tight, vs N = 32), body error at N = 2 / 3 / 4 / 6 / 8: heavy-1
+0.55 / 0.13 / 0.038 / 0.011 / 0.16 % here against 0.97 / 0.21 / 0.014 / 0.009 / 0.091 % measured,
+heavy-2 1.45 / 0.45 / 0.17 / 0.066 / 0.017 % against 1.68 / 0.49 / 0.21 / 0.076 / 0.008 %. On the Dale
+scene at 2 omega_n the one-damping string is the closer (0.81 / 0.37 / 0.32 % against 0.88 / 0.38 /
+0.31 % at N = 2 / 3 / 4): neither linearization holds everywhere, so :mod:`.estimate` states the larger
+of the two.
 """
 
 from __future__ import annotations
@@ -39,7 +48,16 @@ TOLERANCE = 1e-6            # largest relative change of a node amplitude at whi
 
 def _solve(mb: Member, omega: float, top: complex, n: int, points: int, start=None) -> tuple:
     """(W_b, node amplitudes) of :func:`chain`; ``start``: node amplitudes of another N (top to body), the
-    first guess interpolated along the string (the fixed point moves little with N)."""
+    first guess interpolated along the string (the fixed point moves little with N).
+
+    ``points`` > 0: the drag acts at the segmented model's points s_k = (k + 1/2) / points of each element
+    (:func:`cablesys.model.segmented.drag_points`), on the velocity interpolated there, (1 - s_k) w_j +
+    s_k w_j+1, so each point's describing function takes the amplitude of that complex sum, not the
+    mean of the node amplitudes: where adjacent nodes differ in phase (a travelling, drag-attenuated wave,
+    phase k h per element) one midpoint sees less speed than its nodes, |cos(k h / 2)| of it, and the
+    element is damped less (the segmented model's own drag, Roberts & Spanos ch. 5 applied per point); the
+    force is shared by virtual work, ((1 - s_k)^2, s_k (1 - s_k), s_k^2) per point. ``points`` = 0 (the
+    continuous limit's exact shares): the element's mean node amplitude."""
     h = mb.length / n
     if mb.varies():
         t_top, t_bot = mb.end_stiffness()
@@ -47,25 +65,40 @@ def _solve(mb: Member, omega: float, top: complex, n: int, points: int, start=No
     else:
         k = np.full(n, mb.stiffness / h, dtype=complex)
     d_c, o_c = drag_shares(points)
+    s_k = (np.arange(points) + 0.5) / points if points > 0 else None
     if start is None:
         amp = np.full(n + 1, abs(top))                  # node amplitudes, 0 the top
     else:
         amp = np.interp(np.linspace(0.0, 1.0, n + 1), np.linspace(0.0, 1.0, len(start)), start)
+    pts = None if s_k is None else (1 - s_k)[None, :] * amp[:-1, None] + s_k[None, :] * amp[1:, None]
     w = np.zeros(n, complex)
+    mass = -omega**2 * mb.mass * h / 2.0
     for _ in range(ITERATIONS):
-        c = mb.drag * (K_HARMONIC * omega * 0.5 * (amp[:-1] + amp[1:]) + 2.0 * mb.current)
         cb = mb.end_drag * (K_HARMONIC * omega * amp[-1] + 2.0 * mb.current)
-        d = k - omega**2 * mb.mass * h / 2.0 + 1j * omega * c * h * d_c
-        o = -k + 1j * omega * c * h * o_c
+        if pts is None:
+            c = mb.drag * (K_HARMONIC * omega * 0.5 * (amp[:-1] + amp[1:]) + 2.0 * mb.current)
+            d0 = d1 = k + mass + 1j * omega * c * h * d_c
+            o = -k + 1j * omega * c * h * o_c
+        else:
+            c = mb.drag * (K_HARMONIC * omega * pts + 2.0 * mb.current) * h / points      # per point, (n, points)
+            d0 = k + mass + 1j * omega * (c @ (1 - s_k) ** 2)
+            d1 = k + mass + 1j * omega * (c @ s_k**2)
+            o = -k + 1j * omega * (c @ (s_k * (1 - s_k)))
         diag = np.empty(n, complex)
-        diag[:-1] = d[:-1] + d[1:]
-        diag[-1] = d[-1] - mb.end_mass * omega**2 + 1j * omega * cb
+        diag[:-1] = d1[:-1] + d0[1:]
+        diag[-1] = d1[-1] - mb.end_mass * omega**2 + 1j * omega * cb
         f = np.zeros(n, complex)
         f[0] = -o[0] * top
         w = solve_tridiagonal(o[1:], diag, f)
         new = np.sqrt(amp[1:] * np.maximum(np.abs(w), 1e-300))          # geometric relaxation (see respond)
         done = np.max(np.abs(new - amp[1:]) / np.maximum(new, 1e-300)) <= TOLERANCE
         amp[1:] = new
+        if pts is not None:
+            nodes = np.concatenate(([top], w))
+            got = np.abs((1 - s_k)[None, :] * nodes[:-1, None] + s_k[None, :] * nodes[1:, None])
+            new_pts = np.sqrt(pts * np.maximum(got, 1e-300))
+            done = done and np.max(np.abs(new_pts - pts) / np.maximum(new_pts, 1e-300)) <= TOLERANCE
+            pts = new_pts
         if done:
             break
     return complex(w[-1]), amp
