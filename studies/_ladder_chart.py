@@ -23,6 +23,7 @@ INTEGRATOR_LABELS = {"cvodes": "CVODES BDF", "cvodes-adams": "CVODES Adams", "id
                      "rk": "RK4, 10 steps/output", "rk-stable": "RK4 at its stability step",
                      "periodic": "Fourier collocation",
                      "auto-extrapolated": "auto: RK4 at N/4, N/2, N, statistics extrapolated (slack)"}
+FORCED = "forced"    # the rungs within the tolerance run as auto runs its own (hollow circles)
 FLOOR = 1e-7          # errors below are drawn at the floor
 FAIL_Y = 1.0          # failed runs are drawn here
 
@@ -46,6 +47,8 @@ def _reason(failure: str) -> str:
 def _label(r: dict) -> str:
     if r["integrator"] == "auto-extrapolated":          # auto's slack runs: the N of every run
         return "auto: N = " + ", ".join(str(n) for n in r.get("runs", [r["segments"]])) + " extrapolated"
+    if r["integrator"] == FORCED:                        # short: its colour says the rung
+        return f"N={r['segments']}" if r["rung"] == "segmented" or r["segments"] > 1 else r["rung"]
     return r["rung"] + (f" N={r['segments']}" if r["rung"] == "segmented" or r["segments"] > 1 else "")
 
 
@@ -73,8 +76,10 @@ def _labels(ax, ok: list, key: str, wall, renderer) -> None:
     r_px = 5.0 * ax.figure.dpi / 72.0
     taken = [Bbox.from_extents(x - r_px, y - r_px, x + r_px, y + r_px) for x, y in pts]
     frame = ax.get_window_extent(renderer)
-    for lab in dict.fromkeys(_label(r) for r in ok):
-        r = min((q for q in ok if _label(q) == lab), key=wall)
+    group = lambda q: (_kind(q), q["integrator"] == FORCED, _label(q))    # one label per rung, N (and forced or not)
+    for g in dict.fromkeys(group(q) for q in ok):
+        r = min((q for q in ok if group(q) == g), key=wall)
+        lab = g[2]
         xy = (wall(r), max(r[key], FLOOR))
         best = None                     # (overlaps, candidate) of the candidates inside the axes
         for i, (dx, dy, ha) in enumerate(CANDIDATES):
@@ -111,11 +116,14 @@ def plot_case(res: dict, path: Path):
     hit = [r for r in ok if r["rung"] == a["name"] and r["integrator"] in (a.get("integrator", "cvodes"), "periodic")
            and (r["segments"] == a["segments"] or a["name"] not in ("segmented", "quasi-static"))]
     wall = lambda r: max(r["wall_s"], 1e-4)
+    forced = [dict(c, integrator=FORCED, success=True) for c in a.get("candidates") or [] if c.get("error_body") is not None]
     for ax, key, tl, title in ((axes[0], "error_body", tol["body"], "body amplitude error"),
                                (axes[1], "error_tension", tol["tension"], "tension-extremes error")):
         for r in ok:
             ax.loglog(wall(r), max(r[key], FLOOR), _marker(r["integrator"]), color=RUNG_COLOURS[_kind(r)],
                       ms=8, alpha=0.8)
+        for r in forced:
+            ax.loglog(wall(r), max(r[key], FLOOR), "o", color=RUNG_COLOURS[_kind(r)], mfc="none", ms=9, mew=1.6)
         for r in bad:
             ax.plot(wall(r), FAIL_Y, "x", color=RUNG_COLOURS[_kind(r)], ms=10, mew=2)
         if bad and ax is axes[0]:                # which runs failed, grouped by integrator
@@ -138,12 +146,11 @@ def plot_case(res: dict, path: Path):
                     textcoords="offset points", fontsize=8, color="grey")
         ax.axhline(FAIL_Y, ls=":", color="red", lw=0.8)
         stated = (a.get("stated_estimate") or {}).get(key.removeprefix("error_")) if hit else None
-        lows = [max(r[key], FLOOR) for r in ok] + [tl] + ([max(stated, FLOOR)] if stated and math.isfinite(stated) else [])
+        lows = [max(r[key], FLOOR) for r in ok + forced] + [tl] + ([max(stated, FLOOR)] if stated and math.isfinite(stated) else [])
         lo = min(lows) / 4     # room below the lowest point (and auto's stated estimate) for its label
         ax.set_ylim(lo, 2.0)
         ax.set_title(title)
-        ax.set_xlabel("wall time of the integration [s] (CasADi VM, build apart"
-                      + ("; auto: compiled, choose + run + checks)" if a.get("compiled") else "; auto: choose + run + checks)"))
+        ax.set_xlabel("wall time [s], build apart")
         ax.set_ylabel("relative error vs reference")
         ax.grid(True, which="both", alpha=0.3)
         xl = ax.get_xlim()
@@ -153,17 +160,23 @@ def plot_case(res: dict, path: Path):
     handles += [Line2D([], [], color="k", marker=m, ls="", label=INTEGRATOR_LABELS[k]) for k, m in MARKERS.items()
                 if any(r["integrator"] == k for r in res["rows"])]
     auto = f"auto's choice: {a['name']}" + (f" N={a['segments']}" if a["name"] in ("segmented",) or a["segments"] > 1 else "")
-    how = a.get("settings") or a.get("integrator", "")
+    how = a.get("integrator", "")          # the slack row's "auto-extrapolated" is in the integrator legend
     how = how.removeprefix("auto ").strip("()") if how.startswith("auto (") else ""
     handles += [Line2D([], [], color="k", marker="*", mfc="none", ls="", ms=12,
-                       label=auto + (f", run as a user runs it: {how}" if how else "") + ("" if hit else " (not measured)")),
+                       label=auto + (f" ({how})" if how else "") + ("" if hit else " (not measured)")),
                 Line2D([], [], color="k", marker="_", ls="", ms=14, mew=2.5, label="auto's stated estimate"),
+                Line2D([], [], color="k", marker="o", mfc="none", ls="", ms=9, mew=1.6,
+                       label="rung within tolerance, run as auto runs it"),
                 Line2D([], [], color="k", marker="x", ls="", label=f"failed run (drawn at error = {FAIL_Y:g})")]
-    fig.legend(handles=handles, fontsize=8, loc="outside lower center", ncol=math.ceil(len(handles) / 3))
-    fig.suptitle(f"{res['scene']}: model ladder work-precision\n{reference_text(res)}", fontsize=11)
+    handles = [h for h in handles if forced or not h.get_label().startswith("rung within")]
+    fig.legend(handles=handles, fontsize=8, loc="outside lower center", ncol=math.ceil(len(handles) / 4))
+    mode = "compiled" if a.get("compiled") else "CasADi VM"
+    fig.suptitle(f"{res['scene']}: model ladder work-precision\n{reference_text(res)}\nwall time: table runs in CasADi's "
+                 f"VM, integration only; auto (star) and the rungs run as auto runs them (hollow): {mode}, "
+                 "choose + run + a posteriori checks", fontsize=10)
     fig.canvas.draw()                    # lay out once, then keep it: labels are placed on the drawn axes
     fig.set_layout_engine("none")
     renderer = fig.canvas.get_renderer()
     for ax, key in zip(axes, ("error_body", "error_tension")):
-        _labels(ax, ok, key, wall, renderer)
+        _labels(ax, ok + forced, key, wall, renderer)
     return save_figure(fig, path, dpi=110)
