@@ -3,6 +3,17 @@
 Both against the converged segmented reference of the case, their speed against MoorDyn at the smallest
 N of the case (``md_small`` = (N, MoorDyn wall seconds)). The helpers of the main script are passed in
 (``matched``, ``timed_run``, ``stats``, ``diff``, ``compiled_ctx``), as for ``_bench_slack``.
+
+The slack case (heave at T = 6 s, 360 s; :func:`slack_auto_row`), run of 2026-11-30 12:18-12:31 UTC (load 1-3 on
+2 cores, MoorDyn steps kept from the 09:22 probe): auto picked N = 16 (4, 8, 16 not asymptotic), doubled to
+N = 32 and extrapolated from 8, 16, 32 (observed orders 0.98 / 0.97): 10.35 s in all (choice 3 ms, the N = 16
+run 2.18 s, the checks 8.17 s: the runs at 4, 8 and the N = 32 run that gives the time series; code cached).
+Error of its extrapolated statistics against the reference (Richardson limit of the tight RK4 runs at 40, 80;
+its own uncertainty 0.004 % / 0.16 %): body 0.025 %, tension 0.28 % (stated 0.037 % / 0.059 %); its N = 32
+time series 4.3 % / 3.8 % (stated 4.3 % / 3.8 %). MoorDyn N = 20 takes 3.27 s: auto is 0.32x its speed, but
+MoorDyn N = 20 is 0.09 % / 8.2 % from its own limit (N = 20, 80, first order assumed), cablesys N = 20 6.8 % /
+6.1 % and N = 80 1.7 % / 1.5 % from theirs. MoorDyn would need N ~ 590 for auto's accuracy (~5000 s at its
+walls' N^2.17: auto ~480x faster, an extrapolation) and N ~ 83 for the default 1 % / 2 % (~72 s: ~7x).
 """
 
 from __future__ import annotations
@@ -82,6 +93,13 @@ def auto_row(scene, period, ref_stats, md_small, *, stats, diff, compiled_ctx, r
 # -- the slack row (heave at T = 6 s, _bench_slack): auto reports extrapolated statistics -------------------
 
 DEFAULT_TOLERANCE = {"body": 0.01, "tension": 0.02}     # auto's default model tolerance (issue 12)
+SLACK_NOTE = ("Accuracy is each code's against its own converged answer, not against the other code: MoorDyn damps "
+              "slack segments where cablesys keeps Wang's eq. 54 (the tension floor), so their converged answers "
+              "differ by ~30 % on this scene (cablesys_vs_moordyn). auto_error: auto's reported (extrapolated) "
+              "statistics against the reference, both in auto's definition (last 5 periods, maxima refined); "
+              "auto_speedup: MoorDyn at the smallest N over auto's whole wait (choice, runs at N, N/2, N/4), "
+              "whatever MoorDyn's accuracy there; auto_moordyn_equal_accuracy: the N (and wall) MoorDyn would need "
+              "for auto's accuracy and for the default tolerance, from its own two runs assuming first order in N.")
 
 
 def reported_statistics(result, period) -> dict:

@@ -34,7 +34,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from _bench_auto import slack_auto_row
+from _bench_auto import SLACK_NOTE, slack_auto_row
 from _cycles import (
     cycle_statistics,
     ladder_statistics,
@@ -159,6 +159,7 @@ def _auto(row, scene, period, t0, ns, tights, mds, prepared, compiled_ctx, segme
     for key in ("speedup", "speedup_run_only", "choose_s", "error"):
         row[f"auto_{key}"] = row["auto"].get(key)
     row["auto_moordyn_equal_accuracy"] = row["auto"].get("moordyn_equal_accuracy")
+    row["auto_note"] = SLACK_NOTE
 
 
 def _strip(c: dict) -> dict:
