@@ -20,7 +20,7 @@ def find_row(rows, rung, n, integrators):
                  and r.get("error_body") is not None), None)
 
 
-def _rank(rung: str, n: int) -> float:
+def ladder_rank(rung: str, n: int) -> float:
     """Ladder order of cost: the straight-cable rungs, then the cable in N elements (quasi-static below
     the dynamic one at the same N)."""
     if rung in ("quasi-static", "wang") and n <= 1:
@@ -36,9 +36,9 @@ def cheaper_within(rows, choice, tol, integrators) -> list:
     """Rungs below auto's choice on the ladder (straight cables, fewer elements) whose actual errors are
     within half the tolerance (auto aims at half of it: choice.SAFETY); the frequency rung answers
     another question (a steady amplitude) and is left out."""
-    mine = _rank(choice.name, choice.segments)
+    mine = ladder_rank(choice.name, choice.segments)
     return [run_name(r) for r in rows if r["integrator"] in integrators and r.get("error_body") is not None
-            and r["rung"] != "frequency" and _rank(r["rung"], r["segments"]) < mine
+            and r["rung"] != "frequency" and ladder_rank(r["rung"], r["segments"]) < mine
             and r["error_body"] <= 0.5 * tol["body"] and r["error_tension"] <= 0.5 * tol["tension"]]
 
 
@@ -91,7 +91,7 @@ def verdicts(res: dict) -> dict:
     """Issue 12's two checks on this scene, from the rows, auto's own run and the forced runs.
 
     ``cheaper_rung_within_tolerance``: auto's own run (compiled, as a user runs it) against every other
-    rung and N whose table row is within the tolerance, each run forced by the same code with the same
+    rung and N at or below auto's on the ladder whose table row is within the tolerance, each run forced by the same code with the same
     integrator rule (``candidates``, compiled as auto): auto is ``beaten`` when one of them is within the
     tolerance by its own errors at under 1 / NOISE_FACTOR of auto's wall time, on the run alone or on the
     run with its a posteriori checks (both measured as ``ladder_timing``, least of a few calls); the same
@@ -120,7 +120,7 @@ def verdicts(res: dict) -> dict:
                "noise_factor": NOISE_FACTOR,
                "rule": f"beaten: another rung (or N) within the tolerance (or within {SAFETY:g} x it, which auto aims "
                        f"at), run forced by simulate_auto as auto runs its own rung (its integrator rule, rtol and a "
-                       f"posteriori check; compiled like auto's), by its own errors, in < 1/{NOISE_FACTOR:g} of auto's "
+                       f"posteriori check; compiled like auto's), at or below auto's rung on the ladder, by its own errors, in < 1/{NOISE_FACTOR:g} of auto's "
                        f"time on the run alone or on the run with its a posteriori checks (least of a few calls each; "
                        f"choosing excluded, the same for both); the table's VM rows at the study's rtol are not "
                        f"compared (other integrator, other rtol, not compiled). Candidates: the (rung, N) whose table "

@@ -118,4 +118,4 @@ def assess_slack_auto(case: dict, res: dict, choice, choose_s: float, resolved_f
             "stated_estimate_time_series": m.get("estimated_error_time_series"), "actual_error": act,
             "actual_error_time_series": act_ts, "extrapolated": x, "choose_s": choose_s, "candidates": cands,
             "ladder_timing": lt, "ladder_timing_first": info["ladder_timing_first"], "wall_s": info["wall_s"],
-            "compiled": info["compiled"], "settings": settings, "estimates": choice.numbers["estimates"], "tolerance": tol, "check": check}
+            "load_1min": info["load_1min"], "compiled": info["compiled"], "settings": settings, "estimates": choice.numbers["estimates"], "tolerance": tol, "check": check}
