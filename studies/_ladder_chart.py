@@ -172,7 +172,7 @@ def plot_case(res: dict, path: Path):
     fig.legend(handles=handles, fontsize=8, loc="outside lower center", ncol=math.ceil(len(handles) / 4))
     mode = "compiled" if a.get("compiled") else "CasADi VM"
     fig.suptitle(f"{res['scene']}: model ladder work-precision\n{reference_text(res)}\nwall time: table runs in CasADi's "
-                 f"VM, integration only; auto (star) and the rungs run as auto runs them (hollow): {mode}, "
+                 f"VM, integration only; auto (star){' and the rungs run as auto runs them (hollow)' if forced else ''}: {mode}, "
                  "choose + run + a posteriori checks", fontsize=10)
     fig.canvas.draw()                    # lay out once, then keep it: labels are placed on the drawn axes
     fig.set_layout_engine("none")
