@@ -111,7 +111,7 @@ def test_settings_fall_back_to_cvodes_without_compilation_or_a_model(rungs, monk
     assert auto.integrator_settings(sc, tol, 4, rung="quasi-static", model=model, x0=x0).method == auto.QUASI_STATIC_FALLBACK
     monkeypatch.setenv("CABLESYS_COMPILE", "1")
     assert auto.integrator_settings(sc, tol, 4, rung="quasi-static").method == auto.QUASI_STATIC_FALLBACK
-    big = auto.COMPILE_MAX_ELEMENTS + 1
+    big = auto.EXPLICIT_MAX_ELEMENTS + 1      # past it the string modes set the step and the probe grows as N^3
     assert auto.integrator_settings(sc, tol, big, rung="quasi-static", model=model, x0=x0).method == auto.QUASI_STATIC_FALLBACK
     assert auto.integrator_settings(sc, tol, 4, rung="wang").method == auto.AUTO_METHOD
     assert auto.integrator_settings(sc, tol, 4, rung="quasi-static", model=model, x0=x0, method="rk").method == "rk"
@@ -131,6 +131,17 @@ def test_run_options_give_the_cli_the_guarded_pair_and_its_start(rungs, monkeypa
     np.testing.assert_allclose(opts["x0"], x0, rtol=0, atol=0)
     assert auto.run_options(scene, choice)["method"] == auto.QUASI_STATIC_FALLBACK
     assert "x0" not in auto.run_options(scene, choice, model=model, method="cvodes")
+
+
+def test_probe_runs_in_the_vm_past_its_compile_size(rungs, monkeypatch):
+    """The guard's dense probe Jacobian grows as N^3 (Dale N = 4 / 8: 1.2 / 4.7 MB serialized; heavy1000 N = 20:
+    404 MB, whose 120 MB of C ran the compiler out of memory): past PROBE_COMPILE_MAX it is not compiled."""
+    monkeypatch.setenv("CABLESYS_COMPILE", "1")
+    _, model, p, x0 = rungs[8]
+    F = G.probe_function(model)
+    assert len(F.serialize()) > G.PROBE_COMPILE_MAX and not F.is_a("external")
+    J0, _, _ = F(x0, p, 1.0)
+    assert np.all(np.isfinite(np.array(J0)))
 
 
 def test_rtol_stays_well_below_the_stated_error(rungs):

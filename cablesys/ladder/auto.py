@@ -69,6 +69,9 @@ AUTO_METHOD = "cvodes-bdf2"   # A-stable BDF steps over the undamped stretch mod
 QUASI_STATIC_METHOD = "rk23"
 QUASI_STATIC_FALLBACK = "cvodes"
 STATED_ROOM = 20.0
+# past 8 elements the string modes set an explicit pair's step (Dale N = 8: refused) and the guard's dense probe
+# Jacobian grows as N^3 (heavy1000 quasi-static N = 20: 404 MB serialized, 120 MB of C, the compiler out of memory)
+EXPLICIT_MAX_ELEMENTS = 8
 AUTO_RTOL = 1e-4     # at most; rtol = body tolerance / 100 (Dale, N = 3: 1e-4 leaves 0.01 % body, 0.2 % tension
 #                      vs its own tight run; 1e-3 leaves 9 % on the tension extremes from the element ringing)
 _SIMULATE_KEYS = ("x0", "on_block", "progress")
@@ -131,7 +134,7 @@ def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rt
 def _quasi_static_method(scene: Scene, model, x0, rtol: float, elements: int) -> str:
     """QUASI_STATIC_METHOD where :func:`.stiffness.explicit_fit` accepts ``model`` at ``x0`` (compiled runs
     only: uncompiled, the explicit pair would fall back to CVODES anyway), else QUASI_STATIC_FALLBACK."""
-    if model is None or x0 is None or elements > COMPILE_MAX_ELEMENTS or not compilation_enabled():
+    if model is None or x0 is None or elements > EXPLICIT_MAX_ELEMENTS or not compilation_enabled():
         return QUASI_STATIC_FALLBACK
     fit = explicit_fit(model, model.parameters(scene), x0, rtol, QUASI_STATIC_METHOD)
     log.debug("quasi-static rung: %s", fit.reason)

@@ -126,11 +126,18 @@ class ExplicitFit:
                 f"{self.lambda_max:.3g} 1/s) vs accuracy step {self.accuracy_step:.3g} s at omega {self.omega:.3g} rad/s")
 
 
+# the probe's dense Jacobian grows as N^3: Dale quasi-static N = 4 / 8 / 12 / 16 serialize to 1.2 / 4.7 / 15 / 38 MB
+# (0.3 / 1.3 / 4.0 / 10 MB of C in one function); compiling it at N = 20 ran the C compiler out of memory
+# (> 22 GB, killed). Past this size it runs in the VM: it is evaluated once per run
+PROBE_COMPILE_MAX = 2_000_000
+
+
 def probe_function(model):
     """``(x0, p, motion) -> (J(x0), J(x0 + motion S_rates), S)``: the rung's ODE Jacobian at its start and
     moving at ``motion`` x the rate scales, and the state scales S (:mod:`cablesys.model.scales`), one
-    function built once per model and compiled (cached on disk; CasADi's VM without a compiler): in the VM
-    the two Jacobians and the scales cost 0.4 ms on the Dale rung (quasi-static N = 4)."""
+    function built once per model and compiled up to PROBE_COMPILE_MAX serialized bytes (cached on disk; CasADi's
+    VM without a compiler or past that size): in the VM the two Jacobians and the scales cost 0.4 ms on the Dale
+    rung (quasi-static N = 4)."""
     def build():
         import casadi as ca
 
@@ -143,6 +150,8 @@ def probe_function(model):
         shift = ca.vertcat(ca.DM.zeros(model.nq), k * S[model.nq:])
         F = ca.Function("explicit_probe", [x, p, k], [jac(x, p), jac(x + shift, p), S], ["x", "p", "motion"],
                         ["J0", "J1", "S"])
+        if len(F.serialize()) > PROBE_COMPILE_MAX:    # one evaluation per run: the VM, not a compiler run
+            return F
         return compile_functions([F], jacobians=False).functions[F.name()]
     return model.derive("explicit_probe", build)
 
