@@ -165,7 +165,7 @@ def test_auto_integrator_settings_follow_the_tolerance_unless_someone_chose():
     """BDF of order <= 2 at rtol = body tolerance / 100 (at most 1e-4), atol = rtol / 10 of each state's
     natural scale (scaled states, cablesys.model.scales); the scene's
     own [numerics] integrator or tolerances, or the caller's, win; compiled C up to 20 elements."""
-    from cablesys.ladder.auto import COMPILE_MAX_ELEMENTS, integrator_settings
+    from cablesys.ladder.run_settings import COMPILE_MAX_ELEMENTS, integrator_settings
     scene = _stiff_pendulum()
     s = integrator_settings(scene, (0.01, 0.02))
     assert (s.method, s.rtol, s.atol, s.compiled, s.scaled) == ("cvodes-bdf2", 1e-4, pytest.approx(1e-5), True, True)
@@ -319,3 +319,28 @@ def test_auto_runs_a_chain_of_sections():
     other = dict(st, x_b_2_amplitude=st["x_b_2_amplitude"] * 1.1)
     largest = max(v for k, v in st.items() if k.endswith("_amplitude"))
     assert metrics.errors(other, st)["body"] == pytest.approx(0.1 * st["x_b_2_amplitude"] / largest)
+
+
+@pytest.mark.slow
+@pytest.mark.filterwarnings("ignore::cablesys.errors.NumericalWarning")   # segmented forced at 0.2 %: warned
+def test_run_command_makes_the_a_posteriori_check_as_simulate_auto(tmp_path):
+    """``cablesys run`` streams the chosen run itself; where the a priori estimate is not within SAFETY x the
+    tolerance (Dale at 2 omega_n, segmented N = 4, tolerance 0.2 %) it makes the same check at N / 2 as
+    :func:`simulate_auto`, and states the same a posteriori estimate |y_4 - y_2| / (2^2 - 1)."""
+    import json
+
+    from cablesys.cli import main
+    from cablesys.ladder.auto import needs_richardson
+    from cablesys.ladder.choice import forced
+    from cablesys.scene import dale_scene, dump_scene
+    scene = dale_scene(omega_ratio=2.0, duration=8.0).with_numerics(model="segmented", model_tolerance=0.002)
+    scene = scene.replace_section(0, cable={"segments": 4})
+    assert needs_richardson(forced(scene, "segmented", 4, 0.002), (0.002, 0.004))
+    path = tmp_path / "dale.toml"
+    path.write_text(dump_scene(scene))
+    assert main(["run", str(path), "--out", str(tmp_path / "out")]) == 0
+    cli = json.loads((tmp_path / "out" / "summary.json").read_text())["model"]
+    ref = simulate_auto(scene).stats["model"]
+    assert "a posteriori (N = 4 vs 2" in cli["reason"] and "a posteriori (N = 4 vs 2" in ref["reason"]
+    for k in ("body", "tension"):
+        assert cli["estimated_error"][k] == pytest.approx(ref["estimated_error"][k], rel=1e-6)

@@ -126,7 +126,9 @@ def _run(args) -> int:
         from ..ladder import extrapolation
         from ..ladder.auto import (  # the model ladder (issue 12)
             after_run,
+            needs_richardson,
             plan_run,
+            richardson_step,
             run_options,
             simulate_auto,
         )
@@ -152,6 +154,9 @@ def _run(args) -> int:
                                                           {"method": args.method, "max_num_steps": args.max_steps}, known)
             else:
                 choice, again = after_run(scene, choice, result, auto=auto)
+                if not again and needs_richardson(choice, tolerances(scene)):   # as simulate_auto: N / 2 run
+                    choice, again = richardson_step(scene, choice, tolerances(scene), result, cache,
+                                                    {"method": args.method, "max_num_steps": args.max_steps}, auto=auto)
             if not again:
                 break
             scene_run = rung_scene(scene, choice.name, choice.segments)

@@ -1,0 +1,136 @@
+"""The integrator settings of a ladder run (issue 12): which method, rtol and atol each rung runs with when
+neither the caller nor the scene names them, and the stiffness guard's part in it (:mod:`.stiffness`).
+
+The rungs with undamped stretch modes step with A-stable BDF2; the quasi-static rungs with the compiled
+explicit rk23 pair where the guard finds that stability does not set its step, else variable-order BDF; every
+rung's rtol is at most min(AUTO_RTOL, body tolerance / 100) and its stated body error / STATED_ROOM.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+import math
+
+from ..compiled import compilation_enabled
+from ..scene import Numerics, Scene
+from ..time_domain.initial import initial_state
+from ..time_domain.integrators import (
+    COMPILE_MAX_ELEMENTS,  # one rule, simulate's default too
+)
+from .choice import Choice, tolerances
+from .rungs import rung_scene
+from .stiffness import explicit_fit
+
+log = logging.getLogger(__name__)
+
+AUTO_METHOD = "cvodes-bdf2"   # A-stable BDF steps over the undamped stretch modes (Dale: 1.7k steps vs 41k)
+# the quasi-static rungs have no stretch modes left (eliminated): the compiled explicit rk23 pair where its
+# stiffness guard accepts them (Dale 60 s, N = 4: 1438 steps, run 8.1 ms against CVODES's 13.5 ms), else
+# variable-order BDF (fewer steps than BDF2 at the same rtol); measurements in :mod:`.stiffness`. Every rung's
+# rtol is at most the stated body error / STATED_ROOM, rounded down to a decade: the run must not add an error
+# comparable to the one it states (:mod:`.stiffness`, accuracy; Wang's BDF2 at a swing resonance, random
+# short-2: stated 0.13 %, rtol 1e-4 added 0.15 % by numerical damping, 1e-5 adds 0.02 %, 2.8x the steps)
+QUASI_STATIC_METHOD = "rk23"
+QUASI_STATIC_FALLBACK = "cvodes"
+STATED_ROOM = 20.0
+# past 8 elements the string modes set an explicit pair's step (Dale N = 8: refused) and the guard's dense probe
+# Jacobian grows as N^3 (heavy1000 quasi-static N = 20: 404 MB serialized, 120 MB of C, the compiler out of memory)
+EXPLICIT_MAX_ELEMENTS = 8
+AUTO_RTOL = 1e-4     # at most; rtol = body tolerance / 100 (Dale, N = 3: 1e-4 leaves 0.01 % body, 0.2 % tension
+#                      vs its own tight run; 1e-3 leaves 9 % on the tension extremes from the element ringing)
+
+
+def _scene_sets_integrator(scene: Scene) -> bool:
+    """True when the scene's [numerics] names an integrator or tolerances other than the defaults."""
+    d = {f.name: f.default for f in dataclasses.fields(Numerics)}
+    num = scene.numerics
+    return (num.integrator, num.rtol, num.atol) != (d["integrator"], d["rtol"], d["atol"])
+
+
+def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rtol=None, atol=None,
+                        max_num_steps=None, jit: bool = False, rung: str | None = None, model=None, x0=None,
+                        stated: float | None = None):
+    """The integrator settings of a ladder run.
+
+    Parameters
+    ----------
+    scene : Scene
+        Its ``numerics`` integrator and tolerances are used when they differ from the defaults.
+    tol : (float, float)
+        The model tolerance (body, tension).
+    elements : int, optional
+        Elements of the rung's model (compiled C up to COMPILE_MAX_ELEMENTS, else the VM).
+    method, rtol, atol, max_num_steps, jit : optional
+        The caller's choices (they win).
+    rung : str, optional
+        The rung run: the quasi-static rungs step with QUASI_STATIC_METHOD (no stretch modes to damp)
+        where its guard accepts ``model`` at ``x0``, else QUASI_STATIC_FALLBACK.
+    model, x0 : optional
+        The rung's model (of ``scene``) and its initial state, for the quasi-static rungs' guard
+        (:func:`_quasi_static_method`); without them those rungs run QUASI_STATIC_FALLBACK.
+    stated : float, optional
+        The rung's stated body error: the rtol is at most stated / STATED_ROOM.
+
+    Returns
+    -------
+    IntegratorSettings
+        Without any choice from the caller or the scene: AUTO_METHOD (see ``rung``) with rtol =
+        min(AUTO_RTOL, tol[0] / 100) and atol = rtol / 10 relative to each state's natural scale (the integrators
+        scale the states by :mod:`cablesys.model.scales`: stretch by its static value, angle by the
+        top's amplitude over the length, rates by these times the forcing frequency).
+    """
+    from ..time_domain import IntegratorSettings
+    num = scene.numerics
+    if method is None and rtol is None and atol is None and not _scene_sets_integrator(scene):
+        rtol = min(AUTO_RTOL, tol[0] / 100.0)
+        if stated is not None and 0.0 < stated < math.inf:   # every rung (Wang at a resonance: random short-2)
+            # in decades: a simulator is built per rtol, and scenes of one structure share it (RungCache)
+            rtol = min(rtol, 10.0 ** math.floor(math.log10(stated / STATED_ROOM)))
+        method = _quasi_static_method(scene, model, x0, rtol, elements) if rung == "quasi-static" else AUTO_METHOD
+        atol = rtol / 10   # scaled states (rtol / 1000 in SI was 3 % of Dale's dynamic stretch; 300 m N = 20: 502 vs 742 steps)
+    extra = {} if max_num_steps is None else {"max_num_steps": int(max_num_steps)}
+    return IntegratorSettings(method=method or num.integrator, rtol=rtol or num.rtol, atol=atol or num.atol,
+                              steps_per_output=num.steps_per_output, compiled=elements <= COMPILE_MAX_ELEMENTS,
+                              jit=jit, **extra)
+
+
+def _quasi_static_method(scene: Scene, model, x0, rtol: float, elements: int) -> str:
+    """QUASI_STATIC_METHOD where :func:`.stiffness.explicit_fit` accepts ``model`` at ``x0`` (compiled runs
+    only: uncompiled, the explicit pair would fall back to CVODES anyway), else QUASI_STATIC_FALLBACK."""
+    if model is None or x0 is None or elements > EXPLICIT_MAX_ELEMENTS or not compilation_enabled():
+        return QUASI_STATIC_FALLBACK
+    fit = explicit_fit(model, model.parameters(scene), x0, rtol, QUASI_STATIC_METHOD)
+    log.debug("quasi-static rung: %s", fit.reason)
+    return QUASI_STATIC_METHOD if fit.accepted else QUASI_STATIC_FALLBACK
+
+
+def run_options(scene: Scene, choice: Choice, tolerance=None, *, method=None, model=None) -> dict:
+    """``method``, ``rtol``, ``atol`` for :func:`cablesys.time_domain.simulate` of ``choice``'s run, for a
+    caller that runs it itself (the ``run`` command): :func:`integrator_settings` of the rung's scene.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    choice : Choice
+        The rung to run (:func:`plan_run`).
+    tolerance : float or (float, float), optional
+        The model tolerance (default the scene's).
+    method : str, optional
+        The caller's method (it wins; the tolerances are then the scene's).
+    model : CableModel, optional
+        The rung's model: the quasi-static rungs' guard needs it to accept the explicit pair.
+
+    Returns
+    -------
+    dict
+        Keyword arguments ``method``, ``rtol``, ``atol`` (and ``x0``, the start the guard probed).
+    """
+    sc = rung_scene(scene, choice.name, choice.segments)
+    elements = sum(s.cable.segments for s in sc.sections)
+    probe = model is not None and method is None and choice.name == "quasi-static"
+    x0 = initial_state(sc, model, model.parameters(sc)) if probe else None
+    s = integrator_settings(sc, tolerances(scene, tolerance), elements, method=method, rung=choice.name,
+                            model=model, x0=x0, stated=choice.estimated_error.get("body"))
+    return {"method": s.method, "rtol": s.rtol, "atol": s.atol, **({"x0": x0} if probe else {})}
