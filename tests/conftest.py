@@ -36,3 +36,15 @@ def dale():
     scene = dale_scene()
     model = build_model(scene)
     return scene, model, model.parameters(scene)
+
+
+@pytest.fixture(scope="module")
+def compiling(tmp_path_factory, request):
+    """Compilation on (the suite runs the VM by default), into a cache of the requesting test module."""
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv("CABLESYS_COMPILE", "1")
+        mp.setenv("CABLESYS_CACHE", str(tmp_path_factory.mktemp(f"{request.module.__name__}-cache")))
+        mp.delenv("CABLESYS_CACHE_DIR", raising=False)
+        mp.delenv("CABLESYS_CC", raising=False)
+        mp.setenv("CABLESYS_CFLAGS", "-O1")
+        yield

@@ -26,18 +26,6 @@ C_SOURCE = Path(__file__).resolve().parents[1] / "cablesys" / "time_domain" / "e
 needs_cc = pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler")
 
 
-@pytest.fixture(scope="module")
-def compiling(tmp_path_factory):
-    """Compilation on (the suite runs the VM by default), into a cache of this module."""
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setenv("CABLESYS_COMPILE", "1")
-        mp.setenv("CABLESYS_CACHE", str(tmp_path_factory.mktemp("dopri5-cache")))
-        mp.delenv("CABLESYS_CACHE_DIR", raising=False)
-        mp.delenv("CABLESYS_CC", raising=False)
-        mp.setenv("CABLESYS_CFLAGS", "-O1")
-        yield
-
-
 def _tableau():
     """The coefficients as written in explicit_rk.c (a_ij, c_i, e_i = b_i - b^_i, d_i)."""
     text = C_SOURCE.read_text()
@@ -300,19 +288,20 @@ def test_quasistatic_and_segmented_models_run(compiling):
         assert np.all(err <= 1e-3 * np.ptp(ref, axis=1)), (model.kind, err / np.ptp(ref, axis=1))
 
 
-def test_without_compilation_falls_back_to_cvodes_with_one_notice(caplog, monkeypatch):
-    """CABLESYS_COMPILE=0 (the suite's default): dopri5 runs CVODES, one logged notice per model,
-    and the run succeeds."""
+@pytest.mark.parametrize("method", ["dopri5", "rk23"])
+def test_without_compilation_falls_back_to_cvodes_with_one_notice(caplog, monkeypatch, method):
+    """CABLESYS_COMPILE=0 (the suite's default): either pair of the driver runs CVODES, one logged notice
+    per model naming the pair, and the run succeeds."""
     monkeypatch.setenv("CABLESYS_COMPILE", "0")
     scene = _ramped_dale(2.0)
     model = build_model(scene)
     p = model.parameters(scene)
-    st = IntegratorSettings(method="dopri5", rtol=1e-6, atol=1e-7)
+    st = IntegratorSettings(method=method, rtol=1e-6, atol=1e-7)
     with caplog.at_level(logging.WARNING, logger="cablesys.time_domain.explicit_rk"):
         sim = Simulator(model, scene.output_times, st)
         rec = sim.run(p, initial_state(scene, model, p))
     assert rec.success and not rec.stats["compiled"]
-    notices = [r for r in caplog.records if "running CVODES" in r.getMessage()]
+    notices = [r for r in caplog.records if f"{method} needs" in r.getMessage() and "running CVODES" in r.getMessage()]
     assert len(notices) == 1
     assert not isinstance(make_integrator(model, st, [0.0, 1.0]), ExplicitRKIntegrator)
     assert compiled_dae(model, st).compiled is False

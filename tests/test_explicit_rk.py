@@ -1,10 +1,9 @@
 """The Bogacki-Shampine 3(2) pair (``rk23``) of the compiled explicit-RK driver
 (cablesys.time_domain.explicit_rk, explicit_rk.c): its coefficients' order and stability on the imaginary
 axis, its error control against closed forms, Wang's model against a tight CVODES run, its step
-count at the stability limit of the undamped stretch mode, failures and the fallback. The
-DOPRI5 pair of the same driver is tested in test_dopri5.py, whose helpers this module shares."""
+count at the stability limit of the undamped stretch mode and failures (the fallback without a compiler is
+tested with DOPRI5 in test_dopri5.py, whose helpers this module shares)."""
 
-import logging
 import math
 import re
 from fractions import Fraction
@@ -15,20 +14,15 @@ from test_dopri5 import (
     C_SOURCE,
     _lambda_max,
     _oscillator_exact,
-    _ramped_dale,
     as_accurate_as_cvodes,
-    compiling,  # noqa: F401  (fixture)
     dale_ramped,  # noqa: F401  (fixture)
     needs_cc,
     oscillator_error,
 )
 
 from cablesys.errors import SolverError
-from cablesys.model import build_model
 from cablesys.time_domain import IntegratorSettings, Simulator
-from cablesys.time_domain.explicit_rk import ExplicitRKIntegrator
-from cablesys.time_domain.integrators import compiled_dae, make_integrator
-from cablesys.time_domain.run import initial_state
+from cablesys.time_domain.integrators import make_integrator
 
 
 def _tableau():
@@ -113,7 +107,7 @@ def test_a_single_step_is_third_order():
 
 @needs_cc
 @pytest.mark.parametrize("zeta", [0.0, 0.05])
-def test_global_error_follows_the_tolerance(compiling, zeta):  # noqa: F811
+def test_global_error_follows_the_tolerance(compiling, zeta):
     """Linear oscillator over 10 periods, closed form, outputs by the Hermite dense output: the
     largest global error (relative to the amplitude) falls in proportion with rtol (error per
     step ~ rtol^(4/3) at h ~ rtol^(1/3): global ~ rtol; rtol 1e-4 to 1e-8: by 10^3.5-10^4.5), is
@@ -185,18 +179,3 @@ def test_step_budget_failure_names_the_method_and_time(dale_ramped):  # noqa: F8
     assert not rec.success
     assert "step budget exhausted: rk23" in rec.message and "(at t = " in rec.message
     assert rec.time.size < times.size
-
-
-def test_without_compilation_falls_back_to_cvodes_with_one_notice(caplog, monkeypatch):
-    """CABLESYS_COMPILE=0: rk23 runs CVODES, one logged notice naming rk23, and the run succeeds."""
-    monkeypatch.setenv("CABLESYS_COMPILE", "0")
-    scene = _ramped_dale(2.0)
-    model = build_model(scene)
-    p = model.parameters(scene)
-    st = IntegratorSettings(method="rk23", rtol=1e-6, atol=1e-7)
-    with caplog.at_level(logging.WARNING, logger="cablesys.time_domain.explicit_rk"):
-        rec = Simulator(model, scene.output_times, st).run(p, initial_state(scene, model, p))
-    assert rec.success and not rec.stats["compiled"]
-    assert len([r for r in caplog.records if "rk23 needs" in r.getMessage()]) == 1
-    assert not isinstance(make_integrator(model, st, [0.0, 1.0]), ExplicitRKIntegrator)
-    assert compiled_dae(model, st).compiled is False

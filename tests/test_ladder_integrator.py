@@ -5,12 +5,11 @@ Dale rung against its own tight run, a small fraction of the stated model error;
 function against the VM's."""
 
 import math
-import shutil
 from fractions import Fraction
 
 import numpy as np
 import pytest
-from test_dopri5 import _tableau
+from test_dopri5 import _tableau, needs_cc
 
 from cablesys.ladder import auto, metrics, simulate_auto
 from cablesys.ladder import stiffness as G
@@ -19,7 +18,6 @@ from cablesys.scene import TopMotion, dale_scene
 from cablesys.time_domain import simulate
 from cablesys.time_domain.initial import initial_state
 
-needs_cc = pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler")
 RTOL = 1e-4          # auto's rtol at the default 1 % body tolerance (auto.AUTO_RTOL)
 
 
@@ -163,18 +161,6 @@ def test_rtol_stays_well_below_the_stated_error(rungs):
 # --------------------------------------------------------------------------------------------------
 # compiled
 # --------------------------------------------------------------------------------------------------
-@pytest.fixture(scope="module")
-def compiling(tmp_path_factory):
-    """Compilation on (the suite runs the VM by default), into a cache of this module."""
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setenv("CABLESYS_COMPILE", "1")
-        mp.setenv("CABLESYS_CACHE", str(tmp_path_factory.mktemp("ladder-integrator-cache")))
-        mp.delenv("CABLESYS_CACHE_DIR", raising=False)
-        mp.delenv("CABLESYS_CC", raising=False)
-        mp.setenv("CABLESYS_CFLAGS", "-O1")
-        yield
-
-
 @needs_cc
 @pytest.mark.slow
 def test_auto_runs_the_dale_rung_explicitly_well_within_its_stated_error(compiling):
