@@ -23,8 +23,6 @@ import os
 import time
 import warnings
 
-from _cycles import richardson_limit
-
 from cablesys.ladder import extrapolation as X
 from cablesys.ladder import metrics as M
 from cablesys.ladder import simulate_auto
@@ -145,7 +143,7 @@ def moordyn_for(md: dict, targets: dict, auto_wall: float) -> dict:
     out = {"estimated": True, "segments_used": [lo, hi], "order_assumed": 1.0, "wall_exponent": k,
            "assumption": "MoorDyn's converged answer = first-order Richardson limit of its two runs; error ~ 1/N"}
     for name in ("stats", "cycle_means"):
-        lim = richardson_limit(md[lo][name], md[hi][name], ratio=ratio)
+        lim = X.limits(md[lo][name], md[hi][name], order=1.0, ratio=ratio)
         e_hi = M.errors(md[hi][name], lim)
         d = {"error_at_n": {lo: M.errors(md[lo][name], lim), hi: e_hi}}
         for tname, t in targets.items():

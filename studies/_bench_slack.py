@@ -38,8 +38,6 @@ from _bench_auto import SLACK_NOTE, slack_auto_row
 from _cycles import (
     cycle_statistics,
     ladder_statistics,
-    observed_orders,
-    richardson_limit,
 )
 from _moordyn import largest_stable_dt, run_moordyn
 
@@ -126,14 +124,14 @@ def reference(scene, tights: dict, ns) -> dict:
     floor = max(s.cable.tension_floor for s in scene.sections)
     out = {"kind": "richardson", "segments": [lo, hi], "order_assumed": 1.0, "integrator": "rk, half the stable step"}
     for name in ("stats", "cycle_means"):
-        lim = richardson_limit(tights[lo][name], tights[hi][name], ratio=2.0)
+        lim = X.limits(tights[lo][name], tights[hi][name], order=1.0)
         lim.update({k: max(v, floor) for k, v in lim.items() if k.endswith("_min")})
         out[name] = lim
         # each tight run's own error against the limit (as MoorDyn's against its own: _bench_auto.moordyn_for)
         out.setdefault("error_at_n", {})[name] = {n: M.errors(t[name], lim) for n, t in sorted(tights.items())}
         if lo // 2 in tights:
-            prev = richardson_limit(tights[lo // 2][name], tights[lo][name], ratio=2.0)
-            out.setdefault("observed_order", {})[name] = observed_orders(tights[lo // 2][name], tights[lo][name],
+            prev = X.limits(tights[lo // 2][name], tights[lo][name], order=1.0)
+            out.setdefault("observed_order", {})[name] = X.observed_orders(tights[lo // 2][name], tights[lo][name],
                                                                         tights[hi][name])
             out.setdefault("uncertainty", {})[name] = {k: v / 3.0 for k, v in M.errors(prev, lim).items()}
     return out

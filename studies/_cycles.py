@@ -104,22 +104,3 @@ def ladder_statistics(result, period: float, t0: float, t1: float | None = None)
     out = {k: st[v] for k, v in names.items()}
     out["spread"] = {k: st[f"{v}_spread"] for k, v in names.items()}
     return {**out, "window_s": st["window_s"], "cycles": st["cycles"]}
-
-
-def richardson_limit(coarse: dict, fine: dict, ratio: float = 2.0, order: float = 1.0) -> dict:
-    """The Richardson limit f + (f - f_c) / (r^p - 1) of every number of ``fine`` (N) and ``coarse``
-    (N / r), for a discretisation error ~ N^-p (Richardson 1911; p = 1 on the slack scene)."""
-    return {k: v + (v - coarse[k]) / (ratio**order - 1.0)
-            for k, v in fine.items() if isinstance(v, float) and isinstance(coarse.get(k), float)}
-
-
-def observed_orders(f1: dict, f2: dict, f4: dict, ratio: float = 2.0) -> dict:
-    """Observed order log_r(|f1 - f2| / |f2 - f4|) of each number from three runs at N, rN, r^2 N
-    (None where a difference is zero)."""
-    out = {}
-    for k, v in f4.items():
-        if not (isinstance(v, float) and isinstance(f1.get(k), float) and isinstance(f2.get(k), float)):
-            continue
-        a, b = abs(f1[k] - f2[k]), abs(f2[k] - v)
-        out[k] = float(np.log(a / b) / np.log(ratio)) if a > 0 and b > 0 else None
-    return out

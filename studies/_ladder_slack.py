@@ -18,7 +18,7 @@ import dataclasses
 import time
 import warnings
 
-from _cycles import ladder_statistics, observed_orders, richardson_limit
+from _cycles import ladder_statistics
 from _ladder_auto import auto_row, candidates, compiling, run_auto
 from _ladder_checks import cheaper_within, estimate_check
 
@@ -61,7 +61,7 @@ def slack_reference(case: dict, rows: list, period: float, cache: RungCache) -> 
     runs = {n: reference_run(case, n, period, cache) for n in (c, f)}
     if not all(r["success"] for r in runs.values()):
         return {"kind": "richardson", "error": f"a reference run failed (N = {c}, {f})", "runs": runs}
-    lim = richardson_limit(runs[c]["statistics"], runs[f]["statistics"], f / c, order=1.0)
+    lim = X.limits(runs[c]["statistics"], runs[f]["statistics"], order=1.0, ratio=f / c)
     lim_auto = X.limits(runs[c]["auto_statistics"], runs[f]["auto_statistics"])
     floor = max(s.cable.tension_floor for s in case["scene"].sections)
     for d in (lim, lim_auto):           # a minimum's limit below the tension floor: the floor (as auto's)
@@ -70,8 +70,8 @@ def slack_reference(case: dict, rows: list, period: float, cache: RungCache) -> 
                  and r["integrator"] == "rk-stable" and "statistics" in r), None)
     orders, unc = {}, None
     if half is not None:
-        orders = observed_orders(half["statistics"], runs[c]["statistics"], runs[f]["statistics"])
-        prev = richardson_limit(half["statistics"], runs[c]["statistics"], 2.0, order=1.0)
+        orders = X.observed_orders(half["statistics"], runs[c]["statistics"], runs[f]["statistics"])
+        prev = X.limits(half["statistics"], runs[c]["statistics"], order=1.0)
         unc = {k: v / (2.0**X.REMAINDER_ORDER - 1.0) for k, v in metrics.errors(prev, lim).items()}
     return {"kind": "richardson", "segments": [c, f], "integrator": "rk-stable"
             + (" (compiled)" if case.get("compile_reference") else ""), "order_assumed": 1.0,

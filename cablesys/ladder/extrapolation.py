@@ -159,17 +159,24 @@ def statistics(result, period: float | None) -> dict:
     return st
 
 
-def limits(coarse: dict, fine: dict, order: float = ORDER) -> dict:
-    """Richardson limit f + (f - f_c) / (2^p - 1) of every number of ``fine`` (N) and ``coarse`` (N / 2)."""
-    return {k: v + (v - coarse[k]) / (2.0**order - 1.0) for k, v in fine.items() if k in coarse}
+def _numbers(*dicts) -> list:
+    """The keys whose values are floats in every dict (statistics; counts and labels are left out)."""
+    return [k for k, v in dicts[-1].items() if all(isinstance(d.get(k), float) for d in dicts)]
 
 
-def observed_orders(f4: dict, f2: dict, f1: dict) -> dict:
-    """log2(|f(N/4) - f(N/2)| / |f(N/2) - f(N)|) per number (None where a difference is zero)."""
+def limits(coarse: dict, fine: dict, order: float = ORDER, ratio: float = 2.0) -> dict:
+    """Richardson limit f + (f - f_c) / (r^p - 1) of every number of ``fine`` (N) and ``coarse`` (N / r), for a
+    discretisation error ~ N^-p (Richardson 1911)."""
+    return {k: fine[k] + (fine[k] - coarse[k]) / (ratio**order - 1.0) for k in _numbers(coarse, fine)}
+
+
+def observed_orders(f4: dict, f2: dict, f1: dict, ratio: float = 2.0) -> dict:
+    """log_r(|f(N/r^2) - f(N/r)| / |f(N/r) - f(N)|) per number, coarsest run first (None where a difference is
+    zero)."""
     out = {}
-    for k, v in f1.items():
-        a, b = abs(f4[k] - f2[k]), abs(f2[k] - v)
-        out[k] = float(math.log2(a / b)) if a > 0 and b > 0 else None
+    for k in _numbers(f4, f2, f1):
+        a, b = abs(f4[k] - f2[k]), abs(f2[k] - f1[k])
+        out[k] = float(math.log(a / b) / math.log(ratio)) if a > 0 and b > 0 else None
     return out
 
 
