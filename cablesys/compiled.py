@@ -82,6 +82,10 @@ def compilation_enabled(enabled: bool = True) -> bool:
 # faster than linearly with the length of straight-line code (a 305-sample top-motion series:
 # 1.6 MB of C, 39 s at -O2, 7 s at -O0), while small models gain 2x at run time from -O2
 SIZE_FLAGS = ((400_000, "-O2"), (1_500_000, "-O1"), (float("inf"), "-O0"))
+# generated C above this runs in the VM: the compiler's memory grows with the code (at -O0: 19 MB of C, the
+# quasi-static segmented DAE at N = 20, took 3.5 GB; the 120 MB of a dense N = 20 Jacobian ran cc1 past 8 GB
+# under a cap and past 22 GB without one, killed by the kernel)
+MAX_C_BYTES = 40_000_000
 
 
 def compiler_command(size: int = 0) -> list[str]:
@@ -181,6 +185,9 @@ def _build(code: str, cmd: list[str], target: Path) -> None:
     """Compile ``code`` to ``target``: temporary files in the cache folder, then an atomic rename."""
     import subprocess
     target.parent.mkdir(parents=True, exist_ok=True)
+    if len(code) > MAX_C_BYTES:
+        raise RuntimeError(f"{len(code) / 1e6:.0f} MB of generated C, above the {MAX_C_BYTES / 1e6:.0f} MB a compiler "
+                           "run is given (its memory grows with the code)")
     with tempfile.TemporaryDirectory(dir=target.parent, prefix=".build-") as tmp:
         src = Path(tmp) / "model.c"
         src.write_text(code)

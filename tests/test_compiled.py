@@ -377,3 +377,18 @@ def test_the_rk_loop_of_a_large_segmented_model_compiles_its_kernel_alone(cache)
     ref = Simulator(model, scene.output_times, IntegratorSettings(method="rk", steps_per_output=160, compiled=False))
     x_vm = ref.run(model.parameters(scene), run.states[:, 0]).states
     np.testing.assert_allclose(run.states, x_vm, rtol=1e-9, atol=1e-12)
+
+
+def test_code_too_large_for_a_compiler_run_stays_in_the_vm(cache, monkeypatch, caplog):
+    """Generated C above MAX_C_BYTES is not handed to the compiler (its memory grows with the code: a 120 MB
+    dense Jacobian ran cc1 out of memory): the functions run in CasADi's VM, with one logged reason."""
+    import logging
+
+    import cablesys.compiled as C
+    monkeypatch.setattr(C, "MAX_C_BYTES", 1000)
+    f = _pendulum()
+    with caplog.at_level(logging.WARNING, logger="cablesys.compiled"):
+        out = compile_functions([f])
+    assert not out.compiled and out.functions["pendulum_rhs"] is f
+    assert "MB of generated C" in out.note and "MB of generated C" in caplog.text
+    assert not list(cache.glob("*.so"))

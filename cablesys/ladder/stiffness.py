@@ -127,8 +127,8 @@ class ExplicitFit:
 
 
 # the probe's dense Jacobian grows as N^3: Dale quasi-static N = 4 / 8 / 12 / 16 serialize to 1.2 / 4.7 / 15 / 38 MB
-# (0.3 / 1.3 / 4.0 / 10 MB of C in one function); compiling it at N = 20 ran the C compiler out of memory
-# (> 22 GB, killed). Past this size it runs in the VM: it is evaluated once per run
+# (0.3 / 1.3 / 4.0 / 10 MB of C in one function; 6 s to compile at N = 12). It is evaluated once per run: past
+# this size the VM costs less than the compiler (which compiled.MAX_C_BYTES also keeps within memory)
 PROBE_COMPILE_MAX = 2_000_000
 
 
