@@ -137,6 +137,10 @@ def _stretch_solution(full: CableModel, slow, fast, s, sd, e, p, iterations: int
     M_ss, M_us = M[slow, slow], M[fast, slow]
     sdd = ca.solve(M_ss, f[slow])
     r = f[fast] - ca.mtimes(M_us, sdd)                      # stretch rows with u'' = 0
+    # u' along the motion comes from dr/dt at fixed u (the implicit-function theorem: dr/du u' = -dr/dt),
+    # one forward AD sweep (shared by CSE) instead of AD through the unrolled iterations
+    zd, zdd = e[3:5], e[5:7]
+    r_t = ca.jtimes(r, ca.vertcat(s, sd, e), ca.vertcat(sd, sdd, 0.0, zd, zdd, 0.0, 0.0))
     if stiffness is not None:
         rows = ca.Function("rows", [u_sym, s, sd, e, p], [r, sdd, M_ss, f[slow]])
         u = start
@@ -144,11 +148,7 @@ def _stretch_solution(full: CableModel, slow, fast, s, sd, e, p, iterations: int
             u_last = u
             r_u, sdd_u, M_s, f_s = rows(u, s, sd, e, p)
             u = u + r_u / stiffness
-        # u' along the motion: the chord step's derivative with the last iterate held, u = u_last + r / k_e,
-        # so u' = (dr/dt at fixed u) / k_e to O(eps) (the implicit-function theorem with the chord's
-        # Jacobian); one forward AD sweep over the last evaluation of the rows (shared by CSE)
-        zd, zdd = e[3:5], e[5:7]
-        r_t = ca.jtimes(r, ca.vertcat(s, sd, e), ca.vertcat(sd, sdd, 0.0, zd, zdd, 0.0, 0.0))
+        # the chord's Jacobian, -k_e, at the last iterate: u' = (dr/dt at fixed u) / k_e to O(eps)
         ud = ca.Function("rows_rate", [u_sym, s, sd, e, p], [r_t])(u_last, s, sd, e, p) / stiffness
         return u, sdd_u, M_s, f_s, ud
     J = ca.jacobian(r, u_sym)
@@ -157,11 +157,7 @@ def _stretch_solution(full: CableModel, slow, fast, s, sd, e, p, iterations: int
     for _ in range(iterations):
         u = newton(u, s, sd, e, p)
     M_s, f_s, sdd_s = (ca.substitute(v, u_sym, u) for v in (M_ss, f[slow], sdd))
-    # u' along the motion by the implicit-function theorem at the converged stretch: r(u, s, s', z, z') = 0
-    # gives dr/du u' = -(dr/dt at fixed u) (one forward sweep and an nf x nf solve, instead of AD through
-    # the unrolled Newton iterations: the heave scene's outputs 15.5k -> ~4k operations)
-    zd, zdd = e[3:5], e[5:7]
-    r_t = ca.jtimes(r, ca.vertcat(s, sd, e), ca.vertcat(sd, sdd, 0.0, zd, zdd, 0.0, 0.0))
+    # the exact Jacobian at the converged stretch, an nf x nf solve (the heave scene's outputs 15.5k -> ~4k operations)
     ud = ca.Function("rows_rate", [u_sym, s, sd, e, p], [-ca.solve(J, r_t)])(u, s, sd, e, p)
     return u, sdd_s, M_s, f_s, ud
 
