@@ -83,7 +83,6 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import math
 import os
 import re
 import sys
@@ -100,21 +99,14 @@ from _ladder_checks import cheaper_within, estimate_check, run_name, verdicts
 from _ladder_slack import assess_slack_auto, slack_reference
 from segmented_convergence import slack_scene, stable_steps_per_output
 
-from cablesys import units as U
 from cablesys.errors import NumericalWarning
 from cablesys.ladder import RungCache, choose, metrics, run_rung
 from cablesys.ladder import estimate as est
 from cablesys.ladder.rungs import rung_scene
 from cablesys.scene import (
-    Body,
-    Cable,
-    Environment,
-    Numerics,
-    Sinusoid,
-    TopMotion,
     dale_scene,
+    heavy_wire_scene,
 )
-from cablesys.scene.scene import single_section_scene
 from cablesys.time_domain.run import initial_state
 
 INTEGRATORS = ("cvodes", "cvodes-adams", "idas", "rk", "rk-stable")
@@ -128,19 +120,9 @@ def heave_300m(period: float, duration: float, output_step: float = 0.05) -> obj
 
 
 def heavy_cable(duration: float) -> object:
-    """1000 m of 16 mm steel wire rope (9.4 N/m in water, AE 1.2e7 N) and a 300 kg sphere of 0.5 m."""
-    rho, g = U.RHO_SEA, U.G_STANDARD
-    vol = math.pi / 6 * 0.5**3
-    w_b = 300.0 * g - rho * g * vol
-    cable = Cable(length=1000.0, tension_ref=w_b + 0.5 * 9.4 * 1000.0, ae=1.2e7, diameter=0.016,
-                  mass_per_length=1.1, weight_per_length=9.4, cd_normal=1.2, ct_tangential=0.01)
-    body = Body(weight=w_b, mass_x=300.0 + 0.5 * rho * vol, mass_y=300.0 + 0.5 * rho * vol,
-                drag_area_normal=0.5 * math.pi / 4 * 0.25, drag_area_tangential=0.5 * math.pi / 4 * 0.25)
-    w = 2 * math.pi / 10.0
-    top = TopMotion(x=(Sinusoid(amplitude=1.0, frequency=w, phase=math.pi / 2),), y=(Sinusoid(amplitude=1.0, frequency=w),))
-    return single_section_scene(cable=cable, body=body, name="1000 m steel wire, 300 kg sphere, T = 10 s",
-                                environment=Environment(density=rho, gravity=g), top_motion=top,
-                                numerics=Numerics(duration=duration, output_step=0.1, rtol=1e-7, atol=1e-9))
+    """1000 m of 16 mm steel wire rope and a 300 kg sphere of 0.5 m (:func:`cablesys.scene.heavy_wire_scene`),
+    surged and heaved 1 m at T = 10 s."""
+    return heavy_wire_scene(period=10.0, duration=duration)
 
 
 def _slack_case(duration: float, output_step: float, segments: tuple, integrators: tuple, reference: tuple,

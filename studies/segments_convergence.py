@@ -34,39 +34,19 @@ from cablesys.linear.spectra import jonswap
 from cablesys.linear.stochastic import stochastic_response
 from cablesys.model import build_model
 from cablesys.scene import (
-    Body,
-    Cable,
-    Environment,
-    Numerics,
     Scene,
     dale_scene,
+    heavy_wire_scene,
 )
-from cablesys.scene.scene import single_section_scene
 
 TOTAL_DRAG_SEGMENTS = 24      # drag points along the whole cable, shared among the sections
 
 
 def heavy_cable_scene() -> Scene:
-    """1000 m of 16 mm six-strand steel wire rope holding a 300 kg instrument sphere of 0.5 m.
-
-    Rope (typical 6x36 IWRC catalogue values): 1.1 kg/m in air, 9.4 N/m in sea water,
-    metallic area 1.2e-4 m^2 x E = 1.0e11 Pa -> AE = 1.2e7 N. Sphere of 0.5 m diameter,
-    300 kg dry: weight in water 300 g - rho g V, virtual mass with the sphere's added mass
-    rho V / 2, C_D = 0.5. The cable weighs about four times the body in water: the case
-    where a single straight segment is expected to degrade.
-    """
-    rho, g = U.RHO_SEA, U.G_STANDARD
-    length, w, m = 1000.0, 9.4, 1.1
-    d_b, m_b = 0.5, 300.0
-    vol = math.pi / 6 * d_b**3
-    w_b = m_b * g - rho * g * vol
-    area = math.pi / 4 * d_b**2
-    cable = Cable(length=length, tension_ref=w_b + 0.5 * w * length, ae=1.2e7, diameter=0.016,
-                  mass_per_length=m, weight_per_length=w, cd_normal=1.2, ct_tangential=0.01)
-    body = Body(weight=w_b, mass_x=m_b + 0.5 * rho * vol, mass_y=m_b + 0.5 * rho * vol,
-                drag_area_normal=0.5 * area, drag_area_tangential=0.5 * area)
-    return single_section_scene(cable=cable, body=body, name="1000 m steel wire, 300 kg sphere",
-                                environment=Environment(density=rho, gravity=g), numerics=Numerics(drag_segments=10))
+    """1000 m of 16 mm six-strand steel wire rope holding a 300 kg instrument sphere of 0.5 m
+    (:func:`cablesys.scene.heavy_wire_scene`, its top at rest): the cable weighs about four times the body in
+    water, the case where a single straight segment is expected to degrade."""
+    return heavy_wire_scene(period=None).with_numerics(duration=60.0, output_step=0.05)
 
 
 def segmented(scene: Scene, n: int) -> Scene:

@@ -200,6 +200,7 @@ def simulate_auto(scene: Scene, *, model: str | None = None, tolerance=None, seg
     cache = cache if cache is not None else RungCache()
     t0, b0 = time.perf_counter(), cache.build_s
     choice, tol, auto = _decide(scene, model, tolerance, segments, cache)
+    choice = explicit_or_node(scene, choice, tol, cache, kw)
     t1, b1 = time.perf_counter(), cache.build_s
     if extrapolation.applies(choice, auto):      # first order in N: RK4 runs at N, N / 2, N / 4 (extrapolation)
         result = extrapolation.run(scene, choice.segments, cache, kw)
@@ -214,6 +215,41 @@ def simulate_auto(scene: Scene, *, model: str | None = None, tolerance=None, seg
                                      "total_s": t3 - t0}
     log.info("model %s (N = %d): %s", choice.name, choice.segments, choice.reason)
     return result
+
+
+def _explicit_only(choice: Choice) -> bool:
+    return choice.name == "quasi-static" and choice.numbers.get("plan", {}).get("explicit_only", False)
+
+
+def explicit_or_node(scene: Scene, choice: Choice, tol, cache: RungCache, kw: dict | None = None) -> Choice:
+    """``choice``, or the node model at the same N when ``choice`` is the quasi-static segmented cable taken for
+    its cost with the explicit pair (:func:`~.choice.element_plan`, ``explicit_only``) and the pair's stiffness
+    guard (:mod:`.stiffness`) refuses it, or the caller names the method: stepped by CVODES it costs more than
+    the node model (heavy1000 N = 10: 65 against 22.5 ms). The guard's probe is ~1 ms (N <= 8)."""
+    kw = kw or {}
+    if not _explicit_only(choice):
+        return choice
+    sc = rung_scene(scene, choice.name, choice.segments)
+    model = cache.model(scene, choice.name, choice.segments)
+    x0 = kw.get("x0")
+    if x0 is None and kw.get("method") is None:
+        x0 = initial_state(sc, model, model.parameters(sc))
+    s = integrator_settings(sc, tol, choice.segments * len(sc.sections), method=kw.get("method"), rtol=kw.get("rtol"),
+                            atol=kw.get("atol"), rung=choice.name, model=model, x0=x0,
+                            stated=choice.estimated_error.get("body"))
+    if s.method == QUASI_STATIC_METHOD:
+        return choice
+    return node_model(choice, f"the quasi-static segmented cable would step with {s.method}, not the explicit pair")
+
+
+def node_model(choice: Choice, why: str, segments: int | None = None) -> Choice:
+    """The node model (``segmented``) at ``segments`` (default: ``choice``'s N) in place of ``choice``, with its
+    own estimate and ``why`` in the reason."""
+    n = segments or choice.segments
+    e = est.segmented_error(choice.numbers["estimates"], n)
+    plan = dict(choice.numbers.get("plan", {}), name="segmented", segments=n, explicit_only=False)
+    return Choice("segmented", n, f"{choice.reason}; {why}: the node model with N = {n} instead",
+                  {"body": e["body"], "tension": e["tension"]}, dict(choice.numbers, plan=plan))
 
 
 def _check(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict, *, auto: bool):
@@ -245,29 +281,40 @@ def needs_richardson(choice: Choice, tol) -> bool:
 
 def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict, *, auto: bool):
     """One a posteriori check of ``result`` (N elements) against a run at N / 2: (Choice with the Richardson
-    estimate |y_N - y_N/2| / (2^p - 1), False), or under auto (Choice at 2N, True) while it misses the tolerance."""
+    estimate |y_N - y_N/2| / (2^p - 1), False), or under auto (Choice at 2N, True) while it misses the tolerance.
+    The estimate is at least est.RESOLUTION, and for the quasi-static segmented cable it adds the stretch's part
+    (:func:`~.estimate.quasistatic_segmented_error`), which both runs share and their difference cannot see
+    (heavy1000 N = 6 vs 3: 0.31 + 0.11 % body against an actual 0.49 %, 0.006 + 0.11 % tension against 0.11 %)."""
     period, n = metrics.forcing_period(scene), choice.segments
     coarse = _run(scene, dataclasses.replace(choice, segments=n // 2), tol, cache, kw)
     if not (coarse.success and result.success):
         return choice, False
     diff = metrics.errors(metrics.statistics(coarse, period), metrics.statistics(result, period))
     order = choice.numbers.get("estimates", {}).get("segmented_1", {}).get("order", est.ORDER)
-    e = {k: v / (2.0 ** order - 1.0) for k, v in diff.items()}
+    e = {k: max(v / (2.0 ** order - 1.0), est.RESOLUTION) for k, v in diff.items()}
+    if choice.name == "quasi-static":      # both runs share the quasi-static stretch: its own part is added
+        stretch = choice.numbers.get("estimates", {}).get("quasi-static", {}).get("stretch", {})
+        e = {k: v + stretch.get(k, 0.0) for k, v in e.items()}
     cap = MAX_SEGMENTS if order >= est.ORDER else SLACK_MAX_SEGMENTS
     if not auto or (e["body"] <= tol[0] and e["tension"] <= tol[1]) or 2 * n > cap:
         reason = choice.reason + f"; a posteriori (N = {n} vs {n // 2}, order {order:g}): body {e['body']:.2g}, tension {e['tension']:.2g}"
         return Choice(choice.name, n, reason, e, choice.numbers), False
+    if _explicit_only(choice) and 2 * n > EXPLICIT_MAX_ELEMENTS:      # past the explicit pair's reach
+        return node_model(choice, f"a posteriori (N = {n} vs {n // 2}): body {e['body']:.2g}, tension "
+                                  f"{e['tension']:.2g}, N doubles past {EXPLICIT_MAX_ELEMENTS}", 2 * n), True
     return dataclasses.replace(choice, segments=2 * n), True
 
 
-def plan_run(scene: Scene, model: str | None = None, tolerance=None, cache: RungCache | None = None):
+def plan_run(scene: Scene, model: str | None = None, tolerance=None, cache: RungCache | None = None,
+             method: str | None = None):
     """(scene to run, its CasADi model, Choice) for a caller that runs the simulation itself
     (the ``run`` command streams its output). Warns when a forced rung is outside its validity.
     The ``frequency`` rung is not a time-domain model: callers use :func:`simulate_auto` for it.
     Wang's model built for the choice is reused when it is the one to run (``cache``: see
     :class:`~cablesys.ladder.rungs.RungCache`)."""
     cache = cache if cache is not None else RungCache()
-    choice, _, _ = _decide(scene, model, tolerance, None, cache)
+    choice, tol, _ = _decide(scene, model, tolerance, None, cache)
+    choice = explicit_or_node(scene, choice, tol, cache, {"method": method})
     if choice.name == "frequency":
         return None, None, choice
     sc = rung_scene(scene, choice.name, choice.segments)

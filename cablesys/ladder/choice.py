@@ -6,7 +6,12 @@ The ladder, cheapest first: frequency (a steady amplitude only) < quasi-static (
 model, every element stretch stepped). The quasi-static segmented cable replaces the segmented one where
 the stretch is stiff (omega/omega_ax <= 1/STIFF_RATIO) and the cable stays taut: on the Dale scene (60 s,
 compiled, the same load) N = 4 took 42 ms against 68 ms for the node model, N = 3 30 ms against 54 ms,
-and its tension extremes carry no element-stretch ringing (0.002 % against 0.56 % at rtol 1e-4).
+and its tension extremes carry no element-stretch ringing (0.002 % against 0.56 % at rtol 1e-4); compiled, it
+also competes by cost where the stretch is not that stiff, stepped by the rk23 pair (:func:`element_plan`), and N
+is either sure (its estimate within SAFETY x the tolerance) or checked a posteriori, whichever costs less.
+
+The estimates speak of the settled forced response: a scene whose statistics window (:func:`.metrics.window`)
+starts before :func:`.estimate.settling_time` gets a note in the reason (:func:`settling_note`).
 """
 
 from __future__ import annotations
@@ -21,6 +26,7 @@ from ..scene import Scene
 from . import estimate as est
 from .indicators import scene_numbers
 from .rungs import RUNGS, RungCache, rung_scene
+from .stiffness import EXPLICIT_MAX_ELEMENTS
 
 DEFAULT_TOLERANCE = 0.01          # body motion; tension extremes get twice this (issue 12)
 MAX_SEGMENTS = 128
@@ -121,19 +127,106 @@ def quasistatic_segments_available(scene: Scene) -> bool:
     return all(s.cable.segments == 2 for s in rung_scene(scene, "quasi-static", 2).sections)
 
 
-def _quasistatic_segmented(scene: Scene, numbers, errs: dict, tol) -> int | None:
-    """N of the quasi-static segmented rung when it is the cheaper way to N elements, else None.
+# The cost of N elements, relative to the node model's N stepped by BDF2 (compiled, the same run): the quasi-static
+# segmented cable where its stretch is stiff (omega/omega_ax <= 1/STIFF_RATIO: the node model must step the stretch
+# modes; Dale 60 s N = 4: 42 vs 68 ms with CVODES, less with rk23), and stepped by the compiled rk23 pair up to
+# EXPLICIT_MAX_ELEMENTS (heavy1000 120 s, omega/omega_ax = 0.152: N = 5 / 6 10.1 / 11.4 ms against 14.7 / 16.3 ms);
+# a run checked a posteriori against N / 2 costs about 1.5 runs (heavy1000 quasi-static N = 6: 11.4 + 5.7 ms)
+STIFF_QS_COST = 0.25
+EXPLICIT_COST = 0.7
+CHECK_COST = 1.5
+CHECK_MIN_SEGMENTS = 4   # the check runs N / 2 >= 2 elements
 
-    It replaces the segmented cable when the stretch is stiff (omega/omega_ax <= 1 / STIFF_RATIO, the rule
-    that puts the straight quasi-static rung before Wang's: stepping the stretch modes of N elements,
-    the lowest at omega_ax and the others higher, costs more than solving for them), the cable stays taut
-    (a quasi-static stretch cannot go slack: :func:`~.estimate.quasistatic_segmented_error` is infinite
-    under predicted partial slack) and its estimate at its N is within SAFETY x the tolerance."""
-    if numbers.axial_ratio > 1.0 / STIFF_RATIO or not quasistatic_segments_available(scene):
-        return None
-    n = segments_for(errs, tol, "quasi-static")
-    e = est.rung_error(errs, "quasi-static", n)
-    return n if e["body"] <= SAFETY * tol[0] and e["tension"] <= SAFETY * tol[1] else None
+
+@dataclasses.dataclass(frozen=True)
+class ElementPlan:
+    """How auto divides the cable: the rung (``segmented``, or ``quasi-static`` for the quasi-static
+    segmented cable), N, whether N is checked a posteriori (its estimate within the tolerance but not within
+    SAFETY x it: Richardson against N / 2, :func:`cablesys.ladder.auto.richardson_step`), whether the rung is
+    worth it only stepped by the explicit pair (``explicit_only``: else the node model runs at the same N),
+    and its relative cost (elements x the weights above)."""
+
+    name: str
+    segments: int
+    checked: bool
+    explicit_only: bool
+    cost: float
+
+    def as_dict(self) -> dict:
+        return dataclasses.asdict(self)
+
+
+def _least_n(errs: dict, tol, name: str, fraction: float, lo: int, hi: int) -> int | None:
+    """Least N in [lo, hi] whose estimate of rung ``name`` is within ``fraction`` x ``tol``, else None."""
+    for n in range(lo, hi + 1):
+        e = est.rung_error(errs, name, n)
+        if e["body"] <= fraction * tol[0] and e["tension"] <= fraction * tol[1]:
+            return n
+    return None
+
+
+def element_plan(scene: Scene, numbers, errs: dict, tol) -> ElementPlan | None:
+    """The cheapest way to N elements within the tolerance (None: no N up to the cap reaches it).
+
+    Two rungs take elements: the node model (``segmented``) and the quasi-static segmented cable, whose
+    stretches follow the tension (:func:`quasistatic_segments_available`; its estimate adds the stretch part,
+    infinite under partial slack). The latter replaces the node model where the stretch is stiff
+    (omega/omega_ax <= 1/STIFF_RATIO), and competes with it by cost where it is not, compiled and up to
+    EXPLICIT_MAX_ELEMENTS (it is cheaper only stepped by the rk23 pair: ``explicit_only``). For each, two
+    N: the least within SAFETY x the tolerance (sure, the estimates being good to a factor of 2), and the least
+    N >= CHECK_MIN_SEGMENTS within the tolerance, checked a posteriori against N / 2 (CHECK_COST x its cost).
+    The least cost wins, a sure N on a tie (heavy1000, 1000 m wire forced at 2.7 x its first string mode,
+    compiled: the node model sure at N = 9, cost 9, and checked at N = 6, cost 9; the quasi-static segmented
+    checked at N = 6, cost 6.3, sure at none up to 8: it runs N = 6 and checks it against N = 3)."""
+    families = [("segmented", 1.0, MAX_SEGMENTS, False)]
+    if quasistatic_segments_available(scene):
+        if numbers.axial_ratio <= 1.0 / STIFF_RATIO:
+            families.append(("quasi-static", STIFF_QS_COST, MAX_SEGMENTS, False))
+        elif compilation_enabled():
+            families.append(("quasi-static", EXPLICIT_COST, EXPLICIT_MAX_ELEMENTS, True))
+    options = []
+    for name, weight, top, explicit in families:
+        n = _least_n(errs, tol, name, SAFETY, 2, top)
+        if n is not None:
+            options.append(ElementPlan(name, n, False, explicit, weight * n))
+        n = _least_n(errs, tol, name, 1.0, CHECK_MIN_SEGMENTS, top)
+        if n is not None:
+            options.append(ElementPlan(name, n, True, explicit, weight * CHECK_COST * n))
+    return min(options, key=lambda o: (o.cost, o.checked), default=None)
+
+
+def _plan_text(plan: ElementPlan, numbers) -> str:
+    if plan.name == "quasi-static":
+        how = (f"stepped by the compiled rk23 pair, cheaper than the node model at N <= {EXPLICIT_MAX_ELEMENTS} "
+               f"(omega/omega_ax = {numbers.axial_ratio:.3g})" if plan.explicit_only
+               else f"omega/omega_ax = {numbers.axial_ratio:.3g} <= 1/{STIFF_RATIO:g}")
+        what = f"quasi-static segmented with N = {plan.segments} (the element stretches follow the tension, {how})"
+    else:
+        what = f"segmented with N = {plan.segments}"
+    how_n = (f"the least N >= {CHECK_MIN_SEGMENTS} with its estimate within the tolerance, checked a posteriori "
+             f"against N = {plan.segments // 2} (cheaper than the least N within {SAFETY:g} x the tolerance)"
+             if plan.checked else f"the least N with its estimate within {SAFETY:g} x the tolerance")
+    return what, how_n
+
+
+def settling_note(scene: Scene, transverse: bool = True) -> str:
+    """"" when the statistics window of the scene's run (:func:`.metrics.window`: the last 5 forcing periods, at
+    most the last half) starts after :func:`.estimate.settling_time` (``transverse``: with the transverse wave's
+    travel down the cable; False where nothing drives the swing: the ramp alone), else a note for the reason, on
+    the console and in summary.json, that it holds the start-up transient, of which the estimates (of the settled
+    response) say nothing. A note, not a warning: short runs are legitimate (quick looks, tests, sweeps)."""
+    from .metrics import forcing_period, window
+    times = scene.output_times
+    period = forcing_period(scene)
+    if period is None or times.size < 2:
+        return ""
+    start = float(times[window(times, period)][0])
+    settle = est.settling_time(scene) if transverse else float(scene.top_motion.effective_ramp_s)
+    if start >= settle:
+        return ""
+    return (f"the run's statistics window starts at {start:.4g} s, before the forced response settles "
+            f"({settle:.4g} s: the smooth start and the wave's travel down the hanging cable): the estimated "
+            f"error is the settled response's; run at least {settle + min(5 * period, settle):.4g} s for it to apply")
 
 
 def _within(e: dict, tol) -> bool:
@@ -189,6 +282,9 @@ def choose(scene: Scene, tolerance=None, *, question: str = "time", cache: RungC
                 f"least tension (linear) {response.least_tension:.4g} N vs floor {numbers.tension_floor:.4g} N")
     order = [r for r in RUNGS if r != "segmented" and (question == "steady" or r != "frequency")]
     swing_free = _swing_free(scene, numbers)
+    note = settling_note(scene, transverse=not swing_free)
+    if note:
+        deciding += "; " + note
     if numbers.axial_ratio > 1.0 / STIFF_RATIO and not (swing_free and compilation_enabled()):
         # the stretch mode is within STIFF_RATIO of the forcing: stepping it costs less than the
         # quasi-static reduction (whose stretch is a Newton solve at every evaluation), and is exact
@@ -203,24 +299,25 @@ def choose(scene: Scene, tolerance=None, *, question: str = "time", cache: RungC
                 reason += ("; nothing drives the swing (top motion along the cable, no current, waves or series): "
                            "the quasi-static rung has no dynamics left to step, its cost is its outputs")
             return Choice(name, 1, reason, {"body": e["body"], "tension": e["tension"]}, info)
-    n_qs = _quasistatic_segmented(scene, numbers, errs, tol)
-    name, n = ("quasi-static", n_qs) if n_qs is not None else ("segmented", segments_for(errs, tol))
-    e = est.rung_error(errs, name, n)
-    if name == "segmented" and errs["segmented_1"].get("order", est.ORDER) < est.ORDER:
+    if errs["segmented_1"].get("order", est.ORDER) < est.ORDER:
         # first order in N (partial slack): the statistics are extrapolated from N / 4, N / 2, N (simulate_auto)
         n = extrapolated_segments(errs, tol)
         e = extrapolated_error(errs, n)
         reason = (f"segmented with N = {n}, its statistics extrapolated from N = {n // 4}, {n // 2}, {n} (Richardson: "
                   f"partial slack, the cable converges at first order in N): the straight cable misses the tolerance "
                   f"({errs['wang']['note']}); N for the remainder e_1 N^-2 within {SAFETY:g} x the tolerance; {deciding}")
-        return Choice(name, n, reason, {"body": e["body"], "tension": e["tension"]}, info)
+        return Choice("segmented", n, reason, {"body": e["body"], "tension": e["tension"]}, info)
+    plan = element_plan(scene, numbers, errs, tol)
+    if plan is None:                                 # not reachable up to the cap: checked a posteriori, N doubling
+        n = segments_for(errs, tol)
+        plan = ElementPlan("segmented", n, True, False, float(n))
+    name, n = plan.name, plan.segments
+    info["plan"] = plan.as_dict()
+    e = est.rung_error(errs, name, n)
     why = errs["wang"]["note"] if not _within(errs["wang"], tol) else ""
-    what = (f"quasi-static segmented with N = {n} (the element stretches follow the tension: "
-            f"omega/omega_ax = {numbers.axial_ratio:.3g} <= 1/{STIFF_RATIO:g})" if name == "quasi-static"
-            else f"segmented with N = {n}")
+    what, how_n = _plan_text(plan, numbers)
     reason = (f"{what}: the straight cable misses the tolerance ({why}, estimated body "
-              f"{errs['wang']['body']:.3g}, tension {errs['wang']['tension']:.3g}); the least N with its estimate "
-              f"within {SAFETY:g} x the tolerance; {deciding}")
+              f"{errs['wang']['body']:.3g}, tension {errs['wang']['tension']:.3g}); {how_n}; {deciding}")
     if not _within(e, tol):
         reason += (f"; the tolerance is not reachable at an affordable N: estimated body {e['body']:.2g}, "
                    f"tension {e['tension']:.2g} at N = {n}")

@@ -20,7 +20,7 @@ from ..time_domain.integrators import (
 )
 from .choice import Choice, tolerances
 from .rungs import rung_scene
-from .stiffness import explicit_fit
+from .stiffness import EXPLICIT_MAX_ELEMENTS, explicit_fit
 
 log = logging.getLogger(__name__)
 
@@ -34,9 +34,6 @@ AUTO_METHOD = "cvodes-bdf2"   # A-stable BDF steps over the undamped stretch mod
 QUASI_STATIC_METHOD = "rk23"
 QUASI_STATIC_FALLBACK = "cvodes"
 STATED_ROOM = 20.0
-# past 8 elements the string modes set an explicit pair's step (Dale N = 8: refused) and the guard's dense probe
-# Jacobian grows as N^3 (heavy1000 quasi-static N = 20: 404 MB serialized, 120 MB of C, the compiler out of memory)
-EXPLICIT_MAX_ELEMENTS = 8
 AUTO_RTOL = 1e-4     # at most; rtol = body tolerance / 100 (Dale, N = 3: 1e-4 leaves 0.01 % body, 0.2 % tension
 #                      vs its own tight run; 1e-3 leaves 9 % on the tension extremes from the element ringing)
 

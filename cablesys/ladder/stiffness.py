@@ -63,6 +63,9 @@ import numpy as np
 STABILITY_POLYNOMIALS = {"rk23": (1.0, 1.0, 1 / 2, 1 / 6),
                          "dopri5": (1.0, 1.0, 1 / 2, 1 / 6, 1 / 24, 1 / 120, 1 / 600)}
 ERROR_ORDER = {"rk23": 3, "dopri5": 5}    # the pair's error estimate is O(h^p) per step
+# past 8 elements the string modes set an explicit pair's step (Dale N = 8: refused) and the guard's dense probe
+# Jacobian grows as N^3 (heavy1000 quasi-static N = 20: 404 MB serialized, 120 MB of C, the compiler out of memory)
+EXPLICIT_MAX_ELEMENTS = 8
 GROWTH = 1e-6          # |R| up to 1 + GROWTH counts as stable (DOPRI5 on the imaginary axis)
 ACCURACY_MARGIN = 1.0  # accept when h_stab >= ACCURACY_MARGIN x h_acc
 

@@ -136,7 +136,7 @@ def _run(args) -> int:
         from ..ladder.rungs import RungCache, rung_scene
         auto = (getattr(args, "model", None) or scene.numerics.model) == "auto"
         cache = RungCache()            # the chosen rung's model, and the extrapolation's coarse runs
-        scene_run, model, choice = plan_run(scene, getattr(args, "model", None), cache=cache)
+        scene_run, model, choice = plan_run(scene, getattr(args, "model", None), cache=cache, method=args.method)
         known: dict = {}               # statistics of the extrapolation's runs by N
         while True:
             if model is None:          # the frequency rung: no time-domain model to stream
