@@ -62,19 +62,23 @@ def reference_text(res: dict) -> str:
     return f"reference: segmented N = {ref['segments']} (CVODES), last 5 forcing periods"
 
 
+LABEL_CLASH = 10      # a label over another text is unreadable; over a marker it only hides part of it
 CANDIDATES = ((7, 2, "left"), (7, -11, "left"), (-7, 2, "right"), (-7, -11, "right"), (0, 8, "center"),
               (0, -18, "center"), (12, 14, "left"), (12, -24, "left"), (-12, 14, "right"), (-12, -24, "right"),
-              (0, 22, "center"), (0, -32, "center"))
+              (0, 22, "center"), (0, -32, "center"), (20, 30, "left"), (20, -40, "left"), (-20, 30, "right"),
+              (-20, -40, "right"), (0, 40, "center"), (0, -50, "center"), (30, 0, "left"), (-30, 0, "right"))
 
 
-def _labels(ax, ok: list, key: str, wall, renderer) -> None:
+def _labels(ax, ok: list, key: str, wall, renderer, keep_clear=()) -> None:
     """One label per rung and N, at its fastest run: the first of CANDIDATES offsets whose text box lies
     inside the axes and overlaps no marker and no label already placed (measured on the drawn figure),
-    else the inside one with the fewest overlaps; a leader line beyond the first four offsets."""
+    else the inside one with the fewest overlaps; a leader line beyond the first four offsets. ``keep_clear``:
+    display boxes no label may cover either (the tolerance's caption, auto's star)."""
     from matplotlib.transforms import Bbox
     pts = ax.transData.transform([(wall(r), max(r[key], FLOOR)) for r in ok])
     r_px = 5.0 * ax.figure.dpi / 72.0
     taken = [Bbox.from_extents(x - r_px, y - r_px, x + r_px, y + r_px) for x, y in pts]
+    placed = list(keep_clear)            # text already there: covering it costs LABEL_CLASH markers
     frame = ax.get_window_extent(renderer)
     group = lambda q: (_kind(q), q["integrator"] == FORCED, _label(q))    # one label per rung, N (and forced or not)
     for g in dict.fromkeys(group(q) for q in ok):
@@ -87,13 +91,13 @@ def _labels(ax, ok: list, key: str, wall, renderer) -> None:
             box = t.get_window_extent(renderer)
             t.remove()
             inside = frame.contains(box.x0, box.y0) and frame.contains(box.x1, box.y1)
-            hits = sum(box.overlaps(b) for b in taken)
+            hits = sum(box.overlaps(b) for b in taken) + LABEL_CLASH * sum(box.overlaps(b) for b in placed)
             if inside and (best is None or hits < best[0]):
                 best = (hits, i)
             if inside and hits == 0:
                 break
         i = best[1] if best else 0      # nowhere inside: the first offset
-        taken.append(_place(ax, lab, xy, r, i, *CANDIDATES[i]).get_window_extent(renderer))
+        placed.append(_place(ax, lab, xy, r, i, *CANDIDATES[i]).get_window_extent(renderer))
 
 
 def _place(ax, lab, xy, r, i, dx, dy, ha):
@@ -108,7 +112,8 @@ def plot_case(res: dict, path: Path):
     from matplotlib.lines import Line2D
 
     from cablesys.plots import save_figure
-    fig, axes = plt.subplots(1, 2, figsize=(13, 6), sharex=True, layout="constrained")
+    fig, axes = plt.subplots(1, 2, figsize=(13, 7.5), sharex=True, layout="constrained")
+    captions, star = {}, {}               # boxes the rung labels keep clear of
     ok = [r for r in res["rows"] if r.get("success") and r.get("error_body") is not None]
     bad = [r for r in res["rows"] if not r.get("success")]
     a = res["auto"]
@@ -137,13 +142,13 @@ def plot_case(res: dict, path: Path):
                         textcoords="offset points", ha="right", va="top", fontsize=7, color="tab:red")
         if hit:
             h = hit[0]
-            ax.loglog(wall(h), max(h[key], FLOOR), "*", color="k", ms=20, mfc="none", mew=1.6, zorder=5)
+            star[ax] = ax.loglog(wall(h), max(h[key], FLOOR), "*", color="k", ms=20, mfc="none", mew=1.6, zorder=5)[0]
             stated = (a.get("stated_estimate") or {}).get(key.removeprefix("error_"))
             if stated is not None and math.isfinite(stated):   # auto's stated estimate: a bar at the star's wall time
                 ax.loglog(wall(h), max(stated, FLOOR), "_", color="k", ms=24, mew=2.5, zorder=5)
         ax.axhline(tl, ls="--", color="grey", lw=1)
-        ax.annotate(f"tolerance {tl:.0%}", (0.01, tl), xycoords=("axes fraction", "data"), xytext=(0, 3),
-                    textcoords="offset points", fontsize=8, color="grey")
+        captions[ax] = [ax.annotate(f"tolerance {tl:.0%}", (0.01, tl), xycoords=("axes fraction", "data"),
+                                    xytext=(0, 3), textcoords="offset points", fontsize=8, color="grey")]
         ax.axhline(FAIL_Y, ls=":", color="red", lw=0.8)
         stated = (a.get("stated_estimate") or {}).get(key.removeprefix("error_")) if hit else None
         lows = [max(r[key], FLOOR) for r in ok + forced] + [tl] + ([max(stated, FLOOR)] if stated and math.isfinite(stated) else [])
@@ -154,7 +159,7 @@ def plot_case(res: dict, path: Path):
         ax.set_ylabel("relative error vs reference")
         ax.grid(True, which="both", alpha=0.3)
         xl = ax.get_xlim()
-        ax.set_xlim(xl[0], xl[1] * 2.5)           # room for the labels of the slowest runs
+        ax.set_xlim(xl[0] / 2.5, xl[1] * 2.5)     # room for the labels of the fastest and the slowest runs
     kinds = {_kind(r) for r in res["rows"]}
     handles = [Line2D([], [], color=c, marker="o", ls="", label=RUNG_LABELS[k]) for k, c in RUNG_COLOURS.items() if k in kinds]
     handles += [Line2D([], [], color="k", marker=m, ls="", label=INTEGRATOR_LABELS[k]) for k, m in MARKERS.items()
@@ -178,5 +183,7 @@ def plot_case(res: dict, path: Path):
     fig.set_layout_engine("none")
     renderer = fig.canvas.get_renderer()
     for ax, key in zip(axes, ("error_body", "error_tension")):
-        _labels(ax, ok + forced, key, wall, renderer)
+        clear = [t.get_window_extent(renderer) for t in captions.get(ax, [])]
+        clear += [star[ax].get_window_extent(renderer)] if ax in star else []
+        _labels(ax, ok + forced, key, wall, renderer, clear)
     return save_figure(fig, path, dpi=110)

@@ -56,20 +56,23 @@ Findings (2026-11-30, full run on the shared 2-core machine; numbers in the JSON
   amplitude 7-13 mm) and their cycle maxima spread by up to 6 kN at N = 40; RK4 at 10 steps per output
   is past its stability step at N = 40 and runs on with 15 % tension error. The whole scene took 19 min
   (30 min in an earlier run on a busier machine); the two compiled reference runs are 150 s of it.
-- taut scenes, auto's own run (compiled, least of 10 calls, 1-min load ~0.9; each scene ~40 s): Dale:
-  quasi-static N = 3, rk23 rtol 1e-4, actual 0.38 % body / 0.021 % tension, stated 0.37 % / 0.011 % (a
-  priori; the tension below the resolution), 8.9 ms (choose 3.6, run 5.2; a first call on a fresh cache
-  94 ms); not beaten (quasi-static N = 2, 0.88 %, runs in 3.9 ms, 1.3x). 300 m, T = 10 s: auto now takes
-  the straight quasi-static rung (was Wang's), rk23 rtol 1e-5, actual 0.010 % / 0.16 %, stated 0.020 % /
-  0.16 %, 6.2 ms; not beaten (Wang's model, the only rung at its level, runs 16 ms). 1000 m, run 120 s (a
-  40 s window held the surge front still arriving: estimate.settling_time 45 s): settled errors of the
-  segmented cable 0.94 / 0.49 / 1.13 / 0.77 / 0.17 % at N = 5 / 6 / 8 / 10 / 20 (not monotone: the drag
-  rule's switch from 2 to 1 points per element at N = 7 flips the error's sign); auto segmented N = 10,
-  BDF2 rtol 1e-4, actual 0.77 % / 0.048 %, stated 0.47 % / 0.01 % (body ratio 0.61), run 22 ms: BEATEN by
-  the quasi-static segmented N = 5 (0.94 %) and N = 6 (0.49 %, within half the tolerance too), rk23, 9-11 ms.
-  Auto misses them because the segmented estimate's floor (46.7 % x N^-2; its evidence was a start-up
-  transient, estimate.py) keeps N at 10, and the choice admits the quasi-static segmented rung only where
-  omega/omega_ax <= 1/30 (0.152 here), while compiled rk23 makes it the cheaper one up to N = 8 here.
+- taut scenes, auto's own run (compiled, least of 10 calls, 1-min load 0.6-0.9; each scene ~40 s, heavy1000
+  86 s; 13:52-13:57 UTC): Dale: quasi-static N = 3, rk23 rtol 1e-4, actual 0.38 % body / 0.021 % tension,
+  stated 0.37 % / 0.011 % (a priori; the tension below the resolution), 9.3 ms (choose 3.9, run 5.3; a first
+  call on a fresh cache 214 ms, building included); not beaten (quasi-static N = 2, 0.88 %, runs in 4.0 ms,
+  1.3x). 300 m, T = 10 s: the straight quasi-static rung, rk23 rtol 1e-5, actual 0.010 % / 0.16 %, stated
+  0.020 % / 0.16 %, 5.7 ms; not beaten (Wang's model, the only rung at its level, runs 16 ms). 1000 m, run
+  120 s (a 40 s window held the surge front still arriving: estimate.settling_time 45 s): settled errors of
+  the segmented cable 0.94 / 0.49 / 1.13 / 0.77 / 0.17 % at N = 5 / 6 / 8 / 10 / 20 (not monotone: the drag
+  rule's switch from 2 to 1 points per element at N = 7 flips the error's sign); auto takes the quasi-static
+  segmented cable at N = 6 (choice.element_plan: estimated 0.95 %, within the tolerance but not half of it,
+  so checked a posteriori against N = 3; cost 0.7 x 1.5 x 6 = 6.3 against the node model's sure N = 9),
+  rk23 rtol 1e-4, actual 0.49 % / 0.11 %, stated (Richardson plus the stretch's part) 0.42 % / 0.12 %
+  (ratios 0.85 / 1.10), run 11.0 ms + check 5.8 ms; not beaten: the quasi-static N = 5 (0.94 %) runs in
+  9.4 ms (14.1 ms with its own check), the node model N = 5 in 14.8 ms. Until this change auto ran the node
+  model at N = 10 (0.77 %, 22 ms) and was beaten 2x by both: the segmented estimate's floor (46.7 % x
+  N^-2, whose evidence was a start-up transient) held N at 10, and the quasi-static segmented cable was
+  admitted only where omega/omega_ax <= 1/30 (0.152 here).
   The actual errors equal the old table rows' of auto's rungs to 2 digits (study's rtol vs auto's).
 
 Per scene the JSON holds issue 12's checks: ``cheaper_rung_within_tolerance`` (auto's run against the
