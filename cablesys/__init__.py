@@ -26,7 +26,7 @@ _EXPORTS = {
     "AnalysisResult": ".results", "TimeResult": ".results",
     "ParameterError": ".errors", "SolverError": ".errors", "NumericalWarning": ".errors",
     "Scene": ".scene", "load_scene": ".scene", "dump_scene": ".scene", "dale_scene": ".scene",
-    "default_scene": ".scene",
+    "default_scene": ".scene", "heavy_wire_scene": ".scene",
     "CableModel": ".model", "build_model": ".model",
     "Simulator": ".time_domain", "simulate": ".time_domain", "design": ".isolation", "sweep": ".sweeps",
     "steady_state": ".linear", "linearize": ".linear", "modes": ".linear", "rao": ".linear",
@@ -40,7 +40,7 @@ _SUBPACKAGES = ("isolation", "ladder", "linear", "model", "plots", "scene", "sla
 
 __all__ = ["AnalysisResult", "CableModel", "NumericalWarning", "ParameterError", "Scene", "Simulator",
            "SolverError", "TimeResult", "build_model", "dale_scene", "default_scene", "design", "dump_scene",
-           "harmonic_response", "isolation", "jonswap", "ladder", "linear", "linearize", "load_scene", "model",
+           "harmonic_response", "heavy_wire_scene", "isolation", "jonswap", "ladder", "linear", "linearize", "load_scene", "model",
            "modes", "periodic_steady_state", "pierson_moskowitz", "plots", "rao", "scene", "simulate", "slack",
            "steady_state", "stochastic_response", "sweep", "sweeps", "time_domain", "towed"]
 

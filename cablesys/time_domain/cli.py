@@ -130,6 +130,7 @@ def _run(args) -> int:
             plan_run,
             richardson_step,
             run_options,
+            settled_check,
             simulate_auto,
         )
         from ..ladder.choice import tolerances
@@ -161,6 +162,8 @@ def _run(args) -> int:
                 break
             scene_run = rung_scene(scene, choice.name, choice.segments)
             model = cache.model(scene, choice.name, choice.segments)
+        if model is not None and not extrapolation.applies(choice, auto):
+            choice = settled_check(scene, choice, result)      # as simulate_auto: a run still building up says so
         if hasattr(result, "window_s"):         # the statistics window of the summary groups
             import dataclasses
             result = dataclasses.replace(result, window_s=tuple(args.window) if getattr(args, "window", None) else None,
