@@ -162,7 +162,9 @@ NOTES = {
             "(stated 0.40 % / 0.010 %; MoorDyn N = 10: 0.29 % / 1.05 %). heave_T10: quasi-static N = 1 (nothing "
             "drives the swing), 18 rk23 steps, choose 2.4 ms + run 4.0 ms: 58x (93x run only), error 0.010 % / 0.15 %. "
             "Before (CVODES on the quasi-static rungs, the describing function's KINSOL in CasADi's VM): Dale 158x "
-            "(choose 7.9 ms, run 14.2 ms), heave_T10 35x.",
+            "(choose 7.9 ms, run 14.2 ms), heave_T10 35x. Rerun 2026-11-30 14:13-14:18 UTC (quiet) after the "
+            "element plan and the settling notes (choice.element_plan, auto.settled_check): Dale 336x (511x run "
+            "only, choose 3.5 ms), error 0.55 % / 0.002 %; heave_T10 57.9x (93.5x run only), 0.010 % / 0.15 %.",
     "speed": "Where a run's time goes (cablesys_profile): CVODES BDF(<= 2) steps, each one or two right-hand sides "
              "and a Jacobian every ~7 steps (the Jacobian costs ~8 right-hand sides: 12 colours of a banded "
              "matrix); RHS, Jacobian and CVODES (error control, sparse QR factorizations and solves) about a third "
