@@ -191,3 +191,10 @@ def test_a_checked_n_that_misses_its_check_runs_the_sure_n():
     assert f"not within {ch.CHECK_ACCEPT:g} x the tolerance" in m["reason"]
     assert m["estimated_error"]["body"] == pytest.approx(est.segmented_error(c.numbers["estimates"], 10)["body"])
     assert m["estimated_error"]["body"] <= ch.SAFETY * TOL[0]
+
+
+def test_a_checked_n_and_its_half_share_the_drag_rule(heavy):
+    """With 10 drag points per section an element has two or more up to N = 6 and one from N = 7, where the
+    segmented error changes sign: N = 7..13 are not checked against N / 2 (3..6), N = 4..6 and 14.. are."""
+    scene, _ = heavy
+    assert [n for n in range(4, 16) if not ch.checkable(scene, n)] == list(range(7, 14))

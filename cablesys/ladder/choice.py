@@ -161,9 +161,20 @@ class ElementPlan:
         return dataclasses.asdict(self)
 
 
-def _least_n(errs: dict, tol, name: str, fraction: float, lo: int, hi: int) -> int | None:
-    """Least N in [lo, hi] whose estimate of rung ``name`` is within ``fraction`` x ``tol``, else None."""
+def checkable(scene: Scene, n: int) -> bool:
+    """Whether N can be checked against N / 2 by Richardson: both on the same side of the drag rule's switch
+    from several points per element to one (:func:`cablesys.model.segmented.drag_points`; 10 drag points: N <= 6
+    against N >= 7), across which the segmented error changes sign (:mod:`.estimate`, the 1000 m wire: settled
+    errors -0.59 % at N = 6, +1.23 % at 7), so that |y_N - y_N/2| / 3 may understate the error of N."""
+    from ..model.segmented import drag_points
+    return (drag_points(scene, n) > 1) == (drag_points(scene, n // 2) > 1)
+
+
+def _least_n(errs: dict, tol, name: str, fraction: float, lo: int, hi: int, ok=lambda n: True) -> int | None:
+    """Least N in [lo, hi] with ``ok(N)`` whose estimate of rung ``name`` is within ``fraction`` x ``tol``."""
     for n in range(lo, hi + 1):
+        if not ok(n):
+            continue
         e = est.rung_error(errs, name, n)
         if e["body"] <= fraction * tol[0] and e["tension"] <= fraction * tol[1]:
             return n
@@ -179,7 +190,8 @@ def element_plan(scene: Scene, numbers, errs: dict, tol) -> ElementPlan | None:
     (omega/omega_ax <= 1/STIFF_RATIO), and competes with it by cost where it is not, compiled and up to
     EXPLICIT_MAX_ELEMENTS (it is cheaper only stepped by the rk23 pair: ``explicit_only``). For each, two
     N: the least within SAFETY x the tolerance (sure, the estimates being good to a factor of 2), and the least
-    N >= CHECK_MIN_SEGMENTS within the tolerance, checked a posteriori against N / 2 (CHECK_COST x its cost;
+    N >= CHECK_MIN_SEGMENTS within the tolerance that :func:`checkable` allows, checked a posteriori against N / 2
+    (CHECK_COST x its cost;
     kept when the check's estimate is within CHECK_ACCEPT x the tolerance, else the cheapest sure option runs:
     ``fallback``). The least cost wins, a sure N on a tie (heavy1000, 1000 m wire forced at 2.7 x its first string mode,
     compiled: the node model sure at N = 9, cost 9, and checked at N = 6, cost 9; the quasi-static segmented
@@ -195,7 +207,7 @@ def element_plan(scene: Scene, numbers, errs: dict, tol) -> ElementPlan | None:
         n = _least_n(errs, tol, name, SAFETY, 2, top)
         if n is not None:
             options.append(ElementPlan(name, n, False, explicit, weight * n))
-        n = _least_n(errs, tol, name, 1.0, CHECK_MIN_SEGMENTS, top)
+        n = _least_n(errs, tol, name, 1.0, CHECK_MIN_SEGMENTS, top, lambda k: checkable(scene, k))
         if n is not None:
             options.append(ElementPlan(name, n, True, explicit, weight * CHECK_COST * n))
     best = min(options, key=lambda o: (o.cost, o.checked), default=None)
