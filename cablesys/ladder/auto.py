@@ -300,7 +300,8 @@ def needs_richardson(choice: Choice, tol) -> bool:
 def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict, *, auto: bool):
     """One a posteriori check of ``result`` (N elements) against a run at N / 2: (Choice with the Richardson
     estimate |y_N - y_N/2| / (2^p - 1), False), or under auto while it misses CHECK_ACCEPT x the tolerance
-    (Choice, True): the plan's sure option for a checked N (:func:`~.choice.element_plan`), else 2N. The estimate is at least est.RESOLUTION, and for the quasi-static segmented cable it adds the stretch's part
+    (Choice, True): the plan's sure option for a checked N (:func:`~.choice.element_plan`), else 2N. The
+    estimate is at least est.RESOLUTION, and for the quasi-static segmented cable it adds the stretch's part
     (:func:`~.estimate.quasistatic_segmented_error`), which both runs share and their difference cannot see
     (heavy1000 N = 6 vs 3: 0.31 + 0.11 % body against an actual 0.49 %, 0.006 + 0.11 % tension against 0.11 %)."""
     period, n = metrics.forcing_period(scene), choice.segments
