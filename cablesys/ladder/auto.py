@@ -43,6 +43,7 @@ from . import estimate as est
 from . import extrapolation, metrics
 from .choice import (
     CHECK_ACCEPT,
+    EXPLICIT_COST_MAX_ELEMENTS,
     MAX_SEGMENTS,
     SAFETY,
     SLACK_MAX_SEGMENTS,
@@ -329,9 +330,9 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
                      {"body": e_sure["body"], "tension": e_sure["tension"]},
                      dict(choice.numbers, plan=dict(plan, **sure, checked=False, fallback=None)))
         return explicit_or_node(scene, new, tol, cache, kw), True
-    if _explicit_only(choice) and 2 * n > EXPLICIT_MAX_ELEMENTS:      # past the explicit pair's reach
+    if _explicit_only(choice) and 2 * n > EXPLICIT_COST_MAX_ELEMENTS:      # past where it pays (choice.element_plan)
         return node_model(choice, f"a posteriori (N = {n} vs {n // 2}): body {e['body']:.2g}, tension "
-                                  f"{e['tension']:.2g}, N doubles past {EXPLICIT_MAX_ELEMENTS}", 2 * n), True
+                                  f"{e['tension']:.2g}, N doubles past {EXPLICIT_COST_MAX_ELEMENTS}", 2 * n), True
     return dataclasses.replace(choice, segments=2 * n), True
 
 

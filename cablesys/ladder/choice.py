@@ -134,6 +134,10 @@ def quasistatic_segments_available(scene: Scene) -> bool:
 # a run checked a posteriori against N / 2 costs about 1.5 runs (heavy1000 quasi-static N = 6: 11.4 + 5.7 ms)
 STIFF_QS_COST = 0.25
 EXPLICIT_COST = 0.7
+# ... and only up to 7 elements: past ~1.5 MB of functions the compiler runs at -O0 (cablesys.compiled.SIZE_FLAGS),
+# and the 1000 m wire's quasi-static N = 8 took 33 ms for 120 s (16.5 ms with CABLESYS_CFLAGS=-O1) against the
+# node model's 20 ms; N = 7: 13.4 against 18.6 ms
+EXPLICIT_COST_MAX_ELEMENTS = 7
 CHECK_COST = 1.5
 CHECK_MIN_SEGMENTS = 4   # the check runs N / 2 >= 2 elements
 # a checked N is kept when its Richardson estimate is within CHECK_ACCEPT x the tolerance: those estimates were
@@ -188,7 +192,7 @@ def element_plan(scene: Scene, numbers, errs: dict, tol) -> ElementPlan | None:
     stretches follow the tension (:func:`quasistatic_segments_available`; its estimate adds the stretch part,
     infinite under partial slack). The latter replaces the node model where the stretch is stiff
     (omega/omega_ax <= 1/STIFF_RATIO), and competes with it by cost where it is not, compiled and up to
-    EXPLICIT_MAX_ELEMENTS (it is cheaper only stepped by the rk23 pair: ``explicit_only``). For each, two
+    EXPLICIT_COST_MAX_ELEMENTS (it is cheaper only stepped by the rk23 pair: ``explicit_only``). For each, two
     N: the least within SAFETY x the tolerance (sure, the estimates being good to a factor of 2), and the least
     N >= CHECK_MIN_SEGMENTS within the tolerance that :func:`checkable` allows, checked a posteriori against N / 2
     (CHECK_COST x its cost;
@@ -201,7 +205,7 @@ def element_plan(scene: Scene, numbers, errs: dict, tol) -> ElementPlan | None:
         if numbers.axial_ratio <= 1.0 / STIFF_RATIO:
             families.append(("quasi-static", STIFF_QS_COST, MAX_SEGMENTS, False))
         elif compilation_enabled():
-            families.append(("quasi-static", EXPLICIT_COST, EXPLICIT_MAX_ELEMENTS, True))
+            families.append(("quasi-static", EXPLICIT_COST, min(EXPLICIT_COST_MAX_ELEMENTS, EXPLICIT_MAX_ELEMENTS), True))
     options = []
     for name, weight, top, explicit in families:
         n = _least_n(errs, tol, name, SAFETY, 2, top)
@@ -220,7 +224,7 @@ def element_plan(scene: Scene, numbers, errs: dict, tol) -> ElementPlan | None:
 
 def _plan_text(plan: ElementPlan, numbers) -> str:
     if plan.name == "quasi-static":
-        how = (f"stepped by the compiled rk23 pair, cheaper than the node model at N <= {EXPLICIT_MAX_ELEMENTS} "
+        how = (f"stepped by the compiled rk23 pair, cheaper than the node model at N <= {EXPLICIT_COST_MAX_ELEMENTS} "
                f"(omega/omega_ax = {numbers.axial_ratio:.3g})" if plan.explicit_only
                else f"omega/omega_ax = {numbers.axial_ratio:.3g} <= 1/{STIFF_RATIO:g}")
         what = f"quasi-static segmented with N = {plan.segments} (the element stretches follow the tension, {how})"
