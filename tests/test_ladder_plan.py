@@ -21,6 +21,7 @@ from cablesys.ladder import choice as ch
 from cablesys.ladder import estimate as est
 from cablesys.ladder import metrics, run_rung, simulate_auto
 from cablesys.ladder.auto import explicit_or_node, node_model
+from cablesys.ladder.indicators import scene_numbers
 from cablesys.ladder.rungs import RungCache
 from cablesys.scene import heavy_wire_scene
 
@@ -34,10 +35,6 @@ def heavy():
     scene = heavy_wire_scene(duration=120.0)
     c = ch.choose(scene)
     return scene, c
-
-
-def _numbers(c):
-    return type("N", (), c.numbers["scene"])()
 
 
 def test_estimates_of_the_heavy_wire_have_no_straight_cable_floor(heavy):
@@ -75,7 +72,7 @@ def test_compiled_the_quasi_static_segmented_cable_checked_at_n_6_is_cheapest(he
     model's 9; no N <= 8 of it is sure (N = 8: 0.91 %)."""
     scene, c = heavy
     monkeypatch.setattr(ch, "compilation_enabled", lambda: True)
-    numbers = _numbers(c)
+    numbers = scene_numbers(scene)
     plan = ch.element_plan(scene, numbers, c.numbers["estimates"], TOL)
     assert (plan.name, plan.segments, plan.checked, plan.explicit_only) == ("quasi-static", 6, True, True)
     assert plan.cost == pytest.approx(ch.EXPLICIT_COST * ch.CHECK_COST * 6)

@@ -24,6 +24,7 @@ from ..compiled import compilation_enabled
 from ..errors import NumericalWarning, ParameterError
 from ..scene import Scene
 from . import estimate as est
+from . import metrics
 from .indicators import scene_numbers
 from .rungs import RUNGS, RungCache, rung_scene
 from .stiffness import EXPLICIT_MAX_ELEMENTS
@@ -82,15 +83,12 @@ SAFETY = 0.5       # N is chosen for half the tolerance: the estimates are good 
 
 def segments_for(errors: dict, tol: tuple[float, float], name: str = "segmented") -> int:
     """Least N (2 <= N <= the cap) whose estimated errors (:func:`~.estimate.rung_error` of the segmented
-    rung, or of the quasi-static segmented rung for ``name`` "quasi-static") are within SAFETY x ``tol``:
-    a margin for the estimate's factor of 2 (on the Dale scene at omega_n the body error is 1.26, 0.72,
+    rung, or of the quasi-static segmented rung for ``name`` "quasi-static") are within SAFETY x ``tol``, else the
+    cap: a margin for the estimate's factor of 2 (on the Dale scene at omega_n the body error is 1.26, 0.72,
     0.55 % at N = 2, 3, 4 against N = 80, estimated 0.97, 0.52, 0.40 %: N = 4)."""
     cap = MAX_SEGMENTS if errors["segmented_1"].get("order", est.ORDER) >= est.ORDER else SLACK_MAX_SEGMENTS
-    for n in range(2, cap + 1):
-        e = est.rung_error(errors, name, n)
-        if e["body"] <= SAFETY * tol[0] and e["tension"] <= SAFETY * tol[1]:
-            return n
-    return cap
+    n = _least_n(errors, tol, name, SAFETY, 2, cap)
+    return cap if n is None else n
 
 
 EXTRAPOLATION_MIN_SEGMENTS = 16   # the coarsest extrapolation run N / 4 >= 4 elements
@@ -222,7 +220,8 @@ def element_plan(scene: Scene, numbers, errs: dict, tol) -> ElementPlan | None:
     return best
 
 
-def _plan_text(plan: ElementPlan, numbers) -> str:
+def _plan_text(plan: ElementPlan, numbers) -> tuple[str, str]:
+    """(what runs, how its N was chosen) for the reason."""
     if plan.name == "quasi-static":
         how = (f"stepped by the compiled rk23 pair, cheaper than the node model at N <= {EXPLICIT_COST_MAX_ELEMENTS} "
                f"(omega/omega_ax = {numbers.axial_ratio:.3g})" if plan.explicit_only
@@ -242,12 +241,11 @@ def settling_note(scene: Scene, transverse: bool = True) -> str:
     travel down the cable; False where nothing drives the swing: the ramp alone), else a note for the reason, on
     the console and in summary.json, that it holds the start-up transient, of which the estimates (of the settled
     response) say nothing. A note, not a warning: short runs are legitimate (quick looks, tests, sweeps)."""
-    from .metrics import forcing_period, window
     times = scene.output_times
-    period = forcing_period(scene)
+    period = metrics.forcing_period(scene)
     if period is None or times.size < 2:
         return ""
-    start = float(times[window(times, period)][0])
+    start = float(times[metrics.window(times, period)][0])
     settle = est.settling_time(scene) if transverse else float(scene.top_motion.effective_ramp_s)
     if start >= settle:
         return ""
@@ -256,7 +254,8 @@ def settling_note(scene: Scene, transverse: bool = True) -> str:
             f"error is the settled response's; run at least {settle + min(5 * period, settle):.4g} s for it to apply")
 
 
-def _within(e: dict, tol) -> bool:
+def within(e: dict, tol) -> bool:
+    """Both estimated errors (body, tension) within the tolerances ``tol``."""
     return e["body"] <= tol[0] and e["tension"] <= tol[1]
 
 
@@ -319,7 +318,7 @@ def choose(scene: Scene, tolerance=None, *, question: str = "time", cache: RungC
         order.insert(order.index("quasi-static"), "wang")
     for name in order:
         e = errs[name]
-        if _within(e, tol):
+        if within(e, tol):
             reason = (f"{name}: the cheapest rung within {tol[0]:.3g} (body) / {tol[1]:.3g} (tension); "
                       f"{e['note']}; {deciding}")
             if name == "quasi-static" and swing_free:
@@ -341,11 +340,11 @@ def choose(scene: Scene, tolerance=None, *, question: str = "time", cache: RungC
     name, n = plan.name, plan.segments
     info["plan"] = plan.as_dict()
     e = est.rung_error(errs, name, n)
-    why = errs["wang"]["note"] if not _within(errs["wang"], tol) else ""
+    why = errs["wang"]["note"] if not within(errs["wang"], tol) else ""
     what, how_n = _plan_text(plan, numbers)
     reason = (f"{what}: the straight cable misses the tolerance ({why}, estimated body "
               f"{errs['wang']['body']:.3g}, tension {errs['wang']['tension']:.3g}); {how_n}; {deciding}")
-    if not _within(e, tol):
+    if not within(e, tol):
         reason += (f"; the tolerance is not reachable at an affordable N: estimated body {e['body']:.2g}, "
                    f"tension {e['tension']:.2g} at N = {n}")
         warnings.warn(f"model auto: {reason}", NumericalWarning, stacklevel=2)
@@ -386,6 +385,6 @@ def forced(scene: Scene, name: str, segments: int | None = None, tolerance=None,
     else:
         n = 1
     e = est.rung_error(errs, name, n)
-    ok = _within(e, tol)
+    ok = within(e, tol)
     reason = f"{name} requested by the user" + ("" if ok else f"; OUTSIDE its validity at this tolerance: {e['note']}")
     return Choice(name, n, reason, {"body": e["body"], "tension": e["tension"]}, dict(info, valid=ok))

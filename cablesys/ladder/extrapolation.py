@@ -46,6 +46,7 @@ from ..errors import NumericalWarning
 from ..scene import Scene
 from . import estimate as est
 from . import metrics
+from .choice import within
 from .rungs import RungCache, rung_scene
 
 ORDER = 1.0                 # the leading order extrapolated away (estimate.SLACK_ORDER)
@@ -263,10 +264,6 @@ def model_dict(choice) -> dict:
     return d
 
 
-def _within(e: dict, tol) -> bool:
-    return e["body"] <= tol[0] and e["tension"] <= tol[1]
-
-
 def complete(scene: Scene, choice, result, tol, cache: RungCache, kw: dict | None = None,
              known: dict | None = None) -> tuple:
     """After the run at ``choice.segments``: the coarse runs, the extrapolated block, and whether N must double.
@@ -317,7 +314,7 @@ def complete(scene: Scene, choice, result, tol, cache: RungCache, kw: dict | Non
     w = metrics.window(np.asarray(result.time), period)
     block["window_s"] = [float(np.asarray(result.time)[w][0]), float(result.time[-1])]
     e = block["estimated_error"]
-    if (not block["asymptotic"] or not _within(e, tol)) and 2 * n <= MAX_SEGMENTS:
+    if (not block["asymptotic"] or not within(e, tol)) and 2 * n <= MAX_SEGMENTS:
         return dataclasses.replace(choice, segments=2 * n), block, True
     reason = (choice.reason + f"; statistics extrapolated (Richardson, order 1) from N = {n // 4}, {n // 2}, {n}: "
               f"estimated error of the extrapolated statistics body {e['body']:.2g}, tension {e['tension']:.2g} "
@@ -331,7 +328,7 @@ def complete(scene: Scene, choice, result, tol, cache: RungCache, kw: dict | Non
                    "still holds the start-up transient does not converge smoothly in N (slack scenes settle slowly): "
                    "a longer duration helps")
         warnings.warn(f"model auto: {reason}", NumericalWarning, stacklevel=3)
-    elif not _within(e, tol):
+    elif not within(e, tol):
         warnings.warn(f"model auto: tolerance not reached at N = {n}: {reason}", NumericalWarning, stacklevel=3)
     numbers = dict(choice.numbers, extrapolated=block)
     return dataclasses.replace(choice, reason=reason, estimated_error=dict(e), numbers=numbers), block, False
