@@ -38,7 +38,6 @@ import numpy as np
 
 from ..errors import NumericalWarning
 from ..scene import Scene
-from ..time_domain.initial import initial_state
 from . import estimate as est
 from . import extrapolation, metrics
 from .choice import (
@@ -61,6 +60,7 @@ from .run_settings import (  # noqa: F401 - re-exported: the ladder's run settin
     STATED_ROOM,
     integrator_settings,
     run_options,
+    rung_settings,
 )
 from .rungs import RungCache, check_rung, rung_scene
 
@@ -105,14 +105,12 @@ def _run(scene: Scene, choice: Choice, tol, cache: RungCache, kw: dict):
         return _periodic_run(scene, cache)
     sc = rung_scene(scene, choice.name, choice.segments)
     model = cache.model(scene, choice.name, choice.segments)
-    elements = sum(s.cable.segments for s in sc.sections)
     opts = {k: kw[k] for k in _SIMULATE_KEYS if k in kw}
-    if choice.name == "quasi-static" and "x0" not in opts:   # once: the integrator's guard probes it, the run starts there
-        opts["x0"] = initial_state(sc, model, model.parameters(sc))
-    settings = integrator_settings(sc, tol, elements, method=kw.get("method"), rtol=kw.get("rtol"),
-                                   atol=kw.get("atol"), max_num_steps=kw.get("max_num_steps"), jit=kw.get("jit", False),
-                                   rung=choice.name, model=model, x0=opts.get("x0"),
-                                   stated=choice.estimated_error.get("body"))
+    settings, x0 = rung_settings(sc, tol, choice, model, cache=cache, x0=opts.get("x0"), method=kw.get("method"),
+                                 rtol=kw.get("rtol"), atol=kw.get("atol"), max_num_steps=kw.get("max_num_steps"),
+                                 jit=kw.get("jit", False))
+    if x0 is not None:            # the quasi-static rungs: the start their guard probed, once (run_settings.start)
+        opts["x0"] = x0
     times = kw.get("times")
     sim = cache.simulator(model, sc.output_times if times is None else times, settings)
     return simulate(sc, model=model, simulator=sim, **opts)
@@ -228,18 +226,14 @@ def explicit_or_node(scene: Scene, choice: Choice, tol, cache: RungCache, kw: di
     """``choice``, or the node model at the same N when ``choice`` is the quasi-static segmented cable taken for
     its cost with the explicit pair (:func:`~.choice.element_plan`, ``explicit_only``) and the pair's stiffness
     guard (:mod:`.stiffness`) refuses it, or the caller names the method: stepped by CVODES it costs more than
-    the node model (heavy1000 N = 10: 65 against 22.5 ms). The guard's probe is ~1 ms (N <= 8)."""
+    the node model (heavy1000 N = 10: 65 against 22.5 ms). The guard's verdict and the start it probed are kept on
+    ``cache`` for the run (:func:`.run_settings.rung_settings`)."""
     kw = kw or {}
     if not _explicit_only(choice):
         return choice
     sc = rung_scene(scene, choice.name, choice.segments)
-    model = cache.model(scene, choice.name, choice.segments)
-    x0 = kw.get("x0")
-    if x0 is None and kw.get("method") is None:
-        x0 = initial_state(sc, model, model.parameters(sc))
-    s = integrator_settings(sc, tol, choice.segments * len(sc.sections), method=kw.get("method"), rtol=kw.get("rtol"),
-                            atol=kw.get("atol"), rung=choice.name, model=model, x0=x0,
-                            stated=choice.estimated_error.get("body"))
+    s, _ = rung_settings(sc, tol, choice, cache.model(scene, choice.name, choice.segments), cache=cache,
+                         x0=kw.get("x0"), method=kw.get("method"), rtol=kw.get("rtol"), atol=kw.get("atol"))
     if s.method == QUASI_STATIC_METHOD:
         return choice
     return node_model(choice, f"the quasi-static segmented cable would step with {s.method}, not the explicit pair")

@@ -12,6 +12,8 @@ import dataclasses
 import logging
 import math
 
+import numpy as np
+
 from ..compiled import compilation_enabled
 from ..scene import Numerics, Scene
 from ..time_domain.initial import initial_state
@@ -47,7 +49,7 @@ def _scene_sets_integrator(scene: Scene) -> bool:
 
 def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rtol=None, atol=None,
                         max_num_steps=None, jit: bool = False, rung: str | None = None, model=None, x0=None,
-                        stated: float | None = None):
+                        stated: float | None = None, cache=None):
     """The integrator settings of a ladder run.
 
     Parameters
@@ -68,6 +70,8 @@ def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rt
         (:func:`_quasi_static_method`); without them those rungs run QUASI_STATIC_FALLBACK.
     stated : float, optional
         The rung's stated body error: the rtol is at most stated / STATED_ROOM.
+    cache : RungCache, optional
+        Keeps the guard's verdict per model, rtol and start (:meth:`~.rungs.RungCache.memo`).
 
     Returns
     -------
@@ -84,7 +88,7 @@ def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rt
         if stated is not None and 0.0 < stated < math.inf:   # every rung (Wang at a resonance: random short-2)
             # in decades: a simulator is built per rtol, and scenes of one structure share it (RungCache)
             rtol = min(rtol, 10.0 ** math.floor(math.log10(stated / STATED_ROOM)))
-        method = _quasi_static_method(scene, model, x0, rtol, elements) if rung == "quasi-static" else AUTO_METHOD
+        method = _quasi_static_method(scene, model, x0, rtol, elements, cache) if rung == "quasi-static" else AUTO_METHOD
         atol = rtol / 10   # scaled states (rtol / 1000 in SI was 3 % of Dale's dynamic stretch; 300 m N = 20: 502 vs 742 steps)
     extra = {} if max_num_steps is None else {"max_num_steps": int(max_num_steps)}
     return IntegratorSettings(method=method or num.integrator, rtol=rtol or num.rtol, atol=atol or num.atol,
@@ -92,17 +96,43 @@ def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rt
                               jit=jit, **extra)
 
 
-def _quasi_static_method(scene: Scene, model, x0, rtol: float, elements: int) -> str:
+def _quasi_static_method(scene: Scene, model, x0, rtol: float, elements: int, cache=None) -> str:
     """QUASI_STATIC_METHOD where :func:`.stiffness.explicit_fit` accepts ``model`` at ``x0`` (compiled runs
     only: uncompiled, the explicit pair would fall back to CVODES anyway), else QUASI_STATIC_FALLBACK."""
     if model is None or x0 is None or elements > EXPLICIT_MAX_ELEMENTS or not compilation_enabled():
         return QUASI_STATIC_FALLBACK
-    fit = explicit_fit(model, model.parameters(scene), x0, rtol, QUASI_STATIC_METHOD)
+    p = np.asarray(model.parameters(scene), dtype=float).ravel()
+    x0 = np.asarray(x0, dtype=float).ravel()
+    fit = lambda: explicit_fit(model, p, x0, rtol, QUASI_STATIC_METHOD)
+    fit = fit() if cache is None else cache.memo(("explicit_fit", id(model), rtol, p.tobytes(), x0.tobytes()), fit)
     log.debug("quasi-static rung: %s", fit.reason)
     return QUASI_STATIC_METHOD if fit.accepted else QUASI_STATIC_FALLBACK
 
 
-def run_options(scene: Scene, choice: Choice, tolerance=None, *, method=None, model=None) -> dict:
+def start(scene_run: Scene, model, cache=None):
+    """The static start of ``model`` on its rung scene ``scene_run`` (:func:`~cablesys.time_domain.initial.initial_state`),
+    once per model and parameters on ``cache``: the guard probes it and the run starts there."""
+    p = np.asarray(model.parameters(scene_run), dtype=float).ravel()
+    compute = lambda: initial_state(scene_run, model, p)
+    return compute() if cache is None else cache.memo(("x0", id(model), p.tobytes()), compute)
+
+
+def rung_settings(scene_run: Scene, tol, choice: Choice, model, *, cache=None, x0=None, method=None, rtol=None,
+                  atol=None, max_num_steps=None, jit: bool = False):
+    """(IntegratorSettings, x0) of a run of ``choice`` on its rung scene ``scene_run``: :func:`integrator_settings`
+    with the rung's elements and stated error; ``x0`` for the quasi-static rungs their static start (:func:`start`,
+    unless given), which their guard probes (with ``model`` and no ``method`` of the caller's), else the given one
+    (None: the simulator's own start)."""
+    elements = sum(s.cable.segments for s in scene_run.sections)
+    if choice.name == "quasi-static" and x0 is None and model is not None and method is None:
+        x0 = start(scene_run, model, cache)
+    s = integrator_settings(scene_run, tol, elements, method=method, rtol=rtol, atol=atol, max_num_steps=max_num_steps,
+                            jit=jit, rung=choice.name, model=model, x0=x0, stated=choice.estimated_error.get("body"),
+                            cache=cache)
+    return s, x0
+
+
+def run_options(scene: Scene, choice: Choice, tolerance=None, *, method=None, model=None, cache=None) -> dict:
     """``method``, ``rtol``, ``atol`` for :func:`cablesys.time_domain.simulate` of ``choice``'s run, for a
     caller that runs it itself (the ``run`` command): :func:`integrator_settings` of the rung's scene.
 
@@ -118,6 +148,8 @@ def run_options(scene: Scene, choice: Choice, tolerance=None, *, method=None, mo
         The caller's method (it wins; the tolerances are then the scene's).
     model : CableModel, optional
         The rung's model: the quasi-static rungs' guard needs it to accept the explicit pair.
+    cache : RungCache, optional
+        The one :func:`plan_run` used: its start and guard verdict are reused.
 
     Returns
     -------
@@ -125,9 +157,5 @@ def run_options(scene: Scene, choice: Choice, tolerance=None, *, method=None, mo
         Keyword arguments ``method``, ``rtol``, ``atol`` (and ``x0``, the start the guard probed).
     """
     sc = rung_scene(scene, choice.name, choice.segments)
-    elements = sum(s.cable.segments for s in sc.sections)
-    probe = model is not None and method is None and choice.name == "quasi-static"
-    x0 = initial_state(sc, model, model.parameters(sc)) if probe else None
-    s = integrator_settings(sc, tolerances(scene, tolerance), elements, method=method, rung=choice.name,
-                            model=model, x0=x0, stated=choice.estimated_error.get("body"))
-    return {"method": s.method, "rtol": s.rtol, "atol": s.atol, **({"x0": x0} if probe else {})}
+    s, x0 = rung_settings(sc, tolerances(scene, tolerance), choice, model, cache=cache, method=method)
+    return {"method": s.method, "rtol": s.rtol, "atol": s.atol, **({"x0": x0} if x0 is not None else {})}

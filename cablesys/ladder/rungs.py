@@ -86,6 +86,7 @@ class RungCache:
     def __init__(self):
         self._models: dict = {}
         self._simulators: dict = {}
+        self._memo: dict = {}
         self.build_s = 0.0
 
     def _key(self, scene: Scene, name: str, segments: int) -> tuple:
@@ -133,6 +134,13 @@ class RungCache:
             self._simulators[key] = Simulator(model, times, settings)
             self.build_s += time.perf_counter() - t0
         return self._simulators[key]
+
+    def memo(self, key: tuple, compute):
+        """``compute()`` once per ``key`` while the cache lives: what the choice and the run both ask of one
+        model and parameter vector (its static start, the stiffness guard's verdict: :mod:`.run_settings`)."""
+        if key not in self._memo:
+            self._memo[key] = compute()
+        return self._memo[key]
 
     def __len__(self) -> int:
         return len(self._models)

@@ -147,7 +147,7 @@ def _run(args) -> int:
             if extra:
                 scene_run, opts = extrapolation.stream_options(scene, choice.segments, model, args.method)
             else:
-                opts = run_options(scene, choice, method=args.method, model=model)    # the ladder's integrator (issue 12)
+                opts = run_options(scene, choice, method=args.method, model=model, cache=cache)    # the ladder's integrator (issue 12)
             result = _simulate_into(outdir, scene_run, units=units, model=model, jit=args.jit, max_num_steps=args.max_steps,
                                     **opts)
             if extra:                  # the coarse runs and the extrapolated statistics (as simulate_auto)
