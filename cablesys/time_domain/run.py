@@ -318,23 +318,6 @@ class Simulator(ev.EventLocator):
         data["x_s"], data["y_s"] = E[1], E[2]
         return data
 
-    def outputs(self, X, modes, p) -> dict:
-        """Labelled outputs and top motion at the first ``X.shape[1]`` output times.
-
-        Parameters
-        ----------
-        X, modes : numpy.ndarray
-            States and slack switches at the output times reached.
-        p : array_like
-            Parameter vector.
-
-        Returns
-        -------
-        dict
-            ``{label: array}``, see :meth:`labelled`.
-        """
-        return self.labelled(self.times[: X.shape[1]], X, modes, p)
-
 
 def simulate(scene: Scene, *, model: CableModel | None = None, method: str | None = None,
              rtol: float | None = None, atol: float | None = None, times=None, x0=None,
