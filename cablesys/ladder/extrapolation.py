@@ -65,7 +65,7 @@ def applies(choice, auto: bool) -> bool:
     return bool(auto and choice.name == "segmented" and order < est.ORDER)
 
 
-def settings(scene_run: Scene, model, method: str | None = None, **kw):
+def settings(scene_run: Scene, model, method: str | None = None, x0=None, **kw):
     """Integrator settings of one extrapolation run: RK4 at its stable step (h |lambda|_max <= RK4_MARGIN
     at the static state, and at least the scene's steps per output), compiled (the element kernel),
     unless the caller names another method (then :func:`.auto.integrator_settings`).
@@ -78,6 +78,8 @@ def settings(scene_run: Scene, model, method: str | None = None, **kw):
         Its model.
     method : str, optional
         The caller's method (default "rk" at its stable step).
+    x0 : array_like, optional
+        The static start whose fastest rate sets the stable step (default: computed here).
     **kw
         ``rtol``, ``atol``, ``max_num_steps`` for another method.
 
@@ -89,12 +91,12 @@ def settings(scene_run: Scene, model, method: str | None = None, **kw):
     from ..time_domain.failures import largest_rate, rk4_steps_per_output
     from ..time_domain.integrators import compiled_by_default
     if method not in (None, "rk"):
-        from .auto import integrator_settings
+        from .run_settings import integrator_settings
         # the caller's method and tolerances (the model tolerance only sets rtol without a method)
         return integrator_settings(scene_run, (1.0, 1.0), int(getattr(model, "n_elements", 1)), method=method, **kw)
-    from ..time_domain.run import initial_state
+    from .run_settings import start
     p = model.parameters(scene_run)
-    lam = largest_rate(model, initial_state(scene_run, model, p), 0.0, p)
+    lam = largest_rate(model, start(scene_run, model) if x0 is None else x0, 0.0, p)
     num = scene_run.numerics
     spo = max(num.steps_per_output, rk4_steps_per_output(lam, num.output_step, RK4_MARGIN))
     extra = {} if kw.get("max_num_steps") is None else {"max_num_steps": int(kw["max_num_steps"])}
@@ -114,10 +116,13 @@ def run(scene: Scene, n: int, cache: RungCache, kw: dict | None = None):
     from ``cache``). ``kw``: ``method``, ``rtol``, ``atol``, ``max_num_steps``, ``times``, ``x0``,
     ``on_block``, ``progress`` as :func:`.auto.simulate_auto` takes them."""
     from ..time_domain import simulate
-    kw = kw or {}
+    from .run_settings import start
+    kw = dict(kw or {})
     sc = rung_scene(scene, "segmented", n)
     model = cache.model(scene, "segmented", n)
-    s = settings(sc, model, kw.get("method"), **{k: kw.get(k) for k in ("rtol", "atol", "max_num_steps")})
+    if kw.get("x0") is None:                   # once: the stable step is probed there and the run starts there
+        kw["x0"] = start(sc, model, cache)
+    s = settings(sc, model, kw.get("method"), kw["x0"], **{k: kw.get(k) for k in ("rtol", "atol", "max_num_steps")})
     times = kw.get("times")
     sim = cache.simulator(model, sc.output_times if times is None else times, s)
     return simulate(sc, model=model, simulator=sim, **{k: kw[k] for k in ("x0", "on_block", "progress") if k in kw})
