@@ -40,14 +40,16 @@ def statistics(result, period: float | None) -> dict:
     """Body amplitudes and tension extremes of ``result`` (a TimeResult) over the window (every section's
     bodies and end tensions in a chain: ``x_b_2_amplitude``, ``tension_top_2_max``, ...)."""
     w = window(np.asarray(result.time), period)
-    out = {}
-    for k in _labels(result, BODY):
-        y = np.asarray(result[k])[w]
-        out[f"{k}_amplitude"] = 0.5 * float(y.max() - y.min())
+    out = {f"{k}_amplitude": a for k, a in _amplitudes(result, w).items()}
     for k in _labels(result, TENSIONS):
         y = np.asarray(result[k])[w]
         out[f"{k}_max"], out[f"{k}_min"] = float(y.max()), float(y.min())
     return out
+
+
+def _amplitudes(result, mask) -> dict:
+    """{body label: half peak-to-peak} of ``result`` over the samples ``mask``."""
+    return {k: 0.5 * float(np.ptp(np.asarray(result[k])[mask])) for k in _labels(result, BODY)}
 
 
 def window_change(result, period: float | None) -> float:
@@ -62,9 +64,7 @@ def window_change(result, period: float | None) -> float:
     if tw.size < 4:
         return 0.0
     mid = 0.5 * (tw[0] + tw[-1])
-    halves = []
-    for sel in (w & (t <= mid), w & (t >= mid)):
-        halves.append({k: 0.5 * float(np.ptp(np.asarray(result[k])[sel])) for k in _labels(result, BODY)})
+    halves = [_amplitudes(result, w & (t <= mid)), _amplitudes(result, w & (t >= mid))]
     scale = max(max(halves[1].values(), default=0.0), 1e-300)
     return max((abs(halves[1][k] - halves[0][k]) for k in halves[0]), default=0.0) / scale
 
