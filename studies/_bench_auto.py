@@ -20,13 +20,12 @@ from __future__ import annotations
 
 import math
 import os
-import time
 import warnings
+
+import _ladder_auto as auto_run
 
 from cablesys.ladder import extrapolation as X
 from cablesys.ladder import metrics as M
-from cablesys.ladder import simulate_auto
-from cablesys.ladder.rungs import RungCache
 from cablesys.model import build_model
 from cablesys.time_domain import simulate
 
@@ -55,29 +54,24 @@ def wang_row(wang_scene, period, ref_stats, md_small, *, matched, timed_run, sta
             "speedup_vs_moordyn_n": md_small[0], "speedup": md_small[1] / wall}
 
 
-def auto_row(scene, period, ref_stats, md_small, *, stats, diff, compiled_ctx, repeats=AUTO_REPEATS, more=None) -> dict:
+def auto_row(scene, period, ref_stats, md_small, *, stats, diff, repeats=AUTO_REPEATS, more=None) -> dict:
     """Model auto at the default tolerance as a user runs it: its own rung, element count and
-    integrator settings (issue 12), one RungCache for the calls. The first call builds (models,
-    compiled code, the describing-function solver); the best of AUTO_REPEATS further calls gives
-    ``choose_s`` (steady state, describing function, estimates), ``check_s`` (a posteriori runs) and
-    ``run_s`` (the chosen run with its integrator guard and start: stepping and outputs, as MoorDyn's
-    time is). ``speedup`` counts the choice and the checks (choose_s + check_s + run_s),
-    ``speedup_run_only`` the run alone; both against MoorDyn at the smallest N of the case. ``error``:
-    against the converged reference of ``stats(result, period)`` (what auto reports). ``load_average``:
-    the machine's 1-minute load when measured. ``more(result)``: further entries of the row."""
-    cache = RungCache()
+    integrator settings (issue 12), one RungCache for the calls, compiled (:func:`_ladder_auto.run_auto`, as the
+    model-ladder study times it). The first call builds (models, compiled code, the describing-function solver);
+    the least of each figure over it and ``repeats`` further calls gives ``choose_s`` (steady state, describing
+    function, estimates), ``check_s`` (a posteriori runs) and ``run_s`` (the chosen run with its integrator guard
+    and start: stepping and outputs, as MoorDyn's time is). ``speedup`` counts the choice and the checks
+    (choose_s + check_s + run_s), ``speedup_run_only`` the run alone; both against MoorDyn at the smallest N of
+    the case. ``error``: against the converged reference of ``stats(result, period)`` (what auto reports).
+    ``load_average``: the machine's 1-minute load when measured. ``more(result)``: further entries of the row."""
     dur = scene.numerics.duration
     try:
-        with warnings.catch_warnings(), compiled_ctx(True):    # auto compiles up to 20 elements, the VM above
+        with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            t0 = time.perf_counter()
-            simulate_auto(scene, model="auto", cache=cache)
-            cold = time.perf_counter() - t0
-            runs = [simulate_auto(scene, model="auto", cache=cache) for _ in range(repeats)]
+            res, info = auto_run.run_auto(scene, True, repeats + 1, model="auto")
     except Exception as err:          # noqa: BLE001 - a failing rung is a result of the benchmark
         return {"failed": f"{type(err).__name__}: {err}"}
-    res = min(runs, key=lambda r: r.stats["ladder_timing"]["total_s"])
-    t = res.stats["ladder_timing"]
+    t, cold = info["ladder_timing"], info["ladder_timing_first"]["total_s"]
     waited = t["choose_s"] + t["check_s"] + t["run_s"]
     return {"s_per_s": waited / dur, "run_s_per_s": t["run_s"] / dur, "choose_s": t["choose_s"], "check_s": t["check_s"],
             "run_s": t["run_s"], "build_s": cold - t["total_s"], "first_call_s": cold,
@@ -154,7 +148,7 @@ def moordyn_for(md: dict, targets: dict, auto_wall: float) -> dict:
     return out
 
 
-def slack_auto_row(scene, period, ref: dict, md: dict, *, compiled_ctx, cycle_means) -> dict:
+def slack_auto_row(scene, period, ref: dict, md: dict, *, cycle_means) -> dict:
     """Auto's row on the slack scene: timed as :func:`auto_row` (one warm call after the cold one: 10-20 s
     each), its ``error`` on what it reports (:func:`reported_statistics`) against ``ref["stats"]`` (the
     bench's converged reference in the same definition), the N run's own time-series errors (auto's
@@ -173,7 +167,7 @@ def slack_auto_row(scene, period, ref: dict, md: dict, *, compiled_ctx, cycle_me
                 "error_time_series_cycle_means": M.errors(cycle_means(res), ref["cycle_means"])}
     n0 = min(md)
     row = auto_row(scene, period, ref["stats"], (n0, md[n0]["wall_s"]), stats=reported_statistics, diff=M.errors,
-                   compiled_ctx=compiled_ctx, repeats=1, more=more)
+                   repeats=1, more=more)
     if row.get("error"):
         waited = row["s_per_s"] * scene.numerics.duration
         row["moordyn_equal_accuracy"] = moordyn_for(md, {"auto_error": row["error"], "default_tolerance": DEFAULT_TOLERANCE},

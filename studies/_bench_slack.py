@@ -152,8 +152,7 @@ def _auto(row, scene, period, t0, ns, tights, mds, prepared, compiled_ctx, segme
         return
     ref = reference(scene, tights, ns)
     row["reference"] = ref
-    row["auto"] = slack_auto_row(scene, period, ref, mds, compiled_ctx=compiled_ctx,
-                                 cycle_means=lambda r: ladder_statistics(r, period, t0))
+    row["auto"] = slack_auto_row(scene, period, ref, mds, cycle_means=lambda r: ladder_statistics(r, period, t0))
     for key in ("speedup", "speedup_run_only", "choose_s", "error"):
         row[f"auto_{key}"] = row["auto"].get(key)
     row["auto_moordyn_equal_accuracy"] = row["auto"].get("moordyn_equal_accuracy")

@@ -73,7 +73,11 @@ from cablesys.scene import dale_scene, load_scene  # noqa: E402
 from cablesys.time_domain import simulate  # noqa: E402
 from cablesys.time_domain.failures import largest_rate, rk4_steps_per_output  # noqa: E402
 from cablesys.time_domain.initial import initial_state  # noqa: E402
-from cablesys.time_domain.integrators import COMPILE_MAX_ELEMENTS, IntegratorSettings, make_integrator  # noqa: E402
+from cablesys.time_domain.integrators import (  # noqa: E402
+    COMPILE_MAX_ELEMENTS,
+    IntegratorSettings,
+    make_integrator,
+)
 from cablesys.time_domain.run import Simulator  # noqa: E402
 
 DATA = Path(cablesys.__file__).resolve().parent / "data"
@@ -164,7 +168,9 @@ NOTES = {
             "Before (CVODES on the quasi-static rungs, the describing function's KINSOL in CasADi's VM): Dale 158x "
             "(choose 7.9 ms, run 14.2 ms), heave_T10 35x. Rerun 2026-11-30 14:13-14:18 UTC (quiet) after the "
             "element plan and the settling notes (choice.element_plan, auto.settled_check): Dale 336x (511x run "
-            "only, choose 3.5 ms), error 0.55 % / 0.002 %; heave_T10 57.9x (93.5x run only), 0.010 % / 0.15 %.",
+            "only, choose 3.5 ms), error 0.55 % / 0.002 %; heave_T10 57.9x (93.5x run only), 0.010 % / 0.15 %. 15:23-15:29 UTC, "
+            "auto timed by _ladder_auto.run_auto (least of each figure over the calls, as the ladder study): Dale 330x "
+            "(538x run only), heave_T10 55.8x (102x).",
     "speed": "Where a run's time goes (cablesys_profile): CVODES BDF(<= 2) steps, each one or two right-hand sides "
              "and a Jacobian every ~7 steps (the Jacobian costs ~8 right-hand sides: 12 colours of a banded "
              "matrix); RHS, Jacobian and CVODES (error control, sparse QR factorizations and solves) about a third "
@@ -420,7 +426,7 @@ def bench_case(name, scene, period, ns, taut, quick, keep=None, flags=()):
     # Wang's 2-DOF model itself (issue 13), whatever the scene's own segments
     row["wang"] = wang_row(_segments(scene, 1), period, ref_stats, md_small, matched=_matched, timed_run=_timed_run,
                            **helpers)
-    row["auto"] = auto_row(scene, period, ref_stats, md_small, **helpers)
+    row["auto"] = auto_row(scene, period, ref_stats, md_small, stats=_stats, diff=_diff)
     row["wang_speedup"] = row["wang"].get("speedup")
     row["auto_speedup"] = row["auto"].get("speedup")            # with the choice (what the user waits for)
     row["auto_speedup_run_only"] = row["auto"].get("speedup_run_only")
