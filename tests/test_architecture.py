@@ -1,4 +1,4 @@
-"""Architecture rules, checked on the source: the layer ladder and no copy-paste.
+"""Architecture rules, checked on the source: the layer ladder, no import cycles, no copy-paste.
 
 1. Imports point down the ladder (the table ``LAYERS`` below is the one place it is written):
    foundation (units, errors, results, reader, tables, statistics, outputs, atomic, compiled,
