@@ -14,12 +14,10 @@ from .cable_model import CableModel
 from .lagrange import lagrange_equations, virtual_work
 from .params import ParameterLayout, environment_symbols, section_prefix
 from .section import SectionParameters, section_terms
+from .segmented import build_segmented_model
+from .signals import EXO_LABELS, OUTPUT_NAMES
 from .store import stored_model
 from .top_motion import symbolic_type, top_motion_function
-
-EXO_LABELS = ("t", "x_s", "y_s", "x_s_rate", "y_s_rate", "x_s_acc", "y_s_acc")
-OUTPUT_NAMES = ("phi", "phi_rate", "u", "u_rate", "x_b", "x_b_rate", "y_b", "y_b_rate", "tension",
-                "tension_bottom", "tension_top")
 
 
 def _coordinates(n: int, angles: str):
@@ -98,7 +96,6 @@ def build_model(scene: Scene) -> CableModel:
 def _build(scene: Scene) -> CableModel:
     """The symbolic build of :func:`build_model`."""
     if any(s.cable.segments > 1 for s in scene.sections):   # N straight elements per section
-        from .segmented import build_segmented_model
         return build_segmented_model(scene)
     layout = ParameterLayout.from_scene(scene)
     p = layout.symbol
