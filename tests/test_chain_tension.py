@@ -161,8 +161,9 @@ def _junction_errors(stats):
 
 def test_heave_junction_tensions_follow_the_segmented_cable(heave_runs):
     """In the settled heave the junction tensions' amplitude, max and min agree with the segmented cable as
-    closely as the top tension does (a balance that misses the section below was off by 30-70 % here), and
-    the heave itself is large: the plate's tension swings by more than a quarter of its mean."""
+    closely as the top tension does (a balance of the plate that left out the section below would be 32 %
+    low on the maximum here), and the heave is large: the plate's tension swings by more than a quarter of
+    its mean."""
     _, stats, _ = heave_runs
     chain, ref = stats[1], stats[N_REFERENCE]
     hi, lo = ref["tension_bottom_1_max"], ref["tension_bottom_1_min"]

@@ -125,8 +125,9 @@ class CableModel:
     the force of the cable on its top point (the ship, or body i-1), and ``tension_bottom``, its
     force on body i; both carry everything hanging below that end (at an intermediate body the
     upper section's ``tension_bottom`` is the size of the vector sum of the body's weight, drag,
-    inertia force -M_bv a_b and the lower section's pull, whose size is its ``tension_top``). ``tension`` is the force of the section's stretch law: in Wang's
-    straight cable F_bc = k u + (C_I / l_r) u' (eq. 54; bounded by TENS when slack), its mean
+    inertia force -M_bv a_b and the lower section's pull, whose size is its ``tension_top``).
+    ``tension`` is the force of the section's stretch law: in Wang's straight cable
+    F_bc = k u + (C_I / l_r) u' (eq. 54; bounded by TENS when slack), its mean
     tension (hanging at rest W_c/2 above ``tension_bottom``); in the segmented cable the lowest
     element's tension. Wang's end tensions are signed (negative: the straight cable would push).
     ``cache`` holds the functions analyses derive from these (:class:`FunctionCache`).
