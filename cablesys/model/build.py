@@ -41,9 +41,11 @@ def _end_forces(momenta, ext, M, f, q, qd, z, zd, zdd):
     """Forces of every section's cable on its body and on its top point, as ((Fx, Fy), (Fx, Fy)).
 
     Momentum balances with dP/dt taken along the motion by AD, q'' = M^-1 f (Wang 1971 eq. 47-48):
-    - on the body: M_bv a_b - W_b - D_b (eq. 16, 32-35): the cable tension at the body end.
-      Hanging at rest it is W_b, whereas the spring force F_bc = k u (eq. 54, the ``tension``
-      output) is W_b + W_c/2 there: the uniform stretch makes k u the mean tension of the cable;
+    - on the body: M_bv a_b - W_b - D_b - F_below (eq. 16, 32-35), F_below the force of the next
+      section's cable on its top point (this body; zero for the lowest): the cable tension at the
+      body end. Hanging at rest it is W_b plus everything hanging below the body, whereas the
+      spring force F_bc = k u (eq. 54, the ``tension`` output) adds W_c/2 to it: the uniform
+      stretch makes k u the mean tension of the cable;
     - on the top point of section i: sum over the cables and bodies below of W + D - dP/dt, with
       weights in water (eq. 12, 15), drag (eq. 32-35, 42, 44) and momenta of the virtual masses of
       the kinetic energy (eq. 16, 22-25). Spring, Voigt damper and slack rule (eq. 46, 54) are
@@ -60,8 +62,10 @@ def _end_forces(momenta, ext, M, f, q, qd, z, zd, zdd):
     out, fx, fy = [], 0.0, 0.0
     for (P, P_b), (F, F_b) in zip(reversed(momenta), reversed(ext)):
         dP, dP_b = rate(P), rate(P_b)
+        # (fx, fy) is still the pull of the section below on this body (its top-point force; 0 for the last)
+        out_body = (dP_b[0] - F_b[0] - fx, dP_b[1] - F_b[1] - fy)
         fx, fy = fx + F[0] - dP[0], fy + F[1] - dP[1]
-        out.append(((dP_b[0] - F_b[0], dP_b[1] - F_b[1]), (fx, fy)))
+        out.append((out_body, (fx, fy)))
     return list(reversed(out))
 
 
