@@ -454,8 +454,7 @@ class DerivedStore:
         return f"DerivedStore({self.structure})"
 
     def _path(self, key: str) -> Path:
-        settings = (os.environ.get("CABLESYS_CC", "cc"), os.environ.get("CABLESYS_CFLAGS", ""))
-        return cache_dir() / "derived" / f"{digest(self.structure, key, *settings)}.json"
+        return cache_dir() / "derived" / f"{digest(self.structure, key, *compiler_command())}.json"
 
     def load(self, key: str) -> Compiled | None:
         """The compiled item stored under ``key``, or None (see the class docstring). An index
