@@ -289,7 +289,7 @@ def _build(code: str, cmd: list[str], target: Path, what: str = "") -> None:
                            "run is given (its memory grows with the code)")
     key = target.stem
     log.log(logging.WARNING if len(code) > LOUD_BUILD_BYTES else logging.INFO,
-            "compiling %s (%.2f MB of C, %s) into the cache %s: once for this model structure",
+            "compiling %s (%.2f MB of C, %s) into the cache %s: once, later runs load it",
             what or key, len(code) / 1e6, " ".join(cmd[:-2]), target.parent)
     t0 = time.perf_counter()
     try:

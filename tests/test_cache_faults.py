@@ -91,7 +91,7 @@ def test_truncated_and_garbled_entries_are_rebuilt_by_the_next_run(cache):
     blob = truncated.read_bytes()
     truncated.write_bytes(blob[: len(blob) // 2])
     data = bytearray(garbled.read_bytes())
-    for i in range(len(data) // 4, len(data), 61):
+    for i in range(len(data) // 4, len(data) - 64, 61):       # the image garbled, its checksum trailer intact
         data[i] ^= 0xFF
     garbled.write_bytes(bytes(data))
     stored_model = next(cache_dir().glob("models/*.model"))
@@ -350,3 +350,19 @@ def test_repeated_fallbacks_log_one_warning(cache, monkeypatch, caplog):
     assert all(not o.compiled and "cc-once-only" in o.note for o in outs)
     levels = [r.levelno for r in caplog.records if "cc-once-only" in r.getMessage()]
     assert levels == [logging.WARNING] + [logging.DEBUG] * 3
+
+
+def test_a_compile_says_what_it_compiles_and_a_large_one_says_it_aloud(cache, monkeypatch, caplog):
+    """Progress of a build: the functions, the size of their C and the command, at info level;
+    above LOUD_BUILD_BYTES of C as a warning (seen without ``-v``); a cached load says nothing."""
+    import cablesys.compiled as C
+    x = ca.SX.sym("x", 2)
+    with caplog.at_level(logging.INFO, logger="cablesys.compiled"):
+        compile_functions([ca.Function("quiet_f", [x], [x * 2])], jacobians=False)
+        monkeypatch.setattr(C, "LOUD_BUILD_BYTES", 100)
+        compile_functions([ca.Function("loud_f", [x], [x * 3])], jacobians=False)
+        compile_functions([ca.Function("loud_f", [x], [x * 3])], jacobians=False)        # cached
+    starts = [(r.levelno, r.getMessage()) for r in caplog.records if r.getMessage().startswith("compiling ")]
+    assert [level for level, _ in starts] == [logging.INFO, logging.WARNING]
+    assert "quiet_f" in starts[0][1] and "MB of C, cc -O0" in starts[0][1] and "loud_f" in starts[1][1]
+    assert sum(r.getMessage().startswith("compiled loud_f in ") for r in caplog.records) == 1

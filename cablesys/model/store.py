@@ -16,8 +16,8 @@ Two scenes with equal keys build identical functions, so a key collision would n
 SHA-256 collision. Each function is deserialized on its first use (a run never asks for the
 energy, for instance: 5 of the 65 ms of a 20-element cable). The entry is sealed with the SHA-256
 of its content (:func:`cablesys.disk_cache.write_sealed`), checked before unpickling: a truncated
-or corrupt file is detected, removed with a one-line warning and rebuilt. Only used when compilation is enabled (the compiled path;
-``CABLESYS_COMPILE=0`` keeps everything in memory).
+or corrupt file is detected, removed with a one-line warning and rebuilt. Only used when
+compilation is enabled (the compiled path; ``CABLESYS_COMPILE=0`` keeps everything in memory).
 """
 
 from __future__ import annotations
