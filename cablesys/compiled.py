@@ -271,7 +271,10 @@ def _run_compiler(argv: list[str], workdir: Path):
         out, _ = proc.communicate()
     except BaseException:
         with contextlib.suppress(OSError):
-            os.killpg(proc.pid, signal.SIGKILL)
+            if hasattr(os, "killpg"):
+                os.killpg(proc.pid, signal.SIGKILL)
+            else:                                    # pragma: no cover (Windows: no process groups)
+                proc.kill()
         proc.wait()
         raise
     finally:
