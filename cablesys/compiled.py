@@ -283,13 +283,33 @@ def _run_compiler(argv: list[str], workdir: Path):
     return proc.returncode, out or ""
 
 
+def _too_large(c_bytes: int, what: str) -> str:
+    return (f"{what}: {c_bytes / 1e6:.1f} MB of generated C, above the {MAX_C_BYTES / 1e6:.1f} MB a compiler run "
+            "is given (its memory grows with the code)")
+
+
+def _known_too_large(marker: Path) -> int | None:
+    """The C size [bytes] recorded in ``marker`` (``<key>.vm``, written when that entry's C was found above
+    ``MAX_C_BYTES``) when it is still above it, else None: that entry goes to the VM without generating its C
+    again."""
+    try:
+        c_bytes = int(json.loads(read_sealed(marker))["c_bytes"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+    touch(marker)
+    return c_bytes if c_bytes > MAX_C_BYTES else None
+
+
 def _build(code: str, cmd: list[str], target: Path, what: str = "") -> None:
     """Compile ``code`` to ``target``: in a build folder of the cache, sealed with its SHA-256,
     then an atomic rename; nothing is left behind on failure or interruption. Hold the entry's
-    lock around it. ``what`` names the functions in the progress messages."""
+    lock around it. ``what`` names the functions in the progress messages. Code above
+    ``MAX_C_BYTES`` is not compiled (RuntimeError) and its size recorded beside the entry
+    (``<key>.vm``), so that later runs skip generating it."""
     if len(code) > MAX_C_BYTES:
-        raise RuntimeError(f"{len(code) / 1e6:.0f} MB of generated C, above the {MAX_C_BYTES / 1e6:.0f} MB a compiler "
-                           "run is given (its memory grows with the code)")
+        with contextlib.suppress(OSError):
+            write_sealed(target.with_suffix(".vm"), json.dumps({"c_bytes": len(code)}).encode())
+        raise RuntimeError(_too_large(len(code), what or target.stem))
     key = target.stem
     log.log(logging.WARNING if len(code) > LOUD_BUILD_BYTES else logging.INFO,
             "compiling %s (%.2f MB of C, %s) into the cache %s: once, later runs load it",
@@ -399,6 +419,11 @@ def compile_functions(functions, *, jacobians=True, enabled: bool = True, extra_
     target = folder / f"{key}.so"
     lock = folder / f"{key}.lock"
     what = ", ".join(originals) or key
+    c_bytes = _known_too_large(target.with_suffix(".vm"))
+    if c_bytes is not None:
+        note = f"compilation skipped ({_too_large(c_bytes, what)}): running the CasADi virtual machine (slower)"
+        _notice(note)
+        return Compiled(originals, False, False, time.perf_counter() - t0, 0.0, note=note)
     for attempt in (0, 1):
         damage = _damage(target)
         cached = damage is None

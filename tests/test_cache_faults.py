@@ -366,3 +366,30 @@ def test_a_compile_says_what_it_compiles_and_a_large_one_says_it_aloud(cache, mo
     assert [level for level, _ in starts] == [logging.INFO, logging.WARNING]
     assert "quiet_f" in starts[0][1] and "MB of C, cc -O0" in starts[0][1] and "loud_f" in starts[1][1]
     assert sum(r.getMessage().startswith("compiled loud_f in ") for r in caplog.records) == 1
+
+
+def test_code_known_too_large_goes_to_the_vm_without_generating_it_again(cache, monkeypatch, caplog):
+    """C above MAX_C_BYTES is refused once and its size recorded in the cache, so a later call (in
+    any process: the record is on disk) goes to the VM without generating the C again; with the
+    limit above the recorded size the entry is compiled."""
+    import cablesys.compiled as C
+    limit, generate = C.MAX_C_BYTES, C.generate
+    monkeypatch.setattr(C, "MAX_C_BYTES", 1000)
+    x = ca.SX.sym("x", 3)
+    f = ca.Function("too_big_f", [x], [ca.sin(x) * ca.cos(x) + x ** 3])
+    first = compile_functions([f])
+    assert not first.compiled and "MB of generated C" in first.note
+    [marker] = cache_dir().glob("*.vm")
+    assert sealed_problem(marker) is None
+
+    def no_generation(*a, **k):
+        raise AssertionError("the C was generated again")
+    monkeypatch.setattr(C, "generate", no_generation)
+    again = compile_functions([f])
+    assert not again.compiled and "compilation skipped" in again.note and again.functions["too_big_f"] is f
+    monkeypatch.setattr(C, "MAX_C_BYTES", limit)
+    monkeypatch.setattr(C, "generate", generate)
+    done = compile_functions([f])                   # the real limit: far above this C
+    assert done.compiled and done.library.with_suffix(".vm") == marker
+    assert np.allclose(np.array(done.functions["too_big_f"]([0.1, 0.2, 0.3])).ravel(),
+                       np.sin([0.1, 0.2, 0.3]) * np.cos([0.1, 0.2, 0.3]) + np.array([0.1, 0.2, 0.3]) ** 3, rtol=1e-14)
