@@ -18,8 +18,9 @@ Every library is sealed with its SHA-256 when it is built (:func:`cablesys.disk_
 and checked before every ``dlopen``: a truncated or garbled file (which ``dlopen`` would turn
 into a bus error or a segmentation fault of the whole process) is removed with a one-line
 warning and rebuilt, as is one that fails to load (removed by another process's eviction,
-without one of the names). The index entries of :class:`DerivedStore` and the compiler memo are
-sealed likewise.
+without one of the names). The index entries of :class:`DerivedStore`, the compiler memo and
+the record of an entry whose C is above ``MAX_C_BYTES`` (``<key>.vm``: later runs go to the
+virtual machine without generating that C again) are sealed likewise.
 
 A compile runs in a build folder of the cache (:func:`cablesys.disk_cache.build_folder`, also
 the compiler's ``TMPDIR``) under the entry's lock, in a process group of its own: on Ctrl-C,

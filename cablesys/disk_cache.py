@@ -1,8 +1,9 @@
 """The on-disk cache folder: location, versioning, atomic writes, locks and a size cap.
 
 What is cached: compiled model libraries (:mod:`cablesys.compiled`), the index that maps a
-model structure and a derived function to its library, and the serialized CasADi functions
-of a model structure (:mod:`cablesys.model.store`). Everything in it can be deleted at any
+model structure and a derived function to its library, the compiler identities, the records
+of code too large to compile, and the serialized CasADi functions of a model structure
+(:mod:`cablesys.model.store`). Everything in it can be deleted at any
 time; it is rebuilt on demand.
 
 Settings (environment):
