@@ -24,8 +24,9 @@ virtual machine without generating that C again) are sealed likewise.
 
 A compile runs in a build folder of the cache (:func:`cablesys.disk_cache.build_folder`, also
 the compiler's ``TMPDIR``) under the entry's lock, in a process group of its own: on Ctrl-C,
-SIGTERM or any error the whole group (driver, ``cc1``, assembler, linker) is killed and the
-folder removed before the interruption goes on, so nothing partial is left; a folder left by
+SIGTERM, SIGHUP or any error the whole group (driver, ``cc1``, assembler, linker) is killed
+and the folder removed before the interruption goes on (a signal left at its default action
+then ends the process as it would have), so nothing partial is left; a folder left by
 ``kill -9`` is removed by the next eviction.
 
 Settings (environment), checked whenever read (a bad value is a
@@ -237,28 +238,35 @@ def cache_key(serialized, jacobians, ident: str, cmd: list[str]) -> str:
 
 
 class _Terminated(BaseException):
-    """SIGTERM arrived during a compile (with the default action, which would end the process at
-    once and leave the compiler running and its folder behind)."""
+    """SIGTERM or SIGHUP arrived during a compile (with the default action, which would end the
+    process at once and leave the compiler, in a session of its own, running and its folder
+    behind); ``args[0]`` is the signal."""
+
+
+# signals whose default action ends the process and that a Python program does not handle by default
+_ENDING = tuple(getattr(signal, name) for name in ("SIGTERM", "SIGHUP") if hasattr(signal, name))
 
 
 @contextlib.contextmanager
-def _sigterm_stops_build():
-    """While a compile runs in the main thread with SIGTERM at its default action, SIGTERM raises
-    :class:`_Terminated` so that the build is cleaned up; the caller then ends the process by the
-    same signal. A Python handler already installed (the ``cablesys`` command raises
-    KeyboardInterrupt) or another thread is left alone."""
-    if threading.current_thread() is not threading.main_thread() or \
-            signal.getsignal(signal.SIGTERM) is not signal.SIG_DFL:
+def _signals_stop_build():
+    """While a compile runs in the main thread, SIGTERM and SIGHUP left at their default action
+    raise :class:`_Terminated` so that the build is cleaned up; the caller then ends the process
+    by the same signal. A Python handler already installed (the ``cablesys`` command turns
+    SIGTERM into KeyboardInterrupt) and other threads are left alone."""
+    if threading.current_thread() is not threading.main_thread():
         yield
         return
+    ours = [sig for sig in _ENDING if signal.getsignal(sig) is signal.SIG_DFL]
 
     def handler(signum, frame):
         raise _Terminated(signum)
-    signal.signal(signal.SIGTERM, handler)
+    for sig in ours:
+        signal.signal(sig, handler)
     try:
         yield
     finally:
-        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+        for sig in ours:
+            signal.signal(sig, signal.SIG_DFL)
 
 
 def _run_compiler(argv: list[str], workdir: Path):
@@ -317,7 +325,7 @@ def _build(code: str, cmd: list[str], target: Path, what: str = "") -> None:
             what or key, len(code) / 1e6, " ".join(cmd[:-2]), target.parent)
     t0 = time.perf_counter()
     try:
-        with _sigterm_stops_build(), build_folder(target.parent, key) as tmp:
+        with _signals_stop_build(), build_folder(target.parent, key) as tmp:
             src = tmp / "model.c"
             src.write_text(code)
             tmp_so = tmp / "model.so"
@@ -326,10 +334,10 @@ def _build(code: str, cmd: list[str], target: Path, what: str = "") -> None:
                 raise RuntimeError(f"{' '.join(cmd)} failed (exit {code_rc}): {out.strip()[-500:]}")
             seal_file(tmp_so)
             os.replace(tmp_so, target)
-    except _Terminated:             # cleaned up: now end as SIGTERM's default action would have
-        signal.signal(signal.SIGTERM, signal.SIG_DFL)
-        os.kill(os.getpid(), signal.SIGTERM)
-        raise KeyboardInterrupt("SIGTERM") from None     # pragma: no cover (the signal ends the process)
+    except _Terminated as stop:     # cleaned up: now end as the signal's default action would have
+        signal.signal(stop.args[0], signal.SIG_DFL)
+        os.kill(os.getpid(), stop.args[0])
+        raise KeyboardInterrupt(f"signal {stop.args[0]}") from None   # pragma: no cover (the signal ends it)
     log.info("compiled %s in %.1f s: %s", what or key, time.perf_counter() - t0, target.name)
 
 

@@ -255,11 +255,13 @@ def _end_fake_compiler(pidfile: Path) -> None:
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc to see the compiler's child end")
 @pytest.mark.parametrize("how, sig, expected", [("library", signal.SIGTERM, -signal.SIGTERM),
                                                  ("library", signal.SIGINT, -signal.SIGINT),
+                                                 ("library", signal.SIGHUP, -signal.SIGHUP),
                                                  ("cli", signal.SIGTERM, 130)])
 def test_a_signal_during_a_compile_kills_the_compiler_and_leaves_nothing(cache, tmp_path, how, sig, expected):
-    """SIGTERM or Ctrl-C while the compiler runs: the process ends as that signal asks (a plain
-    script dies by it; the ``cablesys`` command exits 130), the compiler's whole process group
-    (driver and child) is killed, and neither a build folder nor a library is left."""
+    """SIGTERM, Ctrl-C or a hang-up while the compiler runs: the process ends as that signal asks
+    (a plain script dies by it; the ``cablesys`` command exits 130 on SIGTERM), the compiler's
+    whole process group (driver and child) is killed, and neither a build folder nor a library is
+    left."""
     pidfile = tmp_path / "cc.pid"
     env = dict(os.environ, CABLESYS_CC=str(_slow_compiler(tmp_path, pidfile)), MPLBACKEND="Agg")
     if how == "cli":
