@@ -64,7 +64,18 @@ _REGISTERED: dict = {}
 
 
 def register_rung(rung: Rung) -> None:
-    """Let the ladder consider ``rung`` (see :class:`Rung`); its name may not be a built-in model name."""
+    """Let the ladder consider ``rung`` (see :class:`Rung`); its name may not be a built-in model name.
+
+    Parameters
+    ----------
+    rung : Rung
+        An object with ``name``, ``build(scene)``, ``estimate(scene, assessment)`` and ``cost(scene, assessment)``.
+
+    Raises
+    ------
+    ParameterError
+        Not a :class:`Rung`, or its name is empty or a built-in model name.
+    """
     if not isinstance(rung, Rung):
         raise ParameterError("rung", type(rung).__name__, "must have name, build(scene), estimate(scene, assessment) "
                                                           "and cost(scene, assessment) (cablesys.ladder.Rung)")
@@ -74,12 +85,24 @@ def register_rung(rung: Rung) -> None:
 
 
 def unregister_rung(name: str) -> None:
-    """Forget the registered rung ``name`` (nothing when it is not registered)."""
+    """Forget the registered rung ``name`` (nothing when it is not registered).
+
+    Parameters
+    ----------
+    name : str
+        The rung's name.
+    """
     _REGISTERED.pop(name, None)
 
 
 def registered_rungs() -> tuple:
-    """The registered rungs, in the order of registration."""
+    """The registered rungs.
+
+    Returns
+    -------
+    tuple of Rung
+        In the order of registration.
+    """
     return tuple(_REGISTERED.values())
 
 
