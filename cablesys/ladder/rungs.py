@@ -177,7 +177,7 @@ class RungCache:
     def __init__(self):
         self._models: dict = {}
         self._simulators: dict = {}
-        self._memo: dict = {}
+        self._memo: list = []
         self.build_s = 0.0
 
     def _key(self, scene: Scene, name: str, segments: int) -> tuple:
@@ -244,12 +244,21 @@ class RungCache:
                 del self._simulators[oldest]
         return sim
 
-    def memo(self, key: tuple, compute):
-        """``compute()`` once per ``key`` while the cache lives: what the choice and the run both ask of one
-        model and parameter vector (its static start, the stiffness guard's verdict: :mod:`.run_settings`)."""
-        if key not in self._memo:
-            self._memo[key] = compute()
-        return self._memo[key]
+    MAX_MEMO = 16            # the last starts and guard verdicts: what one call asks twice
+
+    def memo(self, model: CableModel, what: str, values: tuple, compute):
+        """``compute()`` once per (``model``, ``what``, ``values``) among the last MAX_MEMO: what the choice and the run
+        both ask of one model and parameter vector (its static start, the stiffness guard's verdict:
+        :mod:`.run_settings`). ``values`` (numbers, arrays) are compared by value, the model by identity."""
+        key = tuple(np.asarray(v).tobytes() if isinstance(v, np.ndarray) else v for v in values)
+        for k, (m, w, vals, result) in enumerate(self._memo):
+            if m is model and w == what and vals == key:
+                self._memo.append(self._memo.pop(k))
+                return result
+        result = compute()
+        self._memo.append((model, what, key, result))
+        del self._memo[:-self.MAX_MEMO]
+        return result
 
     def __len__(self) -> int:
         return len(self._models)
