@@ -229,8 +229,8 @@ def test_real_slack_results_keep_the_protocol():
     from cablesys.slack.scene import EXAMPLE_TOML, scene_from_dict
 
     scene = scene_from_dict(tomllib.loads(EXAMPLE_TOML))
-    eq, modes = cablesys.slack.analyze(scene, 4, n_elements=40)
-    for res in (eq, modes):
+    res = cablesys.slack.analyze(scene, 4, n_elements=40)
+    for res in (res, res.equilibrium, res.modes):
         _check_protocol(res)
 
 

@@ -17,7 +17,7 @@ from cablesys.model.fluid import quadratic_drag
 from cablesys.scene import Cable as WangCable
 from cablesys.scene import Environment
 from cablesys.scene.fields import QUANTITIES, SI_UNIT
-from cablesys.slack import Cable as SlackCable
+from cablesys.slack import SlackCable
 from cablesys.slack import PointMass, SlackScene
 from cablesys.slack.scene import EXAMPLE_TOML, scene_from_dict
 from cablesys.towed import REPORT_SEA_TRIAL, TowedCable
