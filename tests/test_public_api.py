@@ -132,13 +132,19 @@ def test_results_are_short_json_and_labelled():
     from cablesys.towed import (
         REPORT_TYPICAL,
         TowedCable,
-        eigenfrequencies,
+        c_star,
+        modes,
+        phase_lag,
+        phase_velocity,
+        transfer_function,
         transfer_grid,
     )
 
     coef = TowedCable(**REPORT_TYPICAL).coefficients()
     for res in (transfer_grid(coef, np.linspace(0.0, 1.0, 401), np.linspace(0.1, 3.0, 300)),
-                eigenfrequencies(coef, 4)):
+                modes(coef, 4), transfer_function(coef, 1.0, 2.0), c_star(coef, 0.5, np.linspace(0.1, 3.0, 5)),
+                phase_velocity(coef, np.linspace(0.0, 1.0, 11)[:, None], np.array([0.5, 1.0])),
+                phase_lag(coef, np.array([0.2, 0.9]), np.array([1.0, 2.0]))):
         assert isinstance(res, AnalysisResult) and res.success and res.message == ""
         assert res.stats["wall_time_s"] >= 0.0
         assert len(repr(res)) < 400 and "array(" not in repr(res)

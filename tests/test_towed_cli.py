@@ -23,7 +23,7 @@ def _shooting_H(length, speed, f_hz, **coefficients):
     """|H(xi = 1)| by shooting (towed/bvp.py) at omega = 2 pi f L / U (Kennedy & Strahan eq. 2)."""
     cable = TowedCable(length=length, speed=speed, **{**REPORT_SEA_TRIAL, **coefficients})
     omega = 2 * np.pi * f_hz * length / speed
-    return float(abs(transfer_function(cable.coefficients(), 1.0, omega, method="bvp")))
+    return float(abs(transfer_function(cable.coefficients(), 1.0, omega, method="bvp").H))
 
 
 @pytest.fixture

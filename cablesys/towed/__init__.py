@@ -4,8 +4,9 @@ equation     nondimensional coefficients of eq. 3 (derivation in its docstring)
 bessel       particular solutions: exact complex order (0F1) and the report's real order (eq. 16)
 bvp          independent shooting solution of the same boundary-value problem (solve_ivp)
 mol          the PDE in time: method of lines + CasADi CVODES; forced H and slowest mode
-transfer     H(xi, omega) (eq. 26), phase velocity (eq. 27a), c* (eq. 27b), water pulley (eq. 14)
-eigen        complementary solution: eigenfrequencies (eq. 18-21), validity (eq. 20b), t_0 (eq. 23-25)
+transfer     H(xi, omega) (eq. 26), phase velocity (eq. 27a), c* (eq. 27b), water pulley (eq. 14): each
+             returns a TowedResponse (the result protocol) at xi and omega broadcast together
+eigen        complementary solution: modes (eigenfrequencies, eq. 18-21), validity (eq. 20b), t_0 (eq. 23-25)
 interaction  horizontal-vertical amplification A(theta, phi) (eq. 38) and its Gaussian average (App. B)
 runs         sea-trial runs: CSV reading with row/column errors, model per run, c_n fits
 cli          the `cablesys towed` sub-command
@@ -19,6 +20,7 @@ _EXPORTS = {
     "damping_time": ".eigen",
     "eigenfrequencies": ".eigen",
     "exact_eigenfrequency": ".eigen",
+    "modes": ".eigen",
     "REPORT_SEA_TRIAL": ".equation",
     "REPORT_TYPICAL": ".equation",
     "Coefficients": ".equation",
@@ -30,6 +32,7 @@ _EXPORTS = {
     "fit_normal_drag": ".runs",
     "model_runs": ".runs",
     "read_runs": ".runs",
+    "TowedResponse": ".transfer",
     "TransferGrid": ".transfer",
     "c_star": ".transfer",
     "phase_lag": ".transfer",
@@ -39,9 +42,9 @@ _EXPORTS = {
     "water_pulley_c_star": ".transfer",
 }
 
-__all__ = ["REPORT_SEA_TRIAL", "REPORT_TYPICAL", "Coefficients", "Eigenfrequencies", "TowedCable", "TransferGrid",
-           "amplification", "c_star", "damping_time", "effective_amplification", "eigenfrequencies",
-           "exact_eigenfrequency", "fit_normal_drag", "forced_response", "model_runs", "phase_lag", "phase_velocity",
-           "read_runs", "slowest_mode", "transfer_function", "transfer_grid", "water_pulley_c_star"]
+__all__ = ["REPORT_SEA_TRIAL", "REPORT_TYPICAL", "Coefficients", "Eigenfrequencies", "TowedCable", "TowedResponse",
+           "TransferGrid", "amplification", "c_star", "damping_time", "effective_amplification",
+           "exact_eigenfrequency", "fit_normal_drag", "forced_response", "model_runs", "modes", "phase_lag",
+           "phase_velocity", "read_runs", "slowest_mode", "transfer_function", "transfer_grid", "water_pulley_c_star"]
 
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, __all__)
