@@ -47,6 +47,7 @@ _EXPORTS = {
     "slowest_mode": ".mol",
     "fit_normal_drag": ".runs",
     "model_runs": ".runs",
+    "RunsResponse": ".runs",
     "read_runs": ".runs",
     "TowedResponse": ".transfer",
     "TransferGrid": ".transfer",
@@ -58,10 +59,11 @@ _EXPORTS = {
     "water_pulley_c_star": ".transfer",
 }
 
-__all__ = ["Coefficients", "Eigenfrequencies", "REPORT_SEA_TRIAL", "REPORT_TYPICAL", "TowedAnalysis", "TowedCable",
-           "TowedResponse", "TowedScene", "TowedSceneCable", "TransferGrid", "amplification", "analyze", "c_star",
-           "damping_time", "effective_amplification", "exact_eigenfrequency", "fit_normal_drag", "forced_response",
-           "load_towed_scene", "model_runs", "modes", "phase_lag", "phase_velocity", "plot_response", "read_runs",
-           "slowest_mode", "theory_coefficients", "transfer_function", "transfer_grid", "water_pulley_c_star"]
+__all__ = ["Coefficients", "Eigenfrequencies", "REPORT_SEA_TRIAL", "REPORT_TYPICAL", "RunsResponse", "TowedAnalysis",
+           "TowedCable", "TowedResponse", "TowedScene", "TowedSceneCable", "TransferGrid", "amplification", "analyze",
+           "c_star", "damping_time", "effective_amplification", "exact_eigenfrequency", "fit_normal_drag",
+           "forced_response", "load_towed_scene", "model_runs", "modes", "phase_lag", "phase_velocity",
+           "plot_response", "read_runs", "slowest_mode", "theory_coefficients", "transfer_function", "transfer_grid",
+           "water_pulley_c_star"]
 
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, __all__)

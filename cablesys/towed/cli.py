@@ -161,7 +161,8 @@ def run_runs(args) -> int:
     for flag, name, lo, hi, lo_open in OPTION_RANGES:
         option_number(flag, coefficients[name], lo=lo, hi=hi, lo_open=lo_open)
     runs = read_runs(args.runs)
-    H, cs, _ = model_runs(runs, **coefficients)
+    res = model_runs(runs, **coefficients)
+    H, cs = res.H_abs, res.c_star
     if args.json:
         rows = [{**{k: _number(v) for k, v in r.columns.items()}, "H": float(h), "c_star": float(c)}
                 for r, h, c in zip(runs, H, cs)]
