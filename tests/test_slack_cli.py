@@ -35,6 +35,11 @@ def test_example_scene_runs_and_writes_outputs(tmp_path, capsys, monkeypatch):
     types = [m["mode_type"] for m in doc["modes"]]
     assert types[:9] == list("OAOSOAOSO")
     assert doc["equilibrium"]["horizontal_tension_N"] > 0
+    # every number says its unit: omega in rad/s (the key and the units table)
+    assert doc["units"]["omega_rad_s"] == "rad/s" and all(set(m) == {"mode_type", "omega_rad_s"} for m in doc["modes"])
+    printed = capsys.readouterr().out
+    sag = float(printed.split("sag/L = ")[1].split(",")[0])
+    assert sag == pytest.approx(doc["equilibrium"]["sag_to_length"], rel=1e-5)
     assert (tmp_path / "o" / "equilibrium.png").exists() and (tmp_path / "o" / "mode_shapes.png").exists()
 
 

@@ -151,3 +151,31 @@ def test_bad_mass_and_nonconverging_nlp():
         PointMass(position=1.0, mass=0.0)
     with pytest.raises(SolverError, match="did not converge"):
         solve_equilibrium(scene(0.962, n=40), max_iter=1)
+
+
+def test_analyze_is_one_result_with_units_and_the_same_numbers_as_its_parts():
+    """slack.analyze = solve_equilibrium then modes (one result); the old tuple unpacking warns."""
+    import json
+
+    import cablesys.slack as slack
+
+    sc = scene(0.962, [PointMass(position=8.0, mass=4.5)], n=48)
+    res = slack.analyze(sc, 6)
+    assert isinstance(res, slack.SlackAnalysis) and res.success and res.message == ""
+    eq = solve_equilibrium(sc)
+    parts = modes(eq, 6)
+    assert np.array_equal(res.modes.omega, parts.omega) and res.modes.mode_type == parts.mode_type
+    assert res.equilibrium.horizontal_tension == pytest.approx(eq.horizontal_tension, rel=1e-12)
+    ds = res.to_xarray()
+    assert ds["omega"].attrs["units"] == "rad/s" and ds["tension"].attrs["units"] == "N"
+    assert ds["x"].dims == ("node",) and ds["shape"].dims == ("mode", "node", "dof")
+    doc = json.loads(json.dumps(res.summary()))
+    assert [r["omega_rad_s"] for r in doc["modes"]] == pytest.approx(list(parts.omega), rel=1e-15)
+    assert res.stats["wall_time_s"] >= res.modes.stats["wall_time_s"]
+    with pytest.warns(DeprecationWarning, match="unpacking slack.analyze"):
+        eq_old, modes_old = res
+    assert eq_old is res.equilibrium and modes_old is res.modes
+    # the modes need the element layout: an Equilibrium without one is refused by name
+    import dataclasses
+    with pytest.raises(ParameterError, match="eq.discretization"):
+        modes(dataclasses.replace(eq, discretization=None))
