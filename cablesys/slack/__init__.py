@@ -16,7 +16,8 @@ from ..lazy import lazy_exports
 
 # public name -> module that defines it, imported on first use (cablesys.lazy)
 _EXPORTS = {
-    "IrvineMode": ".irvine",
+    "IrvineMode": ".results",
+    "IrvineModes": ".results",
     "irvine_modes": ".irvine",
     "lambda_squared": ".irvine",
     "analyze": ".vibration",
@@ -35,9 +36,9 @@ _EXPORTS = {
     "solve_equilibrium": ".statics",
 }
 
-__all__ = ["Convergence", "Equilibrium", "IrvineMode", "ModeSet", "PointMass", "SlackAnalysis", "SlackCable",
-           "SlackScene", "analyze", "converge", "irvine_modes", "lambda_squared", "load_slack_scene", "modes",
-           "plot_equilibrium", "plot_mode_shapes", "solve_equilibrium"]
+__all__ = ["Convergence", "Equilibrium", "IrvineMode", "IrvineModes", "ModeSet", "PointMass", "SlackAnalysis",
+           "SlackCable", "SlackScene", "analyze", "converge", "irvine_modes", "lambda_squared", "load_slack_scene",
+           "modes", "plot_equilibrium", "plot_mode_shapes", "solve_equilibrium"]
 
 # old name -> new name: they clashed with cablesys.Cable / cablesys.load_scene (the Wang scene's)
 DEPRECATED = {"Cable": "SlackCable", "load_scene": "load_slack_scene"}

@@ -16,6 +16,67 @@ MODE_TYPES = {"O": "out-of-plane", "A": "in-plane antisymmetric",
 
 
 @dataclass(frozen=True, kw_only=True)
+class IrvineMode:
+    """One mode of the flat-sag theory: type 'O', 'A' or 'S' and omega (rad/s)."""
+
+    mode_type: str
+    omega: float
+
+
+@dataclass(frozen=True, kw_only=True)
+class IrvineModes(ResultBase):
+    """Modes of the flat-sag (Irvine-Caughey) theory, ascending: ``omega`` (rad/s) and ``mode_type``.
+
+    Griffin & Rosenthal (1985) eqs. 6-7 and 10; ``lambda2`` is the Irvine parameter used. A
+    sequence of :class:`IrvineMode` (iterate, index, ``len``) as well as a result.
+    """
+
+    mode_type: tuple[str, ...]
+    omega: np.ndarray
+    lambda2: float
+    success: bool = True
+    message: str = ""
+    stats: dict = field(default_factory=dict)
+
+    VARIABLES: ClassVar[dict] = {"omega": ("rad/s", "natural angular frequency (flat-sag theory)"),
+                                 "mode_type": ("1", "mode type O/A/S"), "mode": ("1", "mode number")}
+
+    def __len__(self) -> int:
+        return len(self.omega)
+
+    def __getitem__(self, k):
+        if isinstance(k, slice):
+            return [self[i] for i in range(len(self))[k]]
+        return IrvineMode(mode_type=self.mode_type[k], omega=float(self.omega[k]))
+
+    def __iter__(self):
+        return (self[k] for k in range(len(self)))
+
+    def summary(self) -> dict:
+        """The mode table (omega in rad/s) with lambda^2.
+
+        Returns
+        -------
+        dict
+            JSON-able.
+        """
+        return {**super().summary(),
+                "modes": [{"mode_type": t, "omega_rad_s": float(w)} for t, w in zip(self.mode_type, self.omega)]}
+
+    def to_xarray(self):
+        """Frequencies and types on dimension ``mode``.
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+        import xarray as xr
+        return xr.Dataset({"omega": ("mode", self.omega), "mode_type": ("mode", list(self.mode_type))},
+                          coords={"mode": np.arange(1, len(self) + 1)},
+                          attrs={"lambda2": self.lambda2, "theory": "Griffin & Rosenthal (1985) eqs. 6-7, 10"})
+
+
+@dataclass(frozen=True, kw_only=True)
 class Equilibrium(ResultBase):
     """Static shape of the chain: node arc length s (m, unstretched), x, z (m), element tension (N).
 
