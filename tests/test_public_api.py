@@ -180,8 +180,10 @@ def test_readme_python_section_uses_only_the_public_api():
 @pytest.mark.slow
 def test_readme_python_section_runs(tmp_path, monkeypatch):
     from cablesys.slack.scene import EXAMPLE_TOML
+    from cablesys.towed.scene import EXAMPLE_TOML as TOWED_TOML
 
-    (tmp_path / "cable.toml").write_text(EXAMPLE_TOML)
+    (tmp_path / "cable.toml").write_text(EXAMPLE_TOML)       # `cablesys slack --example`
+    (tmp_path / "towed.toml").write_text(TOWED_TOML)        # `cablesys towed --example`
     monkeypatch.chdir(tmp_path)
     exec(compile(_readme_python_block(), "README.md", "exec"), {})
 
