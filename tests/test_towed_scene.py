@@ -101,7 +101,7 @@ def test_analysis_result_keeps_units_and_the_report_values():
 
 
 def test_runs_table_prints_significant_digits(tmp_path, capsys):
-    """A run whose |H(1)| is below 1e-8 prints as such (it printed 0.0000 to four decimals)."""
+    """A run whose |H(1)| is below 1e-8 prints to significant digits (never as 0.0000)."""
     p = tmp_path / "runs.csv"
     p.write_text("run,L_m,U_mps,f_mHz\nfast,1190,5,100\n")
     assert main(["towed", str(p), "--json"]) == 0

@@ -106,7 +106,7 @@ def test_scalars_and_arrays_give_the_same_numbers(name):
     """Each point asked alone (two floats) equals the same point inside a broadcast call, to 1e-12.
 
     The omega grid reaches 60, where the 0F1 series hands over to the asymptotic expansion
-    (the scalar call there raised TypeError before); xi includes the tow point (c* -> eq. 27a).
+    (a scalar point there goes through the same code); xi includes the tow point (c* -> eq. 27a).
     """
     xi = np.array([0.0, 0.3, 1.0])
     om = np.array([0.5, 4.0, 20.0, 60.0])

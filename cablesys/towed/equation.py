@@ -131,8 +131,10 @@ class TowedCable:
     # length and diameter are the shared quantities of cablesys.scene.fields.QUANTITIES.
     # c_t and c_n keep the report's names because they are other numbers than Wang's coefficients:
     # c_t is referred to pi d_c (F_t = rho/2 pi d_c c_t U^2), Wang's ct_tangential to d (eq. 44), so
-    # c_t = ct_tangential / pi (see :attr:`ct_tangential`); c_n is the coefficient of a drag linear in
-    # the cross-flow angle (F_n = rho/2 d_c c_n U v_n), not Wang's quadratic cd_normal.
+    # c_t = ct_tangential / pi (see :attr:`ct_tangential`); c_n is the effective coefficient c_n* = A C_n
+    # of the drag linear in the cross-flow (F_n = rho/2 d_c c_n U v_n, eq. 39), Wang's quadratic
+    # cd_normal only for a level cable (A = 1). A cable given by C_t, C_n and its drogue's drag area is
+    # converted by :func:`theory_coefficients` (or read as a :class:`cablesys.towed.TowedScene`).
     length: float = quantity("length", "cable length L")
     speed: float = spec("velocity", "tow speed U", symbol="U")
     diameter: float = quantity("diameter", "cable diameter d_c", 0.016)
