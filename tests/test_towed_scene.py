@@ -97,7 +97,13 @@ def test_analysis_result_keeps_units_and_the_report_values():
     D = 2 * res.coefficients["c_t"] * scene.cable.length / scene.cable.diameter + 2 * res.coefficients["c_t_drogue"]
     assert res.damping_time_report_s == pytest.approx(
         2 * math.pi * (D - 1) * scene.cable.diameter / (res.coefficients["c_n"] * scene.speed), rel=1e-12)
-    json.dumps(res.summary())
+    # steady tensions: the drogue end carries the drogue's drag, the tow point adds the friction of L (Wang eq. 44)
+    from cablesys.model.fluid import quadratic_drag
+    drogue = float(quadratic_drag(scene.density, scene.drogue_drag_area, scene.speed))
+    friction = float(quadratic_drag(scene.density, scene.cable.ct_tangential * scene.cable.diameter, scene.speed))
+    assert res.tension_bottom == pytest.approx(drogue, rel=1e-12)
+    assert res.tension_top == pytest.approx(drogue + friction * scene.cable.length, rel=1e-12)
+    assert json.loads(json.dumps(res.summary()))["tension_top_N"] == res.tension_top
 
 
 def test_runs_table_prints_significant_digits(tmp_path, capsys):

@@ -16,6 +16,7 @@ import numpy as np
 from ..errors import SolverError
 from ..results import ResultBase, timed
 from .eigen import Eigenfrequencies, damping_time, modes
+from .equation import added_fluid_mass
 from .scene import TowedScene
 from .transfer import c_star, transfer_function, water_pulley_c_star
 
@@ -31,7 +32,8 @@ class TowedAnalysis(ResultBase):
     m/s; ``coefficients`` the theory's c_t, c_n, c_t_drogue and beta the scene converted to;
     ``modes`` the complementary solution (eq. 18-20, nondimensional); ``damping_time_s`` t_0 (s)
     of the slowest mode from the true first zero of J_p (eq. 19, 23) and
-    ``damping_time_report_s`` the report's closed form (eq. 25).
+    ``damping_time_report_s`` the report's closed form (eq. 25); ``tension_top`` and
+    ``tension_bottom`` (N) the steady tensions at the tow point and the drogue.
     """
 
     scene: Any
@@ -68,6 +70,19 @@ class TowedAnalysis(ResultBase):
         return self.c_star * self.scene.speed
 
     @property
+    def tension_top(self) -> float:
+        """Steady tension at the tow point, N: ``T(0) = 2 M U^2 (c_t L/d_c + c_t')`` (eq. 1-3, 20a)."""
+        c, cab = self.coefficients, self.scene.cable
+        M = added_fluid_mass(self.scene.density, cab.diameter)
+        return 2.0 * M * self.scene.speed**2 * (c["c_t"] * cab.length / cab.diameter + c["c_t_drogue"])
+
+    @property
+    def tension_bottom(self) -> float:
+        """Steady tension at the drogue end, N: ``T(L) = 2 M U^2 c_t'`` (the drogue's drag)."""
+        M = added_fluid_mass(self.scene.density, self.scene.cable.diameter)
+        return 2.0 * M * self.scene.speed**2 * self.coefficients["c_t_drogue"]
+
+    @property
     def frequency(self) -> np.ndarray:
         """Frequencies of the tow-point motion, Hz (omega / 2 pi)."""
         return self.omega / (2.0 * math.pi)
@@ -85,7 +100,8 @@ class TowedAnalysis(ResultBase):
                "omega_rad_s": [float(self.omega[0]), float(self.omega[-1])],
                "H_abs": [float(abs(self.H[k, 0])), float(abs(self.H[k, -1]))],
                "c_star_m_s": [float(self.c_star_m_s[k, 0]), float(self.c_star_m_s[k, -1])]}
-        return {**super().summary(), "coefficients": dict(self.coefficients),
+        return {**super().summary(), "tension_top_N": self.tension_top, "tension_bottom_N": self.tension_bottom,
+                "coefficients": dict(self.coefficients),
                 "modes": self.modes.summary()["modes"], "far_end": far}
 
     def to_xarray(self):

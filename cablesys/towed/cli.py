@@ -137,6 +137,7 @@ def run_scene(args) -> int:
     lines = ["theory coefficients (Kennedy & Strahan 1981): " + ", ".join(
                  f"{name} = {_significant(c[key])}" for name, key in
                  (("c_t", "c_t"), ("c_n*", "c_n"), ("c_t'", "c_t_drogue"), ("beta", "beta"))),
+             f"steady tension: tow point {_significant(res.tension_top)} N, drogue {_significant(res.tension_bottom)} N",
              f"damping time t_0 = {_significant(res.damping_time_s)} s (eq. 19, 23); "
              f"report's eq. 25: {_significant(res.damping_time_report_s)} s",
              f"at xi = {_significant(res.xi[k])}:  f (Hz)  omega (rad/s)  |H|  c* (m/s)"]
