@@ -18,7 +18,7 @@ from ..results import ResultBase, timed
 from .eigen import Eigenfrequencies, damping_time, modes
 from .equation import added_fluid_mass
 from .scene import TowedScene
-from .transfer import c_star, transfer_function, water_pulley_c_star
+from .transfer import TOWED_VARIABLES, c_star, transfer_function, water_pulley_c_star
 
 __all__ = ["TowedAnalysis", "analyze"]
 
@@ -52,17 +52,11 @@ class TowedAnalysis(ResultBase):
     message: str = ""
     stats: dict = field(default_factory=dict)
 
+    # the theory's labels, with omega dimensional here and its nondimensional value as omega_nd
     VARIABLES: ClassVar[dict] = {
-        "xi": ("1", "position along the cable x/L (0 at the tow point)"),
-        "omega": ("rad/s", "angular frequency of the tow-point motion"),
-        "omega_nd": ("1", "nondimensional angular frequency omega L/U"),
-        "frequency": ("Hz", "frequency of the tow-point motion"),
-        "H_abs": ("1", "|H|, transfer function magnitude (eq. 26)"),
-        "H_phase": ("rad", "arg H (eq. 26)"),
-        "phase_lag": ("rad", "unwrapped phase lag psi = -arg H (eq. 26)"),
-        "c_star": ("1", "mean phase velocity c* over the tow speed U (eq. 27b)"),
+        **TOWED_VARIABLES, "omega": ("rad/s", "angular frequency of the tow-point motion"),
+        "omega_nd": TOWED_VARIABLES["omega"], "frequency": ("Hz", "frequency of the tow-point motion"),
         "c_star_m_s": ("m/s", "mean phase velocity c* (eq. 27b)")}
-    SUMMARY_EXCLUDE: ClassVar[tuple] = ()
 
     @property
     def c_star_m_s(self) -> np.ndarray:
