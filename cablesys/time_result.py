@@ -1,6 +1,6 @@
 """A time-domain run as a result (:class:`TimeResult`), with its located slack switches and snap
 loads: labelled series, 2-D profiles of a segmented cable, the summary groups over a statistics
-window. Follows the protocol of :mod:`cablesys.results` (re-exported there).
+window. Follows the protocol of :mod:`cablesys.result_protocol` (re-exported by :mod:`cablesys.results`).
 """
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from .results import ResultBase, unit_of
+from .result_protocol import ResultBase, unit_of
 
 
 @dataclasses.dataclass(frozen=True)
