@@ -182,7 +182,7 @@ def bound_extremes(stats: dict, fallback: dict, floor: float | None = 0.0) -> tu
     return out, crossed
 
 
-def _nonnegative(stats: dict, t=None, raw=None) -> dict:
+def as_tension(stats: dict, t=None, raw=None) -> dict:
     """``stats`` of a tension with no value below 0 N (module docstring): the slack time of the ``raw`` series
     (samples at or below 0, trapezoid in time), the Gaussian slack probability, clipped extremes and a note."""
     out = dict(stats)
@@ -240,7 +240,7 @@ def time_domain(t, y, duration: float | None = None, *, floor: float = 0.0, nonn
            "most_probable_max": mean + mpm, "most_probable_min": mean - mpm}
     if why:
         out["zero_upcrossing_note"] = why
-    return _nonnegative(out, t, raw) if nonnegative else out
+    return as_tension(out, t, raw) if nonnegative else out
 
 
 def moment(omega, S, order: int = 0) -> float:
@@ -280,7 +280,7 @@ def frequency_domain(omega, S, duration: float, mean: float = 0.0, *, nonnegativ
            "most_probable_max": mean + mpm, "most_probable_min": mean - mpm}
     if tz is None:
         out["zero_upcrossing_note"] = "no T_z: the spectrum has no positive m0 and m2"
-    return _nonnegative(out) if nonnegative else out
+    return as_tension(out) if nonnegative else out
 
 
 def side_by_side(td: dict | None, fd: dict | None) -> dict:
