@@ -129,12 +129,12 @@ def gaussian_probability_below(level: float, mean: float, sigma: float) -> float
     return 0.5 * math.erfc((mean - level) / (sigma * math.sqrt(2.0)))
 
 
-def amplitude_change(first: float, second: float, floor: float = 0.0) -> float:
-    """Relative change of an amplitude between two halves of a window: |a2 - a1| / max(a1, a2), and 0 when the
-    change is within the absolute ``floor`` (the unit of the amplitudes, :data:`FLOORS`): a change of a zero or
-    round-off amplitude is no change."""
+def amplitude_change(first: float, second: float, floor: float = 0.0, scale: float | None = None) -> float:
+    """Relative change of an amplitude between two halves of a window: |a2 - a1| / max(a1, a2) (or / ``scale``, a
+    normalization shared by several amplitudes), and 0 when the change is within the absolute ``floor`` (the unit
+    of the amplitudes, :data:`FLOORS`): a change of a zero or round-off amplitude is no change."""
     d = abs(float(second) - float(first))
-    return 0.0 if d <= floor else d / max(abs(first), abs(second))
+    return 0.0 if d <= floor else d / (scale if scale else max(abs(first), abs(second)))
 
 
 def settled(t, y, rtol: float = 1e-3, floor: float = 0.0) -> tuple[bool, float]:
@@ -268,14 +268,14 @@ def frequency_domain(omega, S, duration: float, mean: float = 0.0, *, nonnegativ
     Returns
     -------
     dict
-        Same keys as :func:`time_domain`; ``max``/``min`` are the most probable extremes, ``amplitude`` the most
-        probable largest excursion.
+        The keys of :func:`time_domain` but ``amplitude`` (a sampled half peak-to-peak); ``max``/``min`` are the
+        most probable extremes.
     """
     m0, m2 = moment(omega, S, 0), moment(omega, S, 2)
     std = math.sqrt(max(m0, 0.0))
     tz = spectral_zero_upcrossing_period(m0, m2)
     mpm = rayleigh_mpm(std, tz, duration)
-    out = {"max": mean + mpm, "min": mean - mpm, "mean": mean, "std": std, "amplitude": mpm,
+    out = {"max": mean + mpm, "min": mean - mpm, "mean": mean, "std": std,
            "significant_amplitude": significant_amplitude(std), "zero_upcrossing_period_s": tz,
            "most_probable_max": mean + mpm, "most_probable_min": mean - mpm}
     if tz is None:

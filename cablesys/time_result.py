@@ -40,6 +40,9 @@ class SnapLoad:
     element: int | None = None
 
 
+SETTLED_RTOL = 1e-3     # relative change of the body amplitudes between the window's halves of a settled run
+
+
 def _union_length(intervals, t0: float = -np.inf, t1: float = np.inf) -> float:
     """Length (s) of the union of the intervals [a, b] clipped to [t0, t1]."""
     total, end = 0.0, -np.inf
@@ -219,7 +222,9 @@ class TimeResult(ResultBase):
     def _statistics_groups(self) -> dict:
         """``tension``, ``slack``, ``body``, ``model`` and ``window_s`` over the statistics window (tensions never
         below 0 N, :mod:`cablesys.statistics`; slack from :meth:`slack_intervals`, :meth:`slack_events` and
-        :meth:`snap_loads` for every model)."""
+        :meth:`snap_loads` for every model). ``body.settled``: the lowest body's x and y amplitudes changed between
+        the halves of the window by at most SETTLED_RTOL or 1 micrometre (:func:`cablesys.statistics.settled`);
+        ``body.amplitude_change`` the larger relative change."""
         from . import statistics as st
         mask = self._window_mask()
         if not np.any(mask):                  # a run that failed before the window: report no statistics
@@ -230,12 +235,16 @@ class TimeResult(ResultBase):
         out = {"window_s": [t0, t1],
                "tension": {"top_min_N": ext(top, np.min), "top_max_N": ext(top, np.max),
                            "bottom_min_N": ext(bottom, np.min), "bottom_max_N": ext(bottom, np.max)}}
-        body = {}
+        body, changes = {}, []
         for axis in ("x", "y"):
             lbl = self._last(f"{axis}_b")
             y = self.data[lbl][mask] if lbl else None
             body[f"{axis}_amplitude_m"] = None if y is None else st.half_range(y)
             body[f"{axis}_mean_m"] = None if y is None else float(np.mean(y))
+            if y is not None:
+                changes.append(st.settled(self.time[mask], y, SETTLED_RTOL, st.FLOORS["m"]))
+        body["settled"] = all(ok for ok, _ in changes)
+        body["amplitude_change"] = max((c for _, c in changes), default=0.0)
         out["body"] = body
         out["slack"] = self._slack_group(t0, t1)
         info = dict(self.model_info)

@@ -145,3 +145,20 @@ def test_amplitude_change_on_an_absolute_floor():
     assert st.amplitude_change(0.0, 1e-12, st.FLOORS["m"]) == 0.0
     assert st.amplitude_change(0.0, 0.0) == 0.0
     assert st.amplitude_change(1e-3, 2e-3, st.FLOORS["m"]) == pytest.approx(0.5)
+    assert st.amplitude_change(1e-3, 2e-3, st.FLOORS["m"], scale=0.1) == pytest.approx(0.01)
+    assert st.amplitude_change(0.1, 0.1 + 5e-7, st.FLOORS["m"], scale=0.1) == 0.0
+
+
+def test_run_summary_settled_flag():
+    """A TimeResult holding a steady tow (x_b constant with 5.6e-12 m jitter) is settled; one whose heave grows by
+    10 % over the window is not, with the change of the amplitudes of the window's halves."""
+    from cablesys.results import TimeResult
+    rng = np.random.default_rng(2)
+    t = np.linspace(0.0, 100.0, 2001)
+    tow = TimeResult(time=t, data={"x_b": 80.0 + 5.6e-12 * rng.standard_normal(t.size), "y_b": np.full(t.size, 40.0)})
+    body = tow.summary()["body"]
+    assert body["settled"] and body["amplitude_change"] == 0.0
+    grow = 1.0 + 0.1 * t / 100.0
+    heave = TimeResult(time=t, data={"x_b": np.zeros(t.size), "y_b": 40.0 + grow * np.sin(2 * np.pi * t / 4.0)})
+    body = heave.summary()["body"]                    # window: the last 20 s, amplitude 1.08 .. 1.1
+    assert not body["settled"] and body["amplitude_change"] == pytest.approx(0.01 / 1.1, rel=0.05)
