@@ -287,12 +287,12 @@ class TimeResult(ResultBase):
             raise KeyError(f"{label!r} is not a result series; available: {', '.join(self.data)}") from None
 
     def steady_amplitude(self, label: str, period: float, n_periods: int = 3) -> float:
-        """Half the peak-to-peak of ``label`` over the last ``n_periods`` periods."""
+        """Half the peak-to-peak of ``label`` over the last ``n_periods`` periods (:func:`cablesys.statistics.half_range`)."""
         t = self.time
         if t[-1] - t[0] < n_periods * period * (1 - 1e-9):
             raise ValueError(f"the run lasts {t[-1] - t[0]:.4g} s, shorter than {n_periods} periods of {period:.4g} s")
-        y = self[label][t >= t[-1] - n_periods * period - 1e-12]
-        return 0.5 * float(np.max(y) - np.min(y))
+        from .statistics import half_range
+        return half_range(self[label][t >= t[-1] - n_periods * period - 1e-12])
 
     def time_slack(self) -> float:
         """Total time (s) any section (any element of a segmented cable) was slack over the run
