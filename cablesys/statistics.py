@@ -196,11 +196,11 @@ def as_tension(stats: dict, t=None, raw=None) -> dict:
             notes.append(f"the series fell to {low:.4g} (a rope carries no compression): counted as 0, "
                          f"slack for {out['slack_time_s']:.3g} s")
     out["slack_probability"] = gaussian_probability_below(0.0, stats["mean"], stats["std"])
-    if stats["most_probable_min"] < 0.0:
+    if stats["most_probable_min"] is not None and stats["most_probable_min"] < 0.0:
         notes.append(f"the Gaussian most probable minimum {stats['most_probable_min']:.4g} is below 0: reported as 0; "
                      f"the cable goes slack (Gaussian P(T < 0) = {out['slack_probability']:.3g})")
     for k in ("max", "min", "most_probable_max", "most_probable_min"):
-        out[k] = max(float(out[k]), 0.0)
+        out[k] = None if out[k] is None else max(float(out[k]), 0.0)
     if notes:
         out["note"] = "; ".join(notes)
     return out
@@ -227,7 +227,8 @@ def time_domain(t, y, duration: float | None = None, *, floor: float = 0.0, nonn
     dict
         ``max, min, mean, std, amplitude`` (half the peak-to-peak), ``significant_amplitude`` (2 std),
         ``zero_upcrossing_period_s`` (None without it, ``zero_upcrossing_note`` saying why),
-        ``most_probable_max`` and ``most_probable_min`` (mean +- sigma sqrt(2 ln(D / T_z))).
+        ``most_probable_max`` and ``most_probable_min`` (mean +- sigma sqrt(2 ln(D / T_z)); the mean for a series
+        that does not vary above its resolution, None for one that varies without a T_z).
     """
     t, raw = np.asarray(t, float), np.asarray(y, float)
     y = np.maximum(raw, 0.0) if nonnegative else raw          # a rope's tension: compression counts as slack (0)
@@ -240,6 +241,8 @@ def time_domain(t, y, duration: float | None = None, *, floor: float = 0.0, nonn
            "most_probable_max": mean + mpm, "most_probable_min": mean - mpm}
     if why:
         out["zero_upcrossing_note"] = why
+        if std > resolution(y, floor):      # it varies, but not as a process with a period: no Rayleigh extremes
+            out["most_probable_max"] = out["most_probable_min"] = None
     return as_tension(out, t, raw) if nonnegative else out
 
 

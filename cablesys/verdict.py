@@ -119,11 +119,11 @@ def evaluate(limits, stats: dict, snaps=()) -> dict:
     tens = [k for k in stats if _is_tension(k)]
     stats = {k: st.as_tension(v) if k in tens else v for k, v in stats.items()}
 
-    def hi(s):
-        return max(s["max"], s["most_probable_max"]) if use_mpm else s["max"]
+    def hi(s):          # a series without a T_z has no most probable extremes (None): its observed ones
+        return max(s["max"], s["most_probable_max"]) if use_mpm and s["most_probable_max"] is not None else s["max"]
 
     def lo(s):
-        return min(s["min"], s["most_probable_min"]) if use_mpm else s["min"]
+        return min(s["min"], s["most_probable_min"]) if use_mpm and s["most_probable_min"] is not None else s["min"]
 
     out = {}
     if tens:
@@ -250,7 +250,7 @@ def format_statistics(statistics: dict, system: str = "SI") -> list[str]:
         f, unit = output_unit(group.split("_", 1)[1].replace("_", "/") if "_" in group else "", system)
         for lbl, s in rows.items():
             lines.append(f"{lbl + ' [' + unit + ']':<18} {s['mean'] * f:>11.5g} {s['std'] * f:>10.4g} "
-                         f"{s['min'] * f:>11.5g} {s['max'] * f:>11.5g} {s['most_probable_max'] * f:>11.5g} "
+                         f"{s['min'] * f:>11.5g} {s['max'] * f:>11.5g} {_scaled(s['most_probable_max'], f):>11} "
                          f"{_num(s['zero_upcrossing_period_s']):>7}")
     for group, rows in statistics.items():
         for lbl, s in (rows.items() if isinstance(rows, dict) else ()):
@@ -261,3 +261,7 @@ def format_statistics(statistics: dict, system: str = "SI") -> list[str]:
 
 def _num(v) -> str:
     return "-" if v is None else f"{v:.3g}"
+
+
+def _scaled(v, factor: float) -> str:
+    return "-" if v is None else f"{v * factor:.5g}"

@@ -162,3 +162,14 @@ def test_run_summary_settled_flag():
     heave = TimeResult(time=t, data={"x_b": np.zeros(t.size), "y_b": 40.0 + grow * np.sin(2 * np.pi * t / 4.0)})
     body = heave.summary()["body"]                    # window: the last 20 s, amplitude 1.08 .. 1.1
     assert not body["settled"] and body["amplitude_change"] == pytest.approx(0.01 / 1.1, rel=0.05)
+
+
+def test_a_varying_series_without_a_period_has_no_most_probable_extremes():
+    """A ramp varies (std > 0) but never crosses its mean upwards twice: no T_z, so no Rayleigh most probable
+    extremes (None, not the mean under that name); a constant's are its value."""
+    t = np.linspace(0.0, 10.0, 101)
+    s = st.time_domain(t, 2.0 * t, duration=3600.0)
+    assert s["std"] > 0 and s["zero_upcrossing_period_s"] is None
+    assert s["most_probable_max"] is None and s["most_probable_min"] is None
+    tension = st.time_domain(t, 100.0 - 2.0 * t, nonnegative=True)
+    assert tension["most_probable_min"] is None and tension["min"] == pytest.approx(80.0)
