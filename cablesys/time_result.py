@@ -12,6 +12,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from . import statistics as st
 from .result_protocol import ResultBase, unit_of
 
 
@@ -121,7 +122,7 @@ class TimeResult(ResultBase):
 
     def _element_section(self) -> int | None:
         """The section of every element: 0 for a one-section cable, None (unknown here) for several."""
-        return 0 if not any(f"{b}_2" in self.data for b in ("x_b", "tension_top", "tension")) else None
+        return 0 if self._n_sections() == 1 else None
 
     def slack_intervals(self) -> dict:
         """Slack intervals [t_start, t_end] (s) of every section (Wang 1971 eq. 54: from the located switches and
@@ -225,7 +226,6 @@ class TimeResult(ResultBase):
         :meth:`snap_loads` for every model). ``body.settled``: the lowest body's x and y amplitudes changed between
         the halves of the window by at most SETTLED_RTOL or 1 micrometre (:func:`cablesys.statistics.settled`);
         ``body.amplitude_change`` the larger relative change."""
-        from . import statistics as st
         mask = self._window_mask()
         if not np.any(mask):                  # a run that failed before the window: report no statistics
             mask = np.ones_like(self.time, dtype=bool)
@@ -291,8 +291,7 @@ class TimeResult(ResultBase):
         t = self.time
         if t[-1] - t[0] < n_periods * period * (1 - 1e-9):
             raise ValueError(f"the run lasts {t[-1] - t[0]:.4g} s, shorter than {n_periods} periods of {period:.4g} s")
-        from .statistics import half_range
-        return half_range(self[label][t >= t[-1] - n_periods * period - 1e-12])
+        return st.half_range(self[label][t >= t[-1] - n_periods * period - 1e-12])
 
     def time_slack(self) -> float:
         """Total time (s) any section (any element of a segmented cable) was slack over the run
