@@ -182,15 +182,26 @@ def bound_extremes(stats: dict, fallback: dict, floor: float | None = 0.0) -> tu
     return out, crossed
 
 
+def flagged_intervals(t, flags) -> list[tuple[float, float]]:
+    """The intervals (s) of the runs of flagged samples: from the first flagged sample of a run to the first
+    unflagged one after it (the last time when the run lasts to the end). Their total length is the sum of the
+    sample steps that start at a flagged sample: the time spent slack resolved to the output step."""
+    t, f = np.asarray(t, float), np.asarray(flags, bool)
+    if not f.any():
+        return []
+    edge = np.diff(np.concatenate([[0], f.astype(np.int8), [0]]))
+    starts, ends = np.flatnonzero(edge == 1), np.flatnonzero(edge == -1)
+    return [(float(t[a]), float(t[min(b, t.size - 1)])) for a, b in zip(starts, ends)]
+
+
 def as_tension(stats: dict, t=None, raw=None) -> dict:
     """``stats`` of a tension with no value below 0 N (module docstring): the slack time of the ``raw`` series
-    (samples at or below 0, trapezoid in time), the Gaussian slack probability, clipped extremes and a note."""
+    (:func:`flagged_intervals` of its samples at or below 0), the Gaussian slack probability, clipped extremes and
+    a note."""
     out = dict(stats)
     notes = []
     if raw is not None:
-        below = (np.asarray(raw, float) <= 0.0).astype(float)
-        dt = np.diff(np.asarray(t, float))
-        out["slack_time_s"] = float(np.sum(dt * 0.5 * (below[1:] + below[:-1]))) if dt.size else 0.0
+        out["slack_time_s"] = sum(b - a for a, b in flagged_intervals(t, np.asarray(raw, float) <= 0.0))
         low = float(np.min(raw))
         if low < 0.0:
             notes.append(f"the series fell to {low:.4g} (a rope carries no compression): counted as 0, "

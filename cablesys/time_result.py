@@ -126,8 +126,10 @@ class TimeResult(ResultBase):
 
     def slack_intervals(self) -> dict:
         """Slack intervals [t_start, t_end] (s) of every section (Wang 1971 eq. 54: from the located switches and
-        the sections slack at the first output) or, for a segmented cable, of every element (from its slack flag:
-        from its first slack output sample to its first taut one); an interval still open ends at the last time.
+        the sections slack at the first output; a section without a located switch whose tension output reaches
+        0 N, as in a model without the switch: from those samples) or, for a segmented cable, of every element
+        (from its slack flag), the samples' intervals by :func:`cablesys.statistics.flagged_intervals`; an
+        interval still open ends at the last time.
 
         Returns
         -------
@@ -138,13 +140,7 @@ class TimeResult(ResultBase):
         t = self.time
         if self.segmented:
             flags = self.profiles["element_slack"] > 0.5
-            out = {}
-            for k in np.nonzero(np.any(flags, axis=0))[0]:
-                f = np.concatenate([[False], flags[:, k], [False]])
-                starts, ends = np.nonzero(f[1:-1] & ~f[:-2])[0], np.nonzero(~f[1:-1] & f[:-2])[0]
-                ends = list(t[ends]) + [float(t[-1])] * (len(starts) - len(ends))
-                out[("element", int(k))] = [(float(t[a]), float(e)) for a, e in zip(starts, ends)]
-            return out
+            return {("element", int(k)): st.flagged_intervals(t, flags[:, k]) for k in np.nonzero(np.any(flags, axis=0))[0]}
         out, open_at = {}, {i: float(t[0]) for i in self.initially_slack}
         for ev in self.events:
             if ev.kind == "slack":
@@ -153,6 +149,12 @@ class TimeResult(ResultBase):
                 out.setdefault(("section", ev.section), []).append((open_at.pop(ev.section), ev.time))
         for i, a in open_at.items():
             out.setdefault(("section", i), []).append((a, float(t[-1])))
+        switched = {ev.section for ev in self.events} | set(self.initially_slack)
+        n = self._n_sections()
+        for i in range(n):      # a model without the slack switch (quasi-static, a -inf floor): its tension's samples
+            lbl = "tension" + ("" if n == 1 else f"_{i + 1}")
+            if i not in switched and lbl in self.data and np.any(self.data[lbl] <= 0.0):
+                out[("section", i)] = st.flagged_intervals(t, np.asarray(self.data[lbl]) <= 0.0)
         return out
 
     def slack_events(self) -> tuple:

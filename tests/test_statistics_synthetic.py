@@ -107,7 +107,7 @@ def test_tension_below_zero_reports_zero_and_the_slack_time():
     assert all(s[k] >= 0.0 for k in ("max", "min", "mean", "most_probable_max", "most_probable_min"))
     assert s["min"] == 0.0 and s["max"] == pytest.approx(T0 + A, rel=1e-6)
     frac = 0.5 - math.asin(T0 / A) / math.pi
-    assert s["slack_time_s"] == pytest.approx(frac * t[-1], rel=1e-3)
+    assert s["slack_time_s"] == pytest.approx(frac * t[-1], abs=20 * (t[1] - t[0]))   # 20 intervals, each to dt
     assert "-300" in s["note"]
     assert s["mean"] == pytest.approx(np.mean(np.maximum(y, 0.0)))
 

@@ -115,15 +115,17 @@ def test_no_tension_statistic_is_negative_and_extremes_bound_each_other(runs, na
 
 def test_a_rope_made_to_push_reports_zero_and_its_slack_time(runs):
     """The injected fault: a -inf floor lets the 2-DOF cable push (it starts 0.2 m short, k = 1000 N/m: -200 N).
-    The statistics say 0 N, the time it pushed as slack time, and name the raw minimum."""
+    The statistics say 0 N, the time it pushed as slack time (the output steps that start at a sample <= 0), the
+    run's summary the same slack time, and the note names the raw minimum."""
     r = runs["2dof-rope-pushes"]
     raw = np.asarray(r["tension"])
     assert raw.min() < -100.0                                  # the fault is there
     s = vd.run_statistics(r, Limits(statistics_start=0.0))["tension"]
     assert s["min"] == 0.0 and s["mean"] >= 0.0
-    dt = np.diff(r.time)
-    assert s["slack_time_s"] == pytest.approx(np.sum(dt * 0.5 * ((raw[1:] <= 0) + 0.0 + (raw[:-1] <= 0))))
+    assert s["slack_time_s"] == pytest.approx(float(np.sum(np.diff(r.time)[raw[:-1] <= 0.0])), abs=1e-12)
     assert s["slack_time_s"] > 0.1 and "fell to" in s["note"]
+    assert not r.events                                         # no located switch at a -inf floor, yet:
+    assert r.summary()["time_slack_s"] == pytest.approx(s["slack_time_s"], abs=1e-12)   # the summary says the same
 
 
 def test_segmented_slack_comes_from_the_element_tensions(runs):
