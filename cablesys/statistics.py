@@ -5,8 +5,8 @@ spectrum S(omega) and moments m_n = int omega^n S d omega:
 
 * standard deviation sigma = sqrt(m0) (of a series: the population standard deviation of the samples);
 * significant amplitude A_s = 2 sigma: the mean of the highest third of the amplitudes of a narrow-band
-  Gaussian process, whose amplitudes are Rayleigh distributed (Longuet-Higgins 1952; DNV-RP-C205 sec. 3.5.5:
-  H_s = 4 sqrt(m0) is the double amplitude). It is 2 sigma for every signal, so the time and frequency
+  Gaussian process, whose amplitudes are Rayleigh distributed (Longuet-Higgins 1952; H_s = 4 sqrt(m0) is the
+  double amplitude, Bai & Jin, Marine Structural Design, sec. 2.2.5). It is 2 sigma for every signal, so the time and frequency
   domain agree by construction; a sinusoid of amplitude A has A_s = sqrt(2) A, and its amplitude
   (half the peak-to-peak) is :func:`half_range`;
 * mean zero-up-crossing period T_z = 2 pi sqrt(m0 / m2) (Rice 1944; DNV-RP-C205 eq. 3.5.4.4); of a series, the
@@ -48,7 +48,7 @@ def resolution(y, floor: float = 0.0) -> float:
 
 def significant_amplitude(sigma: float) -> float:
     """A_s = 2 sigma (unit of sigma): the mean of the highest third of the Rayleigh amplitudes of a narrow-band
-    Gaussian process (Longuet-Higgins 1952; DNV-RP-C205 sec. 3.5.5, H_s = 4 sqrt(m0))."""
+    Gaussian process (Longuet-Higgins 1952; H_s = 4 sqrt(m0), Bai & Jin, Marine Structural Design, sec. 2.2.5)."""
     return 2.0 * float(sigma)
 
 
