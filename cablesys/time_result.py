@@ -6,6 +6,7 @@ window. Follows the protocol of :mod:`cablesys.result_protocol` (re-exported by 
 from __future__ import annotations
 
 import dataclasses
+import functools
 import json
 from pathlib import Path
 from typing import ClassVar
@@ -161,6 +162,10 @@ class TimeResult(ResultBase):
         """Every taut/slack switch (:class:`SlackEvent`): the located switches of the sections (``events``), or
         for a segmented cable every change of an element's slack flag, at the first output sample in the new
         state, with the element's dT/dt there (N/s), in time order."""
+        return self._slack_events
+
+    @functools.cached_property
+    def _slack_events(self) -> tuple:
         if not self.segmented:
             return tuple(self.events)
         flags = self.profiles["element_slack"] > 0.5
@@ -175,6 +180,10 @@ class TimeResult(ResultBase):
     def snap_loads(self) -> tuple:
         """Every snap load (:class:`SnapLoad`): the sections' located ones (``snaps``), or for a segmented cable
         the first tension maximum of an element after each re-tensioning (:meth:`snap_events`), in time order."""
+        return self._snap_loads
+
+    @functools.cached_property
+    def _snap_loads(self) -> tuple:
         if not self.segmented:
             return tuple(self.snaps)
         sec = self._element_section()
