@@ -28,7 +28,7 @@ PKG = Path(__file__).resolve().parents[1] / "cablesys"
 # matching prefix; ``*.plots*`` and ``*.cli`` modules of any subpackage sit in the plots and
 # cli layers. New packages: add them here.
 LAYERS = [
-    ("foundation", ("cablesys.units", "cablesys.errors", "cablesys.results", "cablesys.reader", "cablesys.options", "cablesys.time_result",
+    ("foundation", ("cablesys.units", "cablesys.errors", "cablesys.results", "cablesys.result_protocol", "cablesys.reader", "cablesys.options", "cablesys.time_result",
                     "cablesys.statistics", "cablesys.outputs", "cablesys.compiled", "cablesys.messages",
                     "cablesys.integration", "cablesys.profiles", "cablesys.lazy", "cablesys.atomic", "cablesys.tables",
                     "cablesys.disk_cache")),
