@@ -43,7 +43,10 @@ class CaseStore:
         self.out = Path(out)
         self.cases_dir = self.out / "cases"
         self.key = fingerprint(spec)
-        OutputDir(self.out, "sweep", self.key)      # a file, an uncreatable or unwritable place: ParameterError
+        try:                                        # a file, an uncreatable or unwritable place, another command's folder
+            OutputDir(self.out, "sweep", self.key)
+        except ParameterError as err:               # (a sweep has no --overwrite: the hint is another folder)
+            raise ParameterError(err.field, err.value, err.allowed, "choose another folder" if err.hint else "") from None
         try:
             self.cases_dir.mkdir(parents=True, exist_ok=True)
             self._claim(spec)
