@@ -11,6 +11,7 @@ looks like a number. Dimensions beyond the first two are held at their first val
 
 from __future__ import annotations
 
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -192,10 +193,11 @@ def _panel_continuous(fig, ax, ds, name, da):
 
 def summary_metrics(ds, metrics=None) -> tuple[list, list]:
     """(drawn, not drawn): the metrics of the summary figure, headline ones first (:data:`HEADLINE`), at most
-    :data:`MAX_PANELS`; ``metrics`` given: those, in that order. Constant and many-valued text metrics are
-    not drawn (they are in the Dataset)."""
+    :data:`MAX_PANELS`; ``metrics`` given: those, in that order. Constant and many-valued or long text metrics
+    are not drawn (they are in the Dataset; the figure names the ones left out)."""
     if metrics is not None:
-        names = list(metrics)
+        drawable = [n for n in metrics if ds[n].dtype.kind == "f" or categories(ds[n]) is not None]
+        return drawable, [n for n in metrics if n not in drawable]
     else:
         names = []
         for name, da in ds.data_vars.items():
@@ -233,7 +235,8 @@ def figure_sweep(ds, metrics=None):
     ncol = min(3, len(names))
     nrow = -(-len(names) // ncol)
     one_d = len(dims) == 1
-    fig, axes = plt.subplots(nrow, ncol, figsize=(5.2 * ncol, (3.0 if one_d else 3.8) * nrow + 1.4),
+    width = max(5.2 * ncol, 8.0)
+    fig, axes = plt.subplots(nrow, ncol, figsize=(width, (3.0 if one_d else 3.8) * nrow + 1.4),
                              squeeze=False, layout="constrained")
     ok = sub["status"] == "ok"
     for ax, name in zip(axes.ravel(), names):
@@ -254,7 +257,8 @@ def figure_sweep(ds, metrics=None):
     note = f"base scene: {ds.attrs.get('scene', '')} (its values of the varied labels are replaced case by case)"
     if rest:
         note += f"\n{len(rest)} more metrics in sweep.nc, not drawn: {', '.join(rest[:8])}{', ...' if len(rest) > 8 else ''}"
-    fig.supxlabel(note, fontsize=7, x=0.01, ha="left", color="0.35")
+    fig.supxlabel("\n".join(textwrap.fill(line, int(17 * width)) for line in note.split("\n")),
+                  fontsize=7, x=0.01, ha="left", color="0.35")
     return fig
 
 
