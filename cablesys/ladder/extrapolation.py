@@ -251,6 +251,13 @@ def model_dict(choice) -> dict:
     """``choice.as_dict()`` with, after an extrapolation, ``extrapolated`` (the block of :func:`extrapolate`),
     ``estimated_error_time_series`` (the N run's own estimated error) and ``estimated_error_refers_to``."""
     d = choice.as_dict()
+    per = choice.numbers.get("per_quantity")
+    d["checked"] = ("a posteriori: N = {0} against N = {1}".format(choice.numbers["checked_n"], choice.numbers["checked_n"] // 2)
+                    if per is not None and choice.numbers.get("checked_n") == choice.segments
+                    else "extrapolated" if choice.numbers.get("extrapolated") is not None
+                    else "a priori only: unchecked")
+    if per is not None and d["checked"].startswith("a posteriori"):
+        d["estimated_error_per_quantity"] = {k: float(v) for k, v in per.items()}
     block = choice.numbers.get("extrapolated")
     if block is not None:
         d.update(estimated_error_refers_to="the extrapolated statistics (model.extrapolated.statistics)",

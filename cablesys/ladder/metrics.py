@@ -39,10 +39,11 @@ def window(time: np.ndarray, period: float | None, n_periods: int = 5) -> np.nda
 
 
 def statistics(result, period: float | None) -> dict:
-    """Body amplitudes and tension extremes of ``result`` (a TimeResult) over the window (every section's
-    bodies and end tensions in a chain: ``x_b_2_amplitude``, ``tension_top_2_max``, ...)."""
+    """Body amplitudes and means and tension extremes of ``result`` (a TimeResult) over the window (every section's
+    bodies and end tensions in a chain: ``x_b_2_amplitude``, ``x_b_2_mean``, ``tension_top_2_max``, ...)."""
     w = window(np.asarray(result.time), period)
     out = {f"{k}_amplitude": a for k, a in _amplitudes(result, w).items()}
+    out.update({f"{k}_mean": float(np.mean(np.asarray(result[k])[w])) for k in _labels(result, BODY)})
     for k in _labels(result, TENSIONS):
         y = np.asarray(result[k])[w]
         out[f"{k}_max"], out[f"{k}_min"] = max(float(y.max()), 0.0), max(float(y.min()), 0.0)
@@ -81,6 +82,31 @@ def errors(stats: dict, reference: dict) -> dict:
     body = max(abs(stats[k] - reference[k]) for k in amps) / max(a_ref, 1e-300)
     tension = max(abs(stats[k] - reference[k]) for k in ext) / max(t_ref, 1e-300)
     return {"body": float(body), "tension": float(tension)}
+
+
+LENGTH_FLOOR_M = 0.01           # a body coordinate's error is judged on at least 1 cm
+TENSION_FLOOR_FRACTION = 0.01   # a tension extreme's on at least 1 % of the largest top tension
+
+
+def group(key: str) -> str:
+    """The tolerance a quantity of :func:`statistics` answers to: "body" (m) or "tension" (N)."""
+    return "tension" if key.endswith(("_max", "_min")) else "body"
+
+
+def quantity_errors(stats: dict, reference: dict) -> dict:
+    """{quantity: relative error} of ``stats`` against ``reference`` (both from :func:`statistics`), each relative to
+    its own reference value with an absolute floor: LENGTH_FLOOR_M for the body's amplitudes and means (a 2 cm sway
+    is judged on centimetres, not on the heave), TENSION_FLOOR_FRACTION x the largest top tension for the tension
+    extremes (a slack minimum of 0 N is judged on that)."""
+    tops = [v for k, v in reference.items() if k.endswith("_max")]
+    floor_n = TENSION_FLOOR_FRACTION * max(tops, default=0.0)
+    out = {}
+    for k, ref in reference.items():
+        if k not in stats:
+            continue
+        floor = floor_n if group(k) == "tension" else LENGTH_FLOOR_M
+        out[k] = float(abs(stats[k] - ref) / max(abs(ref), floor, 1e-300))
+    return out
 
 
 def forcing_period(scene) -> float | None:

@@ -34,6 +34,8 @@ import dataclasses
 
 import numpy as np
 
+from .. import statistics as st
+
 from ..errors import ParameterError
 from ..model import CableModel
 from ..results import ResultBase, timed
@@ -84,8 +86,7 @@ class PeriodicSolution(ResultBase):
 
     def amplitude(self, label: str, n_fine: int = 4096) -> float:
         """Half the peak-to-peak of the trigonometric interpolant of ``label``."""
-        y = trig_interpolate(self.outputs[label], n_fine)
-        return 0.5 * float(y.max() - y.min())
+        return st.half_range(trig_interpolate(self.outputs[label], n_fine))
 
     def first_harmonic(self, label: str) -> complex:
         """Complex first-harmonic amplitude Y with y ~ Re(Y e^{i omega t})."""

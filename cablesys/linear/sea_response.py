@@ -70,7 +70,8 @@ def sea_response(scene, lin, *, outputs=None, exposure: float | None = None, n: 
     for o in outputs:
         H = r(o, "x_s") * X + r(o, "y_s") * Y
         spectra[o] = np.abs(H) ** 2 * S
-        stats[o] = st.frequency_domain(omega, spectra[o], exposure, mean=float(mean.get(o, 0.0)))
+        stats[o] = st.frequency_domain(omega, spectra[o], exposure, mean=float(mean.get(o, 0.0)),
+                                       nonnegative=o.startswith("tension"))      # a tension-only cable: >= 0
     return SeaResponse(omega=omega, sea=S, spectra=spectra, statistics=stats, exposure=float(exposure))
 
 

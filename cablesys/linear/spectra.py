@@ -9,8 +9,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.stats import norm
 
+from .. import statistics as st
 from ..scene.spectra import jonswap, pierson_moskowitz
 
 __all__ = ["jonswap", "pierson_moskowitz", "response_spectrum", "significant_amplitude", "slack_probability",
@@ -18,9 +18,8 @@ __all__ = ["jonswap", "pierson_moskowitz", "response_spectrum", "significant_amp
 
 
 def spectral_moment(omega, S, order: int = 0) -> float:
-    """m_n = int w^n S(w) dw (trapezoid on the given grid)."""
-    omega = np.asarray(omega, float)
-    return float(np.trapezoid(omega**order * np.asarray(S, float), omega))
+    """m_n = int w^n S(w) dw (trapezoid on the given grid): :func:`cablesys.statistics.moment`."""
+    return st.moment(omega, S, order)
 
 
 def response_spectrum(transfer, S) -> np.ndarray:
@@ -46,7 +45,7 @@ def significant_amplitude(omega, S) -> float:
     float
         Significant amplitude (unit of the quantity).
     """
-    return 2.0 * math.sqrt(max(spectral_moment(omega, S, 0), 0.0))
+    return st.significant_amplitude(math.sqrt(max(spectral_moment(omega, S, 0), 0.0)))
 
 
 def slack_probability(mean_tension: float, std_tension: float, tension_floor: float) -> float:
@@ -66,6 +65,4 @@ def slack_probability(mean_tension: float, std_tension: float, tension_floor: fl
     float
         Probability in [0, 1].
     """
-    if std_tension <= 0:
-        return float(mean_tension < tension_floor)
-    return float(norm.cdf((tension_floor - mean_tension) / std_tension))
+    return st.gaussian_probability_below(tension_floor, mean_tension, std_tension)
