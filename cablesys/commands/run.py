@@ -357,7 +357,7 @@ def _run_dale_table(args, out: Path) -> int:
 def _dale_model(scene) -> dict:
     """summary.json's ``model`` of the Dale table: Wang's 2-DOF model on purpose (the table reproduces the
     report's model against the experiment), with the ladder's estimate of its error for this scene and
-    what the ladder would run instead (issue 12: every result says which model ran, why, and its error)."""
+    what the ladder would run instead (every result says which model ran, why, and its error)."""
     from ..ladder.choice import choose, forced
     from ..ladder.rungs import RungCache
     cache = RungCache()          # one Wang model and describing-function solver for both questions

@@ -18,7 +18,7 @@ The choice (:func:`~cablesys.ladder.choice.choose`) is checked a posteriori:
 The result's ``stats["model"]`` holds ``{name, segments, reason, estimated_error}``, and
 ``stats["ladder_timing"]`` the wall time of choosing, building, the run and its checks.
 
-Speed (issue 12): models and simulators are built once per call, or once for many calls through a
+Speed: models and simulators are built once per call, or once for many calls through a
 :class:`~cablesys.ladder.rungs.RungCache`; without a method or tolerances from the caller or the
 scene, the rung runs with :func:`.run_settings.integrator_settings` (BDF of order <= 2, rtol a hundredth of the
 body tolerance, compiled C up to COMPILE_MAX_ELEMENTS elements; the quasi-static rungs by the compiled

@@ -30,7 +30,7 @@ from .indicators import scene_numbers
 from .rungs import RUNGS, Assessment, RungCache, builtin_cost, registered_rungs, rung_scene
 from .stiffness import EXPLICIT_MAX_ELEMENTS
 
-DEFAULT_TOLERANCE = 0.01          # body motion; tension extremes get twice this (issue 12)
+DEFAULT_TOLERANCE = 0.01          # body motion; tension extremes get twice this
 MAX_SEGMENTS = 128
 SLACK_MAX_SEGMENTS = 40     # snap-load runs cost ~N^2 (300 m wire, T = 6 s, 30 s: 16 min at N = 40)
 

@@ -155,7 +155,7 @@ def elements(mb: Member, omega: float, c: float, cb: float, n: int, *, consisten
     free of the cancellations of the stiffness in d + o w (the forces are small differences of k / h
     terms). cosh(kappa) - 1 = -(d + o) / o is formed without the stiffness (d + o = -omega^2 m h / 2 +
     i omega c h / 2 for either mass), so kappa stays accurate as k h -> 0. Constant cost in n (the
-    estimate tabulates n up to 128, issue 12: choosing is part of the user's wait); near overflow
+    estimate tabulates n up to 128: choosing is part of the user's wait); near overflow
     (|Re(n kappa)| > CHAIN_OVERFLOW) the tridiagonal system is solved (:func:`elements_banded`)."""
     if mb.varies() and not consistent:
         return elements_banded(mb, omega, c, cb, n, consistent=consistent, points=points)

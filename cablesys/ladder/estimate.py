@@ -152,7 +152,7 @@ def linear_response(scene: Scene, numbers: SceneNumbers, model=None) -> LinearRe
         # 16 phase samples and 1 continuation step: the same amplitudes to 4 digits as 64 and 6 on the
         # Dale and 300 m heave scenes (x_b 0.07117 vs 0.07118 m), and to 1e-13 as 2 steps on Dale, the 300 m
         # heave and 21 random scenes (tests/test_ladder_random.py families, seeds 1-6), 30-50 % faster
-        # (issue 12: choosing is part of the user's wait)
+        # (choosing is part of the user's wait)
         h = harmonic_response(model, p, [omega], Z, n_theta=HB_PHASES, ladder=HB_CONTINUATION)
         if h.success:
             lab = list(h.output_labels)

@@ -1,4 +1,4 @@
-"""The integrator settings of a ladder run (issue 12): which method, rtol and atol each rung runs with when
+"""The integrator settings of a ladder run: which method, rtol and atol each rung runs with when
 neither the caller nor the scene names them, and the stiffness guard's part in it (:mod:`.stiffness`).
 
 The rungs with undamped stretch modes step with A-stable BDF2; the quasi-static rungs with the compiled

@@ -65,7 +65,7 @@ def top_amplitude(layout: ParameterLayout):
     series = layout.series_samples
     if series is not None:
         # the samples are numbers of the structure (top_motion.py): an SX max over the p entries
-        # cost ~3 operations per sample in every DAE evaluation (issue 13)
+        # cost ~3 operations per sample in every DAE evaluation
         for v in series[1:]:
             a = a + (max(v) - min(v)) / 2
     return a

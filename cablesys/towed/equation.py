@@ -29,7 +29,7 @@ With ``xi = x/L``, ``tau = U t/L``, ``eps = L/d_c``, ``beta = M/(M+m)``, dividin
   together ``c = 2 (c_t + c_n/pi) eps beta``;
 * ``y_t`` from the normal drag: ``d = (2/pi) beta c_n eps``.
 
-So (Kennedy & Strahan (1981) eq. 3, the reading given in issue 6 confirmed)::
+So (Kennedy & Strahan (1981) eq. 3)::
 
     eta_tt + 2 beta eta_xt + (a + b xi) eta_xx + c eta_x + d eta_t = 0,
     a = beta (1 - 2 c_t eps - 2 c_t'),  b = 2 beta c_t eps,
