@@ -305,7 +305,7 @@ def explicit_or_node(scene: Scene, choice: Choice, tol, cache: RungCache, kw: di
     """``choice``, or the node model at the same N when ``choice`` is the quasi-static segmented cable taken for
     its cost with the explicit pair (:func:`~.choice.element_plan`, ``explicit_only``) and the pair's stiffness
     guard (:mod:`.stiffness`) refuses it, or the caller names the method: stepped by CVODES it costs more than
-    the node model (heavy1000 N = 10: 65 against 22.5 ms). The guard's verdict and the start it probed are kept on
+    the node model (its stretch Newton solve at every evaluation). The guard's verdict and the start it probed are kept on
     ``cache`` for the run (:func:`.run_settings.rung_settings`)."""
     kw = kw or {}
     if not _explicit_only(choice):

@@ -4,11 +4,12 @@ The ladder, cheapest first: frequency (a steady amplitude only) < quasi-static (
 (the two swap when the stretch is within STIFF_RATIO of the forcing, or when nothing drives the swing)
 < quasi-static segmented (N elements, their stretches following the tension) < segmented (N, the node
 model, every element stretch stepped). The quasi-static segmented cable replaces the segmented one where
-the stretch is stiff (omega/omega_ax <= 1/STIFF_RATIO) and the cable stays taut: on the Dale scene (60 s,
-compiled, the same load) N = 4 took 42 ms against 68 ms for the node model, N = 3 30 ms against 54 ms,
-and its tension extremes carry no element-stretch ringing (0.002 % against 0.56 % at rtol 1e-4); compiled, it
+the stretch is stiff (omega/omega_ax <= 1/STIFF_RATIO) and the cable stays taut: it steps no stretch modes and
+its tension extremes carry no element-stretch ringing; compiled, it
 also competes by cost where the stretch is not that stiff, stepped by the rk23 pair (:func:`element_plan`), and N
-is either sure (its estimate within SAFETY x the tolerance) or checked a posteriori, whichever costs less.
+is the least within SAFETY x the tolerance or the least within it, whichever costs less; every N >= 4 is
+checked a posteriori on every reported quantity (:func:`cablesys.ladder.auto.richardson_step`). The cost weights
+below are relative run times measured by ``studies/model_ladder.py`` (its JSON records them and the machine).
 
 The estimates speak of the settled forced response: a scene whose statistics window (:func:`.metrics.window`)
 starts before :func:`.estimate.settling_time` gets a note in the reason (:func:`settling_note`).
@@ -126,14 +127,13 @@ def quasistatic_segments_available(scene: Scene) -> bool:
 
 # The cost of N elements, relative to the node model's N stepped by BDF2 (compiled, the same run): the quasi-static
 # segmented cable where its stretch is stiff (omega/omega_ax <= 1/STIFF_RATIO: the node model must step the stretch
-# modes; Dale 60 s N = 4: 42 vs 68 ms with CVODES, less with rk23), and stepped by the compiled rk23 pair up to
-# EXPLICIT_MAX_ELEMENTS (heavy1000 120 s, omega/omega_ax = 0.152: N = 5 / 6 10.1 / 11.4 ms against 14.7 / 16.3 ms);
-# a run checked a posteriori against N / 2 costs about 1.5 runs (heavy1000 quasi-static N = 6: 11.4 + 5.7 ms)
+# modes), and stepped by the compiled rk23 pair up to EXPLICIT_MAX_ELEMENTS; a run checked a posteriori against
+# N / 2 costs about 1.5 runs. Ratios of wall times measured by studies/model_ladder.py on the Dale scene and the
+# 1000 m wire (cablesys.heavy_wire_scene).
 STIFF_QS_COST = 0.25
 EXPLICIT_COST = 0.7
 # ... and only up to 7 elements: past ~1.5 MB of functions the compiler runs at -O0 (cablesys.compiled.SIZE_FLAGS),
-# and the 1000 m wire's quasi-static N = 8 took 33 ms for 120 s (16.5 ms with CABLESYS_CFLAGS=-O1) against the
-# node model's 20 ms; N = 7: 13.4 against 18.6 ms
+# and the 1000 m wire's quasi-static N = 8 then ran slower than the node model (studies/model_ladder.py)
 EXPLICIT_COST_MAX_ELEMENTS = 7
 CHECK_COST = 1.5
 CHECK_MIN_SEGMENTS = 4   # the check runs N / 2 >= 2 elements
@@ -260,8 +260,8 @@ def within(e: dict, tol) -> bool:
 def _swing_free(scene: Scene, numbers) -> bool:
     """True when nothing drives the swing: sinusoidal top motion along the static cable only, no current
     bow, no waves, no sampled series. The quasi-static rung then steps nothing (300 m / 2 t heave at
-    T = 10 s: 11 steps, 6 ms compiled for 60 s against Wang's 1560 steps, 9 ms; in CasADi's VM its
-    outputs, a Newton solve each, cost 99 ms against 37 ms: chosen first only when compiled)."""
+    T = 10 s: 11 steps against Wang's 1560); in CasADi's VM its outputs, a Newton solve each, cost more than
+    Wang's steps: it is chosen first only when compiled."""
     env, top = scene.environment, scene.top_motion
     return (numbers.transverse_fraction == 0.0 and numbers.static_bow == 0.0 and not env.waves
             and top.series is None and all(u == env.system_speed for u in env.current_speeds))

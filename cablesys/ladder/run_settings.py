@@ -28,7 +28,7 @@ log = logging.getLogger(__name__)
 
 AUTO_METHOD = "cvodes-bdf2"   # A-stable BDF steps over the undamped stretch modes (Dale: 1.7k steps vs 41k)
 # the quasi-static rungs have no stretch modes left (eliminated): the compiled explicit rk23 pair where its
-# stiffness guard accepts them (Dale 60 s, N = 4: 1438 steps, run 8.1 ms against CVODES's 13.5 ms), else
+# stiffness guard accepts them (fewer operations per step than CVODES's, studies/work_precision.py), else
 # variable-order BDF (fewer steps than BDF2 at the same rtol); measurements in :mod:`.stiffness`. Every rung's
 # rtol is at most the stated body error / STATED_ROOM, rounded down to a decade: the run must not add an error
 # comparable to the one it states (:mod:`.stiffness`, accuracy; Wang's BDF2 at a swing resonance, random

@@ -165,9 +165,8 @@ def build_rung(scene: Scene, name: str, segments: int = 1) -> CableModel:
 class RungCache:
     """The rungs' models and simulators, built once and reused while the scene structure repeats.
 
-    Building a rung costs far more than running a small one (Dale scene: Wang's model 40 ms, the
-    segmented N = 3 model 50 ms and its simulator's integrators 10-20 ms, against a 60 s run of
-    10-30 ms), so :func:`~cablesys.ladder.simulate` builds each (rung, elements) once per
+    Building a rung can cost more than running a small one (``studies/bench_start.py``), so
+    :func:`~cablesys.ladder.simulate` builds each (rung, elements) once per
     call, and a caller running many scenes of one structure (a sweep, a benchmark) passes one cache
     to every call. Models are keyed by rung, elements and :func:`~cablesys.model.params.structure_of`
     (every scene number is an entry of ``p``), simulators by model, output times and settings.
