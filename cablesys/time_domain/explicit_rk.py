@@ -35,7 +35,7 @@ Why hand-written C: CasADi (3.8) offers no error-controlled explicit integrator 
 plugin takes fixed steps), SUNDIALS ARKODE is not exposed through ``casadi.integrator``, and a
 Python step loop costs ~35 us per right-hand-side call against ~0.2 us compiled. The driver is
 appended to the C that CasADi's ``CodeGenerator`` writes for the model's relative-time ODE (the
-DAE function of :mod:`.integrators`, x' = h ode(x, t0 + h s) with p extended by (t0, h)), built
+DAE function of :mod:`.dae`, x' = h ode(x, t0 + h s) with p extended by (t0, h)), built
 and cached on disk by :func:`cablesys.compiled.compile_functions` (same compiler command, cache
 key = code hash + compiler identity, atomic writes), and loaded as a CasADi function with
 ``casadi.external`` (CasADi's external-function C API: ``cablesys_dopri5``, ``_n_in``,
@@ -89,6 +89,7 @@ from ..compiled import Compiled, compile_functions
 from ..errors import ParameterError, SolverError
 from ..model import CableModel
 from ..model.scales import state_scales
+from .dae import relative_time_dae
 
 log = logging.getLogger(__name__)
 
@@ -137,13 +138,11 @@ def explicit_rk_library(model: CableModel, compiled: bool = True, method: str = 
     Compiled
         ``functions[PAIRS[method][1]]`` is the driver (when ``compiled``); build and load times.
     """
-    from .integrators import _dae_function  # the integrators' shared relative-time DAE
-
     number, driver = _pair(method)
     src = _driver_source()
 
     def build():
-        rhs = _dae_function(model, implicit=False, scaled=False)
+        rhs = relative_time_dae(model, implicit=False, scaled=False)
         defines = (f"\n#define CS_ERK_METHOD {number}\n#define CS_ERK_NAME {driver}\n"
                    f"#define CS_ERK_NX {2 * model.nq}\n#define CS_ERK_NP {len(model.layout) + 2}\n"
                    f"#define CS_ERK_NK {BLOCK}\n"
