@@ -40,22 +40,25 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    logging.basicConfig(level=logging.INFO if args.verbose else logging.WARNING,
-                        format="%(levelname)s %(name)s: %(message)s")
-    if not getattr(args, "func", None):
-        parser.print_help()
-        return 2
+    command = "?"
     try:
-        # CasADi's solver warnings (KINSOL retries of a run that succeeds) go to the log unless -v
-        with _signals_as_interrupt(), casadi_messages_to_log(args.verbose):
-            return int(args.func(args) or 0)
+        with _signals_as_interrupt():          # from the start: a signal while the modules load is noted too
+            parser = build_parser()
+            args = parser.parse_args(argv)
+            command = args.command
+            logging.basicConfig(level=logging.INFO if args.verbose else logging.WARNING,
+                                format="%(levelname)s %(name)s: %(message)s")
+            if not getattr(args, "func", None):
+                parser.print_help()
+                return 2
+            # CasADi's solver warnings (KINSOL retries of a run that succeeds) go to the log unless -v
+            with casadi_messages_to_log(args.verbose):
+                return int(args.func(args) or 0)
     except CablesysError as err:
-        print(f"cablesys {args.command}: error: {err}", file=sys.stderr)
+        print(f"cablesys {command}: error: {err}", file=sys.stderr)
         return int(getattr(err, "exit_code", 2))      # 2: bad input; a failed write (OutputWriteError): 1
     except KeyboardInterrupt:
-        print(f"cablesys {args.command}: interrupted", file=sys.stderr)
+        print(f"cablesys {command}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
 
 

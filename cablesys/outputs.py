@@ -32,7 +32,7 @@ import os
 from pathlib import Path
 from typing import Self
 
-from .atomic import CsvStream, OutputWriteError, atomic_path, atomic_write_text, interrupts_deferred, json_dumps
+from .atomic import INTERRUPTS, CsvStream, OutputWriteError, atomic_path, atomic_write_text, interrupts_deferred, json_dumps
 from .errors import ParameterError
 
 __all__ = ["LOCK", "MANIFEST", "STATUSES", "CsvStream", "OutputDir", "OutputWriteError", "atomic_path",
@@ -374,7 +374,10 @@ class OutputDir:
                 return False
             kept = self._close_streams()
             if issubclass(kind, KeyboardInterrupt):
-                status, message = "interrupted", "interrupted"
+                status = "interrupted"
+                message = f"interrupted by {INTERRUPTS.names[-1]}" if INTERRUPTS.names else "interrupted"
+                if not kept and not self._existing():
+                    message += "; no results were kept"
             else:
                 status, message = "failed", (str(err) if isinstance(err, OutputWriteError) else f"{kind.__name__}: {err}")
             if kept and kept not in message:

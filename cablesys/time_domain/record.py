@@ -169,6 +169,10 @@ class InterruptFlag:
         return INTERRUPTS.names[self._start] if INTERRUPTS.count > self._start else "interrupt"
 
     def __enter__(self):
+        if INTERRUPTS.absorb_from is not None and INTERRUPTS.count > INTERRUPTS.absorb_from:
+            # under the cablesys command a signal came before this run and did not stop the command
+            # (a CasADi call swallowed its KeyboardInterrupt): stop now, before any work
+            raise KeyboardInterrupt(f"{INTERRUPTS.names[-1]} before the run")
         self._start, self._forced = INTERRUPTS.count, False
         if threading.current_thread() is not threading.main_thread():
             return self

@@ -74,6 +74,7 @@ class Simulator(ev.EventLocator):
     SMALL_CHUNKS = (16, 64)
     CHUNK_MAX_S = 0.2
     FIRST_STEP_BUDGET = 4096
+    STORE_ROWS = 4096          # a block is stored once this many output times wait (or after Track.FLUSH_S)
 
     def __init__(self, model: CableModel, times, settings: IntegratorSettings | None = None):
         self.model = model
@@ -143,9 +144,13 @@ class Simulator(ev.EventLocator):
         return max(fits) if fits else self._sizes()[0]
 
     def _store(self, track: Track) -> None:
-        """Hand the accepted outputs to ``track`` (labelled, streamed) whole: an interrupt waits for the end."""
+        """Hand the accepted outputs to ``track`` (labelled, streamed) whole: an interrupt waits for the
+        end. At most about :attr:`STORE_ROWS` output times wait for a block, so that storing one (CSV
+        rows through ``on_block``) takes a bounded time however fast the integration runs."""
+        if self._flag.hit:              # a signal whose KeyboardInterrupt a CasADi call swallowed
+            raise KeyboardInterrupt("interrupt noted during a CasADi call")
         with interrupts_deferred():
-            track.flush()
+            track.flush(force=track.n - track.n_done >= self.STORE_ROWS)
 
     def _count(self, f: ca.Function) -> None:
         try:
