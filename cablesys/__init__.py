@@ -28,7 +28,7 @@ _EXPORTS = {
     "Scene": ".scene", "load_scene": ".scene", "dump_scene": ".scene", "dale_scene": ".scene",
     "default_scene": ".scene", "heavy_wire_scene": ".scene",
     "CableModel": ".model", "build_model": ".model",
-    "Simulator": ".time_domain", "simulate": ".time_domain", "design": ".isolation", "sweep": ".sweeps",
+    "Simulator": ".time_domain", "simulate": ".ladder", "design": ".isolation", "sweep": ".sweeps",
     "steady_state": ".linear", "linearize": ".linear", "modes": ".linear", "rao": ".linear",
     "harmonic_response": ".linear", "periodic_steady_state": ".linear", "stochastic_response": ".linear",
     "jonswap": ".linear", "pierson_moskowitz": ".linear",

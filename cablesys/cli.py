@@ -19,7 +19,7 @@ from .messages import casadi_messages_to_log
 
 # module -> provides register(subparsers); order is the order in --help
 COMMAND_MODULES = (
-    "cablesys.time_domain.cli",    # run, scene (Wang 1971 time domain)
+    "cablesys.commands.run",    # run, scene (the model ladder's choice in the time domain)
     "cablesys.slack.cli",       # slack  (Griffin & Rosenthal 1985)
     "cablesys.linear.cli",      # rao    (steady state, linearization, RAOs)
     "cablesys.isolation.cli",      # design (dual-isolation NLP)

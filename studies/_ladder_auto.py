@@ -1,6 +1,6 @@
 """Auto's row of studies/model_ladder.py: auto run as a user runs it, and the runs it is compared with.
 
-:func:`run_auto` calls :func:`cablesys.ladder.simulate_auto` itself (compiled in full mode, CasADi's
+:func:`run_auto` calls :func:`cablesys.ladder.simulate` itself (compiled in full mode, CasADi's
 VM in quick mode), so auto's row is what a user gets: the rung and N it ends with after its a
 posteriori checks, the integrator and rtol it picks (recorded from the simulators it builds,
 :class:`RecordingCache`), its stated estimate (``stats["model"]["estimated_error"]``, a posteriori
@@ -10,7 +10,7 @@ least over ``repeats`` calls, and ``wall_s`` the least choose + run + check (tot
 
 The table rows run in the VM at the study's rtol, so their wall times are not auto's. The "beaten"
 check compares like with like instead (:func:`candidates`): every other rung and N of the table
-whose actual errors are within the tolerance runs forced (``simulate_auto(scene, model=rung,
+whose actual errors are within the tolerance runs forced (``simulate(scene, model=rung,
 segments=N)``: the same code, integrator rule and a posteriori check as auto's rung, compiled as
 auto), and its errors and timing come from that run.
 """
@@ -24,7 +24,7 @@ import warnings
 from _ladder_checks import ladder_rank, run_name
 
 from cablesys.errors import NumericalWarning
-from cablesys.ladder import RungCache, metrics, simulate_auto
+from cablesys.ladder import RungCache, metrics, simulate
 
 # calls per run on one cache, the least time of each figure: ms runs on a shared 2-core machine (heavy1000's
 # N = 10 run: 21.5 ms as the least of 3 calls at load ~2, 8.7 ms of 10 at load 0.5; the forced N = 5: 6.2, 5.7 ms)
@@ -68,7 +68,7 @@ def integrator_text(settings: list, compiled: bool) -> str:
 
 
 def run_auto(scene, compiled: bool, repeats: int = 1, **kw) -> tuple:
-    """(first result, info) of ``simulate_auto(scene, **kw)`` called ``repeats`` times on one cache.
+    """(first result, info) of ``simulate(scene, **kw)`` called ``repeats`` times on one cache.
 
     ``info``: ``integrator`` (:func:`integrator_text` of the first call), ``method``/``rtol`` lists,
     ``ladder_timing_first`` (fresh cache), ``ladder_timing`` (least of each figure over the calls),
@@ -76,11 +76,11 @@ def run_auto(scene, compiled: bool, repeats: int = 1, **kw) -> tuple:
     cache = RecordingCache()
     with compiling(compiled), warnings.catch_warnings():
         warnings.simplefilter("ignore", NumericalWarning)
-        result = simulate_auto(scene, cache=cache, **kw)
+        result = simulate(scene, cache=cache, **kw)
         used = list(cache.settings)
         timings = [dict(result.stats["ladder_timing"])]
         for _ in range(repeats - 1):
-            timings.append(dict(simulate_auto(scene, cache=cache, **kw).stats["ladder_timing"]))
+            timings.append(dict(simulate(scene, cache=cache, **kw).stats["ladder_timing"]))
     best = {k: min(t[k] for t in timings) for k in TIMES}
     compiled = bool(result.stats.get("compiled", compiled))        # as it ran (a failed compilation runs in the VM)
     return result, {"integrator": integrator_text(used, compiled), "methods": [s.method for s in used],

@@ -2,7 +2,7 @@
 
 Colour is the rung (the quasi-static segmented cable apart from the straight quasi-static rung),
 marker the integrator; failed runs are crosses at error = 1 (their wall time up to the failure),
-auto's own run (simulate_auto as a user calls it, compiled in full mode, its wall time choose + run +
+auto's own run (simulate as a user calls it, compiled in full mode, its wall time choose + run +
 checks) a black star with its stated estimate as a bar at the same wall time.
 """
 

@@ -119,7 +119,7 @@ def verdicts(res: dict) -> dict:
                "beaten_at_safety_tolerance_by": [c["run"] for c in beat_aim or []], "safety": SAFETY,
                "noise_factor": NOISE_FACTOR,
                "rule": f"beaten: another rung (or N) within the tolerance (or within {SAFETY:g} x it, which auto aims "
-                       f"at), run forced by simulate_auto as auto runs its own rung (its integrator rule, rtol and a "
+                       f"at), run forced by simulate as auto runs its own rung (its integrator rule, rtol and a "
                        f"posteriori check; compiled like auto's), at or below auto's rung on the ladder, by its own errors, in < 1/{NOISE_FACTOR:g} of auto's "
                        f"time on the run alone or on the run with its a posteriori checks (least of a few calls each; "
                        f"choosing excluded, the same for both); the table's VM rows at the study's rtol are not "

@@ -84,7 +84,7 @@ def slack_reference(case: dict, rows: list, period: float, cache: RungCache) -> 
 
 def assess_slack_auto(case: dict, res: dict, choice, choose_s: float, resolved_fraction: float,
                       cache: RungCache | None = None) -> dict:
-    """Auto's run of the slack scene (:func:`cablesys.ladder.simulate_auto`, compiled as the reference
+    """Auto's run of the slack scene (:func:`cablesys.ladder.simulate`, compiled as the reference
     in full mode), its stated errors against its actual ones on what it reports: the extrapolated
     statistics (headline) and the N run's time series (apart), against the reference in auto's terms.
     Auto's row (integrator AUTO_INTEGRATOR, wall time of its three or more runs) joins ``res["rows"]``."""

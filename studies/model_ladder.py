@@ -33,7 +33,7 @@ keeps the others' results; ``MODEL_LADDER_REESTIMATE=1`` keeps the runs of an ex
 model_ladder.json and makes auto's run, the estimates and the checks again). A failed run is
 an x at the top of the chart with its reason in the JSON.
 
-Auto (the star) is measured on its own run (``studies/_ladder_auto.py``): ``simulate_auto(scene)`` as a user
+Auto (the star) is measured on its own run (``studies/_ladder_auto.py``): ``simulate(scene)`` as a user
 calls it, compiled in full mode (the VM in quick mode), with the integrator and rtol it picks, its a
 posteriori checks and any switch of rung; its row's integrator says which (``auto (rk23 rtol 1e-04,
 compiled)``). Its actual error is on the rows' statistics against the same reference, its stated estimate
@@ -283,7 +283,7 @@ def assess_auto(case: dict, res: dict, ref_stats: dict | None, cache: RungCache 
     """Auto's choice, the estimate it states, its actual error and the verdicts of issue 12's checks.
 
     Every row gets the a-priori estimate of its rung (``estimate_body``, ``estimate_tension``). Auto is
-    measured on its own run (:mod:`_ladder_auto`: ``simulate_auto`` as a user calls it, with its integrator,
+    measured on its own run (:mod:`_ladder_auto`: ``simulate`` as a user calls it, with its integrator,
     rtol and a posteriori checks, compiled in full mode), on the rows' statistics against the same reference;
     its stated estimate is what it reports (a posteriori where it checked). The factor-2 check applies where
     the actual error is resolved: above RESOLVED_FRACTION of the tolerance and above twice the reference's

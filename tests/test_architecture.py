@@ -36,7 +36,7 @@ LAYERS = [
     ("design", ("cablesys.isolation", "cablesys.ladder", "cablesys.verdict", "cablesys.examples", "cablesys.export")),
     ("workflows", ("cablesys.sweeps",)),
     ("plots", ("cablesys.plots",)),
-    ("cli", ("cablesys.cli", "cablesys.__main__")),
+    ("cli", ("cablesys.cli", "cablesys.__main__", "cablesys.commands")),
 ]
 RANK = {name: k for k, (name, _) in enumerate(LAYERS)}
 

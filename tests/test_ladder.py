@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from cablesys.errors import NumericalWarning, ParameterError
-from cablesys.ladder import choose, metrics, run_rung, simulate_auto
-from cablesys.ladder.auto import plan_run
+from cablesys.ladder import choose, metrics, run_rung, simulate
+from cablesys.ladder import decide
 from cablesys.ladder.estimate import axial_factor
 from cablesys.ladder.indicators import scene_numbers
 from cablesys.scene import (
@@ -72,7 +72,7 @@ def test_predicted_partial_slack_rejects_the_straight_cable_and_a_forced_wang_wa
     assert "partial slack" in choice.reason and "extrapolated" in choice.reason
     assert choice.estimated_error["tension"] == pytest.approx(1 / 16**2)
     with pytest.warns(NumericalWarning, match="partial slack"):
-        plan_run(scene, "wang")
+        decide(scene, "wang", None, None)
 
 
 def test_taut_300m_case_is_not_called_slack_and_steps_its_stretch():
@@ -100,7 +100,7 @@ def test_unknown_rung_is_a_parameter_error():
     with pytest.raises(ParameterError, match="numerics.model"):
         dale_scene().with_numerics(model="lumped")
     with pytest.raises(ParameterError):
-        simulate_auto(dale_scene(duration=1.0), model="lumped")
+        simulate(dale_scene(duration=1.0), model="lumped")
 
 
 def test_quasi_static_estimate_matches_its_actual_difference_from_wang():
@@ -135,7 +135,7 @@ def test_auto_result_says_which_model_why_and_its_error():
     scene = _stiff_pendulum().with_numerics(duration=16.0)
     with warnings.catch_warnings():
         warnings.simplefilter("error", NumericalWarning)      # auto within validity: no warning
-        r = simulate_auto(scene)
+        r = simulate(scene)
     m = r.stats["model"]
     assert m["name"] == "quasi-static" and m["segments"] == 1
     assert set(m["estimated_error"]) == {"body", "tension"} and m["reason"]
@@ -148,11 +148,11 @@ def test_rung_cache_builds_each_model_once_and_the_timing_adds_up():
     from cablesys.ladder.rungs import RungCache
     scene = _stiff_pendulum().with_numerics(duration=16.0)
     cache = RungCache()
-    first = simulate_auto(scene, cache=cache)
+    first = simulate(scene, cache=cache)
     built, n_models = cache.build_s, len(cache)
     assert n_models == 2                      # Wang's model (the choice's describing function) and the quasi-static
     other = scene.replace_section(0, body={"weight": 1400.0})   # other values, same structure
-    second = simulate_auto(other, cache=cache)
+    second = simulate(other, cache=cache)
     assert len(cache) == n_models and cache.build_s == built
     t = second.stats["ladder_timing"]
     assert t["build_s"] == 0.0
@@ -204,7 +204,7 @@ def test_no_a_posteriori_rerun_when_the_estimate_is_far_within_the_tolerance():
     from cablesys.ladder.rungs import RungCache
     scene = _stiff_pendulum(period=4.0).with_numerics(duration=12.0, output_step=0.1)
     cache = RungCache()
-    r = simulate_auto(scene, model="segmented", segments=4, cache=cache)
+    r = simulate(scene, model="segmented", segments=4, cache=cache)
     assert r.stats["model"]["segments"] == 4
     assert "a posteriori" not in r.stats["model"]["reason"]
     assert len(cache) == 2            # Wang's (for the estimate) and N = 4; no N = 2 model was built
@@ -218,7 +218,7 @@ def test_auto_on_the_dale_scene_meets_its_tolerance():
     tension extremes are within 1 % / 2 % of the (node-model) segmented cable at N = 16 (converged to 0.05 %)."""
     scene = dale_scene(duration=30.0)
     period = 2 * math.pi / scene.top_motion.x[0].frequency
-    r = simulate_auto(scene)
+    r = simulate(scene)
     m = r.stats["model"]
     assert m["name"] == "quasi-static" and m["segments"] >= 3
     ref = run_rung(scene, "segmented", 16, method="cvodes-bdf2", rtol=1e-7, atol=1e-10)
@@ -312,7 +312,7 @@ def test_auto_runs_a_chain_of_sections():
     two = dataclasses.replace(d, sections=(d.sections[0], d.sections[0]))
     c = choose(two)
     assert set(c.numbers["linear_response"]["tension_mean"]) >= {"tension_top_1", "tension_bottom_2"}
-    r = simulate_auto(two)
+    r = simulate(two)
     assert r.success and r.stats["model"]["name"] == c.name
     st = metrics.statistics(r, 2.0)
     assert {"x_b_1_amplitude", "x_b_2_amplitude", "tension_top_1_max", "tension_bottom_2_min"} <= set(st)
@@ -326,7 +326,7 @@ def test_auto_runs_a_chain_of_sections():
 def test_run_command_makes_the_a_posteriori_check_as_simulate_auto(tmp_path):
     """``cablesys run`` streams the chosen run itself; where the a priori estimate is not within SAFETY x the
     tolerance (Dale at 2 omega_n, segmented N = 4, tolerance 0.2 %) it makes the same check at N / 2 as
-    :func:`simulate_auto`, and states the same a posteriori estimate |y_4 - y_2| / (2^2 - 1)."""
+    :func:`simulate`, and states the same a posteriori estimate |y_4 - y_2| / (2^2 - 1)."""
     import json
 
     from cablesys.cli import main
@@ -340,7 +340,7 @@ def test_run_command_makes_the_a_posteriori_check_as_simulate_auto(tmp_path):
     path.write_text(dump_scene(scene))
     assert main(["run", str(path), "--out", str(tmp_path / "out")]) == 0
     cli = json.loads((tmp_path / "out" / "summary.json").read_text())["model"]
-    ref = simulate_auto(scene).stats["model"]
+    ref = simulate(scene).stats["model"]
     assert "a posteriori (N = 4 vs 2" in cli["reason"] and "a posteriori (N = 4 vs 2" in ref["reason"]
     for k in ("body", "tension"):
         assert cli["estimated_error"][k] == pytest.approx(ref["estimated_error"][k], rel=1e-6)

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import cablesys
-from cablesys.ladder import RungCache, metrics, simulate_auto
+from cablesys.ladder import RungCache, metrics, simulate
 from cablesys.ladder import extrapolation as X
 from cablesys.ladder.choice import choose
 from cablesys.scene import load_scene
@@ -101,7 +101,7 @@ def test_auto_extrapolates_closer_to_a_finer_reference():
     scene = slack_scene()
     assert X.applies(choose(scene), auto=True)          # partial slack predicted: first order in N
     cache = RungCache()
-    r = simulate_auto(scene, cache=cache)
+    r = simulate(scene, cache=cache)
     model = r.stats["model"]
     block = model["extrapolated"]
     n = model["segments"]

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 from test_dopri5 import _tableau, needs_cc
 
-from cablesys.ladder import auto, metrics, simulate_auto
+from cablesys.ladder import auto, metrics
+from cablesys.ladder import simulate as simulate_chosen
 from cablesys.ladder import stiffness as G
 from cablesys.ladder.rungs import RungCache, rung_scene
 from cablesys.scene import TopMotion, dale_scene
@@ -115,22 +116,6 @@ def test_settings_fall_back_to_cvodes_without_compilation_or_a_model(rungs, monk
     assert auto.integrator_settings(sc, tol, 4, rung="quasi-static", model=model, x0=x0, method="rk").method == "rk"
 
 
-def test_run_options_give_the_cli_the_guarded_pair_and_its_start(rungs, monkeypatch):
-    """``cablesys run`` streams the run itself with :func:`auto.run_options`: given the rung's model, the options
-    carry the pair the guard accepts (compiled) and the start state it probed; without the model, the fallback."""
-    from cablesys.ladder.choice import choose
-    scene = _ramped_dale()
-    choice = choose(scene)
-    sc, model, _, x0 = rungs[choice.segments] if choice.segments in rungs else (None, None, None, None)
-    assert choice.name == "quasi-static" and model is not None, choice.reason
-    monkeypatch.setenv("CABLESYS_COMPILE", "1")
-    opts = auto.run_options(scene, choice, model=model)
-    assert opts["method"] == auto.QUASI_STATIC_METHOD
-    np.testing.assert_allclose(opts["x0"], x0, rtol=0, atol=0)
-    assert auto.run_options(scene, choice)["method"] == auto.QUASI_STATIC_FALLBACK
-    assert "x0" not in auto.run_options(scene, choice, model=model, method="cvodes")
-
-
 def test_probe_runs_in_the_vm_past_its_compile_size(rungs, monkeypatch):
     """The guard's dense probe Jacobian grows as N^3 (Dale N = 4 / 8: 1.2 / 4.7 MB serialized; heavy1000 N = 20:
     404 MB, whose 120 MB of C ran the compiler out of memory): past PROBE_COMPILE_MAX it is not compiled."""
@@ -169,7 +154,7 @@ def test_auto_runs_the_dale_rung_explicitly_well_within_its_stated_error(compili
     1e-10 by under 5 % of the stated model error (measured 60 s: 0.2 % body, 0.4 % tension)."""
     scene = _ramped_dale(20.0)
     cache = RungCache()
-    res = simulate_auto(scene, cache=cache)
+    res = simulate_chosen(scene, cache=cache)
     m = res.stats["model"]
     assert m["name"] == "quasi-static" and m["segments"] > 1
     assert res.stats["method"] == auto.QUASI_STATIC_METHOD

@@ -19,7 +19,7 @@ from test_ladder_random import random_scene
 from cablesys.errors import NumericalWarning
 from cablesys.ladder import choice as ch
 from cablesys.ladder import estimate as est
-from cablesys.ladder import metrics, run_rung, simulate_auto
+from cablesys.ladder import metrics, run_rung, simulate
 from cablesys.ladder.auto import explicit_or_node, node_model
 from cablesys.ladder.indicators import scene_numbers
 from cablesys.ladder.rungs import RungCache
@@ -142,7 +142,7 @@ def test_compiled_auto_on_the_heavy_wire_within_tolerance(compiling):
     period = metrics.forcing_period(scene)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", NumericalWarning)
-        got = simulate_auto(scene)
+        got = simulate(scene)
     m = got.stats["model"]
     assert (m["name"], m["segments"]) == ("quasi-static", 6), m["reason"]
     assert "a posteriori (N = 6 vs 3" in m["reason"]
@@ -162,8 +162,8 @@ def test_a_run_still_building_up_says_so():
     period = metrics.forcing_period(scene)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", NumericalWarning)
-        short = simulate_auto(scene)
-        long = simulate_auto(scene.with_numerics(duration=20 * period))
+        short = simulate(scene)
+        long = simulate(scene.with_numerics(duration=20 * period))
     assert metrics.window_change(short, period) > 0.1
     assert "the run has not settled" in short.stats["model"]["reason"]
     assert metrics.window_change(long, period) < 1e-3
@@ -182,7 +182,7 @@ def test_a_checked_n_that_misses_its_check_runs_the_sure_n():
     assert plan["fallback"] == {"name": "segmented", "segments": 10, "explicit_only": False}
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", NumericalWarning)
-        got = simulate_auto(scene)
+        got = simulate(scene)
     m = got.stats["model"]
     assert (m["name"], m["segments"]) == ("segmented", 10)
     assert f"not within {ch.CHECK_ACCEPT:g} x the tolerance" in m["reason"]

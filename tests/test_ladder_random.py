@@ -4,7 +4,7 @@ Three families span the ladder: ``short`` (5-20 m stiff cable, light against its
 the swing mode: a straight-cable rung), ``heavy`` (50-300 m steel wire weighing 0.5-3x its body,
 forcing 0.3-1.6x the first string mode: the segmented cable with N > 1) and ``current`` (20-100 m,
 0.3-1 m/s current). Seeds are fixed (deterministic); runs are 7 forcing periods (3 of smooth start)
-in CasADi's VM. For each scene auto runs (:func:`cablesys.ladder.simulate_auto`, with its a-posteriori
+in CasADi's VM. For each scene auto runs (:func:`cablesys.ladder.simulate`, with its a-posteriori
 check) and states its estimate; the reference is the segmented cable at max(16, 2 N) elements, its own
 convergence measured against half that N.
 
@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 from cablesys.errors import NumericalWarning
-from cablesys.ladder import metrics, run_rung, simulate_auto
+from cablesys.ladder import metrics, run_rung, simulate
 from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMotion
 from cablesys.scene.scene import single_section_scene
 
@@ -75,7 +75,7 @@ def auto_against_reference(scene):
     period = metrics.forcing_period(scene)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", NumericalWarning)
-        got = simulate_auto(scene)
+        got = simulate(scene)
     model = got.stats["model"]
     n_ref = max(16, 2 * model["segments"])
     ref = metrics.statistics(run_rung(scene, "segmented", n_ref), period)
@@ -172,7 +172,7 @@ def test_compiled_auto_takes_the_quasi_static_segmented_cable_within_tolerance(c
     period = metrics.forcing_period(scene)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", NumericalWarning)
-        got = simulate_auto(scene)
+        got = simulate(scene)
     model = got.stats["model"]
     assert model["name"] == "quasi-static" and model["segments"] > 1, model["reason"]
     assert "stepped by the compiled rk23 pair" in model["reason"]

@@ -63,7 +63,7 @@ def _check_dale(out, dale):
 
 
 def _check_auto_run(res, auto):
-    """Auto's row is its own run (simulate_auto, as a user calls it): its statistics on the table's window
+    """Auto's row is its own run (simulate, as a user calls it): its statistics on the table's window
     against the same reference, the estimate it reports, its ladder timing; the rungs within the
     tolerance run forced the same way, and "beaten" compares those runs' timings with auto's."""
     from cablesys.ladder import metrics

@@ -153,7 +153,7 @@ def test_other_commands_check_out_first(tmp_path, capsys):
 
 
 def test_progress_line_only_for_long_runs(capsys):
-    from cablesys.time_domain.cli import _Progress
+    from cablesys.commands.run import _Progress
     p = _Progress()
     p(1.0, 10.0, 0.5)
     p(10.0, 10.0, 1.0)                    # a short run: finished before the first line is due

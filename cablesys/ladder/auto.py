@@ -1,4 +1,4 @@
-"""``simulate_auto(scene)``: run the rung the scene needs, check it afterwards, say which and why.
+"""``simulate(scene)``: run the rung the scene needs, check it afterwards, say which and why.
 
 The choice (:func:`~cablesys.ladder.choice.choose`) is checked a posteriori:
 - quasi-static: the stretch must stay taut (a quasi-static stretch cannot go slack); if the
@@ -36,7 +36,8 @@ import warnings
 
 import numpy as np
 
-from ..errors import NumericalWarning
+from ..errors import NumericalWarning, ParameterError
+from ..model import CableModel
 from ..scene import Scene
 from . import estimate as est
 from . import extrapolation, metrics
@@ -59,15 +60,12 @@ from .run_settings import (  # noqa: F401 - re-exported: the ladder's run settin
     QUASI_STATIC_METHOD,
     STATED_ROOM,
     integrator_settings,
-    run_options,
     rung_settings,
 )
-from .rungs import RungCache, check_rung, rung_scene
+from .hooks import checking, hooks
+from .rungs import RUNGS, RungCache, check_rung, rung_scene
 
 log = logging.getLogger(__name__)
-
-_SIMULATE_KEYS = ("x0", "on_block", "progress")
-
 
 def run_rung(scene: Scene, name: str, segments: int = 1, *, cache: RungCache | None = None, **kw):
     """One time-domain run of rung ``name``.
@@ -98,14 +96,21 @@ def run_rung(scene: Scene, name: str, segments: int = 1, *, cache: RungCache | N
     return simulate(sc, model=cache.model(scene, name, segments), **kw)
 
 
-def _run(scene: Scene, choice: Choice, tol, cache: RungCache, kw: dict):
-    """The run of ``choice`` with the ladder's integrator settings and the cache's simulator."""
+def describe_run(choice: Choice) -> str:
+    """A run's name for progress lines: the rung and its N."""
+    return choice.name + (f" N = {choice.segments}" if choice.segments > 1 else "")
+
+
+def _run(scene: Scene, choice: Choice, tol, cache: RungCache, kw: dict, candidate: bool = True):
+    """The run of ``choice`` with the ladder's integrator settings and the cache's simulator (``candidate``: its result
+    may be returned, so it gets the caller's ``on_block`` and ``progress``; a check run does not)."""
     from ..time_domain import simulate
     if choice.name == "frequency":
         return _periodic_run(scene, cache)
     sc = rung_scene(scene, choice.name, choice.segments)
     model = cache.model(scene, choice.name, choice.segments)
-    opts = {k: kw[k] for k in _SIMULATE_KEYS if k in kw}
+    opts = {**({"x0": kw["x0"]} if kw.get("x0") is not None else {}),
+            **hooks(kw, describe_run(choice), candidate)}
     settings, x0 = rung_settings(sc, tol, choice, model, cache=cache, x0=opts.get("x0"), method=kw.get("method"),
                                  rtol=kw.get("rtol"), atol=kw.get("atol"), max_num_steps=kw.get("max_num_steps"),
                                  jit=kw.get("jit", False))
@@ -119,7 +124,7 @@ def _run(scene: Scene, choice: Choice, tol, cache: RungCache, kw: dict):
 def _periodic_run(scene: Scene, cache: RungCache):
     from ..linear import periodic_steady_state
     from ..linear.periodic import scene_input_amplitude
-    from ..results import TimeResult
+    from ..time_domain import RunRecord
     sc = rung_scene(scene, "wang")
     model = cache.model(scene, "wang")
     p = model.parameters(sc)
@@ -138,8 +143,8 @@ def _periodic_run(scene: Scene, cache: RungCache):
     data["x_s"], data["y_s"] = E[1], E[2]
     stats = dict(per.stats, method="periodic collocation", nsteps=0, wall_s=float(per.stats.get("wall_time_s", 0.0)),
                  build_s=0.0)
-    return TimeResult(time=times, data=data, success=bool(per.success), message=per.message, stats=stats,
-                      scene_name=scene.name)
+    return RunRecord(time=times, data=data, success=bool(per.success), message=per.message, stats=stats,
+                     scene_name=scene.name, model_info={"name": "frequency", "segments": 1})
 
 
 def _went_slack(result, scene: Scene) -> bool:
@@ -153,9 +158,11 @@ def _went_slack(result, scene: Scene) -> bool:
     return bool(result.events) or result.time_slack() > 0 or low <= floor
 
 
-def _decide(scene: Scene, model, tolerance, segments, cache: RungCache | None = None):
+def decide(scene: Scene, model, tolerance, segments, cache: RungCache | None = None):
     """(Choice, tolerances, auto?) for the rung ``model`` (default ``numerics.model``); a rung the
     user forced outside its validity warns with the reason (stacklevel: the public caller's caller)."""
+    if (model or getattr(scene.numerics, "model", "auto")) == AS_BUILT:
+        raise ParameterError("model", AS_BUILT, "runs the scene's own model with no choice: call simulate")
     name = check_rung(model or getattr(scene.numerics, "model", "auto"))
     tol = tolerances(scene, tolerance)
     if name == "auto":
@@ -166,40 +173,86 @@ def _decide(scene: Scene, model, tolerance, segments, cache: RungCache | None = 
     return choice, tol, False
 
 
-def simulate_auto(scene: Scene, *, model: str | None = None, tolerance=None, segments: int | None = None,
-                  cache: RungCache | None = None, **kw):
-    """Simulate ``scene`` with the rung ``model`` ("auto": chosen; default ``scene.numerics.model``).
+AS_BUILT = "as-built"      # the scene's own model (its sections' ``segments``), no choice, no estimate
+
+
+def _as_built(scene: Scene, model, simulator, kw: dict, cache: RungCache | None):
+    """Run ``scene``'s own model (or the caller's ``model`` / ``simulator``) with no ladder choice."""
+    from ..time_domain import simulate as run_model
+    given = model is not None or simulator is not None
+    if not given and cache is not None:       # the scene's own structure, built once per cache
+        n = max(s.cable.segments for s in scene.sections)
+        model = cache.model(scene, "segmented" if n > 1 else "wang", n)
+    extra = hooks(kw, "as built", True)
+    opts = {k: kw[k] for k in ("method", "rtol", "atol", "max_num_steps", "times", "x0") if kw.get(k) is not None}
+    r = run_model(scene, model=model, simulator=simulator, jit=kw.get("jit", False), **opts, **extra)
+    info = dict(r.model_info)
+    info.update(reason=("the caller's model, as built" if given
+                        else "numerics.model = 'as-built': the scene's own model, as built") +
+                "; no ladder choice, its error not estimated", estimated_error={"body": None, "tension": None})
+    return _windowed(scene, dataclasses.replace(r, model_info=info, stats={**r.stats, "model": info}))
+
+
+def _windowed(scene: Scene, result):
+    """``result`` with the scene's forcing period and smooth start, which set its statistics window (the last 5
+    forcing periods after the ramp, :mod:`cablesys.time_result`): one window for every door's summary."""
+    return dataclasses.replace(result, forcing_period_s=metrics.forcing_period(scene),
+                               ramp_s=float(scene.top_motion.effective_ramp_s))
+
+
+def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None = None, method: str | None = None,
+             rtol: float | None = None, atol: float | None = None, max_num_steps: int | None = None, jit: bool = False,
+             times=None, x0=None, on_block=None, progress=None, on_run=None, simulator=None,
+             cache: RungCache | None = None):
+    """Simulate ``scene`` with the model the ladder chooses for it, or the one named; say which ran, why, and its error.
+
+    Every door runs this: the Python API (``cablesys.simulate``), ``cablesys run`` and ``sweep``.
 
     Parameters
     ----------
     scene : Scene
         The scene.
-    model : str, optional
-        "auto" or a rung name (:data:`~cablesys.ladder.rungs.MODEL_CHOICES`).
+    model : str or CableModel, optional
+        "auto" (the ladder's choice), a rung name (:data:`~cablesys.ladder.rungs.MODEL_CHOICES`), "as-built" (the
+        scene's own model, its sections' ``segments``, no choice), or a built :class:`~cablesys.model.CableModel`
+        (run as built). Default: ``scene.numerics.model``.
     tolerance : float or (float, float), optional
         Body-motion (and tension) tolerance; default ``numerics.model_tolerance`` or 1 % / 2 %.
     segments : int, optional
-        Elements per section for a forced segmented rung (default: chosen for the tolerance).
+        Elements per section for a named segmented or quasi-static rung (default: chosen for the tolerance).
+    method, rtol, atol, max_num_steps, jit : optional
+        Integrator settings (:func:`.run_settings.integrator_settings`: the ladder's by default).
+    times, x0 : array_like, optional
+        Output times (s) and initial state of the run (default: the scene's, and the static start).
+    on_block, progress : callable, optional
+        Passed to every candidate run (a run whose result may be returned), see
+        :meth:`cablesys.time_domain.Simulator.run`.
+    on_run : callable, optional
+        ``on_run(description, candidate) -> (on_block, progress)`` before each run of the plan (the candidates and
+        the a posteriori check runs, ``candidate`` False): a streaming caller starts a new stream there.
+    simulator : Simulator, optional
+        A built simulator: its model runs as built.
     cache : RungCache, optional
         Built models and simulators to reuse; pass one cache to many calls on scenes of one
         structure (default: a new one, so nothing is built twice within this call).
-    **kw
-        ``method``, ``rtol``, ``atol``, ``max_num_steps``, ``jit`` (see :func:`integrator_settings`),
-        ``times``, ``x0``, ``on_block``, ``progress`` (see :func:`cablesys.time_domain.simulate`).
 
     Returns
     -------
-    TimeResult
-        ``stats["model"] = {name, segments, reason, estimated_error}``; ``stats["ladder_timing"]``:
-        wall seconds ``choose_s`` (steady state, linearization, describing function, estimates; on a
-        new cache it includes building that solver), ``build_s`` (models and simulators, incl. loading
-        compiled code), ``run_s`` (the chosen run), ``check_s`` (a posteriori runs), ``total_s``.
-        A rung forced outside its validity warns (:class:`~cablesys.errors.NumericalWarning`) with
-        the reason.
+    RunRecord
+        ``stats["model"]`` and ``model_info``: ``{name, segments, reason, estimated_error}``;
+        ``stats["ladder_timing"]``: wall seconds ``choose_s`` (steady state, linearization, describing function,
+        estimates), ``build_s`` (models and simulators, incl. loading compiled code), ``run_s`` (the chosen run),
+        ``check_s`` (a posteriori runs), ``total_s``. A rung named outside its validity warns
+        (:class:`~cablesys.errors.NumericalWarning`) with the reason.
     """
+    kw = {k: v for k, v in dict(method=method, rtol=rtol, atol=atol, max_num_steps=max_num_steps, jit=jit, times=times,
+                                  x0=x0, on_block=on_block, progress=progress, on_run=on_run).items() if v is not None}
+    if simulator is not None or isinstance(model, CableModel) or \
+            (model or getattr(scene.numerics, "model", "auto")) == AS_BUILT:
+        return _as_built(scene, model if isinstance(model, CableModel) else None, simulator, kw, cache)
     cache = cache if cache is not None else RungCache()
     t0, b0 = time.perf_counter(), cache.build_s
-    choice, tol, auto = _decide(scene, model, tolerance, segments, cache)
+    choice, tol, auto = decide(scene, model, tolerance, segments, cache)
     choice = explicit_or_node(scene, choice, tol, cache, kw)
     t1, b1 = time.perf_counter(), cache.build_s
     if extrapolation.applies(choice, auto):      # first order in N: RK4 runs at N, N / 2, N / 4 (extrapolation)
@@ -210,12 +263,12 @@ def simulate_auto(scene: Scene, *, model: str | None = None, tolerance=None, seg
     result, choice = _check(scene, choice, tol, result, cache, kw, auto=auto)
     choice = settled_check(scene, choice, result)
     t3, b3 = time.perf_counter(), cache.build_s
-    result.stats["model"] = extrapolation.model_dict(choice)
-    result.stats["ladder_timing"] = {"choose_s": (t1 - t0) - (b1 - b0), "build_s": b3 - b0,
-                                     "run_s": (t2 - t1) - (b2 - b1), "check_s": (t3 - t2) - (b3 - b2),
-                                     "total_s": t3 - t0}
+    info = extrapolation.model_dict(choice)
+    timing = {"choose_s": (t1 - t0) - (b1 - b0), "build_s": b3 - b0, "run_s": (t2 - t1) - (b2 - b1),
+              "check_s": (t3 - t2) - (b3 - b2), "total_s": t3 - t0}
     log.info("model %s (N = %d): %s", choice.name, choice.segments, choice.reason)
-    return result
+    return _windowed(scene, dataclasses.replace(result, model_info=info,
+                                                stats={**result.stats, "model": info, "ladder_timing": timing}))
 
 
 def _explicit_only(choice: Choice) -> bool:
@@ -300,7 +353,7 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
     (:func:`~.estimate.quasistatic_segmented_error`), which both runs share and their difference cannot see
     (heavy1000 N = 6 vs 3: 0.31 + 0.11 % body against an actual 0.49 %, 0.006 + 0.11 % tension against 0.11 %)."""
     period, n = metrics.forcing_period(scene), choice.segments
-    coarse = _run(scene, dataclasses.replace(choice, segments=n // 2), tol, cache, kw)
+    coarse = _run(scene, dataclasses.replace(choice, segments=n // 2), tol, cache, checking(kw), candidate=False)
     if not (coarse.success and result.success):
         return choice, False
     diff = metrics.errors(metrics.statistics(coarse, period), metrics.statistics(result, period))
@@ -328,22 +381,6 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
         return node_model(choice, f"a posteriori (N = {n} vs {n // 2}): body {e['body']:.2g}, tension "
                                   f"{e['tension']:.2g}, N doubles past {EXPLICIT_COST_MAX_ELEMENTS}", 2 * n), True
     return dataclasses.replace(choice, segments=2 * n), True
-
-
-def plan_run(scene: Scene, model: str | None = None, tolerance=None, cache: RungCache | None = None,
-             method: str | None = None):
-    """(scene to run, its CasADi model, Choice) for a caller that runs the simulation itself
-    (the ``run`` command streams its output). Warns when a forced rung is outside its validity.
-    The ``frequency`` rung is not a time-domain model: callers use :func:`simulate_auto` for it.
-    Wang's model built for the choice is reused when it is the one to run (``cache``: see
-    :class:`~cablesys.ladder.rungs.RungCache`)."""
-    cache = cache if cache is not None else RungCache()
-    choice, tol, _ = _decide(scene, model, tolerance, None, cache)
-    choice = explicit_or_node(scene, choice, tol, cache, {"method": method})
-    if choice.name == "frequency":
-        return None, None, choice
-    sc = rung_scene(scene, choice.name, choice.segments)
-    return sc, cache.model(scene, choice.name, choice.segments), choice
 
 
 def after_run(scene: Scene, choice: Choice, result, *, auto: bool) -> tuple[Choice, bool]:
@@ -374,3 +411,40 @@ def describe(choice_dict: dict) -> str:
         return extrapolation.describe(choice_dict, fmt, seg)
     return (f"model {choice_dict.get('name')}{seg}: estimated error body {fmt(e.get('body'))}, tension "
             f"{fmt(e.get('tension'))}; {choice_dict.get('reason', '')}")
+
+
+def linear_model(scene: Scene, tolerance=None, cache: RungCache | None = None):
+    """The model the linear analyses (``cablesys rao``, modes, RAOs) linearize for ``scene``, and why.
+
+    The ladder's choice for the scene's time-domain run (``numerics.model``), as a model with states to linearize:
+    Wang's straight cable where the ladder runs a straight rung (frequency, quasi-static, wang), the node model
+    (segmented) at the ladder's N where it runs elements (the quasi-static segmented cable's stretch modes are
+    eliminated, the node model keeps them: the same bending and swing). "as-built" linearizes the scene's own model.
+
+    Returns
+    -------
+    (Scene, CableModel, dict)
+        The scene the model is built for, the model, and ``{name, segments, reason, estimated_error}`` (the error of
+        the model's response against the converged cable, estimated by the ladder; the linearization's own error
+        about the steady state is not part of it).
+    """
+    cache = cache if cache is not None else RungCache()
+    if getattr(scene.numerics, "model", "auto") == AS_BUILT:
+        n = max(s.cable.segments for s in scene.sections)
+        name = "segmented" if n > 1 else "wang"
+        return scene, cache.model(scene, name, n), {
+            "name": name, "segments": n, "reason": "numerics.model = 'as-built': the scene's own model, as built; "
+            "its error not estimated", "estimated_error": {"body": None, "tension": None}}
+    choice, tol, _ = decide(scene, None, tolerance, None, cache)
+    if choice.name not in RUNGS:
+        raise ParameterError("numerics.model", choice.name, "a registered rung has no linear model: name a built-in "
+                                                            "rung or as-built for the linear analyses")
+    name, n = ("segmented", choice.segments) if choice.segments > 1 else ("wang", 1)
+    e = est.rung_error(choice.numbers["estimates"], name, n)
+    seg = f" N = {n}" if n > 1 else ""
+    why = (f"the time-domain model is {choice.name}" + (f" N = {choice.segments}" if choice.segments > 1 else "")
+           + f" ({choice.reason}); linearized: {name}{seg}")
+    info = {"name": name, "segments": n, "reason": why,
+            "estimated_error": {"body": e["body"] if math.isfinite(e["body"]) else None,
+                                "tension": e["tension"] if math.isfinite(e["tension"]) else None}}
+    return rung_scene(scene, name, n), cache.model(scene, name, n), info

@@ -22,11 +22,12 @@ import warnings
 
 from ..compiled import compilation_enabled
 from ..errors import NumericalWarning, ParameterError
+from ..model.segmented import drag_points
 from ..scene import Scene
 from . import estimate as est
 from . import metrics
 from .indicators import scene_numbers
-from .rungs import RUNGS, RungCache, rung_scene
+from .rungs import RUNGS, Assessment, RungCache, builtin_cost, registered_rungs, rung_scene
 from .stiffness import EXPLICIT_MAX_ELEMENTS
 
 DEFAULT_TOLERANCE = 0.01          # body motion; tension extremes get twice this (issue 12)
@@ -99,24 +100,22 @@ def extrapolated_segments(errors: dict, tol: tuple[float, float]) -> int:
     extrapolated from runs at N / 4, N / 2, N (:mod:`.extrapolation`).
 
     The extrapolated statistics keep the next term of the expansion in 1/N, b N^-q (q = 2,
-    :data:`.extrapolation.REMAINDER_ORDER`); its coefficient is taken of the size of the first-order
+    :data:`.estimate.REMAINDER_ORDER`); its coefficient is taken of the size of the first-order
     term's, the straight cable's O(1) error (``segmented_1``: 1 under partial slack), so N is the least
     multiple of 4 with e_1 N^-q <= SAFETY x tol, and at least EXTRAPOLATION_MIN_SEGMENTS (1 % / 2 %: 16).
     The runs check it a posteriori (their observed order and the remainder's estimate; N doubles when
     either misses). 300 m wire, 2 t sphere, T = 6 s (360 s, RK4): the limits of N = 8, 16 and 16, 32 differ
     by 0.11 % (body) and 0.6 % (tension), b is 1-2 x e_1 / 4 there."""
-    from .extrapolation import REMAINDER_ORDER
     base = errors["segmented_1"]
-    need = max((base[k] / (SAFETY * t)) ** (1.0 / REMAINDER_ORDER) for k, t in zip(("body", "tension"), tol))
+    need = max((base[k] / (SAFETY * t)) ** (1.0 / est.REMAINDER_ORDER) for k, t in zip(("body", "tension"), tol))
     return max(EXTRAPOLATION_MIN_SEGMENTS, 4 * math.ceil(need / 4.0))
 
 
 def extrapolated_error(errors: dict, n: int) -> dict:
     """A-priori error of the statistics extrapolated from N / 4, N / 2, N (see :func:`extrapolated_segments`):
     e_1 N^-q, at least the estimates' resolution."""
-    from .extrapolation import REMAINDER_ORDER
     base = errors["segmented_1"]
-    return {k: max(base[k] * float(n) ** -REMAINDER_ORDER, est.RESOLUTION) for k in ("body", "tension")}
+    return {k: max(base[k] * float(n) ** -est.REMAINDER_ORDER, est.RESOLUTION) for k in ("body", "tension")}
 
 
 def quasistatic_segments_available(scene: Scene) -> bool:
@@ -168,7 +167,6 @@ def checkable(scene: Scene, n: int) -> bool:
     from several points per element to one (:func:`cablesys.model.segmented.drag_points`; 10 drag points: N <= 6
     against N >= 7), across which the segmented error changes sign (:mod:`.estimate`, the 1000 m wire: settled
     errors -0.59 % at N = 6, +1.23 % at 7), so that |y_N - y_N/2| / 3 may understate the error of N."""
-    from ..model.segmented import drag_points
     return (drag_points(scene, n) > 1) == (drag_points(scene, n // 2) > 1)
 
 
@@ -183,7 +181,7 @@ def _least_n(errs: dict, tol, name: str, fraction: float, lo: int, hi: int, ok=l
     return None
 
 
-def element_plan(scene: Scene, numbers, errs: dict, tol) -> ElementPlan | None:
+def element_plan(scene: Scene, numbers, errs: dict, tol, compiled: bool | None = None) -> ElementPlan | None:
     """The cheapest way to N elements within the tolerance (None: no N up to the cap reaches it).
 
     Two rungs take elements: the node model (``segmented``) and the quasi-static segmented cable, whose
@@ -202,7 +200,7 @@ def element_plan(scene: Scene, numbers, errs: dict, tol) -> ElementPlan | None:
     if quasistatic_segments_available(scene):
         if numbers.axial_ratio <= 1.0 / STIFF_RATIO:
             families.append(("quasi-static", STIFF_QS_COST, MAX_SEGMENTS, False))
-        elif compilation_enabled():
+        elif (compilation_enabled() if compiled is None else compiled):
             families.append(("quasi-static", EXPLICIT_COST, min(EXPLICIT_COST_MAX_ELEMENTS, EXPLICIT_MAX_ELEMENTS), True))
     options = []
     for name, weight, top, explicit in families:
@@ -302,6 +300,43 @@ def choose(scene: Scene, tolerance=None, *, question: str = "time", cache: RungC
     """
     tol = tolerances(scene, tolerance)
     numbers, response, errs, info = _assess(scene, tol, cache)
+    compiled = compilation_enabled()
+    choice = _pick(scene, tol, question, numbers, response, errs, info, compiled)
+    choice = _registered(scene, tol, Assessment(numbers, response, errs), choice) if registered_rungs() else choice
+    if not compiled:       # the choice prices rungs as they run: say what the compiled code would run instead
+        other = _pick(scene, tol, question, numbers, response, errs, dict(info), True, warn=False)
+        if (other.name, other.segments) != (choice.name, choice.segments):
+            n = f" N = {other.segments}" if other.segments > 1 else ""
+            choice = dataclasses.replace(choice, reason=f"{choice.reason}; compiled code is off (CasADi's virtual "
+                                         f"machine): with it the ladder would run {other.name}{n}")
+    return choice
+
+
+def _cost(choice: Choice) -> float:
+    plan = choice.numbers.get("plan")
+    if plan and (plan.get("name"), plan.get("segments")) == (choice.name, choice.segments):
+        return float(plan["cost"])
+    return builtin_cost(choice.name, choice.segments)
+
+
+def _registered(scene: Scene, tol, assessment: Assessment, choice: Choice) -> Choice:
+    """``choice``, or the cheapest registered rung (:func:`~.rungs.register_rung`) whose estimate is within the
+    tolerance and whose cost is below ``choice``'s."""
+    best, best_cost = choice, _cost(choice)
+    for rung in registered_rungs():
+        e = rung.estimate(scene, assessment)
+        c = float(rung.cost(scene, assessment))
+        if within(e, tol) and c < best_cost:
+            reason = (f"{rung.name} (a registered rung): within {tol[0]:.3g} (body) / {tol[1]:.3g} (tension), cost "
+                      f"{c:.3g} against {best_cost:.3g} of {choice.name}; {e.get('note', '')}")
+            best, best_cost = Choice(rung.name, 1, reason, {"body": e["body"], "tension": e["tension"]},
+                                     dict(choice.numbers)), c
+    return best
+
+
+def _pick(scene: Scene, tol, question: str, numbers, response, errs: dict, info: dict, compiled: bool,
+          warn: bool = True) -> Choice:
+    """The choice of :func:`choose` from the scene's assessment, pricing the rungs as run ``compiled`` or not."""
     deciding = (f"omega/omega_ax = {numbers.axial_ratio:.3g}, omega/omega_string = {numbers.string_ratio:.3g}, "
                 f"cable/body mass {numbers.mass_ratio:.3g}, weight {numbers.weight_ratio:.3g}, "
                 f"bow/chord static {numbers.static_bow:.2g} dynamic {numbers.dynamic_bow:.2g}, "
@@ -311,7 +346,7 @@ def choose(scene: Scene, tolerance=None, *, question: str = "time", cache: RungC
     note = settling_note(scene, transverse=not swing_free)
     if note:
         deciding += "; " + note
-    if numbers.axial_ratio > 1.0 / STIFF_RATIO and not (swing_free and compilation_enabled()):
+    if numbers.axial_ratio > 1.0 / STIFF_RATIO and not (swing_free and compiled):
         # the stretch mode is within STIFF_RATIO of the forcing: stepping it costs less than the
         # quasi-static reduction (whose stretch is a Newton solve at every evaluation), and is exact
         order.remove("wang")
@@ -326,14 +361,14 @@ def choose(scene: Scene, tolerance=None, *, question: str = "time", cache: RungC
                            "the quasi-static rung has no dynamics left to step, its cost is its outputs")
             return Choice(name, 1, reason, {"body": e["body"], "tension": e["tension"]}, info)
     if errs["segmented_1"].get("order", est.ORDER) < est.ORDER:
-        # first order in N (partial slack): the statistics are extrapolated from N / 4, N / 2, N (simulate_auto)
+        # first order in N (partial slack): the statistics are extrapolated from N / 4, N / 2, N (simulate)
         n = extrapolated_segments(errs, tol)
         e = extrapolated_error(errs, n)
         reason = (f"segmented with N = {n}, its statistics extrapolated from N = {n // 4}, {n // 2}, {n} (Richardson: "
                   f"partial slack, the cable converges at first order in N): the straight cable misses the tolerance "
                   f"({errs['wang']['note']}); N for the remainder e_1 N^-2 within {SAFETY:g} x the tolerance; {deciding}")
         return Choice("segmented", n, reason, {"body": e["body"], "tension": e["tension"]}, info)
-    plan = element_plan(scene, numbers, errs, tol)
+    plan = element_plan(scene, numbers, errs, tol, compiled)
     if plan is None:                                 # not reachable up to the cap: checked a posteriori, N doubling
         n = segments_for(errs, tol)
         plan = ElementPlan("segmented", n, True, False, float(n))
@@ -347,7 +382,8 @@ def choose(scene: Scene, tolerance=None, *, question: str = "time", cache: RungC
     if not within(e, tol):
         reason += (f"; the tolerance is not reachable at an affordable N: estimated body {e['body']:.2g}, "
                    f"tension {e['tension']:.2g} at N = {n}")
-        warnings.warn(f"model auto: {reason}", NumericalWarning, stacklevel=2)
+        if warn:
+            warnings.warn(f"model auto: {reason}", NumericalWarning, stacklevel=3)
     return Choice(name, n, reason, {"body": e["body"], "tension": e["tension"]}, info)
 
 
@@ -376,7 +412,14 @@ def forced(scene: Scene, name: str, segments: int | None = None, tolerance=None,
         ``numbers["valid"]`` is False (and the reason says why) when the estimate misses the tolerance.
     """
     tol = tolerances(scene, tolerance)
-    _, _, errs, info = _assess(scene, tol, cache)
+    numbers, response, errs, info = _assess(scene, tol, cache)
+    registered = {r.name: r for r in registered_rungs()}
+    if name in registered:
+        e = registered[name].estimate(scene, Assessment(numbers, response, errs))
+        ok = within(e, tol)
+        reason = f"{name} (a registered rung) requested by the user" + ("" if ok else "; OUTSIDE its validity: "
+                                                                          + str(e.get("note", "")))
+        return Choice(name, 1, reason, {"body": e["body"], "tension": e["tension"]}, dict(info, valid=ok))
     scene_n = max(s.cable.segments for s in scene.sections)          # the user's own `segments = N`
     if name == "segmented":
         n = segments or (scene_n if scene_n > 1 else segments_for(errs, tol))

@@ -89,6 +89,7 @@ from .indicators import SceneNumbers, static_angle
 from .rungs import build_rung, rung_scene
 
 ORDER = 2.0         # convergence order of the segmented cable in N (taut; Dale study: 2-3)
+REMAINDER_ORDER = 2.0   # q of the next term after the first order under partial slack (integer powers of 1/N)
 SLACK_ORDER = 1.0   # with partial slack and snap loads (300 m wire at T = 6 s: 11 % at N = 15 vs N = 40)
 SLACK_MARGIN = 0.05  # a least tension within 5 % of the static tension of the floor counts as slack
 SWING_AMPLIFICATION = 10.0

@@ -47,10 +47,12 @@ from ..scene import Scene
 from . import estimate as est
 from . import metrics
 from .choice import within
+from .hooks import checking, hooks
 from .rungs import RungCache, rung_scene
+from .run_settings import integrator_settings, start
 
 ORDER = 1.0                 # the leading order extrapolated away (estimate.SLACK_ORDER)
-REMAINDER_ORDER = 2.0       # q of the next term (an expansion in integer powers of 1/N)
+REMAINDER_ORDER = est.REMAINDER_ORDER   # q of the next term (an expansion in integer powers of 1/N)
 ORDER_RANGE = (0.5, 3.0)    # observed orders accepted as asymptotic (above 1: the remainder dominates, still N^-q)
 MAX_SEGMENTS = 80           # doubling stops here (RK4, compiled kernel: 0.14 s per simulated s at N = 80)
 RK4_MARGIN = 2.0            # h |lambda|_max of the stable step (RK4's boundary is 2.78; issue 11's choice)
@@ -91,10 +93,8 @@ def settings(scene_run: Scene, model, method: str | None = None, x0=None, **kw):
     from ..time_domain.failures import largest_rate, rk4_steps_per_output
     from ..time_domain.integrators import compiled_by_default
     if method not in (None, "rk"):
-        from .run_settings import integrator_settings
         # the caller's method and tolerances (the model tolerance only sets rtol without a method)
         return integrator_settings(scene_run, (1.0, 1.0), int(getattr(model, "n_elements", 1)), method=method, **kw)
-    from .run_settings import start
     p = model.parameters(scene_run)
     lam = largest_rate(model, start(scene_run, model) if x0 is None else x0, 0.0, p)
     num = scene_run.numerics
@@ -103,20 +103,12 @@ def settings(scene_run: Scene, model, method: str | None = None, x0=None, **kw):
     return IntegratorSettings(method="rk", steps_per_output=spo, compiled=compiled_by_default(model, "rk"), **extra)
 
 
-def stream_options(scene: Scene, n: int, model, method: str | None = None) -> tuple:
-    """(scene to run, ``simulate`` keyword arguments) of the N run for a caller that streams it (the
-    ``run`` command): RK4's stable steps per output go into the scene's numerics."""
-    sc = rung_scene(scene, "segmented", n)
-    s = settings(sc, model, method)
-    return sc.with_numerics(steps_per_output=s.steps_per_output), {"method": s.method, "rtol": s.rtol, "atol": s.atol}
-
-
-def run(scene: Scene, n: int, cache: RungCache, kw: dict | None = None):
+def run(scene: Scene, n: int, cache: RungCache, kw: dict | None = None, candidate: bool = True):
     """One run of the segmented cable at ``n`` elements with :func:`settings` (models and simulators
     from ``cache``). ``kw``: ``method``, ``rtol``, ``atol``, ``max_num_steps``, ``times``, ``x0``,
-    ``on_block``, ``progress`` as :func:`.auto.simulate_auto` takes them."""
+    ``on_block``, ``progress``, ``on_run`` as :func:`.auto.simulate` takes them (``candidate``: the run whose
+    series is returned, :mod:`.hooks`)."""
     from ..time_domain import simulate
-    from .run_settings import start
     kw = dict(kw or {})
     sc = rung_scene(scene, "segmented", n)
     model = cache.model(scene, "segmented", n)
@@ -125,7 +117,8 @@ def run(scene: Scene, n: int, cache: RungCache, kw: dict | None = None):
     s = settings(sc, model, kw.get("method"), kw["x0"], **{k: kw.get(k) for k in ("rtol", "atol", "max_num_steps")})
     times = kw.get("times")
     sim = cache.simulator(model, sc.output_times if times is None else times, s)
-    return simulate(sc, model=model, simulator=sim, **{k: kw[k] for k in ("x0", "on_block", "progress") if k in kw})
+    what = f"segmented N = {n}" + ("" if candidate else " (extrapolation)")
+    return simulate(sc, model=model, simulator=sim, x0=kw["x0"], **hooks(kw, what, candidate))
 
 
 def statistics_step(scene: Scene) -> float:
@@ -305,12 +298,12 @@ def complete(scene: Scene, choice, result, tol, cache: RungCache, kw: dict | Non
     if not result.success:
         return choice, None, False
     fine = scene.with_numerics(output_step=statistics_step(scene))
-    coarse_kw = {k: v for k, v in (kw or {}).items() if k not in ("on_block", "progress", "x0", "times")}
+    coarse_kw = checking(kw or {})
     if fine.numerics.output_step == scene.numerics.output_step and (kw or {}).get("times") is None:
         known[n] = statistics(result, period)
     for m in (n, n // 2, n // 4):       # the N run again only when its output step does not resolve the snaps
         if m not in known:
-            r = run(fine, m, cache, coarse_kw)
+            r = run(fine, m, cache, coarse_kw, candidate=False)
             if not r.success:
                 reason = choice.reason + f"; extrapolation failed: the run at N = {m} failed ({r.message})"
                 return dataclasses.replace(choice, reason=reason), None, False

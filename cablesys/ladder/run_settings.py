@@ -130,32 +130,3 @@ def rung_settings(scene_run: Scene, tol, choice: Choice, model, *, cache=None, x
                             jit=jit, rung=choice.name, model=model, x0=x0, stated=choice.estimated_error.get("body"),
                             cache=cache)
     return s, x0
-
-
-def run_options(scene: Scene, choice: Choice, tolerance=None, *, method=None, model=None, cache=None) -> dict:
-    """``method``, ``rtol``, ``atol`` for :func:`cablesys.time_domain.simulate` of ``choice``'s run, for a
-    caller that runs it itself (the ``run`` command): :func:`integrator_settings` of the rung's scene.
-
-    Parameters
-    ----------
-    scene : Scene
-        The scene.
-    choice : Choice
-        The rung to run (:func:`plan_run`).
-    tolerance : float or (float, float), optional
-        The model tolerance (default the scene's).
-    method : str, optional
-        The caller's method (it wins; the tolerances are then the scene's).
-    model : CableModel, optional
-        The rung's model: the quasi-static rungs' guard needs it to accept the explicit pair.
-    cache : RungCache, optional
-        The one :func:`plan_run` used: its start and guard verdict are reused.
-
-    Returns
-    -------
-    dict
-        Keyword arguments ``method``, ``rtol``, ``atol`` (and ``x0``, the start the guard probed).
-    """
-    sc = rung_scene(scene, choice.name, choice.segments)
-    s, x0 = rung_settings(sc, tolerances(scene, tolerance), choice, model, cache=cache, method=method)
-    return {"method": s.method, "rtol": s.rtol, "atol": s.atol, **({"x0": x0} if x0 is not None else {})}

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 
@@ -20,16 +21,79 @@ from ..model import CableModel, build_model
 from ..model.params import structure_of
 from ..model.quasistatic import build_quasistatic, default_iterations
 from ..scene import Scene
+from ..scene.components import MODEL_CHOICES, RUNGS
 
-RUNGS = ("frequency", "quasi-static", "wang", "segmented")
 TIME_DOMAIN_RUNGS = ("quasi-static", "wang", "segmented")
-MODEL_CHOICES = ("auto",) + RUNGS
+
+
+@runtime_checkable
+class Rung(Protocol):
+    """A model the ladder may choose besides its own rungs: a name, how to build it, its error and its cost.
+
+    ``estimate(scene, assessment)`` returns ``{"body": e, "tension": e, "note": str}``, the relative errors of the
+    body motion and of the tension extremes against the converged segmented cable; ``assessment`` is the ladder's
+    :class:`Assessment` of the scene (its numbers and every built-in rung's estimate, to build on).
+    ``cost(scene, assessment)`` is the run's cost relative to Wang's straight cable (1; the node model with N
+    elements costs N, the quasi-static straight cable 0.5, the frequency rung 0.2: :func:`builtin_cost`).
+    ``build(scene)`` returns the :class:`~cablesys.model.CableModel` that runs (in the time domain as built).
+    Register one with :func:`register_rung`; the ladder then takes it under "auto" where its estimate is within the
+    tolerance and it costs less than the built-in choice, and ``numerics.model`` may not name it (scene files are
+    checked against the built-in names) but ``cablesys.simulate(scene, model=name)`` may.
+    """
+
+    name: str
+
+    def build(self, scene: Scene) -> CableModel: ...
+
+    def estimate(self, scene: Scene, assessment) -> dict: ...
+
+    def cost(self, scene: Scene, assessment) -> float: ...
+
+
+@dataclasses.dataclass(frozen=True)
+class Assessment:
+    """What the ladder knows of a scene before any run: its deciding numbers
+    (:class:`~cablesys.ladder.indicators.SceneNumbers`), Wang's linear response and every rung's estimate."""
+
+    numbers: object
+    response: object
+    estimates: dict
+
+
+_REGISTERED: dict = {}
+
+
+def register_rung(rung: Rung) -> None:
+    """Let the ladder consider ``rung`` (see :class:`Rung`); its name may not be a built-in model name."""
+    if not isinstance(rung, Rung):
+        raise ParameterError("rung", type(rung).__name__, "must have name, build(scene), estimate(scene, assessment) "
+                                                          "and cost(scene, assessment) (cablesys.ladder.Rung)")
+    if not isinstance(rung.name, str) or not rung.name or rung.name in MODEL_CHOICES:
+        raise ParameterError("rung.name", rung.name, f"must be a new name, not one of {MODEL_CHOICES}")
+    _REGISTERED[rung.name] = rung
+
+
+def unregister_rung(name: str) -> None:
+    """Forget the registered rung ``name`` (nothing when it is not registered)."""
+    _REGISTERED.pop(name, None)
+
+
+def registered_rungs() -> tuple:
+    """The registered rungs, in the order of registration."""
+    return tuple(_REGISTERED.values())
+
+
+def builtin_cost(name: str, segments: int = 1) -> float:
+    """The relative cost of a built-in rung's run, in the units of :meth:`Rung.cost` (Wang's straight cable 1, the
+    node model N elements N; the quasi-static segmented cable's element plans carry their own,
+    :func:`~cablesys.ladder.choice.element_plan`)."""
+    return {"frequency": 0.2, "quasi-static": 0.5, "wang": 1.0}.get(name, 1.0) if segments <= 1 else float(segments)
 
 
 def check_rung(name: str) -> str:
-    """``name`` if it is a rung or "auto"; :class:`ParameterError` otherwise."""
-    if name not in MODEL_CHOICES:
-        raise ParameterError("numerics.model", name, f"must be one of {MODEL_CHOICES}")
+    """``name`` if it is a model name or a registered rung; :class:`ParameterError` otherwise."""
+    if name not in MODEL_CHOICES and name not in _REGISTERED:
+        raise ParameterError("numerics.model", name, f"must be one of {MODEL_CHOICES + tuple(_REGISTERED)}")
     return name
 
 
@@ -42,6 +106,8 @@ def with_segments(scene: Scene, n: int) -> Scene:
 def rung_scene(scene: Scene, name: str, segments: int = 1) -> Scene:
     """The scene a rung runs: ``segments`` elements for the segmented and quasi-static rungs (the
     quasi-static segmented cable for N > 1), 1 for the others."""
+    if name in _REGISTERED:
+        return scene
     return with_segments(scene, segments if name in ("segmented", "quasi-static") else 1)
 
 
@@ -64,6 +130,8 @@ def build_rung(scene: Scene, name: str, segments: int = 1) -> CableModel:
         The model; ``model.parameters(rung_scene(scene, name, segments))`` gives its ``p``.
     """
     check_rung(name)
+    if name in _REGISTERED:
+        return _REGISTERED[name].build(scene)
     if name == "quasi-static":
         return build_quasistatic(rung_scene(scene, name, segments))
     if name == "segmented" and segments < 2:
@@ -76,7 +144,7 @@ class RungCache:
 
     Building a rung costs far more than running a small one (Dale scene: Wang's model 40 ms, the
     segmented N = 3 model 50 ms and its simulator's integrators 10-20 ms, against a 60 s run of
-    10-30 ms), so :func:`~cablesys.ladder.simulate_auto` builds each (rung, elements) once per
+    10-30 ms), so :func:`~cablesys.ladder.simulate` builds each (rung, elements) once per
     call, and a caller running many scenes of one structure (a sweep, a benchmark) passes one cache
     to every call. Models are keyed by rung, elements and :func:`~cablesys.model.params.structure_of`
     (every scene number is an entry of ``p``), simulators by model, output times and settings.
@@ -112,6 +180,13 @@ class RungCache:
             As :func:`build_rung` builds it; the straight quasi-static rung shares the cached Wang model.
         """
         name = "wang" if name == "frequency" else check_rung(name)
+        if name in _REGISTERED:
+            key = (name, 1, structure_of(scene), 0)
+            if key not in self._models:
+                t0 = time.perf_counter()
+                self._models[key] = _REGISTERED[name].build(scene)
+                self.build_s += time.perf_counter() - t0
+            return self._models[key]
         key = self._key(scene, name, segments)
         if key not in self._models:
             full = self.model(scene, "wang") if name == "quasi-static" and segments == 1 else None
@@ -123,17 +198,28 @@ class RungCache:
             self.build_s += time.perf_counter() - t0
         return self._models[key]
 
+    MAX_SIMULATORS = 32      # a sweep over output grids or settings keeps the newest ones
+
     def simulator(self, model: CableModel, times, settings):
         """A :class:`~cablesys.time_domain.Simulator` of ``model`` over ``times`` with ``settings``
-        (an :class:`~cablesys.time_domain.IntegratorSettings`), built on first use."""
+        (an :class:`~cablesys.time_domain.IntegratorSettings`), built on first use; found by the model itself
+        (one of this cache's models, or the caller's), the output grid and the settings."""
         from ..time_domain import Simulator
         times = np.asarray(times, dtype=float)
-        key = (id(model), times.size, times.tobytes(), settings)
-        if key not in self._simulators:
-            t0 = time.perf_counter()
-            self._simulators[key] = Simulator(model, times, settings)
-            self.build_s += time.perf_counter() - t0
-        return self._simulators[key]
+        key = (times.size, times.tobytes(), settings)
+        for k, (m, sim) in enumerate(self._simulators.get(key, ())):
+            if m is model:
+                return sim
+        t0 = time.perf_counter()
+        sim = Simulator(model, times, settings)
+        self.build_s += time.perf_counter() - t0
+        self._simulators.setdefault(key, []).append((model, sim))
+        while sum(len(v) for v in self._simulators.values()) > self.MAX_SIMULATORS:
+            oldest = next(iter(self._simulators))
+            self._simulators[oldest].pop(0)
+            if not self._simulators[oldest]:
+                del self._simulators[oldest]
+        return sim
 
     def memo(self, key: tuple, compute):
         """``compute()`` once per ``key`` while the cache lives: what the choice and the run both ask of one

@@ -53,3 +53,18 @@ def default_band(natural, forcing, *, margin: float = 3.0, n: int = 400, omega_m
     if hi / lo >= 10.0:
         return np.geomspace(lo, hi, n)
     return np.linspace(lo, hi, n)
+
+
+RELEVANT_FACTOR = 10.0    # modes above this multiple of the highest forcing frequency are not excited by it
+
+
+def relevant_modes(natural, forcing, factor: float = RELEVANT_FACTOR) -> list:
+    """The natural frequencies (rad/s) a forced response can excite: those up to ``factor`` x the highest forcing
+    frequency (all of them without forcing; the lowest always). A segmented cable's element stretch modes lie
+    decades above the forcing: they set no band and no plot."""
+    ws = sorted(float(w) for w in natural if np.isfinite(w) and w > 0)
+    fs = [float(w) for w in forcing if np.isfinite(w) and w > 0]
+    if not fs or not ws:
+        return ws
+    top = factor * max(fs)
+    return [w for k, w in enumerate(ws) if k == 0 or w <= top]

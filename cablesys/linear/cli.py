@@ -48,9 +48,9 @@ def run(args) -> int:
 def _analyse(args, scene, outdir) -> int:
     from ..errors import ParameterError, SolverError
     from ..export import convert_rao_table, units_of_file
-    from ..model import build_model
+    from ..ladder import linear_model
     from ..units import output_unit
-    from .band import default_band, forcing_frequencies
+    from .band import default_band, forcing_frequencies, relevant_modes
     from .equivalent import harmonic_response
     from .frequency_response import rao
     from .linearization import linearize
@@ -65,12 +65,13 @@ def _analyse(args, scene, outdir) -> int:
     )
     from .sea_response import sea_response
     units = getattr(args, "units", None) or units_of_file(args.scene)
-    model = build_model(scene)
+    scene, model, which = linear_model(scene)      # the ladder's model for the scene, and why (cablesys.ladder)
     p = model.parameters(scene)
     lin = linearize(model, p)
     md = modes_of(lin)
     forcing = forcing_frequencies(scene)
-    omega = default_band(md.omega_undamped, forcing.values(), n=args.n, omega_max=args.omega_max)
+    omega = default_band(relevant_modes(md.omega_undamped, forcing.values()), forcing.values(), n=args.n,
+                         omega_max=args.omega_max)
     w_max = float(omega[-1])
     raos = {"exact linearization": rao(lin, omega)}
     if not (np.all(np.isfinite(raos["exact linearization"].values)) and np.all(np.isfinite(md.omega_undamped))):
@@ -122,7 +123,7 @@ def _analyse(args, scene, outdir) -> int:
     with outdir.writing("modes.png") as tmp:
         plot_modes(md, float(lin.y0[model.output_labels.index("y_b")]), tmp)
     written.append("modes.png")
-    doc = {"scene": scene.name, "steady_state": dict(zip(lin.q_labels, lin.q0.tolist())),
+    doc = {"scene": scene.name, "model": which, "steady_state": dict(zip(lin.q_labels, lin.q0.tolist())),
            "natural_frequencies_rad_s": md.omega_undamped.tolist(), "mode_dominant": list(md.dominant),
            "damping_ratios_exact": md.damping_ratio.tolist(),
            "band_rad_s": [float(omega[0]), w_max], "forcing_rad_s": forcing, "zero_responses": zero}
@@ -134,7 +135,7 @@ def _analyse(args, scene, outdir) -> int:
         doc["sea_statistics"] = {"exposure_s": resp.exposure, **group_by_quantity(resp.statistics)}
         doc["verdict_frequency_domain"] = verdict
     outdir.write_text("rao_summary.json", json.dumps(doc, indent=1))
-    lines = [f"{scene.name}: natural frequencies " + ", ".join(f"{d} {w:.5g} rad/s" for d, w in
+    lines = [_model_line(which), f"{scene.name}: natural frequencies " + ", ".join(f"{d} {w:.5g} rad/s" for d, w in
                                                               zip(md.dominant, md.omega_undamped)),
              f"band {omega[0]:.3g} .. {w_max:.3g} rad/s; forcing: "
              + (", ".join(k for k in forcing if not k.startswith("sea band")) or "none")]
@@ -153,3 +154,11 @@ def _analyse(args, scene, outdir) -> int:
         sys.stderr.write("cablesys rao: " + "; ".join(failures) + "\n")
         return 1
     return 0
+
+
+def _model_line(which: dict) -> str:
+    """The console line naming the linearized model and its estimated error."""
+    e = which["estimated_error"]
+    fmt = lambda v: "not estimated" if v is None else f"{100 * v:.2g} %"
+    seg = f", N = {which['segments']}" if which["segments"] > 1 else ""
+    return f"model {which['name']}{seg} linearized: estimated error body {fmt(e['body'])}, tension {fmt(e['tension'])}"

@@ -289,7 +289,10 @@ class Initial:
         require_finite("initial.u_rate", self.u_rate)
 
 
-MODEL_CHOICES = ("auto", "frequency", "quasi-static", "wang", "segmented")   # cablesys.ladder.rungs
+# the model ladder's rungs, cheapest first (cablesys.ladder.rungs builds them), and what numerics.model may name:
+# "auto" (the ladder's choice) or "as-built" (the scene's own model: its sections' segments, no choice)
+RUNGS = ("frequency", "quasi-static", "wang", "segmented")
+MODEL_CHOICES = ("auto", "as-built") + RUNGS
 INTEGRATORS = tuple(INTEGRATION_METHODS)      # the names of the one registry (cablesys.integration)
 
 
@@ -304,8 +307,9 @@ class Numerics:
     duration: float = spec("time", "simulated time", 60.0)
     output_step: float = spec("time", "spacing of output times", 0.05)
     steps_per_output: int = spec("none", "fixed-step methods (rk, collocation): steps per output interval", 10)
-    model: str = spec("none", "model ladder rung: auto (the cheapest within model_tolerance) | frequency | quasi-static | "
-                              "wang | segmented (cablesys.ladder)", "auto")
+    model: str = spec("none", "model ladder rung: auto (the cheapest within model_tolerance) | as-built (the scene's own "
+                              "model: segments per [cable]) | frequency | quasi-static | wang | segmented (cablesys.ladder)",
+                      "auto")
     model_tolerance: float = spec("none", "relative error allowed on body motion for model = auto; tension extremes "
                                           "get twice it", 0.01)
 

@@ -72,33 +72,19 @@ def _outputs(labels) -> list:
     return [lbl for lbl in labels if "_rate" not in lbl and lbl not in ("x_s", "y_s")]
 
 
-def _ladder_run(scene, name: str, cache):
-    """The model ladder's choice for ``scene`` (``name``: "auto" or a rung), run with the process's cached
-    rung models and simulators, its integrator settings and its a posteriori checks
-    (:func:`cablesys.ladder.simulate_auto`); returns (result, choice dict)."""
-    from ..ladder.auto import simulate_auto
-    r = simulate_auto(scene, model=name, cache=cache.rungs)
-    return r, r.stats["model"]
-
-
 def run(scene, options, cache):
-    """Time-domain run (Wang 1971 eq. 47-48 integrated); amplitudes over the last ``periods`` forcing periods.
+    """Time-domain run of the model :func:`cablesys.simulate` runs for ``scene`` (the ladder's choice, as every door
+    runs it); amplitudes over the last ``periods`` forcing periods.
 
-    Option ``model``: None (default) runs the scene's model as built, like :func:`cablesys.time_domain.simulate`;
-    ``"auto"`` or a rung name runs the model ladder's choice (:mod:`cablesys.ladder`), ``"scene"`` the
-    scene's ``numerics.model``. The model that ran is reported (``model_name``, its reason and estimated error).
+    Option ``model``: a model name of :data:`cablesys.ladder.MODEL_CHOICES` ("auto", "as-built", a rung) in place of
+    the scene's ``numerics.model`` (the default; "scene" says the same). The model that ran is reported
+    (``model_name``, its reason and estimated error).
     """
-    from ..time_domain import simulate
-    ladder = options.get("model")
-    if ladder == "scene":
-        ladder = getattr(scene.numerics, "model", None)
-    if ladder is not None:
-        r, choice = _ladder_run(scene, ladder, cache)
-    else:
-        sim = cache.simulator(scene, jit=bool(options.get("jit", False)))
-        r = simulate(scene, simulator=sim)
-        choice = {"name": getattr(sim.model, "kind", "wang"),
-                  "segments": max(int(getattr(sec.cable, "segments", 1)) for sec in scene.sections)}
+    from ..ladder import simulate
+    name = options.get("model")
+    r = simulate(scene, model=None if name in (None, "scene") else name, jit=bool(options.get("jit", False)),
+                 cache=cache.rungs)
+    choice = r.stats["model"]
     s = dict(r.summary())
     s["model"] = choice
     s.pop("warnings", None)

@@ -1,13 +1,17 @@
-"""The ``run`` and ``scene`` sub-commands (Wang 1971 time domain)."""
+"""The ``run`` and ``scene`` sub-commands: a scene through the model ladder's choice (:func:`cablesys.ladder.simulate`),
+its series, summary, verdict and figure written to ``--out``."""
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 import sys
 from pathlib import Path
 
 from .. import units as U
+from ..ladder.metrics import forcing_period
+from ..ladder.rungs import RUNGS, check_rung
 from ..results import unit_of
 
 log = logging.getLogger(__name__)
@@ -62,11 +66,6 @@ def _scene(args) -> int:
     return 0
 
 
-def _forcing_period(scene) -> float | None:
-    freqs = [s.frequency for s in scene.top_motion.x + scene.top_motion.y]
-    return 2 * math.pi / min(freqs) if freqs else None
-
-
 RUN_FILES = ("timeseries.csv", "timeseries.nc", "timeseries.png")
 
 
@@ -101,16 +100,51 @@ def _check_options(args) -> None:
     if args.duration is not None:
         require_positive("--duration", args.duration, "s")
     if getattr(args, "model", None) is not None:
-        from ..ladder.rungs import check_rung
         check_rung(args.model)
     if args.max_steps is not None and not 100 <= args.max_steps <= 10**9:
         raise ParameterError("--max-steps", args.max_steps, "must be an integer in [100, 1e9] (steps per output interval)")
 
 
+class _Streams:
+    """``on_run`` of :func:`cablesys.ladder.simulate` for the ``run`` command: each candidate run of the plan streams
+    its series to ``timeseries.partial.csv`` (a new stream replaces the last: the returned result is the last
+    candidate's), every run shows a progress line naming it and its place in the plan."""
+
+    def __init__(self, outdir, units: str, label: str = ""):
+        self.outdir, self.units, self.label = outdir, units, label
+        self.stream, self.count = None, 0
+
+    def __call__(self, description: str, candidate: bool):
+        from ..export import series_table
+        from ..time_domain.record import RunRecord
+        self.count += 1
+        progress = _Progress(f"{self.label} [{description}, run {self.count}]")
+        if not candidate:
+            return None, progress
+        if self.stream is not None:
+            self.stream.discard()
+        units = self.units
+        self.stream = self.outdir.stream_csv("timeseries.csv", lambda t, d: series_table(RunRecord(time=t, data=d), units))
+        return self.stream.append, progress
+
+    def close(self) -> bool:
+        """Close the last candidate's stream (complete: it is ``timeseries.csv``); False when nothing streamed."""
+        if self.stream is None:
+            return False
+        self.stream.close()
+        return True
+
+    def discard(self) -> None:
+        if self.stream is not None:
+            self.stream.discard()
+
+
 def _run(args) -> int:
+    from ..ladder import simulate
+    from ..ladder.rungs import rung_scene
     from ..outputs import OutputDir
     from ..scene import load_scene
-    from .record import check_scene_run_size
+    from ..time_domain.record import RunInterrupted, check_scene_run_size
     _check_options(args)
     out = args.out or Path("cablesys-out")
     if args.scene is None:
@@ -123,57 +157,25 @@ def _run(args) -> int:
     from ..export import units_of_file
     units = args.units or units_of_file(args.scene)
     with outdir.start(scene=scene.name, scene_file=str(args.scene)):
-        from ..ladder import extrapolation
-        from ..ladder.auto import (  # the model ladder (issue 12)
-            after_run,
-            needs_richardson,
-            plan_run,
-            richardson_step,
-            run_options,
-            settled_check,
-            simulate_auto,
-        )
-        from ..ladder.choice import tolerances
-        from ..ladder.rungs import RungCache, rung_scene
-        auto = (getattr(args, "model", None) or scene.numerics.model) == "auto"
-        cache = RungCache()            # the chosen rung's model, and the extrapolation's coarse runs
-        scene_run, model, choice = plan_run(scene, getattr(args, "model", None), cache=cache, method=args.method)
-        known: dict = {}               # statistics of the extrapolation's runs by N
-        while True:
-            if model is None:          # the frequency rung: no time-domain model to stream
-                result = simulate_auto(scene, model="frequency", method=args.method)
-                break
-            extra = extrapolation.applies(choice, auto)     # partial slack: RK4 at N, then N / 2, N / 4
-            if extra:
-                scene_run, opts = extrapolation.stream_options(scene, choice.segments, model, args.method)
-            else:
-                opts = run_options(scene, choice, method=args.method, model=model, cache=cache)    # the ladder's integrator (issue 12)
-            result = _simulate_into(outdir, scene_run, units=units, model=model, jit=args.jit, max_num_steps=args.max_steps,
-                                    **opts)
-            if extra:                  # the coarse runs and the extrapolated statistics (as simulate_auto)
-                choice, _, again = extrapolation.complete(scene, choice, result, tolerances(scene), cache,
-                                                          {"method": args.method, "max_num_steps": args.max_steps}, known)
-            else:
-                choice, again = after_run(scene, choice, result, auto=auto)
-                if not again and needs_richardson(choice, tolerances(scene)):   # as simulate_auto: N / 2 run
-                    choice, again = richardson_step(scene, choice, tolerances(scene), result, cache,
-                                                    {"method": args.method, "max_num_steps": args.max_steps}, auto=auto)
-            if not again:
-                break
-            scene_run = rung_scene(scene, choice.name, choice.segments)
-            model = cache.model(scene, choice.name, choice.segments)
-        if model is not None and not extrapolation.applies(choice, auto):
-            choice = settled_check(scene, choice, result)      # as simulate_auto: a run still building up says so
-        if hasattr(result, "window_s"):         # the statistics window of the summary groups
-            import dataclasses
-            result = dataclasses.replace(result, window_s=tuple(args.window) if getattr(args, "window", None) else None,
-                                         forcing_period_s=_forcing_period(scene),
-                                         ramp_s=scene.top_motion.effective_ramp_s)
-        summary = write_run(scene_run or scene, result, outdir, series_on_disk=model is not None, units=units)
-        if model is not None:          # the model was built (or loaded from the cache) for this run
-            summary["timing"]["build_s"] += float(model.build_info.get("build_s", 0.0))
-        summary["model"] = result.stats.get("model") or extrapolation.model_dict(choice)
-        outdir.finish(getattr(result, "status", "success" if result.success else "failed"), **summary)   # periodic: a TimeResult
+        streams = _Streams(outdir, units)
+        try:
+            result = simulate(scene, model=args.model, method=args.method, max_num_steps=args.max_steps, jit=args.jit,
+                              on_run=streams)
+        except RunInterrupted as err:
+            streams.discard()      # the interrupt may have cut a block short: write the record whole
+            summary = write_run(scene, err.result, outdir, plot=False, units=units)
+            outdir.finish("interrupted", **summary)
+            print(f"interrupted: {err.result.message}; wrote {outdir.path}/ ({', '.join(outdir.files)})", file=sys.stderr)
+            raise
+        on_disk = streams.close()
+        info = result.stats["model"]
+        if getattr(args, "window", None):         # the statistics window of the summary groups, if asked
+            result = dataclasses.replace(result, window_s=tuple(args.window))
+        scene_run = rung_scene(scene, info["name"], info.get("segments") or 1) if info["name"] in RUNGS else scene
+        summary = write_run(scene_run, result, outdir, series_on_disk=on_disk, units=units)
+        summary["timing"]["build_s"] += float(result.stats.get("ladder_timing", {}).get("build_s", 0.0))
+        summary["model"] = info
+        outdir.finish("success" if result.success else "failed", **summary)
     _print_summary(summary, units)
     print(f"wrote {out}/ ({', '.join(outdir.files)}, summary.json)")
     if not result.success:
@@ -185,11 +187,11 @@ def _run(args) -> int:
 
 
 def _simulate_into(outdir, scene, label: str = "", units: str = "SI", **kw):
-    """Run ``scene`` with its series streamed to ``outdir`` (CSV in ``units``); on an interrupt write
+    """Run ``scene`` as built with its series streamed to ``outdir`` (CSV in ``units``); on an interrupt write
     what was computed (manifest status ``interrupted``) and re-raise."""
     from ..export import series_table
-    from .record import RunInterrupted, RunRecord
-    from .run import simulate
+    from ..time_domain.record import RunInterrupted, RunRecord
+    from ..time_domain.run import simulate
     stream = outdir.stream_csv("timeseries.csv", lambda t, d: series_table(RunRecord(time=t, data=d), units))
     try:
         result = simulate(scene, on_block=stream.append, progress=_Progress(label), **kw)
@@ -247,7 +249,7 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
     if "ladder_timing" in st and "run_s" not in st:     # the frequency rung: no time-domain run, the ladder's times
         summary["timing"].update(build_s=float(st["ladder_timing"].get("build_s", 0.0)),
                                  run_s=float(st["ladder_timing"].get("run_s", 0.0)))
-    period = _forcing_period(scene)
+    period = forcing_period(scene)
     if period and scene.top_motion.spectrum is None and result.time[-1] - result.time[0] >= 6 * period:
         summary["amplitude_periods"] = 3
         amps = {lbl: result.steady_amplitude(lbl, period, 3)
@@ -295,9 +297,9 @@ def _run_dale_table(args, out: Path) -> int:
     from ..model import build_model
     from ..outputs import OutputDir
     from ..scene import OMEGA_N_MEASURED, dale_scene
-    from .integrators import IntegratorSettings
-    from .record import check_scene_run_size
-    from .run import Simulator, simulate
+    from ..time_domain.integrators import IntegratorSettings
+    from ..time_domain.record import check_scene_run_size
+    from ..time_domain.run import Simulator, simulate
     ratios = (0.5, 1.0, 1.5, 2.0)
     shortest = 3 * 2 * math.pi / (min(ratios) * OMEGA_N_MEASURED)     # the amplitudes need 3 periods
     if args.duration is not None and args.duration < shortest:
