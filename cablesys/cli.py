@@ -8,12 +8,13 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import errno
 import importlib
 import logging
 import signal
 import sys
 
-from .atomic import INTERRUPTS, interrupt_handler
+from .atomic import INTERRUPTS, OutputWriteError, interrupt_handler
 from .errors import CablesysError
 from .messages import casadi_messages_to_log
 
@@ -60,6 +61,14 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print(f"cablesys {command}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    except OSError as err:          # a full disk met outside the output folder's writers: one line, exit 1
+        if err.errno not in DISK_ERRNOS:
+            raise
+        print(f"cablesys {command}: error: {OutputWriteError(err.filename or '-', err)}", file=sys.stderr)
+        return 1
+
+
+DISK_ERRNOS = (errno.ENOSPC, errno.EDQUOT, errno.EROFS, errno.EIO)
 
 
 EXIT_INTERRUPTED = 130     # the shell's code for a run stopped by SIGINT (also used for SIGTERM)
