@@ -35,10 +35,11 @@ KEPT = re.compile(r"results up to t = ([0-9.eE+-]+) s are kept")
 
 # -- in-process: the moments of one run ----------------------------------------------------------
 @pytest.fixture(scope="module")
-def dale():
-    scene = dale_scene(duration=20.0, output_step=0.05)
-    model = build_model(scene)
+def dale20(dale):
+    """(scene, model, p, x0): the Dale scene of conftest over 20 s, outputs every 0.05 s."""
     from cablesys.time_domain.run import initial_state
+    scene, model, _ = dale
+    scene = scene.with_numerics(duration=20.0, output_step=0.05)
     p = model.parameters(scene)
     return scene, model, p, initial_state(scene, model, p)
 
@@ -47,10 +48,10 @@ class _Small(Simulator):
     CHUNKS = (16,)
 
 
-def _streamed_run(dale, tmp_path, monkeypatch, on_nth_block=None, flush_s=0.0, sim_cls=_Small):
+def _streamed_run(dale20, tmp_path, monkeypatch, on_nth_block=None, flush_s=0.0, sim_cls=_Small):
     """Run with every block streamed to a CsvStream; SIGINT to this process inside block ``on_nth_block``
     (before its rows are written). Returns (RunInterrupted or record, stream, blocks seen)."""
-    scene, model, p, x0 = dale
+    scene, model, p, x0 = dale20
     monkeypatch.setattr(track.Track, "FLUSH_S", flush_s)
     stream = CsvStream(tmp_path / "timeseries.csv")
     seen = []
@@ -72,8 +73,8 @@ def _kept_time(message: str) -> float:
     return float(match.group(1))
 
 
-def test_an_interrupt_while_a_block_is_stored_keeps_that_block_and_says_so(dale, tmp_path, monkeypatch):
-    err, stream, seen = _streamed_run(dale, tmp_path, monkeypatch, on_nth_block=2)
+def test_an_interrupt_while_a_block_is_stored_keeps_that_block_and_says_so(dale20, tmp_path, monkeypatch):
+    err, stream, seen = _streamed_run(dale20, tmp_path, monkeypatch, on_nth_block=2)
     assert isinstance(err, RunInterrupted)
     r = err.result
     assert r.interrupted and r.status == "interrupted" and len(seen) >= 2
@@ -84,9 +85,9 @@ def test_an_interrupt_while_a_block_is_stored_keeps_that_block_and_says_so(dale,
     np.testing.assert_allclose(np.loadtxt(stream.partial, delimiter=",", skiprows=1)[:, 0], r.time, rtol=1e-10)  # %.10g
 
 
-def test_an_interrupt_before_the_first_block_keeps_the_start_not_an_index_error(dale, monkeypatch):
+def test_an_interrupt_before_the_first_block_keeps_the_start_not_an_index_error(dale20, monkeypatch):
     """The signal lands in the first integrator call, before any block was stored."""
-    scene, model, p, x0 = dale
+    scene, model, p, x0 = dale20
     sim = _Small(model, scene.output_times)
     real = sim._call
     calls = []
@@ -105,17 +106,17 @@ def test_an_interrupt_before_the_first_block_keeps_the_start_not_an_index_error(
     assert np.all(np.isfinite(r.states))
 
 
-def test_an_interrupt_during_the_last_block_keeps_the_whole_run(dale, tmp_path, monkeypatch):
+def test_an_interrupt_during_the_last_block_keeps_the_whole_run(dale20, tmp_path, monkeypatch):
     """One block only (stored at the end): the signal inside it is acted on after it is stored."""
-    err, stream, seen = _streamed_run(dale, tmp_path, monkeypatch, on_nth_block=1, flush_s=1e9)
-    assert isinstance(err, RunInterrupted) and seen == [dale[0].output_times.size]
+    err, stream, seen = _streamed_run(dale20, tmp_path, monkeypatch, on_nth_block=1, flush_s=1e9)
+    assert isinstance(err, RunInterrupted) and seen == [dale20[0].output_times.size]
     r = err.result
-    assert r.time.size == dale[0].output_times.size == stream.rows
+    assert r.time.size == dale20[0].output_times.size == stream.rows
     assert _kept_time(r.message) == pytest.approx(20.0)
 
 
-def test_two_interrupts_in_one_store_are_one_stop(dale, tmp_path, monkeypatch):
-    scene, model, p, x0 = dale
+def test_two_interrupts_in_one_store_are_one_stop(dale20, tmp_path, monkeypatch):
+    scene, model, p, x0 = dale20
     monkeypatch.setattr(track.Track, "FLUSH_S", 0.0)
     stream = CsvStream(tmp_path / "timeseries.csv")
     n = []
@@ -133,8 +134,8 @@ def test_two_interrupts_in_one_store_are_one_stop(dale, tmp_path, monkeypatch):
 
 # -- the compiled explicit driver: calls of bounded cost -----------------------------------------
 @pytest.fixture(scope="module")
-def rk23(dale, compiling):
-    scene, _, p, x0 = dale
+def rk23(dale20, compiling):
+    scene, _, p, x0 = dale20
     model = build_model(scene)           # its own model: the compiled library, not the VM's
     settings = IntegratorSettings(method="rk23", rtol=1e-6, atol=1e-8)
     from cablesys.time_domain.explicit_rk import make_explicit_rk
@@ -144,8 +145,8 @@ def rk23(dale, compiling):
     return F, settings, model
 
 
-def test_the_explicit_driver_stops_a_call_at_its_step_budget_and_resumes_exactly(dale, rk23):
-    scene, _, p, x0 = dale
+def test_the_explicit_driver_stops_a_call_at_its_step_budget_and_resumes_exactly(dale20, rk23):
+    scene, _, p, x0 = dale20
     F, _, model = rk23
     pt = np.concatenate([p, [0.0, 1.0]])
     F.call_budget = 0
@@ -162,11 +163,11 @@ def test_the_explicit_driver_stops_a_call_at_its_step_budget_and_resumes_exactly
     F.call_budget = 0
 
 
-def test_a_run_of_paused_calls_gives_the_run_of_whole_calls(dale, rk23):
+def test_a_run_of_paused_calls_gives_the_run_of_whole_calls(dale20, rk23):
     """A small step budget (4000 steps a call, ~11 of a chunk's 64 output intervals) pauses every call;
     the run resumes from the last output each time and ends where an unbounded run ends, within the
     tolerance."""
-    scene, _, p, x0 = dale
+    scene, _, p, x0 = dale20
     _, settings, model = rk23
 
     class Tiny(Simulator):
@@ -200,8 +201,8 @@ def test_a_run_of_paused_calls_gives_the_run_of_whole_calls(dale, rk23):
         assert np.max(np.abs(a[lbl] - b[lbl])) < 1e-4 * scale
 
 
-def test_signal_blind_loops_get_chunks_sized_to_their_measured_cost(dale):
-    scene, model, _, _ = dale
+def test_signal_blind_loops_get_chunks_sized_to_their_measured_cost(dale20):
+    scene, model, _, _ = dale20
     sim = Simulator(model, scene.output_times, IntegratorSettings(method="rk"))
     assert sim._blind and sim._chunk == Simulator.SMALL_CHUNKS[0]     # unknown cost: the smallest first
     assert sim._next_chunk(16, 16, 16 * 1e-5, None) == 4096            # 10 us an interval: 4096 in 41 ms
