@@ -7,9 +7,11 @@ a full disk never leaves a torn row in a stream, and a write that fails raises
 :class:`OutputWriteError` naming the file and the reason.
 
 Interrupts (SIGINT, and SIGTERM under the ``cablesys`` command) are noted in :data:`INTERRUPTS`
-by :func:`interrupt_handler`. Inside :func:`interrupts_deferred` the handler only notes the
-signal; the ``KeyboardInterrupt`` is raised when the section ends, so a block of rows, a rename or
-a flush of results is done whole or not at all.
+by :func:`interrupt_handler`, the handler the ``cablesys`` command installs for both and a
+time-domain run installs for SIGINT while it runs (in place of Python's default). Inside
+:func:`interrupts_deferred` it only notes the signal; the ``KeyboardInterrupt`` is raised when the
+section ends, so a block of rows, a rename or a store of results is done whole or not at all.
+(Under another Python handler of the caller's, the signal is raised where it lands, as before.)
 """
 
 from __future__ import annotations

@@ -128,8 +128,8 @@ class Simulator(ev.EventLocator):
         return tuple(self.SMALL_CHUNKS) + tuple(self.CHUNKS) if self._blind else tuple(self.CHUNKS)
 
     def _next_chunk(self, size: int, m: int, wall: float, f) -> int:
-        """The next chunk length after a call over ``m`` intervals that took ``wall`` seconds (and, for
-        an explicit pair, its step budget from the measured cost of a step)."""
+        """The next chunk length after a call that reached ``m`` output intervals in ``wall`` seconds (and,
+        for an explicit pair, its step budget from the measured cost of a step)."""
         if not self._blind:
             return next((c for c in self.CHUNKS if c > size), size) if wall < self.CHUNK_GROW_S else size
         try:
@@ -295,9 +295,8 @@ class Simulator(ev.EventLocator):
             except RuntimeError as err:
                 log.info("chunk integration failed (%s); stepping interval by interval", failure_reason(err)[0])
                 break
+            wall = _time.perf_counter() - t_call
             paused = bool(getattr(f, "paused", False))   # the step budget ran out: resume from the last output
-            if self._uniform:
-                size = self._next_chunk(size, m, _time.perf_counter() - t_call, f)
             cols = np.column_stack([x, Xs])
             finite = np.all(np.isfinite(cols), axis=0)
             n_ok = int(np.argmin(finite)) if not finite.all() else m + 1
@@ -306,6 +305,8 @@ class Simulator(ev.EventLocator):
                 G, D = self._gap_cols(cols[:, :n_ok], times[None, k:k + n_ok], pm)
                 j_bad = ev.first_bad_interval(G, D, np.diff(times[k:k + n_ok]), mode == 1.0)
             n_keep = j_bad if j_bad is not None else n_ok       # columns 0 .. n_keep-1 are accepted
+            if self._uniform:           # sized by the cost of the intervals this call reached
+                size = self._next_chunk(size, max(n_ok - 1, 1), wall, f)
             if n_keep > 1:
                 track.add(cols[:, 1:n_keep], mode)
             k += n_keep - 1
