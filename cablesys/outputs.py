@@ -32,7 +32,15 @@ import os
 from pathlib import Path
 from typing import Self
 
-from .atomic import INTERRUPTS, CsvStream, OutputWriteError, atomic_path, atomic_write_text, interrupts_deferred, json_dumps
+from .atomic import (
+    INTERRUPTS,
+    CsvStream,
+    OutputWriteError,
+    atomic_path,
+    atomic_write_text,
+    interrupts_deferred,
+    json_dumps,
+)
 from .errors import ParameterError
 
 __all__ = ["LOCK", "MANIFEST", "STATUSES", "CsvStream", "OutputDir", "OutputWriteError", "atomic_path",

@@ -7,9 +7,9 @@ and interrupts). The compiled loops that cannot see a signal inside a call (``rk
 :attr:`Simulator.CHUNK_MAX_S` each, and the explicit pairs a budget of steps per call as well, so an
 interrupt is acted on within about that time; CVODES and IDAS see it inside the call (through
 CasADi). Each block of results is stored whole: an interrupt during the storing is held back to its
-end (:func:`cablesys.atomic.interrupts_deferred`). Slack switches are located as described in :mod:`.events`. The integrator's
-step budget is ``max_num_steps`` per output interval: exhausting it fails the run with a named
-message (it is not silently multiplied).
+end (:func:`cablesys.atomic.interrupts_deferred`). Slack switches are located as described in
+:mod:`.events`. The integrator's step budget is ``max_num_steps`` per output interval: exhausting
+it fails the run with a named message (it is not silently multiplied).
 """
 
 from __future__ import annotations
