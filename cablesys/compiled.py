@@ -14,12 +14,28 @@ structure key, the name of a derived function) to its library, so a model that k
 structure (:func:`cablesys.model.build_model` attaches the store to ``model.cache``) loads its
 compiled DAE with ``casadi.external`` without building or serializing its expression graph.
 
-A library that fails to load (truncated, corrupt, removed by another process's eviction) is
-removed and rebuilt. Settings (environment): ``CABLESYS_CC`` the compiler command (default
-``cc``), ``CABLESYS_CFLAGS`` its optimization flags (default ``-O2``, less for very large
-functions: ``SIZE_FLAGS``), ``CABLESYS_COMPILE=0`` to use CasADi's virtual machine; the cache
-folder and its cap: see :mod:`cablesys.disk_cache`. Without a working compiler the functions
-run in the virtual machine and one warning says so.
+Every library is sealed with its SHA-256 when it is built (:func:`cablesys.disk_cache.seal_file`)
+and checked before every ``dlopen``: a truncated or garbled file (which ``dlopen`` would turn
+into a bus error or a segmentation fault of the whole process) is removed with a one-line
+warning and rebuilt, as is one that fails to load (removed by another process's eviction,
+without one of the names). The index entries of :class:`DerivedStore`, the compiler memo and
+the record of an entry whose C is above ``MAX_C_BYTES`` (``<key>.vm``: later runs go to the
+virtual machine without generating that C again) are sealed likewise.
+
+A compile runs in a build folder of the cache (:func:`cablesys.disk_cache.build_folder`, also
+the compiler's ``TMPDIR``) under the entry's lock, in a process group of its own: on Ctrl-C,
+SIGTERM, SIGHUP or any error the whole group (driver, ``cc1``, assembler, linker) is killed
+and the folder removed before the interruption goes on (a signal left at its default action
+then ends the process as it would have), so nothing partial is left; a folder left by
+``kill -9`` is removed by the next eviction.
+
+Settings (environment), checked whenever read (a bad value is a
+:class:`~cablesys.errors.ParameterError` naming it): ``CABLESYS_CC`` the compiler command
+(default ``cc``), ``CABLESYS_CFLAGS`` its optimization flags (default ``-O2``, less for very
+large functions: ``SIZE_FLAGS``), ``CABLESYS_COMPILE`` (``0``/``false``/``no``/``off`` to use
+CasADi's virtual machine, ``1``/``true``/``yes``/``on`` or unset to compile); the cache folder
+and its cap: see :mod:`cablesys.disk_cache`. Without a working compiler the functions run in
+the virtual machine and one warning per process says so.
 """
 
 from __future__ import annotations
@@ -32,7 +48,8 @@ import logging
 import os
 import shlex
 import shutil
-import tempfile
+import signal
+import threading
 import time
 from pathlib import Path
 
@@ -40,13 +57,18 @@ import casadi as ca
 
 from .disk_cache import (
     CACHE_FORMAT,
-    atomic_write,
+    build_folder,
     cache_dir,
     digest,
     evict,
     file_lock,
+    read_sealed,
+    seal_file,
+    sealed_problem,
     touch,
+    write_sealed,
 )
+from .errors import ParameterError
 
 log = logging.getLogger(__name__)
 
@@ -73,9 +95,31 @@ class Compiled:
     note: str = ""
 
 
+_ON, _OFF = ("1", "true", "yes", "on"), ("0", "false", "no", "off")
+
+
 def compilation_enabled(enabled: bool = True) -> bool:
-    """False when ``enabled`` is False or ``CABLESYS_COMPILE`` is 0/false/no."""
-    return enabled and os.environ.get("CABLESYS_COMPILE", "1").strip().lower() not in ("0", "false", "no")
+    """False when ``enabled`` is False or ``CABLESYS_COMPILE`` is 0/false/no/off (any case);
+    a :class:`~cablesys.errors.ParameterError` when it is set to anything else than those or
+    1/true/yes/on (empty: unset)."""
+    text = os.environ.get("CABLESYS_COMPILE", "").strip()
+    if text and text.lower() not in _ON + _OFF:
+        raise ParameterError("CABLESYS_COMPILE", text, f"must be one of {', '.join(_ON)} (compile) or "
+                             f"{', '.join(_OFF)} (CasADi's virtual machine)")
+    return enabled and text.lower() not in _OFF
+
+
+_NOTICES: set = set()
+_NOTICES_LOCK = threading.Lock()
+
+
+def _notice(note: str) -> None:
+    """Log ``note`` as a warning the first time this process meets it, later only at debug level
+    (a run derives many functions: each falls back for the same reason)."""
+    with _NOTICES_LOCK:
+        first = note not in _NOTICES
+        _NOTICES.add(note)
+    log.log(logging.WARNING if first else logging.DEBUG, "%s", note)
 
 
 # default optimization by size of the functions (serialized characters): gcc's time grows
@@ -86,14 +130,26 @@ SIZE_FLAGS = ((400_000, "-O2"), (1_500_000, "-O1"), (float("inf"), "-O0"))
 # quasi-static segmented DAE at N = 20, took 3.5 GB; the 120 MB of a dense N = 20 Jacobian ran cc1 past 8 GB
 # under a cap and past 22 GB without one, killed by the kernel)
 MAX_C_BYTES = 40_000_000
+# a compile of more C than this is announced as a warning (seen without -v), smaller ones at info level
+LOUD_BUILD_BYTES = 1_000_000
+
+
+def _split_setting(name: str, default: str) -> list[str]:
+    """``shlex.split`` of the environment variable ``name`` (``default`` when unset or blank);
+    a :class:`~cablesys.errors.ParameterError` when it does not parse (an unclosed quote)."""
+    text = os.environ.get(name, "")
+    try:
+        return shlex.split(text if text.strip() else default)
+    except ValueError as err:
+        raise ParameterError(name, text, f"must be a shell-quoted command line ({err})") from None
 
 
 def compiler_command(size: int = 0) -> list[str]:
     """The compiler command and flags: ``CABLESYS_CC`` (default ``cc``) and ``CABLESYS_CFLAGS``
     (default by ``size``, the functions' serialized length: see ``SIZE_FLAGS``)."""
-    cc = shlex.split(os.environ.get("CABLESYS_CC", "cc")) or ["cc"]
+    cc = _split_setting("CABLESYS_CC", "cc")
     default = next(flag for limit, flag in SIZE_FLAGS if size < limit)
-    flags = shlex.split(os.environ.get("CABLESYS_CFLAGS", default))
+    flags = _split_setting("CABLESYS_CFLAGS", default)
     return cc + flags + ["-fPIC", "-shared"]
 
 
@@ -117,8 +173,8 @@ def _identity(cc: str, path: str) -> str | None:
     stamp = f"{real}|{st.st_size}|{st.st_mtime_ns}"
     memo = cache_dir() / "compilers.json"
     try:
-        known = json.loads(memo.read_text())
-    except (OSError, ValueError):
+        known = json.loads(read_sealed(memo))
+    except (OSError, ValueError):             # absent, or truncated or garbled: asked again and rewritten
         known = {}
     if stamp in known:
         touch(memo)
@@ -131,7 +187,7 @@ def _identity(cc: str, path: str) -> str | None:
     text = out.stdout or out.stderr
     ident = f"{exe}|{text.splitlines()[0] if text else ''}"
     with contextlib.suppress(OSError):
-        atomic_write(memo, json.dumps({**known, stamp: ident}).encode())
+        write_sealed(memo, json.dumps({**known, stamp: ident}).encode())
     return ident
 
 
@@ -181,30 +237,136 @@ def cache_key(serialized, jacobians, ident: str, cmd: list[str]) -> str:
     return digest(*serialized, jacobians, ident, " ".join(cmd[1:]), CACHE_FORMAT)[:24]
 
 
-def _build(code: str, cmd: list[str], target: Path) -> None:
-    """Compile ``code`` to ``target``: temporary files in the cache folder, then an atomic rename."""
+class _Terminated(BaseException):
+    """SIGTERM or SIGHUP arrived during a compile (with the default action, which would end the
+    process at once and leave the compiler, in a session of its own, running and its folder
+    behind); ``args[0]`` is the signal."""
+
+
+# signals whose default action ends the process and that a Python program does not handle by default
+_ENDING = tuple(getattr(signal, name) for name in ("SIGTERM", "SIGHUP") if hasattr(signal, name))
+
+
+@contextlib.contextmanager
+def _signals_stop_build():
+    """While a compile runs in the main thread, SIGTERM and SIGHUP left at their default action
+    raise :class:`_Terminated` so that the build is cleaned up; the caller then ends the process
+    by the same signal. A Python handler already installed (the ``cablesys`` command turns
+    SIGTERM into KeyboardInterrupt) and other threads are left alone."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    ours = [sig for sig in _ENDING if signal.getsignal(sig) is signal.SIG_DFL]
+
+    def handler(signum, frame):
+        raise _Terminated(signum)
+    for sig in ours:
+        signal.signal(sig, handler)
+    try:
+        yield
+    finally:
+        for sig in ours:
+            signal.signal(sig, signal.SIG_DFL)
+
+
+def _run_compiler(argv: list[str], workdir: Path):
+    """Run the compiler ``argv`` in a session of its own (its temporary files in ``workdir``);
+    on any exception while it runs (Ctrl-C, SIGTERM) its whole process group is killed and
+    waited for before the exception goes on. Returns the finished ``Popen``'s (returncode, output)."""
     import subprocess
-    target.parent.mkdir(parents=True, exist_ok=True)
+    proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                            start_new_session=True, env=dict(os.environ, TMPDIR=str(workdir)))
+    try:
+        out, _ = proc.communicate()
+    except BaseException:
+        with contextlib.suppress(OSError):
+            if hasattr(os, "killpg"):
+                os.killpg(proc.pid, signal.SIGKILL)
+            else:                                    # pragma: no cover (Windows: no process groups)
+                proc.kill()
+        proc.wait()
+        raise
+    finally:
+        if proc.stdout is not None:
+            proc.stdout.close()
+    return proc.returncode, out or ""
+
+
+def _too_large(c_bytes: int, what: str) -> str:
+    return (f"{what}: {c_bytes / 1e6:.1f} MB of generated C, above the {MAX_C_BYTES / 1e6:.1f} MB a compiler run "
+            "is given (its memory grows with the code)")
+
+
+def _known_too_large(marker: Path) -> int | None:
+    """The C size [bytes] recorded in ``marker`` (``<key>.vm``, written when that entry's C was found above
+    ``MAX_C_BYTES``) when it is still above it, else None: that entry goes to the VM without generating its C
+    again."""
+    try:
+        c_bytes = int(json.loads(read_sealed(marker))["c_bytes"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+    touch(marker)
+    return c_bytes if c_bytes > MAX_C_BYTES else None
+
+
+def _build(code: str, cmd: list[str], target: Path, what: str = "") -> None:
+    """Compile ``code`` to ``target``: in a build folder of the cache, sealed with its SHA-256,
+    then an atomic rename; nothing is left behind on failure or interruption. Hold the entry's
+    lock around it. ``what`` names the functions in the progress messages. Code above
+    ``MAX_C_BYTES`` is not compiled (RuntimeError) and its size recorded beside the entry
+    (``<key>.vm``), so that later runs skip generating it."""
     if len(code) > MAX_C_BYTES:
-        raise RuntimeError(f"{len(code) / 1e6:.0f} MB of generated C, above the {MAX_C_BYTES / 1e6:.0f} MB a compiler "
-                           "run is given (its memory grows with the code)")
-    with tempfile.TemporaryDirectory(dir=target.parent, prefix=".build-") as tmp:
-        src = Path(tmp) / "model.c"
-        src.write_text(code)
-        tmp_so = Path(tmp) / "model.so"
-        proc = subprocess.run(cmd + [str(src), "-o", str(tmp_so), "-lm"], capture_output=True, text=True,
-                              check=False)
-        if proc.returncode != 0:
-            raise RuntimeError(f"{' '.join(cmd)} failed: {(proc.stderr or proc.stdout).strip()[-500:]}")
-        os.replace(tmp_so, target)
+        with contextlib.suppress(OSError):
+            write_sealed(target.with_suffix(".vm"), json.dumps({"c_bytes": len(code)}).encode())
+        raise RuntimeError(_too_large(len(code), what or target.stem))
+    key = target.stem
+    log.log(logging.WARNING if len(code) > LOUD_BUILD_BYTES else logging.INFO,
+            "compiling %s (%.2f MB of C, %s) into the cache %s: once, later runs load it",
+            what or key, len(code) / 1e6, " ".join(cmd[:-2]), target.parent)
+    t0 = time.perf_counter()
+    try:
+        with _signals_stop_build(), build_folder(target.parent, key) as tmp:
+            src = tmp / "model.c"
+            src.write_text(code)
+            tmp_so = tmp / "model.so"
+            code_rc, out = _run_compiler(cmd + [str(src), "-o", str(tmp_so), "-lm"], tmp)
+            if code_rc != 0:
+                raise RuntimeError(f"{' '.join(cmd)} failed (exit {code_rc}): {out.strip()[-500:]}")
+            seal_file(tmp_so)
+            os.replace(tmp_so, target)
+    except _Terminated as stop:     # cleaned up: now end as the signal's default action would have
+        signal.signal(stop.args[0], signal.SIG_DFL)
+        os.kill(os.getpid(), stop.args[0])
+        raise KeyboardInterrupt(f"signal {stop.args[0]}") from None   # pragma: no cover (the signal ends it)
+    log.info("compiled %s in %.1f s: %s", what or key, time.perf_counter() - t0, target.name)
 
 
 def _load(target: Path, names) -> dict:
     """``casadi.external`` of every name in the library ``target`` (RuntimeError when it does
-    not load: truncated, corrupt, removed, or without one of the names)."""
+    not load: removed, or without one of the names). Check it first (:func:`_damage`)."""
     loaded = {name: ca.external(name, str(target)) for name in names}
     touch(target)
     return loaded
+
+
+def _damage(target: Path) -> str | None:
+    """What is wrong with the library file ``target``: ``"missing"``, a truncated or garbled
+    content (:func:`cablesys.disk_cache.sealed_problem`), or None when it is intact and may be
+    handed to ``dlopen``."""
+    try:
+        return sealed_problem(target)
+    except FileNotFoundError:
+        return "missing"
+    except OSError as err:
+        return f"unreadable ({err})"
+
+
+def _discard(target: Path, why: str) -> None:
+    """Remove the damaged library ``target`` with a one-line warning (the caller rebuilds it).
+    Unlinking is safe for a process that has it mapped: its pages stay until it unmaps them."""
+    _notice(f"cached library {target.name} does not load ({why}): removed, building it again")
+    with contextlib.suppress(FileNotFoundError):
+        target.unlink()
 
 
 def compile_functions(functions, *, jacobians=True, enabled: bool = True, extra_c: str = "",
@@ -236,8 +398,17 @@ def compile_functions(functions, *, jacobians=True, enabled: bool = True, extra_
     -------
     Compiled
         The functions (external when compiled), and the build and load times [s]. Without a C
-        compiler, or when compilation fails, the original functions with one logged warning.
-        A cached library that does not load is removed and built again.
+        compiler, or when compilation fails, the original functions with one logged warning per
+        process and reason (``note``). A cached library is checked before it is loaded: one that
+        is truncated, garbled or does not load is removed and built again.
+
+    Raises
+    ------
+    ParameterError
+        A bad ``CABLESYS_*`` setting (compiler command, flags, cache folder or cap).
+    KeyboardInterrupt
+        Ctrl-C (or SIGTERM under the ``cablesys`` command) during a compile, after the compiler
+        is killed and its build folder removed.
     """
     functions = list(functions)
     originals = {f.name(): f for f in functions}
@@ -246,26 +417,37 @@ def compile_functions(functions, *, jacobians=True, enabled: bool = True, extra_
     t0 = time.perf_counter()
     serialized = [f.serialize() for f in functions]
     cmd = compiler_command(sum(len(x) for x in serialized) if size is None else int(size))
+    folder = cache_dir()                      # checks the cache settings, warm or cold
     ident = _compiler_identity(cmd)
     if ident is None:
         note = (f"no C compiler '{cmd[0]}' found: running the CasADi virtual machine (slower); "
                 "install cc or set CABLESYS_CC")
-        log.warning(note)
+        _notice(note)
         return Compiled(originals, False, False, time.perf_counter() - t0, 0.0, note=note)
     key = cache_key(serialized + ([extra_c] if extra_c else []), jacobians, ident, cmd)
-    folder = cache_dir()
     target = folder / f"{key}.so"
+    lock = folder / f"{key}.lock"
+    what = ", ".join(originals) or key
+    c_bytes = _known_too_large(target.with_suffix(".vm"))
+    if c_bytes is not None:
+        note = f"compilation skipped ({_too_large(c_bytes, what)}): running the CasADi virtual machine (slower)"
+        _notice(note)
+        return Compiled(originals, False, False, time.perf_counter() - t0, 0.0, note=note)
     for attempt in (0, 1):
-        cached = target.exists()
+        damage = _damage(target)
+        cached = damage is None
         if not cached:
             try:
-                with file_lock(folder / f"{key}.lock"):
-                    cached = target.exists()          # another process may have built it meanwhile
+                with file_lock(lock):
+                    damage = _damage(target)          # another process may have built or removed it meanwhile
+                    cached = damage is None
+                    if damage not in (None, "missing"):
+                        _discard(target, damage)
                     if not cached:
-                        _build(generate(functions, jacobians=jacobians) + extra_c, cmd, target)
+                        _build(generate(functions, jacobians=jacobians) + extra_c, cmd, target, what)
             except (OSError, RuntimeError) as err:
                 note = f"compilation failed ({err}): running the CasADi virtual machine (slower)"
-                log.warning(note)
+                _notice(note)
                 return Compiled(originals, False, False, time.perf_counter() - t0, 0.0, note=note)
             with contextlib.suppress(OSError):
                 evict(keep=[target])
@@ -275,12 +457,10 @@ def compile_functions(functions, *, jacobians=True, enabled: bool = True, extra_
         except RuntimeError as err:
             if attempt:
                 note = f"the compiled library {target} does not load ({err}): running the CasADi virtual machine"
-                log.warning(note)
+                _notice(note)
                 return Compiled(originals, False, False, time.perf_counter() - t0, 0.0, note=note)
-            log.warning("cached library %s does not load (%s): building it again", target.name,
-                        str(err).strip().splitlines()[-1][:200] if str(err).strip() else "")
-            with file_lock(folder / f"{key}.lock"), contextlib.suppress(OSError):
-                target.unlink()
+            with file_lock(lock):
+                _discard(target, str(err).strip().splitlines()[-1][:200] if str(err).strip() else "dlopen failed")
             continue
         t2 = time.perf_counter()
         return Compiled(loaded, True, cached, t1 - t0, t2 - t1, library=target)
@@ -311,22 +491,34 @@ class DerivedStore:
         return f"DerivedStore({self.structure})"
 
     def _path(self, key: str) -> Path:
-        settings = (os.environ.get("CABLESYS_CC", "cc"), os.environ.get("CABLESYS_CFLAGS", ""))
-        return cache_dir() / "derived" / f"{digest(self.structure, key, *settings)}.json"
+        return cache_dir() / "derived" / f"{digest(self.structure, key, *compiler_command())}.json"
 
     def load(self, key: str) -> Compiled | None:
-        """The compiled item stored under ``key``, or None (see the class docstring)."""
+        """The compiled item stored under ``key``, or None (see the class docstring). An index
+        entry or a library that is truncated or garbled is removed with a warning."""
         if not compilation_enabled():
             return None
         path = self._path(key)
         try:
-            entry = json.loads(path.read_text())
-        except (OSError, ValueError):
+            entry = json.loads(read_sealed(path))
+        except OSError:
+            return None
+        except ValueError as err:
+            _notice(f"stored index entry {path.name} is unreadable ({err}): removed, building it again")
+            with contextlib.suppress(OSError):
+                path.unlink()
             return None
         t0 = time.perf_counter()
-        target = cache_dir() / entry.get("library", "")
+        target = cache_dir() / str(entry.get("library", ""))
         ident = _compiler_identity(compiler_command())
-        if entry.get("key") != key or entry.get("compiler") != ident or not target.is_file():
+        if entry.get("key") != key or entry.get("compiler") != ident or target.suffix != ".so":
+            return None
+        damage = _damage(target)
+        if damage is not None:
+            if damage != "missing":
+                with file_lock(target.with_suffix(".lock")):
+                    if _damage(target) not in (None, "missing"):
+                        _discard(target, damage)
             return None
         try:
             loaded = _load(target, entry["names"])
@@ -343,4 +535,4 @@ class DerivedStore:
         entry = {"key": key, "structure": self.structure, "library": item.library.name,
                  "names": list(item.functions), "compiler": _compiler_identity(compiler_command())}
         with contextlib.suppress(OSError):
-            atomic_write(self._path(key), json.dumps(entry).encode())
+            write_sealed(self._path(key), json.dumps(entry).encode())

@@ -118,9 +118,8 @@ def snap_events(time, tension, rate, slack) -> list[dict]:
     starts = np.nonzero(s[:-1] & ~s[1:])[0] + 1          # first taut sample after a slack one
     for i in starts:
         stop = i + np.argmax(s[i:]) if s[i:].any() else t.size
-        peaks = []
-        for j in range(max(i, 1), stop):
-            if d[j - 1] > 0 >= d[j]:                         # dT/dt falls through zero in (t_{j-1}, t_j]
-                peaks.append(hermite_peak(t[j - 1], t[j], y[j - 1], y[j], d[j - 1], d[j]))
+        j = np.arange(max(i, 1), stop)
+        j = j[(d[j - 1] > 0) & (d[j] <= 0)]                  # dT/dt falls through zero in (t_{j-1}, t_j]
+        peaks = [hermite_peak(t[k - 1], t[k], y[k - 1], y[k], d[k - 1], d[k]) for k in j]
         out.append({"retension_s": float(t[i]), "peaks": peaks})
     return out

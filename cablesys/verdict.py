@@ -2,7 +2,8 @@
 
 Criteria (each checked only when its limit is given; values over the statistics window):
 
-``peak_tension``     largest tension of any tension output <= working load (SWL, or MBL / safety factor);
+``peak_tension``     largest tension of any tension output, or of the located snap loads in the window (between
+                     samples: they can exceed the sampled maxima), <= working load (SWL, or MBL / safety factor);
 ``least_tension``    smallest tension >= the least allowed tension;
 ``slack``            smallest tension >= slack_fraction x static (mean) tension of the same output. With
                      slack_fraction = 0.1 this is the slack-sling criterion of DNV-RP-H103 (April 2011),
@@ -14,6 +15,9 @@ Criteria (each checked only when its limit is given; values over the statistics 
 
 margin = (limit - value) / |limit| for upper limits, (value - limit) / |limit| for lower limits
 (absolute when the limit is 0): >= 0 passes.
+
+The statistics are those of :mod:`cablesys.statistics`; a tension's are never below 0 N (a Gaussian most probable
+minimum below 0 is 0 with the slack probability), and the warnings count the same snap loads the verdict reads.
 """
 
 from __future__ import annotations
@@ -59,7 +63,8 @@ def body_labels(labels) -> tuple[str, str] | None:
 
 def run_statistics(result, limits=None) -> dict:
     """Time-domain statistics (:func:`cablesys.statistics.time_domain`) of the lowest body's motion and
-    every tension output over the statistics window; exposure from ``limits.exposure``."""
+    every tension output over the statistics window (tensions never below 0 N, resolutions from
+    :data:`cablesys.statistics.FLOORS`); exposure from ``limits.exposure``."""
     mask = statistics_window(result.time, limits, result)
     t = result.time[mask]
     exposure = getattr(limits, "exposure", None)
@@ -67,7 +72,25 @@ def run_statistics(result, limits=None) -> dict:
     body = body_labels(result.labels)
     if body:
         labels = list(body) + labels
-    return {lbl: st.time_domain(t, np.asarray(result[lbl])[mask], exposure) for lbl in labels}
+    return {lbl: st.time_domain(t, np.asarray(result[lbl])[mask], exposure, floor=st.FLOORS.get(_unit(lbl), 0.0),
+                                nonnegative=_is_tension(lbl)) for lbl in labels}
+
+
+def _is_tension(label: str) -> bool:
+    return label.startswith("tension") and not label.endswith("rate")
+
+
+def window_snap_loads(result, limits=None) -> tuple[list, list]:
+    """(in the statistics window, before it): the run's snap loads (:meth:`cablesys.results.TimeResult.snap_loads`,
+    every model; a record without them: none)."""
+    snaps = list(result.snap_loads()) if hasattr(result, "snap_loads") else []
+    t = np.asarray(result.time, float)
+    t0 = float(t[statistics_window(t, limits, result)][0])
+    return [s for s in snaps if s.time >= t0], [s for s in snaps if s.time < t0]
+
+
+def _where(s) -> str:
+    return f"element {s.element}" if getattr(s, "element", None) is not None else f"section {s.section}"
 
 
 def _upper(value, limit, unit, text):
@@ -82,29 +105,36 @@ def _lower(value, limit, unit, text):
             "unit": unit, "text": text}
 
 
-def evaluate(limits, stats: dict) -> dict:
-    """The verdict ``{criterion: {value, limit, margin, pass, unit, text}}`` from :func:`run_statistics`.
+def evaluate(limits, stats: dict, snaps=()) -> dict:
+    """The verdict ``{criterion: {value, limit, margin, pass, unit, text}}`` from :func:`run_statistics` (or the
+    frequency-domain statistics of :mod:`cablesys.linear.sea_response`), and the located snap loads in the window
+    (:func:`window_snap_loads`), which the peak tension includes.
 
     With ``limits.exposure`` the extremes are the larger of the observed and the most probable
-    (Rayleigh) extreme over the exposure."""
+    (Rayleigh) extreme over the exposure. Tension statistics are taken as tensions (never below 0 N,
+    :func:`cablesys.statistics.as_tension`) whichever route computed them."""
     if limits is None:
         return {}
     use_mpm = getattr(limits, "exposure", None) is not None
-    tens = [k for k in stats if k.startswith("tension")]
+    tens = [k for k in stats if _is_tension(k)]
+    stats = {k: st.as_tension(v) if k in tens else v for k, v in stats.items()}
 
-    def hi(s):
-        return max(s["max"], s["most_probable_max"]) if use_mpm else s["max"]
+    def hi(s):          # a series without a T_z has no most probable extremes (None): its observed ones
+        return max(s["max"], s["most_probable_max"]) if use_mpm and s["most_probable_max"] is not None else s["max"]
 
     def lo(s):
-        return min(s["min"], s["most_probable_min"]) if use_mpm else s["min"]
+        return min(s["min"], s["most_probable_min"]) if use_mpm and s["most_probable_min"] is not None else s["min"]
 
     out = {}
     if tens:
         peak_lbl = max(tens, key=lambda k: hi(stats[k]))
         low_lbl = min(tens, key=lambda k: lo(stats[k]))
         if limits.working_load is not None:
-            out["peak_tension"] = _upper(hi(stats[peak_lbl]), limits.working_load, "N",
-                                         f"largest tension ({peak_lbl}) <= working load")
+            peak, text = hi(stats[peak_lbl]), peak_lbl
+            snap = max(snaps, key=lambda s: s.tension, default=None)
+            if snap is not None and snap.tension > peak:
+                peak, text = snap.tension, f"snap load at t = {snap.time:.4g} s, {_where(snap)}"
+            out["peak_tension"] = _upper(peak, limits.working_load, "N", f"largest tension ({text}) <= working load")
         if limits.least_tension is not None:
             out["least_tension"] = _lower(lo(stats[low_lbl]), limits.least_tension, "N",
                                           f"smallest tension ({low_lbl}) >= least allowed tension")
@@ -128,16 +158,27 @@ def evaluate(limits, stats: dict) -> dict:
     return out
 
 
-def warnings_of(result) -> list[str]:
-    """Slack and snap-load warnings of a run (located events, Wang 1971 eq. 54)."""
+def warnings_of(result, limits=None) -> list[str]:
+    """Slack and snap-load warnings of a run, every model (Wang 1971 eq. 54 switches; a segmented cable's elements):
+    the slack switches and time over the run, and the snap loads in the statistics window (those the verdict's peak
+    tension reads) and before it."""
     out = []
-    n_slack = sum(1 for e in result.events if e.kind == "slack")
-    if n_slack or result.initially_slack:
-        out.append(f"WARNING: the cable went slack {n_slack} times ({result.time_slack():.3g} s slack in total)")
-    if result.snaps:
-        s = max(result.snaps, key=lambda s: s.tension)
-        out.append(f"WARNING: {len(result.snaps)} snap loads; largest {s.tension:.4g} N at t = {s.time:.4g} s "
-                   f"(section {s.section})")
+    events = result.slack_events()
+    n_slack = sum(1 for e in events if e.kind == "slack")
+    slack_s = result.time_slack()
+    if n_slack or slack_s > 0:
+        who = "an element of the cable" if getattr(result, "segmented", False) else "the cable"
+        out.append(f"WARNING: {who} went slack {n_slack} times ({slack_s:.3g} s with a slack "
+                   f"{'element' if who != 'the cable' else 'section'} in total)")
+    inside, before = window_snap_loads(result, limits)
+    if inside:
+        s = max(inside, key=lambda s: s.tension)
+        out.append(f"WARNING: {len(inside)} snap loads in the statistics window; largest {s.tension:.4g} N at "
+                   f"t = {s.time:.4g} s ({_where(s)})")
+    if before:
+        s = max(before, key=lambda s: s.tension)
+        out.append(f"WARNING: {len(before)} snap loads before the statistics window (not in the verdict); largest "
+                   f"{s.tension:.4g} N at t = {s.time:.4g} s ({_where(s)})")
     return out
 
 
@@ -172,10 +213,11 @@ def _unit(label: str) -> str:
 
 
 def group_by_quantity(stats: dict) -> dict:
-    """{"force_N": {label: ...}, "length_m": {...}}: per-label entries grouped by SI quantity."""
+    """{"force_N": {label: ...}, "length_m": {...}}: per-label entries grouped by SI quantity; tension entries as
+    tensions (never below 0 N, :func:`cablesys.statistics.as_tension`)."""
     grouped: dict = {}
     for lbl, s in stats.items():
-        grouped.setdefault(QUANTITY.get(_unit(lbl), "other"), {})[lbl] = s
+        grouped.setdefault(QUANTITY.get(_unit(lbl), "other"), {})[lbl] = st.as_tension(s) if _is_tension(lbl) else s
     return grouped
 
 
@@ -189,7 +231,8 @@ def report(scene, result) -> dict:
     window = [float(result.time[mask][0]), float(result.time[mask][-1])]
     return {"statistics": {"window_s": window, "exposure_s": getattr(limits, "exposure", None) or window[1] - window[0],
                            **grouped},
-            "verdict": evaluate(limits, stats), "warnings": warnings_of(result)}
+            "verdict": evaluate(limits, stats, window_snap_loads(result, limits)[0]),
+            "warnings": warnings_of(result, limits)}
 
 
 def format_statistics(statistics: dict, system: str = "SI") -> list[str]:
@@ -207,10 +250,18 @@ def format_statistics(statistics: dict, system: str = "SI") -> list[str]:
         f, unit = output_unit(group.split("_", 1)[1].replace("_", "/") if "_" in group else "", system)
         for lbl, s in rows.items():
             lines.append(f"{lbl + ' [' + unit + ']':<18} {s['mean'] * f:>11.5g} {s['std'] * f:>10.4g} "
-                         f"{s['min'] * f:>11.5g} {s['max'] * f:>11.5g} {s['most_probable_max'] * f:>11.5g} "
+                         f"{s['min'] * f:>11.5g} {s['max'] * f:>11.5g} {_scaled(s['most_probable_max'], f):>11} "
                          f"{_num(s['zero_upcrossing_period_s']):>7}")
+    for group, rows in statistics.items():
+        for lbl, s in (rows.items() if isinstance(rows, dict) else ()):
+            if isinstance(s, dict) and s.get("note"):
+                lines.append(f"note (SI units): {lbl}: {s['note']}")
     return lines
 
 
 def _num(v) -> str:
     return "-" if v is None else f"{v:.3g}"
+
+
+def _scaled(v, factor: float) -> str:
+    return "-" if v is None else f"{v * factor:.5g}"

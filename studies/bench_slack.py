@@ -18,8 +18,8 @@ from pathlib import Path
 import numpy as np
 
 from cablesys.model import FunctionCache
-from cablesys.slack.modes import compute_modes
-from cablesys.slack.scene import Cable, PointMass, SlackScene
+from cablesys.slack.vibration import modes
+from cablesys.slack.scene import SlackCable, PointMass, SlackScene
 from cablesys.slack.statics import solve_equilibrium, solve_equilibrium_shooting
 
 
@@ -28,7 +28,7 @@ def bench_scene(n_elements: int) -> SlackScene:
     L = 22.9 / 0.962
     masses = tuple(PointMass(position=L * (k + 1) / 6, mass=4.5 if c == "H" else 2.0)
                    for k, c in enumerate("HLHLH"))
-    return SlackScene(cable=Cable(length=L, mass_per_length=1.14, ae=8.9e5),
+    return SlackScene(cable=SlackCable(length=L, mass_per_length=1.14, ae=8.9e5),
                       span=22.9, masses=masses, n_elements=n_elements)
 
 
@@ -47,19 +47,19 @@ def main(argv=None) -> int:
     runs = []
     for _ in range(a.repeat):
         t0 = time.perf_counter()
-        eq, d = solve_equilibrium(sc, cache=cache)
+        eq = solve_equilibrium(sc, cache=cache)
         t1 = time.perf_counter()
-        ms = compute_modes(eq, d, a.modes, solver="sparse")
+        ms = modes(eq, a.modes, solver="sparse")
         t2 = time.perf_counter()
         runs.append((t1 - t0, t2 - t1, t2 - t0))
     best = min(runs, key=lambda r: r[2])
     t = time.perf_counter()
-    eqs, _ = solve_equilibrium_shooting(sc)
+    eqs = solve_equilibrium_shooting(sc)
     shoot_s = time.perf_counter() - t
     # cross-check sparse vs dense on the out-of-plane/in-plane lowest 10 at 2000 elements is costly;
     # compare with a 400-element dense solution instead (discretization error ~ (1/400)^2)
-    eq4, d4 = solve_equilibrium(sc.replace(n_elements=400))
-    ref = compute_modes(eq4, d4, 10, solver="dense")
+    eq4 = solve_equilibrium(sc.replace(n_elements=400))
+    ref = modes(eq4, 10, solver="dense")
     doc = {"n_elements": a.elements, "n_modes": a.modes, "repeat": a.repeat,
            "static_s": best[0], "modes_s": best[1], "total_s": best[2],
            "first_call_setup_s": setup_s, "ipopt_iterations": eq.iterations,

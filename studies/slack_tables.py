@@ -3,7 +3,7 @@
     python studies/slack_tables.py --out DIR [--quick]
 
 Writes DIR/slack_tables.json (keys table1, table2, table3_two_masses,
-table4_five_masses, table5_bare: lists of {"mode_type", "omega"} ascending,
+table4_five_masses, table5_bare: lists of {"mode_type", "omega_rad_s"} ascending,
 Richardson-extrapolated from 3 element counts) plus a "report" block with
 comparisons, and PNG figures. --quick uses coarser grids and fewer sweep points.
 """
@@ -22,9 +22,9 @@ import numpy as np
 import scipy.optimize
 
 from cablesys.slack import irvine
-from cablesys.slack.modes import compute_modes, converge
+from cablesys.slack.vibration import converge, modes
 from cablesys.slack.plots import COLORS
-from cablesys.slack.scene import Cable, PointMass, SlackScene
+from cablesys.slack.scene import SlackCable, PointMass, SlackScene
 from cablesys.slack.statics import solve_equilibrium, solve_equilibrium_shooting
 
 log = logging.getLogger("slack_tables")
@@ -39,8 +39,8 @@ LIGHT, HEAVY = 2.0, 4.5
 T1 = dict(L=330.0, EA=7.07e-4 * 15e10, m=5.56, w=47.6, ca=0.128, depth=130.0, H=76300.0)
 
 
-def cable6(l_over_L: float) -> Cable:
-    return Cable(length=SPAN6 / l_over_L, mass_per_length=M6, ae=EA6)
+def cable6(l_over_L: float) -> SlackCable:
+    return SlackCable(length=SPAN6 / l_over_L, mass_per_length=M6, ae=EA6)
 
 
 def scene6(l_over_L: float, masses=()) -> SlackScene:
@@ -63,7 +63,7 @@ def read_reference():
 
 def table1_scene(n_elements=120) -> SlackScene:
     """Inclined cable in water; span found so that H = 76300 N with the depth 130 m."""
-    cab = Cable(length=T1["L"], mass_per_length=T1["m"], ae=T1["EA"],
+    cab = SlackCable(length=T1["L"], mass_per_length=T1["m"], ae=T1["EA"],
                 weight_per_length=T1["w"], added_mass_per_length=T1["ca"] * T1["m"],
                 specific_gravity=1.0 / (1.0 - T1["w"] / (T1["m"] * 9.80665)))
 
@@ -71,16 +71,16 @@ def table1_scene(n_elements=120) -> SlackScene:
         return SlackScene(cable=cab, span=span, rise=T1["depth"], medium="water", n_elements=n_elements)
 
     span = scipy.optimize.brentq(
-        lambda sp: solve_equilibrium_shooting(sc(sp))[0].horizontal_tension - T1["H"], 280.0, 309.0, xtol=1e-9)
+        lambda sp: solve_equilibrium_shooting(sc(sp)).horizontal_tension - T1["H"], 280.0, 309.0, xtol=1e-9)
     return sc(span)
 
 
 def do_table1(levels, ref1):
     sc = table1_scene()
-    eq, _ = solve_equilibrium(sc)
+    eq = solve_equilibrium(sc)
     conv = converge(sc, 12, levels=levels)
     rows = [r for r in conv.table() if r["mode_type"] != "O"][:5]
-    om = np.array([r["omega"] for r in rows])
+    om = np.array([r["omega_rad_s"] for r in rows])
     rep = {"span_m": sc.span, "chord_angle_deg": math.degrees(sc.inclination),
            "top_tension_N": float(eq.tension[-1]), "top_tension_printed_N": 86660.0,
            "lambda2": eq.lambda2, "sag_to_length": eq.sag_to_length,
@@ -102,7 +102,7 @@ def masses_five(L, pattern="HLHLH"):
 
 
 def static_summary(sc):
-    eq, _ = solve_equilibrium(sc.replace(n_elements=192))
+    eq = solve_equilibrium(sc.replace(n_elements=192))
     W = M6 * 9.80665 * SPAN6
     return {"sag_to_length": eq.sag_to_length, "H_over_mgl": eq.horizontal_tension / W,
             "lambda2": eq.lambda2}
@@ -111,12 +111,12 @@ def static_summary(sc):
 def compare_slack(rows, ref_rows):
     out = []
     for r, ref in zip(rows, ref_rows):
-        d = {"mode_type": r["mode_type"], "ref_type": ref["mode_type"], "omega": r["omega"]}
+        d = {"mode_type": r["mode_type"], "ref_type": ref["mode_type"], "omega_rad_s": r["omega_rad_s"]}
         for code in ("SLACK1", "SLACK2"):
             v = ref[f"omega_{code}"]
             if v:
                 d[code] = float(v)
-                d[f"rel_diff_{code}"] = r["omega"] / float(v) - 1
+                d[f"rel_diff_{code}"] = r["omega_rad_s"] / float(v) - 1
         out.append(d)
     verdict = {}
     for code in ("SLACK1", "SLACK2"):
@@ -134,16 +134,16 @@ def five_mass_sensitivity(L, levels):
         pat = "".join("L" if k in light else "H" for k in range(5))
         c = converge(scene6(0.962, masses_five(L, pat)), 9, levels=levels)
         res[pat] = c.table()
-    om = np.array([[r["omega"] for r in v] for v in res.values()])
+    om = np.array([[r["omega_rad_s"] for r in v] for v in res.values()])
     return {"patterns": res, "min": om.min(0).tolist(), "max": om.max(0).tolist(),
             "spread_rel": ((om.max(0) - om.min(0)) / om.mean(0)).tolist()}
 
 
 # --- sweeps and figures -----------------------------------------------------
 
-def air_cable_T1() -> Cable:
+def air_cable_T1() -> SlackCable:
     """The Table 1 cable in air (Figs. 6-8: 'cable properties as in Table 1')."""
-    return Cable(length=T1["L"], mass_per_length=T1["m"], ae=T1["EA"])
+    return SlackCable(length=T1["L"], mass_per_length=T1["m"], ae=T1["EA"])
 
 
 def sweep(theta_deg, n_points, n_modes=18, n_el=90):
@@ -155,8 +155,8 @@ def sweep(theta_deg, n_points, n_modes=18, n_el=90):
     out = []
     for col in c_over_L:
         sc = SlackScene.from_chord(cable=cab, chord=cab.length * col, theta_deg=theta_deg, n_elements=n_el)
-        eq, d = static(sc)
-        ms = compute_modes(eq, d, n_modes, solver="dense")
+        eq = static(sc)
+        ms = modes(eq, n_modes, solver="dense")
         out.append((eq.sag_to_length, ms))
     return out
 
@@ -216,12 +216,12 @@ def min_gap(theta_deg, n_el=90):
 
     def gap(c_over_L):
         sc = SlackScene.from_chord(cable=cab, chord=cab.length * c_over_L, theta_deg=theta_deg, n_elements=n_el)
-        eq, d = static(sc)
-        w = compute_modes(eq, d, 6, solver="dense").of_type("A", "S", "H")
+        eq = static(sc)
+        w = modes(eq, 6, solver="dense").of_type("A", "S", "H")
         return (w[1] - w[0]) / w[0]
     r = scipy.optimize.minimize_scalar(gap, bounds=(0.99, 1.012), method="bounded", options={"xatol": 1e-7})
     sc = SlackScene.from_chord(cable=cab, chord=cab.length * r.x, theta_deg=theta_deg, n_elements=n_el)
-    eq, _ = static(sc)
+    eq = static(sc)
     return {"min_rel_gap": float(r.fun), "chord_over_length": float(r.x), "sag_to_length": eq.sag_to_length,
             "lambda2": eq.lambda2}
 
@@ -233,16 +233,16 @@ def fig_transition(path, n_el=120):
     # locate the veering: smallest gap between the two lowest in-plane frequencies
     def gap(c_over_L):
         sc = SlackScene.from_chord(cable=cab, chord=cab.length * c_over_L, theta_deg=60, n_elements=n_el)
-        eq, d = static(sc)
-        w = compute_modes(eq, d, 6, solver="dense").of_type("A", "S", "H")
+        eq = static(sc)
+        w = modes(eq, 6, solver="dense").of_type("A", "S", "H")
         return (w[1] - w[0]) / w[0]
     r = scipy.optimize.minimize_scalar(gap, bounds=(0.995, 1.012), method="bounded", options={"xatol": 1e-6})
     centres = r.x + np.array([0.004, 0.0015, 0.0, -0.0015, -0.004])
     fig, axes = plt.subplots(2, len(centres), figsize=(13, 5), sharex=True, constrained_layout=True)
     for j, col in enumerate(centres):
         sc = SlackScene.from_chord(cable=cab, chord=cab.length * col, theta_deg=60, n_elements=n_el)
-        eq, d = static(sc)
-        ms = compute_modes(eq, d, 8, solver="dense")
+        eq = static(sc)
+        ms = modes(eq, 8, solver="dense")
         idx = [i for i, t in enumerate(ms.mode_type) if t != "O"][:2]
         for row, i in enumerate(idx):
             sh = ms.shapes[i]
@@ -268,7 +268,7 @@ def irvine_check(levels, n_points):
     rows = []
     for sl in np.linspace(0.0004, 0.0025, n_points):     # 1 - l/L: sag/span <= ~3 %
         sc = scene6(1 - sl)
-        eq, _ = solve_equilibrium(sc.replace(n_elements=levels[-1]))
+        eq = solve_equilibrium(sc.replace(n_elements=levels[-1]))
         c = converge(sc, 6, levels=levels)
         lam2, H, l = eq.lambda2, eq.horizontal_tension, SPAN6
         ref = irvine.irvine_modes(8, lambda2=lam2, span=l, H=H, m=M6)
@@ -359,7 +359,7 @@ def main(argv=None) -> int:
     # sensitivity: masses at the third points of the span (x = l/3, 2l/3) instead
     pos = L962 / 3
     for _ in range(6):
-        eq, _ = solve_equilibrium_shooting(scene6(0.962, [PointMass(position=pos, mass=HEAVY),
+        eq = solve_equilibrium_shooting(scene6(0.962, [PointMass(position=pos, mass=HEAVY),
                                                           PointMass(position=L962 - pos, mass=HEAVY)]))
         pos += SPAN6 / 3 - np.interp(pos, eq.s, eq.x)
     c3b = converge(scene6(0.962, [PointMass(position=pos, mass=HEAVY), PointMass(position=L962 - pos, mass=HEAVY)]),
@@ -402,7 +402,7 @@ def main(argv=None) -> int:
 
     doc["report"] = rep
     doc["meta"] = {"levels": levels, "quick": args.quick, "seconds": time.perf_counter() - t0,
-                   "omega": "Richardson-extrapolated rad/s"}
+                   "omega_rad_s": "Richardson-extrapolated natural angular frequency, rad/s"}
     (out / "slack_tables.json").write_text(json.dumps(doc, indent=1))
     return 0
 

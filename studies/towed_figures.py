@@ -19,7 +19,7 @@ import numpy as np
 
 from cablesys.towed.bessel import exact_solution, mpmath_solution, real_order_solution
 from cablesys.towed.bvp import bvp_solution
-from cablesys.towed.eigen import damping_time, eigenfrequencies, exact_eigenfrequency
+from cablesys.towed.eigen import damping_time, exact_eigenfrequency, modes
 from cablesys.towed.equation import REPORT_SEA_TRIAL, REPORT_TYPICAL, TowedCable
 from cablesys.towed.mol import forced_response, slowest_mode
 from cablesys.towed.interaction import (amplification, effective_amplification,
@@ -161,12 +161,12 @@ def checks(coef) -> dict:
     ve = exact_solution(coef, xi, om)
     vb = bvp_solution(coef, xi, om)
     vm = mpmath_solution(coef, xi[::5], om)
-    low = float(c_star(coef, 1.0, 1e-3)[0, 0])
+    low = float(c_star(coef, 1.0, 1e-3).c_star)
     mol_om = (2.0, 8.0)
     mol_err = [float(np.abs(forced_response(coef, w, [0.5, 1.0], n=200)
                             - exact_solution(coef, np.array([0.5, 1.0]), w)).max()) for w in mol_om]
     typ = TowedCable(**REPORT_TYPICAL)
-    e = eigenfrequencies(typ.coefficients(), 5)
+    e = modes(typ.coefficients(), 5)
     return {
         "max_abs_exact_minus_shooting": float(np.abs(ve - vb).max()),
         "max_abs_exact_minus_mpmath": float(np.abs(ve[::5] - vm).max()),

@@ -85,7 +85,8 @@ def plot_cn(plt, out: Path, runs, H_data, c_data, fits, n):
     cn = np.geomspace(0.02, 3.0, n)
     eH, ec = [], []
     for c in cn:
-        H, cs, _ = model_runs(runs, c_n=c)
+        res = model_runs(runs, c_n=c)
+        H, cs = res.H_abs, res.c_star
         eH.append(np.sqrt(np.mean((H - H_data) ** 2)))
         ec.append(np.sqrt(np.mean((cs - c_data) ** 2)))
     fig, ax = plt.subplots(figsize=(8, 5))
@@ -122,7 +123,8 @@ def main(argv=None) -> int:
     H_data = np.array([float(r.columns["H"]) for r in runs])
     c_data = np.array([float(r.columns["c_star"]) for r in runs])
 
-    H, cs, om = model_runs(runs)
+    res = model_runs(runs)
+    H, cs, om = res.H_abs, res.c_star, res.omega
     fits = fit_normal_drag(runs, H_data, c_data, n_scan=9 if args.quick else 25,
                            xatol=1e-3 if args.quick else 1e-5)
     fa, fp, fb = fits["amplitude"], fits["phase"], fits["both"]

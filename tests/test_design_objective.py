@@ -10,6 +10,7 @@ from cablesys.isolation.objective import (
     nlp_functions,
     parameter_map,
     response_functions,
+    sea_weights,
 )
 from cablesys.isolation.problem import variables
 from cablesys.isolation.solve import equivalent_jacobian_shift
@@ -51,7 +52,9 @@ def test_objective_equals_the_stochastic_linearization(which, dual):
         dJ, st = equivalent_jacobian_shift(model, p, settings, n_log2=7)
         labels = ("y_b", "tension")
     q0 = steady_state(model, p).q
-    obj, sigma, mean_t, strain = (np.array(a).ravel() for a in response_functions(model, settings)(q0, p, dJ))
+    omega, w_s, w_band = sea_weights(settings)
+    obj, _, sigma, mean_t, strain = (np.array(a).ravel() for a in
+                                     response_functions(model, omega.size)(q0, p, dJ, omega, w_s, w_band))
     np.testing.assert_allclose(sigma, [st.std(lbl) for lbl in labels], rtol=2e-3)
     assert obj[0] == pytest.approx(st.significant_amplitude(labels[0]), rel=2e-3)
     # statics: mean tension = weight below (eq. 49b); u_0 = T l_r / AE and l_0 = l_r (1 - T_r / AE) (eq. 1)
@@ -68,7 +71,8 @@ def test_rao_band_objective_is_the_band_rms_of_the_rao(dual):
     scene, settings, model, p, dJ, st = dual
     s2 = settings.replace(objective="rao_band", band=(0.5, 1.5))
     q0 = steady_state(model, p).q
-    obj = float(response_functions(model, s2)(q0, p, dJ)[0])
+    omega, w_s, w_band = sea_weights(s2)
+    obj = float(response_functions(model, omega.size)(q0, p, dJ, omega, w_s, w_band)[1])
     w = settings.omega
     H2 = np.abs(st.transfer[:, st.output_labels.index("y_b_2")]) ** 2
     band = (w >= 0.5) & (w <= 1.5)

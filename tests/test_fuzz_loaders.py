@@ -27,7 +27,7 @@ from hypothesis import strategies as st
 from cablesys.errors import CablesysError, ParameterError
 from cablesys.scene import default_scene, dump_scene, load_scene
 from cablesys.slack.scene import EXAMPLE_TOML
-from cablesys.slack.scene import load_scene as load_slack
+from cablesys.slack.scene import load_slack_scene as load_slack
 from cablesys.towed.runs import read_runs
 
 CHAIN = """

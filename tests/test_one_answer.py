@@ -124,3 +124,17 @@ def test_the_linear_analyses_linearize_the_ladders_model_and_say_so(tmp_path):
     doc = json.loads((tmp_path / "rao" / "rao_summary.json").read_text())
     expect = ladder.linear_model(dale)[2]
     assert doc["model"] == json.loads(json.dumps(expect)) and doc["model"]["name"] in ("wang", "segmented")
+
+
+def test_run_help_is_written_from_the_registries(capsys):
+    import dataclasses
+
+    from cablesys.integration import METHODS
+    from cablesys.ladder import MODEL_CHOICES
+    from cablesys.time_domain import IntegratorSettings
+    with pytest.raises(SystemExit):
+        main(["run", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert all(m in text for m in METHODS) and all(m in text for m in MODEL_CHOICES)
+    steps = next(f.default for f in dataclasses.fields(IntegratorSettings) if f.name == "max_num_steps")
+    assert f"default {steps})" in text

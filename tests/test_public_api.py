@@ -132,13 +132,19 @@ def test_results_are_short_json_and_labelled():
     from cablesys.towed import (
         REPORT_TYPICAL,
         TowedCable,
-        eigenfrequencies,
+        c_star,
+        modes,
+        phase_lag,
+        phase_velocity,
+        transfer_function,
         transfer_grid,
     )
 
     coef = TowedCable(**REPORT_TYPICAL).coefficients()
     for res in (transfer_grid(coef, np.linspace(0.0, 1.0, 401), np.linspace(0.1, 3.0, 300)),
-                eigenfrequencies(coef, 4)):
+                modes(coef, 4), transfer_function(coef, 1.0, 2.0), c_star(coef, 0.5, np.linspace(0.1, 3.0, 5)),
+                phase_velocity(coef, np.linspace(0.0, 1.0, 11)[:, None], np.array([0.5, 1.0])),
+                phase_lag(coef, np.array([0.2, 0.9]), np.array([1.0, 2.0]))):
         assert isinstance(res, AnalysisResult) and res.success and res.message == ""
         assert res.stats["wall_time_s"] >= 0.0
         assert len(repr(res)) < 400 and "array(" not in repr(res)
@@ -174,8 +180,10 @@ def test_readme_python_section_uses_only_the_public_api():
 @pytest.mark.slow
 def test_readme_python_section_runs(tmp_path, monkeypatch):
     from cablesys.slack.scene import EXAMPLE_TOML
+    from cablesys.towed.scene import EXAMPLE_TOML as TOWED_TOML
 
-    (tmp_path / "cable.toml").write_text(EXAMPLE_TOML)
+    (tmp_path / "cable.toml").write_text(EXAMPLE_TOML)       # `cablesys slack --example`
+    (tmp_path / "towed.toml").write_text(TOWED_TOML)        # `cablesys towed --example`
     monkeypatch.chdir(tmp_path)
     exec(compile(_readme_python_block(), "README.md", "exec"), {})
 
@@ -229,8 +237,8 @@ def test_real_slack_results_keep_the_protocol():
     from cablesys.slack.scene import EXAMPLE_TOML, scene_from_dict
 
     scene = scene_from_dict(tomllib.loads(EXAMPLE_TOML))
-    eq, modes = cablesys.slack.analyze(scene, 4, n_elements=40)
-    for res in (eq, modes):
+    res = cablesys.slack.analyze(scene, 4, n_elements=40)
+    for res in (res, res.equilibrium, res.modes):
         _check_protocol(res)
 
 

@@ -11,7 +11,7 @@ import pytest
 
 from cablesys.errors import ParameterError
 from cablesys.slack import cli
-from cablesys.slack.scene import EXAMPLE_TOML, load_scene
+from cablesys.slack.scene import EXAMPLE_TOML, load_slack_scene
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -28,13 +28,18 @@ def test_example_scene_runs_and_writes_outputs(tmp_path, capsys, monkeypatch):
     monkeypatch.setenv("MPLBACKEND", "Agg")
     f = tmp_path / "s.toml"
     f.write_text(EXAMPLE_TOML)
-    scene = load_scene(f)
+    scene = load_slack_scene(f)
     assert len(scene.masses) == 2 and scene.n_modes == 12
     assert run(["slack", str(f), "--out", str(tmp_path / "o")]) == 0
     doc = json.loads((tmp_path / "o" / "slack_result.json").read_text())
     types = [m["mode_type"] for m in doc["modes"]]
     assert types[:9] == list("OAOSOAOSO")
     assert doc["equilibrium"]["horizontal_tension_N"] > 0
+    # every number says its unit: omega in rad/s (the key and the units table)
+    assert doc["units"]["omega_rad_s"] == "rad/s" and all(set(m) == {"mode_type", "omega_rad_s"} for m in doc["modes"])
+    printed = capsys.readouterr().out
+    sag = float(printed.split("sag/L = ")[1].split(",")[0])
+    assert sag == pytest.approx(doc["equilibrium"]["sag_to_length"], rel=1e-5)
     assert (tmp_path / "o" / "equilibrium.png").exists() and (tmp_path / "o" / "mode_shapes.png").exists()
 
 
@@ -54,7 +59,7 @@ def test_bad_toml_names_the_field(tmp_path, edit, field):
     assert edit[0] in EXAMPLE_TOML
     f.write_text(EXAMPLE_TOML.replace(edit[0], edit[1], 1))
     with pytest.raises(ParameterError) as err:
-        load_scene(f)
+        load_slack_scene(f)
     assert err.value.field == field
 
 

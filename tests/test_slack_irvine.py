@@ -76,3 +76,18 @@ def test_bad_input():
         irvine.symmetric_roots(-1.0, 3)
     with pytest.raises(ParameterError, match="odd"):
         irvine.lambda2_onset(2)
+
+
+def test_irvine_modes_are_a_result_and_a_sequence():
+    """The closed form keeps the result protocol; indexing and iterating give the same modes."""
+    import json
+
+    res = irvine.irvine_modes(9, lambda2=625.0, span=22.9, H=447.0, m=1.14)
+    assert res.success and res.message == "" and len(res) == 9
+    assert [m.omega for m in res] == list(res.omega) and res[2].mode_type == res.mode_type[2]
+    # the first out-of-plane mode is the taut string's: (pi / l) sqrt(H / m)
+    assert res[0].mode_type == "O" and res[0].omega == pytest.approx(math.pi / 22.9 * math.sqrt(447.0 / 1.14),
+                                                                     rel=1e-14)
+    ds = res.to_xarray()
+    assert ds["omega"].attrs["units"] == "rad/s" and ds.attrs["lambda2"] == 625.0
+    assert json.loads(json.dumps(res.summary()))["modes"][0]["omega_rad_s"] == res[0].omega

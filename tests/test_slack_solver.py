@@ -7,23 +7,24 @@ import pytest
 
 from cablesys.errors import ParameterError, SolverError
 from cablesys.slack import irvine
-from cablesys.slack.modes import compute_modes, converge
-from cablesys.slack.scene import Cable, PointMass, SlackScene
+from cablesys.slack.vibration import converge, modes
+from cablesys.slack.scene import SlackCable, PointMass, SlackScene
 from cablesys.slack.statics import solve_equilibrium, solve_equilibrium_shooting
 
 SPAN, M, EA = 22.9, 1.14, 8.9e5
 
 
 def scene(l_over_L=0.987, masses=(), n=96, **kw):
-    return SlackScene(cable=Cable(length=SPAN / l_over_L, mass_per_length=M, ae=EA),
+    return SlackScene(cable=SlackCable(length=SPAN / l_over_L, mass_per_length=M, ae=EA),
                       span=SPAN, masses=tuple(masses), n_elements=n, **kw)
 
 
 @pytest.mark.parametrize("rise", [0.0, 8.0, -6.0])
 def test_nlp_equals_shooting(rise):
     sc = scene(0.962, [PointMass(position=5.0, mass=4.5), PointMass(position=14.0, mass=2.0)], rise=rise)
-    a, d = solve_equilibrium(sc)
-    b, _ = solve_equilibrium_shooting(sc)
+    a = solve_equilibrium(sc)
+    d = a.discretization
+    b = solve_equilibrium_shooting(sc)
     assert np.max(np.hypot(a.x - b.x, a.z - b.z)) < 1e-7 * SPAN
     # vertical force balance: the end elements carry cable + point masses, less the
     # half elements lumped onto the supports themselves
@@ -37,7 +38,8 @@ def test_hessian_is_stiffness_matches_finite_difference_of_forces():
     from cablesys.slack.statics import _energy_functions, _params, stiffness_inplane
     import casadi as ca
     sc = scene(0.97, n=12)
-    eq, d = solve_equilibrium(sc)
+    eq = solve_equilibrium(sc)
+    d = eq.discretization
     K = stiffness_inplane(eq, d).toarray()
     w, p, V, fV, _ = _energy_functions(d.n_elements)
     g = ca.Function("g", [w, p], [ca.gradient(V, w)])
@@ -54,7 +56,7 @@ def test_irvine_agreement_small_sag():
     """Converged in-plane and out-of-plane frequencies vs eq. 6 / string, within 1 %."""
     for one_minus in (0.0005, 0.0012, 0.0024):          # lambda^2 ~ 10 .. 80, across 4 pi^2
         sc = scene(1 - one_minus)
-        eq, _ = solve_equilibrium(sc.replace(n_elements=96))
+        eq = solve_equilibrium(sc.replace(n_elements=96))
         c = converge(sc, 6, levels=(24, 48, 96))
         ref = irvine.irvine_modes(8, lambda2=eq.lambda2, span=SPAN, H=eq.horizontal_tension, m=M)
         for t in "OAS":
@@ -79,8 +81,9 @@ def test_convergence_order_two_and_richardson():
 def test_symmetry_classification_and_eq25_normalization():
     sc = scene(0.962, [PointMass(position=SPAN / 0.962 / 3, mass=4.5),
                        PointMass(position=2 * SPAN / 0.962 / 3, mass=4.5)], n=60)
-    eq, d = solve_equilibrium(sc)
-    ms = compute_modes(eq, d, 9)
+    eq = solve_equilibrium(sc)
+    d = eq.discretization
+    ms = modes(eq, 9)
     assert "".join(ms.mode_type) == "OAOSOAOSO"
     inplane = ~np.isnan(ms.symmetric_fraction)
     f = ms.symmetric_fraction[inplane]
@@ -91,30 +94,30 @@ def test_symmetry_classification_and_eq25_normalization():
 
 
 def test_inclined_cable_has_hybrid_modes_horizontal_does_not():
-    cab = Cable(length=330.0, mass_per_length=5.56, ae=1.06e8)
+    cab = SlackCable(length=330.0, mass_per_length=5.56, ae=1.06e8)
     for th, expect_hybrid in ((0.0, False), (60.0, True)):
         sc = SlackScene.from_chord(cable=cab, chord=330 * 0.99966, theta_deg=th, n_elements=60)
-        eq, d = solve_equilibrium_shooting(sc)
-        types = compute_modes(eq, d, 6).mode_type
+        eq = solve_equilibrium_shooting(sc)
+        types = modes(eq, 6).mode_type
         assert ("H" in types) == expect_hybrid, (th, types)
 
 
 def test_water_added_mass_lowers_transverse_frequencies_by_eq27():
     # taut-ish horizontal cable: out-of-plane modes scale by sqrt(m_W/m_A) at equal weight
-    cab_air = Cable(length=100.0, mass_per_length=2.0, ae=1e7)
-    cab_w = Cable(length=100.0, mass_per_length=2.0, ae=1e7, specific_gravity=4.0,
+    cab_air = SlackCable(length=100.0, mass_per_length=2.0, ae=1e7)
+    cab_w = SlackCable(length=100.0, mass_per_length=2.0, ae=1e7, specific_gravity=4.0,
                   added_mass_factor=1.0, weight_per_length=2.0 * 9.80665)
-    a = compute_modes(*solve_equilibrium(SlackScene(cable=cab_air, span=99.9, n_elements=60)), 4)
-    w = compute_modes(*solve_equilibrium(SlackScene(cable=cab_w, span=99.9, medium="water", n_elements=60)), 4)
+    a = modes(solve_equilibrium(SlackScene(cable=cab_air, span=99.9, n_elements=60)), 4)
+    w = modes(solve_equilibrium(SlackScene(cable=cab_w, span=99.9, medium="water", n_elements=60)), 4)
     ratio = irvine.virtual_mass_ratio(added_mass_factor=1.0, specific_gravity=4.0)
     assert a.of_type("O")[0] / w.of_type("O")[0] == pytest.approx(math.sqrt(ratio), rel=1e-6)
 
 
 def test_sparse_equals_dense():
     sc = scene(0.962, [PointMass(position=8.0, mass=4.5)], n=200)
-    eq, d = solve_equilibrium(sc)
-    a = compute_modes(eq, d, 12, solver="dense")
-    b = compute_modes(eq, d, 12, solver="sparse")
+    eq = solve_equilibrium(sc)
+    a = modes(eq, 12, solver="dense")
+    b = modes(eq, 12, solver="sparse")
     assert np.allclose(a.omega, b.omega, rtol=1e-9)
     assert a.mode_type == b.mode_type
 
@@ -126,7 +129,7 @@ def test_sparse_equals_dense():
     (dict(medium="oil"), "scene.medium"),
 ])
 def test_bad_scene_names_the_field(kw, field):
-    base = dict(cable=Cable(length=23.8, mass_per_length=M, ae=EA), span=22.9)
+    base = dict(cable=SlackCable(length=23.8, mass_per_length=M, ae=EA), span=22.9)
     base.update(kw)
     with pytest.raises(ParameterError) as err:
         SlackScene(**base)
@@ -139,7 +142,7 @@ def test_bad_cable(kw, field):
     base = dict(length=23.8, mass_per_length=M, ae=EA)
     base.update(kw)
     with pytest.raises(ParameterError) as err:
-        Cable(**base)
+        SlackCable(**base)
     assert err.value.field == field
 
 
@@ -148,3 +151,31 @@ def test_bad_mass_and_nonconverging_nlp():
         PointMass(position=1.0, mass=0.0)
     with pytest.raises(SolverError, match="did not converge"):
         solve_equilibrium(scene(0.962, n=40), max_iter=1)
+
+
+def test_analyze_is_one_result_with_units_and_the_same_numbers_as_its_parts():
+    """slack.analyze = solve_equilibrium then modes (one result); the old tuple unpacking warns."""
+    import json
+
+    import cablesys.slack as slack
+
+    sc = scene(0.962, [PointMass(position=8.0, mass=4.5)], n=48)
+    res = slack.analyze(sc, 6)
+    assert isinstance(res, slack.SlackAnalysis) and res.success and res.message == ""
+    eq = solve_equilibrium(sc)
+    parts = modes(eq, 6)
+    assert np.array_equal(res.modes.omega, parts.omega) and res.modes.mode_type == parts.mode_type
+    assert res.equilibrium.horizontal_tension == pytest.approx(eq.horizontal_tension, rel=1e-12)
+    ds = res.to_xarray()
+    assert ds["omega"].attrs["units"] == "rad/s" and ds["tension"].attrs["units"] == "N"
+    assert ds["x"].dims == ("node",) and ds["shape"].dims == ("mode", "node", "dof")
+    doc = json.loads(json.dumps(res.summary()))
+    assert [r["omega_rad_s"] for r in doc["modes"]] == pytest.approx(list(parts.omega), rel=1e-15)
+    assert res.stats["wall_time_s"] >= res.modes.stats["wall_time_s"]
+    with pytest.warns(DeprecationWarning, match="unpacking slack.analyze"):
+        eq_old, modes_old = res
+    assert eq_old is res.equilibrium and modes_old is res.modes
+    # the modes need the element layout: an Equilibrium without one is refused by name
+    import dataclasses
+    with pytest.raises(ParameterError, match="eq.discretization"):
+        modes(dataclasses.replace(eq, discretization=None))

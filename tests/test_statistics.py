@@ -11,13 +11,15 @@ from cablesys.scene.sea import SeaSpectrum
 
 
 def test_sine_statistics_closed_form():
-    """a sin(w t): std a/sqrt(2), up-crossing period 2 pi / w, significant amplitude a."""
+    """a sin(w t): std a/sqrt(2), up-crossing period 2 pi / w, significant amplitude 2 std = sqrt(2) a,
+    amplitude (half the peak-to-peak) a."""
     t = np.linspace(0, 200, 20001)
     s = st.time_domain(t, 3.0 + 2.0 * np.sin(0.5 * np.pi * t))
     assert s["mean"] == pytest.approx(3.0, abs=1e-3)
     assert s["std"] == pytest.approx(2.0 / math.sqrt(2), rel=1e-3)
     assert s["zero_upcrossing_period_s"] == pytest.approx(4.0, rel=0.01)
-    assert s["significant_amplitude"] == pytest.approx(2.0, rel=1e-3)
+    assert s["significant_amplitude"] == pytest.approx(2.0 * math.sqrt(2), rel=1e-3)
+    assert s["amplitude"] == pytest.approx(2.0, rel=1e-3)
     assert s["max"] == pytest.approx(5.0, abs=1e-6)
 
 

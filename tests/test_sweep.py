@@ -11,7 +11,6 @@ from cablesys.errors import ParameterError
 from cablesys.scene import OMEGA_N_MEASURED, dale_scene
 from cablesys.sweeps import Grid, backends, parse_values, parse_vary
 from cablesys.sweeps.worker import process_cache
-from cablesys.time_domain import simulate
 
 DURATION = 19.0          # 6 periods at 1.8 omega_n: amplitudes over the last 3
 RATIOS = (1.8, 2.2)
@@ -29,7 +28,7 @@ def base():
 def one_by_one(ae, ratio):
     """The case built and run independently: its own scene, model and simulator."""
     scene = dale_scene(omega_ratio=ratio, duration=DURATION).replace_section(0, cable={"ae": ae})
-    r = simulate(scene)
+    r = cablesys.simulate(scene)        # the door the sweep runs: the scene's numerics.model (as built here)
     T = 2 * np.pi / (ratio * OMEGA_N_MEASURED)
     return {"tension_max_N": np.max(r["tension"]), "tension_min_N": np.min(r["tension"]),
             "amplitude_x_b": r.steady_amplitude("x_b", T, 3), "amplitude_y_b": r.steady_amplitude("y_b", T, 3)}
@@ -53,21 +52,22 @@ def test_sweep_equals_the_cases_run_one_by_one():
 def test_one_model_per_structure_values_only_through_p(monkeypatch):
     monkeypatch.setenv("CABLESYS_COMPILE", "0")      # counting model builds: no need to compile each structure to C
     cache = process_cache()
-    n0 = cache.builds
-    ds = cablesys.sweep(dale_scene(duration=1.0), {"cable.ae": [20.0, 40.0, 80.0], "body.weight": [0.2, 0.3]},
+    n0 = len(cache.rungs)                            # the run analysis builds through the ladder's cache
+    scene = dale_scene(duration=1.0).with_numerics(model="as-built")
+    ds = cablesys.sweep(scene, {"cable.ae": [20.0, 40.0, 80.0], "body.weight": [0.2, 0.3]},
                         "run", metrics=["tension_max_N"], workers=1, progress=False)
-    assert (ds["status"] == "ok").all() and cache.builds - n0 <= 1
-    n1 = cache.builds
-    ds = cablesys.sweep(dale_scene(duration=1.0), {"numerics.drag_segments": [3, 5, 7]}, "run",
+    assert (ds["status"] == "ok").all() and len(cache.rungs) - n0 <= 1
+    n1 = len(cache.rungs)
+    ds = cablesys.sweep(scene, {"numerics.drag_segments": [3, 5, 7]}, "run",
                         metrics=["tension_max_N"], workers=1, progress=False)
-    assert (ds["status"] == "ok").all() and cache.builds - n1 == 3      # the structure changes: one model each
+    assert (ds["status"] == "ok").all() and len(cache.rungs) - n1 == 3      # the structure changes: one model each
 
 
 @pytest.mark.filterwarnings("ignore::cablesys.errors.NumericalWarning")    # RK4 above its limit: on purpose
 def test_failures_are_recorded_and_the_sweep_completes():
     """An integrator failure (explicit RK4 far above its stability limit) and an invalid value
     (a body lighter than water with TENS = 0) fail their cases only."""
-    scene = dale_scene(duration=2.0).with_numerics(integrator="rk", steps_per_output=1)
+    scene = dale_scene(duration=2.0).with_numerics(integrator="rk", steps_per_output=1, model="as-built")
     ds = cablesys.sweep(scene, {"cable.ae": [22.0, 1e5], "body.weight": [0.11, -1.0]}, "run",
                         metrics=["tension_*"], workers=1, progress=False)
     status, msg = ds["status"].values, ds["message"].values
@@ -170,13 +170,14 @@ def test_rao_and_periodic_sweeps_give_the_physics():
 
 @pytest.mark.slow
 def test_the_model_chosen_is_recorded():
-    """As built (like simulate): Wang's 2-DOF model; under the model ladder: its choice for each case."""
+    """As built: Wang's 2-DOF model; under the model ladder (the default, as cablesys.simulate): its choice for each case."""
     from cablesys.ladder import choose
     scene = dale_scene(duration=2.0)
     vary = {"cable.ae": [20.0, 2e3]}
-    built = cablesys.sweep(scene, vary, "run", metrics=["model_*"], workers=1, progress=False)
+    built = cablesys.sweep(scene, vary, "run", metrics=["model_*"], workers=1, progress=False,
+                           options={"model": "as-built"})
     assert list(built["model_name"].values) == ["wang", "wang"]
-    auto = cablesys.sweep(scene, vary, "run", metrics=["model_*"], workers=1, progress=False, options={"model": "auto"})
+    auto = cablesys.sweep(scene, vary, "run", metrics=["model_*"], workers=1, progress=False)
     for i, ae in enumerate(vary["cable.ae"]):
         choice = choose(scene.replace_section(0, cable={"ae": ae}))
         assert auto["model_name"].values[i] == choice.name and float(auto["model_segments"][i]) == choice.segments

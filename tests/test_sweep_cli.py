@@ -1,4 +1,4 @@
-"""``cablesys sweep``: the sweep from the command line writes the Dataset, a CSV and a plot per metric."""
+"""``cablesys sweep``: the sweep from the command line writes the Dataset, a CSV and one summary figure."""
 
 import xarray as xr
 
@@ -18,8 +18,8 @@ def test_cli_sweep_writes_dataset_csv_and_plots(tmp_path, capsys):
     ds = xr.open_dataset(out / "sweep.nc", engine="scipy")
     assert ds["tension_max_N"].dims == ("cable.ae", "body.weight")
     assert abs(float(ds["cable.ae"][1]) - 100.0) < 1e-9
-    assert (out / "sweep.csv").read_text().splitlines()[0].startswith("cable.ae,body.weight")
-    assert {p.name for p in (out / "plots").glob("*.png")} == {"tension_max_N.png", "tension_min_N.png"}
+    assert (out / "sweep.csv").read_text().splitlines()[0].startswith("cable.ae [N],body.weight [N],status")
+    assert {p.name for p in (out / "plots").glob("*.png")} == {"sweep.png"}      # one summary figure per sweep
     # the same command again: everything is stored, nothing is computed
     assert main(["sweep", str(scene), "--vary", "cable.ae=10:1000:log:3", "--vary", "body.weight=0.2,0.3,-1",
                  "--metric", "tension_max_N", "--metric", "tension_min_N", "--workers", "1", "--out", str(out),

@@ -23,7 +23,7 @@ def _shooting_H(length, speed, f_hz, **coefficients):
     """|H(xi = 1)| by shooting (towed/bvp.py) at omega = 2 pi f L / U (Kennedy & Strahan eq. 2)."""
     cable = TowedCable(length=length, speed=speed, **{**REPORT_SEA_TRIAL, **coefficients})
     omega = 2 * np.pi * f_hz * length / speed
-    return float(abs(transfer_function(cable.coefficients(), 1.0, omega, method="bvp")))
+    return float(abs(transfer_function(cable.coefficients(), 1.0, omega, method="bvp").H))
 
 
 @pytest.fixture
@@ -90,7 +90,8 @@ def test_report_coefficients_against_table_A2():
     """The report: theory agrees with the amplitude data to roughly 25 %."""
     runs = read_runs(TABLE)
     H_data = np.array([float(r.columns["H"]) for r in runs])
-    H, cs, om = model_runs(runs)
+    res = model_runs(runs)
+    H, om = res.H_abs, res.omega
     assert len(runs) == 17 and om.min() > 0.5 and om.max() < 18
     assert np.sqrt(np.mean((H - H_data) ** 2)) < 0.07
     assert np.median(np.abs(H - H_data) / H_data) < 0.25
@@ -112,3 +113,19 @@ def test_sea_trial_study_quick(tmp_path):
     assert fits["phase"]["rms_c_star"] < res["stats_report_coefficients"]["c_star"]["rms"]
     for name in ("towed_trials_H.png", "towed_trials_cstar.png", "towed_trials_cn.png"):
         assert (out / name).stat().st_size > 10_000
+
+
+def test_model_runs_is_a_labelled_result(small_csv):
+    """model_runs returns the protocol's result on dimension ``run``; the old tuple unpacking warns."""
+    runs = read_runs(small_csv)
+    res = model_runs(runs)
+    assert res.success and res.labels == ("5", "21", "X")
+    # omega = 2 pi f L / U (eq. 2) of run 5
+    assert res.omega[0] == pytest.approx(2 * np.pi * 0.37e-3 * 1193.8 / 5.10, rel=1e-14)
+    ds = res.to_xarray()
+    assert list(ds["run"].values) == ["5", "21", "X"] and ds["H_abs"].values[0] == res.H_abs[0]
+    assert "omega L/U" in ds["omega"].attrs["long_name"] and ds["c_star"].attrs["units"] == "1"
+    assert json.loads(json.dumps(res.summary()))["runs"][2]["H_abs"] == pytest.approx(1.0, abs=1e-4)
+    with pytest.warns(DeprecationWarning, match="unpacking model_runs"):
+        H, cs, om = res
+    assert H is res.H_abs and om is res.omega

@@ -8,7 +8,7 @@ import scipy.special as sc
 
 from cablesys.errors import ParameterError
 from cablesys.towed.bessel import hyp0f1_complex
-from cablesys.towed.eigen import (bessel_zeros, damping_time, eigenfrequencies,
+from cablesys.towed.eigen import (bessel_zeros, damping_time, modes,
                                   exact_eigenfrequency)
 from cablesys.towed.equation import REPORT_SEA_TRIAL, REPORT_TYPICAL, TowedCable
 
@@ -38,7 +38,7 @@ def test_damping_time_report_typical_values():
 
 def test_eigenfrequencies_solve_eq18_and_pass_eq20b_only_for_the_slow_root():
     co = TYPICAL.coefficients()
-    e = eigenfrequencies(co, 4)
+    e = modes(co, 4)
     for w_set in (e.slow, e.fast):
         bo2 = 4 * w_set / co.b**2 * (1j * co.d - w_set)                 # eq. 5
         assert np.sqrt(bo2 * co.a + 0j) == pytest.approx(e.delta, rel=1e-10)   # eq. 18 (principal root)

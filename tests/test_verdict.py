@@ -1,6 +1,7 @@
 """The verdict against [limits] (cablesys/verdict.py): each criterion flips at its limit; the CLI's --strict."""
 
 import dataclasses
+import math
 
 import numpy as np
 import pytest
@@ -101,15 +102,39 @@ def test_run_strict_exits_nonzero_on_a_failed_criterion(tmp_path, capsys):
     assert main(["run", str(bad), "--out", str(tmp_path / "c")]) == 0
 
 
-def test_slack_and_snap_warnings_are_printed():
-    from cablesys.results import SlackEvent, SnapLoad
+def test_slack_and_snap_warnings_count_what_the_verdict_reads():
+    """A run slack over [3.0, 3.2] s with a 5000 N snap load at 3.3 s (before the window) and a 2500 N one at
+    80 s (in it): the warnings give the slack time and split the snap loads at the window; the verdict's peak
+    tension is the in-window snap load, above the sampled maxima (1400 N), and not the earlier one."""
+    from cablesys.results import SlackEvent, SnapLoad, TimeResult
     r = _run()
-    r.events = (SlackEvent(time=3.0, section=0, kind="slack", rate=-5.0), SlackEvent(time=3.2, section=0, kind="taut", rate=4.0))
-    r.snaps = (SnapLoad(time=3.3, section=0, tension=5000.0),)
-    r.time_slack = lambda: 0.2
-    w = vd.warnings_of(r)
+    r = TimeResult(time=r.time, data=r.data, events=(SlackEvent(time=3.0, section=0, kind="slack", rate=-5.0),
+                                                     SlackEvent(time=3.2, section=0, kind="taut", rate=4.0)),
+                   snaps=(SnapLoad(time=3.3, section=0, tension=5000.0), SnapLoad(time=80.0, section=0, tension=2500.0)))
+    lim = Limits(statistics_start=50.0, safe_working_load=3000.0)
+    rep = vd.report(type("S", (), {"limits": lim})(), r)
+    w = rep["warnings"]
     assert "went slack 1 times" in w[0] and "0.2 s" in w[0]
-    assert "1 snap loads" in w[1] and "5000" in w[1]
+    assert "1 snap loads in the statistics window; largest 2500 N" in w[1]
+    assert "1 snap loads before the statistics window" in w[2] and "5000 N" in w[2]
+    peak = rep["verdict"]["peak_tension"]
+    assert peak["value"] == 2500.0 and "snap load at t = 80 s" in peak["text"]
+
+
+def test_gaussian_minimum_below_zero_is_no_negative_tension_in_the_verdict():
+    """Frequency-domain statistics of a tension whose most probable minimum is below -400 N: the least-tension and
+    slack criteria read 0 N (and fail a positive limit), the grouped statistics show 0 with the slack
+    probability."""
+    from cablesys import statistics as st
+    w = np.linspace(0.5, 1.5, 101)
+    fd = st.frequency_domain(w, np.full(w.size, 300.0**2), duration=3 * 3600.0, mean=600.0)
+    assert fd["most_probable_min"] < -400.0                          # the injected case
+    stats = {"tension_top": fd}
+    v = vd.evaluate(Limits(least_tension=10.0, slack_fraction=0.1, exposure=3 * 3600.0), stats)
+    assert v["least_tension"]["value"] == 0.0 and not v["least_tension"]["pass"]
+    assert v["slack"]["value"] == 0.0 and not v["slack"]["pass"]
+    g = vd.group_by_quantity(stats)["force_N"]["tension_top"]
+    assert g["most_probable_min"] == 0.0 and g["slack_probability"] == pytest.approx(0.5 * math.erfc(2 / math.sqrt(2)))
 
 
 def test_design_failed_starts_are_named_with_the_reason():

@@ -11,10 +11,15 @@ from pathlib import Path
 
 from .. import units as U
 from ..ladder.metrics import forcing_period
-from ..ladder.rungs import RUNGS, check_rung
+from ..integration import METHODS
+from ..ladder.rungs import MODEL_CHOICES, RUNGS, check_rung
+from ..time_domain.integrators import IntegratorSettings
 from ..results import unit_of
 
 log = logging.getLogger(__name__)
+
+
+_DEFAULT_STEPS = next(f.default for f in dataclasses.fields(IntegratorSettings) if f.name == "max_num_steps")
 
 
 def register(sub) -> None:
@@ -25,19 +30,22 @@ def register(sub) -> None:
                                    "lower-body amplitudes.")
     p.add_argument("scene", nargs="?", type=Path, help="scene TOML file (see `cablesys scene --example`)")
     p.add_argument("--out", type=Path, default=None, help="output folder (default: cablesys-out)")
-    p.add_argument("--method", default=None, help="cvodes | cvodes-adams | idas | rk | collocation")
-    p.add_argument("--model", default=None, help="auto (default: the scene's numerics.model) | frequency | quasi-static | "
-                                                "wang | segmented: the model ladder rung (cablesys.ladder)")
+    p.add_argument("--method", default=None, help=" | ".join(METHODS) + " (default: the ladder's choice, or the scene's "
+                                                 "numerics.integrator when it names one)")
+    p.add_argument("--model", default=None, help=" | ".join(MODEL_CHOICES) + " (default: the scene's numerics.model): "
+                                                "the model ladder's rung (cablesys.ladder)")
     p.add_argument("--duration", type=float, default=None, help="simulated time in s (overrides the scene)")
     p.add_argument("--window", type=float, nargs=2, default=None, metavar=("T0", "T1"),
                    help="statistics window in s for summary.json (default: the last 5 forcing periods, or the last 20 %% of the run)")
-    p.add_argument("--jit", action="store_true", help="compile the model with the C compiler (faster long runs, ~2 s build)")
+    p.add_argument("--jit", action="store_true", help="compile the model with the C compiler whatever its size "
+                                                      "(compiled code is the default up to a size limit)")
     p.add_argument("--strict", action="store_true", help="exit with status 3 when a criterion of the scene's [limits] fails")
     p.add_argument("--units", default=None, choices=("SI", "fps"),
                    help="units of the console, CSV and figure (default: those of the scene file)")
     p.add_argument("--overwrite", action="store_true", help="replace results of another scene in --out")
     p.add_argument("--max-steps", type=int, default=None,
-                   help="integrator step budget per output interval (default 100000); a run that needs more fails with a named message")
+                   help=f"integrator step budget per output interval (default {_DEFAULT_STEPS}); a run that needs more "
+                        "fails with a named message")
     p.set_defaults(func=_run)
     s = sub.add_parser("scene", help="print an annotated example scene, or check a scene file",
                        description="With --example: print an annotated scene (the Dale default). With a file: "

@@ -124,16 +124,23 @@ def _frequency_response_squared(nq: int, ny: int, nz: int) -> ca.Function:
     return ca.Function("design_response_w", [*mats, w], [Yr**2 + Yi**2])
 
 
-def response_functions(model: CableModel, settings: DesignSettings) -> ca.Function:
-    """SX Function (q0, p, dJ) -> (objective, sigma of [y_b, tensions], mean tensions, static strains).
+def response_functions(model: CableModel, n_omega: int) -> ca.Function:
+    """SX Function (q0, p, dJ, omega, wS, wband) -> (significant, band_rms, sigma of [y_b, tensions], mean tensions,
+    static strains), for a frequency grid of ``n_omega`` points.
 
-    ``dJ`` is added to the exact residual Jacobian dr/dxi at q0 (the held equivalent-drag part)."""
+    ``dJ`` is added to the exact residual Jacobian dr/dxi at q0 (the held equivalent-drag part). ``omega`` is the
+    grid (rad/s), ``wS`` the quadrature weights times the sea spectrum there (m^2 s), ``wband`` the normalized
+    weights of the RAO band (:func:`sea_weights`): the sea and the band are arguments, so one function serves every
+    sea state, band and grid of that size (the structure only, ``n_omega``, is part of its cache key)."""
     b = xi_blocks(model)
     n = model.n_sections
     nq = model.nq
     q0 = ca.SX.sym("q0", nq)
     p = ca.SX.sym("p", len(model.layout))
     d_jac = ca.SX.sym("dJ", nq, b["n"])
+    omega = ca.SX.sym("omega", n_omega)
+    w_s = ca.SX.sym("wS", n_omega)
+    w_band = ca.SX.sym("wband", n_omega)
     xi = ca.vertcat(q0, ca.SX.zeros(b["n"] - nq))
     fns = functions(model)
     J = fns["jac"](xi, p) + d_jac
@@ -143,31 +150,35 @@ def response_functions(model: CableModel, settings: DesignSettings) -> ca.Functi
     rows = [model.output_index("y_b", n - 1)] + [model.output_index("tension", i) for i in range(n)]
     Cq, Cv = Jy[rows, b["q"]], Jy[rows, b["qd"]]
     D0, D1, D2 = Jy[rows, b["z"]], Jy[rows, b["zd"]], Jy[rows, b["zdd"]]
-
-    omega = settings.omega
-    S = jonswap(omega, settings.hs, settings.tp, settings.gamma)
-    wts = _trapezoid_weights(omega)
-    band = (omega >= settings.band[0]) & (omega <= settings.band[1])
-    wband = wts * band / np.sum(wts * band)
     # one frequency's |Y|^2 as an SX function, built once and inlined at every grid frequency
     # (the same expression graph as writing it out per frequency, built in a fraction of the time)
     per_w = _frequency_response_squared(nq, len(rows), F0.shape[1])
     var = ca.SX.zeros(len(rows))
     band_ms = 0
-    for k, w in enumerate(omega):
-        mag2 = per_w(M, C, K, F0, F1, F2, Cq, Cv, D0, D1, D2, w)
-        var += wts[k] * S[k] * mag2
-        band_ms += wband[k] * mag2[0]
+    for k in range(n_omega):
+        mag2 = per_w(M, C, K, F0, F1, F2, Cq, Cv, D0, D1, D2, omega[k])
+        var += w_s[k] * mag2
+        band_ms += w_band[k] * mag2[0]
     sigma = ca.sqrt(var)
-    objective = 2.0 * sigma[0] if settings.objective == "significant" else ca.sqrt(band_ms)
     mean_t = ca.vertcat(*[y0[model.output_index("tension", i)] for i in range(n)])
     strain = []
     for i in range(n):
         l_r, t_r, ae = (p[model.layout.section_index(i, f"cable.{name}")] for name in ("length", "tension_ref", "ae"))
         l_0 = l_r - t_r * l_r / ae                                                # eq. 1
         strain.append(q0[model.q_index("u", i)] / l_0)
-    return ca.Function("design_response", [q0, p, d_jac], [objective, sigma, mean_t, ca.vertcat(*strain)],
-                       ["q0", "p", "dJ"], ["objective", "sigma", "mean_tension", "static_strain"])
+    return ca.Function("design_response", [q0, p, d_jac, omega, w_s, w_band],
+                       [2.0 * sigma[0], ca.sqrt(band_ms), sigma, mean_t, ca.vertcat(*strain)],
+                       ["q0", "p", "dJ", "omega", "wS", "wband"],
+                       ["significant", "band_rms", "sigma", "mean_tension", "static_strain"])
+
+
+def sea_weights(settings: DesignSettings) -> tuple:
+    """(omega, wS, wband) of :func:`response_functions` for ``settings``: the grid (rad/s), the trapezoid weights
+    times the JONSWAP spectrum (hs, tp, gamma), and the band's normalized trapezoid weights."""
+    omega = settings.omega
+    wts = _trapezoid_weights(omega)
+    band = (omega >= settings.band[0]) & (omega <= settings.band[1])
+    return omega, wts * jonswap(omega, settings.hs, settings.tp, settings.gamma), wts * band / np.sum(wts * band)
 
 
 def constraint_names(n: int) -> tuple:
@@ -188,14 +199,17 @@ def nlp_functions(model: CableModel, settings: DesignSettings, variables: tuple,
     nq = model.nq
     pmap = parameter_map(model, variables)
     rf = static_rootfinder(model)
-    resp = model.cache.get(f"design_response {settings!r}", lambda: response_functions(model, settings))
+    omega, w_s, w_band = sea_weights(settings)
+    resp = model.cache.get(f"design_response {omega.size}", lambda: response_functions(model, omega.size))
     x = ca.MX.sym("x", len(variables))
     n_xi = xi_blocks(model)["n"]
     dj_flat = ca.MX.sym("dJ", nq * n_xi)
     q_guess = ca.MX.sym("q_guess", nq)
     p = pmap(x, ca.DM(p_base))
     q0 = rf(q_guess, p)
-    obj, sigma, mean_t, strain = resp(q0, p, ca.reshape(dj_flat, nq, n_xi))
+    significant, band_rms, sigma, mean_t, strain = resp(q0, p, ca.reshape(dj_flat, nq, n_xi), ca.DM(omega),
+                                                        ca.DM(w_s), ca.DM(w_band))
+    obj = significant if settings.objective == "significant" else band_rms
     tens = [float(p_base[k]) for k in model.layout.section_indices("cable.tension_floor")]
     g = ([(tens[i] - (mean_t[i] - settings.n_sigma * sigma[1 + i])) / mean_t[i] for i in range(n)]
          + [(mean_t[i] + settings.n_sigma * sigma[1 + i]) / settings.working_load[i] - 1 for i in range(n)]

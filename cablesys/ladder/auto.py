@@ -159,8 +159,27 @@ def _went_slack(result, scene: Scene) -> bool:
 
 
 def decide(scene: Scene, model, tolerance, segments, cache: RungCache | None = None):
-    """(Choice, tolerances, auto?) for the rung ``model`` (default ``numerics.model``); a rung the
-    user forced outside its validity warns with the reason (stacklevel: the public caller's caller)."""
+    """The ladder's decision for a model request, before any run.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    model : str or None
+        "auto", a rung name or a registered rung (default ``numerics.model``).
+    tolerance : float or (float, float) or None
+        See :func:`~.choice.tolerances`.
+    segments : int or None
+        Elements per section of a named segmented or quasi-static rung.
+    cache : RungCache, optional
+        Built models to reuse.
+
+    Returns
+    -------
+    (Choice, (float, float), bool)
+        The choice, the (body, tension) tolerances, and whether the ladder chose (auto). A rung named outside
+        its validity warns (:class:`~cablesys.errors.NumericalWarning`) with the reason.
+    """
     if (model or getattr(scene.numerics, "model", "auto")) == AS_BUILT:
         raise ParameterError("model", AS_BUILT, "runs the scene's own model with no choice: call simulate")
     name = check_rung(model or getattr(scene.numerics, "model", "auto"))
@@ -420,6 +439,15 @@ def linear_model(scene: Scene, tolerance=None, cache: RungCache | None = None):
     Wang's straight cable where the ladder runs a straight rung (frequency, quasi-static, wang), the node model
     (segmented) at the ladder's N where it runs elements (the quasi-static segmented cable's stretch modes are
     eliminated, the node model keeps them: the same bending and swing). "as-built" linearizes the scene's own model.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    tolerance : float or (float, float), optional
+        See :func:`~.choice.tolerances`.
+    cache : RungCache, optional
+        Built models to reuse.
 
     Returns
     -------

@@ -42,6 +42,7 @@ import warnings
 
 import numpy as np
 
+from .. import statistics as st
 from ..errors import NumericalWarning
 from ..scene import Scene
 from . import estimate as est
@@ -209,16 +210,11 @@ def extrapolate(stats: dict, n: int, floor: float = 0.0) -> dict:
         |f(n) - L(n)| relative (:func:`.metrics.errors`).
     """
     f4, f2, f1 = stats[n // 4], stats[n // 2], stats[n]
-    fine, coarse = limits(f2, f1), limits(f4, f2)
-    for lim in (fine, coarse):
-        for k in lim:
-            if k.endswith("_min"):
-                lim[k] = max(lim[k], floor)
-            elif k.endswith("_amplitude"):
-                lim[k] = max(lim[k], 0.0)
+    fine, crossed = st.bound_extremes(limits(f2, f1), f1, max(floor, 0.0))
+    coarse, _ = st.bound_extremes(limits(f4, f2), f2, max(floor, 0.0))
     orders = observed_orders(f4, f2, f1)
     lead = {k: orders.get(k) for k in _leading(f1)}
-    asymptotic = all(p is not None and ORDER_RANGE[0] <= p <= ORDER_RANGE[1] for p in lead.values())
+    asymptotic = not crossed and all(p is not None and ORDER_RANGE[0] <= p <= ORDER_RANGE[1] for p in lead.values())
     factor = 1.0 / (2.0**REMAINDER_ORDER - 1.0) if asymptotic else 1.0
     diff = metrics.errors(coarse, fine)
     series = metrics.errors(f1, fine)
@@ -226,7 +222,7 @@ def extrapolate(stats: dict, n: int, floor: float = 0.0) -> dict:
     return {"segments": [n // 4, n // 2, n], "order_assumed": ORDER, "remainder_order": REMAINDER_ORDER,
             "remainder_factor": factor, "statistics": fine, "statistics_coarse": coarse,
             "observed_order": orders, "leading_orders": lead, "asymptotic": asymptotic,
-            "estimated_error": stated, "time_series_error": series}
+            "estimated_error": stated, "time_series_error": series, "not_extrapolated": crossed}
 
 
 def until_done(scene: Scene, choice, tol, result, cache: RungCache, kw: dict | None = None) -> tuple:

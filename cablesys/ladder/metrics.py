@@ -12,6 +12,8 @@ import re
 
 import numpy as np
 
+from .. import statistics as st
+
 BODY = ("x_b", "y_b")
 TENSIONS = ("tension_top", "tension_bottom")
 _SUFFIX = re.compile(r"_\d+$")
@@ -43,13 +45,13 @@ def statistics(result, period: float | None) -> dict:
     out = {f"{k}_amplitude": a for k, a in _amplitudes(result, w).items()}
     for k in _labels(result, TENSIONS):
         y = np.asarray(result[k])[w]
-        out[f"{k}_max"], out[f"{k}_min"] = float(y.max()), float(y.min())
+        out[f"{k}_max"], out[f"{k}_min"] = max(float(y.max()), 0.0), max(float(y.min()), 0.0)
     return out
 
 
 def _amplitudes(result, mask) -> dict:
     """{body label: half peak-to-peak} of ``result`` over the samples ``mask``."""
-    return {k: 0.5 * float(np.ptp(np.asarray(result[k])[mask])) for k in _labels(result, BODY)}
+    return {k: st.half_range(np.asarray(result[k])[mask]) for k in _labels(result, BODY)}
 
 
 def window_change(result, period: float | None) -> float:
@@ -65,8 +67,8 @@ def window_change(result, period: float | None) -> float:
         return 0.0
     mid = 0.5 * (tw[0] + tw[-1])
     halves = [_amplitudes(result, w & (t <= mid)), _amplitudes(result, w & (t >= mid))]
-    scale = max(max(halves[1].values(), default=0.0), 1e-300)
-    return max((abs(halves[1][k] - halves[0][k]) for k in halves[0]), default=0.0) / scale
+    scale = max(max(halves[1].values(), default=0.0), st.FLOORS["m"])
+    return max((st.amplitude_change(halves[0][k], halves[1][k], st.FLOORS["m"], scale) for k in halves[0]), default=0.0)
 
 
 def errors(stats: dict, reference: dict) -> dict:

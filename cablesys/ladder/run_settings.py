@@ -104,7 +104,7 @@ def _quasi_static_method(scene: Scene, model, x0, rtol: float, elements: int, ca
     p = np.asarray(model.parameters(scene), dtype=float).ravel()
     x0 = np.asarray(x0, dtype=float).ravel()
     fit = lambda: explicit_fit(model, p, x0, rtol, QUASI_STATIC_METHOD)
-    fit = fit() if cache is None else cache.memo(("explicit_fit", id(model), rtol, p.tobytes(), x0.tobytes()), fit)
+    fit = fit() if cache is None else cache.memo(model, "explicit_fit", (rtol, p, x0), fit)
     log.debug("quasi-static rung: %s", fit.reason)
     return QUASI_STATIC_METHOD if fit.accepted else QUASI_STATIC_FALLBACK
 
@@ -114,7 +114,7 @@ def start(scene_run: Scene, model, cache=None):
     once per model and parameters on ``cache``: the guard probes it and the run starts there."""
     p = np.asarray(model.parameters(scene_run), dtype=float).ravel()
     compute = lambda: initial_state(scene_run, model, p)
-    return compute() if cache is None else cache.memo(("x0", id(model), p.tobytes()), compute)
+    return compute() if cache is None else cache.memo(model, "x0", (p,), compute)
 
 
 def rung_settings(scene_run: Scene, tol, choice: Choice, model, *, cache=None, x0=None, method=None, rtol=None,

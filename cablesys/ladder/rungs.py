@@ -64,7 +64,18 @@ _REGISTERED: dict = {}
 
 
 def register_rung(rung: Rung) -> None:
-    """Let the ladder consider ``rung`` (see :class:`Rung`); its name may not be a built-in model name."""
+    """Let the ladder consider ``rung`` (see :class:`Rung`); its name may not be a built-in model name.
+
+    Parameters
+    ----------
+    rung : Rung
+        An object with ``name``, ``build(scene)``, ``estimate(scene, assessment)`` and ``cost(scene, assessment)``.
+
+    Raises
+    ------
+    ParameterError
+        Not a :class:`Rung`, or its name is empty or a built-in model name.
+    """
     if not isinstance(rung, Rung):
         raise ParameterError("rung", type(rung).__name__, "must have name, build(scene), estimate(scene, assessment) "
                                                           "and cost(scene, assessment) (cablesys.ladder.Rung)")
@@ -74,12 +85,24 @@ def register_rung(rung: Rung) -> None:
 
 
 def unregister_rung(name: str) -> None:
-    """Forget the registered rung ``name`` (nothing when it is not registered)."""
+    """Forget the registered rung ``name`` (nothing when it is not registered).
+
+    Parameters
+    ----------
+    name : str
+        The rung's name.
+    """
     _REGISTERED.pop(name, None)
 
 
 def registered_rungs() -> tuple:
-    """The registered rungs, in the order of registration."""
+    """The registered rungs.
+
+    Returns
+    -------
+    tuple of Rung
+        In the order of registration.
+    """
     return tuple(_REGISTERED.values())
 
 
@@ -154,7 +177,7 @@ class RungCache:
     def __init__(self):
         self._models: dict = {}
         self._simulators: dict = {}
-        self._memo: dict = {}
+        self._memo: list = []
         self.build_s = 0.0
 
     def _key(self, scene: Scene, name: str, segments: int) -> tuple:
@@ -221,12 +244,21 @@ class RungCache:
                 del self._simulators[oldest]
         return sim
 
-    def memo(self, key: tuple, compute):
-        """``compute()`` once per ``key`` while the cache lives: what the choice and the run both ask of one
-        model and parameter vector (its static start, the stiffness guard's verdict: :mod:`.run_settings`)."""
-        if key not in self._memo:
-            self._memo[key] = compute()
-        return self._memo[key]
+    MAX_MEMO = 16            # the last starts and guard verdicts: what one call asks twice
+
+    def memo(self, model: CableModel, what: str, values: tuple, compute):
+        """``compute()`` once per (``model``, ``what``, ``values``) among the last MAX_MEMO: what the choice and the run
+        both ask of one model and parameter vector (its static start, the stiffness guard's verdict:
+        :mod:`.run_settings`). ``values`` (numbers, arrays) are compared by value, the model by identity."""
+        key = tuple(np.asarray(v).tobytes() if isinstance(v, np.ndarray) else v for v in values)
+        for k, (m, w, vals, result) in enumerate(self._memo):
+            if m is model and w == what and vals == key:
+                self._memo.append(self._memo.pop(k))
+                return result
+        result = compute()
+        self._memo.append((model, what, key, result))
+        del self._memo[:-self.MAX_MEMO]
+        return result
 
     def __len__(self) -> int:
         return len(self._models)

@@ -14,12 +14,10 @@ from .cable_model import CableModel
 from .lagrange import lagrange_equations, virtual_work
 from .params import ParameterLayout, environment_symbols, section_prefix
 from .section import SectionParameters, section_terms
+from .segmented import build_segmented_model
+from .signals import EXO_LABELS, OUTPUT_NAMES
 from .store import stored_model
 from .top_motion import symbolic_type, top_motion_function
-
-EXO_LABELS = ("t", "x_s", "y_s", "x_s_rate", "y_s_rate", "x_s_acc", "y_s_acc")
-OUTPUT_NAMES = ("phi", "phi_rate", "u", "u_rate", "x_b", "x_b_rate", "y_b", "y_b_rate", "tension",
-                "tension_bottom", "tension_top")
 
 
 def _coordinates(n: int, angles: str):
@@ -43,9 +41,11 @@ def _end_forces(momenta, ext, M, f, q, qd, z, zd, zdd):
     """Forces of every section's cable on its body and on its top point, as ((Fx, Fy), (Fx, Fy)).
 
     Momentum balances with dP/dt taken along the motion by AD, q'' = M^-1 f (Wang 1971 eq. 47-48):
-    - on the body: M_bv a_b - W_b - D_b (eq. 16, 32-35): the cable tension at the body end.
-      Hanging at rest it is W_b, whereas the spring force F_bc = k u (eq. 54, the ``tension``
-      output) is W_b + W_c/2 there: the uniform stretch makes k u the mean tension of the cable;
+    - on the body: M_bv a_b - W_b - D_b - F_below (eq. 16, 32-35), F_below the force of the next
+      section's cable on its top point (this body; zero for the lowest): the cable tension at the
+      body end. Hanging at rest it is W_b plus everything hanging below the body, whereas the
+      spring force F_bc = k u (eq. 54, the ``tension`` output) adds W_c/2 to it: the uniform
+      stretch makes k u the mean tension of the cable;
     - on the top point of section i: sum over the cables and bodies below of W + D - dP/dt, with
       weights in water (eq. 12, 15), drag (eq. 32-35, 42, 44) and momenta of the virtual masses of
       the kinetic energy (eq. 16, 22-25). Spring, Voigt damper and slack rule (eq. 46, 54) are
@@ -62,8 +62,10 @@ def _end_forces(momenta, ext, M, f, q, qd, z, zd, zdd):
     out, fx, fy = [], 0.0, 0.0
     for (P, P_b), (F, F_b) in zip(reversed(momenta), reversed(ext)):
         dP, dP_b = rate(P), rate(P_b)
+        # (fx, fy) is still the pull of the section below on this body (its top-point force; 0 for the last)
+        out_body = (dP_b[0] - F_b[0] - fx, dP_b[1] - F_b[1] - fy)
         fx, fy = fx + F[0] - dP[0], fy + F[1] - dP[1]
-        out.append(((dP_b[0] - F_b[0], dP_b[1] - F_b[1]), (fx, fy)))
+        out.append((out_body, (fx, fy)))
     return list(reversed(out))
 
 
@@ -98,7 +100,6 @@ def build_model(scene: Scene) -> CableModel:
 def _build(scene: Scene) -> CableModel:
     """The symbolic build of :func:`build_model`."""
     if any(s.cable.segments > 1 for s in scene.sections):   # N straight elements per section
-        from .segmented import build_segmented_model
         return build_segmented_model(scene)
     layout = ParameterLayout.from_scene(scene)
     p = layout.symbol

@@ -121,6 +121,15 @@ class CableModel:
       ``ode(x, t, p) -> x'`` with x = (q, q') and the top motion composed in;
       ``top(t, p) -> e``; ``outputs(x, e, p) -> y`` (labels ``output_labels``);
       ``energy(x, e, p) -> (K, V)``; ``cable_force(x, p) -> F_bc - TENS`` per section.
+    Tension outputs per section i (N; suffix ``_i`` in a chain, :meth:`label`): ``tension_top``,
+    the force of the cable on its top point (the ship, or body i-1), and ``tension_bottom``, its
+    force on body i; both carry everything hanging below that end (at an intermediate body the
+    upper section's ``tension_bottom`` is the size of the vector sum of the body's weight, drag,
+    inertia force -M_bv a_b and the lower section's pull, whose size is its ``tension_top``).
+    ``tension`` is the force of the section's stretch law: in Wang's straight cable
+    F_bc = k u + (C_I / l_r) u' (eq. 54; bounded by TENS when slack), its mean
+    tension (hanging at rest W_c/2 above ``tension_bottom``); in the segmented cable the lowest
+    element's tension. Wang's end tensions are signed (negative: the straight cable would push).
     ``cache`` holds the functions analyses derive from these (:class:`FunctionCache`).
     """
 

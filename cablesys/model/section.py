@@ -106,7 +106,12 @@ def section_terms(P: SectionParameters, top_r, top_v, phi, u, phid, ud, *, t, en
 
     ``top_r`` is (x, depth) of the section top (depth = y + top depth, y down); ``top_v`` its
     velocity. Returns a dict with K, V, point_forces [(velocity, force)], Q_u (acting on u
-    only), r_b, v_b and F_bc.
+    only), r_b, v_b and F_bc, and for the end forces of the chain (Newton's second law on the
+    virtual masses of eq. 16, 22-25): ``momentum`` and ``external_force`` of the section (cable
+    and body: weights in water and drag, N), ``body_momentum`` and ``body_external_force`` of the
+    body alone (its weight W_b and drag, eq. 15, 32-35). The body's balance also needs the pull
+    of the section hanging below it, which this section does not know: the chain adds it
+    (:func:`cablesys.model.build._end_forces`).
     """
     s, c = ca.sin(phi), ca.cos(phi)
     e_t, e_n = (-s, c), (-c, -s)

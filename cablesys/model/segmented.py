@@ -19,9 +19,11 @@ also the top of the next section. Per element e of a section with N elements
   fluid velocity there (current profile, waves, system speed: eq. 26-28), shared between
   the end nodes by virtual work (a force at r = (1 - s) r_a + s r_b gives (1 - s) F and s F).
 
-The inertia terms come from the Lagrangian by AD, element by element (:func:`_element_inertia`), gravity from eq. 15;
-tension and drag are generalized forces (virtual work). One right-hand side costs O(N)
-(2 x 2 solves per node) and its Jacobian is banded, so CVODES/IDAS factor it sparse.
+The element's terms are in :mod:`.segmented_element` (shared with the mapped kernel of
+:mod:`.segmented_kernel`). The inertia terms come from the Lagrangian by AD, element by element
+(:func:`.segmented_element.element_inertia`), gravity from eq. 15; tension and drag are
+generalized forces (virtual work). One right-hand side costs O(N) (2 x 2 solves per node) and
+its Jacobian is banded, so CVODES/IDAS factor it sparse.
 """
 
 from __future__ import annotations
@@ -32,15 +34,14 @@ import casadi as ca
 
 from ..errors import ParameterError
 from ..scene import Scene
-from . import fluid
-from .build import EXO_LABELS, CableModel
+from .cable_model import CableModel
 from .params import ParameterLayout, environment_symbols, section_prefix
 from .section import SectionParameters
+from .segmented_element import body_drag, dot, element_inertia, element_terms, lump_force, lump_kinetic, norm
 from .segmented_kernel import kernel_ode
+from .signals import EXO_LABELS, OUTPUT_NAMES
 from .top_motion import symbolic_type, top_motion_function
 
-SECTION_OUTPUTS = ("phi", "phi_rate", "u", "u_rate", "x_b", "x_b_rate", "y_b", "y_b_rate", "tension",
-                   "tension_bottom", "tension_top")
 ELEMENT_PROFILES = ("element_tension", "element_tension_rate", "element_strain", "element_slack")
 NODE_PROFILES = ("node_x", "node_y")
 
@@ -86,109 +87,6 @@ class SegmentedModel(CableModel):
 # 2.2 MB serialized), kernel 5.6 (-O2, compiled in 0.3 s); N = 80 unrolled 30.6 (-O0; -O1 15.0 after 13 s
 # of gcc), kernel 8.5 (-O2, 0.3 s); unrolled at -O3: 4.9 (N = 20), 13.6 (N = 80, 21 s of gcc)
 KERNEL_MIN_ELEMENTS = 10
-
-
-def _unit_normal(t):
-    """e_n = (-t_y, t_x): for t = e_t = (-sin phi, cos phi) this is Wang's e_n (eq. 17)."""
-    return (-t[1], t[0])
-
-
-def _dot(a, b):
-    return a[0] * b[0] + a[1] * b[1]
-
-
-def _body_drag(P: SectionParameters, rho, r, v, t, env, depth0):
-    """Drag of the body at node position r, velocity v (Wang 1971 eq. 32-35)."""
-    fx, fy = fluid.fluid_velocity(r[0], depth0 + r[1], t, env)
-    vr = (fx - v[0], fy - v[1])
-    if P.sphere:
-        return fluid.sphere_drag(rho, P.cda_n, *vr)
-    return fluid.axial_body_drag(rho, P.cda_n, P.cda_t, P.phi_b, *vr)
-
-
-def _element(P: SectionParameters, n_el: int, ra, va, rb, vb, *, rho, t, env, depth0, n_points):
-    """Length, tension, lumped masses and drag shares of one element (see the module docstring)."""
-    h_r, h_0 = P.l_r / n_el, P.l_0 / n_el
-    dx, dy = rb[0] - ra[0], rb[1] - ra[1]
-    length = ca.sqrt(dx**2 + dy**2)
-    et = (dx / length, dy / length)
-    en = _unit_normal(et)
-    rate = _dot((vb[0] - va[0], vb[1] - va[1]), et)                       # dl_e/dt
-    strain = (length - h_0) / h_r                                          # u / l_r per element
-    law = P.ae * strain + P.c_i * rate / h_r                               # eq. 46 (k u + C_I u'/l_r)
-    tension = ca.fmax(P.tens, law)                                         # eq. 54, per element
-    d = P.d_0 * (1 - P.thinning * strain)                                  # eq. 3
-    mass = P.m_r * h_r * P.mass_on                                         # eq. 5
-    added = P.gamma * rho * ca.pi * d**2 / 4 * length * P.mass_on           # eq. 23-24
-    weight = P.w_r * h_r                                                   # eq. 12
-    # undamped strain energy: the integral of max(TENS, k_e (l - h_0)) dl (a constant dropped)
-    k_e = P.ae / h_r
-    l_sw = h_0 + P.tens / k_e
-    strain_energy = 0.5 * k_e * (ca.fmax(length, l_sw) - h_0) ** 2 + P.tens * ca.fmin(length - l_sw, 0.0)
-    fa, fb = [0.0, 0.0], [0.0, 0.0]
-    seg = length / n_points
-    for k in range(n_points):                                              # eq. 30-31, 41-44
-        s = (k + 0.5) / n_points
-        r = (ra[0] + s * dx, ra[1] + s * dy)
-        v = (va[0] + s * (vb[0] - va[0]), va[1] + s * (vb[1] - va[1]))
-        ux, uy = fluid.fluid_velocity(r[0], depth0 + r[1], t, env)
-        vq = (ux - v[0], uy - v[1])
-        d_n = fluid.quadratic_drag(rho, P.cd * d * seg, _dot(vq, en))       # eq. 42
-        d_t = fluid.quadratic_drag(rho, P.ct * d * seg, _dot(vq, et))       # eq. 44
-        F = (d_n * en[0] + d_t * et[0], d_n * en[1] + d_t * et[1])
-        for i in range(2):                                                 # virtual work shares
-            fa[i] = fa[i] + (1 - s) * F[i]
-            fb[i] = fb[i] + s * F[i]
-    return dict(length=length, et=et, en=en, rate=rate, strain=strain, tension=tension, mass=mass,
-                slack=ca.if_else(law <= P.tens, 1.0, 0.0),
-                added=added, weight=weight, strain_energy=strain_energy, drag_a=fa, drag_b=fb)
-
-
-def _lump_kinetic(el, v_a, v_b):
-    """Half the element's mass (all directions) and added mass (normal only) at each end node."""
-    m, a, en = el["mass"], el["added"], el["en"]
-    ke = lambda v: 0.25 * m * _dot(v, v) + 0.25 * a * _dot(v, en) ** 2
-    return ke(v_a) + ke(v_b)
-
-
-def _element_inertia(P: SectionParameters, n_el: int, p, rho, t, env, depth0, n_points) -> ca.Function:
-    """Lagrange's equations (Wang 1971 eq. 8-9) of one element's lumped kinetic energy alone, in its
-    own end coordinates r = (r_a, r_b), v = (v_a, v_b): ``(r_a, r_b, v_a, v_b, p) -> (M_a, M_b, f_a, f_b)``,
-    with M_e = d2K_e/dv2 (block diagonal: no kinetic term couples v_a and v_b) and
-    f_e = dK_e/dr - (d2K_e/dv dr) v, the inertial forces of the element-normal added mass whose
-    direction and size follow the nodes. The whole cable's K is the sum of these, so summing them
-    node by node gives the equations :func:`lagrange.lagrange_equations` gives for the whole cable
-    (tests/test_segmented_scales.py), with a smaller expression: K_e depends on the positions through
-    the chord u = r_b - r_a alone, so the AD is over u and the four velocities (the right-hand side
-    of the 300 m heave cable at 20 elements: 6009 operations instead of 8736)."""
-    ra, rb, va, vb = (ca.SX.sym(name, 2) for name in ("ra", "rb", "va", "vb"))
-    # K_e depends on the positions through the chord u = r_b - r_a only: differentiate with respect
-    # to u (dK/dr_b = dK/du = -dK/dr_a, d p/dt = (dp/du) u' + (dp/dv) v')
-    u = ca.SX.sym("u", 2)
-    el = _element(P, n_el, (0.0, 0.0), (va[0], va[1]), (u[0], u[1]), (vb[0], vb[1]), rho=rho, t=t, env=env,
-                  depth0=depth0, n_points=n_points)
-    K = _lump_kinetic(el, (va[0], va[1]), (vb[0], vb[1]))
-    v = ca.vertcat(va, vb)
-    mom = ca.gradient(K, v)
-    M = ca.jacobian(mom, v)
-    dK = ca.gradient(K, u)
-    f = ca.vertcat(-dK, dK) - ca.jtimes(mom, u, vb - va)
-    f = ca.substitute(f, u, rb - ra)
-    M = ca.substitute(M, u, rb - ra)
-    return ca.Function("element_inertia", [ra, rb, va, vb, p], [M[:2, :2], M[2:, 2:], f[:2], f[2:]])
-
-
-def _lump_force(el, end: str, acc):
-    """Weight, drag share and minus the inertia of the element's half lumped at one end (a 2-vector)."""
-    m, a, en = el["mass"], el["added"], el["en"]
-    an = _dot(acc, en)
-    drag = el["drag_a"] if end == "a" else el["drag_b"]
-    return tuple(drag[i] + (0.5 * el["weight"] if i == 1 else 0.0) - 0.5 * (m * acc[i] + a * an * en[i])
-                 for i in range(2))
-
-
-def _norm(v):
-    return ca.sqrt(v[0] ** 2 + v[1] ** 2)
 
 
 def drag_points(scene: Scene, n_el: int) -> int:
@@ -239,13 +137,13 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
         P = SectionParameters.from_layout(layout, section_prefix(n_sec, i), sec.body.is_sphere)
         n_el = segs[i]
         els = []
-        inertia = _element_inertia(P, n_el, p, rho, t, env, depth0, drag_points(scene, n_el))
+        inertia = element_inertia(P, n_el, p, rho, t, env, depth0, drag_points(scene, n_el))
         for k in range(n_el):
             a, b = j0 + k, j0 + k + 1
-            el = _element(P, n_el, node_r[a], node_v[a], node_r[b], node_v[b], rho=rho, t=t, env=env,
-                          depth0=depth0, n_points=drag_points(scene, n_el))
+            el = element_terms(P, n_el, node_r[a], node_v[a], node_r[b], node_v[b], rho=rho, t=t, env=env,
+                               depth0=depth0, n_points=drag_points(scene, n_el))
             el.update(a=a, b=b)
-            K += _lump_kinetic(el, node_v[a], node_v[b])
+            K += lump_kinetic(el, node_v[a], node_v[b])
             Ma, Mb, fa, fb = inertia(ca.vertcat(*node_r[a]), ca.vertcat(*node_r[b]), ca.vertcat(*node_v[a]),
                                      ca.vertcat(*node_v[b]), p)
             M_nodes[a], M_nodes[b] = M_nodes[a] + Ma, M_nodes[b] + Mb
@@ -262,14 +160,14 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
         K += 0.5 * (P.m_bx * vb[0] ** 2 + P.m_by * vb[1] ** 2)  # eq. 16
         M_nodes[jb] = M_nodes[jb] + ca.diag(ca.vertcat(P.m_bx, P.m_by))
         weights[jb] += P.w_b
-        D_b = _body_drag(P, rho, rb, vb, t, env, depth0)        # eq. 32-35
+        D_b = body_drag(P, rho, rb, vb, t, env, depth0)        # eq. 32-35
         Q[jb][0] += D_b[0]
         Q[jb][1] += D_b[1]
         sections.append(dict(P=P, top=j0, body=jb, elements=els, body_drag=D_b))
         elements += els
         j0 = jb
     V_grav = -sum(w * r[1] for w, r in zip(weights, node_r))   # eq. 15 with y down
-    # Lagrange's equations node by node (element by element, see _element_inertia): M q'' = f with
+    # Lagrange's equations node by node (element by element, see element_inertia): M q'' = f with
     # f = generalized forces + weights (-dV/dq, eq. 15) + inertial forces of the added mass
     blocks = M_nodes[1:]
     f_nodes = [F_inertia[j] + ca.vertcat(Q[j][0], Q[j][1] + weights[j]) for j in range(1, n_nodes + 1)]
@@ -296,19 +194,19 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
         rt, vt_, rb, vb = node_r[s["top"]], node_v[s["top"]], node_r[s["body"]], node_v[s["body"]]
         chord = (rb[0] - rt[0], rb[1] - rt[1])
         chord_v = (vb[0] - vt_[0], vb[1] - vt_[1])
-        lc = _norm(chord)
+        lc = norm(chord)
         phi = ca.atan2(-chord[0], chord[1])                        # e_t = (-sin phi, cos phi), eq. 10
         phid = (chord[0] * chord_v[1] - chord[1] * chord_v[0]) / lc**2
-        u, ud = lc - P.l_0, _dot(chord, chord_v) / lc
+        u, ud = lc - P.l_0, dot(chord, chord_v) / lc
         first, last = els[0], els[-1]
         # force of the cable on its top point and on its body: the end element's tension plus the
         # half element lumped at that node (weight, drag share, minus its inertia)
-        lt = _lump_force(first, "a", acc_nodes[s["top"]])
+        lt = lump_force(first, "a", acc_nodes[s["top"]])
         top_force = tuple(first["tension"] * first["et"][c] + lt[c] for c in range(2))
-        lb = _lump_force(last, "b", acc_nodes[s["body"]])
+        lb = lump_force(last, "b", acc_nodes[s["body"]])
         bottom_force = tuple(-last["tension"] * last["et"][c] + lb[c] for c in range(2))
-        out += [phi, phid, u, ud, rb[0], vb[0], rb[1], vb[1], last["tension"], _norm(bottom_force), _norm(top_force)]
-        labels += [f"{name}{sfx(i)}" for name in SECTION_OUTPUTS]
+        out += [phi, phid, u, ud, rb[0], vb[0], rb[1], vb[1], last["tension"], norm(bottom_force), norm(top_force)]
+        labels += [f"{name}{sfx(i)}" for name in OUTPUT_NAMES]
     # profiles (element k top to bottom over all sections; node j = 0 the top) and their arc lengths
     T = ca.vertcat(*[el["tension"] for el in elements])
     T_rate = ca.jtimes(T, x, xdot) + ca.jacobian(T, e) @ ca.vertcat(1.0, zd, zdd, 0.0, 0.0)

@@ -9,7 +9,7 @@ cache. The same equations are the same few functions of each element's two end n
 - one SX function per section, the *element kernel* ``(r_a, r_b, v_a, v_b, t, p) -> (M_a, M_b,
   F_a, F_b)``: the 2 x 2 mass blocks and forces the element lumps at its two end nodes (tension
   and drag shares, half its weight, the inertial forces of its added mass: Wang 1971 eq. 5, 12,
-  23-24, 42-46, 54), built from :func:`.segmented._element` and :func:`.segmented._element_inertia`
+  23-24, 42-46, 54), built from :func:`.segmented_element.element_terms` and :func:`.segmented_element.element_inertia`
   (the same physics, no copy);
 - the kernel evaluated over all elements of a section with ``Function.map`` (a loop in the
   generated C), its node terms added column-shifted (node j gets F_a of element j and F_b of
@@ -29,6 +29,7 @@ import casadi as ca
 
 from .params import ParameterLayout, environment_symbols, section_prefix
 from .section import SectionParameters
+from .segmented_element import body_drag, element_inertia, element_terms
 from .top_motion import top_motion_function
 
 __all__ = ["kernel_ode"]
@@ -38,12 +39,10 @@ def _element_kernel(P: SectionParameters, n_el: int, p, t, env, rho, depth0, n_p
     """``(r_a, r_b, v_a, v_b, t, p) -> (M_a, M_b, F_a, F_b)`` of one element of a section: its mass
     blocks (4 entries, column-major) and the forces it lumps at its end nodes (virtual work of the
     tension, eq. 46/54, and drag, eq. 42-44; half its weight, eq. 12; inertial forces, eq. 8-9)."""
-    from .segmented import _element, _element_inertia
-
     ra, rb, va, vb = (ca.SX.sym(s, 2) for s in ("ra", "rb", "va", "vb"))
-    el = _element(P, n_el, (ra[0], ra[1]), (va[0], va[1]), (rb[0], rb[1]), (vb[0], vb[1]), rho=rho, t=t, env=env,
-                  depth0=depth0, n_points=n_points)
-    Ma, Mb, fa, fb = _element_inertia(P, n_el, p, rho, t, env, depth0, n_points)(ra, rb, va, vb, p)
+    el = element_terms(P, n_el, (ra[0], ra[1]), (va[0], va[1]), (rb[0], rb[1]), (vb[0], vb[1]), rho=rho, t=t, env=env,
+                       depth0=depth0, n_points=n_points)
+    Ma, Mb, fa, fb = element_inertia(P, n_el, p, rho, t, env, depth0, n_points)(ra, rb, va, vb, p)
     w2 = 0.5 * el["weight"]
     Fa = fa + ca.vertcat(el["tension"] * el["et"][0] + el["drag_a"][0], el["tension"] * el["et"][1] + el["drag_a"][1] + w2)
     Fb = fb + ca.vertcat(-el["tension"] * el["et"][0] + el["drag_b"][0], -el["tension"] * el["et"][1] + el["drag_b"][1] + w2)
@@ -56,10 +55,8 @@ def _element_kernel(P: SectionParameters, n_el: int, p, t, env, rho, depth0, n_p
 
 def _body(P: SectionParameters, p, t, env, rho, depth0, name: str) -> ca.Function:
     """``(r, v, t, p) -> (M, F)``: the body's mass block (eq. 16), weight in water and drag (eq. 32-35)."""
-    from .segmented import _body_drag
-
     r, v = ca.SX.sym("r", 2), ca.SX.sym("v", 2)
-    D = _body_drag(P, rho, (r[0], r[1]), (v[0], v[1]), t, env, depth0)
+    D = body_drag(P, rho, (r[0], r[1]), (v[0], v[1]), t, env, depth0)
     M = ca.vertcat(P.m_bx, 0.0, 0.0, P.m_by)
     return ca.Function(name, [r, v, t, p], [M, ca.vertcat(D[0], D[1] + P.w_b)], ["r", "v", "t", "p"], ["M", "F"])
 

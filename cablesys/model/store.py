@@ -14,16 +14,16 @@ stored under a **structure key**: a hash of
 
 Two scenes with equal keys build identical functions, so a key collision would need a
 SHA-256 collision. Each function is deserialized on its first use (a run never asks for the
-energy, for instance: 5 of the 65 ms of a 20-element cable). The entry carries a SHA-256 of its content: a truncated or corrupt file is
-detected, removed and rebuilt. Only used when compilation is enabled (the compiled path;
-``CABLESYS_COMPILE=0`` keeps everything in memory).
+energy, for instance: 5 of the 65 ms of a 20-element cable). The entry is sealed with the SHA-256
+of its content (:func:`cablesys.disk_cache.write_sealed`), checked before unpickling: a truncated
+or corrupt file is detected, removed with a one-line warning and rebuilt. Only used when
+compilation is enabled (the compiled path; ``CABLESYS_COMPILE=0`` keeps everything in memory).
 """
 
 from __future__ import annotations
 
 import contextlib
 import dataclasses
-import hashlib
 import importlib
 import logging
 import pickle
@@ -34,12 +34,13 @@ import casadi as ca
 from ..compiled import DerivedStore, compilation_enabled
 from ..disk_cache import (
     CACHE_FORMAT,
-    atomic_write,
     cache_dir,
     code_fingerprint,
     digest,
     evict,
     touch,
+    unseal,
+    write_sealed,
 )
 from .params import ParameterLayout, structure_of
 
@@ -131,7 +132,7 @@ def save_model(model, key: str) -> None:
                            protocol=pickle.HIGHEST_PROTOCOL)
     path = _path(key)
     try:
-        atomic_write(path, hashlib.sha256(payload).digest() + payload)
+        write_sealed(path, payload)
         evict(keep=[path])
     except OSError as err:
         log.info("model not stored (%s)", err)
@@ -146,10 +147,7 @@ def load_model(scene, key: str, layout: ParameterLayout | None = None):
     except OSError:
         return None
     try:
-        payload = blob[32:]
-        if hashlib.sha256(payload).digest() != blob[:32]:
-            raise ValueError("checksum mismatch")
-        data = pickle.loads(payload)
+        data = pickle.loads(unseal(blob))
         module, name = data["class"]
         cls = getattr(importlib.import_module(module), name)
         functions = {k: v for k, (kind, v) in data["fields"].items() if kind == "function"}

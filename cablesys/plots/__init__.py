@@ -1,41 +1,6 @@
 """Figures from results only; matplotlib is imported lazily inside each function."""
 
-from __future__ import annotations
-
-from pathlib import Path
+from .figure import save_figure
+from .time_domain import plot_time_series
 
 __all__ = ["plot_time_series", "save_figure"]
-
-
-def save_figure(fig, path, **savefig_kw) -> Path:
-    """Lay out (tight, unless the figure has its own layout engine), write and close a figure.
-
-    Parameters
-    ----------
-    fig : matplotlib.figure.Figure
-        The figure; it is closed afterwards.
-    path : str or pathlib.Path
-        Output file; the format follows the suffix (``.png``, ``.pdf``, ``.svg``).
-    **savefig_kw
-        Passed to ``Figure.savefig`` (``dpi`` defaults to 120).
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
-    """
-    import matplotlib.pyplot as plt
-    savefig_kw.setdefault("dpi", 120)
-    if fig.get_layout_engine() is None:      # keep a figure's own engine (constrained_layout=True)
-        fig.tight_layout()
-    fig.savefig(path, **savefig_kw)
-    plt.close(fig)
-    return Path(path)
-
-
-def __getattr__(name):
-    """``plot_time_series`` on first use (its module imports this one)."""
-    if name == "plot_time_series":
-        from .time_domain import plot_time_series
-        return plot_time_series
-    raise AttributeError(f"module 'cablesys.plots' has no attribute {name!r}")

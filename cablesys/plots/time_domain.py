@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import save_figure
+from .figure import save_figure
 
 
 def _length_scale(span_m: float, units: str) -> tuple[float, str]:

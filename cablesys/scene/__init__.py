@@ -1,7 +1,7 @@
 """Scene description: immutable, validated parameter objects in SI, TOML in and out."""
 
-from .components import (INTEGRATORS, Body, Cable, Environment, Initial, Numerics, Section,
-                         Sinusoid, TimeSeries, TopMotion, Wave)
+from .components import INTEGRATORS, Body, Cable, Environment, Initial, Numerics, Section, TimeSeries, TopMotion
+from .harmonics import Sinusoid, Wave
 from .dale import OMEGA_N_MEASURED, dale_scene, default_scene
 from .heavy_wire import heavy_wire_scene
 from .scene import Scene, single_section_scene

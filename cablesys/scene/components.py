@@ -14,7 +14,8 @@ from ..errors import (ParameterError, require_finite, require_nonnegative,
                       require_positive, require_range)
 from ..integration import METHODS as INTEGRATION_METHODS
 from .fields import quantity, spec
-from .sea import MotionRAO, SeaSpectrum
+from .harmonics import Sinusoid, Wave
+from .sea import MotionRAO, SeaSpectrum, append_once, sea_sinusoids
 
 
 def _check_all_finite(obj, prefix: str) -> None:
@@ -134,20 +135,6 @@ class Section:
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
-class Wave:
-    """A deep-water surface wave component (Wang 1971 eq. 26)."""
-
-    amplitude: float = spec("length", "wave amplitude a")
-    length: float = spec("length", "wave length lambda; n = 2 pi / lambda, sigma = sqrt(g n)")
-    phase: float = spec("angle", "phase added to n x - sigma t", 0.0)
-
-    def __post_init__(self):
-        require_nonnegative("waves.amplitude", self.amplitude, "m")
-        require_positive("waves.length", self.length, "m")
-        require_finite("waves.phase", self.phase)
-
-
-@dataclasses.dataclass(frozen=True, kw_only=True)
 class Environment:
     """Fluid, gravity, current profile (the report's CUR) and waves."""
 
@@ -178,20 +165,6 @@ class Environment:
         object.__setattr__(self, "current_depths", tuple(float(v) for v in d))
         object.__setattr__(self, "current_speeds", tuple(float(v) for v in s))
         object.__setattr__(self, "waves", tuple(self.waves))
-
-
-@dataclasses.dataclass(frozen=True, kw_only=True)
-class Sinusoid:
-    """One term amplitude * sin(frequency * t + phase) of the top motion."""
-
-    amplitude: float = spec("length", "amplitude")
-    frequency: float = spec("frequency", "circular frequency omega")
-    phase: float = spec("angle", "phase", 0.0)
-
-    def __post_init__(self):
-        require_finite("top_motion.amplitude", self.amplitude)
-        require_positive("top_motion.frequency", self.frequency, "rad/s")
-        require_finite("top_motion.phase", self.phase)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -245,7 +218,6 @@ class TopMotion:
             require_finite("top_motion.ramp_s", self.ramp_s)
             require_nonnegative("top_motion.ramp_s", self.ramp_s, "s")
         if self.spectrum is not None:          # the sea as sinusoids: the compiled SX path (scene/sea.py)
-            from .sea import append_once, sea_sinusoids
             sx, sy = sea_sinusoids(self.spectrum, self.rao)
             nx, ny = len(self.x), len(self.y)
             object.__setattr__(self, "x", append_once(self.x, sx))

@@ -19,7 +19,8 @@ from __future__ import annotations
 import math
 
 from .. import units as U
-from .components import Body, Cable, Environment, Numerics, Sinusoid, TopMotion
+from .components import Body, Cable, Environment, Numerics, TopMotion
+from .harmonics import Sinusoid
 from .scene import Scene, single_section_scene
 
 OMEGA_N_MEASURED = 1.14          # rad/s, Dale et al. measured horizontal natural frequency (Table 1)

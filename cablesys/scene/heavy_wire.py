@@ -13,7 +13,8 @@ from __future__ import annotations
 import math
 
 from .. import units as U
-from .components import Body, Cable, Environment, Numerics, Sinusoid, TopMotion
+from .components import Body, Cable, Environment, Numerics, TopMotion
+from .harmonics import Sinusoid
 from .scene import Scene, single_section_scene
 
 LENGTH = 1000.0                 # m

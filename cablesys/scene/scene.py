@@ -10,6 +10,7 @@ from ..errors import ParameterError
 from .components import Body, Cable, Environment, Initial, Numerics, Section, TopMotion
 from .labels import section_prefix
 from .limits import Limits
+from .sea import append_once, sea_waves
 
 ANGLE_MODES = ("per_section", "shared")
 
@@ -47,7 +48,6 @@ class Scene:
         self._check_initial_lengths()
         sea = self.top_motion.spectrum
         if sea is not None and sea.waves_at_cable:   # the same sea at the cable (Wang 1971 eq. 26-28; scene/sea.py)
-            from .sea import append_once, sea_waves
             env = self.environment
             object.__setattr__(self, "environment", dataclasses.replace(
                 env, waves=append_once(env.waves, sea_waves(sea, env.gravity))))

@@ -37,6 +37,7 @@ from ..errors import (
     require_range,
 )
 from .fields import spec
+from .harmonics import Sinusoid, Wave
 
 SPECTRA = ("jonswap", "pierson-moskowitz")
 
@@ -205,7 +206,6 @@ def top_transfer(rao: MotionRAO | None, omega) -> tuple[np.ndarray, np.ndarray]:
 
 def sea_sinusoids(spectrum: SeaSpectrum, rao: MotionRAO | None) -> tuple[tuple, tuple]:
     """(x sinusoids, y sinusoids) of the top motion realising ``spectrum`` through ``rao``."""
-    from .components import Sinusoid
     w, a, eps = spectrum.components()
     X, Y = top_transfer(rao, w)
     out = []
@@ -221,7 +221,6 @@ def sea_sinusoids(spectrum: SeaSpectrum, rao: MotionRAO | None) -> tuple[tuple, 
 
 def sea_waves(spectrum: SeaSpectrum, gravity: float) -> tuple:
     """Wang (1971) eq. 26 wave components of the realised sea (see the module docstring)."""
-    from .components import Wave
     w, a, eps = spectrum.components()
     return tuple(Wave(amplitude=float(ak), length=float(2 * math.pi * gravity / wk**2),
                       phase=float((math.pi - ek) % (2 * math.pi))) for wk, ak, ek in zip(w, a, eps))

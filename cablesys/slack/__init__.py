@@ -2,35 +2,53 @@
 
 Griffin & Rosenthal (1985), "The Dynamics of Slack Marine Cables", NRL MR 5559.
 
-scene (``SlackScene``, ``load_scene``) -> statics (``solve_equilibrium`` -> :class:`Equilibrium`)
--> modes (``compute_modes`` -> :class:`ModeSet`; ``analyze`` does both) -> element-count
-convergence (``converge`` -> :class:`Convergence`); the flat-sag theory in ``irvine_modes``.
+scene (``SlackScene``, ``SlackCable``, ``load_slack_scene``) -> statics (``solve_equilibrium`` ->
+:class:`Equilibrium`) -> natural modes (``modes(eq)`` -> :class:`ModeSet`, omega in rad/s, as
+:func:`cablesys.modes` for the Wang model; ``analyze`` does both -> :class:`SlackAnalysis`) ->
+element-count convergence (``converge`` -> :class:`Convergence`); the flat-sag theory in
+``irvine_modes``. The old names ``Cable`` and ``load_scene`` still resolve, with a DeprecationWarning.
 """
+
+import warnings
+
 
 from ..lazy import lazy_exports
 
 # public name -> module that defines it, imported on first use (cablesys.lazy)
 _EXPORTS = {
-    "IrvineMode": ".irvine",
+    "IrvineMode": ".results",
+    "IrvineModes": ".results",
     "irvine_modes": ".irvine",
     "lambda_squared": ".irvine",
-    "analyze": ".modes",
-    "compute_modes": ".modes",
-    "converge": ".modes",
+    "analyze": ".vibration",
+    "converge": ".vibration",
+    "modes": ".vibration",
     "plot_equilibrium": ".plots",
     "plot_mode_shapes": ".plots",
     "Convergence": ".results",
     "Equilibrium": ".results",
     "ModeSet": ".results",
-    "Cable": ".scene",
+    "SlackAnalysis": ".results",
+    "SlackCable": ".scene",
     "PointMass": ".scene",
     "SlackScene": ".scene",
-    "load_scene": ".scene",
+    "load_slack_scene": ".scene",
     "solve_equilibrium": ".statics",
 }
 
-__all__ = ["Cable", "Convergence", "Equilibrium", "IrvineMode", "ModeSet", "PointMass", "SlackScene",
-           "analyze", "compute_modes", "converge", "irvine_modes", "lambda_squared", "load_scene",
-           "plot_equilibrium", "plot_mode_shapes", "solve_equilibrium"]
+__all__ = ["Convergence", "Equilibrium", "IrvineMode", "IrvineModes", "ModeSet", "PointMass", "SlackAnalysis",
+           "SlackCable", "SlackScene", "analyze", "converge", "irvine_modes", "lambda_squared", "load_slack_scene",
+           "modes", "plot_equilibrium", "plot_mode_shapes", "solve_equilibrium"]
 
-__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, __all__)
+# old name -> new name: they clashed with cablesys.Cable / cablesys.load_scene (the Wang scene's)
+DEPRECATED = {"Cable": "SlackCable", "load_scene": "load_slack_scene"}
+
+_lazy_getattr, __dir__ = lazy_exports(__name__, _EXPORTS, __all__)
+
+
+def __getattr__(name):
+    if name in DEPRECATED:
+        warnings.warn(f"cablesys.slack.{name} is deprecated: use cablesys.slack.{DEPRECATED[name]}",
+                      DeprecationWarning, stacklevel=2)
+        return _lazy_getattr(DEPRECATED[name])
+    return _lazy_getattr(name)

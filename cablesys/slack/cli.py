@@ -25,25 +25,28 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from .scene import EXAMPLE_TOML, load_scene
+    from .scene import EXAMPLE_TOML, load_slack_scene
     if args.example:
         sys.stdout.write(EXAMPLE_TOML)
         return 0
     if not args.scene:
         raise ParameterError("scene", None, "a scene TOML file is required (or --example)")
     from ..outputs import OutputDir
-    from .modes import analyze
+    from .vibration import analyze
     from .plots import plot_equilibrium, plot_mode_shapes
 
-    scene = load_scene(args.scene)
+    scene = load_slack_scene(args.scene)
     # --out checked before any work; summary.json says running / success / failed / interrupted
     outdir = OutputDir(args.out, "slack", {"scene": scene}, overwrite=getattr(args, "overwrite", False),
                        owned=("slack_result.json", "equilibrium.png", "mode_shapes.png"))
     with outdir.start(scene=str(args.scene)):
-        eq, modes = analyze(scene)
+        res = analyze(scene)
+        eq, modes = res.equilibrium, res.modes
         _check_strain(scene, eq)
         out = outdir.path
         doc = {"scene": str(args.scene), "medium": scene.medium, "n_elements": modes.n_elements,
+               "units": {"omega_rad_s": "rad/s", "s_m": "m", "x_m": "m", "z_m": "m", "element_tension_N": "N",
+                         "shapes": "kg^-1/2 m"},
                "equilibrium": eq.to_dict(), "modes": modes.table(),
                "mode_shapes": {"s_m": modes.s.tolist(), "dof": ["x", "y", "z"],
                                "normalization": "Griffin & Rosenthal (1985) eq. 25",
@@ -53,7 +56,7 @@ def run(args) -> int:
             plot_equilibrium(eq, tmp)
         with outdir.writing("mode_shapes.png") as tmp:
             plot_mode_shapes(eq, modes, tmp, n=min(6, scene.n_modes))
-    lines = [f"sag/L = {eq.sag_to_length:.5f}, H = {eq.horizontal_tension:.6g} N, "
+    lines = [f"sag/L = {eq.sag_to_length:.6g}, H = {eq.horizontal_tension:.6g} N, "
              f"max tension = {eq.tension.max():.6g} N",
              "mode  type  omega (rad/s)"]
     lines += [f"{k + 1:4d}  {t:>4s}  {w:.6g}" for k, (t, w) in enumerate(zip(modes.mode_type, modes.omega))]

@@ -12,12 +12,12 @@ Nomenclature: ``m`` mass per unit length (kg/m), ``g`` gravity (m/s^2),
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import brentq
 
 from ..errors import ParameterError, require_nonnegative, require_positive
+from .results import IrvineMode, IrvineModes
 
 #: lambda^2 at the first crossover of the symmetric and antisymmetric modes
 #: (eq. 6 with beta*l/2 = pi), Griffin & Rosenthal (1985) section 3.
@@ -129,15 +129,7 @@ def symmetric_omega(n: int, *, lambda2: float, span: float, H: float, m: float) 
     return 2.0 * x / span * math.sqrt(H / m)
 
 
-@dataclass(frozen=True, kw_only=True)
-class IrvineMode:
-    """One mode of the flat-sag theory: type 'O', 'A' or 'S' and omega (rad/s)."""
-
-    mode_type: str
-    omega: float
-
-
-def irvine_modes(n_modes: int, *, lambda2: float, span: float, H: float, m: float) -> list[IrvineMode]:
+def irvine_modes(n_modes: int, *, lambda2: float, span: float, H: float, m: float) -> IrvineModes:
     """The ``n_modes`` lowest modes of a horizontal flat-sag cable, ascending.
 
     Out-of-plane: string frequencies (k = 1, 2, ...); in-plane antisymmetric:
@@ -158,8 +150,8 @@ def irvine_modes(n_modes: int, *, lambda2: float, span: float, H: float, m: floa
 
     Returns
     -------
-    list of IrvineMode
-        Ascending in omega (rad/s).
+    IrvineModes
+        Ascending in omega (rad/s); iterating it gives one :class:`IrvineMode` per mode.
     """
     n = int(n_modes)
     if n < 1:
@@ -170,7 +162,8 @@ def irvine_modes(n_modes: int, *, lambda2: float, span: float, H: float, m: floa
     modes = [IrvineMode(mode_type=t, omega=float(w))
              for t, ws in (("O", o), ("A", a), ("S", s)) for w in ws]
     modes.sort(key=lambda md: md.omega)
-    return modes[:n]
+    return IrvineModes(mode_type=tuple(md.mode_type for md in modes[:n]),
+                       omega=np.array([md.omega for md in modes[:n]]), lambda2=float(lambda2))
 
 
 # --- onset of catenary effects (section 4) ---------------------------------

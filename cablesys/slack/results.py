@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
@@ -15,10 +16,73 @@ MODE_TYPES = {"O": "out-of-plane", "A": "in-plane antisymmetric",
 
 
 @dataclass(frozen=True, kw_only=True)
+class IrvineMode:
+    """One mode of the flat-sag theory: type 'O', 'A' or 'S' and omega (rad/s)."""
+
+    mode_type: str
+    omega: float
+
+
+@dataclass(frozen=True, kw_only=True)
+class IrvineModes(ResultBase):
+    """Modes of the flat-sag (Irvine-Caughey) theory, ascending: ``omega`` (rad/s) and ``mode_type``.
+
+    Griffin & Rosenthal (1985) eqs. 6-7 and 10; ``lambda2`` is the Irvine parameter used. A
+    sequence of :class:`IrvineMode` (iterate, index, ``len``) as well as a result.
+    """
+
+    mode_type: tuple[str, ...]
+    omega: np.ndarray
+    lambda2: float
+    success: bool = True
+    message: str = ""
+    stats: dict = field(default_factory=dict)
+
+    VARIABLES: ClassVar[dict] = {"omega": ("rad/s", "natural angular frequency (flat-sag theory)"),
+                                 "mode_type": ("1", "mode type O/A/S"), "mode": ("1", "mode number")}
+
+    def __len__(self) -> int:
+        return len(self.omega)
+
+    def __getitem__(self, k):
+        if isinstance(k, slice):
+            return [self[i] for i in range(len(self))[k]]
+        return IrvineMode(mode_type=self.mode_type[k], omega=float(self.omega[k]))
+
+    def __iter__(self):
+        return (self[k] for k in range(len(self)))
+
+    def summary(self) -> dict:
+        """The mode table (omega in rad/s) with lambda^2.
+
+        Returns
+        -------
+        dict
+            JSON-able.
+        """
+        return {**super().summary(),
+                "modes": [{"mode_type": t, "omega_rad_s": float(w)} for t, w in zip(self.mode_type, self.omega)]}
+
+    def to_xarray(self):
+        """Frequencies and types on dimension ``mode``.
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+        import xarray as xr
+        return xr.Dataset({"omega": ("mode", self.omega), "mode_type": ("mode", list(self.mode_type))},
+                          coords={"mode": np.arange(1, len(self) + 1)},
+                          attrs={"lambda2": self.lambda2, "theory": "Griffin & Rosenthal (1985) eqs. 6-7, 10"})
+
+
+@dataclass(frozen=True, kw_only=True)
 class Equilibrium(ResultBase):
     """Static shape of the chain: node arc length s (m, unstretched), x, z (m), element tension (N).
 
-    ``stats``: ``wall_time_s`` (``seconds``) and ``iterations`` of the statics solver."""
+    ``discretization``: the lumped-mass element layout the shape was solved on (the modes of
+    :func:`cablesys.slack.modes` need it); ``stats``: ``wall_time_s`` (``seconds``) and
+    ``iterations`` of the statics solver."""
 
     scene: Any
     s: np.ndarray
@@ -28,6 +92,7 @@ class Equilibrium(ResultBase):
     method: str
     iterations: int
     seconds: float
+    discretization: Any = None
     message: str = ""
     success: bool = True
 
@@ -172,13 +237,19 @@ class ModeSet(ResultBase):
         return len(self.omega)
 
     def table(self) -> list[dict]:
-        """[{'mode_type', 'omega'}] ascending: the JSON row format of the study."""
-        return [{"mode_type": t, "omega": float(w)} for t, w in zip(self.mode_type, self.omega)]
+        """[{'mode_type', 'omega_rad_s'}] ascending: the JSON row format (omega in rad/s)."""
+        return [{"mode_type": t, "omega_rad_s": float(w)} for t, w in zip(self.mode_type, self.omega)]
 
     def of_type(self, *types: str) -> np.ndarray:
         return np.array([w for t, w in zip(self.mode_type, self.omega) if t in types])
 
     def to_xarray(self):
+        """Frequencies and types on ``mode``, shapes on (``mode``, ``node``, ``dof``).
+
+        Returns
+        -------
+        xarray.Dataset
+        """
         import xarray as xr
         return xr.Dataset(
             {"omega": ("mode", self.omega), "mode_type": ("mode", list(self.mode_type)),
@@ -245,4 +316,60 @@ class Convergence(ResultBase):
 
     def table(self) -> list[dict]:
         order = np.argsort(self.richardson)
-        return [{"mode_type": self.mode_type[i], "omega": float(self.richardson[i])} for i in order]
+        return [{"mode_type": self.mode_type[i], "omega_rad_s": float(self.richardson[i])} for i in order]
+
+
+@dataclass(frozen=True, kw_only=True)
+class SlackAnalysis(ResultBase):
+    """A slack scene analysed: its static ``equilibrium`` and the natural ``modes`` about it.
+
+    ``success`` when both succeeded; ``stats``: ``wall_time_s`` (s) of the whole analysis and
+    the statistics of each part. Unpacking it as ``eq, modes = ...`` (the old tuple) still
+    works, with a DeprecationWarning.
+    """
+
+    equilibrium: Equilibrium
+    modes: ModeSet
+    stats: dict = field(default_factory=dict)
+
+    VARIABLES: ClassVar[dict] = {**Equilibrium.VARIABLES, **ModeSet.VARIABLES}
+
+    @property
+    def success(self) -> bool:
+        """True when the statics and the modes both succeeded."""
+        return bool(self.equilibrium.success and self.modes.success)
+
+    @property
+    def message(self) -> str:
+        """Why not ("" on success): the messages of the failed parts, named."""
+        parts = [f"{name}: {r.message}" for name, r in (("equilibrium", self.equilibrium), ("modes", self.modes))
+                 if r.message]
+        return "; ".join(parts)
+
+    def __iter__(self):
+        warnings.warn("unpacking slack.analyze(...) as (equilibrium, modes) is deprecated: use its "
+                      ".equilibrium and .modes", DeprecationWarning, stacklevel=2)
+        return iter((self.equilibrium, self.modes))
+
+    def summary(self) -> dict:
+        """Headline numbers: the equilibrium's (N, m) and the mode table (omega in rad/s).
+
+        Returns
+        -------
+        dict
+            JSON-able.
+        """
+        return {**super().summary(), "equilibrium": self.equilibrium.summary(), "modes": self.modes.table()}
+
+    def to_xarray(self):
+        """The equilibrium's and the modes' datasets merged (shared coordinate ``s`` on ``node``).
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+        import xarray as xr
+        eq, md = self.equilibrium.to_xarray(), self.modes.to_xarray()
+        for ds in (eq, md):
+            ds.attrs.pop("stats", None), ds.attrs.pop("success", None), ds.attrs.pop("message", None)
+        return xr.merge([eq, md], compat="no_conflicts", join="exact", combine_attrs="drop_conflicts")

@@ -3,7 +3,7 @@
 A scene is one extensible cable hung between support A (the origin) and
 support B at (``span``, ``rise``), with point masses attached at unstretched
 arc-length positions measured from A, in air or in water. The TOML format
-read by :func:`load_scene` is documented in :data:`EXAMPLE_TOML`.
+read by :func:`load_slack_scene` is documented in :data:`EXAMPLE_TOML`.
 """
 
 from __future__ import annotations
@@ -39,8 +39,10 @@ def _buoyancy_and_added(mass: float, S: float | None, c_am: float, medium: str, 
 
 
 @dataclass(frozen=True, kw_only=True)
-class Cable:
-    """A uniform extensible cable (Griffin & Rosenthal 1985), in the vocabulary of the Wang scene.
+class SlackCable:
+    """A uniform extensible cable of a slack scene (Griffin & Rosenthal 1985), in the vocabulary of the Wang scene.
+
+    Named apart from :class:`cablesys.scene.Cable` (the Wang cable) so that both can be imported together.
 
     The quantities it shares with :class:`cablesys.scene.Cable` (length, mass_per_length, ae,
     weight_per_length, added_mass_factor, specific_gravity) have the same names, units and
@@ -130,7 +132,7 @@ class SlackScene:
     when not given one).
     """
 
-    cable: Cable = spec("none", "the cable", symbol="")
+    cable: SlackCable = spec("none", "the cable", symbol="")
     span: float = spec("length", "horizontal distance from A to B", symbol="x_B")
     rise: float = spec("length", "height of B above A", 0.0, symbol="z_B")
     masses: tuple[PointMass, ...] = spec("none", "attached point masses", default_factory=tuple, symbol="")
@@ -183,7 +185,7 @@ class SlackScene:
         return math.atan2(self.rise, self.span)
 
     @classmethod
-    def from_chord(cls, *, cable: Cable, chord: float, theta_deg: float = 0.0, **kw) -> "SlackScene":
+    def from_chord(cls, *, cable: SlackCable, chord: float, theta_deg: float = 0.0, **kw) -> "SlackScene":
         """A scene from the chord length (m) and its inclination (degrees)."""
         chord = require_positive("chord", chord, "m")
         th = math.radians(require_finite("theta_deg", theta_deg))
@@ -285,7 +287,7 @@ def _scene_from_dict(doc: dict) -> SlackScene:
             raise ParameterError(k, doc[k], "unknown table; allowed: scene, cable, masses")
     if "cable" not in doc:
         raise ParameterError("cable", None, "a [cable] table is required")
-    cable = build(Cable, _renamed(doc["cable"], "cable"), "cable")
+    cable = build(SlackCable, _renamed(doc["cable"], "cable"), "cable")
     masses = doc.get("masses", [])
     if isinstance(masses, dict):
         raise ParameterError("masses", "one table", "must be an array of tables: write [[masses]] per point mass")
@@ -300,7 +302,7 @@ def _scene_from_dict(doc: dict) -> SlackScene:
     return scene
 
 
-def load_scene(path: str | Path) -> SlackScene:
+def load_slack_scene(path: str | Path) -> SlackScene:
     """Read a slack-cable scene TOML file (UTF-8, a byte-order mark accepted).
 
     Parameters

@@ -16,7 +16,7 @@ point loads):
 
 solved as an NLP with CasADi + IPOPT (:func:`solve_equilibrium`). The
 Hessian of V at the minimum is the in-plane stiffness matrix used by
-:mod:`cablesys.slack.modes`. An independent exact route for the same
+:mod:`cablesys.slack.vibration`. An independent exact route for the same
 discrete equations, shooting on the support force (H, V_A) through the
 statically determinate chain, is :func:`solve_equilibrium_shooting`; the
 two agree to solver tolerance (tests).
@@ -180,16 +180,16 @@ def _equilibrium_from_nodes(scene, d, x, z, method, iterations, seconds, message
         raise SolverError(f"statics ({method}): element {i} is in compression "
                           f"(T = {tension[i]:.4g} N); the equilibrium found is not a hanging cable. "
                           "Try more elements or a smaller sag.")
-    return Equilibrium(scene=scene, s=d.s.copy(), x=x, z=z, tension=tension,
+    return Equilibrium(scene=scene, s=d.s.copy(), x=x, z=z, tension=tension, discretization=d,
                        method=method, iterations=iterations, seconds=seconds, message=message)
 
 
 def solve_equilibrium(scene: SlackScene, *, n_elements: int | None = None,
                       guess: np.ndarray | None = None, max_iter: int = 200,
-                      tol: float = 1e-9, cache: FunctionCache | None = None) -> tuple[Equilibrium, Discretization]:
+                      tol: float = 1e-9, cache: FunctionCache | None = None) -> Equilibrium:
     """Minimize the potential energy with CasADi nlpsol('ipopt').
 
-    Returns the equilibrium and the discretization. ``guess`` is an initial
+    Returns the equilibrium (its ``discretization`` is the element layout). ``guess`` is an initial
     w vector (e.g. a neighbouring solution in a sweep); default the parabola.
     Raises SolverError if IPOPT does not converge.
 
@@ -211,8 +211,9 @@ def solve_equilibrium(scene: SlackScene, *, n_elements: int | None = None,
 
     Returns
     -------
-    tuple of (Equilibrium, Discretization)
-        Static shape with element tensions (N), and the element layout.
+    Equilibrium
+        Static shape (m) with element tensions (N); ``discretization`` holds the element layout
+        that :func:`cablesys.slack.modes` needs.
     """
     d = discretize(scene, n_elements, cache)
     n = d.n_elements
@@ -223,7 +224,7 @@ def solve_equilibrium(scene: SlackScene, *, n_elements: int | None = None,
     elif int(n_elements or scene.n_elements) > COARSE_LIMIT:
         # two-level start: solve a coarse chain, interpolate its shape in s
         # (its O(h^2)-close) so that IPOPT needs a few Newton steps, not ~90
-        eqc, _ = solve_equilibrium(scene, n_elements=COARSE_LIMIT, max_iter=max_iter, tol=tol, cache=d.functions)
+        eqc = solve_equilibrium(scene, n_elements=COARSE_LIMIT, max_iter=max_iter, tol=tol, cache=d.functions)
         w0 = np.concatenate([np.interp(d.s[1:-1], eqc.s, eqc.x), np.interp(d.s[1:-1], eqc.s, eqc.z)])
     else:
         w0 = parabola_guess(scene, d)
@@ -240,7 +241,7 @@ def solve_equilibrium(scene: SlackScene, *, n_elements: int | None = None,
     x = np.concatenate([[0.0], w[: n - 1], [scene.span]])
     z = np.concatenate([[0.0], w[n - 1:], [scene.rise]])
     log.info("statics NLP: %d elements, %d iterations, %.3f s", n, stats.get("iter_count", -1), dt)
-    return _equilibrium_from_nodes(scene, d, x, z, "nlp-ipopt", int(stats.get("iter_count", -1)), dt, ""), d
+    return _equilibrium_from_nodes(scene, d, x, z, "nlp-ipopt", int(stats.get("iter_count", -1)), dt, "")
 
 
 def _chain_ends(HV: np.ndarray, d: Discretization, EA: float):
@@ -267,13 +268,13 @@ def _elastic_parabola_tension(W: float, c: float, L: float, EA: float) -> float:
     return math.exp(scipy.optimize.brentq(res, lo, hi))
 
 
-def solve_equilibrium_shooting(scene: SlackScene, *, n_elements: int | None = None
-                               ) -> tuple[Equilibrium, Discretization]:
+def solve_equilibrium_shooting(scene: SlackScene, *, n_elements: int | None = None) -> Equilibrium:
     """Exact equilibrium of the same chain by shooting on (H, V_A) (scipy.optimize.root).
 
     The chain is statically determinate: node balance gives element forces
     (H, V_A + sum W_i), Hooke's law their lengths; the two unknowns close
-    the chord. Used as an independent check of the NLP and for fast sweeps.
+    the chord. Used as an independent check of the NLP and for fast sweeps. Returns the
+    :class:`Equilibrium` (``method`` 'shooting', ``iterations`` the residual evaluations).
     """
     d = discretize(scene, n_elements)
     EA = scene.cable.ae
@@ -297,7 +298,7 @@ def solve_equilibrium_shooting(scene: SlackScene, *, n_elements: int | None = No
     x = np.concatenate([[0.0], X[:-1], [scene.span]])
     z = np.concatenate([[0.0], Z[:-1], [scene.rise]])
     return _equilibrium_from_nodes(scene, d, x, z, "shooting", int(sol.nfev),
-                                   time.perf_counter() - t0, ""), d
+                                   time.perf_counter() - t0, "")
 
 
 def stiffness_inplane(eq: Equilibrium, d: Discretization):

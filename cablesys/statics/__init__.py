@@ -6,7 +6,8 @@
 """
 
 from .catenary import elastic_catenary, hanging_guess, segmented_equilibrium
-from .steady import SteadyState, static_residual, steady_state
+from .problem import SteadyState, static_residual
+from .steady import steady_state
 
 __all__ = ["SteadyState", "elastic_catenary", "hanging_guess", "segmented_equilibrium", "static_residual",
            "steady_state"]

@@ -1,7 +1,7 @@
 """Equilibrium of the segmented cable: the elastic catenary under weight, current and tow.
 
 The static residual is the segmented model's own right-hand side with every rate zero and the
-top at rest (:func:`cablesys.statics.steady.static_residual`: waves off, forces scaled by the
+top at rest (:func:`cablesys.statics.problem.static_residual`: waves off, forces scaled by the
 total weight). KINSOL solves it with a sparse direct linear solver (the Jacobian is banded),
 starting from the straight hanging cable stretched by the weight below each element (exact
 without current: the lumped weights give each element the tension of its mid-point). A current
@@ -18,6 +18,7 @@ import casadi as ca
 import numpy as np
 
 from ..errors import SolverError
+from .problem import SteadyState, at_rest, static_parameters, static_residual
 
 TOLERANCE = 1e-10     # largest static force residual over the total weight
 
@@ -81,8 +82,6 @@ def _polar(model):
 
 
 def _rootfinders(model):
-    from .steady import static_residual
-
     def build():
         resid = static_residual(model)
         to_q = _polar(model)
@@ -135,8 +134,7 @@ def segmented_equilibrium(model, p, *, guess=None):
     SolverError
         When neither the direct solve nor the continuation in flow speed converges.
     """
-    from .steady import _static_parameters, static_residual
-    p = _static_parameters(model, p)
+    p = static_parameters(model, p)
     polar, nodes = _rootfinders(model)
     resid, to_q = static_residual(model), _polar(model)
     g0 = hanging_guess(model, p) if guess is None else np.asarray(guess, float)
@@ -176,6 +174,32 @@ def segmented_equilibrium(model, p, *, guess=None):
                           "the hanging cable and along the flow-speed continuation; a very strong current or tow "
                           "streams the cable horizontally: check weights and speeds, or give a guess")
     return q, r
+
+
+def segmented_steady(model, p, *, guess=None) -> SteadyState:
+    """The steady state of a segmented model: its elastic catenary (waves off, top at rest).
+
+    Parameters
+    ----------
+    model : SegmentedModel
+    p : array
+        Parameter vector (wave amplitudes and slack switches are ignored).
+    guess : array, optional
+        Starting node positions (m); default the stretched vertical cable.
+
+    Returns
+    -------
+    SteadyState
+        Node positions ``q`` (m), labelled outputs and the scaled residual (forces over the total weight).
+
+    Raises
+    ------
+    SolverError
+        As :func:`segmented_equilibrium`.
+    """
+    p = static_parameters(model, p)
+    q, r = segmented_equilibrium(model, p, guess=guess)
+    return at_rest(model, q, p, r)
 
 
 def elastic_catenary(s, *, weight_per_length, ea, horizontal, bottom_weight):
@@ -237,13 +261,11 @@ def segmented_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
     e = np.array(model.top(t0, p)).ravel()
     z, zd = e[1:3], e[3:5]
     if ini.phi is None and ini.u is None:
-        from .steady import steady_state
-        q = steady_state(model, p).q.reshape(-1, 2)
+        q = segmented_steady(model, p).q.reshape(-1, 2)
         v = np.zeros_like(q)
     else:
         if ini.phi is None or ini.u is None:
-            from .steady import steady_state
-            y = steady_state(model, p).outputs
+            y = segmented_steady(model, p).outputs
         pos, vel = [], []
         r0, v0 = np.zeros(2), np.zeros(2)
         for i, n_el in enumerate(model.segments):

@@ -7,77 +7,15 @@ Waves are switched off (a steady state has none); current and tow speed stay.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import casadi as ca
 import numpy as np
 
 from ..errors import SolverError
-from ..model import EXO_LABELS, CableModel
-
-
-@dataclasses.dataclass(frozen=True)
-class SteadyState:
-    """An equilibrium: coordinates, outputs (labelled), the relative residual reached
-    (forces over total weight, moments over weight x length; see :func:`static_residual`)."""
-
-    q: np.ndarray
-    q_labels: tuple
-    outputs: dict
-    residual: float
-
-    @property
-    def x(self) -> np.ndarray:
-        """Full state (q, q' = 0)."""
-        return np.concatenate([self.q, np.zeros_like(self.q)])
-
-
-def _static_parameters(model: CableModel, p) -> np.ndarray:
-    p = np.array(p, dtype=float)
-    p[_static_zeroed(model)] = 0.0
-    return p
-
-
-def _static_zeroed(model: CableModel) -> list[int]:
-    """Parameter entries a steady state ignores: wave amplitudes and the slack switches."""
-    waves = [i for i, lbl in enumerate(model.layout.labels)
-             if lbl.startswith("environment.waves[") and lbl.endswith(".amplitude")]
-    return waves + list(model.slack_index)
-
-
-def static_residual(model: CableModel) -> ca.Function:
-    """``(q, p) -> r``: the static residual f(q, q' = 0, e = 0, p) with waves and slack off,
-    scaled to O(1) (built once per model; shared by :func:`steady_state` and the design NLP).
-
-    u-rows (forces) are divided by the total weight, phi-rows (moments) by weight x length,
-    so that solver tolerances are relative and not below round-off for heavy, long systems
-    (Wang 1971 eq. 47-48 with all rates zero).
-
-    Parameters
-    ----------
-    model : CableModel
-        A 2-DOF or section-chain model.
-
-    Returns
-    -------
-    casadi.Function
-        ``static_residual(q, p) -> r`` (dimensionless), built once per model (``model.cache``).
-    """
-    def build():
-        q = ca.SX.sym("q", model.nq)
-        p = ca.SX.sym("p", len(model.layout))
-        zeroed = set(_static_zeroed(model))
-        ps = ca.vertcat(*[0.0 if i in zeroed else p[i] for i in range(len(model.layout))])
-        _, f = model.dynamics(q, ca.SX.zeros(model.nq), ca.SX.zeros(len(EXO_LABELS)), ps)
-        lab = model.layout.labels
-        weight = sum(ca.fabs(p[i]) for i, lb in enumerate(lab) if lb.endswith("body.weight")) + sum(
-            ca.fabs(p[i] * p[lab.index(lb.replace("weight_per_length", "length"))])
-            for i, lb in enumerate(lab) if lb.endswith("cable.weight_per_length"))
-        length = sum(p[i] for i, lb in enumerate(lab) if lb.endswith("cable.length"))
-        scale = ca.vertcat(*[weight * length if lbl.startswith("phi") else weight for lbl in model.q_labels])
-        return ca.Function("static_residual", [q, p], [f / scale], ["q", "p"], ["r"])
-    return model.derive("static_residual", build)
+from ..model import CableModel
+from .catenary import segmented_steady
+from .problem import SteadyState, at_rest, static_parameters, static_residual
 
 
 def _rootfinder(model: CableModel) -> ca.Function:
@@ -150,8 +88,8 @@ def steady_state(model: CableModel, p, *, guess=None, solver: ca.Function | None
         relative residual reached.
     """
     if getattr(model, "segments", None):
-        return _segmented_steady(model, p, guess)
-    p = _static_parameters(model, p)
+        return segmented_steady(model, p, guess=guess)
+    p = static_parameters(model, p)
     rf = solver or _rootfinder(model)
     resid_fn = static_residual(model)
     guesses = ([np.asarray(guess, float)] if guess is not None else []) + list(starting_guesses(model, p))
@@ -176,16 +114,4 @@ def steady_state(model: CableModel, p, *, guess=None, solver: ca.Function | None
                           f"{best[1] if best else float('nan'):.3g}); a buoyant body on a rod only balances inverted, "
                           "and a very strong current or tow speed streams the cable horizontally: check weights and "
                           "speeds, or give an initial guess")
-    q = best[0]
-    x = np.concatenate([q, np.zeros_like(q)])
-    y = np.array(model.outputs(x, np.zeros(len(EXO_LABELS)), p)).ravel()
-    return SteadyState(q=q, q_labels=model.q_labels, outputs=dict(zip(model.output_labels, y)), residual=best[1])
-
-
-def _segmented_steady(model, p, guess) -> SteadyState:
-    from .catenary import segmented_equilibrium
-    p = _static_parameters(model, p)
-    q, r = segmented_equilibrium(model, p, guess=guess)
-    x = np.concatenate([q, np.zeros_like(q)])
-    y = np.array(model.outputs(x, np.zeros(len(EXO_LABELS)), p)).ravel()
-    return SteadyState(q=q, q_labels=model.q_labels, outputs=dict(zip(model.output_labels, y)), residual=r)
+    return at_rest(model, best[0], p, best[1])

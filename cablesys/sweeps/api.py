@@ -11,10 +11,24 @@ from . import backends
 from .analyses import ANALYSIS
 from .grid import Grid
 from .store import CaseStore, assemble
-from .values import check_labels, unit_of_label
+from .values import check_labels, check_values, long_name_of_label, unit_of_label
 from .worker import SweepSpec
 
 log = logging.getLogger(__name__)
+
+
+class SweepInterrupted(KeyboardInterrupt):
+    """A sweep stopped by Ctrl-C or SIGTERM: ``dataset`` holds the cases that finished (the others have
+    status ``missing``), ``n_finished`` of ``n_cases``; with ``out`` they are on disk, and calling the same
+    sweep again computes only the rest."""
+
+    def __init__(self, dataset, out=None):
+        self.dataset, self.out = dataset, out
+        self.n_cases = int(dataset.attrs["n_cases"])
+        self.n_finished = int((dataset["status"] != "missing").sum())
+        kept = f"kept in {out}/cases/; the same sweep again computes the other {self.n_cases - self.n_finished}" \
+            if out is not None else "not stored (no out folder)"
+        super().__init__(f"{self.n_finished} of {self.n_cases} cases finished, {kept}")
 
 
 def sweep(scene: Scene, vary: dict, analysis: str = "run", *, metrics=None, zip=False, options: dict | None = None,
@@ -48,7 +62,8 @@ def sweep(scene: Scene, vary: dict, analysis: str = "run", *, metrics=None, zip=
         ``direction``; design ``settings``; ladder ``tolerance``.
     out : path, optional
         Folder for finished cases (netCDF per chunk, written as they finish) and ``sweep.nc``.
-        Calling again with the same sweep and folder computes only the missing cases.
+        Calling again with the same sweep and folder computes only the missing cases. Checked before
+        any case runs (:class:`cablesys.outputs.OutputDir`: not a file, creatable, writable).
     workers : int, optional
         Local processes (default: all cores of this machine; 1 runs in this process).
     scheduler : distributed.Client or str, optional
@@ -64,26 +79,37 @@ def sweep(scene: Scene, vary: dict, analysis: str = "run", *, metrics=None, zip=
     -------
     xarray.Dataset
         Dimensions: one per varied label (zipped labels share the first one's); coordinates with
-        SI units in attributes; variables: the metrics, ``status``, ``message``, ``wall_s``.
-        Attributes: ``analysis``, ``n_cases``, ``n_computed`` (this call), ``n_ok``, ``wall_s``, ``backend``.
+        SI ``units`` and a ``long_name`` in attributes; variables: the metrics, ``status``, ``message``,
+        ``wall_s``. Attributes: ``analysis``, ``n_cases``, ``n_computed`` (this call), ``n_ok``, ``wall_s``,
+        ``backend``.
+
+    Raises
+    ------
+    ParameterError
+        Before any case runs: an unknown or repeated label, an entry of the wrong type for its label
+        (text for a number, a fraction for an integer), an ``out`` that is a file or cannot be written.
+    SweepInterrupted
+        (a KeyboardInterrupt) on Ctrl-C or SIGTERM: the workers are stopped, the finished cases are on
+        disk (with ``out``) and in the exception's ``dataset``.
     """
     if analysis not in ANALYSIS:
         raise ParameterError("analysis", analysis, f"must be one of {tuple(ANALYSIS)}")
     if not isinstance(scene, Scene):
         raise ParameterError("scene", type(scene).__name__, "must be a cablesys Scene (load_scene, dale_scene)")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+        raise ParameterError("workers", workers, "must be an integer >= 1")
     grid = Grid.build(vary, zip)
     check_labels(scene, grid.all_names, analysis)
+    check_values(scene, grid, analysis)
     patterns = None if metrics is None else tuple([metrics] if isinstance(metrics, str) else metrics)
     spec = SweepSpec(scene=scene, analysis=analysis, grid=grid, options=dict(options or {}), metrics=patterns)
     t0 = time.perf_counter()
-    store = CaseStore(out, spec) if out is not None else None
+    store = CaseStore(out, spec) if out is not None else None      # the folder checked (and made) before any case
     records = store.finished() if store else {}
     if retry_failed:
         records = {k: r for k, r in records.items() if r["status"] == "ok"}
     todo = [k for k in range(len(grid)) if k not in records]
     n_workers = 1 if scheduler is not None else (workers or backends.local_cores())
-    if workers is not None and workers < 1:
-        raise ParameterError("workers", workers, "must be >= 1")
     parts = backends.chunks(todo, n_workers if scheduler is None else 16, chunk_size)
     if scheduler is not None:
         backend, stream = "dask", backends.run_dask(spec, parts, scheduler)
@@ -92,6 +118,7 @@ def sweep(scene: Scene, vary: dict, analysis: str = "run", *, metrics=None, zip=
     else:
         backend, stream = "processes", backends.run_processes(spec, parts, min(n_workers, len(parts)))
     bar = _bar(len(todo), f"sweep {analysis}", progress)
+    interrupted = False
     try:
         for _, recs in stream:
             keep = [r for r in recs if not r.pop("transient", False)]
@@ -102,14 +129,20 @@ def sweep(scene: Scene, vary: dict, analysis: str = "run", *, metrics=None, zip=
             bad = sum(r["status"] != "ok" for r in recs)
             if bad:
                 bar.set_postfix(not_ok=sum(r["status"] != "ok" for r in records.values()))
+    except KeyboardInterrupt:
+        interrupted = True
+        stream.close()                   # workers killed; the chunks written so far stay
     finally:
         bar.close()
     units = {n: unit_of_label(scene, n, analysis) for n in grid.all_names}
+    long_names = {n: long_name_of_label(scene, n, analysis) for n in grid.all_names}
     n_ok = sum(r["status"] == "ok" for r in records.values())
     attrs = {"analysis": analysis, "scene": scene.name, "n_cases": len(grid), "n_computed": len(todo),
              "n_ok": n_ok, "wall_s": time.perf_counter() - t0, "backend": backend,
              "workers": n_workers if scheduler is None else -1, "options": repr(sorted((options or {}).items()))}
-    ds = assemble(spec, records, units, attrs)
+    ds = assemble(spec, records, units, attrs, long_names)
+    if interrupted:
+        raise SweepInterrupted(ds, store.out if store else None)
     if store:
         ds.to_netcdf(store.out / "sweep.nc", engine="scipy")
     return ds

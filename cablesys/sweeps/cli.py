@@ -5,6 +5,8 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+EXIT_INTERRUPTED = 130     # the shell's code for a run stopped by SIGINT, as the cablesys command uses
+
 
 def register(sub) -> None:
     """Add ``sweep SCENE --vary NAME=VALUES ... [--analysis A] [--out DIR]`` to the cablesys parser."""
@@ -12,8 +14,11 @@ def register(sub) -> None:
                        description="Run ANALYSIS for every combination of the --vary values (outer product; --zip "
                                    "to advance the lists in step) on all local cores or a Dask cluster. Writes "
                                    "OUT/sweep.nc (one dimension per varied label, metrics, per-case status and message), "
-                                   "OUT/sweep.csv, a plot per metric in OUT/plots/, and keeps finished cases in "
-                                   "OUT/cases/ so that running the same command again computes only the missing ones.")
+                                   "OUT/sweep.csv (name [unit] columns), one summary figure OUT/plots/sweep.png, and keeps finished "
+                                   "cases in OUT/cases/ so that running the same command again computes only the missing "
+                                   "ones. Values of the wrong type for their label, a label given twice and an --out that "
+                                   "cannot be written are refused before any case runs. Ctrl-C stops the workers, keeps "
+                                   "the finished cases and exits with 130.")
     p.add_argument("scene", type=Path, help="scene TOML file (see `cablesys scene --example`)")
     p.add_argument("--vary", action="append", required=True, metavar="NAME=VALUES",
                    help="a labelled value and its values: a list (body.weight=2000,3000,4000) or a range "
@@ -38,15 +43,22 @@ def register(sub) -> None:
 def run(args) -> int:
     from ..scene import load_scene
     from . import sweep
+    from .api import SweepInterrupted
     from .grid import parse_vary
     from .plots import plot_sweep
+    from .store import write_csv
+    vary = parse_vary(args.vary)           # a label given twice: refused before the scene is even read
     scene = load_scene(args.scene)
     if args.duration is not None:          # 0 or negative is refused by the scene, not ignored
         scene = scene.with_numerics(duration=args.duration)
     options = {"model": None if args.model == "built" else args.model} if args.analysis == "run" else {}
-    ds = sweep(scene, parse_vary(args.vary), args.analysis, metrics=args.metric, zip=args.zip, out=args.out,
-               workers=args.workers, scheduler=args.scheduler, progress=sys.stderr.isatty(), options=options)
-    ds.to_dataframe().to_csv(args.out / "sweep.csv")
+    try:
+        ds = sweep(scene, vary, args.analysis, metrics=args.metric, zip=args.zip, out=args.out,
+                   workers=args.workers, scheduler=args.scheduler, progress=sys.stderr.isatty(), options=options)
+    except SweepInterrupted as stop:
+        print(f"cablesys sweep: interrupted: {stop}", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    write_csv(ds, args.out / "sweep.csv")
     figs = [] if args.no_plots else plot_sweep(ds, args.out / "plots")
     status = ds["status"].values.ravel()
     print(f"{scene.name}: {ds.attrs['analysis']} over {' x '.join(f'{d} ({n})' for d, n in ds.sizes.items())} = "
@@ -54,5 +66,5 @@ def run(args) -> int:
           f"{ds.attrs['wall_s']:.1f} s); ok {int((status == 'ok').sum())}, not ok {int((status != 'ok').sum())}")
     for k in [i for i, s in enumerate(status) if s != "ok"][:5]:
         print(f"  case {k}: {status[k]}: {ds['message'].values.ravel()[k]}")
-    print(f"wrote {args.out}/sweep.nc, sweep.csv and {len(figs)} plots in {args.out}/plots/")
+    print(f"wrote {args.out}/sweep.nc, sweep.csv{f' and {figs[0]}' if figs else ''}")
     return 0 if (status == "ok").all() else 1

@@ -41,7 +41,12 @@ class Grid:
             arr = list(np.atleast_1d(np.asarray(vals, dtype=object)).tolist())
             if not arr:
                 raise ParameterError(f"vary[{name!r}]", vals, "needs at least one value")
-            lists[str(name)] = tuple(_plain(v) for v in arr)
+            lists[str(name)] = tuple(_plain(v, name) for v in arr)
+            kinds = {isinstance(v, str) for v in lists[str(name)]}
+            if len(kinds) > 1:          # one column of one type: all numbers or all text
+                bad = next(v for v in lists[str(name)] if isinstance(v, str))
+                raise ParameterError(f"vary[{name!r}]", bad, "mixes text and numbers "
+                                     f"({', '.join(map(str, lists[str(name)]))}): give all numbers or all text")
         if zip is True:
             groups = [tuple(lists)]
         elif not zip:
@@ -93,8 +98,8 @@ class Grid:
             yield {n: vals[i] for g, vs, i in zip(self.names, self.values, pos) for n, vals in zip(g, vs)}
 
 
-def _plain(v):
-    """A JSON/netCDF-friendly scalar (Python int, float or str)."""
+def _plain(v, name: str = "vary value"):
+    """A JSON/netCDF-friendly scalar (Python int, float or str) of the list of ``name``."""
     if isinstance(v, (bool, np.bool_)):
         return int(v)
     if isinstance(v, (int, np.integer)):
@@ -103,7 +108,7 @@ def _plain(v):
         return float(v)
     if isinstance(v, str):
         return v
-    raise ParameterError("vary value", v, "must be a number or a string")
+    raise ParameterError(f"vary[{name!r}]", v, "must be a number or a string")
 
 
 def parse_values(text: str) -> list:
@@ -160,12 +165,16 @@ def parse_vary(specs) -> dict:
     Returns
     -------
     dict
-        {label: list of values}, in the order given.
+        {label: list of values}, in the order given. A label given twice is a ParameterError
+        (one list per label; a range and a list of one label are not merged).
     """
-    vary = {}
+    vary, given = {}, {}
     for s in specs:
         if "=" not in s:
             raise ParameterError("--vary", s, "must be NAME=VALUES, e.g. cable.ae=1e5:1e7:log:20")
-        name, spec = s.split("=", 1)
-        vary[name.strip()] = parse_values(spec)
+        name, spec = (t.strip() for t in s.split("=", 1))
+        if name in vary:
+            raise ParameterError("--vary", s, f"repeats the label {name!r} (given before as {given[name]}): "
+                                 "one --vary per label")
+        vary[name], given[name] = parse_values(spec), s
     return vary

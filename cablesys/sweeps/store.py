@@ -5,7 +5,8 @@ no netCDF C library) under ``OUT/cases/``, first to a temporary name and then re
 file is either complete or absent. ``OUT/sweep.json`` holds a fingerprint of the sweep
 (scene, analysis, options, grid, metrics): a later call with the same sweep and folder
 reads the finished cases and computes only the missing ones; a different sweep in the
-same folder is refused.
+same folder is refused. The folder is checked as every sub-command's ``--out`` is
+(:class:`cablesys.outputs.OutputDir`) and made before any case runs.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import ParameterError
+from ..outputs import OutputDir
 from .metrics import metric_unit
 
 log = logging.getLogger(__name__)
@@ -40,13 +42,24 @@ class CaseStore:
     def __init__(self, out, spec):
         self.out = Path(out)
         self.cases_dir = self.out / "cases"
-        self.cases_dir.mkdir(parents=True, exist_ok=True)
         self.key = fingerprint(spec)
+        try:                                        # a file, an uncreatable or unwritable place, another command's folder
+            OutputDir(self.out, "sweep", self.key)
+        except ParameterError as err:               # (a sweep has no --overwrite: the hint is another folder)
+            raise ParameterError(err.field, err.value, err.allowed, "choose another folder" if err.hint else "") from None
+        try:
+            self.cases_dir.mkdir(parents=True, exist_ok=True)
+            self._claim(spec)
+        except OSError as err:                      # what the check cannot see (a read-only file system, root)
+            raise ParameterError("--out", str(self.out), f"cannot be written ({err.strerror or err})") from None
+
+    def _claim(self, spec) -> None:
+        """Write the sweep's fingerprint, or refuse a folder that holds another sweep."""
         meta = self.out / "sweep.json"
         if meta.exists():
             old = json.loads(meta.read_text()).get("fingerprint")
             if old != self.key:
-                raise ParameterError("out", str(self.out), "holds a different sweep (scene, analysis, options or "
+                raise ParameterError("--out", str(self.out), "holds a different sweep (scene, analysis, options or "
                                                            "values differ): choose another folder or empty it")
         else:
             meta.write_text(json.dumps({"fingerprint": self.key, "analysis": spec.analysis,
@@ -123,8 +136,9 @@ def records_of(ds) -> list:
     return out
 
 
-def assemble(spec, records: dict, units: dict, attrs: dict):
-    """The sweep's Dataset: one dimension per varied name (zipped names share one), metrics, status, message."""
+def assemble(spec, records: dict, units: dict, attrs: dict, long_names: dict | None = None):
+    """The sweep's Dataset: one dimension per varied name (zipped names share one), metrics, status, message;
+    each coordinate with its SI ``units`` and ``long_name``."""
     import xarray as xr
     grid = spec.grid
     shape = grid.shape
@@ -151,5 +165,16 @@ def assemble(spec, records: dict, units: dict, attrs: dict):
     for g, vs in zip(grid.names, grid.values):
         for j, (n, v) in enumerate(zip(g, vs)):
             arr = np.array(v, dtype=object if any(isinstance(x, str) for x in v) else float)
-            coords[n] = (g[0], arr, {"units": units.get(n, "")})
+            coords[n] = (g[0], arr, {"units": units.get(n, ""), "long_name": (long_names or {}).get(n, n)})
     return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def write_csv(ds, path) -> Path:
+    """The sweep as a CSV table, one row per case: ``name [unit]`` columns (the varied labels first), written
+    atomically."""
+    from ..atomic import atomic_write_text
+    df = ds.to_dataframe()
+    head = lambda n: f"{n} [{ds[n].attrs['units']}]" if ds[n].attrs.get("units", "-") not in ("", "-") else n  # noqa: E731
+    df.index = df.index.set_names([head(n) for n in df.index.names])
+    df = df.rename(columns={c: head(c) for c in df.columns})
+    return atomic_write_text(Path(path), df.to_csv())

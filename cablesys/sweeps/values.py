@@ -12,6 +12,7 @@ value fails its case with the field, the value and the allowed range.
 from __future__ import annotations
 
 import dataclasses
+import math
 import re
 
 from ..errors import ParameterError
@@ -53,10 +54,17 @@ def _scene_tokens(scene, label: str) -> list:
 
 
 def _convert(old, value, label):
+    """``value`` as the type of the field's current value ``old`` (ParameterError naming ``label`` if it cannot be)."""
+    if old is None:                   # an optional field that is unset: the scene's validation decides
+        return value
     if isinstance(old, bool):
+        if isinstance(value, str) and value.lower() in ("true", "false"):
+            return value.lower() == "true"
+        if isinstance(value, str) or value not in (0, 1):
+            raise ParameterError(label, value, "must be true or false (1 or 0)")
         return bool(value)
     if isinstance(old, int):
-        if float(value) != int(float(value)):
+        if isinstance(value, str) or not math.isfinite(float(value)) or float(value) != int(float(value)):
             raise ParameterError(label, value, "must be an integer")
         return int(float(value))
     if isinstance(old, str):
@@ -102,41 +110,77 @@ def apply_values(scene, values: dict, analysis: str):
     return scene, options
 
 
+def _leaf(scene, label: str):
+    """(dataclass field, current value) of a scene label; ParameterError for a name or index the scene lacks."""
+    obj, field = scene, None
+    for name, idx in _scene_tokens(scene, label):
+        fields = {f.name: f for f in dataclasses.fields(obj)} if dataclasses.is_dataclass(obj) else {}
+        if name not in fields:
+            raise ParameterError("vary", label, f"names no scene field ({name!r}); fields here: {list(fields)}")
+        field, obj = fields[name], getattr(obj, name)
+        if idx is not None:
+            if not isinstance(obj, tuple) or idx >= len(obj):
+                raise ParameterError("vary", label, f"index {idx} out of range ({name} has "
+                                                    f"{len(obj) if isinstance(obj, tuple) else 0} entries)")
+            obj = obj[idx]
+    return field, obj
+
+
 def unit_of_label(scene, label: str, analysis: str) -> str:
     """SI unit of a varied label (from the scene field metadata), '' when unknown."""
     if is_option(label, analysis):
         return OPTION_UNITS.get(label.split(".", 1)[1], "")
     try:
-        tokens = _scene_tokens(scene, label)
+        field, _ = _leaf(scene, label)
     except ParameterError:
         return ""
-    obj = scene
-    for k, (name, idx) in enumerate(tokens):
-        if not dataclasses.is_dataclass(obj):
-            return ""
-        field = {f.name: f for f in dataclasses.fields(obj)}.get(name)
-        if field is None:
-            return ""
-        if k == len(tokens) - 1:
-            return SI_UNIT.get(field.metadata.get("dim", ""), "")
-        obj = getattr(obj, name)
-        if idx is not None:
-            obj = obj[idx] if isinstance(obj, tuple) and idx < len(obj) else None
-    return ""
+    return SI_UNIT.get(field.metadata.get("dim", ""), "") if field is not None else ""
+
+
+def long_name_of_label(scene, label: str, analysis: str) -> str:
+    """What a varied label is, in words: the scene field's ``doc`` (or the analysis option), with the label."""
+    if is_option(label, analysis):
+        return f"{analysis} option {label.split('.', 1)[1]} ({label})"
+    try:
+        field, _ = _leaf(scene, label)
+    except ParameterError:
+        return label
+    doc = field.metadata.get("doc", "") if field is not None else ""
+    return f"{doc} ({label})" if doc else label
 
 
 def check_labels(scene, labels, analysis: str) -> None:
-    """Refuse unknown labels before any computation (apply the first value of each)."""
+    """Refuse unknown labels, and two labels of one value (``cable.ae`` and ``sections[0].cable.ae``),
+    before any computation."""
+    seen = {}
     for label in labels:
+        key = label if is_option(label, analysis) else tuple(_scene_tokens(scene, label))
         if not is_option(label, analysis):
-            tokens = _scene_tokens(scene, label)
-            obj = scene
-            for name, idx in tokens:
-                if not dataclasses.is_dataclass(obj) or name not in {f.name for f in dataclasses.fields(obj)}:
-                    have = [f.name for f in dataclasses.fields(obj)] if dataclasses.is_dataclass(obj) else []
-                    raise ParameterError("vary", label, f"names no scene field ({name!r}); fields here: {have}")
-                obj = getattr(obj, name)
-                if idx is not None:
-                    if not isinstance(obj, tuple) or idx >= len(obj):
-                        raise ParameterError("vary", label, f"index {idx} out of range")
-                    obj = obj[idx]
+            _leaf(scene, label)
+        if key in seen:
+            raise ParameterError("vary", label, f"names the same value as {seen[key]!r}: vary each value once")
+        seen[key] = label
+
+
+def check_values(scene, grid, analysis: str) -> None:
+    """Refuse, before any case runs, an entry that does not fit its label: text for a numeric field or
+    option, a fraction for an integer field, anything but true/false for a flag. Ranges are the scene's
+    own validation, per case (a bad value fails its case, not the sweep)."""
+    for names, lists in zip(grid.names, grid.values):
+        for label, values in zip(names, lists):
+            field = f"vary[{label!r}]"
+            shown = ", ".join(map(str, values))
+            if is_option(label, analysis):
+                key = label.split(".", 1)[1]
+                bad = [v for v in values if isinstance(v, str)]
+                if key in OPTION_UNITS and bad:
+                    raise ParameterError(field, bad[0], f"must be a number ({OPTION_UNITS[key]}); values given: {shown}")
+                continue
+            _, old = _leaf(scene, label)
+            unit = unit_of_label(scene, label, analysis)
+            for v in values:
+                try:
+                    _convert(old, v, field)
+                except ParameterError as err:
+                    raise ParameterError(field, v, f"{err.allowed}{f' ({unit})' if unit not in ('', '-') else ''}; "
+                                                   f"values given: {shown}") from None

@@ -132,23 +132,25 @@ def _hyp0f1_asymptotic(q, x):
 def hyp0f1_exact(q, x, *, tol: float = 1e-9):
     """``0F1(; q; x)`` and its x-derivative to relative ``tol``: series, asymptotic, mpmath."""
     q, x = np.broadcast_arrays(np.asarray(q, dtype=complex), np.asarray(x, dtype=complex))
-    F, dF, err = (np.array(a) for a in hyp0f1_complex(q, x))   # 0-d arrays stay assignable
+    shape = x.shape
+    q, x = q.ravel(), x.ravel()        # 1-D work arrays: a scalar point indexes like any other
+    F, dF, err = (np.array(a) for a in hyp0f1_complex(q, x))
     bad = (err > tol) | ~np.isfinite(F) | ~np.isfinite(dF)
     if np.any(bad):
         lnF, ratio, ok = _hyp0f1_asymptotic(q[bad], x[bad])
         with np.errstate(over="ignore", invalid="ignore"):
             Fa = np.exp(lnF)
         ok &= np.isfinite(Fa)
-        idx = np.argwhere(bad)[ok]
-        F[tuple(idx.T)] = Fa[ok]
-        dF[tuple(idx.T)] = (Fa * ratio / q[bad])[ok]
-        rest = np.argwhere(bad)[~ok]
+        idx = np.flatnonzero(bad)
+        F[idx[ok]] = Fa[ok]
+        dF[idx[ok]] = (Fa * ratio / q[bad])[ok]
+        rest = idx[~ok]
         if rest.size:
             log.info("0F1: %d of %d points neither series nor asymptotic to %g; mpmath",
                      len(rest), bad.size, tol)
-        for i in map(tuple, rest):
+        for i in rest:
             F[i], dF[i] = _mp_hyp0f1(q[i], x[i])
-    return F, dF
+    return F.reshape(shape), dF.reshape(shape)
 
 
 def exact_solution(coef: Coefficients, xi, omega, *, tol: float = 1e-9, derivative: bool = False):

@@ -17,6 +17,7 @@ damping time is ``tau_0 = 1 / Im omega_1`` (eq. 23); the report takes ``delta_1 
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 from typing import ClassVar
 
@@ -35,6 +36,7 @@ __all__ = [
     "damping_time",
     "eigenfrequencies",
     "exact_eigenfrequency",
+    "modes",
 ]
 
 
@@ -109,8 +111,11 @@ class Eigenfrequencies(ResultBase):
 
 
 @timed
-def eigenfrequencies(coef: Coefficients, n: int = 5, *, tol: float = 0.1) -> Eigenfrequencies:
-    """First ``n`` pairs of eigenfrequencies (Kennedy & Strahan (1981) eq. 18-20a) with the eq. 20b test.
+def modes(coef: Coefficients, n: int = 5, *, tol: float = 0.1) -> Eigenfrequencies:
+    """First ``n`` pairs of natural (complementary) modes' eigenfrequencies, Kennedy & Strahan (1981) eq. 18-20a.
+
+    The towed model's counterpart of :func:`cablesys.modes` and :func:`cablesys.slack.modes`;
+    each root carries the eq. 20b test of its validity.
 
     Parameters
     ----------
@@ -127,6 +132,8 @@ def eigenfrequencies(coef: Coefficients, n: int = 5, *, tol: float = 0.1) -> Eig
         Complex nondimensional eigenfrequencies omega L / U (slow and fast roots).
     """
     require_positive("tol", tol)
+    if isinstance(n, bool) or int(n) != n or n < 1:
+        raise ParameterError("n", n, "must be an integer >= 1 (number of mode pairs)")
     p = coef.p
     if p <= 0:
         raise ParameterError("p", p, "real order p = c/b - 1 must be > 0 (eq. 8c)")
@@ -140,6 +147,28 @@ def eigenfrequencies(coef: Coefficients, n: int = 5, *, tol: float = 0.1) -> Eig
     rf = 2.0 * coef.beta * np.abs(fast) / (coef.b * p)
     return Eigenfrequencies(delta=delta, slow=slow, fast=fast, ratio_slow=rs, ratio_fast=rf,
                             valid_slow=rs <= tol, valid_fast=rf <= tol, tol=tol)
+
+
+def eigenfrequencies(coef: Coefficients, n: int = 5, *, tol: float = 0.1) -> Eigenfrequencies:
+    """Deprecated name of :func:`modes` (the verb the three models share).
+
+    Parameters
+    ----------
+    coef : Coefficients
+        Nondimensional coefficients of eq. 3.
+    n : int, optional
+        Number of mode pairs.
+    tol : float, optional
+        Largest eq. 20b ratio for a valid root.
+
+    Returns
+    -------
+    Eigenfrequencies
+        As :func:`modes`.
+    """
+    warnings.warn("cablesys.towed.eigenfrequencies is deprecated: use cablesys.towed.modes", DeprecationWarning,
+                  stacklevel=2)
+    return modes(coef, n, tol=tol)
 
 
 def damping_time(cable: TowedCable, *, zero: str = "report") -> float:
@@ -165,7 +194,7 @@ def damping_time(cable: TowedCable, *, zero: str = "report") -> float:
     if zero == "report":
         return 2.0 * math.pi * (cable.drag_term - 1.0) * cable.diameter / (cable.c_n * cable.speed)
     if zero == "bessel":
-        w = eigenfrequencies(coef, 1).slow[0]
+        w = modes(coef, 1).slow[0]
     elif zero == "exact":
         w = exact_eigenfrequency(coef, 1)
     else:
@@ -192,7 +221,7 @@ def exact_eigenfrequency(coef: Coefficients, n: int = 1) -> complex:
     complex
         Nondimensional eigenfrequency omega L / U (Im > 0: damped).
     """
-    w0 = eigenfrequencies(coef, n).slow[n - 1]
+    w0 = modes(coef, n).slow[n - 1]
 
     def g(w):
         q = (coef.c + 2j * coef.beta * w) / coef.b

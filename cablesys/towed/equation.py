@@ -57,7 +57,7 @@ import numpy as np
 from ..errors import ParameterError, require_nonnegative, require_positive, require_range
 from ..scene.fields import quantity, spec
 
-__all__ = ["TowedCable", "Coefficients", "REPORT_SEA_TRIAL", "REPORT_TYPICAL"]
+__all__ = ["TowedCable", "Coefficients", "REPORT_SEA_TRIAL", "REPORT_TYPICAL", "added_fluid_mass", "theory_coefficients"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -131,8 +131,10 @@ class TowedCable:
     # length and diameter are the shared quantities of cablesys.scene.fields.QUANTITIES.
     # c_t and c_n keep the report's names because they are other numbers than Wang's coefficients:
     # c_t is referred to pi d_c (F_t = rho/2 pi d_c c_t U^2), Wang's ct_tangential to d (eq. 44), so
-    # c_t = ct_tangential / pi (see :attr:`ct_tangential`); c_n is the coefficient of a drag linear in
-    # the cross-flow angle (F_n = rho/2 d_c c_n U v_n), not Wang's quadratic cd_normal.
+    # c_t = ct_tangential / pi (see :attr:`ct_tangential`); c_n is the effective coefficient c_n* = A C_n
+    # of the drag linear in the cross-flow (F_n = rho/2 d_c c_n U v_n, eq. 39), Wang's quadratic
+    # cd_normal only for a level cable (A = 1). A cable given by C_t, C_n and its drogue's drag area is
+    # converted by :func:`theory_coefficients` (or read as a :class:`cablesys.towed.TowedScene`).
     length: float = quantity("length", "cable length L")
     speed: float = spec("velocity", "tow speed U", symbol="U")
     diameter: float = quantity("diameter", "cable diameter d_c", 0.016)
@@ -187,6 +189,64 @@ class TowedCable:
     def time_scale(self) -> float:
         """``L/U`` (s): one unit of nondimensional time tau."""
         return self.length / self.speed
+
+
+def added_fluid_mass(density: float, diameter: float) -> float:
+    """Displaced fluid mass per unit length ``M = rho pi d_c^2 / 4`` (kg/m), Kennedy & Strahan (1981) eq. 1-2."""
+    return density * math.pi * diameter**2 / 4.0
+
+
+def theory_coefficients(*, diameter: float, mass_per_length: float, ct_tangential: float, cd_normal: float,
+                        density: float = 1025.0, amplification: float = 1.0,
+                        drogue_drag_area: float = 0.0) -> dict:
+    """The theory's ``c_t``, ``c_n``, ``c_t_drogue`` (c_t') and ``beta`` from a cable in the Wang scene's terms.
+
+    The one place the conversion is written (Kennedy & Strahan (1981); Wang (1971) for C_t, C_n):
+
+    * ``c_t = C_t / pi``: the report's tangential friction ``F_t = (rho/2) pi d_c c_t U^2`` (eq. 1b,
+      referred to the circumference) equals Wang's ``(rho/2) C_t d U^2`` (eq. 44, referred to d);
+    * ``c_n = A C_n``: the report's normal force ``R |U_N/U|^2`` with ``R = (rho/2) c_n d_c U^2``
+      (eq. 33-35) is Wang's quadratic normal drag with ``C_n = c_n`` (eq. 42, referred to d); the
+      linear theory takes the effective ``c_n* = A c_n`` of eq. 39, ``A`` from eq. 38 (1 for a level
+      cable; :func:`cablesys.towed.amplification`, :func:`cablesys.towed.effective_amplification`);
+    * ``c_t' = (C_D A)_drogue / (pi d_c^2)``: the drogue's drag ``(rho/2) (C_D A)_drogue U^2`` is the
+      report's end tension ``T(L) = 2 c_t' M U^2`` (eq. 1-3, tension ``T(x) = 2 M U^2 [c_t (L - x)/d_c
+      + c_t']``) with ``M = rho pi d_c^2 / 4``; the "lengthened cable" of p. 10 adds ``d_c c_t'/c_t``;
+    * ``beta = M / (M + m)`` (eq. 2).
+
+    Parameters
+    ----------
+    diameter : float
+        Cable diameter d_c (m).
+    mass_per_length : float
+        Cable mass per unit length in air m (kg/m).
+    ct_tangential : float
+        Tangential friction coefficient C_t, referred to d (Wang 1971 eq. 44).
+    cd_normal : float
+        Quadratic normal drag coefficient C_n, referred to d (Wang 1971 eq. 42).
+    density : float, optional
+        Fluid density rho (kg/m^3).
+    amplification : float, optional
+        A of eq. 38-39 (c_n* = A c_n); 1 for a level cable.
+    drogue_drag_area : float, optional
+        Drag area (C_D A) of the drogue (m^2); 0 for none.
+
+    Returns
+    -------
+    dict
+        ``{"c_t", "c_n", "c_t_drogue", "beta"}``, the keyword arguments of :class:`TowedCable`
+        other than length, speed and diameter.
+    """
+    require_positive("diameter", diameter, "m")
+    require_positive("mass_per_length", mass_per_length, "kg/m")
+    require_positive("ct_tangential", ct_tangential)
+    require_positive("cd_normal", cd_normal)
+    require_positive("density", density, "kg/m^3")
+    require_positive("amplification", amplification)
+    require_nonnegative("drogue_drag_area", drogue_drag_area, "m^2")
+    M = added_fluid_mass(density, diameter)
+    return {"c_t": ct_tangential / math.pi, "c_n": amplification * cd_normal,
+            "c_t_drogue": drogue_drag_area / (math.pi * diameter**2), "beta": M / (M + mass_per_length)}
 
 
 # Report's sea-trial coefficients (Kennedy & Strahan (1981) p. 31): c_n* = 0.16,

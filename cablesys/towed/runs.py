@@ -9,18 +9,21 @@ from __future__ import annotations
 
 import csv
 import math
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import ClassVar
 
 import numpy as np
 from scipy.optimize import minimize_scalar
 
 from ..errors import ParameterError, SolverError, require_positive
 from ..reader import read_text
+from ..results import ResultBase, timed
 from .equation import REPORT_SEA_TRIAL, TowedCable
 from .transfer import fine_xi, transfer_grid
 
-__all__ = ["Run", "REQUIRED_COLUMNS", "MAX_RUNS", "read_runs", "model_runs", "CnFit", "fit_normal_drag"]
+__all__ = ["Run", "REQUIRED_COLUMNS", "MAX_RUNS", "read_runs", "model_runs", "RunsResponse", "CnFit", "fit_normal_drag"]
 
 REQUIRED_COLUMNS = ("L_m", "U_mps", "f_mHz")
 _UNITS = {"L_m": "m", "U_mps": "m/s", "f_mHz": "mHz"}
@@ -110,11 +113,66 @@ def read_runs(path) -> list[Run]:
     return runs
 
 
-def model_runs(runs, **coefficients):
+@dataclass(frozen=True, kw_only=True)
+class RunsResponse(ResultBase):
+    """The model at the far pinger (xi = 1) of each sea-trial run, on dimension ``run``.
+
+    ``H_abs`` = |H(1, omega)| (eq. 26), ``c_star`` = c*(1, omega) in units of the tow speed U
+    (eq. 27b), ``omega`` = 2 pi f L / U (nondimensional, eq. 2); ``coefficients`` the theory's
+    values used (diameter in m, c_t, c_n, c_t_drogue, beta). Unpacking it as
+    ``H, cs, om = ...`` (the old tuple) still works, with a DeprecationWarning.
+    """
+
+    labels: tuple[str, ...]
+    H_abs: np.ndarray
+    c_star: np.ndarray
+    omega: np.ndarray
+    coefficients: dict
+    success: bool = True
+    message: str = ""
+    stats: dict = field(default_factory=dict)
+
+    VARIABLES: ClassVar[dict] = {"run": ("1", "run label"),
+                                 "H_abs": ("1", "|H(xi = 1)|, transfer function magnitude at the far end (eq. 26)"),
+                                 "c_star": ("1", "mean phase velocity c*(xi = 1) over the tow speed U (eq. 27b)"),
+                                 "omega": ("1", "nondimensional angular frequency omega L/U = 2 pi f L / U")}
+
+    def __iter__(self):
+        warnings.warn("unpacking model_runs(...) as (H_abs, c_star, omega) is deprecated: use its .H_abs, "
+                      ".c_star and .omega", DeprecationWarning, stacklevel=2)
+        return iter((self.H_abs, self.c_star, self.omega))
+
+    def summary(self) -> dict:
+        """Per-run |H| and c* (units of U) with the coefficients used.
+
+        Returns
+        -------
+        dict
+            JSON-able.
+        """
+        return {**super().summary(), "coefficients": dict(self.coefficients),
+                "runs": [{"run": r, "omega_nd": float(w), "H_abs": float(h), "c_star": float(c)}
+                         for r, w, h, c in zip(self.labels, self.omega, self.H_abs, self.c_star)]}
+
+    def to_xarray(self):
+        """|H|, c* and omega on dimension ``run``.
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+        import xarray as xr
+        return xr.Dataset({"H_abs": ("run", self.H_abs), "c_star": ("run", self.c_star),
+                           "omega": ("run", self.omega)}, coords={"run": list(self.labels)},
+                          attrs={f"coefficient_{k}": float(v) for k, v in self.coefficients.items()})
+
+
+@timed
+def model_runs(runs, **coefficients) -> RunsResponse:
     """Model ``|H|`` and ``c*`` at ``xi = 1`` for each run (eq. 26, 27b).
 
     ``coefficients`` override the report's sea-trial values ``REPORT_SEA_TRIAL``
-    (diameter, c_t, c_n, c_t_drogue, beta).  Returns ``(H_abs, c_star, omega)`` arrays.
+    (diameter, c_t, c_n, c_t_drogue, beta).
 
     Parameters
     ----------
@@ -125,8 +183,8 @@ def model_runs(runs, **coefficients):
 
     Returns
     -------
-    tuple of ndarray
-        ``(H_abs, c_star, omega)``: |H(1)| (1), c*(1) in units of U, omega L / U per run.
+    RunsResponse
+        ``H_abs`` |H(1)|, ``c_star`` c*(1) in units of U and ``omega`` omega L / U per run.
     """
     kw = {**REPORT_SEA_TRIAL, **coefficients}
     H, cs, om = [], [], []
@@ -150,12 +208,18 @@ def model_runs(runs, **coefficients):
                               f"c* = {cs[-1]}) at omega = {w:.6g}; the coefficients {kw} are outside the range "
                               "where the complex-order solution can be evaluated")
         om.append(w)
-    return np.array(H), np.array(cs), np.array(om)
+    return RunsResponse(labels=tuple(r.label for r in runs), H_abs=np.array(H), c_star=np.array(cs),
+                        omega=np.array(om), coefficients=kw)
 
 
 @dataclass(frozen=True, kw_only=True)
-class CnFit:
-    """Best c_n for one target ('amplitude', 'phase' or 'both') and the errors it leaves."""
+class CnFit(ResultBase):
+    """Best c_n for one target ('amplitude', 'phase' or 'both') and the errors it leaves.
+
+    ``c_n`` the fitted effective normal drag coefficient c_n* (eq. 39); ``rms_H`` the rms error
+    of |H| (1) and ``rms_c_star`` of c* (units of U) over the runs; ``cost`` the minimized
+    objective; ``success`` and ``message`` from scipy.optimize.minimize_scalar.
+    """
 
     target: str
     c_n: float
@@ -163,6 +227,24 @@ class CnFit:
     rms_c_star: float
     cost: float
     success: bool
+    message: str = ""
+    stats: dict = field(default_factory=dict)
+
+    VARIABLES: ClassVar[dict] = {"c_n": ("1", "fitted effective normal drag coefficient c_n* (eq. 39)"),
+                                 "rms_H": ("1", "rms error of |H| over the runs"),
+                                 "rms_c_star": ("1", "rms error of c* over the runs, units of U"),
+                                 "cost": ("1", "minimized objective")}
+
+    def to_xarray(self):
+        """The fit's numbers as scalar variables.
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+        import xarray as xr
+        return xr.Dataset({k: ((), getattr(self, k)) for k in ("c_n", "rms_H", "rms_c_star", "cost")},
+                          attrs={"target": self.target})
 
 
 def _cost(target, H, cs, H_data, c_data):
@@ -215,7 +297,8 @@ def fit_normal_drag(runs, H_data, c_data, targets=("amplitude", "phase", "both")
 
     def model(logc):
         if logc not in cache:
-            cache[logc] = model_runs(runs, **{**coefficients, "c_n": 10.0**logc})[:2]
+            res = model_runs(runs, **{**coefficients, "c_n": 10.0**logc})
+            cache[logc] = res.H_abs, res.c_star
         return cache[logc]
 
     grid = np.linspace(math.log10(bounds[0]), math.log10(bounds[1]), n_scan)
@@ -234,5 +317,8 @@ def fit_normal_drag(runs, H_data, c_data, targets=("amplitude", "phase", "both")
         out[target] = CnFit(target=target, c_n=float(10.0 ** res.x),
                             rms_H=float(np.sqrt(np.mean((H - H_data) ** 2))),
                             rms_c_star=float(np.sqrt(np.mean((cs - c_data) ** 2))),
-                            cost=float(res.fun), success=bool(res.success))
+                            cost=float(res.fun), success=bool(res.success),
+                            message="" if res.success else str(getattr(res, "message", "not converged")),
+                            stats={"iterations": int(getattr(res, "nit", 0)),
+                                   "function_evaluations": int(getattr(res, "nfev", 0))})
     return out

@@ -28,7 +28,7 @@ import scipy.sparse.linalg
 
 from ..errors import ParameterError, SolverError
 from ..results import timed
-from .results import Convergence, Equilibrium, ModeSet
+from .results import Convergence, Equilibrium, ModeSet, SlackAnalysis
 from .statics import Discretization, solve_equilibrium, stiffness_inplane
 
 log = logging.getLogger(__name__)
@@ -118,26 +118,33 @@ def symmetric_fraction(eq: Equilibrium, ux: np.ndarray, uz: np.ndarray) -> float
     return float(sym / tot)
 
 
-def compute_modes(eq: Equilibrium, d: Discretization, n_modes: int, *, solver: str = "auto") -> ModeSet:
-    """The ``n_modes`` lowest modes (in-plane and out-of-plane merged), ascending.
+def modes(eq: Equilibrium, n_modes: int | None = None, *, solver: str = "auto") -> ModeSet:
+    """The ``n_modes`` lowest natural modes about an equilibrium (in-plane and out-of-plane merged), ascending.
+
+    The slack model's counterpart of :func:`cablesys.modes` (the Wang model's modes of a
+    linearization): M q'' + K q = 0 about the static shape, Griffin & Rosenthal (1985)
+    section 7, mass-normalized by their eq. 25.
 
     Parameters
     ----------
     eq : Equilibrium
-        The static shape (:func:`solve_equilibrium`).
-    d : Discretization
-        Its discretization (returned with it).
-    n_modes : int
-        Number of modes (>= 1).
+        The static shape (:func:`~cablesys.slack.solve_equilibrium`), with its ``discretization``.
+    n_modes : int, optional
+        Number of modes (>= 1); default ``eq.scene.n_modes``.
     solver : str, optional
         'auto', 'dense' (scipy.linalg.eigh) or 'sparse' (shift-invert eigsh).
 
     Returns
     -------
     ModeSet
-        Frequencies (rad/s), types O/A/S/H and mass-normalized shapes (eq. 25).
+        Frequencies omega (rad/s), types O/A/S/H and mass-normalized shapes (eq. 25).
     """
-    if int(n_modes) != n_modes or n_modes < 1:
+    d = eq.discretization
+    if d is None:
+        raise ParameterError("eq.discretization", None, "an Equilibrium from solve_equilibrium or "
+                             "solve_equilibrium_shooting (it carries the element layout the modes need)")
+    n_modes = eq.scene.n_modes if n_modes is None else n_modes
+    if isinstance(n_modes, bool) or int(n_modes) != n_modes or n_modes < 1:
         raise ParameterError("n_modes", n_modes, "must be an integer >= 1")
     t0 = time.perf_counter()
     nn = len(eq.x)
@@ -171,9 +178,10 @@ def compute_modes(eq: Equilibrium, d: Discretization, n_modes: int, *, solver: s
                    n_elements=d.n_elements, solver=used, seconds=time.perf_counter() - t0)
 
 
+@timed
 def analyze(scene, n_modes: int | None = None, *, n_elements: int | None = None, solver: str = "auto",
-            cache=None):
-    """Statics (CasADi NLP) then modes: returns (Equilibrium, ModeSet).
+            cache=None) -> SlackAnalysis:
+    """Statics (CasADi NLP) then natural modes of a slack scene, as one result.
 
     Parameters
     ----------
@@ -190,11 +198,11 @@ def analyze(scene, n_modes: int | None = None, *, n_elements: int | None = None,
 
     Returns
     -------
-    tuple of (Equilibrium, ModeSet)
-        The static shape and its modes.
+    SlackAnalysis
+        ``equilibrium`` (static shape, tensions in N) and ``modes`` (omega in rad/s).
     """
-    eq, d = solve_equilibrium(scene, n_elements=n_elements, cache=cache)
-    return eq, compute_modes(eq, d, scene.n_modes if n_modes is None else n_modes, solver=solver)
+    eq = solve_equilibrium(scene, n_elements=n_elements, cache=cache)
+    return SlackAnalysis(equilibrium=eq, modes=modes(eq, n_modes, solver=solver))
 
 
 @timed
@@ -231,7 +239,7 @@ def converge(scene, n_modes: int | None = None, *, levels: tuple[int, ...] = (48
     types = None
     n_extra = n_modes + 4
     for n in levels:
-        _, ms = analyze(scene, n_extra * 2, n_elements=n, solver=solver, cache=cache)
+        ms = analyze(scene, n_extra * 2, n_elements=n, solver=solver, cache=cache).modes
         o = ms.of_type("O")
         i = ms.of_type("A", "S", "H")
         ti = [t for t in ms.mode_type if t != "O"]
