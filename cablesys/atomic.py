@@ -341,6 +341,22 @@ class CsvStream:
             raise OutputWriteError(self.partial, err, note=self.kept()) from None
         self.size += len(data)
 
+    def holds(self, time) -> bool:
+        """Whether the rows on disk are exactly the output times ``time`` (s): the streamed series of a
+        record, so that it need not be written again.
+
+        Parameters
+        ----------
+        time : array_like
+            The record's output times.
+
+        Returns
+        -------
+        bool
+        """
+        t = np.asarray(time, float)
+        return bool(self.rows == t.size and self.rows and self.t_first == t[0] and self.t_last == t[-1])
+
     def kept(self) -> str:
         """What the stream holds on disk, in words (for messages)."""
         if not self.rows:

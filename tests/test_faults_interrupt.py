@@ -212,6 +212,25 @@ def test_signal_blind_loops_get_chunks_sized_to_their_measured_cost(dale20):
     assert not cv._blind and cv._chunk == Simulator.CHUNKS[0]          # CVODES sees signals inside a call
 
 
+def test_a_signal_blind_loop_on_an_uneven_grid_runs_in_chunks_with_the_same_answer(dale20):
+    """rk on uneven output times: chunks from any output time (not one call over the whole horizon,
+    which no signal could cut short), and the same RK4 steps as that one call."""
+    scene, model, p, x0 = dale20
+    times = np.cumsum(np.r_[0.0, np.tile([0.03, 0.07], 150)])           # 300 uneven intervals, 15 s
+    settings = IntegratorSettings(method="rk")
+
+    class Whole(Simulator):
+        SMALL_CHUNKS = CHUNKS = (10**6,)
+    calls = []
+    chunked = Simulator(model, times, settings)
+    real = chunked._call
+    chunked._call = lambda f, **kw: calls.append(1) or real(f, **kw)
+    a = chunked.run(p, x0)
+    b = Whole(model, times, settings).run(p, x0)
+    assert a.success and b.success and len(calls) > 1
+    np.testing.assert_allclose(a.states, b.states, rtol=1e-12, atol=1e-12 * np.max(np.abs(b.states)))
+
+
 # -- `cablesys run` in a sub-process -------------------------------------------------------------
 def _start(tmp_path, duration=20000.0):
     scene = tmp_path / "long.toml"

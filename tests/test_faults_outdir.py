@@ -183,6 +183,14 @@ def test_a_full_disk_mid_block_leaves_whole_rows_and_a_named_error(tmp_path):
     np.testing.assert_array_equal(np.loadtxt(s.close(), delimiter=",", skiprows=1)[:, 1], [1, 2, 3])
 
 
+def test_a_stream_says_whether_it_holds_a_record_whole(tmp_path):
+    s = CsvStream(tmp_path / "timeseries.csv")
+    s.append(np.array([0.0, 0.1]), {"x_b": np.array([1.0, 2.0])})
+    s.append(np.array([0.2]), {"x_b": np.array([3.0])})
+    assert s.holds([0.0, 0.1, 0.2])
+    assert not s.holds([0.0, 0.1, 0.2, 0.3]) and not s.holds([0.0, 0.1]) and not s.holds([])
+
+
 def test_the_final_manifest_is_written_in_place_when_the_disk_is_full(tmp_path, monkeypatch):
     from cablesys import outputs
     out = tmp_path / "out"

@@ -89,8 +89,12 @@ class Simulator(ev.EventLocator):
         self._uniform = bool(np.allclose(steps, steps[0], rtol=1e-9, atol=0.0))
         self.settings = settings or IntegratorSettings()
         self._blind = self.settings.custom is None and self.settings.method in ("rk", *PAIRS)
+        # chunks may start at any output time: on a uniform grid (one integrator per length), and for the
+        # signal-blind loops on any grid (an integrator per chunk: the whole horizon in one call could
+        # not be interrupted)
+        self._sliding = self._uniform or self._blind
         first = self._sizes()[0]
-        self._chunk = min(n_int, first) if self._uniform else n_int
+        self._chunk = min(n_int, first) if self._sliding else n_int
         self._budget = self.FIRST_STEP_BUDGET
         self._chunks = {}                        # chunk length -> integrator over that many output intervals
         self._flag = InterruptFlag()
@@ -115,13 +119,18 @@ class Simulator(ev.EventLocator):
         self._stats = {}
 
     # -- helpers -------------------------------------------------------------------------
-    def _chunk_integrator(self, m: int) -> ca.Function:
-        """The integrator over ``m`` output intervals from a chunk start (built once per length)."""
-        if m not in self._chunks:
-            grid = (np.arange(m + 1) * (self.times[1] - self.times[0]) if self._uniform
-                    else self.times - self.times[0])
-            self._chunks[m] = make_integrator(self.model, self.settings, grid, f"chunk{m}")
-        return self._chunks[m]
+    def _chunk_integrator(self, m: int, k: int = 0) -> ca.Function:
+        """The integrator over ``m`` output intervals from the output time ``k`` (on a uniform grid built
+        once per length; otherwise the last one is kept)."""
+        key = m if self._uniform else (k, m)
+        if key not in self._chunks:
+            if self._uniform:
+                grid = np.arange(m + 1) * (self.times[1] - self.times[0])
+            else:
+                grid = self.times[k:k + m + 1] - self.times[k]
+                self._chunks.clear()
+            self._chunks[key] = make_integrator(self.model, self.settings, grid, f"chunk{m}")
+        return self._chunks[key]
 
     def _sizes(self) -> tuple:
         """Chunk lengths (output intervals per call) this run may use, smallest first."""
@@ -286,7 +295,7 @@ class Simulator(ev.EventLocator):
         while k < n_int:
             m = min(size, n_int - k)
             x, pm = track.x_last, self._with_mode(p, mode)
-            f = self._chunk_integrator(m)
+            f = self._chunk_integrator(m, k)
             if hasattr(f, "call_budget"):          # an explicit pair: a call stops after this many steps
                 f.call_budget = self._budget
             t_call = _time.perf_counter()
@@ -305,13 +314,13 @@ class Simulator(ev.EventLocator):
                 G, D = self._gap_cols(cols[:, :n_ok], times[None, k:k + n_ok], pm)
                 j_bad = ev.first_bad_interval(G, D, np.diff(times[k:k + n_ok]), mode == 1.0)
             n_keep = j_bad if j_bad is not None else n_ok       # columns 0 .. n_keep-1 are accepted
-            if self._uniform:           # sized by the cost of the intervals this call reached
+            if self._sliding:           # sized by the cost of the intervals this call reached
                 size = self._next_chunk(size, max(n_ok - 1, 1), wall, f)
             if n_keep > 1:
                 track.add(cols[:, 1:n_keep], mode)
             k += n_keep - 1
             self._store(track)
-            if n_keep < m + 1 and not (paused and self._uniform and j_bad is None and n_keep > 1):
+            if n_keep < m + 1 and not (paused and self._sliding and j_bad is None and n_keep > 1):
                 break
         # 2) interval by interval after an event (or a failure), locating switches
         x, t_a = track.x_last, times[k]
