@@ -1,4 +1,4 @@
-"""Interrupts at any moment of a run (issue 23): before the first block, while a block is stored,
+"""Interrupts at any moment of a run: before the first block, while a block is stored,
 at the last block, twice; the compiled explicit driver's bounded calls; no import cycle.
 
 The sub-process tests send SIGINT at seeded random moments after the run has written its

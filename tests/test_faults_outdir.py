@@ -1,4 +1,4 @@
-"""Output folders under faults: one writer at a time, killed runs, full disks (issue 23).
+"""Output folders under faults: one writer at a time, killed runs, full disks.
 
 Each test injects one fault with a known outcome: a second writer while the first holds the
 folder, a ``running`` manifest whose process is gone, ``OSError(ENOSPC)`` in the middle of a
