@@ -8,11 +8,13 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import errno
 import importlib
 import logging
 import signal
 import sys
 
+from .atomic import INTERRUPTS, OutputWriteError, interrupt_handler
 from .errors import CablesysError
 from .messages import casadi_messages_to_log
 
@@ -39,43 +41,59 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    logging.basicConfig(level=logging.INFO if args.verbose else logging.WARNING,
-                        format="%(levelname)s %(name)s: %(message)s")
-    if not getattr(args, "func", None):
-        parser.print_help()
-        return 2
+    command = "?"
     try:
-        # CasADi's solver warnings (KINSOL retries of a run that succeeds) go to the log unless -v
-        with _sigterm_as_interrupt(), casadi_messages_to_log(args.verbose):
-            return int(args.func(args) or 0)
+        with _signals_as_interrupt():          # from the start: a signal while the modules load is noted too
+            parser = build_parser()
+            args = parser.parse_args(argv)
+            command = args.command
+            logging.basicConfig(level=logging.INFO if args.verbose else logging.WARNING,
+                                format="%(levelname)s %(name)s: %(message)s")
+            if not getattr(args, "func", None):
+                parser.print_help()
+                return 2
+            # CasADi's solver warnings (KINSOL retries of a run that succeeds) go to the log unless -v
+            with casadi_messages_to_log(args.verbose):
+                return int(args.func(args) or 0)
     except CablesysError as err:
-        print(f"cablesys {args.command}: error: {err}", file=sys.stderr)
-        return 2
+        print(f"cablesys {command}: error: {err}", file=sys.stderr)
+        return int(getattr(err, "exit_code", 2))      # 2: bad input; a failed write (OutputWriteError): 1
     except KeyboardInterrupt:
-        print(f"cablesys {args.command}: interrupted", file=sys.stderr)
+        print(f"cablesys {command}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    except OSError as err:          # a full disk met outside the output folder's writers: one line, exit 1
+        if err.errno not in DISK_ERRNOS:
+            raise
+        print(f"cablesys {command}: error: {OutputWriteError(err.filename or '-', err)}", file=sys.stderr)
+        return 1
+
+
+DISK_ERRNOS = (errno.ENOSPC, errno.EDQUOT, errno.EROFS, errno.EIO)
 
 
 EXIT_INTERRUPTED = 130     # the shell's code for a run stopped by SIGINT (also used for SIGTERM)
 
 
 @contextlib.contextmanager
-def _sigterm_as_interrupt():
-    """SIGTERM raises KeyboardInterrupt while a sub-command runs, so it stops like Ctrl-C: the
-    computation stops, what was computed is written and marked ``interrupted``, exit 130."""
-    def handler(signum, frame):
-        raise KeyboardInterrupt(f"signal {signum}")
+def _signals_as_interrupt():
+    """SIGINT and SIGTERM go to :func:`cablesys.atomic.interrupt_handler` while a sub-command runs:
+    the first raises KeyboardInterrupt (held back while a file or a block of results is half
+    written), so the computation stops, what was computed is written and marked ``interrupted``,
+    exit 130; repeated signals are noted and do not cut that writing short."""
+    previous = {}
     try:
-        previous = signal.signal(signal.SIGTERM, handler)
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            previous[sig] = signal.signal(sig, interrupt_handler)
     except ValueError:          # not the main thread: leave signals alone
         yield
         return
+    absorb, INTERRUPTS.absorb_from = INTERRUPTS.absorb_from, INTERRUPTS.count
     try:
         yield
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        INTERRUPTS.absorb_from = absorb
+        for sig, prev in previous.items():
+            signal.signal(sig, prev)
 
 
 if __name__ == "__main__":  # pragma: no cover

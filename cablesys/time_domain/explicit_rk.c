@@ -36,7 +36,10 @@
  *   [3] rejected steps                          [9]  k1 valid (first same as last)
  *   [4] right-hand-side evaluations             [10] h_last   length of the last accepted step
  *   [5] status (0 ok, 1 too much work, 2 step too small,   [11] last step rejected
- *       3 step too small, the last rejection non-finite)   [12] the last rejection was for non-finite stages
+ *       3 step too small, the last rejection non-finite,   [12] the last rejection was for non-finite stages
+ *       4 paused: the call's budget of attempted steps tol[2] is used up; not a failure, the caller
+ *       resumes from the last output reached)
+ *   Once the status is set, the remaining output times of the call are NaN and cost nothing.
  *   then x (NX), k1 = f(s, x) (NX), the 5 NX dense-output coefficients of the last accepted step
  *   (the fifth is 0 for a pair without d_i: the Hermite cubic).
  */
@@ -104,7 +107,7 @@ static const casadi_real cs_bs3_e1 = -5.0 / 72, cs_bs3_e2 = 1.0 / 12, cs_bs3_e3 
 static const casadi_int cs_erk_sp_carry[3] = {CS_ERK_NC, 1, 1};
 static const casadi_int cs_erk_sp_times[3] = {CS_ERK_NK, 1, 1};
 static const casadi_int cs_erk_sp_p[3] = {CS_ERK_NP, 1, 1};
-static const casadi_int cs_erk_sp_tol[3] = {2, 1, 1};
+static const casadi_int cs_erk_sp_tol[3] = {3, 1, 1};   /* rtol, steps per output, steps per call */
 static const casadi_int cs_erk_sp_x[3] = {CS_ERK_NX, 1, 1};
 static const casadi_int cs_erk_sp_xs[3] = {CS_ERK_NX, CS_ERK_NK, 1};
 
@@ -149,7 +152,9 @@ static void cs_erk_combine(casadi_real h, const casadi_real* wts, casadi_int n, 
   }
 }
 
-/* Advance the carry c (in w) to s_out, at most tol[1] attempted steps, and write x(s_out) to xo. */
+/* Advance the carry c (in w) to s_out, at most tol[1] attempted steps, and write x(s_out) to xo; stop
+   (status 4) when the call has attempted tol[2] steps (tol[2] <= 0: no limit), so that one call
+   costs a bounded time and the caller can look for an interrupt between calls. */
 static void cs_erk_advance(casadi_real s_out, const casadi_real* p, const casadi_real* tol, const casadi_real* atol,
                            casadi_real* xo, const casadi_real** sub_arg, casadi_real** sub_res, casadi_int* iw,
                            casadi_real* w) {
@@ -166,12 +171,14 @@ static void cs_erk_advance(casadi_real s_out, const casadi_real* p, const casadi
   casadi_real* rw = w + CS_ERK_NW;          /* the right-hand side's work */
   casadi_real rtol = tol ? tol[0] : 0;
   casadi_int max_steps = tol ? (casadi_int)tol[1] : 0, taken = 0, i, j;
+  casadi_real call_budget = tol ? tol[2] : 0;
   casadi_real s, h, err, fac, fac11, hnew, theta, theta1, span, bound, sk, dnf, dny, der2, h1;
   K[0] = k1;
   for (j = 1; j < CS_ERK_S; ++j) K[j] = w + CS_ERK_NC + (j - 1) * CS_ERK_NX;
   kl = K[CS_ERK_S - 1];
   if (max_steps <= 0) max_steps = 100000;
   s = c[0];
+  if (c[5] != 0) goto done;                 /* failed or paused earlier in this call */
   if (!c[9]) {                              /* k1 = f(s, x) unless carried over (FSAL) */
     if (cs_erk_f(s, x, p, k1, sub_arg, sub_res, iw, rw)) { c[5] = 3; c[6] = s; goto done; }
     c[4] += 1;
@@ -202,6 +209,7 @@ static void cs_erk_advance(casadi_real s_out, const casadi_real* p, const casadi
     h = c[1];
     bound = fabs(s) > fabs(s_out) ? fabs(s) : fabs(s_out);
     if (taken >= max_steps) { c[5] = 1; c[6] = s; goto done; }
+    if (call_budget > 0 && c[2] + c[3] >= call_budget) { c[5] = 4; c[6] = s; goto done; }
     if (0.1 * h <= bound * cs_erk_uround) { c[5] = c[12] ? 3 : 2; c[6] = s; goto done; }
     ++taken;
     /* stages k_j = f(s + c_j h, x + h sum_l a_jl k_l); the last one's argument is x_n+1 (FSAL) */

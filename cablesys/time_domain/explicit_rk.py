@@ -35,7 +35,7 @@ Why hand-written C: CasADi (3.8) offers no error-controlled explicit integrator 
 plugin takes fixed steps), SUNDIALS ARKODE is not exposed through ``casadi.integrator``, and a
 Python step loop costs ~35 us per right-hand-side call against ~0.2 us compiled. The driver is
 appended to the C that CasADi's ``CodeGenerator`` writes for the model's relative-time ODE (the
-DAE function of :mod:`.integrators`, x' = h ode(x, t0 + h s) with p extended by (t0, h)), built
+DAE function of :mod:`.dae`, x' = h ode(x, t0 + h s) with p extended by (t0, h)), built
 and cached on disk by :func:`cablesys.compiled.compile_functions` (same compiler command, cache
 key = code hash + compiler identity, atomic writes), and loaded as a CasADi function with
 ``casadi.external`` (CasADi's external-function C API: ``cablesys_dopri5``, ``_n_in``,
@@ -89,6 +89,7 @@ from ..compiled import Compiled, compile_functions
 from ..errors import ParameterError, SolverError
 from ..model import CableModel
 from ..model.scales import state_scales
+from .dae import relative_time_dae
 
 log = logging.getLogger(__name__)
 
@@ -102,6 +103,7 @@ HEAD = 13                  # carry layout: see explicit_rk.c
 # time superlinear in its length to build (1024 calls: ~75 ms, 4096: more), the Simulator's chunks
 # are up to 4096 output times long, and one block call costs nothing extra at run time
 BLOCK = 64
+PAUSED = 4                 # the call's step budget is used up: not a failure (explicit_rk.c)
 STATUS = {1: ("TOO_MUCH_WORK", "the step budget max_num_steps of one output interval is used up"),
           2: ("ERR_FAILURE", "the step size fell below the rounding level of the time"),
           3: ("NONFINITE", "the right-hand side or the state became non-finite and smaller steps did not help")}
@@ -137,13 +139,11 @@ def explicit_rk_library(model: CableModel, compiled: bool = True, method: str = 
     Compiled
         ``functions[PAIRS[method][1]]`` is the driver (when ``compiled``); build and load times.
     """
-    from .integrators import _dae_function  # the integrators' shared relative-time DAE
-
     number, driver = _pair(method)
     src = _driver_source()
 
     def build():
-        rhs = _dae_function(model, implicit=False, scaled=False)
+        rhs = relative_time_dae(model, implicit=False, scaled=False)
         defines = (f"\n#define CS_ERK_METHOD {number}\n#define CS_ERK_NAME {driver}\n"
                    f"#define CS_ERK_NX {2 * model.nq}\n#define CS_ERK_NP {len(model.layout) + 2}\n"
                    f"#define CS_ERK_NK {BLOCK}\n"
@@ -169,6 +169,10 @@ class ExplicitRKIntegrator:
     raises :class:`~cablesys.errors.SolverError` naming the flag and the time, with the states
     reached kept on the error (``err.states``, ``err.times``: relative grid times).
 
+    :attr:`call_budget` (attempted steps per call; 0: none) bounds the cost of one call: when it
+    is used up the call returns early with :attr:`paused` True and NaN columns after the last
+    output time reached, so a caller can look for an interrupt and resume from there.
+
     Parameters
     ----------
     function : casadi.Function
@@ -182,15 +186,18 @@ class ExplicitRKIntegrator:
     def __init__(self, function: ca.Function, grid, method: str = "dopri5"):
         self.function, self.grid, self.method = function, np.asarray(grid, dtype=float), method
         self._stats = None
+        self.call_budget = 0
+        self.paused = False
 
     def __call__(self, *args, **kw) -> dict:
         kw.update(zip(("x0", "p"), args))
         p = np.asarray(kw["p"], dtype=float).ravel()
-        out = self.function(x0=kw["x0"], p=p)
+        out = self.function(x0=kw["x0"], p=p, budget=float(self.call_budget))
         X, c = np.array(out["xf"]), np.array(out["carry"]).ravel()
         status = int(c[5])
         self._stats = {"nsteps": int(c[2]), "n_rejected": int(c[3]), "nfevals": int(c[4]), "status": status}
-        if status:
+        self.paused = status == PAUSED
+        if status and not self.paused:
             flag, why = STATUS.get(status, (f"STATUS_{status}", "unknown failure"))
             t0, h = p[-2], p[-1]
             s_fail = float(c[6])
@@ -242,15 +249,15 @@ def make_explicit_rk(model: CableModel, settings, grid, name: str = "F") -> Expl
     # blocks of BLOCK output times (columns), the last one padded with the final time (no steps there)
     s_out = np.concatenate([grid[1:], np.full(nb * BLOCK - n, grid[-1])]).reshape(nb, BLOCK).T
     acc = comp.functions[_pair(method)[1]].mapaccum(f"{name}_steps", nb, [0], [0])
-    x0, p = ca.MX.sym("x0", nx), ca.MX.sym("p", npx)
+    x0, p, budget = ca.MX.sym("x0", nx), ca.MX.sym("p", npx), ca.MX.sym("budget")
     S = state_scales(model)(p[:-2]) if settings.scaled else ca.DM.ones(nx)
     head = np.zeros(HEAD)
     head[0] = head[7] = grid[0]                     # s and the start of the last step; the rest 0 (explicit_rk.c)
     carry0 = ca.vertcat(ca.DM(head), x0, ca.DM.zeros(6 * nx))
-    tol = ca.DM([settings.rtol, settings.max_num_steps])
+    tol = ca.vertcat(settings.rtol, settings.max_num_steps, budget)
     C, X = acc(carry0, ca.DM(s_out), ca.repmat(p, 1, nb), ca.repmat(tol, 1, nb),
                ca.repmat(settings.atol * S, 1, nb))
-    F = ca.Function(name, [x0, p], [X[:, :n], C[:, -1]], ["x0", "p"], ["xf", "carry"])
+    F = ca.Function(name, [x0, p, budget], [X[:, :n], C[:, -1]], ["x0", "p", "budget"], ["xf", "carry"])
     return ExplicitRKIntegrator(F, grid, method)
 
 

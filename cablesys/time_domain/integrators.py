@@ -58,6 +58,7 @@ from ..compiled import Compiled, compilation_enabled, compile_functions, generat
 from ..integration import METHODS, IntegratorMethod, resolve
 from ..model import CableModel
 from ..model.scales import state_scales
+from .dae import relative_time_dae
 from .explicit_rk import PAIRS, explicit_rk_library, fallback_settings, make_explicit_rk
 
 # the registry and the protocol of a user method live in cablesys.integration (the scene checks names there)
@@ -96,41 +97,6 @@ class IntegratorSettings:
     def integrator_method(self) -> IntegratorMethod:
         """The :class:`~cablesys.integration.IntegratorMethod` these settings run."""
         return self.custom if self.custom is not None else resolve(self.method)
-
-
-def _dae_function(model: CableModel, implicit: bool, scaled: bool = False) -> ca.Function:
-    """The DAE in relative time s as a CasADi function with the integrator's signature
-    (``ca.dyn_in()`` -> ``ca.dyn_out()``): x' = h * ode(x, t0 + h s), parameters (p, t0, h);
-    implicit form: x' = h (q', q''), 0 = M(q) q'' - f.
-
-    ``scaled``: the same DAE in the states x~ = x / S(p) (S = :func:`~cablesys.model.scales.state_scales`,
-    computed from p inside the function, so one compiled DAE serves every parameter value):
-    x~' = h ode(S x~) / S; implicit: z~ = q'' / S_rate, x~' = h (q' / S_q, z~), 0 = M(q) (S_rate z~) - f.
-    """
-    x = ca.SX.sym("x", 2 * model.nq)
-    s = ca.SX.sym("t")
-    p = ca.SX.sym("p", len(model.layout) + 2)
-    pm, t0, h = p[:-2], p[-2], p[-1]
-    t = t0 + h * s
-    S = state_scales(model)(pm) if scaled else ca.SX.ones(2 * model.nq)
-    xs = S * x if scaled else x
-    q, qd = xs[: model.nq], xs[model.nq:]
-    u = ca.SX.sym("u", 0)
-    empty = ca.SX(0, 1)
-    if not implicit:
-        z = ca.SX.sym("z", 0)
-        ode, alg = h * model.ode(xs, t, pm), empty
-        if scaled:
-            ode = ode / S
-    else:
-        z = ca.SX.sym("z", model.nq)
-        zs = S[model.nq:] * z if scaled else z
-        M, f = model.dynamics(q, qd, model.top(t, pm), pm)
-        ode, alg = h * ca.vertcat(qd, zs), ca.mtimes(M, zs) - f
-        if scaled:
-            ode = ode / S
-    name = ("cablesys_dae_implicit" if implicit else "cablesys_dae") + ("_scaled" if scaled else "")
-    return ca.Function(name, [s, x, z, p, u], [ode, alg, empty, empty], ca.dyn_in(), ca.dyn_out())
 
 
 # Compiled C up to this many cable elements: gcc's time and memory grow faster than linearly with the
@@ -185,7 +151,7 @@ def dae_function(model: CableModel, implicit: bool, compiled: bool = True, scale
     compiled : bool, optional
         Compiled C (cached on disk) instead of CasADi's virtual machine.
     scaled : bool, optional
-        In the scaled states x / S(p) (see :func:`_dae_function`; a function of its own, its own key).
+        In the scaled states x / S(p) (see :func:`.dae.relative_time_dae`; a function of its own, its own key).
 
     Returns
     -------
@@ -196,7 +162,7 @@ def dae_function(model: CableModel, implicit: bool, compiled: bool = True, scale
            + (":scaled" if scaled else ""))
     # the integrators need the state blocks of the Jacobian only (d/dp would grow with the scene's
     # parameter count); never use this library for parameter sensitivities
-    return model.derive(key, lambda: compile_functions([_dae_function(model, implicit, scaled)], jacobians=("x", "z"),
+    return model.derive(key, lambda: compile_functions([relative_time_dae(model, implicit, scaled)], jacobians=("x", "z"),
                                                        enabled=compiled))
 
 
@@ -280,7 +246,7 @@ def rk4_interval(model: CableModel, n_sub: int, compiled: bool = True) -> Compil
     """One output interval of classical RK4 as one (compiled) function, built once per model.
 
     ``cablesys_rk4_interval(x, s0, ds, p) -> x(s0 + ds)`` takes ``n_sub`` equal RK4 steps of
-    the relative-time DAE (:func:`_dae_function`); the step loop is a CasADi ``mapaccum``, so
+    the relative-time DAE (:func:`.dae.relative_time_dae`); the step loop is a CasADi ``mapaccum``, so
     the generated C is one RK4 step inside a loop (CasADi's own ``rk`` plugin cannot be code
     generated, and evaluating it in the virtual machine costs one function call per stage).
     """

@@ -18,6 +18,7 @@ import threading
 
 import numpy as np
 
+from ..atomic import INTERRUPTS, interrupt_handler
 from ..errors import ParameterError
 from ..results import TimeResult
 
@@ -126,7 +127,8 @@ class RunInterrupted(KeyboardInterrupt):
     """A run stopped by an interrupt; ``result`` holds what was computed (a :class:`RunRecord`)."""
 
     def __init__(self, result):
-        super().__init__(f"interrupted at t = {float(result.time[-1]):.6g} s")
+        t = float(result.time[-1]) if result.time.size else float("nan")
+        super().__init__(f"interrupted; results up to t = {t:.6g} s are kept")
         self.result = result
 
 
@@ -135,25 +137,55 @@ class InterruptFlag:
 
     CasADi checks for signals inside its integrators and then reports a generic failure
     ("CV_RHSFUNC_FAIL"; the text "rhs failed: KeyboardInterrupt" goes to stderr only), so the
-    simulator must learn from its own handler that the failure was an interrupt. The previous
-    handlers are called as well and restored on exit. Outside the main thread this does nothing.
+    simulator must learn from the signal record :data:`cablesys.atomic.INTERRUPTS` that the
+    failure was an interrupt. Python's default SIGINT handler is replaced for the run by
+    :func:`cablesys.atomic.interrupt_handler` (which can hold the interrupt back while a block of
+    results is stored); another Python handler is wrapped to note the signal and then called.
+    The previous handlers are restored on exit. Outside the main thread this does nothing.
     """
 
     def __init__(self):
-        self.hit = False
+        self._start = INTERRUPTS.count
+        self._forced = False
         self._saved = {}
 
+    @property
+    def hit(self) -> bool:
+        """Whether a signal came since :meth:`__enter__`."""
+        return self._forced or INTERRUPTS.count > self._start
+
+    @hit.setter
+    def hit(self, value: bool) -> None:
+        self._forced = bool(value)
+
+    @property
+    def signal_time(self) -> float | None:
+        """``time.monotonic()`` of the first signal since :meth:`__enter__` (None without one)."""
+        return INTERRUPTS.times[self._start] if INTERRUPTS.count > self._start else None
+
+    @property
+    def signal_name(self) -> str:
+        """Name of that signal (``"SIGINT"``...), or ``"interrupt"``."""
+        return INTERRUPTS.names[self._start] if INTERRUPTS.count > self._start else "interrupt"
+
     def __enter__(self):
+        if INTERRUPTS.absorb_from is not None and INTERRUPTS.count > INTERRUPTS.absorb_from:
+            # under the cablesys command a signal came before this run and did not stop the command
+            # (a CasADi call swallowed its KeyboardInterrupt): stop now, before any work
+            raise KeyboardInterrupt(f"{INTERRUPTS.names[-1]} before the run")
+        self._start, self._forced = INTERRUPTS.count, False
         if threading.current_thread() is not threading.main_thread():
             return self
         for sig in (signal.SIGINT, signal.SIGTERM):
             prev = signal.getsignal(sig)
-            if not callable(prev):          # SIG_DFL / SIG_IGN for SIGTERM: leave it alone
+            if prev is interrupt_handler or not callable(prev):   # noted already / SIG_DFL, SIG_IGN: leave it
                 continue
-
-            def handler(signum, frame, prev=prev):
-                self.hit = True
-                prev(signum, frame)
+            if prev is signal.default_int_handler:
+                handler = interrupt_handler
+            else:
+                def handler(signum, frame, prev=prev):
+                    INTERRUPTS.note(signum)
+                    prev(signum, frame)
             with contextlib.suppress(ValueError, OSError):
                 signal.signal(sig, handler)
                 self._saved[sig] = prev

@@ -2,9 +2,14 @@
 
 Between events the integration runs in compiled CasADi integrator calls over chunks of
 :attr:`Simulator.CHUNKS` output intervals (no Python per step; chunks give progress, streaming
-and interrupts). Slack switches are located as described in :mod:`.events`. The integrator's
-step budget is ``max_num_steps`` per output interval: exhausting it fails the run with a named
-message (it is not silently multiplied).
+and interrupts). The compiled loops that cannot see a signal inside a call (``rk``, ``dopri5``,
+``rk23``) get chunks sized from the measured cost of the last call to take about
+:attr:`Simulator.CHUNK_MAX_S` each, and the explicit pairs a budget of steps per call as well, so an
+interrupt is acted on within about that time; CVODES and IDAS see it inside the call (through
+CasADi). Each block of results is stored whole: an interrupt during the storing is held back to its
+end (:func:`cablesys.atomic.interrupts_deferred`). Slack switches are located as described in
+:mod:`.events`. The integrator's step budget is ``max_num_steps`` per output interval: exhausting
+it fails the run with a named message (it is not silently multiplied).
 """
 
 from __future__ import annotations
@@ -16,6 +21,7 @@ import warnings
 import casadi as ca
 import numpy as np
 
+from ..atomic import interrupts_deferred
 from ..errors import NumericalWarning, ParameterError
 from ..model import CableModel, build_model
 from ..results import SlackEvent
@@ -29,6 +35,7 @@ from .failures import (
     largest_rate,
     rk4_stability_note,
 )
+from .explicit_rk import PAIRS
 from .initial import initial_state
 from .integrators import (
     ADAPTIVE,
@@ -61,6 +68,13 @@ class Simulator(ev.EventLocator):
     # used while a call takes less than CHUNK_GROW_S (each restart of CVODES costs ~300 steps)
     CHUNKS = (256, 1024, 4096)
     CHUNK_GROW_S = 0.25
+    # the loops blind to signals inside a call (rk, dopri5, rk23): chunks from SMALL_CHUNKS + CHUNKS, the
+    # largest whose predicted time is within CHUNK_MAX_S (s), starting at the smallest; the explicit pairs
+    # also stop a call after a budget of steps worth CHUNK_MAX_S (FIRST_STEP_BUDGET before any measurement)
+    SMALL_CHUNKS = (16, 64)
+    CHUNK_MAX_S = 0.2
+    FIRST_STEP_BUDGET = 4096
+    STORE_ROWS = 4096          # a block is stored once this many output times wait (or after Track.FLUSH_S)
 
     def __init__(self, model: CableModel, times, settings: IntegratorSettings | None = None):
         self.model = model
@@ -69,12 +83,19 @@ class Simulator(ev.EventLocator):
             raise ParameterError("times", f"{self.times.size} values", "must be >= 2 strictly increasing output times")
         check_run_size(self.times.size, model.n_sections, field="times",
                        per_output=2 * model.nq + len(model.slack_index) + len(model.output_labels) + 2)
-        self.settings = settings or IntegratorSettings()
         t_build = _time.perf_counter()
         steps = np.diff(self.times)
         n_int = self.times.size - 1
         self._uniform = bool(np.allclose(steps, steps[0], rtol=1e-9, atol=0.0))
-        self._chunk = min(n_int, self.CHUNKS[0]) if self._uniform else n_int
+        self.settings = settings or IntegratorSettings()
+        self._blind = self.settings.custom is None and self.settings.method in ("rk", *PAIRS)
+        # chunks may start at any output time: on a uniform grid (one integrator per length), and for the
+        # signal-blind loops on any grid (an integrator per chunk: the whole horizon in one call could
+        # not be interrupted)
+        self._sliding = self._uniform or self._blind
+        first = self._sizes()[0]
+        self._chunk = min(n_int, first) if self._sliding else n_int
+        self._budget = self.FIRST_STEP_BUDGET
         self._chunks = {}                        # chunk length -> integrator over that many output intervals
         self._flag = InterruptFlag()
         self._chunk_integrator(self._chunk)
@@ -98,13 +119,47 @@ class Simulator(ev.EventLocator):
         self._stats = {}
 
     # -- helpers -------------------------------------------------------------------------
-    def _chunk_integrator(self, m: int) -> ca.Function:
-        """The integrator over ``m`` output intervals from a chunk start (built once per length)."""
-        if m not in self._chunks:
-            grid = (np.arange(m + 1) * (self.times[1] - self.times[0]) if self._uniform
-                    else self.times - self.times[0])
-            self._chunks[m] = make_integrator(self.model, self.settings, grid, f"chunk{m}")
-        return self._chunks[m]
+    def _chunk_integrator(self, m: int, k: int = 0) -> ca.Function:
+        """The integrator over ``m`` output intervals from the output time ``k`` (on a uniform grid built
+        once per length; otherwise the last one is kept)."""
+        key = m if self._uniform else (k, m)
+        if key not in self._chunks:
+            if self._uniform:
+                grid = np.arange(m + 1) * (self.times[1] - self.times[0])
+            else:
+                grid = self.times[k:k + m + 1] - self.times[k]
+                self._chunks.clear()
+            self._chunks[key] = make_integrator(self.model, self.settings, grid, f"chunk{m}")
+        return self._chunks[key]
+
+    def _sizes(self) -> tuple:
+        """Chunk lengths (output intervals per call) this run may use, smallest first."""
+        return tuple(self.SMALL_CHUNKS) + tuple(self.CHUNKS) if self._blind else tuple(self.CHUNKS)
+
+    def _next_chunk(self, size: int, m: int, wall: float, f) -> int:
+        """The next chunk length after a call that reached ``m`` output intervals in ``wall`` seconds (and,
+        for an explicit pair, its step budget from the measured cost of a step)."""
+        if not self._blind:
+            return next((c for c in self.CHUNKS if c > size), size) if wall < self.CHUNK_GROW_S else size
+        try:
+            st = f.stats()
+            tried = int(st.get("nsteps", 0)) + int(st.get("n_rejected", 0))
+        except (RuntimeError, AttributeError):
+            tried = 0
+        if tried and hasattr(f, "call_budget"):
+            self._budget = int(np.clip(self.CHUNK_MAX_S * tried / max(wall, 1e-9), 256, 1e8))
+        per = wall / max(m, 1)
+        fits = [c for c in self._sizes() if c * per <= self.CHUNK_MAX_S]
+        return max(fits) if fits else self._sizes()[0]
+
+    def _store(self, track: Track) -> None:
+        """Hand the accepted outputs to ``track`` (labelled, streamed) whole: an interrupt waits for the
+        end. At most about :attr:`STORE_ROWS` output times wait for a block, so that storing one (CSV
+        rows through ``on_block``) takes a bounded time however fast the integration runs."""
+        if self._flag.hit:              # a signal whose KeyboardInterrupt a CasADi call swallowed
+            raise KeyboardInterrupt("interrupt noted during a CasADi call")
+        with interrupts_deferred():
+            track.flush(force=track.n - track.n_done >= self.STORE_ROWS)
 
     def _count(self, f: ca.Function) -> None:
         try:
@@ -193,14 +248,20 @@ class Simulator(ev.EventLocator):
         mode = (np.array(g0).ravel() < 0).astype(float)
         track = Track(self, p, x0, mode, on_block, progress)
         interrupted = False
+        started = _time.monotonic()
         with InterruptFlag() as self._flag:
             try:
                 success, message = self._integrate(track, p, mode, stability_note)
             except KeyboardInterrupt:
-                t_end = float(self.times[track.n - 1])
                 interrupted, success = True, False
-                message = f"interrupted at wall time {_time.perf_counter() - wall:.3g} s; results up to t = {t_end:.6g} s are kept"
-        X, M, data = track.arrays()
+            try:
+                with interrupts_deferred():        # the last block whole, whatever signal comes now
+                    X, M, data = track.arrays()
+            except KeyboardInterrupt:              # a signal during the last block, which was stored first
+                interrupted, success = True, False
+                X, M, data = track.arrays()
+            if interrupted:
+                message = self._interrupted_message(started, float(self.times[X.shape[1] - 1]))
         stats = dict(self._stats, method=self.settings.method, wall_s=_time.perf_counter() - wall,
                      build_s=self.build_s, n_events=len(track.events), max_num_steps=self.settings.max_num_steps)
         stats["wall_time_s"] = stats["wall_s"]
@@ -215,6 +276,16 @@ class Simulator(ev.EventLocator):
             raise RunInterrupted(record)
         return record
 
+    def _interrupted_message(self, started: float, t_kept: float) -> str:
+        """What an interrupted run says: the signal, when it came, how soon the run stopped, what is kept."""
+        now, at = _time.monotonic(), self._flag.signal_time
+        if at is None:
+            when = f"after {now - started:.3g} s of wall time"
+        else:
+            self._stats.update(interrupt_s=at - started, stop_after_s=now - at)
+            when = f"by {self._flag.signal_name} {at - started:.3g} s into the run (stopped {now - at:.2g} s later)"
+        return f"interrupted {when}; results up to t = {t_kept:.6g} s are kept"
+
     def _integrate(self, track: Track, p, mode, stability_note: str) -> tuple[bool, str]:
         """Fill ``track``: whole chunks of output intervals while nothing switches, then interval by interval."""
         times, events = self.times, track.events
@@ -224,14 +295,17 @@ class Simulator(ev.EventLocator):
         while k < n_int:
             m = min(size, n_int - k)
             x, pm = track.x_last, self._with_mode(p, mode)
+            f = self._chunk_integrator(m, k)
+            if hasattr(f, "call_budget"):          # an explicit pair: a call stops after this many steps
+                f.call_budget = self._budget
             t_call = _time.perf_counter()
             try:
-                Xs = np.array(self._call(self._chunk_integrator(m), x0=x, p=np.concatenate([pm, [times[k], 1.0]]))["xf"])
+                Xs = np.array(self._call(f, x0=x, p=np.concatenate([pm, [times[k], 1.0]]))["xf"])
             except RuntimeError as err:
                 log.info("chunk integration failed (%s); stepping interval by interval", failure_reason(err)[0])
                 break
-            if self._uniform and _time.perf_counter() - t_call < self.CHUNK_GROW_S:
-                size = next((c for c in self.CHUNKS if c > size), size)
+            wall = _time.perf_counter() - t_call
+            paused = bool(getattr(f, "paused", False))   # the step budget ran out: resume from the last output
             cols = np.column_stack([x, Xs])
             finite = np.all(np.isfinite(cols), axis=0)
             n_ok = int(np.argmin(finite)) if not finite.all() else m + 1
@@ -240,11 +314,13 @@ class Simulator(ev.EventLocator):
                 G, D = self._gap_cols(cols[:, :n_ok], times[None, k:k + n_ok], pm)
                 j_bad = ev.first_bad_interval(G, D, np.diff(times[k:k + n_ok]), mode == 1.0)
             n_keep = j_bad if j_bad is not None else n_ok       # columns 0 .. n_keep-1 are accepted
+            if self._sliding:           # sized by the cost of the intervals this call reached
+                size = self._next_chunk(size, max(n_ok - 1, 1), wall, f)
             if n_keep > 1:
                 track.add(cols[:, 1:n_keep], mode)
             k += n_keep - 1
-            track.flush()
-            if n_keep < m + 1:
+            self._store(track)
+            if n_keep < m + 1 and not (paused and self._sliding and j_bad is None and n_keep > 1):
                 break
         # 2) interval by interval after an event (or a failure), locating switches
         x, t_a = track.x_last, times[k]
@@ -261,7 +337,7 @@ class Simulator(ev.EventLocator):
             if hit is None:
                 x, t_a, k = xb, t_b, k + 1
                 track.add(x[:, None], mode)
-                track.flush()
+                self._store(track)
                 switches_here = events_in_interval = 0
                 continue
             t_star, i_sec = hit
