@@ -170,8 +170,11 @@ def _run(args) -> int:
             result = simulate(scene, model=args.model, method=args.method, max_num_steps=args.max_steps, jit=args.jit,
                               on_run=streams)
         except RunInterrupted as err:
-            streams.discard()      # the interrupt may have cut a block short: write the record whole
-            summary = write_run(scene, err.result, outdir, plot=False, units=units)
+            # the stream holds whole rows: kept when they are exactly the interrupted record's series
+            on_disk = streams.stream is not None and streams.stream.holds(err.result.time) and streams.close()
+            if not on_disk:
+                streams.discard()
+            summary = write_run(scene, err.result, outdir, plot=False, units=units, series_on_disk=on_disk)
             outdir.finish("interrupted", **summary)
             print(f"interrupted: {err.result.message}; wrote {outdir.path}/ ({', '.join(outdir.files)})", file=sys.stderr)
             raise
@@ -204,8 +207,9 @@ def _simulate_into(outdir, scene, label: str = "", units: str = "SI", **kw):
     try:
         result = simulate(scene, on_block=stream.append, progress=_Progress(label), **kw)
     except RunInterrupted as err:
-        stream.discard()        # the interrupt may have cut a block short: write the record whole
-        summary = write_run(scene, err.result, outdir, plot=False, units=units)
+        on_disk = stream.holds(err.result.time)       # whole rows, exactly the interrupted record's series
+        stream.close() if on_disk else stream.discard()
+        summary = write_run(scene, err.result, outdir, plot=False, units=units, series_on_disk=on_disk)
         outdir.finish("interrupted", **summary)
         print(f"interrupted: {err.result.message}; wrote {outdir.path}/ ({', '.join(outdir.files)})", file=sys.stderr)
         raise
