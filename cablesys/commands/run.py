@@ -184,7 +184,8 @@ def _run(args) -> int:
             result = dataclasses.replace(result, window_s=tuple(args.window))
         scene_run = rung_scene(scene, info["name"], info.get("segments") or 1) if info["name"] in RUNGS else scene
         summary = write_run(scene_run, result, outdir, series_on_disk=on_disk, units=units)
-        summary["timing"]["build_s"] += float(result.stats.get("ladder_timing", {}).get("build_s", 0.0))
+        if "run_s" in result.stats:     # a time-domain run: the ladder built its models and simulators besides
+            summary["timing"]["build_s"] += float(result.stats.get("ladder_timing", {}).get("build_s", 0.0))
         summary["model"] = info
         outdir.finish("success" if result.success else "failed", **summary)
     _print_summary(summary, units)
