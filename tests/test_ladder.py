@@ -198,16 +198,26 @@ def test_segments_for_is_the_least_n_within_the_safety_margin():
     assert segments_for({"segmented_1": {"body": 0.04, "tension": 1e-3, "order": 2.0, "note": ""}}, tol) == 3
 
 
-def test_no_a_posteriori_rerun_when_the_estimate_is_far_within_the_tolerance():
-    """A forced segmented N = 4 on a cable that cannot bow: its estimate is far within the tolerance, so
-    the Richardson run at N/2 (as costly as the run itself) is not spent; the reason says no check ran."""
+def test_every_run_of_four_or_more_elements_is_checked_on_every_quantity():
+    """A forced segmented N = 4 on a cable that cannot bow: its a priori estimate is far within the tolerance, and
+    still the run is checked against N / 2 on each quantity (the a priori estimates see only the body and tension
+    groups through a linear response): the N = 2 model is built, the reason and the model block say so, and the
+    per-quantity estimate is the Richardson one, |y_4 - y_2| / 3 over the quantity's own scale."""
     from cablesys.ladder.rungs import RungCache
     scene = _stiff_pendulum(period=4.0).with_numerics(duration=12.0, output_step=0.1)
     cache = RungCache()
-    r = simulate(scene, model="segmented", segments=4, cache=cache)
-    assert r.stats["model"]["segments"] == 4
-    assert "a posteriori" not in r.stats["model"]["reason"]
-    assert len(cache) == 2            # Wang's (for the estimate) and N = 4; no N = 2 model was built
+    r = simulate(scene, model="segmented", segments=4, cache=cache, rtol=1e-9, atol=1e-10)
+    m = r.stats["model"]
+    assert m["segments"] == 4 and "a posteriori (N = 4 vs 2" in m["reason"]
+    assert m["checked"] == "a posteriori: N = 4 against N = 2"
+    assert len(cache) == 3            # Wang's (for the estimate), N = 4 and its check N = 2
+    # an independent route: the N = 2 run forced by the user with the same integrator tolerances
+    half = simulate(scene, model="segmented", segments=2, cache=cache, rtol=1e-9, atol=1e-10)
+    period = 4.0
+    want = metrics.quantity_errors(metrics.statistics(half, period), metrics.statistics(r, period))
+    assert set(want) == set(m["estimated_error_per_quantity"]) >= {"x_b_amplitude", "x_b_mean", "tension_top_max"}
+    for k, v in want.items():
+        assert m["estimated_error_per_quantity"][k] == pytest.approx(max(v / 3.0, 1e-4), rel=1e-6), k
 
 
 @pytest.mark.slow
