@@ -293,12 +293,17 @@ def _print_summary(summary: dict, units: str = "SI") -> None:
     print(f"integrator {st['method']}: {st.get('nsteps', '-')} steps, {st.get('nfevals', st.get('nresevals', '-'))} "
           f"rhs evaluations, {st['wall_s'] * 1e3:.0f} ms (+ {st['build_s'] * 1e3:.0f} ms build)"
           + (f"; step budget {st['max_num_steps']} per output interval" if "max_num_steps" in st else ""))
-    for unit in ("m", "rad", "N"):
-        for k, v in summary.get(f"amplitudes_{unit}", {}).items():
-            print(f"  amplitude {k:14s} {v:.6g} {unit}")
-    print(f"  tension min/max {summary.get('tension_min_N', float('nan')):.4g} / {summary.get('tension_max_N', float('nan')):.4g} N,"
-          f" time slack {summary['time_slack_s']:.3g} s")
     from ..units import output_unit
+    for unit in ("m", "rad", "N"):
+        f, name = output_unit(unit, units)
+        for k, v in summary.get(f"amplitudes_{unit}", {}).items():
+            print(f"  amplitude {k:14s} {v * f:.6g} {name}")
+    fn, name_n = output_unit("N", units)
+    for end, what in (("top", "at the top"), ("bottom", "at the body")):   # the same meaning for every model
+        lo, hi = summary.get(f"tension_{end}_min_N"), summary.get(f"tension_{end}_max_N")
+        if lo is not None and hi is not None:
+            print(f"  tension {what} min/max {lo * fn:.4g} / {hi * fn:.4g} {name_n} (over the run)")
+    print(f"  time slack {summary['time_slack_s']:.3g} s")
     from ..verdict import format_statistics, format_table
     for line in (format_statistics(summary["statistics"], units) if "statistics" in summary else []) + \
             summary.get("warnings", []) + (format_table(summary["verdict"], lambda u: output_unit(u, units))

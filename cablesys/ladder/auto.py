@@ -461,15 +461,24 @@ def after_run(scene: Scene, choice: Choice, result, *, auto: bool) -> tuple[Choi
                   est.segmented_error(choice.numbers["estimates"], n), choice.numbers), True
 
 
-def describe(choice_dict: dict) -> str:
-    """One console line: which model ran, why, and its estimated error."""
+def describe(choice_dict: dict, full: bool = False) -> str:
+    """The console lines (at most three): which model ran and its estimated error, whether that error was checked
+    (and the quantity furthest from the tolerance), and why, the reason's first clause (``full``: the whole reason,
+    which summary.json always holds)."""
     e = choice_dict.get("estimated_error", {})
     fmt = lambda v: "n/a" if v is None else f"{100 * v:.2g} %"
     seg = f", N = {choice_dict['segments']}" if (choice_dict.get("segments") or 1) > 1 else ""
+    reason = choice_dict.get("reason", "")
+    why = reason if full else reason.split("; ")[0] + (" (the whole reason in summary.json)" if "; " in reason else "")
     if choice_dict.get("extrapolated"):      # the extrapolated statistics' error first, the time series' too
-        return extrapolation.describe(choice_dict, fmt, seg)
-    return (f"model {choice_dict.get('name')}{seg}: estimated error body {fmt(e.get('body'))}, tension "
-            f"{fmt(e.get('tension'))}; {choice_dict.get('reason', '')}")
+        return extrapolation.describe(dict(choice_dict, reason=why), fmt, seg)
+    head = f"model {choice_dict.get('name')}{seg}: estimated error body {fmt(e.get('body'))}, tension {fmt(e.get('tension'))}"
+    per = choice_dict.get("estimated_error_per_quantity") or {}
+    check = choice_dict.get("checked")
+    if per:
+        worst = max(per, key=per.get)
+        check = f"{check}; largest per quantity: {worst} {fmt(per[worst])}"
+    return "\n".join(line for line in (head, f"  {check}" if check else "", f"  why: {why}") if line)
 
 
 def linear_model(scene: Scene, tolerance=None, cache: RungCache | None = None):
