@@ -110,27 +110,118 @@ def plot_rao_bode(raos: dict, output: str, input: str, natural: dict, path, titl
     return Path(path)
 
 
-def plot_modes(modes, length: float, path, title: str = "") -> Path:
-    """Sketch of each mode: the straight cable at rest and displaced along the mode shape."""
+MAX_MODE_PANELS = 6      # mode shapes drawn; every mode is in the table
+
+
+def _rest_geometry(rest, q_labels):
+    """(points (n, 2) m, displacement matrix (2 n, nq)) of the rest shape: node or body positions
+    (x right, y down from the mean top) and their linear change per unit generalized coordinate.
+
+    ``rest`` is a :class:`~cablesys.linear.linearization.LinearModel` (its outputs ``node_x[k]``,
+    ``node_y[k]`` of a segmented cable, else ``x_b``/``y_b`` of each section, at the operating point
+    ``y0`` and through ``Cq``), or a float: the depth of a straight vertical cable, displaced by
+    dx = -l phi, dy = u (Wang 1971 e_t = (-sin phi, cos phi) linearized about phi = 0).
+    """
+    if not hasattr(rest, "output_labels"):
+        length = float(rest)
+        D = np.zeros((4, len(q_labels)))
+        for j, q in enumerate(q_labels):
+            D[2, j] = -length if q == "phi" else 0.0
+            D[3, j] = 1.0 if q == "u" else 0.0
+        return np.array([[0.0, 0.0], [0.0, length]]), D
+    out = list(rest.output_labels)
+    if "node_x[0]" in out:
+        n = sum(1 for o in out if o.startswith("node_x["))
+        rows = [(f"node_x[{k}]", f"node_y[{k}]") for k in range(n)]
+    else:
+        sections = [""] if "x_b" in out and "x_b_1" not in out else sorted(
+            {o[3:] for o in out if o.startswith("x_b_") and o[4:].isdigit()}, key=lambda s: int(s[1:]))
+        rows = [(f"x_b{s}", f"y_b{s}") for s in sections]
+    idx = [out.index(c) for pair in rows for c in pair]
+    y0, Cq = np.asarray(rest.y0, float)[idx], np.real(np.asarray(rest.Cq))[idx]
+    points = y0.reshape(-1, 2)
+    D = Cq
+    if "node_x[0]" not in out:                     # the top (origin) first, fixed
+        points = np.vstack([[0.0, 0.0], points])
+        D = np.vstack([np.zeros((2, Cq.shape[1])), Cq])
+    return points, D
+
+
+def _mode_table(modes, shown: int) -> str:
+    """Every mode as monospace text (three column groups beyond 8 modes): number, undamped frequency
+    (rad/s), damping ratio, largest coordinate, and whether it is drawn."""
+    head = f"{'#':>3} {'omega rad/s':>11} {'zeta':>7}  {'largest':<8}"
+    rows = [f"{k + 1:>3} {w:>11.4g} {0.0 if abs(z) < 1e-9 else z:>7.2g}  {d:<8}"
+            for k, (w, z, d) in enumerate(zip(modes.omega_undamped, modes.damping_ratio, modes.dominant))]
+    per = -(-len(rows) // 3) if len(rows) > 8 else len(rows)
+    cols = [rows[i:i + per] for i in range(0, len(rows), per)]
+    lines = ["    ".join(head for _ in cols)]
+    lines += ["    ".join(c[i] if i < len(c) else " " * len(head) for c in cols) for i in range(per)]
+    drawn = "mode 1 drawn above" if shown == 1 else f"modes 1-{shown} drawn above"
+    return "\n".join([f"all {len(rows)} modes ({drawn}; zeta: damping ratio, largest: largest coordinate)"] + lines)
+
+
+def plot_modes(modes, rest, path, title: str = "", *, n_shown: int | None = None, units: str = "SI") -> Path:
+    """Mode shapes about the real rest shape (offset, tow angle) on a bounded grid, and a table of every mode.
+
+    Parameters
+    ----------
+    modes : Modes
+        Undamped modes (:func:`cablesys.linear.modal.modes`), sorted by frequency.
+    rest : LinearModel or float
+        The linearization the modes come from: its operating point gives the rest shape (nodes of a
+        segmented cable, or the body of each section) and ``Cq`` each mode's displacement. A float is
+        the depth (m) of a straight vertical cable (phi and u modes only).
+    path : str or pathlib.Path
+        Output image.
+    title : str
+        Figure title.
+    n_shown : int, optional
+        Number of modes drawn, lowest first (default and at most :data:`MAX_MODE_PANELS`); the rest
+        are in the table.
+    units : str
+        "SI" (m) or "fps" (ft) for the positions.
+
+    Each drawn displacement is scaled so that its largest point moves 10 % of the rest shape's extent.
+    """
+    from ..units import output_unit
     plt = _plt()
+    f, ul = output_unit("m", units)
     n = len(modes.omega_undamped)
-    fig, axes = plt.subplots(1, n, figsize=(3.5 * n, 4.5), squeeze=False)
-    for k, ax in enumerate(axes[0]):
-        shape = dict(zip(modes.q_labels, modes.shapes[:, k]))
-        for s, style in ((0.0, "k-"), (1.0, "C0-"), (-1.0, "C1--")):
-            phi = s * 0.25 * shape.get("phi", 0.0)
-            l = length * (1 + s * 0.1 * shape.get("u", 0.0))
-            x, y = -l * np.sin(phi), l * np.cos(phi)       # Wang (1971): e_t = (-sin phi, cos phi), y down
-            ax.plot([0, x], [0, y], style, lw=2, label={0.0: "at rest", 1.0: "+ mode", -1.0: "- mode"}[s])
-            ax.plot(x, y, "o", color=style[:2] if s else "k", ms=8)
+    shown = max(1, min(n, MAX_MODE_PANELS if n_shown is None else n_shown, MAX_MODE_PANELS))
+    points, D = _rest_geometry(rest, modes.q_labels)
+    extent = max(float(np.ptp(points[:, 0])), float(np.ptp(points[:, 1])), 1e-9)
+    ncol = min(3, shown)
+    nrow = -(-shown // ncol)
+    table_h = 0.13 * ((n if n <= 8 else -(-n // 3)) + 2) + 0.2      # inches: the table's text lines
+    fig = plt.figure(figsize=(3.7 * ncol + 0.6, 3.9 * nrow + table_h + 0.6), constrained_layout=True)
+    grid = fig.add_gridspec(nrow + 1, ncol, height_ratios=[3.9] * nrow + [table_h])
+    for k in range(shown):
+        ax = fig.add_subplot(grid[k // ncol, k % ncol])
+        d = (D @ np.real(modes.shapes[:, k])).reshape(-1, 2)
+        big = float(np.max(np.hypot(d[:, 0], d[:, 1])))
+        d = d * (0.1 * extent / big if big > 0 else 0.0)
+        for s, style, name in ((0.0, "k-", "at rest"), (1.0, "C0-", "+ mode"), (-1.0, "C1--", "- mode")):
+            p = (points + s * d) * f
+            ax.plot(p[:, 0], p[:, 1], style, lw=1.6 if s == 0 else 1.2, label=name)
+            ax.plot(p[-1, 0], p[-1, 1], "o", color=style[:2] if s else "k", ms=7)
+        ax.plot(points[0, 0] * f, points[0, 1] * f, "ks", ms=5)
         ax.invert_yaxis()
-        ax.set_aspect("equal")
-        ax.set_xlim(-0.5 * length, 0.5 * length)
-        ax.set_xlabel("x [m]")
-        ax.set_ylabel("depth y [m]")
-        ax.set_title(f"mode {k + 1} ({modes.dominant[k]}): {modes.omega_undamped[k]:.3g} rad/s", fontsize=9)
-        ax.legend(fontsize=7, loc="lower left")
-    fig.suptitle(title or "mode shapes (stretch exaggerated)")
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_xlabel(f"x [{ul}]")
+        ax.set_ylabel(f"depth y [{ul}]")
+        zeta = float(modes.damping_ratio[k])
+        ax.set_title(f"mode {k + 1}: {modes.omega_undamped[k]:.4g} rad/s, zeta {0.0 if abs(zeta) < 1e-9 else zeta:.2g}\n"
+                     f"largest: {modes.dominant[k]}", fontsize=9)
+        ax.grid(alpha=0.3)
+        if k == 0:
+            ax.legend(fontsize=7, loc="best")
+    ax = fig.add_subplot(grid[nrow, :])
+    ax.axis("off")
+    ax.text(0.0, 1.0, _mode_table(modes, shown), family="DejaVu Sans Mono", fontsize=7, va="top", ha="left",
+                transform=ax.transAxes)
+    fig.suptitle(_wrap(title or "mode shapes about the rest shape") + "\n(displacements scaled to 10 % of the cable's "
+                 "extent; square = top, dot = body)", fontsize=10)
     save_figure(fig, path, dpi=110)
     return Path(path)
 
