@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from ..plots import save_figure
+from ..plots.axes import legend_outside, plain_axis
 from ..results import unit_of
 
 
@@ -32,10 +33,26 @@ def is_noise(amplitude, floor: float) -> bool:
     return not np.any(np.asarray(amplitude) > floor)
 
 
+MAX_NAMED_MODES = 4      # more natural frequencies than this are numbered on the axis, one legend entry
+
+
 def _mark(ax, natural, label=True, forcing=None):
-    """Natural frequencies dashed (one colour each), forcing frequencies solid red, a sea band shaded."""
+    """Natural frequencies dashed, forcing frequencies solid red, a sea band shaded.
+
+    Up to :data:`MAX_NAMED_MODES` natural frequencies get a colour and a legend entry each; more are
+    grey, numbered (1 = lowest in ``natural``'s order) at the top of the axes, under one legend entry.
+    """
+    numbered = len(natural) > MAX_NAMED_MODES
     for k, (name, w) in enumerate(natural.items()):
-        ax.axvline(w, color=f"C{(k + 3) % 10}", ls="--", lw=1.1, label=f"natural {name} = {w:.3g} rad/s" if label else None)
+        if numbered:
+            ax.axvline(w, color="0.45", ls="--", lw=0.9, label=("natural frequencies (numbered, table right)"
+                                                                 if label and k == 0 else None))
+            if label:
+                ax.text(w, 1.0, _mode_number(name, k), transform=ax.get_xaxis_transform(), ha="center",
+                        va="bottom", fontsize=6, color="0.3")
+        else:
+            ax.axvline(w, color=f"C{(k + 3) % 10}", ls="--", lw=1.1,
+                       label=f"natural {name} = {w:.3g} rad/s" if label else None)
     forcing = dict(forcing or {})
     lo, hi = forcing.pop("sea band low", None), forcing.pop("sea band high", None)
     if lo is not None and hi is not None:
@@ -44,31 +61,70 @@ def _mark(ax, natural, label=True, forcing=None):
         ax.axvline(w, color="red", ls="-", lw=1.3, alpha=0.8, label=name if label else None)
 
 
+def _mode_number(name: str, k: int) -> str:
+    """The number drawn for natural frequency ``name`` (``"mode 3 (x[10])"`` -> ``"3"``), else ``k + 1``."""
+    parts = name.split()
+    return parts[1] if len(parts) > 1 and parts[0] == "mode" and parts[1].isdigit() else f"{k + 1}"
+
+
+def _natural_table(natural: dict) -> str:
+    """The numbered natural frequencies of :func:`_mark` as text lines "number  omega rad/s  name"."""
+    def what(name):                  # "mode 3 (x[10])" -> "x[10]": the number is already in the row
+        return name.split("(", 1)[1].rstrip(")") if name.startswith("mode ") and "(" in name else name
+    return "\n".join([" #  omega        largest"] + [f"{_mode_number(name, k):>2} {w:>6.4g} rad/s  {what(name)}"
+                                                    for k, (name, w) in enumerate(natural.items())])
+
+
 def _wrap(title: str, width: int = 70) -> str:
     import textwrap
     return "\n".join(textwrap.wrap(title, width)) if title else title
+
+
+DYNAMIC_RANGE = 1e-4     # the amplitude axis spans four decades below the largest response shown
+
+
+def _band_of_interest(omega, natural: dict, forcing: dict) -> tuple[dict, float, float]:
+    """(the natural frequencies a forced response can excite, lowest, highest frequency shown, rad/s).
+
+    The modes are :func:`~cablesys.linear.band.relevant_modes` of the forcing (all without forcing);
+    the range spans them and the forcing (sea band included) with a factor 3 margin, within ``omega``.
+    """
+    from .band import relevant_modes
+    f = [w for w in (forcing or {}).values() if np.isfinite(w) and w > 0]
+    keep = set(relevant_modes(natural.values(), f))
+    shown = {k: w for k, w in natural.items() if w in keep}
+    ws = list(shown.values()) + f
+    if not ws:
+        return shown, float(omega[0]), float(omega[-1])
+    return shown, max(float(omega[0]), min(ws) / 3.0), min(float(omega[-1]), max(ws) * 3.0)
 
 
 def plot_rao_bode(raos: dict, output: str, input: str, natural: dict, path, title: str = "",
                   forcing: dict | None = None, units: str = "SI") -> Path:
     """Magnitude and unwrapped phase (deg) of ``output`` per unit ``input`` for several RAOs ({legend: RAO}).
 
-    Curves that are numerical zero (below :data:`NOISE` of the largest response per unit input)
-    are not drawn but named in the figure; points of a drawn curve below that floor are blanked
-    (with their phase). Log frequency axis when the band spans a decade or more; natural and
-    forcing frequencies are marked and labelled in distinct styles. ``units`` "fps" shows the
-    amplitude per ft of top motion in ft/lbf.
+    The frequency axis spans the forcing (and sea band) and the natural frequencies it can excite
+    (:func:`~cablesys.linear.band.relevant_modes`), with a factor 3 margin; modes above are named in
+    a note, not drawn. The amplitude axis spans :data:`DYNAMIC_RANGE` below the largest response in
+    that range (an undamped exact peak clipped at 20 x the damped ones). Curves that are numerical
+    zero (below :data:`NOISE` of the largest response per unit input) are not drawn but named;
+    points of a drawn curve below that floor are blanked (with their phase). The legend and the
+    table of natural frequencies sit right of the axes. ``units`` "fps" shows the amplitude per ft
+    of top motion in ft/lbf.
     """
     from ..units import per_input_unit
     plt = _plt()
     fu, u = per_input_unit(unit_of(output) or ("N" if output.startswith("tension") else "-"), units)
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(10.5, 6.5), sharex=True)
     curves = {}
     for name, r in raos.items():
         inp = input if input in r.input_labels else r.input_labels[0]
         curves[name] = (r, inp, r.amplitude(output, inp) * fu)
+    omega = next(iter(curves.values()))[0].omega
+    shown, w_lo, w_hi = _band_of_interest(omega, natural, forcing)
+    inside = (omega >= w_lo) & (omega <= w_hi)
     floor = noise_floor([c[2] for c in curves.values()])
-    zero, drawn = [], []
+    zero, drawn, phases = [], [], []
     for k, (name, (r, inp, amp)) in enumerate(curves.items()):
         if is_noise(amp, floor):
             zero.append(name)
@@ -79,9 +135,11 @@ def plot_rao_bode(raos: dict, output: str, input: str, natural: dict, path, titl
         phase = np.full(len(r.omega), np.nan)
         phase[keep] = ph
         a2.plot(r.omega, phase, color=f"C{k}")
-        drawn.append((r.kind, amp[keep]))
-    omega = next(iter(curves.values()))[0].omega
-    if omega[-1] / max(omega[0], 1e-300) >= 10.0:
+        sel = keep & ((r.omega >= w_lo) & (r.omega <= w_hi))
+        if np.any(sel):
+            drawn.append((r.kind, amp[sel]))
+            phases.append(phase[sel])
+    if w_hi / max(w_lo, 1e-300) >= 10.0:
         a1.set_xscale("log")
     if drawn:
         a1.set_yscale("log")
@@ -90,19 +148,33 @@ def plot_rao_bode(raos: dict, output: str, input: str, natural: dict, path, titl
         hi = max(float(np.max(a)) for _, a in drawn)
         if damped and hi > 20 * max(damped):
             hi = 20 * max(damped)               # the undamped exact peak is clipped
-        a1.set_ylim(max(lo, hi * 1e-8) / 3, hi * 3)
+        a1.set_ylim(max(lo, hi * DYNAMIC_RANGE) / 1.5, hi * 1.5)
+        p_lo, p_hi = min(float(np.min(p)) for p in phases), max(float(np.max(p)) for p in phases)
+        pad = max(5.0, 0.05 * (p_hi - p_lo))
+        a2.set_ylim(p_lo - pad, p_hi + pad)
     else:
         a1.text(0.5, 0.5, "identically zero (below 1e-9 of the input)", transform=a1.transAxes, ha="center")
-    _mark(a1, natural, forcing=forcing)
-    _mark(a2, natural, label=False, forcing=forcing)
-    a1.set_xlim(omega[0], omega[-1])
+    plain_axis(a2)
+    _mark(a1, shown, forcing=forcing)
+    _mark(a2, shown, label=False, forcing=forcing)
+    a1.set_xlim(w_lo, w_hi)
     a1.set_ylabel(f"|{output}| per unit {input} [{u}]")
     a2.set_ylabel("phase, unwrapped [deg]")
     a2.set_xlabel("forcing frequency omega [rad/s]")
     if zero:
         a1.text(0.01, 0.02, "not drawn (numerical zero): " + "; ".join(zero), transform=a1.transAxes, fontsize=7,
                 va="bottom")
-    a1.legend(fontsize=7, loc="best")
+    legend_outside(a1)
+    notes = []
+    if len(shown) > MAX_NAMED_MODES:
+        notes.append("natural frequencies\n" + _natural_table(shown))
+    above = [w for k, w in natural.items() if k not in shown]
+    if above:
+        notes.append(f"{len(above)} more mode{'s' * (len(above) > 1)} from {min(above):.3g} to {max(above):.3g} rad/s,\n"
+                     "above what the forcing excites:\nnot marked (rao_summary.json)")
+    if notes:
+        a2.text(1.01, 1.0, "\n\n".join(notes), transform=a2.transAxes, fontsize=7, va="top", ha="left",
+                family="DejaVu Sans Mono")
     a1.grid(True, which="both", alpha=0.3)
     a2.grid(True, which="both", alpha=0.3)
     fig.suptitle(_wrap(title or f"RAO of {output} for top motion {input}"), fontsize=10)
