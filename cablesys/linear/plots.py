@@ -45,7 +45,7 @@ def _mark(ax, natural, label=True, forcing=None):
     numbered = len(natural) > MAX_NAMED_MODES
     for k, (name, w) in enumerate(natural.items()):
         if numbered:
-            ax.axvline(w, color="0.45", ls="--", lw=0.9, label=("natural frequencies (numbered, table right)"
+            ax.axvline(w, color="0.45", ls="--", lw=0.9, label=("natural frequencies (mode numbers on top)"
                                                                  if label and k == 0 else None))
             if label:
                 ax.text(w, 1.0, _mode_number(name, k), transform=ax.get_xaxis_transform(), ha="center",
