@@ -278,3 +278,15 @@ def test_rao_fps_label(tmp_path, figures):
     assert amp.get_ylabel().endswith("[ft/ft]")
     # ft per ft is m per m: the same numbers
     assert np.nanmax(amp.lines[0].get_ydata()) == pytest.approx(np.max(np.abs(_oscillator_rao(omega).values[:, 0, 1])))
+
+
+def test_a_taut_line_keeps_its_tension_detail(tmp_path, figures):
+    """Tensions of 0.125-0.130 N never near slack: the axis spans them (not 0-0.13 N, which would
+    flatten a 4 % swing into the top strip)."""
+    t = np.linspace(0.0, 20.0, 401)
+    wave = np.sin(2 * np.pi * t / 5.5)
+    run = _run(t, tension_top=0.1275 + 0.0025 * wave, tension_bottom=0.111 + 0.002 * wave, phi=0.03 * wave,
+               u=7e-5 * wave, x_b=0.07 * wave, y_b=2.74 + 0.06 * wave)
+    td_plots.plot_time_series(run, tmp_path / "taut.png")
+    lo, hi = _axis(figures[0], "tension").get_ylim()
+    assert 0.105 < lo < 0.109 and 0.13 < hi < 0.135, (lo, hi)

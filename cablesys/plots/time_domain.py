@@ -68,7 +68,8 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
                      window_start: float | None = None) -> Path:
     """Panels of a run: cable shape (segmented runs), body path x_b-y_b (y down), phi(t), u(t) and tensions(t).
 
-    The tension axis is scaled to the traces and the snap loads; a working load or least allowed
+    The tension axis is scaled to the traces and the snap loads (from zero when they come within
+    25 % of it); a working load or least allowed
     tension outside that range is an arrow at the edge ("working load 126 kN above"), not a line
     that flattens the traces. A steady series (range below 1e-6 of its magnitude plus 1e-9 m,
     1e-9 rad or 1e-6 N) is drawn flat and its value stated. Every mark is in a legend.
@@ -94,6 +95,7 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
         ``path``.
     """
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import MaxNLocator
 
     t = result.time
     data = result.data
@@ -147,6 +149,7 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
                title="paths about their mean positions")
     if a_path.lines:
         a_path.axis("equal")
+        a_path.xaxis.set_major_locator(MaxNLocator(5))
     plain_axis(a_path)
     series_panel(a_phi, t, phis, "deg", np.degrees(ATOL_ANGLE))
     a_phi.set(xlabel="time (s)", ylabel=r"cable angle $\phi$ (deg)", title="swing angle")
@@ -155,7 +158,9 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
     series_panel(a_t, t, traces, uf, ATOL_FORCE * ff)
     a_t.set(xlabel="time (s)", ylabel=f"tension ({uf})", title="cable tension (eq. 54)")
     values = [v for _, y, _ in traces for v in (float(np.nanmin(y)), float(np.nanmax(y)))]
-    values += [v * ff for _, v in snaps] + [0.0]
+    values += [v * ff for _, v in snaps]
+    if min(values) <= 0.25 * max(values):        # near slack: zero on the axis; a taut line keeps its detail
+        values.append(0.0)
     marks = {}
     if limits is not None:
         if getattr(limits, "working_load", None) is not None:
