@@ -242,12 +242,12 @@ def _oscillator_rao(omega, wn=6.3, zeta=0.02):
 
 
 def test_rao_axes_frame_the_sea_and_the_modes_it_excites(tmp_path, figures):
-    """A 16-mode segmented cable in a 0.4-1.5 rad/s sea on a 0.07-700 rad/s grid: the x axis spans the sea
+    """A 17-mode segmented cable in a 0.4-1.5 rad/s sea on a 0.07-700 rad/s grid: the x axis spans the sea
     band and the modes up to 10 x its top (3 x margin), the y axis the response there, the legend sits
     right of the axes with every mark, and the modes above are named in a note."""
     omega = np.geomspace(0.07, 700.0, 800)
     natural = {f"mode {k + 1} (x[{k}])": w for k, w in enumerate(
-        [0.1, 0.4, 0.8, 1.2, 6.3, 9.0] + list(np.geomspace(40.0, 650.0, 10)))}
+        [0.1, 0.4, 0.8, 1.2, 6.3, 9.0, 20.0] + list(np.geomspace(40.0, 650.0, 10)))}
     forcing = {"sea peak 0.628 rad/s (T_p = 10 s)": 0.628, "sea band low": 0.4, "sea band high": 1.5}
     linear_plots.plot_rao_bode({"exact linearization": _oscillator_rao(omega)}, "y_b", "y_s", natural,
                                tmp_path / "rao.png", forcing=forcing)
@@ -268,6 +268,9 @@ def test_rao_axes_frame_the_sea_and_the_modes_it_excites(tmp_path, figures):
     note = " ".join(t.get_text() for t in phase.texts)
     assert "10 more modes from 40 to 650 rad/s" in note, note
     assert "6.3 rad/s" in note and "1.2 rad/s" in note, note       # the excited modes are in the table
+    # 20 rad/s is above what the sea excites (10 x 1.5 rad/s) but inside the axis: a peak there is marked
+    marked = {float(ln.get_xdata()[0]) for ln in amp.lines if ln.get_label() != "exact linearization"}
+    assert {0.1, 0.4, 0.8, 1.2, 6.3, 9.0, 20.0} <= marked and not any(w >= 40.0 for w in marked)
 
 
 def test_rao_fps_label(tmp_path, figures):

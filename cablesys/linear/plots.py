@@ -84,19 +84,19 @@ DYNAMIC_RANGE = 1e-4     # the amplitude axis spans four decades below the large
 
 
 def _band_of_interest(omega, natural: dict, forcing: dict) -> tuple[dict, float, float]:
-    """(the natural frequencies a forced response can excite, lowest, highest frequency shown, rad/s).
+    """(the natural frequencies inside the range shown, lowest, highest frequency shown, rad/s).
 
-    The modes are :func:`~cablesys.linear.band.relevant_modes` of the forcing (all without forcing);
-    the range spans them and the forcing (sea band included) with a factor 3 margin, within ``omega``.
+    The range spans the forcing (sea band included) and the natural frequencies it can excite
+    (:func:`~cablesys.linear.band.relevant_modes`; all of them without forcing) with a factor 3
+    margin, within ``omega``; every natural frequency in that range is marked.
     """
     from .band import relevant_modes
     f = [w for w in (forcing or {}).values() if np.isfinite(w) and w > 0]
-    keep = set(relevant_modes(natural.values(), f))
-    shown = {k: w for k, w in natural.items() if w in keep}
-    ws = list(shown.values()) + f
-    if not ws:
-        return shown, float(omega[0]), float(omega[-1])
-    return shown, max(float(omega[0]), min(ws) / 3.0), min(float(omega[-1]), max(ws) * 3.0)
+    ws = list(relevant_modes(natural.values(), f)) + f
+    lo, hi = float(omega[0]), float(omega[-1])
+    if ws:
+        lo, hi = max(lo, min(ws) / 3.0), min(hi, max(ws) * 3.0)
+    return {k: w for k, w in natural.items() if lo <= w <= hi}, lo, hi
 
 
 def plot_rao_bode(raos: dict, output: str, input: str, natural: dict, path, title: str = "",
@@ -104,8 +104,8 @@ def plot_rao_bode(raos: dict, output: str, input: str, natural: dict, path, titl
     """Magnitude and unwrapped phase (deg) of ``output`` per unit ``input`` for several RAOs ({legend: RAO}).
 
     The frequency axis spans the forcing (and sea band) and the natural frequencies it can excite
-    (:func:`~cablesys.linear.band.relevant_modes`), with a factor 3 margin; modes above are named in
-    a note, not drawn. The amplitude axis spans :data:`DYNAMIC_RANGE` below the largest response in
+    (:func:`~cablesys.linear.band.relevant_modes`), with a factor 3 margin; every natural frequency
+    in that range is marked, those outside are counted in a note. The amplitude axis spans :data:`DYNAMIC_RANGE` below the largest response in
     that range (an undamped exact peak clipped at 20 x the damped ones). Curves that are numerical
     zero (below :data:`NOISE` of the largest response per unit input) are not drawn but named;
     points of a drawn curve below that floor are blanked (with their phase). The legend and the
@@ -171,7 +171,7 @@ def plot_rao_bode(raos: dict, output: str, input: str, natural: dict, path, titl
     above = [w for k, w in natural.items() if k not in shown]
     if above:
         notes.append(f"{len(above)} more mode{'s' * (len(above) > 1)} from {min(above):.3g} to {max(above):.3g} rad/s,\n"
-                     "above what the forcing excites:\nnot marked (rao_summary.json)")
+                     "outside what the forcing excites\n(rao_summary.json)")
     if notes:
         a2.text(1.01, 1.0, "\n\n".join(notes), transform=a2.transAxes, fontsize=7, va="top", ha="left",
                 family="DejaVu Sans Mono")
