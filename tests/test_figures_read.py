@@ -95,7 +95,7 @@ def _snapping_lift():
 
 def test_limits_annotate_the_tension_panel_without_setting_its_scale(tmp_path, figures):
     run = _snapping_lift()
-    limits = SimpleNamespace(working_load=126e3, least_tension=1e3)
+    limits = SimpleNamespace(working_load=126e3, least_tension=1e3, slack_fraction=0.1)
     td_plots.plot_time_series(run, tmp_path / "ts.png", limits=limits, window_start=12.0)
     ax = _axis(figures[0], "tension")
     lo, hi = ax.get_ylim()
@@ -105,6 +105,10 @@ def test_limits_annotate_the_tension_panel_without_setting_its_scale(tmp_path, f
     assert any("working load 126000" in n or "working load 126 kN" in n for n in notes) and \
         any("above" in n for n in notes), notes
     assert any(ln.get_label().startswith("least allowed tension 1 kN") for ln in ax.lines)   # inside: a line
+    # the verdict's slack check: 10 % of the trace's mean over the statistics window (t >= 12 s)
+    slack = [ln for ln in ax.lines if ln.get_label().startswith("slack limit (top")]
+    top = run["tension_top"][run.time >= 12.0]
+    assert len(slack) == 1 and slack[0].get_ydata()[0] == pytest.approx(0.1 * top.mean() / 1e3)
     _assert_legend_complete(ax)
     for title in ("swing angle", "cable stretch"):         # the statistics-window band is in their legends too
         _assert_legend_complete(_axis(figures[0], title))

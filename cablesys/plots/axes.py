@@ -65,6 +65,9 @@ def series_panel(ax, t, series, unit: str, atol: float) -> list:
     return steady
 
 
+LIMIT_STYLES = (("r", "--"), ("r", ":"), ("m", "-."), ("m", ":"), ("darkred", "--"), ("darkred", ":"))
+
+
 def limit_lines(ax, limits: dict, data_lo: float, data_hi: float, unit: str, pad: float = 0.08) -> None:
     """Scale ``ax`` to the data [data_lo, data_hi] and draw each limit ({name: value}, drawn units).
 
@@ -75,13 +78,12 @@ def limit_lines(ax, limits: dict, data_lo: float, data_hi: float, unit: str, pad
     if span <= 0.0:
         span = max(abs(data_hi), 1.0)
     lo, hi = data_lo - pad * span, data_hi + pad * span
-    styles = iter(("--", ":", "-."))
     ax.set_ylim(lo, hi)
     edge = {"above": 0, "below": 0}
-    for name, value in limits.items():
-        ls = next(styles, "--")
+    for k, (name, value) in enumerate(limits.items()):
+        color, ls = LIMIT_STYLES[k % len(LIMIT_STYLES)]
         if lo <= value <= hi:
-            ax.axhline(value, color="r", ls=ls, lw=1, label=f"{name} {number(value)} {unit}")
+            ax.axhline(value, color=color, ls=ls, lw=1, label=f"{name} {number(value)} {unit}")
             continue
         where = "above" if value > hi else "below"
         y = 0.97 - 0.07 * edge[where] if where == "above" else 0.03 + 0.07 * edge[where]

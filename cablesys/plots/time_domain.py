@@ -85,7 +85,8 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
     units : str
         "SI" (mm/m, N/kN) or "fps" (in/ft, lbf/kip): the units of the scene file.
     limits : cablesys.scene.limits.Limits, optional
-        Its working load and least allowed tension (N) on the tension panel.
+        Its working load, least allowed tension (N) and slack limit (``slack_fraction`` x each trace's
+        mean from ``window_start``, the verdict's DNV-RP-H103 slack check) on the tension panel.
     window_start : float, optional
         Start of the statistics window (s), shaded before it.
 
@@ -167,6 +168,13 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
             marks["working load"] = limits.working_load * ff
         if getattr(limits, "least_tension", None) is not None:
             marks["least allowed tension"] = limits.least_tension * ff
+        frac = getattr(limits, "slack_fraction", None)
+        if frac is not None:              # the verdict's slack check: each trace's least >= frac x its static mean
+            after = t >= (window_start if window_start is not None else t[0])
+            for name, y, _ in traces:
+                mean = float(np.mean(y[after]))
+                if mean > 0:
+                    marks[f"slack limit ({name}: {100 * frac:.3g} % of its mean)"] = frac * mean
     slack = [e.time for e in result.events if e.kind == "slack"]
     if slack:
         a_t.plot(slack, np.zeros(len(slack)), "rv", ms=5, label="goes slack")
