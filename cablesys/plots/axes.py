@@ -72,26 +72,25 @@ def limit_lines(ax, limits: dict, data_lo: float, data_hi: float, unit: str, pad
     """Scale ``ax`` to the data [data_lo, data_hi] and draw each limit ({name: value}, drawn units).
 
     A limit inside the data's range (with ``pad`` margin) is a labelled horizontal line; one outside
-    does not widen the axis: an arrow at the top or bottom edge says "name value unit above/below".
+    does not widen the axis: a note right of the axes (below an outside legend) says
+    "up-arrow name value unit above" or "down-arrow ... below".
     """
     span = data_hi - data_lo
     if span <= 0.0:
         span = max(abs(data_hi), 1.0)
     lo, hi = data_lo - pad * span, data_hi + pad * span
     ax.set_ylim(lo, hi)
-    edge = {"above": 0, "below": 0}
+    off = []
     for k, (name, value) in enumerate(limits.items()):
         color, ls = LIMIT_STYLES[k % len(LIMIT_STYLES)]
         if lo <= value <= hi:
             ax.axhline(value, color=color, ls=ls, lw=1, label=f"{name} {number(value)} {unit}")
-            continue
-        where = "above" if value > hi else "below"
-        y = 0.97 - 0.07 * edge[where] if where == "above" else 0.03 + 0.07 * edge[where]
-        edge[where] += 1
-        ax.annotate(f"{name} {number(value)} {unit} {where} (off scale)", xy=(0.99, 1.0 if where == "above" else 0.0),
-                    xycoords="axes fraction", xytext=(0.97, y), textcoords="axes fraction", ha="right",
-                    va="top" if where == "above" else "bottom", fontsize=8, color="r",
-                    arrowprops=dict(arrowstyle="->", color="r", lw=1))
+        else:
+            off.append(f"\u2191 {name} {number(value)} {unit} above" if value > hi
+                       else f"\u2193 {name} {number(value)} {unit} below")
+    if off:
+        ax.text(1.01, 0.0, "off scale:\n" + "\n".join(off), transform=ax.transAxes, ha="left", va="bottom",
+                fontsize=7, color="r")
 
 
 def legend_outside(ax, fontsize: float = 7, ncol: int = 1):
