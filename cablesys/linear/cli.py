@@ -91,7 +91,9 @@ def _analyse(args, scene, outdir) -> int:
                 failures.append(f"describing function for {inp}: {h.message}")
             raos[f"describing function, |{inp}| = {abs(Z[k]):.3g} m"] = h.rao(label=inp)
     out = outdir.path
-    natural = {f"omega_{d}": float(w) for d, w in zip(md.dominant, md.omega_undamped) if omega[0] <= w <= w_max}
+    unique = len(set(md.dominant)) == len(md.dominant)        # else name by mode number: one key per mode
+    natural = {f"omega_{d}" if unique else f"mode {k + 1} ({d})": float(w)
+               for k, (d, w) in enumerate(zip(md.dominant, md.omega_undamped)) if omega[0] <= w <= w_max}
     written = []
     for name, r in raos.items():
         tag = "exact" if name.startswith("exact") else "describing"
@@ -121,7 +123,8 @@ def _analyse(args, scene, outdir) -> int:
                               units=units)
         written.append("sea_response.png")
     with outdir.writing("modes.png") as tmp:
-        plot_modes(md, float(lin.y0[model.output_labels.index("y_b")]), tmp)
+        plot_modes(md, lin, tmp, title=f"{scene.name}: mode shapes about the steady state", units=units,
+                   n_shown=len(relevant_modes(md.omega_undamped, forcing.values())))
     written.append("modes.png")
     doc = {"scene": scene.name, "model": which, "steady_state": dict(zip(lin.q_labels, lin.q0.tolist())),
            "natural_frequencies_rad_s": md.omega_undamped.tolist(), "mode_dominant": list(md.dominant),

@@ -1,4 +1,4 @@
-"""Time-domain figures: lower-body path, angle, stretch and tension (reads a TimeResult)."""
+"""Time-domain figures: cable shape, lower-body path, angle, stretch and tension (reads a TimeResult)."""
 
 from __future__ import annotations
 
@@ -6,7 +6,13 @@ from pathlib import Path
 
 import numpy as np
 
+from .axes import clean, is_steady, legend_outside, limit_lines, plain_axis, series_panel
 from .figure import save_figure
+
+# steady-series tolerances (SI): below these ranges a series is integrator noise, stated by its value
+ATOL_LENGTH = 1e-9      # m
+ATOL_ANGLE = 1e-9       # rad
+ATOL_FORCE = 1e-6       # N
 
 
 def _length_scale(span_m: float, units: str) -> tuple[float, str]:
@@ -18,15 +24,55 @@ def _length_scale(span_m: float, units: str) -> tuple[float, str]:
 
 
 def _force_scale(peak_n: float, units: str) -> tuple[float, str]:
+    """(factor, name) for forces of about ``peak_n``: N or kN (SI), lbf or kip (fps)."""
     from ..units import LBF
     if units == "fps":
         return (1 / LBF, "lbf") if peak_n < 1e5 else (1 / (1000 * LBF), "kip")
     return (1.0, "N") if peak_n < 2e4 else (1e-3, "kN")
 
 
+def _snap_marks(result) -> tuple[list, str]:
+    """Snap loads to mark: [(time s, tension N)] and their legend label. The located snap loads of a
+    2-DOF run (``result.snaps``); for a segmented run the first tension peak after each element
+    re-tensions (:meth:`TimeResult.snap_events`)."""
+    if result.snaps:
+        return [(s.time, s.tension) for s in result.snaps], "snap load (first peak after going taut)"
+    marks = [ev["peaks"][0] for ev in result.snap_events() if ev["peaks"]]
+    return marks, "snap load (element tension, first peak after re-tensioning)"
+
+
+def _shape_panel(ax, result, units: str) -> None:
+    """The cable's node positions (segmented runs): the mean shape, the extreme shapes of the body's
+    depth, the body's depth and layback from the top, in lengths of ``units``."""
+    nx, ny = result.profiles["node_x"], result.profiles["node_y"]
+    fl, ul = _length_scale(max(np.ptp(nx), np.ptp(ny)), units)
+    xm, ym = nx.mean(axis=0), ny.mean(axis=0)
+    moving = not all(is_steady(p[:, j], ATOL_LENGTH) for p in (nx, ny) for j in range(p.shape[1]))
+    if moving:
+        for k, (i, name) in enumerate(((int(np.argmin(ny[:, -1])), "shallowest"), (int(np.argmax(ny[:, -1])), "deepest"))):
+            ax.plot(nx[i] * fl, ny[i] * fl, color="0.55", ls=("--", ":")[k], lw=0.9,
+                    label=f"{name} body, t = {result.time[i]:.4g} s")
+    ax.plot(xm * fl, ym * fl, "k.-", lw=1.2, ms=4, label="mean shape (nodes)" if moving else "shape (steady, nodes)")
+    ax.plot(xm[0] * fl, ym[0] * fl, "ks", ms=6, label="top")
+    ax.plot(xm[-1] * fl, ym[-1] * fl, "o", color="C0", ms=8, label="body")
+    depth, layback = (clean(v, ATOL_LENGTH) * fl for v in (ym[-1] - ym[0], xm[-1] - xm[0]))
+    ax.invert_yaxis()
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set(xlabel=f"x ({ul}, + right)", ylabel=f"depth y ({ul}, + down)")
+    ax.set_title(f"cable shape: body depth {depth:.4g} {ul},\nlayback {layback:+.4g} {ul} from the top", fontsize=10)
+    plain_axis(ax)
+    ax.legend(fontsize=7, loc="best")
+
+
 def plot_time_series(result, path, *, title: str | None = None, units: str = "SI", limits=None,
                      window_start: float | None = None) -> Path:
-    """2 x 2 panel: body path x_b-y_b (y down), phi(t), u(t), tensions(t), slack events marked.
+    """Panels of a run: cable shape (segmented runs), body path x_b-y_b (y down), phi(t), u(t) and tensions(t).
+
+    The tension axis is scaled to the traces and the snap loads (from zero when they come within
+    25 % of it); a working load or least allowed
+    tension outside that range is an arrow at the edge ("working load 126 kN above"), not a line
+    that flattens the traces. A steady series (range below 1e-6 of its magnitude plus 1e-9 m,
+    1e-9 rad or 1e-6 N) is drawn flat and its value stated. Every mark is in a legend.
 
     Parameters
     ----------
@@ -39,7 +85,8 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
     units : str
         "SI" (mm/m, N/kN) or "fps" (in/ft, lbf/kip): the units of the scene file.
     limits : cablesys.scene.limits.Limits, optional
-        Draws the working load and the least allowed tension on the tension panel.
+        Its working load, least allowed tension (N) and slack limit (``slack_fraction`` x each trace's
+        mean from ``window_start``, the verdict's DNV-RP-H103 slack check) on the tension panel.
     window_start : float, optional
         Start of the statistics window (s), shaded before it.
 
@@ -49,6 +96,7 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
         ``path``.
     """
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import MaxNLocator
 
     t = result.time
     data = result.data
@@ -57,44 +105,92 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
     fl, ul = _length_scale(max(spans), units)
     fu, uu = _length_scale(max(np.ptp(result[f"u{s}"]) for s in sfx), units)
     tens = [lbl for lbl in data if lbl.startswith("tension")]
-    ff, uf = _force_scale(max(float(np.max(np.abs(data[k]))) for k in tens), units)
-    fig, ax = plt.subplots(2, 2, figsize=(11, 7.5))
+    snaps, snap_label = _snap_marks(result)
+    ff, uf = _force_scale(max([float(np.max(np.abs(data[k]))) for k in tens] + [v for _, v in snaps]), units)
+    shape = "node_x" in result.profiles and "node_y" in result.profiles
+    fig = plt.figure(figsize=(14, 8) if shape else (12, 7.5))
+    gs = fig.add_gridspec(2, 6)
+    if shape:
+        a_shape, a_path, a_phi = (fig.add_subplot(gs[0, 2 * k:2 * k + 2]) for k in range(3))
+        a_u, a_t = fig.add_subplot(gs[1, :2]), fig.add_subplot(gs[1, 2:])
+        _shape_panel(a_shape, result, units)
+    else:
+        a_path, a_phi = fig.add_subplot(gs[0, :3]), fig.add_subplot(gs[0, 3:])
+        a_u, a_t = fig.add_subplot(gs[1, :3]), fig.add_subplot(gs[1, 3:])
+    phis, us, traces = [], [], []
+    still = []
     for k, s in enumerate(sfx):
         name = f"section {s[1:]}" if s else "lower body"
         phi = result[f"phi{s}"] if f"phi{s}" in data else result["phi"]
         xb, yb = result[f"x_b{s}"], result[f"y_b{s}"]
-        ax[0, 0].plot((xb - xb.mean()) * fl, (yb - yb.mean()) * fl, lw=0.8, label=name)
-        ax[0, 1].plot(t, np.degrees(phi), lw=0.8, label=name)
-        ax[1, 0].plot(t, result[f"u{s}"] * fu, lw=0.8, label=name)
+        if is_steady(xb, ATOL_LENGTH) and is_steady(yb, ATOL_LENGTH):
+            x0, y0 = (clean(float(v.mean()), ATOL_LENGTH) for v in (xb, yb))
+            fr, ur = _length_scale(max(abs(x0), abs(y0)), units)
+            still.append(f"{name} at rest: x {x0 * fr:.5g} {ur}, y {y0 * fr:.5g} {ur}")
+        else:
+            a_path.plot((xb - xb.mean()) * fl, (yb - yb.mean()) * fl, lw=0.8, label=name)
+        phis.append((name, np.degrees(phi), f"C{k}"))
+        us.append((name, result[f"u{s}"] * fu, f"C{k}"))
         ends = [(f"tension_top{s}", "top"), (f"tension_bottom{s}", "at the body")]
         ends = [(lbl, where) for lbl, where in ends if lbl in data] or [(f"tension{s}", "")]
         for j, (lbl, where) in enumerate(ends):
-            ax[1, 1].plot(t, result[lbl] * ff, lw=0.8, color=f"C{2 * k + j}",
-                          label=" ".join(x for x in (name if len(sfx) > 1 else "", where) if x) or name)
+            traces.append((" ".join(x for x in (name if len(sfx) > 1 else "", where) if x) or name,
+                           result[lbl] * ff, f"C{2 * k + j}"))
     xs, ys = result["x_s"], result["y_s"]
-    ax[0, 0].plot((xs - xs.mean()) * fl, (ys - ys.mean()) * fl, "k", lw=0.8, label="top (ship)")
-    ax[0, 0].invert_yaxis()
-    ax[0, 0].set(xlabel=f"x - mean ({ul}, + right)", ylabel=f"y - mean ({ul}, + down)",
-                 title="paths about their mean positions")
-    ax[0, 0].axis("equal")
-    ax[0, 1].set(xlabel="time (s)", ylabel=r"cable angle $\phi$ (deg)", title="swing angle")
-    ax[1, 0].set(xlabel="time (s)", ylabel=f"stretch u ({uu})", title="cable stretch")
-    ax[1, 1].set(xlabel="time (s)", ylabel=f"tension ({uf})", title="cable tension (eq. 54)")
+    if is_steady(xs, ATOL_LENGTH) and is_steady(ys, ATOL_LENGTH):
+        still.append("top fixed")
+    else:
+        a_path.plot((xs - xs.mean()) * fl, (ys - ys.mean()) * fl, "k", lw=0.8, label="top (ship)")
+    if still and not a_path.lines:          # nothing moves: say where it is, no empty axes
+        a_path.set(xticks=[], yticks=[])
+    if still:
+        a_path.text(0.5, 0.5, "\n".join(still), transform=a_path.transAxes, ha="center", va="center", fontsize=8)
+    a_path.invert_yaxis()
+    a_path.set(xlabel=f"x - mean ({ul}, + right)", ylabel=f"y - mean ({ul}, + down)",
+               title="paths about their mean positions")
+    if a_path.lines:
+        a_path.axis("equal")
+        a_path.xaxis.set_major_locator(MaxNLocator(5))
+    plain_axis(a_path)
+    series_panel(a_phi, t, phis, "deg", np.degrees(ATOL_ANGLE))
+    a_phi.set(xlabel="time (s)", ylabel=r"cable angle $\phi$ (deg)", title="swing angle")
+    series_panel(a_u, t, us, uu, ATOL_LENGTH * fu)
+    a_u.set(xlabel="time (s)", ylabel=f"stretch u ({uu})", title="cable stretch")
+    series_panel(a_t, t, traces, uf, ATOL_FORCE * ff)
+    a_t.set(xlabel="time (s)", ylabel=f"tension ({uf})", title="cable tension (eq. 54)")
+    values = [v for _, y, _ in traces for v in (float(np.nanmin(y)), float(np.nanmax(y)))]
+    values += [v * ff for _, v in snaps]
+    if min(values) <= 0.25 * max(values):        # near slack: zero on the axis; a taut line keeps its detail
+        values.append(0.0)
+    marks = {}
     if limits is not None:
         if getattr(limits, "working_load", None) is not None:
-            ax[1, 1].axhline(limits.working_load * ff, color="r", ls="--", lw=1, label="working load")
+            marks["working load"] = limits.working_load * ff
         if getattr(limits, "least_tension", None) is not None:
-            ax[1, 1].axhline(limits.least_tension * ff, color="r", ls=":", lw=1, label="least allowed tension")
+            marks["least allowed tension"] = limits.least_tension * ff
+        frac = getattr(limits, "slack_fraction", None)
+        if frac is not None:              # the verdict's slack check: each trace's least >= frac x its static mean
+            after = t >= (window_start if window_start is not None else t[0])
+            for name, y, _ in traces:
+                mean = float(np.mean(y[after]))
+                if mean > 0:
+                    marks[f"slack limit ({name}: {100 * frac:.3g} % of its mean)"] = frac * mean
     slack = [e.time for e in result.events if e.kind == "slack"]
     if slack:
-        ax[1, 1].plot(slack, np.zeros(len(slack)), "rv", ms=5, label="goes slack")
-    for s in result.snaps:
-        ax[1, 1].plot(s.time, s.tension * ff, "k^", ms=5)
-    for a in ax.flat:
+        a_t.plot(slack, np.zeros(len(slack)), "rv", ms=5, label="goes slack")
+    if snaps:
+        a_t.plot([s[0] for s in snaps], [s[1] * ff for s in snaps], "k^", ms=5, label=snap_label)
+    limit_lines(a_t, marks, min(values), max(values), uf)
+    for a in (a_phi, a_u, a_t):
+        a.set_xlim(t[0], t[-1])
+        if window_start is not None and window_start > t[0]:
+            a.axvspan(t[0], window_start, color="0.85", alpha=0.5, lw=0,
+                      label=f"before the statistics window (t < {window_start:.4g} s)")
+    for a in (a_path, a_phi, a_u, a_t):
         a.grid(alpha=0.3)
-        if window_start is not None and a is not ax[0, 0] and window_start > t[0]:
-            a.axvspan(t[0], window_start, color="0.85", alpha=0.5, lw=0)
-        if len(a.get_legend_handles_labels()[0]) > 1:
-            a.legend(fontsize=8)
+    for a in (a_path, a_phi, a_u):
+        if a.get_legend_handles_labels()[0]:
+            a.legend(fontsize=7, loc="best")
+    legend_outside(a_t)
     fig.suptitle(title or result.scene_name)
     return save_figure(fig, path)
