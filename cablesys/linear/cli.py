@@ -50,7 +50,7 @@ def _analyse(args, scene, outdir) -> int:
     from ..export import convert_rao_table, units_of_file
     from ..ladder import linear_model
     from ..units import output_unit
-    from .band import default_band, forcing_frequencies, relevant_modes
+    from .band import RELEVANT_FACTOR, default_band, forcing_frequencies, relevant_modes
     from .equivalent import harmonic_response
     from .frequency_response import rao
     from .linearization import linearize
@@ -86,7 +86,9 @@ def _analyse(args, scene, outdir) -> int:
         if abs(Z[k]) > 0:
             Zk = np.zeros_like(Z)
             Zk[k] = abs(Z[k])
-            h = harmonic_response(model, p, omega, Zk)
+            # the describing function holds the scene's amplitude: it means something near the scene's forcing,
+            # up to the band where that forcing excites modes (linear.band.RELEVANT_FACTOR), not far above it
+            h = harmonic_response(model, p, omega[omega <= RELEVANT_FACTOR * w_s], Zk)
             if not h.success:
                 failures.append(f"describing function for {inp}: {h.message}")
             raos[f"describing function, |{inp}| = {abs(Z[k]):.3g} m"] = h.rao(label=inp)
