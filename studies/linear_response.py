@@ -107,7 +107,7 @@ def analyse(scene, omega_meas, tag, out: Path, quick: bool) -> dict:
             f"describing function, circular, a = {a:.3g} m": h_circ.rao(label="x_s")}
     plot_rao_bode(raos, "x_b", "x_s", natural, out / f"{tag}_rao_x_b.png", title=f"{scene.name}: x_b RAO")
     plot_rao_bode(raos, "tension", "x_s", natural, out / f"{tag}_rao_tension.png", title=f"{scene.name}: tension RAO")
-    plot_modes(md, float(lin.y0[model.output_labels.index("y_b")]), out / f"{tag}_modes.png", title=f"{scene.name}: modes")
+    plot_modes(md, lin, out / f"{tag}_modes.png", title=f"{scene.name}: modes")     # about the real rest shape
 
     # nonlinear RAO: periodic solve along frequency (continuation) vs describing function
     w_nl = np.linspace(omega[0], omega[-1], 6 if quick else 24)
