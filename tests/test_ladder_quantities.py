@@ -47,7 +47,7 @@ def test_every_quantity_is_within_the_tolerance_and_the_stated_error_is_honest(s
     assert set(stated) == set(actual) and {"x_b_amplitude", "x_b_mean", "tension_top_min"} <= set(actual)
     for k, e in actual.items():
         assert e <= tol[metrics.group(k)], (k, e, model["reason"])
-        if e > 2e-4:                       # resolved: the stated error is not below the actual by more than 2x
+        if e > 0.05 * tol[metrics.group(k)]:   # resolved: the stated error is not below the actual by more than 2x
             assert stated[k] >= 0.5 * e, (k, stated[k], e)
 
 
@@ -67,3 +67,13 @@ def test_quantities_of_interest_narrow_the_check(sheared):
     period = metrics.forcing_period(scene)
     actual = metrics.quantity_errors(metrics.statistics(heave, period), ref)
     assert actual["y_b_amplitude"] <= 0.01 and actual["tension_top_max"] <= 0.02
+
+
+def test_the_ladder_quantities_study_runs_quick(run_study):
+    import json
+    out = run_study("ladder_quantities", "--quick")
+    doc = json.loads((out / "ladder_quantities.json").read_text())
+    (c,) = doc["cases"]
+    assert c["all_held_within_tolerance"] and c["all_stated_honest"]
+    assert {r["quantity"] for r in c["rows"]} >= {"x_b_amplitude", "x_b_mean", "tension_top_max"}
+    assert (out / "ladder_quantities.png").stat().st_size > 10_000

@@ -254,7 +254,9 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
         A built simulator: its model runs as built.
     quantities : sequence of str, optional
         The quantities of interest the a posteriori check holds to the tolerance (keys of
-        :func:`.metrics.statistics`: ``x_b_amplitude``, ``y_b_mean``, ``tension_top_max``, ...; default all of them).
+        :func:`.metrics.statistics`: ``x_b_amplitude``, ``y_b_mean``, ``tension_top_max``, ...; default all of them;
+        an empty sequence: only the body and tension groups, each body amplitude over the largest and each tension
+        extreme over the largest top tension).
     cache : RungCache, optional
         Built models and simulators to reuse; pass one cache to many calls on scenes of one
         structure (default: a new one, so nothing is built twice within this call).
@@ -396,7 +398,7 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
         per = {k: v + stretch.get(metrics.group(k), 0.0) for k, v in per.items()}
     limit = {"body": tol[0], "tension": tol[1]}
     asked = kw.get("quantities")
-    judged = {k: v for k, v in per.items() if not asked or k in asked}
+    judged = {k: v for k, v in per.items() if asked is None or k in asked}
     worst = max(judged, key=lambda k: judged[k] / limit[metrics.group(k)], default=None)
     cap = MAX_SEGMENTS if order >= est.ORDER else SLACK_MAX_SEGMENTS
     said = (f"a posteriori (N = {n} vs {n // 2}, order {order:g}): body {e['body']:.2g}, tension {e['tension']:.2g}"
