@@ -13,6 +13,7 @@ import importlib
 import logging
 import signal
 import sys
+import warnings
 
 from .atomic import INTERRUPTS, OutputWriteError, interrupt_handler
 from .errors import CablesysError
@@ -52,8 +53,9 @@ def main(argv: list[str] | None = None) -> int:
             if not getattr(args, "func", None):
                 parser.print_help()
                 return 2
-            # CasADi's solver warnings (KINSOL retries of a run that succeeds) go to the log unless -v
-            with casadi_messages_to_log(args.verbose):
+            # CasADi's solver warnings (KINSOL retries of a run that succeeds) go to the log unless -v;
+            # Python warnings are one clean line each, without the source line
+            with casadi_messages_to_log(args.verbose), _warnings_as_lines(command):
                 return int(args.func(args) or 0)
     except CablesysError as err:
         print(f"cablesys {command}: error: {err}", file=sys.stderr)
@@ -69,6 +71,26 @@ def main(argv: list[str] | None = None) -> int:
 
 
 DISK_ERRNOS = (errno.ENOSPC, errno.EDQUOT, errno.EROFS, errno.EIO)
+
+
+@contextlib.contextmanager
+def _warnings_as_lines(command: str):
+    """Each warning while a sub-command runs as one line on stderr, ``cablesys COMMAND: warning: message``, once per
+    message (Python's default prints the file, the line number and the source line of the call)."""
+    seen: set = set()
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        text = " ".join(str(message).split())
+        if text not in seen:
+            seen.add(text)
+            print(f"cablesys {command}: warning: {text}", file=sys.stderr)
+
+    previous = warnings.showwarning
+    warnings.showwarning = show
+    try:
+        yield
+    finally:
+        warnings.showwarning = previous
 
 
 EXIT_INTERRUPTED = 130     # the shell's code for a run stopped by SIGINT (also used for SIGTERM)
