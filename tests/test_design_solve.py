@@ -164,3 +164,27 @@ def test_intermediate_mass_as_a_variable_can_only_improve(example):
     assert r.converged and r.variable_names[-1] == "intermediate_mass"
     assert r.objective < example.objective * 1.002
     assert all(m > -1e-6 for m in r.margins.values())
+
+
+@pytest.mark.slow
+def test_cli_design_writes_the_designed_scene_and_checks_it_in_the_time_domain(tmp_path, capsys):
+    """``--write-scene`` writes the scene with the optimum's values (read back by the scene loader as a user's
+    `cablesys run` would), and ``--check`` runs the baseline and the designed scene in the time domain in the
+    design sea: the heave reduction the equivalent linearization predicted is what the nonlinear time domain gives,
+    within the sampling error of one 600 s sea (a few tens of periods) and the linearization's."""
+    from cablesys.scene import load_scene
+    path = tmp_path / "dual.toml"
+    path.write_text(dump_scene(dual_scene(duration=600.0)) + DESIGN_TABLE)
+    written = tmp_path / "designed.toml"
+    assert _cli(["design", str(path), "--out", str(tmp_path / "out"), "--write-scene", str(written), "--check"]) == 0
+    doc = json.loads((tmp_path / "out" / "design.json").read_text())
+    new = load_scene(written)
+    for i in (1, 2):
+        assert new.sections[i - 1].cable.ae == pytest.approx(doc["variables"][f"ae_{i}"]["value"], rel=1e-9)
+        assert new.sections[i - 1].cable.internal_damping == pytest.approx(doc["variables"][f"internal_damping_{i}"]["value"], rel=1e-9)
+    check = doc["time_domain_check"]
+    assert doc["baseline"]["significant_heave_m"] > 0 and check["ratio_predicted"] < 1.0
+    assert check["ratio_time_domain"] < 1.0
+    assert check["ratio_time_domain"] == pytest.approx(check["ratio_predicted"], rel=0.3)
+    out = capsys.readouterr().out
+    assert "baseline (the scene's values)" in out and "time domain" in out

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import sys
 
 
@@ -16,6 +17,11 @@ def register(sub) -> None:
     p.add_argument("scene", help="scene TOML file with a [design] table (keys of cablesys.isolation.DesignSettings)")
     p.add_argument("--out", default="design_out", help="output directory (default: design_out)")
     p.add_argument("--overwrite", action="store_true", help="replace results of another scene in --out")
+    p.add_argument("--write-scene", default=None, metavar="FILE",
+                   help="write the scene with the designed values (AE, C_I, ...) to FILE, ready for `cablesys run`")
+    p.add_argument("--check", action="store_true",
+                   help="run the baseline and the designed scene in the time domain in the design's sea (the model "
+                        "ladder's choice) and compare their body heave significant amplitude with the design's")
     p.set_defaults(func=run)
 
 
@@ -83,6 +89,51 @@ def write_figures(scene, settings, result, outdir) -> list[str]:
     return written
 
 
+def designed_scene(scene, settings, result):
+    """``scene`` with the design's values: each variable's value times its factor at each of its parameter labels."""
+    from ..sweeps.values import apply_values
+    from .problem import variables
+    values = {}
+    for var, v in zip(variables(scene, settings), result.values):
+        for label, factor in var.targets:
+            values[label] = float(v) * float(factor)
+    return apply_values(scene, values, "run")[0]
+
+
+def baseline(scene, settings) -> float:
+    """The design objective's significant amplitude 2 sigma of the lowest body's heave (m) at the scene's own values:
+    the Gaussian equivalent linearization in the design sea (:func:`.solve.equivalent_jacobian_shift`)."""
+    from ..model import build_model
+    from .solve import equivalent_jacobian_shift
+    model = build_model(scene)
+    _, st = equivalent_jacobian_shift(model, model.parameters(scene), settings)
+    return float(st.significant_amplitude(model.label("y_b", model.n_sections - 1)))
+
+
+def time_domain_check(scene, new_scene, settings) -> dict:
+    """The baseline and the designed scene run in the time domain (``cablesys.simulate``: the ladder's model) in a
+    JONSWAP sea of the design's Hs, Tp and gamma at the top: 2 sigma of the body heave over the statistics window."""
+    import dataclasses
+
+    import numpy as np
+
+    from ..ladder import simulate
+    from ..scene.sea import SeaSpectrum
+    out = {}
+    for name, sc in (("baseline", scene), ("designed", new_scene)):
+        sea = sc.top_motion.spectrum or SeaSpectrum(hs=settings.hs, tp=settings.tp, gamma=settings.gamma)
+        sc = dataclasses.replace(sc, top_motion=dataclasses.replace(sc.top_motion, spectrum=sea))
+        r = simulate(sc)
+        lowest = sorted(lb for lb in r.labels if lb == "y_b" or (lb.startswith("y_b_") and lb[4:].isdigit()))[-1]
+        y = np.asarray(r[lowest])
+        t0, t1 = r.statistics_window
+        w = (r.time >= t0) & (r.time <= t1)
+        out[name] = {"significant_heave_m": float(2.0 * np.std(y[w])), "model": r.stats["model"]["name"],
+                     "segments": r.stats["model"]["segments"], "window_s": [float(t0), float(t1)]}
+    out["ratio_time_domain"] = out["designed"]["significant_heave_m"] / max(out["baseline"]["significant_heave_m"], 1e-300)
+    return out
+
+
 def run(args) -> int:
     from ..outputs import OutputDir
     from .solve import design
@@ -92,10 +143,23 @@ def run(args) -> int:
     outdir = OutputDir(args.out, "design", {"scene": scene, "design": settings},
                        overwrite=getattr(args, "overwrite", False), owned=("design.json",))
     with outdir.start(scene=scene.name):
+        before = baseline(scene, settings)
         result = design(scene, settings)
         out = outdir.path
         failed = failed_starts(result)
-        doc = {"scene": scene.name, **result.to_dict(), "failed_starts": failed}
+        doc = {"scene": scene.name, **result.to_dict(), "failed_starts": failed,
+               "baseline": {"significant_heave_m": before, "what": "the scene's own values, the same equivalent "
+                            "linearization in the same sea"}}
+        new_scene = designed_scene(scene, settings, result) if (args.write_scene or args.check) else None
+        if args.write_scene:
+            from ..atomic import atomic_path
+            from ..scene import dump_scene
+            from .problem import settings_to_toml
+            with atomic_path(args.write_scene) as tmp:
+                tmp.write_text(dump_scene(new_scene) + settings_to_toml(settings))
+        if args.check:
+            doc["time_domain_check"] = time_domain_check(scene, new_scene, settings)
+            doc["time_domain_check"]["ratio_predicted"] = result.stochastic_sig_y_b / max(before, 1e-300)
         outdir.write_text("design.json", json.dumps(doc, indent=2, default=float) + "\n")
         figures = write_figures(scene, settings, result, outdir)
         outdir.finish("success" if result.converged else "failed", message=str(result.status))
@@ -103,6 +167,9 @@ def run(args) -> int:
     w(f"{scene.name}\n{'converged' if result.converged else 'NOT converged'} (best solve: {result.status}); "
       f"{result.nlp_iterations} IPOPT iterations in {result.nlp_wall_s:.2f} s (total {result.total_wall_s:.2f} s)\n")
     w(f"sea: JONSWAP Hs {settings.hs:g} m, Tp {settings.tp:g} s, gamma {settings.gamma:g}\n")
+    gain = 20 * math.log10(max(result.stochastic_sig_y_b, 1e-300) / max(before, 1e-300))
+    w(f"body heave significant amplitude: baseline (the scene's values) {before:.4g} m -> designed "
+      f"{result.stochastic_sig_y_b:.4g} m ({gain:+.1f} dB)\n")
     if scene.top_motion.rao is not None:
         w("note: the design's objective moves the top with the surface orbit (Wang 1971 eq. 26 at x = 0); "
           "the scene's [top_motion.rao] is used by run and rao, not by the design\n")
@@ -116,4 +183,11 @@ def run(args) -> int:
         w(f"  {name:<20s} {v:12.5g}   [{lo:.4g}, {hi:.4g}]\n")
     w("constraint margins (>= 0 met): " + ", ".join(f"{k} {v:+.3g}" for k, v in result.margins.items()) + "\n")
     w(f"active: {', '.join(result.active) or 'none'}\nwrote {out / 'design.json'} and {', '.join(figures)}\n")
+    if args.write_scene:
+        w(f"wrote the designed scene to {args.write_scene} (check it: cablesys run {args.write_scene})\n")
+    if args.check:
+        c = doc["time_domain_check"]
+        w(f"time domain ({c['designed']['model']}): heave 2 sigma baseline {c['baseline']['significant_heave_m']:.4g} m, "
+          f"designed {c['designed']['significant_heave_m']:.4g} m: ratio {c['ratio_time_domain']:.3g} "
+          f"(predicted {c['ratio_predicted']:.3g})\n")
     return 0 if result.converged else 1

@@ -121,9 +121,12 @@ def check_rung(name: str) -> str:
 
 
 def with_segments(scene: Scene, n: int) -> Scene:
-    """``scene`` with every section divided into ``n`` elements (1: Wang's straight cable)."""
+    """``scene`` with every section divided into ``n`` elements (1: Wang's straight cable). Elements each have their
+    own inclination: a chain whose sections share one swing angle (``angles = "shared"``, the dual-isolation model
+    of Wang 1971 p. 33) is divided with every element's angle its own (``per_section``)."""
     secs = tuple(dataclasses.replace(s, cable=dataclasses.replace(s.cable, segments=int(n))) for s in scene.sections)
-    return dataclasses.replace(scene, sections=secs)
+    angles = "per_section" if n > 1 else scene.angles
+    return dataclasses.replace(scene, sections=secs, angles=angles)
 
 
 def rung_scene(scene: Scene, name: str, segments: int = 1) -> Scene:
