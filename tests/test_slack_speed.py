@@ -85,18 +85,16 @@ def test_a_plan_that_cannot_fit_is_refused_before_any_run_as_the_plans(planned, 
     assert not isinstance(err.value, ParameterError) and runs == []
 
 
-def _inject_step_cost(cache, scene, ns, per_element_s):
-    """A known cost per RK4 step (``per_element_s`` x N) for the models at ``ns``, in place of the measured one."""
-    for n in ns:
-        model = cache.model(scene, "segmented", n)
-        for compiled in (True, False):
-            cache._memo[("rk4_step_s", id(model), compiled)] = per_element_s * n
+def _inject_step_cost(monkeypatch, per_element_s):
+    """A known cost per step (``per_element_s`` x N) in place of the measured one."""
+    monkeypatch.setattr(X, "_step_seconds", lambda model, *a: per_element_s * model.n_elements)
 
 
-def test_a_time_budget_halves_n_until_the_predicted_plan_fits(planned):
-    scene, choice, cache = planned
+def test_a_time_budget_halves_n_until_the_predicted_plan_fits(planned, monkeypatch):
+    scene, choice, _ = planned
+    cache = RungCache()
     n = choice.segments
-    _inject_step_cost(cache, scene, [n, n // 2, n // 4, n // 8], 1e-3)
+    _inject_step_cost(monkeypatch, 1e-3)
     _, kw = X.plan(scene, choice, cache, {})
     full = sum(r.predicted_s for r in kw["extrapolation_plan"].runs)
     _, kw = X.plan(scene, choice.__class__(choice.name, n // 2, choice.reason, choice.estimated_error, choice.numbers),
@@ -112,10 +110,10 @@ def test_a_time_budget_halves_n_until_the_predicted_plan_fits(planned):
     assert f"time budget {budget:g} s" in got.reason and f"N = {n}" in got.reason
 
 
-def test_a_budget_no_plan_fits_is_refused_at_once(planned):
-    scene, choice, cache = planned
-    n = choice.segments
-    _inject_step_cost(cache, scene, [n >> k for k in range(6) if n >> k >= 2], 1e-3)
+def test_a_budget_no_plan_fits_is_refused_at_once(planned, monkeypatch):
+    scene, choice, _ = planned
+    cache = RungCache()
+    _inject_step_cost(monkeypatch, 1e-3)
     runs = []
     with pytest.raises(X.PlanRefused, match="time budget 0.001 s"):
         cablesys.simulate(scene.with_numerics(time_budget_s=1e-3), cache=cache, on_run=lambda d, c: runs.append(d))

@@ -56,6 +56,7 @@ ORDER = 1.0                 # the leading order extrapolated away (estimate.SLAC
 REMAINDER_ORDER = est.REMAINDER_ORDER   # q of the next term (an expansion in integer powers of 1/N)
 ORDER_RANGE = (0.5, 3.0)    # observed orders accepted as asymptotic (above 1: the remainder dominates, still N^-q)
 MAX_SEGMENTS = 80           # doubling stops here (RK4, compiled kernel: 0.14 s per simulated s at N = 80)
+RKC_GAIN = 0.8              # RKC replaces RK4 when its right-hand sides per output are below this fraction of RK4's
 RK4_MARGIN = 2.0            # h |lambda|_max of the stable step (RK4's boundary is 2.78; issue 11's choice)
 SAMPLES_PER_SNAP = 6        # output samples per axial travel time in the statistics runs (see statistics_step)
 MIN_SEGMENTS = 8            # the smallest plan a time budget may shrink to (runs at N = 2, 4, 8)
@@ -96,18 +97,34 @@ def settings(scene_run: Scene, model, method: str | None = None, x0=None, base_s
     IntegratorSettings
     """
     from ..time_domain import IntegratorSettings
-    from ..time_domain.failures import largest_rate, rk4_steps_per_output
+    from ..time_domain.failures import rk4_steps_per_output, spectrum
     from ..time_domain.integrators import compiled_by_default
-    if method not in (None, "rk"):
+    from ..time_domain.rkc import stages_for
+    if method not in (None, "rk", "rkc"):
         # the caller's method and tolerances (the model tolerance only sets rtol without a method)
         return integrator_settings(scene_run, (1.0, 1.0), int(getattr(model, "n_elements", 1)), method=method, **kw)
     p = model.parameters(scene_run)
-    lam = largest_rate(model, start(scene_run, model) if x0 is None else x0, 0.0, p)
+    eig = spectrum(model, start(scene_run, model) if x0 is None else x0, 0.0, p)
     num = scene_run.numerics
-    floor = math.ceil(num.steps_per_output * num.output_step / (base_step or num.output_step) - 1e-9)
-    spo = max(floor, rk4_steps_per_output(lam, num.output_step, RK4_MARGIN))
+    h = num.output_step
+    floor = math.ceil(num.steps_per_output * h / (base_step or h) - 1e-9)
+    spo = max(floor, rk4_steps_per_output(float(np.max(np.abs(eig))), h, RK4_MARGIN))
     extra = {} if kw.get("max_num_steps") is None else {"max_num_steps": int(kw["max_num_steps"])}
+    if method != "rk":          # RKC where its stages cost less than RK4's 4 per step (the overdamped element modes)
+        spo_c = max(floor, math.ceil(h / element_travel_time(scene_run) - 1e-9))
+        stages = stages_for(h / spo_c, eig)
+        if stages is not None and stages * spo_c < RKC_GAIN * 4 * spo:
+            return IntegratorSettings(method="rkc", steps_per_output=spo_c, stages=stages,
+                                      compiled=compiled_by_default(model, "rkc"), **extra)
     return IntegratorSettings(method="rk", steps_per_output=spo, compiled=compiled_by_default(model, "rk"), **extra)
+
+
+def element_travel_time(scene_run: Scene) -> float:
+    """The shortest time (s) an axial wave takes to cross one element, min over sections of (L / N) sqrt(m / AE):
+    the step of the RKC runs, which resolves a snap front in time as finely as the elements do in space (RK4's
+    stable step on the same wire without internal damping is 1.4 of it)."""
+    return min(s.cable.length / s.cable.segments * math.sqrt(s.cable.mass_per_length / s.cable.ae)
+               for s in scene_run.sections)
 
 
 def run(scene: Scene, n: int, cache: RungCache, kw: dict | None = None, candidate: bool = True):
@@ -181,8 +198,8 @@ class PlannedRun:
     """One run of the extrapolation's plan, predicted before the first starts.
 
     ``segments`` N; ``output_step`` (s) and ``outputs`` (count) of its grid; ``steps_per_output`` RK4 steps per
-    output interval (:func:`settings`); ``step_s`` the wall time of one compiled RK4 step of its model, measured
-    on its compiled interval from the static start (s); ``memory_bytes`` the series' estimate
+    output interval (:func:`settings`); ``method`` ``rk`` (RK4) or ``rkc`` with ``stages``; ``step_s`` the wall time
+    of one compiled step of its model and method, measured on its compiled interval from the static start (s); ``memory_bytes`` the series' estimate
     (:func:`cablesys.time_domain.record.run_memory_bytes`); ``candidate``: the run whose series is returned.
     After the run: ``wall_s`` and ``status``.
     """
@@ -194,6 +211,8 @@ class PlannedRun:
     step_s: float | None
     memory_bytes: float
     candidate: bool
+    method: str = "rk"
+    stages: int = 0
     wall_s: float | None = None
     status: str = "planned"
 
@@ -209,7 +228,8 @@ class PlannedRun:
 
     def as_dict(self) -> dict:
         """JSON-able numbers: N, grid, steps, per-step cost (us), predicted and measured wall time (s)."""
-        return {"segments": self.segments, "candidate": self.candidate, "output_step_s": self.output_step,
+        return {"segments": self.segments, "candidate": self.candidate, "method": self.method,
+                "stages": self.stages or 4, "output_step_s": self.output_step,
                 "outputs": self.outputs, "steps": self.steps, "step_us": None if self.step_s is None else 1e6 * self.step_s,
                 "predicted_s": self.predicted_s, "wall_s": self.wall_s, "status": self.status,
                 "wall_per_step_us": (None if self.wall_s is None or not self.steps else 1e6 * self.wall_s / self.steps)}
@@ -278,7 +298,6 @@ def _planned_run(scene: Scene, n: int, cache: RungCache, kw: dict, output_step: 
                  candidate: bool, measure: bool) -> PlannedRun:
     """The :class:`PlannedRun` of ``n`` elements on a grid of ``outputs`` times ``output_step`` apart: its steps
     from :func:`settings` at the static start and, when ``measure``, its compiled RK4 step timed (:data:`TIMING_S`)."""
-    from ..time_domain.integrators import rk4_interval
     from ..time_domain.record import run_memory_bytes
     sc = rung_scene(scene.with_numerics(output_step=output_step), "segmented", n)
     model = cache.model(scene, "segmented", n)
@@ -287,20 +306,27 @@ def _planned_run(scene: Scene, n: int, cache: RungCache, kw: dict, output_step: 
                  **{k: kw.get(k) for k in ("rtol", "atol", "max_num_steps")})
     per_output = 2 * model.nq + len(model.slack_index) + len(model.output_labels) + 2
     step_s = None
-    if measure and s.method == "rk":
-        f = rk4_interval(model, int(s.steps_per_output), s.compiled).functions["cablesys_rk4_interval"]
-        p = np.concatenate([np.asarray(model.parameters(sc), dtype=float), [0.0, 1.0]])
-
-        def timed():            # whole compiled intervals from the static start for TIMING_S of wall time, at least
-            x, calls, t0 = x0, [], time.perf_counter()      # 3: the fastest (other processes only slow a call down)
-            while len(calls) < 3 or (time.perf_counter() - t0 < TIMING_S and len(calls) < 1000):
-                t1 = time.perf_counter()
-                x = f(x, 0.0, output_step, p)
-                calls.append(time.perf_counter() - t1)
-            return min(calls) / s.steps_per_output
-        step_s = cache.memo(("rk4_step_s", id(model), bool(s.compiled)), timed)     # one cost per model
+    if measure and s.method in ("rk", "rkc"):
+        key = ("step_s", id(model), s.method, s.stages, bool(s.compiled))           # one cost per model and method
+        step_s = cache.memo(key, lambda: _step_seconds(model, s, x0, output_step, model.parameters(sc)))
     return PlannedRun(n, output_step, int(outputs), int(s.steps_per_output), step_s,
-                      run_memory_bytes(outputs, 1, per_output), candidate)
+                      run_memory_bytes(outputs, 1, per_output), candidate, s.method, int(s.stages))
+
+
+def _step_seconds(model, s, x0, output_step: float, p) -> float:
+    """Wall time (s) of one step of ``s`` (``rk`` or ``rkc``) on ``model``: whole compiled output intervals from the
+    static start ``x0`` for :data:`TIMING_S` (at least 3 calls), the fastest call (other processes only slow one
+    down) over its steps."""
+    from ..time_domain.integrators import rk4_interval
+    f = rk4_interval(model, int(s.steps_per_output), s.compiled, s.stages if s.method == "rkc" else 0
+                     ).functions["cablesys_rk4_interval"]
+    p = np.concatenate([np.asarray(p, dtype=float), [0.0, 1.0]])
+    x, calls, t0 = x0, [], time.perf_counter()
+    while len(calls) < 3 or (time.perf_counter() - t0 < TIMING_S and len(calls) < 1000):
+        t1 = time.perf_counter()
+        x = f(x, 0.0, output_step, p)
+        calls.append(time.perf_counter() - t1)
+    return min(calls) / s.steps_per_output
 
 
 def _fits(r: PlannedRun) -> bool:
