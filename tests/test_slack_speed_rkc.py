@@ -65,7 +65,7 @@ def test_stages_are_the_fewest_that_keep_the_spectrum_stable():
     s = rkc.stages_for(h, eig)
     assert s is not None and 0.65 * s * s >= 0.9 * h * 2.0e4
     assert np.all(np.abs(rkc.amplification(h * eig, s)) <= 1.0)
-    assert np.any(np.abs(rkc.amplification(h * eig, s - 1)) > 0.95)
+    assert np.any(np.abs(rkc.amplification(h * eig, s - 1)) > 0.97)
     assert rkc.stages_for(h, [1e3j]) is None           # an undamped mode far up the imaginary axis: no strip reaches it
 
 
