@@ -105,7 +105,8 @@ def settings(scene_run: Scene, model, method: str | None = None, x0=None, base_s
     model : CableModel
         Its model.
     method : str, optional
-        The caller's method (default "rk" at its stable step).
+        The caller's method: "rk" (RK4 at its stable step), "rkc" (RKC; RK4 with a warning where no stage count is
+        stable), another (:func:`.auto.integrator_settings`); default: RKC where it costs less than RK4, else RK4.
     x0 : array_like, optional
         The static start whose fastest rate sets the stable step (default: computed here).
     base_step : float, optional
@@ -135,9 +136,13 @@ def settings(scene_run: Scene, model, method: str | None = None, x0=None, base_s
     if method != "rk":          # RKC where its stages cost less than RK4's 4 per step (the overdamped element modes)
         spo_c = max(floor, math.ceil(h / element_travel_time(scene_run) - 1e-9))
         stages = stages_for(h / spo_c, eig)
-        if stages is not None and stages * spo_c < RKC_GAIN * 4 * spo:
+        if stages is not None and (method == "rkc" or stages * spo_c < RKC_GAIN * 4 * spo):
             return IntegratorSettings(method="rkc", steps_per_output=spo_c, stages=stages,
                                       compiled=compiled_by_default(model, "rkc"), **extra)
+        if method == "rkc":
+            warnings.warn(f"method rkc: no stage count up to the maximum is stable on the spectrum at the step "
+                          f"{h / spo_c:.3g} s (an oscillatory mode too far up the imaginary axis): RK4 runs instead",
+                          NumericalWarning, stacklevel=3)
     return IntegratorSettings(method="rk", steps_per_output=spo, compiled=compiled_by_default(model, "rk"), **extra)
 
 

@@ -290,8 +290,10 @@ class Numerics:
     def __post_init__(self):
         if not isinstance(self.drag_segments, int) or isinstance(self.drag_segments, bool) or not 1 <= self.drag_segments <= 1000:
             raise ParameterError("numerics.drag_segments", self.drag_segments, "must be an integer in [1, 1000]")
-        if self.integrator not in INTEGRATORS:
-            raise ParameterError("numerics.integrator", self.integrator, f"must be one of {INTEGRATORS}")
+        if self.integrator not in INTEGRATORS or self.integrator == "rkc":
+            raise ParameterError("numerics.integrator", self.integrator,
+                                 f"must be one of {tuple(m for m in INTEGRATORS if m != 'rkc')} (rkc needs a stage count "
+                                 "chosen from the model's spectrum: the ladder's slack runs choose it)")
         require_range("numerics.rtol", self.rtol, 1e-14, 1e-1)
         require_range("numerics.atol", self.atol, 1e-16, 1.0)
         require_positive("numerics.duration", self.duration, "s")

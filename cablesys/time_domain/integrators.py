@@ -98,6 +98,7 @@ class IntegratorSettings:
             resolve(self.method)
         if self.method == "rkc" and self.custom is None:
             coefficients(self.stages)          # a ParameterError names the stages outside [2, MAX_STAGES]
+            # (cablesys.time_domain.rkc.stages_for chooses them from the model's spectrum and the step)
 
     @property
     def integrator_method(self) -> IntegratorMethod:
