@@ -228,7 +228,7 @@ class PlannedRun:
     output interval (:func:`settings`); ``method`` ``rk`` (RK4) or ``rkc`` with ``stages``; ``step_s`` the wall time
     of one compiled step of its model and method, measured on its compiled interval from the static start (s); ``memory_bytes`` the series' estimate
     (:func:`cablesys.time_domain.record.run_memory_bytes`); ``candidate``: the run whose series is returned.
-    After the run: ``wall_s`` and ``status``.
+    After the run: ``wall_s``, ``cpu_s`` (this process's CPU time, with the series' labelling) and ``status``.
     """
 
     segments: int
@@ -241,6 +241,7 @@ class PlannedRun:
     method: str = "rk"
     stages: int = 0
     wall_s: float | None = None
+    cpu_s: float | None = None
     status: str = "planned"
 
     @property
@@ -258,8 +259,9 @@ class PlannedRun:
         return {"segments": self.segments, "candidate": self.candidate, "method": self.method,
                 "stages": self.stages or 4, "output_step_s": self.output_step,
                 "outputs": self.outputs, "steps": self.steps, "step_us": None if self.step_s is None else 1e6 * self.step_s,
-                "predicted_s": self.predicted_s, "wall_s": self.wall_s, "status": self.status,
-                "wall_per_step_us": (None if self.wall_s is None or not self.steps else 1e6 * self.wall_s / self.steps)}
+                "predicted_s": self.predicted_s, "wall_s": self.wall_s, "cpu_s": self.cpu_s, "status": self.status,
+                "wall_per_step_us": (None if self.wall_s is None or not self.steps else 1e6 * self.wall_s / self.steps),
+                "cpu_per_step_us": (None if self.cpu_s is None or not self.steps else 1e6 * self.cpu_s / self.steps)}
 
 
 @dataclasses.dataclass
@@ -292,7 +294,7 @@ class Plan:
         self.started += 1
         run_ = self._find(n, candidate)
         if run_ is not None:
-            run_.status = "running"
+            run_.status, run_.cpu_s = "running", time.process_time()
         return self.started
 
     def finished(self, n: int, candidate: bool, result) -> None:
@@ -300,6 +302,7 @@ class Plan:
         run_ = self._find(n, candidate)
         if run_ is not None:
             run_.wall_s = float(result.stats.get("wall_s", math.nan))
+            run_.cpu_s = time.process_time() - run_.cpu_s
             run_.status = "success" if result.success else "failed"
 
     def _find(self, n: int, candidate: bool):
@@ -342,8 +345,8 @@ def _planned_run(scene: Scene, n: int, cache: RungCache, kw: dict, output_step: 
 
 def _step_seconds(model, s, x0, output_step: float, p) -> float:
     """Wall time (s) of one step of ``s`` (``rk`` or ``rkc``) on ``model``: whole compiled output intervals from the
-    static start ``x0`` for :data:`TIMING_S` (at least 3 calls), the fastest call (other processes only slow one
-    down) over its steps."""
+    static start ``x0`` for :data:`TIMING_S` (at least 3 calls), the median call (under the machine's present load:
+    the budget is of wall time) over its steps."""
     from ..time_domain.integrators import rk4_interval
     f = rk4_interval(model, int(s.steps_per_output), s.compiled, s.stages if s.method == "rkc" else 0
                      ).functions["cablesys_rk4_interval"]
@@ -353,7 +356,7 @@ def _step_seconds(model, s, x0, output_step: float, p) -> float:
         t1 = time.perf_counter()
         x = f(x, 0.0, output_step, p)
         calls.append(time.perf_counter() - t1)
-    return min(calls) / s.steps_per_output
+    return float(np.median(calls)) / s.steps_per_output
 
 
 def _fits(r: PlannedRun) -> bool:
