@@ -145,3 +145,24 @@ def test_every_keeps_the_scene_grid_of_a_finer_run(planned):
         assert np.max(np.abs(shared[k] - direct[k])) < 1e-4 * scale, k
     period = metrics.forcing_period(scene)
     assert metrics.errors(p.statistics[n], X.statistics(direct, period))["body"] < 1e-4
+
+
+def test_a_failed_doubling_keeps_the_extrapolation_made_before(planned, monkeypatch):
+    """An injected failure of the 2 N run (a tolerance no N meets makes N double): the N run and its extrapolation
+    from N / 4, N / 2, N are returned, the failure said in the reason."""
+    import dataclasses
+    scene, choice, cache = planned
+    n = choice.segments
+    real = X.run
+
+    def failing(sc, m, cache_, kw=None, candidate=True):
+        r = real(sc, m, cache_, kw, candidate)
+        return dataclasses.replace(r, success=False, message="injected fault") if m == 2 * n else r
+    monkeypatch.setattr(X, "run", failing)
+    _, kw = X.plan(scene, choice, cache, {}, measure=False)
+    first = X.run(scene, n, cache, kw)
+    result, got = X.until_done(scene, choice, (1e-12, 1e-12), first, cache, kw)
+    assert result is first and result.success
+    assert got.segments == n and got.numbers["extrapolated"]["segments"] == [n // 4, n // 2, n]
+    assert f"N = {2 * n} failed (injected fault)" in got.reason
+    assert got.estimated_error == pytest.approx(got.numbers["extrapolated"]["estimated_error"])

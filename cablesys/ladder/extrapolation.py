@@ -599,10 +599,19 @@ def until_done(scene: Scene, choice, tol, result, cache: RungCache, kw: dict | N
     """(result, choice) after the coarse runs and the extrapolation (:func:`complete`) of ``result``, the
     run at ``choice.segments`` (by :func:`run`), N doubling (one more run each) while :func:`complete` asks."""
     known: dict = {}
+    before = None                # (result, choice) of the last N that extrapolated: kept if a doubled run fails
     while True:
-        choice, _, again = complete(scene, choice, result, tol, cache, kw, known)
+        if before is not None and not result.success:
+            r0, c0 = before
+            c0, _, _ = complete(scene, c0, r0, tol, cache, kw, known, double=False)
+            note = (f"; N = {choice.segments} failed ({result.message}): the N = {c0.segments} run and the "
+                    f"extrapolation of N = {c0.segments // 4}, {c0.segments // 2}, {c0.segments} are kept")
+            return r0, dataclasses.replace(c0, reason=c0.reason + note)
+        new, _, again = complete(scene, choice, result, tol, cache, kw, known)
         if not again:
-            return result, choice
+            return result, new
+        before = (result, choice)
+        choice = new
         result = run(scene, choice.segments, cache, kw)
 
 
@@ -629,7 +638,7 @@ def model_dict(choice) -> dict:
 
 
 def complete(scene: Scene, choice, result, tol, cache: RungCache, kw: dict | None = None,
-             known: dict | None = None) -> tuple:
+             known: dict | None = None, double: bool = True) -> tuple:
     """After the run at ``choice.segments``: the coarse runs, the extrapolated block, and whether N must double.
 
     Parameters
@@ -648,6 +657,8 @@ def complete(scene: Scene, choice, result, tol, cache: RungCache, kw: dict | Non
         Run options (see :func:`run`; ``on_block`` and ``progress`` are not passed to the coarse runs).
     known : dict, optional
         {N: statistics} of runs already made (updated in place).
+    double : bool, optional
+        False: never ask for 2 N (the result at N is final).
 
     Returns
     -------
@@ -682,7 +693,7 @@ def complete(scene: Scene, choice, result, tol, cache: RungCache, kw: dict | Non
     block["window_s"] = [float(np.asarray(result.time)[w][0]), float(result.time[-1])]
     e = block["estimated_error"]
     stop = ""
-    if (not block["asymptotic"] or not within(e, tol)) and 2 * n <= MAX_SEGMENTS:
+    if double and (not block["asymptotic"] or not within(e, tol)) and 2 * n <= MAX_SEGMENTS:
         stop = "" if plan_ is None else _admits(scene, plan_, 2 * n, cache, checking(kw or {}))
         if not stop:
             return dataclasses.replace(choice, segments=2 * n), block, True
