@@ -467,22 +467,27 @@ def plan(scene: Scene, choice, cache: RungCache, kw: dict | None = None, measure
     return choice, kw
 
 
-def _admits(scene: Scene, plan_: Plan, n2: int, cache: RungCache, kw: dict) -> str:
-    """"" when the plan may double to ``n2`` (its candidate and statistics runs fit the limits and the budget left),
-    else the reason it may not (the runs are added to ``plan_`` when admitted)."""
+def _admits(scene: Scene, plan_: Plan, n2: int, cache: RungCache, kw: dict, known: dict) -> str:
+    """"" when the plan may double to ``n2`` (its runs fit the limits and the budget left), else the reason it may not.
+    Admitted, its runs are added to ``plan_``: the run at ``n2`` or, when the limits need a coarser statistics grid
+    at ``n2``, all three on that grid (the statistics made on the finer one, ``known``, are dropped, said in
+    ``plan_.notes``)."""
     try:
-        runs, step, _, _ = _runs(scene, n2, cache, kw, True)
+        runs, step, _, notes = _runs(scene, n2, cache, kw, True)
     except PlanRefused as err:
         return f"N would double to {n2}, but {err}"
-    if abs(step - plan_.statistics_step) > 1e-12 * step:
-        return (f"N would double to {n2}, but its runs need a coarser statistics step ({step:.3g} s, not "
-                f"{plan_.statistics_step:.3g} s) than the runs made, within the limits of one run")
-    new = [r for r in runs if r.segments == n2]
+    regrid = abs(step - plan_.statistics_step) > 1e-12 * step
+    new = runs if regrid else [r for r in runs if r.segments == n2]
     need = sum(r.predicted_s or 0.0 for r in new)
     left = plan_.remaining_budget_s()
     if need > left:
         return (f"N would double to {n2} (predicted {need:.3g} s), beyond the {max(left, 0.0):.3g} s left of the time "
                 f"budget {plan_.budget_s:g} s")
+    if regrid:
+        known.clear()
+        plan_.statistics.clear()
+        plan_.statistics_step = step
+        plan_.notes.extend(f"from N = {n2}: {note}" for note in notes)
     plan_.runs.extend(new)
     return ""
 
@@ -694,7 +699,7 @@ def complete(scene: Scene, choice, result, tol, cache: RungCache, kw: dict | Non
     e = block["estimated_error"]
     stop = ""
     if double and (not block["asymptotic"] or not within(e, tol)) and 2 * n <= MAX_SEGMENTS:
-        stop = "" if plan_ is None else _admits(scene, plan_, 2 * n, cache, checking(kw or {}))
+        stop = "" if plan_ is None else _admits(scene, plan_, 2 * n, cache, checking(kw or {}), known)
         if not stop:
             return dataclasses.replace(choice, segments=2 * n), block, True
     if plan_ is not None:
