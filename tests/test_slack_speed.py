@@ -166,3 +166,27 @@ def test_a_failed_doubling_keeps_the_extrapolation_made_before(planned, monkeypa
     assert got.segments == n and got.numbers["extrapolated"]["segments"] == [n // 4, n // 2, n]
     assert f"N = {2 * n} failed (injected fault)" in got.reason
     assert got.estimated_error == pytest.approx(got.numbers["extrapolated"]["estimated_error"])
+
+
+def test_a_doubling_past_the_memory_limit_replans_on_a_coarser_grid(planned, monkeypatch):
+    """An injected memory limit that the plan at N fits on the statistics grid and the runs at 2 N do not: the
+    doubling replans 2 N, N, N / 2 on a coarser grid (an integer fraction of the scene's step), says so, and
+    extrapolates from them; the doubling stops at 2 N (MAX_SEGMENTS)."""
+    scene, choice, _ = planned
+    cache = RungCache()
+    n = choice.segments
+    _, kw = X.plan(scene, choice, cache, {}, measure=False)
+    p = kw["extrapolation_plan"]
+    fine = p.statistics_step
+    monkeypatch.setattr(record, "MAX_MEMORY_BYTES", 1.01 * max(r.memory_bytes for r in p.runs))
+    monkeypatch.setattr(X, "MAX_SEGMENTS", 2 * n)
+    first = X.run(scene, n, cache, kw)
+    result, got = X.until_done(scene, choice, (1e-12, 1e-12), first, cache, kw)
+    block = got.numbers["extrapolated"]
+    assert got.segments == 2 * n and block["segments"] == [n // 2, n, 2 * n]
+    h = scene.numerics.output_step
+    assert p.statistics_step > fine and round(h / p.statistics_step) * p.statistics_step == pytest.approx(h)
+    assert any(note.startswith(f"from N = {2 * n}: statistics runs at output step") for note in p.notes)
+    assert all(r.memory_bytes <= record.MAX_MEMORY_BYTES for r in p.runs[3:])
+    assert [(r.segments, r.status) for r in p.runs[3:]] == [(2 * n, "success"), (n, "success"), (n // 2, "success")]
+    assert np.allclose(result.time, scene.output_times)
