@@ -90,6 +90,9 @@ METHODS = {m.name: m for m in (
     IntegratorMethod(name="idas", plugin="idas", implicit=True),
     # classical fixed-step Runge-Kutta 4 (cablesys compiles it as one loop)
     IntegratorMethod(name="rk", plugin="rk", adaptive=False),
+    # Runge-Kutta-Chebyshev, second order, fixed step with IntegratorSettings.stages stages: stable along the
+    # negative real axis to ~0.65 stages^2 (the segmented cable's overdamped element modes; time_domain/rkc.py)
+    IntegratorMethod(name="rkc", plugin="rk", adaptive=False),
     # Dormand-Prince 5(4), explicit, error-controlled: cablesys's own compiled C driver (not a
     # casadi.integrator plugin; time_domain/explicit_rk.py); CVODES when nothing is compiled
     IntegratorMethod(name="dopri5", plugin="dopri5"),

@@ -284,6 +284,7 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
     choice = explicit_or_node(scene, choice, tol, cache, kw)
     t1, b1 = time.perf_counter(), cache.build_s
     if extrapolation.applies(choice, auto):      # first order in N: RK4 runs at N, N / 2, N / 4 (extrapolation)
+        choice, kw = extrapolation.plan(scene, choice, cache, kw)      # every run checked before the first starts
         result = extrapolation.run(scene, choice.segments, cache, kw)
     else:
         result = _run(scene, choice, tol, cache, kw)

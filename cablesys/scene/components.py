@@ -284,12 +284,16 @@ class Numerics:
                       "auto")
     model_tolerance: float = spec("none", "relative error allowed on body motion for model = auto; tension extremes "
                                           "get twice it", 0.01)
+    time_budget_s: float = spec("time", "wall time model = auto may plan for a slack scene's extrapolation runs (their "
+                                        "predicted cost, steps x per-step cost); 0: no budget", 0.0)
 
     def __post_init__(self):
         if not isinstance(self.drag_segments, int) or isinstance(self.drag_segments, bool) or not 1 <= self.drag_segments <= 1000:
             raise ParameterError("numerics.drag_segments", self.drag_segments, "must be an integer in [1, 1000]")
-        if self.integrator not in INTEGRATORS:
-            raise ParameterError("numerics.integrator", self.integrator, f"must be one of {INTEGRATORS}")
+        if self.integrator not in INTEGRATORS or self.integrator == "rkc":
+            raise ParameterError("numerics.integrator", self.integrator,
+                                 f"must be one of {tuple(m for m in INTEGRATORS if m != 'rkc')} (rkc needs a stage count "
+                                 "chosen from the model's spectrum: the ladder's slack runs choose it)")
         require_range("numerics.rtol", self.rtol, 1e-14, 1e-1)
         require_range("numerics.atol", self.atol, 1e-16, 1.0)
         require_positive("numerics.duration", self.duration, "s")
@@ -301,3 +305,6 @@ class Numerics:
         if self.model not in MODEL_CHOICES:
             raise ParameterError("numerics.model", self.model, f"must be one of {MODEL_CHOICES}")
         require_range("numerics.model_tolerance", self.model_tolerance, 1e-6, 0.5)
+        if isinstance(self.time_budget_s, bool) or not (isinstance(self.time_budget_s, (int, float)) and 0.0 <= self.time_budget_s < float("inf")):
+            raise ParameterError("numerics.time_budget_s", self.time_budget_s, "must be a finite number of seconds >= 0 "
+                                                                                 "(0: no budget)")

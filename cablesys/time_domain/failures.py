@@ -120,6 +120,11 @@ def ode_jacobian(model) -> ca.Function:
     return model.derive("ode_jacobian", lambda: ca.Function("ode_jacobian", [x, t, p], [ca.jacobian(model.ode(x, t, p), x)]))
 
 
+def spectrum(model, x, t: float, p) -> np.ndarray:
+    """The eigenvalues of the ODE Jacobian dx'/dx of ``model`` at state ``x``, time ``t`` (1/s, complex)."""
+    return np.linalg.eigvals(np.array(ode_jacobian(model)(x, t, p)))
+
+
 def largest_rate(model, x, t: float, p) -> float:
     """|lambda|_max of the ODE Jacobian of ``model`` at state ``x``, time ``t`` (1/s).
 
@@ -139,7 +144,7 @@ def largest_rate(model, x, t: float, p) -> float:
     float
         The largest eigenvalue modulus.
     """
-    return float(np.max(np.abs(np.linalg.eigvals(np.array(ode_jacobian(model)(x, t, p))))))
+    return float(np.max(np.abs(spectrum(model, x, t, p))))
 
 
 def rk4_steps_per_output(lam_max: float, output_step: float, limit: float = RK4_LIMIT) -> int:

@@ -60,6 +60,10 @@ from ..model import CableModel
 from ..model.scales import state_scales
 from .dae import relative_time_dae
 from .explicit_rk import PAIRS, explicit_rk_library, fallback_settings, make_explicit_rk
+from .rkc import coefficients
+from .rkc import step as rkc_step
+
+FIXED_LOOPS = ("rk", "rkc")        # the fixed-step methods stepped by one compiled loop (:func:`rk4_interval`)
 
 # the registry and the protocol of a user method live in cablesys.integration (the scene checks names there)
 ADAPTIVE = tuple(name for name, m in METHODS.items() if m.adaptive)
@@ -82,6 +86,7 @@ class IntegratorSettings:
     compiled: bool = True             # the DAE as cached compiled C (see cablesys.compiled); False: CasADi VM
     scaled: bool = True               # adaptive methods integrate x~ = x / S(p) (cablesys.model.scales): atol x S_i per state
     jit: bool = False                 # former opt-in compilation; now an alias of ``compiled``
+    stages: int = 0                   # ``rkc`` only: Runge-Kutta-Chebyshev stages per step (>= 2; .rkc.stages_for)
     custom: IntegratorMethod | None = dataclasses.field(default=None, repr=False)   # set from ``method``
 
     def __post_init__(self):
@@ -92,6 +97,9 @@ class IntegratorSettings:
             object.__setattr__(self, "custom", None)     # dataclasses.replace(method=<another name>)
         if self.custom is None:
             resolve(self.method)
+        if self.method == "rkc" and self.custom is None:
+            coefficients(self.stages)          # a ParameterError names the stages outside [2, MAX_STAGES]
+            # (cablesys.time_domain.rkc.stages_for chooses them from the model's spectrum and the step)
 
     @property
     def integrator_method(self) -> IntegratorMethod:
@@ -127,7 +135,7 @@ def compiled_by_default(model: CableModel, method=None) -> bool:
     """
     if int(getattr(model, "n_elements", 1)) <= COMPILE_MAX_ELEMENTS:
         return True
-    return method == "rk" and getattr(model, "kernel_ode", None) is not None
+    return method in FIXED_LOOPS and getattr(model, "kernel_ode", None) is not None
 
 
 def helpers_compiled(model: CableModel, settings: IntegratorSettings) -> IntegratorSettings:
@@ -170,7 +178,7 @@ def uses_scaling(settings: IntegratorSettings) -> bool:
     """Whether ``settings`` integrate the scaled states (adaptive methods with ``scaled``; a fixed
     step has no error test for the scales to act on)."""
     return bool(settings.scaled) and settings.integrator_method.adaptive and not (
-        settings.method == "rk" and settings.custom is None)
+        settings.method in FIXED_LOOPS and settings.custom is None)
 
 
 def _explicit_pair(settings: IntegratorSettings) -> bool:
@@ -181,8 +189,8 @@ def _explicit_pair(settings: IntegratorSettings) -> bool:
 def compiled_dae(model: CableModel, settings: IntegratorSettings) -> Compiled:
     """The compiled model code :func:`make_integrator` uses for ``settings`` (the DAE, or the RK4
     interval for ``rk``), with its first build/load times."""
-    if settings.method == "rk" and settings.custom is None:
-        return rk4_interval(model, int(settings.steps_per_output), settings.compiled or settings.jit)
+    if settings.method in FIXED_LOOPS and settings.custom is None:
+        return rk4_interval(model, int(settings.steps_per_output), settings.compiled or settings.jit, _stages(settings))
     if _explicit_pair(settings):
         comp = explicit_rk_library(model, settings.compiled or settings.jit, settings.method)
         if comp.compiled:
@@ -242,12 +250,18 @@ def compiled_functions(model: CableModel, settings: IntegratorSettings, function
     return [comp.functions[f.name()] for f in functions]
 
 
-def rk4_interval(model: CableModel, n_sub: int, compiled: bool = True) -> Compiled:
-    """One output interval of classical RK4 as one (compiled) function, built once per model.
+def _stages(settings: IntegratorSettings) -> int:
+    """The RKC stages of ``settings`` (0: classical RK4)."""
+    return int(settings.stages) if settings.method == "rkc" else 0
 
-    ``cablesys_rk4_interval(x, s0, ds, p) -> x(s0 + ds)`` takes ``n_sub`` equal RK4 steps of
+
+def rk4_interval(model: CableModel, n_sub: int, compiled: bool = True, stages: int = 0) -> Compiled:
+    """One output interval of classical RK4 (or, with ``stages`` >= 2, of RKC with that many stages,
+    :mod:`.rkc`) as one (compiled) function, built once per model.
+
+    ``cablesys_rk4_interval(x, s0, ds, p) -> x(s0 + ds)`` takes ``n_sub`` equal steps of
     the relative-time DAE (:func:`.dae.relative_time_dae`); the step loop is a CasADi ``mapaccum``, so
-    the generated C is one RK4 step inside a loop (CasADi's own ``rk`` plugin cannot be code
+    the generated C is one step inside a loop (CasADi's own ``rk`` plugin cannot be code
     generated, and evaluating it in the virtual machine costs one function call per stage).
     """
     def build():
@@ -261,11 +275,15 @@ def rk4_interval(model: CableModel, n_sub: int, compiled: bool = True) -> Compil
 
         def f(xx, ss):
             return p[-1] * ode(xx, p[-2] + p[-1] * ss, p[:-2])
-        k1 = f(x, s)
-        k2 = f(x + 0.5 * hs * k1, s + 0.5 * hs)
-        k3 = f(x + 0.5 * hs * k2, s + 0.5 * hs)
-        k4 = f(x + hs * k3, s + hs)
-        step = ca.Function("cablesys_rk4_step", [x, s, hs, p], [x + hs / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4), s + hs])
+        if stages:
+            x_next = rkc_step(f, x, s, hs, stages)
+        else:
+            k1 = f(x, s)
+            k2 = f(x + 0.5 * hs * k1, s + 0.5 * hs)
+            k3 = f(x + 0.5 * hs * k2, s + 0.5 * hs)
+            k4 = f(x + hs * k3, s + hs)
+            x_next = x + hs / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
+        step = ca.Function("cablesys_rk4_step", [x, s, hs, p], [x_next, s + hs])
         loop = step.mapaccum("cablesys_rk4_loop", n_sub, [0, 1], [0, 1])
         xm, s0, ds, pm = ca.MX.sym("x", nx), ca.MX.sym("s0"), ca.MX.sym("ds"), ca.MX.sym("p", npx)
         X, _ = loop(xm, s0, ca.repmat(ds / n_sub, 1, n_sub), ca.repmat(pm, 1, n_sub))
@@ -274,13 +292,13 @@ def rk4_interval(model: CableModel, n_sub: int, compiled: bool = True) -> Compil
         # form, which grows with N (0.57 MB at N = 80: -O1 instead of -O2, 17 % slower)
         size = len(generate([interval], jacobians=False)) if S is ca.MX else None
         return compile_functions([interval], jacobians=False, enabled=compiled, size=size)
-    return model.derive(f"rk4:{n_sub}:{'compiled' if compiled else 'vm'}", build)
+    return model.derive(f"{f'rkc{stages}' if stages else 'rk4'}:{n_sub}:{'compiled' if compiled else 'vm'}", build)
 
 
 def _rk4_integrator(model: CableModel, settings: IntegratorSettings, grid, name: str) -> ca.Function:
     """``name(x0, p) -> xf``: RK4 over the output intervals of ``grid`` (``steps_per_output`` each),
     with the same inputs/outputs as a CasADi integrator."""
-    comp = rk4_interval(model, int(settings.steps_per_output), settings.compiled or settings.jit)
+    comp = rk4_interval(model, int(settings.steps_per_output), settings.compiled or settings.jit, _stages(settings))
     interval = comp.functions["cablesys_rk4_interval"]
     n = len(grid) - 1
     over = interval.mapaccum(f"{name}_intervals", n, [0], [0])
@@ -313,7 +331,7 @@ def make_integrator(model: CableModel, settings: IntegratorSettings, grid, name:
         The integrator (``casadi.integrator``, the compiled RK4 loop, or the scaled integrator
         wrapped in physical states).
     """
-    if settings.method == "rk" and settings.custom is None:
+    if settings.method in FIXED_LOOPS and settings.custom is None:
         return _rk4_integrator(model, settings, np.asarray(grid, dtype=float), name)
     if _explicit_pair(settings):
         F = make_explicit_rk(model, settings, np.asarray(grid, dtype=float), name)
