@@ -3,7 +3,9 @@
 A scene file has top-level ``name``, ``units`` ("SI" or "fps": ft, lbf, slug, s) and
 ``angles``; tables ``[cable]`` and ``[body]`` for one section or ``[[sections]]`` with
 ``cable``/``body`` sub-tables for a chain; ``[environment]`` (with ``[[environment.waves]]``),
-``[[top_motion.x]]``, ``[[top_motion.y]]``, ``[top_motion.series]``, ``[initial]``, ``[numerics]``.
+``[[top_motion.x]]``, ``[[top_motion.y]]``, ``[top_motion.series]``, ``[initial]``, ``[numerics]``,
+and optionally ``[anchor]`` (x, y) and ``[seabed]`` (depth, slope_deg, stiffness, damping, friction_axial,
+friction_lateral, friction_speed).
 Unknown keys are errors.
 """
 
@@ -202,6 +204,9 @@ def dump_scene(scene: Scene, *, units: str = "SI", annotate: bool = False) -> st
             out += _table_lines(s.body, "[sections.body]", units, annotate)
     for key in ("environment", "top_motion", "initial", "numerics"):
         out += _table_lines(getattr(scene, key), f"[{key}]", units, annotate)
+    for key in ("anchor", "seabed"):   # the fixed lower end and the bed (segmented cable)
+        if getattr(scene, key) is not None:
+            out += _table_lines(getattr(scene, key), f"[{key}]", units, annotate)
     if scene.limits is not None:      # what the verdict checks: written so that nothing asked for is dropped
         out += _table_lines(scene.limits, "[limits]", units, annotate)
     if scene.design:                  # the design NLP's table is SI whatever `units` says (DesignSettings)
