@@ -485,8 +485,11 @@ def seabed_catenary(*, length, weight_per_length, ea, span, height, friction=0.0
     lam = 0.2 if L <= np.hypot(X, Z) else np.sqrt(3 * ((L**2 - Z**2) / X**2 - 1)) if L**2 - Z**2 > X**2 else 1e6
     H0 = max(abs(w * X / (2 * lam)), 1e-3 * w * L)
     V0 = 0.5 * w * (Z / np.tanh(lam) + L)
-    sol = root(residual, [np.log(H0), V0], method="hybr", options={"xtol": 1e-15})
-    res = float(max(abs(np.array(residual(sol.x)))))
+    for scale in (1.0, 0.1, 10.0, 0.01, 100.0):        # hybr from the estimate, then from H0 scaled
+        sol = root(residual, [np.log(H0 * scale), V0], method="hybr", options={"xtol": 1e-15})
+        res = float(max(abs(np.array(residual(sol.x)))))
+        if res < 1e-12:
+            break
     if not res < 1e-12:                 # judged by the residual (hybr may stop at xtol on the root itself)
         raise SolverError(f"seabed catenary not solved: {sol.message} (residual {res:.3g})")
     H, VF = float(np.exp(sol.x[0])), float(sol.x[1])
@@ -495,3 +498,69 @@ def seabed_catenary(*, length, weight_per_length, ea, span, height, friction=0.0
     V_A = 0.0 if L_B > 0 else VF - w * L
     return dict(H=H, V_F=VF, H_A=H_A, V_A=V_A, L_B=L_B, touchdown_x=float(shape(L_B, H, VF)[0]),
                 shape=lambda s: shape(s, H, VF))
+
+
+def anchored_line_forces(model, state: SteadyState, p) -> dict:
+    """Fairlead and anchor forces of an anchored one-section line at rest, and its length on the bed.
+
+    The fairlead carries the top element's tension along its axis plus the half element lumped at
+    the top; the anchor the bottom element's tension plus the half element lumped there
+    (:mod:`cablesys.model.segmented`); when the line lies on the bed the anchor force is the line's
+    tension at the anchor (the last element's less the friction of the half element lumped at the
+    anchor). The length on the bed is the weight the seabed and the
+    anchor carry vertically, (sum of the nodes' normal forces x cos(slope) + the anchor's downward
+    load) / w: the supported length, what :func:`seabed_catenary` calls L_B (arc from the anchor).
+
+    Parameters
+    ----------
+    model : SegmentedModel
+        Anchored, one section.
+    state : SteadyState
+        Its static state.
+    p : array
+        Parameter vector.
+
+    Returns
+    -------
+    dict
+        ``H``, ``V_F`` at the fairlead (N; V up), ``H_A``, ``V_A`` at the anchor (N; the upward pull)
+        and ``L_B`` (m).
+    """
+    y, idx = state.outputs, model.layout.section_index
+    n = model.n_elements
+    w, l_r = p[idx(0, "cable.weight_per_length")], p[idx(0, "cable.length")]
+    half = 0.5 * w * l_r / n
+    nx = np.array([y[f"node_x[{j}]"] for j in range(n + 1)])
+    ny = np.array([y[f"node_y[{j}]"] for j in range(n + 1)])
+    T = np.array([y[f"element_tension[{k}]"] for k in range(n)])
+    et = lambda k: np.array([nx[k + 1] - nx[k], ny[k + 1] - ny[k]]) / np.hypot(nx[k + 1] - nx[k], ny[k + 1] - ny[k])
+    top, bottom = T[0] * et(0), T[-1] * et(n - 1)
+    anchor_down = half - bottom[1]
+    L_B = 0.0
+    if "seabed.depth" in model.layout.labels:
+        cos_a = np.cos(np.radians(p[model.layout.index("seabed.slope_deg")]))
+        L_B = (cos_a * sum(y[f"seabed_normal[{j}]"] for j in range(n + 1)) + anchor_down) / w
+    H_A = abs(bottom[0])
+    if "seabed.depth" in model.layout.labels and y["seabed_normal[%d]" % (n - 1)] > 0:
+        # the line's tension at the anchor: the last element's (at its mid-point) less the laid-down
+        # friction of the half element between (T(0) = max(T(h/2) - mu w h/2, 0), seabed_catenary)
+        H_A = max(H_A - p[model.layout.index("seabed.friction_axial")] * half, 0.0)
+    return dict(H=abs(top[0]), V_F=top[1] + half, H_A=H_A, V_A=-anchor_down, L_B=L_B)
+
+
+def seabed_catenary_span(*, length, weight_per_length, ea, height, seabed_length, friction=0.0) -> float:
+    """The fairlead span X at which :func:`seabed_catenary` lays ``seabed_length`` L_B on the bed.
+
+    The suspended arc sigma = L - L_B carries V_F = w sigma; H solves z(sigma) = Z (scipy brentq) and
+    X = L_B + (1/EA) int_0^L_B T ds + (H/w) asinh(w sigma / H) + H sigma / EA (the formulas of
+    :func:`seabed_catenary`). All in m, N, N/m.
+    """
+    from scipy.optimize import brentq
+
+    L, w, EA, Z, L_B, mu = length, weight_per_length, ea, height, seabed_length, friction
+    sig = L - L_B
+    H = brentq(lambda H: H / w * (np.hypot(1, w * sig / H) - 1) + 0.5 * w * sig**2 / EA - Z,
+               1e-9 * w * L, 1e9 * w * L, xtol=1e-12 * w * L, rtol=4 * np.finfo(float).eps)
+    s0 = max(L_B - H / (mu * w), 0.0) if mu > 0 else 0.0
+    on_bed = H * (L_B - s0) - mu * w * (L_B * (L_B - s0) - 0.5 * (L_B**2 - s0**2))
+    return float(L_B + on_bed / EA + H / w * np.arcsinh(w * sig / H) + H * sig / EA)
