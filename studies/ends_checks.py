@@ -183,33 +183,37 @@ def bouncing(duration: float, n: int = 10, chord: float = 20.0, lift: float = 1.
 
 
 def figure(path: Path, n: int) -> None:
-    """The mooring line's static shape on the bed for each friction coefficient, node model and closed form."""
+    """The mooring line's static shape on the bed and its tension, node model and closed form, per friction
+    coefficient (the suspended shapes coincide: friction acts on the laid part only)."""
     plt = setup_matplotlib()
-    fig, (ax, axt) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
+    fig, (ax, axt) = plt.subplots(2, 1, figsize=(8, 7.5), sharex=True)
     for mu, c in zip(FRICTIONS, ("C0", "C1", "C2")):
         span, cf = catenary_case(mu)
         model, p, st = static(mooring_scene(n, span, friction=mu))
         y = st.outputs
         nx = np.array([y[f"node_x[{j}]"] for j in range(n + 1)])
         ny = np.array([y[f"node_y[{j}]"] for j in range(n + 1)])
-        s = np.linspace(0, LENGTH, 601)
-        x, z, T = cf["shape"](s)
-        ax.plot(span - x, DEPTH - z, "-", color=c, lw=1, label=f"closed form, mu = {mu:g}")
-        ax.plot(nx, ny, "o", color=c, ms=3, label=f"node model N = {n}, mu = {mu:g}")
+        x, z, T = cf["shape"](np.linspace(0, LENGTH, 601))
+        ax.plot(span - x, DEPTH - z, "-", color=c, lw=1)
+        ax.plot(nx, ny, "o", color=c, ms=3, mfc="none" if mu else c, label=f"mu = {mu:g}: anchor at x = {span:.2f} m")
         Te = np.array([y[f"element_tension[{k}]"] for k in range(n)])
         axt.plot(span - x, T / 1e3, "-", color=c, lw=1)
         axt.plot(0.5 * (nx[1:] + nx[:-1]), Te / 1e3, "o", color=c, ms=3, label=f"mu = {mu:g}")
     ax.axhline(DEPTH, color="0.4", lw=2)
-    ax.text(5, DEPTH + 4, "seabed", color="0.3")
+    ax.text(120, DEPTH - 3, "seabed (flat, rigid)", color="0.3", va="bottom")
     ax.plot([0], [0], "ks", ms=7)
-    ax.text(4, -3, "fairlead", va="bottom")
+    ax.text(6, 2, "fairlead (top)", va="center")
+    ax.plot([span], [DEPTH], "k^", ms=8)
+    ax.text(span - 4, DEPTH - 6, "anchor", ha="right")
     ax.invert_yaxis()
     ax.set_ylabel("depth below the fairlead y (m)")
-    ax.set_title(f"Mooring line on the seabed: {LENGTH:g} m chain, w = {W:g} N/m, EA = {EA / 1e6:g} MN, half on the bed")
-    ax.legend(fontsize=7, ncol=2, loc="upper right")
+    ax.set_title(f"{LENGTH:g} m chain, w = {W:g} N/m, EA = {EA / 1e6:g} MN, half its length on the bed\n"
+                 f"node model N = {n} (dots), closed-form catenary with seabed friction (lines)", fontsize=10)
+    ax.legend(fontsize=8, loc="center right")
+    ax.grid(alpha=0.3)
     axt.set_xlabel("horizontal position from the fairlead x (m)")
     axt.set_ylabel("tension (kN)")
-    axt.legend(fontsize=8, title="element tension (dots), closed form (lines)")
+    axt.legend(fontsize=8, title="element tension, friction coefficient", title_fontsize=8)
     axt.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(path, dpi=130)
@@ -222,7 +226,7 @@ def main(argv=None) -> dict:
     ns = (40, 80) if quick else (40, 80, 160)
     conv = catenary_convergence(ns)
     slope = sloped_case(20)
-    bounce = bouncing(10.0 if quick else 80.0)
+    bounce = bouncing(6.0 if quick else 80.0)
     out = {
         "quick": quick,
         "catenary_seabed_max_rel_err": conv["max_rel_err"],
