@@ -19,6 +19,16 @@ also the top of the next section. Per element e of a section with N elements
   fluid velocity there (current profile, waves, system speed: eq. 26-28), shared between
   the end nodes by virtual work (a force at r = (1 - s) r_a + s r_b gives (1 - s) F and s F).
 
+An ``[anchor]`` fixes the last section's lower node at (anchor.x, anchor.y) instead of a free body
+(that node is then no coordinate, and the last section's body sits at the anchor: its weight and
+drag load the anchor, not the line); a ``[seabed]`` acts on every free node with normal contact
+and regularised Coulomb friction (:mod:`.segmented_seabed`, MoorDyn's seabed model). With a
+seabed, ``static_force`` is the statics' own right-hand side at rest: elements elastic both ways
+(a line laid unstretched on the bed has zero tension, not an undetermined slack length) and the
+laid-down line's friction (:func:`.segmented_seabed.seabed_forces`); without one it is None and the
+statics use ``dynamics``. Scenes with an anchor or a seabed evaluate the element-by-element
+``ode`` (no mapped kernel).
+
 The element's terms are in :mod:`.segmented_element` (shared with the mapped kernel of
 :mod:`.segmented_kernel`). The inertia terms come from the Lagrangian by AD, element by element
 (:func:`.segmented_element.element_inertia`), gravity from eq. 15; tension and drag are
