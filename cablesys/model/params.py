@@ -48,7 +48,19 @@ def structure_of(scene: Scene) -> tuple:
             len(top.x), len(top.y),
             # the series' samples are constants of the top-motion function (top_motion.py, issue 13)
             None if top.series is None else (top.series.times, top.series.x, top.series.y),
-            tuple(s.cable.segments for s in scene.sections))
+            tuple(s.cable.segments for s in scene.sections)) + _ends_structure(scene)
+
+
+_ANCHOR = ("x", "y")
+_SEABED = ("depth", "slope_deg", "stiffness", "damping", "friction_axial", "friction_lateral", "friction_speed")
+
+
+def _ends_structure(scene: Scene) -> tuple:
+    """An anchor and a seabed change the model's coordinates and forces: part of the structure when
+    present (a scene without them keeps today's key)."""
+    if scene.anchor is None and scene.seabed is None:
+        return ()
+    return (("ends", scene.anchor is not None, scene.seabed is not None),)
 
 
 def parameter_items(scene: Scene) -> list[tuple[str, float]]:
@@ -90,6 +102,10 @@ def parameter_items(scene: Scene) -> list[tuple[str, float]]:
     # a sampled series is not in p: its samples are constants of the model (structure_of,
     # model/top_motion.py; issue 13): 2n dead entries cost a copy in every integrator step
     items.append(("top_motion.ramp_s", top.effective_ramp_s))  # smooth start (model/top_motion.py; unset: 3 periods)
+    if scene.anchor is not None:           # the fixed lower end and the seabed (model/segmented.py)
+        items += [(f"anchor.{a}", float(getattr(scene.anchor, a))) for a in _ANCHOR]
+    if scene.seabed is not None:
+        items += [(f"seabed.{a}", float(getattr(scene.seabed, a))) for a in _SEABED]
     return items
 
 

@@ -19,6 +19,16 @@ also the top of the next section. Per element e of a section with N elements
   fluid velocity there (current profile, waves, system speed: eq. 26-28), shared between
   the end nodes by virtual work (a force at r = (1 - s) r_a + s r_b gives (1 - s) F and s F).
 
+An ``[anchor]`` fixes the last section's lower node at (anchor.x, anchor.y) instead of a free body
+(that node is then no coordinate, and the last section's body sits at the anchor: its weight and
+drag load the anchor, not the line); a ``[seabed]`` acts on every free node with normal contact
+and regularised Coulomb friction (:mod:`.segmented_seabed`, MoorDyn's seabed model). With a
+seabed, ``static_force`` is the statics' own right-hand side at rest: elements elastic both ways
+(a line laid unstretched on the bed has zero tension, not an undetermined slack length) and the
+laid-down line's friction (:func:`.segmented_seabed.seabed_forces`); without one it is None and the
+statics use ``dynamics``. Scenes with an anchor or a seabed evaluate the element-by-element
+``ode`` (no mapped kernel).
+
 The element's terms are in :mod:`.segmented_element` (shared with the mapped kernel of
 :mod:`.segmented_kernel`). The inertia terms come from the Lagrangian by AD, element by element
 (:func:`.segmented_element.element_inertia`), gravity from eq. 15; tension and drag are
@@ -39,6 +49,7 @@ from .params import ParameterLayout, environment_symbols, section_prefix
 from .section import SectionParameters
 from .segmented_element import body_drag, dot, element_inertia, element_terms, lump_force, lump_kinetic, norm
 from .segmented_kernel import kernel_ode
+from .segmented_seabed import seabed_forces
 from .signals import EXO_LABELS, OUTPUT_NAMES
 from .top_motion import symbolic_type, top_motion_function
 
@@ -61,6 +72,9 @@ class SegmentedModel(CableModel):
 
     segments: tuple = ()
     accel: ca.Function | None = None          # (q, qd, e, p) -> q'' by 2 x 2 block solves
+    anchored: bool = False                    # the last section's lower node fixed at [anchor] (not in q)
+    static_force: ca.Function | None = None   # (q, qd, e, p) -> f at rest with the seabed's static laws
+                                              # (elements elastic both ways, laid-down friction); None: ``dynamics``
     kernel_ode: ca.Function | None = None     # the same ode from mapped element kernels (MX; .segmented_kernel)
     name: str = "segmented"
     kind: str = "segmented"                  # the model-ladder rung (integrators cap BDF at order 2 for it)
@@ -117,17 +131,25 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
     p = layout.symbol
     segs = tuple(s.cable.segments for s in scene.sections)
     n_nodes = sum(segs)
-    q_labels = tuple(f"{c}[{j}]" for j in range(1, n_nodes + 1) for c in ("x", "y"))
-    q, qd = ca.SX.sym("q", 2 * n_nodes), ca.SX.sym("qd", 2 * n_nodes)
+    anchored = scene.anchor is not None
+    n_free = n_nodes - int(anchored)                 # an anchored line's last node is fixed
+    q_labels = tuple(f"{c}[{j}]" for j in range(1, n_free + 1) for c in ("x", "y"))
+    q, qd = ca.SX.sym("q", 2 * n_free), ca.SX.sym("qd", 2 * n_free)
     e = ca.SX.sym("e", len(EXO_LABELS))
     t, z, zd, zdd = e[0], e[1:3], e[3:5], e[5:7]
     env = environment_symbols(layout, scene)          # Wang 1971 eq. 26-28 inputs
     rho, depth0 = env["density"], env["top_depth"]
-    node_r = [(z[0], z[1])] + [(q[2 * j], q[2 * j + 1]) for j in range(n_nodes)]
-    node_v = [(zd[0], zd[1])] + [(qd[2 * j], qd[2 * j + 1]) for j in range(n_nodes)]
+    node_r = [(z[0], z[1])] + [(q[2 * j], q[2 * j + 1]) for j in range(n_free)]
+    node_v = [(zd[0], zd[1])] + [(qd[2 * j], qd[2 * j + 1]) for j in range(n_free)]
+    if anchored:
+        node_r.append((layout.sym("anchor.x"), layout.sym("anchor.y")))
+        node_v.append((0.0, 0.0))
+    static_law = scene.seabed is not None            # the seabed's statics: elements elastic both ways (catenary.py)
 
     K, V_grav, V_strain = 0.0, 0.0, 0.0
     Q = [[0.0, 0.0] for _ in range(n_nodes + 1)]            # generalized forces per node (node 0: top)
+    Q_static = [[0.0, 0.0] for _ in range(n_nodes + 1)]     # the same at rest with the statics' tension law
+    contact_area = [0.0] * (n_nodes + 1)                     # d l per node (seabed contact)
     M_nodes = [ca.SX.zeros(2, 2) for _ in range(n_nodes + 1)]     # 2 x 2 mass block per node
     F_inertia = [ca.SX.zeros(2, 1) for _ in range(n_nodes + 1)]   # inertial forces of the added mass
     weights = [0.0] * (n_nodes + 1)
@@ -151,9 +173,14 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
             weights[a] += 0.5 * el["weight"]
             weights[b] += 0.5 * el["weight"]
             V_strain += el["strain_energy"]
+            el["static_tension"] = P.ae * el["strain"] if static_law else el["tension"]
             for c in range(2):     # tension -T dl/dr (virtual work of eq. 46/54), drag shares
                 Q[a][c] += el["tension"] * el["et"][c] + el["drag_a"][c]
                 Q[b][c] += -el["tension"] * el["et"][c] + el["drag_b"][c]
+                Q_static[a][c] += el["static_tension"] * el["et"][c] + el["drag_a"][c]
+                Q_static[b][c] += -el["static_tension"] * el["et"][c] + el["drag_b"][c]
+            contact_area[a] += 0.5 * P.l_r / n_el * P.d_0
+            contact_area[b] += 0.5 * P.l_r / n_el * P.d_0
             els.append(el)
         jb = j0 + n_el                                         # the body's node
         rb, vb = node_r[jb], node_v[jb]
@@ -167,16 +194,26 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
         elements += els
         j0 = jb
     V_grav = -sum(w * r[1] for w, r in zip(weights, node_r))   # eq. 15 with y down
+    V_contact, bed = 0.0, None
+    if scene.seabed is not None:
+        bed = seabed_forces(layout, node_r, node_v, contact_area, elements, depth0, range(1, n_free + 1))
+        V_contact = bed["energy"]
+        for j, (Fd, Fs) in bed["forces"].items():
+            for c in range(2):
+                Q[j][c] += Fd[c]
+                Q_static[j][c] += Fs[c]
     # Lagrange's equations node by node (element by element, see element_inertia): M q'' = f with
     # f = generalized forces + weights (-dV/dq, eq. 15) + inertial forces of the added mass
-    blocks = M_nodes[1:]
-    f_nodes = [F_inertia[j] + ca.vertcat(Q[j][0], Q[j][1] + weights[j]) for j in range(1, n_nodes + 1)]
+    blocks = M_nodes[1:n_free + 1]
+    f_nodes = [F_inertia[j] + ca.vertcat(Q[j][0], Q[j][1] + weights[j]) for j in range(1, n_free + 1)]
+    f_static = ca.vertcat(*[F_inertia[j] + ca.vertcat(Q_static[j][0], Q_static[j][1] + weights[j])
+                            for j in range(1, n_free + 1)])
     M, f = ca.diagcat(*blocks), ca.vertcat(*f_nodes)
 
     # q'' node by node: M is block diagonal (2 x 2 per node); solve each block in closed form
     acc_nodes = [(zdd[0], zdd[1])]
     acc = []
-    for j in range(n_nodes):
+    for j in range(n_free):
         m11, m12, m21, m22 = blocks[j][0, 0], blocks[j][0, 1], blocks[j][1, 0], blocks[j][1, 1]
         f1, f2 = f_nodes[j][0], f_nodes[j][1]
         det = m11 * m22 - m12 * m21
@@ -184,6 +221,8 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
         acc += [ax, ay]
         acc_nodes.append((ax, ay))
     acc = ca.vertcat(*acc)
+    if anchored:
+        acc_nodes.append((0.0, 0.0))
 
     x = ca.vertcat(q, qd)
     xdot = ca.vertcat(qd, acc)
@@ -214,6 +253,9 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
             "element_strain": ca.vertcat(*[el["strain"] for el in elements]),
             "element_slack": ca.vertcat(*[el["slack"] for el in elements]),
             "node_x": ca.vertcat(*[r[0] for r in node_r]), "node_y": ca.vertcat(*[r[1] for r in node_r])}
+    if bed is not None:
+        prof["seabed_normal"] = ca.vertcat(*bed["normal"])
+        prof["seabed_friction"] = ca.vertcat(*bed["friction"])
     s_el, s_node, s0 = [], [0.0], 0.0
     for s in sections:
         P, n_el = s["P"], len(s["elements"])
@@ -230,16 +272,21 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
     accel = ca.Function("accel", [q, qd, e, p], [acc], ["q", "qd", "e", "p"], ["qdd"])
     top = top_motion_function(scene, layout)
     S = symbolic_type(scene)
-    nq = 2 * n_nodes
+    nq = 2 * n_free
     xs, ts, ps = S.sym("x", 2 * nq), S.sym("t"), S.sym("p", p.shape[0])
     ode = ca.Function("ode", [xs, ts, ps], [ca.vertcat(xs[nq:], accel(xs[:nq], xs[nq:], top(ts, ps), ps))],
                       ["x", "t", "p"], ["xdot"])
     outputs = ca.Function("outputs", [x, e, p], [ca.vertcat(*out)], ["x", "e", "p"], ["y"])
-    energy = ca.Function("energy", [x, e, p], [K, V_grav + V_strain], ["x", "e", "p"], ["K", "V"])
+    energy = ca.Function("energy", [x, e, p], [K, V_grav + V_strain + V_contact], ["x", "e", "p"], ["K", "V"])
     cable_force = ca.Function("cable_force", [x, p], [ca.SX(0, 1)], ["x", "p"], ["gap"])
-    # a sampled series is an MX node inside the SX physics: no kernel form of that model
-    kernel = kernel_ode(scene, lambda n_el: drag_points(scene, n_el)) if S is ca.SX else None
+    static = (ca.Function("static_force", [q, qd, e, p], [f_static], ["q", "qd", "e", "p"], ["f"])
+              if scene.seabed is not None else None)
+    # a sampled series is an MX node inside the SX physics: no kernel form of that model; the kernel
+    # has no anchor and no seabed (such scenes evaluate the element-by-element ode)
+    kernel = (kernel_ode(scene, lambda n_el: drag_points(scene, n_el))
+              if S is ca.SX and not anchored and scene.seabed is None else None)
     return SegmentedModel(layout=layout, n_sections=n_sec, angles=scene.angles, q_labels=q_labels,
                           output_labels=tuple(labels), dynamics=dynamics, ode=ode, top=top, outputs=outputs,
                           energy=energy, cable_force=cable_force, slack_index=(), symbolic=S,
-                          segments=segs, accel=accel, kernel_ode=kernel)
+                          segments=segs, accel=accel, kernel_ode=kernel, anchored=anchored,
+                          static_force=static)

@@ -308,3 +308,54 @@ class Numerics:
         if isinstance(self.time_budget_s, bool) or not (isinstance(self.time_budget_s, (int, float)) and 0.0 <= self.time_budget_s < float("inf")):
             raise ParameterError("numerics.time_budget_s", self.time_budget_s, "must be a finite number of seconds >= 0 "
                                                                                  "(0: no budget)")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Anchor:
+    """A fixed lower end: the last section's lower node held at (x, y) instead of a free body.
+
+    Coordinates are the segmented model's node coordinates (cablesys.model.segmented): x
+    horizontal from the top's mean position, y down from the top's mean depth. The last
+    section's body sits at the anchor: its weight and drag act on the anchor, not on the line.
+    """
+
+    x: float = spec("length", "horizontal position of the anchor from the top's mean position (+x to the right)")
+    y: float = spec("length", "depth of the anchor below the top's mean depth (y down)")
+
+    def __post_init__(self):
+        _check_all_finite(self, "anchor")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Seabed:
+    """A flat or sloped seabed acting on the nodes of a segmented cable.
+
+    Contact follows MoorDyn's seabed model (Hall & Goupee 2015; MoorDyn v2 documentation,
+    moordyn.readthedocs.io, kBot and cBot): a node of contact length l (half of each adjacent
+    element's unstretched length) and diameter d penetrating the bed by delta feels the normal
+    force F_n = max(0, (k delta + c delta') d l) while delta > 0. Coulomb friction along the
+    bed opposes the node's sliding speed v_t: F_f = -mu F_n tanh(v_t / friction_speed), a smooth
+    regularisation of sign(v_t) (so the integrator is not stalled by stick-slip; MoorDyn v2
+    regularises with a linear damping instead, NREL/TP-5000-82033).
+    """
+
+    depth: float = spec("length", "depth of the seabed below the still surface at x = 0 (the top's mean horizontal position)")
+    slope_deg: float = spec("angle_deg", "slope of the seabed in degrees, + when it deepens towards +x; in (-60, 60)", 0.0)
+    stiffness: float = spec("stiffness_per_area", "normal stiffness per unit contact area k (MoorDyn kBot)", 3.0e6)
+    damping: float = spec("damping_per_area", "normal damping per unit contact area c (MoorDyn cBot)", 3.0e5)
+    friction_axial: float = spec("none", "Coulomb friction coefficient for sliding along the line", 0.0)
+    friction_lateral: float = spec("none", "Coulomb friction coefficient for sliding across the line (out of the plane: "
+                                           "acts in the 3-D model; the planar model's nodes slide along the line only)", 0.0)
+    friction_speed: float = spec("velocity", "sliding speed v_s of the tanh regularisation of the friction (m/s)", 0.01)
+
+    def __post_init__(self):
+        _check_all_finite(self, "seabed")
+        require_range("seabed.slope_deg", self.slope_deg, -60.0, 60.0, "deg", lo_open=True, hi_open=True)
+        require_positive("seabed.stiffness", self.stiffness, "Pa/m")
+        for name in ("damping", "friction_axial", "friction_lateral"):
+            require_nonnegative(f"seabed.{name}", getattr(self, name))
+        require_positive("seabed.friction_speed", self.friction_speed, "m/s")
+
+    def bed_y(self, x: float, top_depth: float) -> float:
+        """The bed's y (down from the top's mean depth, m) at horizontal position x (m)."""
+        return self.depth - top_depth + x * math.tan(math.radians(self.slope_deg))

@@ -17,6 +17,7 @@ SI_UNIT = {
     "force_per_length": "N/m", "density": "kg/m^3", "velocity": "m/s",
     "acceleration": "m/s^2", "area": "m^2", "force_time": "N s", "angle": "rad",
     "angle_deg": "deg", "frequency": "rad/s", "time": "s", "none": "-",
+    "stiffness_per_area": "Pa/m", "damping_per_area": "Pa s/m",     # seabed contact (scene Seabed)
 }
 
 # factor from the report's foot-pound-second (slug) system to SI, per dimension
@@ -25,6 +26,7 @@ FPS_TO_SI = {
     "force_per_length": U.LBF / U.FT, "density": U.SLUG / U.FT**3, "velocity": U.FT,
     "acceleration": U.FT, "area": U.FT**2, "force_time": U.LBF, "angle": 1.0,
     "angle_deg": 1.0, "frequency": 1.0, "time": 1.0, "none": 1.0,
+    "stiffness_per_area": U.LBF / U.FT**3, "damping_per_area": U.LBF / U.FT**3,
 }
 
 UNIT_SYSTEMS = ("SI", "fps")

@@ -7,7 +7,7 @@ import dataclasses
 import numpy as np
 
 from ..errors import ParameterError
-from .components import Body, Cable, Environment, Initial, Numerics, Section, TopMotion
+from .components import Anchor, Body, Cable, Environment, Initial, Numerics, Seabed, Section, TopMotion
 from .labels import section_prefix
 from .limits import Limits
 from .sea import append_once, sea_waves
@@ -33,6 +33,8 @@ class Scene:
     numerics: Numerics = dataclasses.field(default_factory=Numerics)
     limits: Limits | None = None      # what a run is checked against (cablesys.verdict); optional
     design: dict | None = dataclasses.field(default=None, compare=False)   # the [design] table, read by cablesys.isolation
+    anchor: Anchor | None = None      # the last section's lower end fixed (segmented cable only)
+    seabed: Seabed | None = None      # a seabed acting on the nodes (segmented cable only)
 
     def __post_init__(self):
         secs = tuple(self.sections)
@@ -46,11 +48,42 @@ class Scene:
             raise ParameterError("angles", self.angles, f"must be one of {ANGLE_MODES}")
         self._check_hanging_tension()
         self._check_initial_lengths()
+        self._check_ends()
         sea = self.top_motion.spectrum
         if sea is not None and sea.waves_at_cable:   # the same sea at the cable (Wang 1971 eq. 26-28; scene/sea.py)
             env = self.environment
             object.__setattr__(self, "environment", dataclasses.replace(
                 env, waves=append_once(env.waves, sea_waves(sea, env.gravity))))
+
+    def _check_ends(self) -> None:
+        """An anchor or a seabed acts on the nodes of the segmented cable; the anchor lies on or above
+        the bed; the line reaches from the top's mean position to its anchor (length l_r >= chord)."""
+        if self.anchor is None and self.seabed is None:
+            return
+        what = "[anchor]" if self.seabed is None else "[seabed]"
+        if all(s.cable.segments == 1 for s in self.sections):
+            raise ParameterError(f"{section_prefix(self, 0)}cable.segments", 1, f"must be >= 2 in some section: {what} "
+                                 "acts on the nodes of the segmented cable (Wang's 2-DOF straight cable has none)")
+        a, bed, depth0 = self.anchor, self.seabed, self.environment.top_depth
+        if a is None:
+            return
+        if self.initial.phi is not None or self.initial.u is not None:
+            raise ParameterError("initial.phi" if self.initial.phi is not None else "initial.u",
+                                 self.initial.phi if self.initial.phi is not None else self.initial.u,
+                                 "must be unset for an anchored line: it starts from its static state")
+        if bed is not None:
+            y_bed = bed.bed_y(a.x, depth0)
+            if a.y > y_bed + 1e-9 * max(1.0, abs(y_bed)):
+                raise ParameterError("seabed.depth", bed.depth,
+                                     f"puts the bed at y = {y_bed:.6g} m under the anchor (anchor.x = {a.x:.6g} m), "
+                                     f"above anchor.y = {a.y:.6g} m: the anchor must lie on or above the seabed")
+        length = sum(s.cable.length for s in self.sections)
+        chord = float(np.hypot(a.x, a.y))
+        if length < chord:
+            raise ParameterError(f"{section_prefix(self, len(self.sections) - 1)}cable.length",
+                                 self.sections[-1].cable.length,
+                                 f"makes the line {length:.6g} m long (all sections, at their reference tension), "
+                                 f"shorter than the {chord:.6g} m from the top's mean position to the anchor")
 
     def _check_initial_lengths(self) -> None:
         """An initial stretch u must leave every section a positive length l_0 + u (Wang 1971 eq. 10)."""

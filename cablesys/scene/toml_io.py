@@ -3,7 +3,9 @@
 A scene file has top-level ``name``, ``units`` ("SI" or "fps": ft, lbf, slug, s) and
 ``angles``; tables ``[cable]`` and ``[body]`` for one section or ``[[sections]]`` with
 ``cable``/``body`` sub-tables for a chain; ``[environment]`` (with ``[[environment.waves]]``),
-``[[top_motion.x]]``, ``[[top_motion.y]]``, ``[top_motion.series]``, ``[initial]``, ``[numerics]``.
+``[[top_motion.x]]``, ``[[top_motion.y]]``, ``[top_motion.series]``, ``[initial]``, ``[numerics]``,
+and optionally ``[anchor]`` (x, y) and ``[seabed]`` (depth, slope_deg, stiffness, damping, friction_axial,
+friction_lateral, friction_speed).
 Unknown keys are errors.
 """
 
@@ -130,7 +132,8 @@ def _unit_label(dim: str, units: str) -> str:
     if units == "fps":
         return {"length": "ft", "force": "lbf", "mass": "slug", "mass_per_length": "slug/ft",
                 "force_per_length": "lbf/ft", "density": "slug/ft^3", "velocity": "ft/s",
-                "acceleration": "ft/s^2", "area": "ft^2", "force_time": "lbf s"}.get(dim, SI_UNIT[dim])
+                "acceleration": "ft/s^2", "area": "ft^2", "force_time": "lbf s",
+                "stiffness_per_area": "lbf/ft^3", "damping_per_area": "lbf s/ft^3"}.get(dim, SI_UNIT[dim])
     return SI_UNIT[dim]
 
 
@@ -202,6 +205,9 @@ def dump_scene(scene: Scene, *, units: str = "SI", annotate: bool = False) -> st
             out += _table_lines(s.body, "[sections.body]", units, annotate)
     for key in ("environment", "top_motion", "initial", "numerics"):
         out += _table_lines(getattr(scene, key), f"[{key}]", units, annotate)
+    for key in ("anchor", "seabed"):   # the fixed lower end and the bed (segmented cable)
+        if getattr(scene, key) is not None:
+            out += _table_lines(getattr(scene, key), f"[{key}]", units, annotate)
     if scene.limits is not None:      # what the verdict checks: written so that nothing asked for is dropped
         out += _table_lines(scene.limits, "[limits]", units, annotate)
     if scene.design:                  # the design NLP's table is SI whatever `units` says (DesignSettings)

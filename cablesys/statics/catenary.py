@@ -66,6 +66,73 @@ def hanging_guess(model, p) -> np.ndarray:
     return np.column_stack([np.zeros(len(ys)), ys]).ravel()
 
 
+def anchored_guess(model, p) -> np.ndarray:
+    """Free node positions of an anchored line laid along a path of its zero-tension length.
+
+    A heavy line takes the closed-form catenary of its mean properties (:func:`seabed_catenary`,
+    flat rigid bed at the anchor's depth). Otherwise, with a seabed, the path runs from the anchor
+    along the bed towards the top and rises straight to the top (its touchdown point found so that the path is as long as the line); without one,
+    or when the bed path is shorter than the chord, it is two straight legs meeting below the chord's
+    mid-point. A line shorter than the chord is laid straight (it will be stretched).
+
+    Parameters
+    ----------
+    model : SegmentedModel
+        Anchored (``model.anchored``).
+    p : array
+        Parameter vector.
+
+    Returns
+    -------
+    numpy.ndarray
+        q = (x_1, y_1, ..., x_{n-1}, y_{n-1}) in m (the anchor node is not a coordinate).
+    """
+    from scipy.optimize import brentq
+
+    lab = model.layout.labels
+    val = lambda lbl: float(p[lab.index(lbl)])
+    A = np.array([val("anchor.x"), val("anchor.y")])
+    arcs, s0 = [], 0.0                     # zero-tension arc length of every node from the top
+    for i, n_el in enumerate(model.segments):
+        l_0 = val(model.layout.labels[model.layout.section_index(i, "cable.length")]) * (
+            1 - p[model.layout.section_index(i, "cable.tension_ref")] / p[model.layout.section_index(i, "cable.ae")])
+        arcs += [s0 + (k + 1) * l_0 / n_el for k in range(n_el)]
+        s0 += l_0
+    L, chord = s0, float(np.hypot(*A))
+    w = _total_weight(model, p) / L
+    if w > 0 and A[1] > 0 and L > chord:            # the closed-form catenary of the mean line (flat bed)
+        ea = min(p[model.layout.section_index(i, "cable.ae")] for i in range(model.n_sections))
+        mu = val("seabed.friction_axial") if "seabed.friction_axial" in lab else 0.0
+        try:
+            cat = seabed_catenary(length=L, weight_per_length=w, ea=ea, span=abs(A[0]), height=A[1], friction=mu)
+        except SolverError:
+            cat = None
+        if cat is not None:
+            x, z, _ = cat["shape"](L - np.array(arcs[:-1]))
+            direction = -np.sign(A[0]) if A[0] != 0 else 1.0
+            return np.column_stack([A[0] + direction * x, A[1] - z]).ravel()
+    if L <= chord:
+        corners = [np.zeros(2), A]
+    else:
+        corners = None
+        if "seabed.depth" in lab:
+            alpha = np.radians(val("seabed.slope_deg"))
+            t = np.array([np.cos(alpha), np.sin(alpha)]) * (-np.sign(A[0]) if A[0] != 0 else 1.0)
+            excess = lambda a: np.hypot(*(A + a * t)) + a - L      # path length - line length at touchdown a
+            if excess(0.0) < 0 < excess(L):
+                corners = [np.zeros(2), A + brentq(excess, 0.0, L) * t, A]
+        if corners is None:
+            mid, n = 0.5 * A, np.array([-A[1], A[0]]) / chord
+            n = n if n[1] > 0 else -n                                  # below the chord (y down)
+            drop = brentq(lambda h: 2 * np.hypot(0.5 * chord, h) - L, 0.0, L)
+            corners = [np.zeros(2), mid + drop * n, A]
+    legs = np.diff(np.array(corners), axis=0)
+    cum = np.concatenate([[0.0], np.cumsum(np.hypot(legs[:, 0], legs[:, 1]))])
+    path = lambda s: np.array([np.interp(s, cum, [c[i] for c in corners]) for i in range(2)])
+    q = [path(a / L * cum[-1]) for a in arcs[:-1]]
+    return np.array(q).ravel()
+
+
 def _polar(model):
     """q as a function of element angles and lengths, v = (theta_1.., l_1..): r_j = sum_e l_e e_t(theta_e)
     with e_t = (-sin theta, cos theta) (Wang 1971 eq. 10). A rotation is linear in these variables,
@@ -103,6 +170,10 @@ def _tolerance(model, p) -> float:
         return p[model.layout.section_index(i, name)]
     total_l = sum(val(i, "cable.length") for i in range(model.n_sections))
     k_max = max(val(i, "cable.ae") * n / val(i, "cable.length") for i, n in enumerate(model.segments))
+    if "seabed.stiffness" in model.layout.labels:       # a node's contact stiffness k d_0 l
+        k_bed = p[model.layout.index("seabed.stiffness")]
+        k_max = max(k_max, max(k_bed * val(i, "cable.diameter") * val(i, "cable.length") / n
+                               for i, n in enumerate(model.segments)))
     weight = sum(abs(val(i, "body.weight")) + abs(val(i, "cable.weight_per_length")) * val(i, "cable.length")
                  for i in range(model.n_sections))
     return max(TOLERANCE, 1e3 * np.finfo(float).eps * k_max * total_l / weight)
@@ -135,6 +206,8 @@ def segmented_equilibrium(model, p, *, guess=None):
         When neither the direct solve nor the continuation in flow speed converges.
     """
     p = static_parameters(model, p)
+    if getattr(model, "anchored", False):
+        return _anchored_equilibrium(model, p, guess)
     polar, nodes = _rootfinders(model)
     resid, to_q = static_residual(model), _polar(model)
     g0 = hanging_guess(model, p) if guess is None else np.asarray(guess, float)
@@ -142,7 +215,7 @@ def segmented_equilibrium(model, p, *, guess=None):
     tol = _tolerance(model, p)
 
     def residual(q, pp):
-        return float(np.max(np.abs(np.array(resid(q, pp))))) if np.all(np.isfinite(q)) else np.inf
+        return _max_residual(resid, q, pp)
 
     def solve(q0, pp):
         """Polar Newton from q0, then node-coordinate Newton to polish; (q, residual)."""
@@ -174,6 +247,63 @@ def segmented_equilibrium(model, p, *, guess=None):
                           "the hanging cable and along the flow-speed continuation; a very strong current or tow "
                           "streams the cable horizontally: check weights and speeds, or give a guess")
     return q, r
+
+
+def _max_residual(resid, q, p) -> float:
+    return float(np.max(np.abs(np.array(resid(q, p))))) if np.all(np.isfinite(q)) else np.inf
+
+
+def _node_rootfinder(model):
+    def build():
+        opts = {"strategy": "linesearch", "abstol": 1e-13, "error_on_fail": False, "print_level": 0,
+                "disable_internal_warnings": True, "max_iter": 400, "linear_solver_type": "user_defined",
+                "linear_solver": "csparse"}
+        return ca.rootfinder("catenary_anchored", "kinsol", static_residual(model), opts)
+    return model.derive("catenary_anchored_rootfinder", build)
+
+
+def _anchored_equilibrium(model, p, guess):
+    """The static state of an anchored line: KINSOL in node coordinates from :func:`anchored_guess`,
+    then, if needed, by continuation in the weights from the weightless line (each solution the
+    next guess). With a seabed the statics' elements are elastic both ways (segmented_seabed.py);
+    a solution with a compressed element is refused."""
+    resid, nodes = static_residual(model), _node_rootfinder(model)
+    tol = _tolerance(model, p)
+    q = anchored_guess(model, p) if guess is None else np.asarray(guess, float)
+    best = np.inf
+    for _ in range(3):                        # KINSOL restarted from its own last iterate
+        q_new = np.array(nodes(q, p)).ravel()
+        r = _max_residual(resid, q_new, p)
+        if r < best:
+            q, best = q_new, r
+        if best < tol:
+            break
+    if not best < tol:
+        raise SolverError(f"anchored line equilibrium not found (best scaled residual {best:.3g} > {tol:.3g}): "
+                          "KINSOL failed from the line laid along the seabed and up to the top; give a guess")
+    if "seabed.depth" in model.layout.labels:
+        T = _static_tensions(model, q, p)
+        floor = -1e3 * np.finfo(float).eps * max(1.0, float(np.max(np.abs(T)))) - tol * _total_weight(model, p)
+        if T.min() < floor:
+            raise SolverError(f"the anchored line's static state has a compressed element (tension {T.min():.6g} N "
+                              f"at element {int(T.argmin())}): the seabed statics hold only for a line in tension or "
+                              "lying unstretched on the bed")
+    return q, best
+
+
+def _static_tensions(model, q, p) -> np.ndarray:
+    """(AE)_r strain of every element at the node positions q (N): the statics' tension law."""
+    x = np.concatenate([q, np.zeros_like(q)])
+    y = dict(zip(model.output_labels, np.array(model.outputs(x, np.zeros(7), p)).ravel()))
+    strain = np.array([y[f"element_strain[{k}]"] for k in range(model.n_elements)])
+    ae = np.concatenate([[p[model.layout.section_index(i, "cable.ae")]] * n for i, n in enumerate(model.segments)])
+    return ae * strain
+
+
+def _total_weight(model, p) -> float:
+    return sum(abs(p[model.layout.section_index(i, "body.weight")])
+               + abs(p[model.layout.section_index(i, "cable.weight_per_length")]) * p[model.layout.section_index(i, "cable.length")]
+               for i in range(model.n_sections))
 
 
 def segmented_steady(model, p, *, guess=None) -> SteadyState:
@@ -282,3 +412,155 @@ def segmented_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
             r0, v0 = pos[-1], vel[-1]
         q, v = np.array(pos), np.array(vel)
     return np.concatenate([(q + z).ravel(), (v + zd).ravel()])
+
+
+def seabed_catenary(*, length, weight_per_length, ea, span, height, friction=0.0):
+    """The elastic mooring-line catenary with seabed contact and friction (closed form).
+
+    A uniform line of unstretched length L, weight in water w per unit length and axial stiffness
+    EA runs from an anchor on a flat, rigid seabed to a fairlead ``span`` X horizontally and
+    ``height`` Z above it. Along the bed (arc length s from the anchor, 0 <= s <= L_B) the tension is
+    T(s) = max(H - mu w (L_B - s), 0): the line was laid by pulling its fairlead away, the friction
+    mu w per unit length acting towards the anchor; the suspended part (arc sigma = s - L_B from the
+    touchdown point, V = w sigma) is Irvine's elastic catenary with zero slope at touchdown (Irvine
+    1981, Cable Structures, eq. 2.17-2.18; the same assembly as MAP++'s and MoorDyn's catenary
+    with seabed friction, Jonkman 2007, NREL/TP-500-41958, sec. 2.2):
+
+        x(s) = s + (1/EA) int_0^s T ds                                  (on the bed)
+        x(L_B + sigma) = x(L_B) + (H/w) asinh(w sigma / H) + H sigma / EA
+        z(L_B + sigma) = (H/w) [sqrt(1 + (w sigma / H)^2) - 1] + w sigma^2 / (2 EA),
+
+    with L_B = L - V_F / w. When V_F > w L the line does not touch: V_A = V_F - w L and
+    x(s) = (H/w)[asinh(V(s)/H) - asinh(V_A/H)] + H s / EA, z(s) = (H/w)[sqrt(1 + (V(s)/H)^2) -
+    sqrt(1 + (V_A/H)^2)] + (V_A s + w s^2/2) / EA, V(s) = V_A + w s. (H, V_F) solve
+    x(L) = X, z(L) = Z (scipy.optimize.root).
+
+    Parameters
+    ----------
+    length, weight_per_length, ea : float
+        L (m), w (N/m), EA (N).
+    span, height : float
+        X, Z (m) of the fairlead from the anchor (Z > 0 up).
+    friction : float
+        mu, the seabed friction coefficient along the line (>= 0).
+
+    Returns
+    -------
+    dict
+        ``H``, ``V_F`` (N) at the fairlead; ``H_A``, ``V_A`` (N, up) at the anchor; ``L_B`` (m) on the
+        bed; ``touchdown_x`` (m); ``shape(s) -> (x, z, T)`` for unstretched arc s from the anchor.
+    """
+    from scipy.optimize import root
+
+    L, w, EA, X, Z, mu = length, weight_per_length, ea, span, height, friction
+
+    def bed(s, H, L_B):
+        """x offset and tension on the bed at arc s <= L_B."""
+        s0 = max(L_B - H / (mu * w), 0.0) if mu > 0 else 0.0
+        sp = np.maximum(s - s0, 0.0)
+        integral = H * sp - mu * w * (L_B * sp - 0.5 * (np.maximum(s, s0) ** 2 - s0**2))
+        return s + integral / EA, np.maximum(H - mu * w * (L_B - s), 0.0)
+
+    def shape(s, H, VF):
+        s = np.asarray(s, float)
+        L_B = L - VF / w
+        if L_B <= 0:                                     # not touching
+            VA = VF - w * L
+            V = VA + w * s
+            x = H / w * (np.arcsinh(V / H) - np.arcsinh(VA / H)) + H * s / EA
+            z = H / w * (np.hypot(1, V / H) - np.hypot(1, VA / H)) + (VA * s + 0.5 * w * s**2) / EA
+            return x, z, np.hypot(H, V)
+        xb, Tb = bed(np.minimum(s, L_B), H, L_B)
+        sig = np.maximum(s - L_B, 0.0)
+        x = xb + H / w * np.arcsinh(w * sig / H) + H * sig / EA
+        z = H / w * (np.hypot(1, w * sig / H) - 1) + 0.5 * w * sig**2 / EA
+        return x, z, np.where(s <= L_B, Tb, np.hypot(H, w * sig))
+
+    def residual(v):
+        H, VF = np.exp(v[0]), v[1]
+        x, z, _ = shape(L, H, VF)
+        return [(x - X) / L, (z - Z) / L]
+
+    # start: the inextensible catenary's estimate (Peyrot & Goulois 1979, as used by MAP++)
+    lam = 0.2 if L <= np.hypot(X, Z) else np.sqrt(3 * ((L**2 - Z**2) / X**2 - 1)) if L**2 - Z**2 > X**2 else 1e6
+    H0 = max(abs(w * X / (2 * lam)), 1e-3 * w * L)
+    V0 = 0.5 * w * (Z / np.tanh(lam) + L)
+    for scale in (1.0, 0.1, 10.0, 0.01, 100.0):        # hybr from the estimate, then from H0 scaled
+        sol = root(residual, [np.log(H0 * scale), V0], method="hybr", options={"xtol": 1e-15})
+        res = float(max(abs(np.array(residual(sol.x)))))
+        if res < 1e-12:
+            break
+    if not res < 1e-12:                 # judged by the residual (hybr may stop at xtol on the root itself)
+        raise SolverError(f"seabed catenary not solved: {sol.message} (residual {res:.3g})")
+    H, VF = float(np.exp(sol.x[0])), float(sol.x[1])
+    L_B = max(L - VF / w, 0.0)
+    H_A = max(H - mu * w * L_B, 0.0) if L_B > 0 else H
+    V_A = 0.0 if L_B > 0 else VF - w * L
+    return dict(H=H, V_F=VF, H_A=H_A, V_A=V_A, L_B=L_B, touchdown_x=float(shape(L_B, H, VF)[0]),
+                shape=lambda s: shape(s, H, VF))
+
+
+def anchored_line_forces(model, state: SteadyState, p) -> dict:
+    """Fairlead and anchor forces of an anchored one-section line at rest, and its length on the bed.
+
+    The fairlead carries the top element's tension along its axis plus the half element lumped at
+    the top; the anchor the bottom element's tension plus the half element lumped there
+    (:mod:`cablesys.model.segmented`); when the line lies on the bed the anchor force is the line's
+    tension at the anchor (the last element's less the friction of the half element lumped at the
+    anchor). The length on the bed is the weight the seabed and the
+    anchor carry vertically, (sum of the nodes' normal forces x cos(slope) + the anchor's downward
+    load) / w: the supported length, what :func:`seabed_catenary` calls L_B (arc from the anchor).
+
+    Parameters
+    ----------
+    model : SegmentedModel
+        Anchored, one section.
+    state : SteadyState
+        Its static state.
+    p : array
+        Parameter vector.
+
+    Returns
+    -------
+    dict
+        ``H``, ``V_F`` at the fairlead (N; V up), ``H_A``, ``V_A`` at the anchor (N; the upward pull)
+        and ``L_B`` (m).
+    """
+    y, idx = state.outputs, model.layout.section_index
+    n = model.n_elements
+    w, l_r = p[idx(0, "cable.weight_per_length")], p[idx(0, "cable.length")]
+    half = 0.5 * w * l_r / n
+    nx = np.array([y[f"node_x[{j}]"] for j in range(n + 1)])
+    ny = np.array([y[f"node_y[{j}]"] for j in range(n + 1)])
+    T = np.array([y[f"element_tension[{k}]"] for k in range(n)])
+    et = lambda k: np.array([nx[k + 1] - nx[k], ny[k + 1] - ny[k]]) / np.hypot(nx[k + 1] - nx[k], ny[k + 1] - ny[k])
+    top, bottom = T[0] * et(0), T[-1] * et(n - 1)
+    anchor_down = half - bottom[1]
+    L_B = 0.0
+    if "seabed.depth" in model.layout.labels:
+        cos_a = np.cos(np.radians(p[model.layout.index("seabed.slope_deg")]))
+        L_B = (cos_a * sum(y[f"seabed_normal[{j}]"] for j in range(n + 1)) + anchor_down) / w
+    H_A = abs(bottom[0])
+    if "seabed.depth" in model.layout.labels and y["seabed_normal[%d]" % (n - 1)] > 0:
+        # the line's tension at the anchor: the last element's (at its mid-point) less the laid-down
+        # friction of the half element between (T(0) = max(T(h/2) - mu w h/2, 0), seabed_catenary)
+        H_A = max(H_A - p[model.layout.index("seabed.friction_axial")] * half, 0.0)
+    return dict(H=abs(top[0]), V_F=top[1] + half, H_A=H_A, V_A=-anchor_down, L_B=L_B)
+
+
+def seabed_catenary_span(*, length, weight_per_length, ea, height, seabed_length, friction=0.0) -> float:
+    """The fairlead span X at which :func:`seabed_catenary` lays ``seabed_length`` L_B on the bed.
+
+    The suspended arc sigma = L - L_B carries V_F = w sigma; H solves z(sigma) = Z (scipy brentq) and
+    X = L_B + (1/EA) int_0^L_B T ds + (H/w) asinh(w sigma / H) + H sigma / EA (the formulas of
+    :func:`seabed_catenary`). All in m, N, N/m.
+    """
+    from scipy.optimize import brentq
+
+    L, w, EA, Z, L_B, mu = length, weight_per_length, ea, height, seabed_length, friction
+    sig = L - L_B
+    H = brentq(lambda H: H / w * (np.hypot(1, w * sig / H) - 1) + 0.5 * w * sig**2 / EA - Z,
+               1e-9 * w * L, 1e9 * w * L, xtol=1e-12 * w * L, rtol=4 * np.finfo(float).eps)
+    s0 = max(L_B - H / (mu * w), 0.0) if mu > 0 else 0.0
+    on_bed = H * (L_B - s0) - mu * w * (L_B * (L_B - s0) - 0.5 * (L_B**2 - s0**2))
+    return float(L_B + on_bed / EA + H / w * np.arcsinh(w * sig / H) + H * sig / EA)

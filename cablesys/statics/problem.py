@@ -71,7 +71,12 @@ def static_residual(model: CableModel) -> ca.Function:
         p = ca.SX.sym("p", len(model.layout))
         zeroed = set(static_zeroed(model))
         ps = ca.vertcat(*[0.0 if i in zeroed else p[i] for i in range(len(model.layout))])
-        _, f = model.dynamics(q, ca.SX.zeros(model.nq), ca.SX.zeros(len(EXO_LABELS)), ps)
+        # a seabed's statics have their own laws (the laid-down line's friction: model/segmented_seabed.py)
+        forces = getattr(model, "static_force", None)
+        if forces is not None:
+            f = forces(q, ca.SX.zeros(model.nq), ca.SX.zeros(len(EXO_LABELS)), ps)
+        else:
+            _, f = model.dynamics(q, ca.SX.zeros(model.nq), ca.SX.zeros(len(EXO_LABELS)), ps)
         lab = model.layout.labels
         weight = sum(ca.fabs(p[i]) for i, lb in enumerate(lab) if lb.endswith("body.weight")) + sum(
             ca.fabs(p[i] * p[lab.index(lb.replace("weight_per_length", "length"))])
