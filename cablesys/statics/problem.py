@@ -14,7 +14,7 @@ import dataclasses
 import casadi as ca
 import numpy as np
 
-from ..model import EXO_LABELS, CableModel
+from ..model import CableModel
 
 
 @dataclasses.dataclass(frozen=True)
@@ -71,7 +71,7 @@ def static_residual(model: CableModel) -> ca.Function:
         p = ca.SX.sym("p", len(model.layout))
         zeroed = set(static_zeroed(model))
         ps = ca.vertcat(*[0.0 if i in zeroed else p[i] for i in range(len(model.layout))])
-        _, f = model.dynamics(q, ca.SX.zeros(model.nq), ca.SX.zeros(len(EXO_LABELS)), ps)
+        _, f = model.dynamics(q, ca.SX.zeros(model.nq), ca.SX.zeros(model.top.size1_out(0)), ps)
         lab = model.layout.labels
         weight = sum(ca.fabs(p[i]) for i, lb in enumerate(lab) if lb.endswith("body.weight")) + sum(
             ca.fabs(p[i] * p[lab.index(lb.replace("weight_per_length", "length"))])
@@ -86,5 +86,5 @@ def at_rest(model: CableModel, q, p, residual: float) -> SteadyState:
     """The :class:`SteadyState` at coordinates ``q`` (rates zero, top at rest: e = 0), its outputs
     evaluated with the static parameters ``p`` (:func:`static_parameters`)."""
     x = np.concatenate([q, np.zeros_like(q)])
-    y = np.array(model.outputs(x, np.zeros(len(EXO_LABELS)), p)).ravel()
+    y = np.array(model.outputs(x, np.zeros(model.top.size1_out(0)), p)).ravel()
     return SteadyState(q=q, q_labels=model.q_labels, outputs=dict(zip(model.output_labels, y)), residual=residual)
