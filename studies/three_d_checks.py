@@ -361,25 +361,32 @@ def out_of_plane_frequency() -> dict:
 
 
 # ------------------------------------------------------------------------------ figure
-def figure(runs: dict, path: Path) -> Path:
-    """Plan view (x_b, z_b) and elevation (x_b, depth y_b) of the conical-pendulum runs."""
+def figure(runs: dict, cases: dict, path: Path) -> Path:
+    """Plan view (x_b, z_b) and elevation (x_b, depth y_b) of the conical-pendulum runs, with the cable
+    drawn at four instants of the first revolution."""
     plt = setup_matplotlib()
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 5))
-    for a, (t, x, y, z) in sorted(runs.items()):
-        ax1.plot(x, z, lw=1.2, label=f"cone {a:g} deg")
-        ax1.plot([x[0]], [z[0]], "ko", ms=4)
-        ax2.plot(x, y, lw=1.2, label=f"cone {a:g} deg")
-        ax2.plot([0.0, x[0]], [0.0, y[0]], "k-", lw=0.8)
-    ax1.plot([0.0], [0.0], "k+", ms=10, label="top (fixed)")
-    ax1.set(xlabel="x_b (m)", ylabel="z_b (m, sway)", title="Plan view: body path (seen from above)")
-    ax1.set_aspect("equal")
-    ax2.set(xlabel="x_b (m)", ylabel="y_b (m, down)", title="Elevation: body path and cable at t = 0")
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 5.6))
+    for k, (a, (t, x, y, z)) in enumerate(sorted(runs.items())):
+        col = f"C{k}"
+        c = cases[f"{a:g}"]
+        lab = f"cone {a:g} deg: omega^2 L cos(a) / g - 1 = {c['rel_err_omega2']:.1e}"
+        ax1.plot(x, z, color=col, lw=1.4, label=lab)
+        ax1.plot([x[0]], [z[0]], "o", color=col, ms=5)
+        ax2.plot(x, y, color=col, lw=1.4, label=f"cone {a:g} deg: body path (constant depth)")
+        n_rev = int(np.searchsorted(t, 2 * math.pi / c["omega_measured"]))
+        for j in np.linspace(0, n_rev, 4, endpoint=False).astype(int):
+            ax1.plot([0.0, x[j]], [0.0, z[j]], color=col, lw=0.6, alpha=0.6)
+            ax2.plot([0.0, x[j]], [0.0, y[j]], color=col, lw=0.6, alpha=0.6)
+    ax1.plot([0.0], [0.0], "k+", ms=12, mew=2, label="top (fixed)")
+    ax1.set(xlabel="x_b (m)", ylabel="z_b (m, sway)", title="Plan view from above: body path, cable at 4 instants")
+    ax2.plot([0.0], [0.0], "k+", ms=12, mew=2)
+    ax2.set(xlabel="x_b (m)", ylabel="y_b (m, down)", title="Elevation (x-y plane): cable at 4 instants")
     ax2.invert_yaxis()
-    ax2.set_aspect("equal")
     for ax in (ax1, ax2):
+        ax.set_aspect("equal")
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8, loc="best")
-    fig.suptitle("Wang's cable in 3-D: steady conical pendulum, omega^2 = g / (L cos alpha)")
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=1, frameon=False)
+    fig.suptitle("Wang's cable in 3-D: a heavy sphere in steady conical motion (stiff massless cable, no drag)")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -393,7 +400,7 @@ def main(argv=None) -> dict:
     cone = conical_pendulum(args.quick)
     energy = energy_drift(args.quick)
     freq = out_of_plane_frequency()
-    fig = figure(cone.pop("_runs"), args.out / "three_d_conical_pendulum.png")
+    fig = figure(cone.pop("_runs"), cone["cases"], args.out / "three_d_conical_pendulum.png")
     doc = {
         "planar_equivalence_max_abs": planar["run_max_abs"],
         "planar_equivalence_max_rel": planar["max_rel"],
