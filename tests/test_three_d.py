@@ -67,6 +67,7 @@ def test_conical_pendulum_closed_form():
     assert case["rel_err_omega2"] < 1e-8                  # omega^2 = g / (L cos alpha)
     assert case["radius_rel_wander"] < 1e-8               # it stays on the cone
     assert abs(case["cone_angle_deg_mean"] - 30.0) < 1e-6
+    assert case["tension_rel_err"] < 1e-8                 # T = W_b / cos(alpha) at both ends (3-D end forces)
 
 
 def test_off_the_cone_rate_leaves_the_cone():
@@ -87,3 +88,9 @@ def test_out_of_plane_frequency_from_the_linearization_equals_the_in_plane_one()
     assert r["rel_err"] < 1e-9
     # a heavy body on a light cable: near the simple pendulum
     assert r["omega_out_of_plane_3d"] == pytest.approx(math.sqrt(2e4 / 3000.0 / 20.0), rel=0.05)   # sqrt(W_b / (M_b L))
+
+
+@pytest.mark.parametrize("angles", ["per_section", "shared"])
+def test_a_3d_chain_conserves_energy(angles):
+    r = checks.energy_drift(quick=True, n_periods=5, scene=checks.chain_scene(angles))
+    assert r["z_b_amplitude_m"] > 1.0 and r["drift_rel"] < 1e-6

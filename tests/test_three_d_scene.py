@@ -100,6 +100,8 @@ def test_dimensions_two_refuses_a_3d_field_and_3d_refuses_segments():
         _load(THREE_D + "\n[numerics]\ndimensions = 4\n")
     with pytest.raises(ParameterError, match="cable.segments.*3-D"):
         _load(THREE_D.replace("weight_per_length = 18.0", "weight_per_length = 18.0\nsegments = 4"))
+    with pytest.raises(ParameterError, match="initial.phi_rate = 0.1.*3-D"):
+        _load(THREE_D + "\n[initial]\nphi_rate = 0.1\n")
 
 
 def test_heading_in_radians_in_the_parameter_vector():

@@ -82,6 +82,13 @@ class Scene:
                     raise ParameterError(f"{section_prefix(self, i)}cable.segments", s.cable.segments,
                                          "must be 1 in a 3-D scene: the 3-D equations are built for Wang's straight "
                                          "cable so far (the segmented cable is planar)")
+            # the time domain's initial state sets every angle from initial.phi / phi_rate: it does not
+            # know the out-of-plane angle yet, so a 3-D run starts from its steady state (or an x0 given)
+            for name, unset in (("phi", None), ("phi_rate", 0.0)):
+                v = getattr(self.initial, name)
+                if v != unset:
+                    raise ParameterError(f"initial.{name}", v, "must be unset in a 3-D scene: the 3-D run starts "
+                                         "from its steady state so far (the Python API takes any state as x0)")
 
     def _check_initial_lengths(self) -> None:
         """An initial stretch u must leave every section a positive length l_0 + u (Wang 1971 eq. 10)."""
