@@ -106,21 +106,21 @@ def dot(a, b):
     return sum((a[j] * b[j] for j in range(1, len(a))), a[0] * b[0])
 
 
-def _frame(phi, theta):
-    """Unit tangent e_t down the cable and the normal directions with the angle rates' factors.
+def _frame(phi, theta, phid, thetad):
+    """Unit tangent e_t down the cable and its normal directions, each with its swing rate.
 
     Plane (``theta`` None): e_t = (-sin phi, cos phi), the one normal e_n = (-cos phi, -sin phi),
     de_t/dt = phi' e_n. Space (Wang 1971 p. 32, "allow the cable to swing out of the vertical
     plane"): e_t = (-sin phi cos theta, cos phi cos theta, sin theta), theta the angle out of the x-y
     plane; the orthonormal frame (e_t, e_n, e_b) with e_n = (-cos phi, -sin phi, 0) and
     e_b = de_t/dtheta = (sin phi sin theta, -cos phi sin theta, cos theta) gives
-    de_t/dt = phi' cos theta e_n + theta' e_b. Returns e_t and [(normal, factor of its rate)].
+    de_t/dt = phi' cos theta e_n + theta' e_b. Returns e_t and [(normal n_k, rate de_t/dt . n_k)].
     """
     s, c = ca.sin(phi), ca.cos(phi)
     if theta is None:
-        return (-s, c), [((-c, -s), 1.0)]
+        return (-s, c), [((-c, -s), phid)]
     st, ct = ca.sin(theta), ca.cos(theta)
-    return (-s * ct, c * ct, st), [((-c, -s, 0.0), ct), ((s * st, -c * st, ct), 1.0)]
+    return (-s * ct, c * ct, st), [((-c, -s, 0.0), phid * ct), ((s * st, -c * st, ct), thetad)]
 
 
 def section_terms(P: SectionParameters, top_r, top_v, phi, u, phid, ud, *, t, env, rho, n_segments,
@@ -146,12 +146,12 @@ def section_terms(P: SectionParameters, top_r, top_v, phi, u, phid, ud, *, t, en
     velocity (:func:`fluid.crossflow_drag`). theta = 0 is the plane.
     """
     space = theta is not None
-    e_t, normals = _frame(phi, theta)
-    rates = [phid * f if space and k == 0 else (thetad if k else phid) for k, (_, f) in enumerate(normals)]
+    e_t, frame = _frame(phi, theta, phid, thetad)
+    normals = [n for n, _ in frame]
     dim = len(e_t)
     l = P.l_0 + u
     r_b = tuple(top_r[j] + l * e_t[j] for j in range(dim))                                   # eq. 10b, 10d
-    swing = [tuple(l * w * n[j] for j in range(dim)) for (n, _), w in zip(normals, rates)]  # l de_t/dt per normal
+    swing = [tuple(l * w * n[j] for j in range(dim)) for n, w in frame]                     # l de_t/dt per normal
     rel = tuple(sum((sw[j] for sw in swing[1:]), ud * e_t[j] + swing[0][j]) for j in range(dim))
     v_b = tuple(sum((sw[j] for sw in swing[1:]), top_v[j] + ud * e_t[j] + swing[0][j]) for j in range(dim))  # eq. 11a-b
 
@@ -161,7 +161,7 @@ def section_terms(P: SectionParameters, top_r, top_v, phi, u, phid, ud, *, t, en
     masses = (P.m_bx, P.m_by) + ((P.m_bz,) if space else ())
     K = (0.5 * sum((masses[j] * v_b[j] ** 2 for j in range(1, dim)), masses[0] * v_b[0] ** 2)
          + 0.5 * P.m_c * (v_st ** 2 + v_st * ud + ud ** 2 / 3))
-    for (n, _), w in zip(normals, rates):
+    for n, w in frame:
         v_sn = dot(top_v, n)                                                                 # eq. 17a
         K = K + 0.5 * m_cv * (v_sn ** 2 + v_sn * l * w + l ** 2 * w ** 2 / 3)
     # potential energy, eq. 15: gravity of body and cable mid-point, strain energy k u^2 / 2 (eq. 14)
@@ -189,10 +189,10 @@ def section_terms(P: SectionParameters, top_r, top_v, phi, u, phid, ud, *, t, en
         r_ci = tuple(top_r[j] + frac * l * e_t[j] for j in range(dim))                      # eq. 30a-b
         v_ci = tuple(top_v[j] + frac * rel[j] for j in range(dim))                          # eq. 38a-b
         vq = tuple(a - b for a, b in zip(flow(r_ci), v_ci))                                 # eq. 41
-        d_n = fluid.crossflow_drag(rho, P.cd * d * seg, [dot(vq, n) for n, _ in normals])   # eq. 42
+        d_n = fluid.crossflow_drag(rho, P.cd * d * seg, [dot(vq, n) for n in normals])   # eq. 42
         d_t_sum = d_t_sum + fluid.quadratic_drag(rho, P.ct * d * seg, dot(vq, e_t))  # eq. 44
-        point_forces.append((v_ci, tuple(sum((dk * n[j] for dk, (n, _) in zip(d_n[1:], normals[1:])),
-                                             d_n[0] * normals[0][0][j]) for j in range(dim))))  # moment arm: eq. 43
+        point_forces.append((v_ci, tuple(sum((dk * n[j] for dk, n in zip(d_n[1:], normals[1:])),
+                                             d_n[0] * normals[0][j]) for j in range(dim))))  # moment arm: eq. 43
     # eq. 45 adds the whole tangential drag to Q_u: the same as applying it at the lower end
     point_forces.append((v_b, tuple(d_t_sum * e_t[j] for j in range(dim))))
 
@@ -208,10 +208,10 @@ def section_terms(P: SectionParameters, top_r, top_v, phi, u, phid, ud, *, t, en
     # Body: virtual masses M_bvx, M_bvy (M_bvz) (eq. 16). External: weights in water (eq. 12, 15) and
     # every drag force of this section (body eq. 32-35, cable eq. 42, 44).
     v_m = tuple(0.5 * (top_v[j] + v_b[j]) for j in range(dim))
-    vm_t, vm_n = dot(v_m, e_t), [dot(v_m, n) for n, _ in normals]
+    vm_t, vm_n = dot(v_m, e_t), [dot(v_m, n) for n in normals]
     body_momentum = tuple(masses[j] * v_b[j] for j in range(dim))
     momentum = tuple(P.m_c * vm_t * e_t[j]
-                     + sum((m_cv * c * n[j] for c, (n, _) in zip(vm_n[1:], normals[1:])), m_cv * vm_n[0] * normals[0][0][j])
+                     + sum((m_cv * c * n[j] for c, n in zip(vm_n[1:], normals[1:])), m_cv * vm_n[0] * normals[0][j])
                      + body_momentum[j] for j in range(dim))
     ext = [sum((F[j] for _, F in point_forces), 0.0) for j in range(dim)]
     ext[1] = ext[1] + P.w_b + P.w_c
