@@ -86,6 +86,8 @@ def test_out_of_plane_frequency_from_the_linearization_equals_the_in_plane_one()
     r = checks.out_of_plane_frequency()
     assert r["input_labels"][:3] == ["x_s", "y_s", "z_s"]
     assert r["rel_err"] < 1e-9
+    assert r["rao_sway_vs_planar_surge_rel_err"] < 1e-9            # z_b / z_s is x_b / x_s of the planar model
+    assert r["rao_tension_per_sway_over_per_heave"] < 1e-9         # sway does not change the tension at first order
     # a heavy body on a light cable: near the simple pendulum
     assert r["omega_out_of_plane_3d"] == pytest.approx(math.sqrt(2e4 / 3000.0 / 20.0), rel=0.05)   # sqrt(W_b / (M_b L))
 
@@ -94,3 +96,28 @@ def test_out_of_plane_frequency_from_the_linearization_equals_the_in_plane_one()
 def test_a_3d_chain_conserves_energy(angles):
     r = checks.energy_drift(quick=True, n_periods=5, scene=checks.chain_scene(angles))
     assert r["z_b_amplitude_m"] > 1.0 and r["drift_rel"] < 1e-6
+
+
+def test_a_heavier_body_in_sway_shows_in_the_out_of_plane_frequency_and_rao():
+    r = checks.out_of_plane_frequency(mass_z_factor=1.2)        # M_bvz 20 % above M_bvx: no longer symmetric
+    assert r["omega_out_of_plane_3d"] < r["omega_in_plane_planar"] * 0.95
+    assert r["rao_sway_vs_planar_surge_rel_err"] > 1e-2
+
+
+def test_steady_state_in_a_current_at_a_heading_is_the_planar_one_turned():
+    from cablesys.scene import Environment
+    from cablesys.statics.steady import steady_state
+    heading = 50.0
+    planar = checks.pendulum_scene(ae=2e7, weight=2e4, mass=3000.0, cable_mass=True, drag=1.2,
+                                   environment=Environment(current_depths=(0.0, 30.0), current_speeds=(1.5, 0.8)))
+    planar = dataclasses.replace(planar, sections=(dataclasses.replace(
+        planar.sections[0], body=dataclasses.replace(planar.body, mass_z=None)),))
+    turned = planar.with_environment(current_headings_deg=(heading,))
+    m2, m3 = build_model(planar), build_model(turned)
+    s2, s3 = steady_state(m2, m2.parameters(planar)).outputs, steady_state(m3, m3.parameters(turned)).outputs
+    assert abs(s2["x_b"]) > 0.5                                   # the current streams the body off
+    x, _, z = checks.rotate(math.radians(heading), [s2["x_b"], 0.0, 0.0])
+    assert s3["x_b"] == pytest.approx(x, abs=1e-9) and s3["z_b"] == pytest.approx(z, abs=1e-9)
+    assert s3["y_b"] == pytest.approx(s2["y_b"], abs=1e-9)
+    for name in ("tension", "tension_top", "tension_bottom"):
+        assert s3[name] == pytest.approx(s2[name], rel=1e-10)
