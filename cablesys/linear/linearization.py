@@ -24,11 +24,17 @@ from typing import ClassVar
 import casadi as ca
 import numpy as np
 
-from ..model import EXO_LABELS, CableModel
+from ..model import CableModel
 from ..results import ResultBase, timed
 from .steady import SteadyState, steady_state
 
 TOP_INPUTS = ("x_s", "y_s")
+TOP_INPUTS_3D = TOP_INPUTS + ("z_s",)     # Wang's cable in 3-D: the sway z_s too
+
+
+def top_inputs(model: CableModel) -> tuple:
+    """The top-displacement inputs of ``model``: (x_s, y_s), and z_s for the 3-D equations (e = (t, z, z', z''))."""
+    return TOP_INPUTS_3D if model.top.size1_out(0) == 1 + 3 * len(TOP_INPUTS_3D) else TOP_INPUTS
 
 
 def wave_amplitude_indices(model: CableModel) -> list[int]:
@@ -39,7 +45,8 @@ def wave_amplitude_indices(model: CableModel) -> list[int]:
 def xi_blocks(model: CableModel) -> dict:
     """Slices of xi = (q, q', q'', z, z', z'', w) by name."""
     nq, nw = model.nq, len(wave_amplitude_indices(model))
-    sizes = [("q", nq), ("qd", nq), ("qdd", nq), ("z", 2), ("zd", 2), ("zdd", 2), ("w", nw)]
+    nz = len(top_inputs(model))
+    sizes = [("q", nq), ("qd", nq), ("qdd", nq), ("z", nz), ("zd", nz), ("zdd", nz), ("w", nw)]
     out, k = {}, 0
     for name, n in sizes:
         out[name] = slice(k, k + n)
@@ -64,7 +71,7 @@ def _build_functions(model: CableModel) -> dict:
     widx = wave_amplitude_indices(model)
     p_w = ca.vertcat(*[xi[b["w"]][widx.index(i)] if i in widx else p[i] for i in range(len(model.layout))])
     e = ca.vertcat(0.0, xi[b["z"]], xi[b["zd"]], xi[b["zdd"]])       # EXO_LABELS order
-    assert e.shape[0] == len(EXO_LABELS)
+    assert e.shape[0] == model.top.size1_out(0)
     q, qd, qdd = xi[b["q"]], xi[b["qd"]], xi[b["qdd"]]
     M, f = model.dynamics(q, qd, e, p_w)
     r = f - ca.mtimes(M, qdd)
@@ -193,7 +200,7 @@ def from_jacobian(model: CableModel, J, Jy, q0, y0, *, kind: str, omega=None) ->
     zw = np.zeros((J.shape[0], nw), dtype=J.dtype)
     zwy = np.zeros((Jy.shape[0], nw), dtype=Jy.dtype)
     return LinearModel(
-        q_labels=model.q_labels, input_labels=TOP_INPUTS + wl, output_labels=model.output_labels,
+        q_labels=model.q_labels, input_labels=top_inputs(model) + wl, output_labels=model.output_labels,
         M=-J[:, b["qdd"]], C=-J[:, b["qd"]], K=-J[:, b["q"]],
         F0=inp(J[:, b["z"]], J[:, b["w"]]), F1=inp(J[:, b["zd"]], zw), F2=inp(J[:, b["zdd"]], zw),
         Cq=Jy[:, b["q"]], Cv=Jy[:, b["qd"]],
@@ -214,7 +221,7 @@ def residual_jacobian(lin: LinearModel) -> np.ndarray:
     ndarray
         (nq, len(xi)) with blocks -K, -C, -M, F0, F1, F2 of the top inputs and F0 of the waves.
     """
-    nz = len(TOP_INPUTS)
+    nz = sum(1 for lbl in lin.input_labels if not lbl.startswith("wave["))
     return np.hstack([-lin.K, -lin.C, -lin.M, lin.F0[:, :nz], lin.F1[:, :nz], lin.F2[:, :nz], lin.F0[:, nz:]])
 
 

@@ -3,6 +3,10 @@
 The chain of sections (Wang 1971 p. 32-33) is built from the one-section pieces of
 :mod:`section`; one section is exactly Wang's 2-DOF model. The top motion enters
 through the exogenous vector e = (t, x_s, y_s, x_s', y_s', x_s'', y_s'').
+
+A 3-D scene (``scene.three_d``; Wang 1971 p. 32, "allow the cable to swing out of the vertical
+plane") is built by the same code with each angle phi joined by its out-of-plane angle phi_z,
+the sway z_s in e (:data:`.top_motion.EXO_LABELS_3D`) and the outputs ``OUTPUT_NAMES_3D``.
 """
 
 from __future__ import annotations
@@ -13,27 +17,39 @@ from ..scene import Scene
 from .cable_model import CableModel
 from .lagrange import lagrange_equations, virtual_work
 from .params import ParameterLayout, environment_symbols, section_prefix
-from .section import SectionParameters, section_terms
+from .section import SectionParameters, dot as _dot, section_terms
 from .segmented import build_segmented_model
 from .signals import EXO_LABELS, OUTPUT_NAMES
 from .store import stored_model
-from .top_motion import symbolic_type, top_motion_function
+from .top_motion import EXO_LABELS_3D, symbolic_type, top_motion_function
 
 
-def _coordinates(n: int, angles: str):
-    """Symbols and labels of q: per section (phi_i, u_i), or a shared phi and u_1..u_n."""
+# a section's outputs in 3-D: the planar ones, then the out-of-plane angle phi_z (rad) and its rate and the
+# body's sway z_b (m, from the top's mean position) and its rate
+OUTPUT_NAMES_3D = OUTPUT_NAMES + ("phi_z", "phi_z_rate", "z_b", "z_b_rate")
+
+
+def _coordinates(n: int, angles: str, three_d: bool = False):
+    """Symbols and labels of q: per section (phi_i, u_i), or a shared phi and u_1..u_n.
+
+    In 3-D every angle phi has its out-of-plane partner phi_z (``phi_z``, ``phi_z_2``; shared
+    when phi is), after it: (phi, phi_z, u) for one section.
+    """
     sfx = (lambda i: "") if n == 1 else (lambda i: f"_{i + 1}")
+    pair = (lambda i: (f"phi{sfx(i)}", f"phi_z{sfx(i)}")) if three_d else (lambda i: (f"phi{sfx(i)}",))
     if angles == "shared" or n == 1:
-        labels = ("phi",) + tuple(f"u{sfx(i)}" for i in range(n))
+        labels = pair(0) if n == 1 else (("phi", "phi_z") if three_d else ("phi",))
+        labels += tuple(f"u{sfx(i)}" for i in range(n))
     else:
-        labels = tuple(x for i in range(n) for x in (f"phi{sfx(i)}", f"u{sfx(i)}"))
+        labels = tuple(x for i in range(n) for x in pair(i) + (f"u{sfx(i)}",))
     q = ca.SX.sym("q", len(labels))
     qd = ca.SX.sym("qd", len(labels))
     idx = {lbl: k for k, lbl in enumerate(labels)}
 
     def pick(vec, i):
-        phi = vec[idx["phi"]] if "phi" in idx else vec[idx[f"phi{sfx(i)}"]]
-        return phi, vec[idx[f"u{sfx(i)}"]]
+        """(phi, u) of section i, or (phi, u, phi_z) in 3-D."""
+        get = lambda name: vec[idx[name]] if name in idx else vec[idx[f"{name}{sfx(i)}"]]
+        return (get("phi"), get("u")) + ((get("phi_z"),) if three_d else ())
     return q, qd, labels, pick, sfx
 
 
@@ -59,13 +75,14 @@ def _end_forces(momenta, ext, M, f, q, qd, z, zd, zdd):
         Pv = ca.vertcat(*P)
         return (ca.mtimes(ca.jacobian(Pv, q), qd) + ca.mtimes(ca.jacobian(Pv, qd), qdd)
                 + ca.mtimes(ca.jacobian(Pv, z), zd) + ca.mtimes(ca.jacobian(Pv, zd), zdd))
-    out, fx, fy = [], 0.0, 0.0
+    dim = len(momenta[0][0])                      # 2 in the plane, 3 in space
+    out, below = [], [0.0] * dim
     for (P, P_b), (F, F_b) in zip(reversed(momenta), reversed(ext)):
         dP, dP_b = rate(P), rate(P_b)
-        # (fx, fy) is still the pull of the section below on this body (its top-point force; 0 for the last)
-        out_body = (dP_b[0] - F_b[0] - fx, dP_b[1] - F_b[1] - fy)
-        fx, fy = fx + F[0] - dP[0], fy + F[1] - dP[1]
-        out.append((out_body, (fx, fy)))
+        # ``below`` is still the pull of the section below on this body (its top-point force; 0 for the last)
+        out_body = tuple(dP_b[j] - F_b[j] - below[j] for j in range(dim))
+        below = [below[j] + F[j] - dP[j] for j in range(dim)]
+        out.append((out_body, tuple(below)))
     return list(reversed(out))
 
 
@@ -104,26 +121,32 @@ def _build(scene: Scene) -> CableModel:
     layout = ParameterLayout.from_scene(scene)
     p = layout.symbol
     n = len(scene.sections)
-    q, qd, q_labels, pick, sfx = _coordinates(n, scene.angles)
-    e = ca.SX.sym("e", len(EXO_LABELS))
-    t, z, zd, zdd = e[0], e[1:3], e[3:5], e[5:7]
+    space = scene.three_d                               # Wang 1971 p. 32: out of the vertical plane
+    dim = 3 if space else 2
+    q, qd, q_labels, pick, sfx = _coordinates(n, scene.angles, space)
+    e = ca.SX.sym("e", len(EXO_LABELS_3D if space else EXO_LABELS))
+    t, z, zd, zdd = e[0], e[1:1 + dim], e[1 + dim:1 + 2 * dim], e[1 + 2 * dim:1 + 3 * dim]
     env_p = environment_symbols(layout, scene)          # Wang 1971 eq. 26-28 inputs
     rho, depth0 = env_p["density"], env_p["top_depth"]
 
-    top_r, top_v = (z[0], depth0 + z[1]), (zd[0], zd[1])
+    top_r = (z[0], depth0 + z[1]) + ((z[2],) if space else ())
+    top_v = tuple(zd[j] for j in range(dim))
     K = V = 0
     forces, Q_direct = [], ca.SX.zeros(len(q_labels))
     out, gaps, momenta, ext, axes = [], [], [], [], []
     for i, sec in enumerate(scene.sections):
-        P = SectionParameters.from_layout(layout, section_prefix(n, i), sec.body.is_sphere)
-        phi, u = pick(q, i)
-        phid, ud = pick(qd, i)
+        P = SectionParameters.from_layout(layout, section_prefix(n, i), sec.body.is_sphere, space)
+        phi, u, *theta = pick(q, i)
+        phid, ud, *thetad = pick(qd, i)
         T = section_terms(P, top_r, top_v, phi, u, phid, ud, t=t, env=env_p, rho=rho,
-                          n_segments=scene.numerics.drag_segments)
+                          n_segments=scene.numerics.drag_segments,
+                          theta=theta[0] if space else None, thetad=thetad[0] if space else None)
         K, V = K + T["K"], V + T["V"]
         forces += T["point_forces"]
         Q_direct += ca.jacobian(u, q).T * T["Q_u"]      # eq. 46 acts on this section's stretch
         out.append([phi, phid, u, ud, T["r_b"][0], T["v_b"][0], T["r_b"][1] - depth0, T["v_b"][1], T["tension"]])
+        if space:
+            out[-1] += [theta[0], thetad[0], T["r_b"][2], T["v_b"][2]]
         momenta.append((T["momentum"], T["body_momentum"]))
         axes.append(T["e_t"])
         ext.append((T["external_force"], T["body_external_force"]))
@@ -135,10 +158,10 @@ def _build(scene: Scene) -> CableModel:
     for i, (bottom, top_force) in enumerate(_end_forces(momenta, ext, M, f, q, qd, z, zd, zdd)):
         # magnitudes, negative when the force pushes along the cable (compression: slack, eq. 54)
         e_t = axes[i]
-        pull_body = -(bottom[0] * e_t[0] + bottom[1] * e_t[1])
-        pull_top = top_force[0] * e_t[0] + top_force[1] * e_t[1]
-        out[i] += [ca.sign(pull_body) * ca.sqrt(bottom[0] ** 2 + bottom[1] ** 2),
-                   ca.sign(pull_top) * ca.sqrt(top_force[0] ** 2 + top_force[1] ** 2)]
+        pull_body = -_dot(bottom, e_t)
+        pull_top = _dot(top_force, e_t)
+        row = [ca.sign(pull_body) * ca.sqrt(_dot(bottom, bottom)), ca.sign(pull_top) * ca.sqrt(_dot(top_force, top_force))]
+        out[i] = out[i][:9] + row + out[i][9:]          # the OUTPUT_NAMES order, then the 3-D outputs
     out = [y for row in out for y in row]
     x = ca.vertcat(q, qd)
     dynamics = ca.Function("dynamics", [q, qd, e, p], [M, f], ["q", "qd", "e", "p"], ["M", "f"])
@@ -148,7 +171,7 @@ def _build(scene: Scene) -> CableModel:
     M_t, f_t = dynamics(xs[: len(q_labels)], xs[len(q_labels):], top(ts, ps), ps)
     ode = ca.Function("ode", [xs, ts, ps], [ca.vertcat(xs[len(q_labels):], ca.solve(M_t, f_t))],
                       ["x", "t", "p"], ["xdot"])
-    output_labels = tuple(f"{name}{sfx(i)}" for i in range(n) for name in OUTPUT_NAMES)
+    output_labels = tuple(f"{name}{sfx(i)}" for i in range(n) for name in (OUTPUT_NAMES_3D if space else OUTPUT_NAMES))
     outputs = ca.Function("outputs", [x, e, p], [ca.vertcat(*out)], ["x", "e", "p"], ["y"])
     energy = ca.Function("energy", [x, e, p], [K, V], ["x", "e", "p"], ["K", "V"])
     cable_force = ca.Function("cable_force", [x, p], [ca.vertcat(*gaps)], ["x", "p"], ["gap"])

@@ -48,7 +48,10 @@ def structure_of(scene: Scene) -> tuple:
             len(top.x), len(top.y),
             # the series' samples are constants of the top-motion function (top_motion.py, issue 13)
             None if top.series is None else (top.series.times, top.series.x, top.series.y),
-            tuple(s.cable.segments for s in scene.sections)) + _ends_structure(scene)
+            tuple(s.cable.segments for s in scene.sections)) + _ends_structure(scene) + (
+            # Wang's cable in 3-D (stretch and two angles): one more entry, only then, so that a
+            # planar scene keeps its structure key
+            (("3d", len(top.z)),) if scene.three_d else ())
 
 
 _ANCHOR = ("x", "y")
@@ -88,15 +91,22 @@ def parameter_items(scene: Scene) -> list[tuple[str, float]]:
         for name in _BODY:
             v = math.radians(s.body.axis_angle_deg) if name == "axis_angle" else getattr(s.body, name)
             items.append((f"{pre}body.{name}", float(v)))
+        if scene.three_d:
+            items.append((f"{pre}body.mass_z", float(s.body.virtual_mass_z)))
         items.append((f"{pre}slack", 0.0))          # 1 while the section is slack (set by the simulator)
     env = scene.environment
     items += [(f"environment.{k}", float(getattr(env, k))) for k in _ENV]
     for k, (d, c) in enumerate(zip(env.current_depths, env.current_speeds)):
         items += [(f"environment.current_depths[{k}]", d), (f"environment.current_speeds[{k}]", c)]
+    if scene.three_d:     # the current's heading (rad from +x towards +z) at every current depth
+        items += [(f"environment.current_headings[{k}]", math.radians(h))
+                  for k, h in enumerate(env.headings_per_depth_deg)]
     for k, w in enumerate(env.waves):
         items += [(f"environment.waves[{k}].{a}", float(getattr(w, a))) for a in _WAVE]
+        if scene.three_d:
+            items.append((f"environment.waves[{k}].heading", math.radians(w.heading_deg or 0.0)))
     top = scene.top_motion
-    for axis in ("x", "y"):
+    for axis in ("x", "y", "z"):
         for k, s in enumerate(getattr(top, axis)):
             items += [(f"top_motion.{axis}[{k}].{a}", float(getattr(s, a))) for a in _SINE]
     # a sampled series is not in p: its samples are constants of the model (structure_of,
@@ -185,9 +195,21 @@ def environment_symbols(layout: "ParameterLayout", scene: Scene) -> dict:
     Returns
     -------
     dict
-        SX entries of ``layout.symbol`` by name.
+        SX entries of ``layout.symbol`` by name; a 3-D scene (``scene.three_d``) adds
+        ``current_headings`` (rad, one per current point) and a heading (rad) to every wave tuple.
     """
     env = scene.environment
+    sym = layout.sym
+    if scene.three_d:     # 3-D: the headings of the current points (rad) and a heading per wave
+        return {**_planar_environment(layout, env),
+                "current_headings": [sym(f"environment.current_headings[{k}]") for k in range(len(env.current_depths))],
+                "waves": [tuple(sym(f"environment.waves[{k}].{a}") for a in _WAVE + ("heading",))
+                          for k in range(len(env.waves))]}
+    return _planar_environment(layout, env)
+
+
+def _planar_environment(layout: "ParameterLayout", env) -> dict:
+    """The environment symbols of a planar scene (:func:`environment_symbols`)."""
     return {
         "current_depths": [layout.sym(f"environment.current_depths[{k}]") for k in range(len(env.current_depths))],
         "current_speeds": [layout.sym(f"environment.current_speeds[{k}]") for k in range(len(env.current_depths))],

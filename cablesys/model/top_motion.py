@@ -64,6 +64,10 @@ import casadi as ca
 import numpy as np
 
 
+# the exogenous vector of the 3-D equations: the planar EXO_LABELS with the sway z_s after each axis pair
+EXO_LABELS_3D = ("t", "x_s", "y_s", "z_s", "x_s_rate", "y_s_rate", "z_s_rate", "x_s_acc", "y_s_acc", "z_s_acc")
+
+
 def symbolic_type(scene):
     """The symbolic type of the model's functions: always ``ca.SX`` (the series is SX too)."""
     return ca.SX
@@ -274,12 +278,17 @@ def ramp(t, ramp_s):
 
 
 def top_motion_function(scene, layout) -> ca.Function:
-    """``top(t, p) -> (t, x_s, y_s, x_s', y_s', x_s'', y_s'')`` for the scene's top motion."""
+    """``top(t, p) -> (t, x_s, y_s, x_s', y_s', x_s'', y_s'')`` for the scene's top motion.
+
+    A 3-D scene (``scene.three_d``) adds the sway z_s (``top_motion.z`` sinusoids):
+    ``(t, x_s, y_s, z_s, x_s', y_s', z_s', x_s'', y_s'', z_s'')`` (:data:`EXO_LABELS_3D`); the
+    sampled series moves x and y only.
+    """
     t = ca.SX.sym("t")
     p = ca.SX.sym("p", len(layout))
     sym = lambda label: p[layout.index(label)]
     pos = []
-    for axis in ("x", "y"):
+    for axis in ("x", "y", "z") if scene.three_d else ("x", "y"):
         s = ca.SX(0)
         for k in range(len(getattr(scene.top_motion, axis))):
             a, w, ph = (sym(f"top_motion.{axis}[{k}].{n}") for n in ("amplitude", "frequency", "phase"))
@@ -289,7 +298,7 @@ def top_motion_function(scene, layout) -> ca.Function:
     if series is not None:
         # the samples are constants of the model (module docstring): O(1) per evaluation
         spl = series_expressions(series.times, (series.x, series.y), t)
-        pos = [pos[j] + spl[j] for j in range(2)]
+        pos = [pos[j] + spl[j] for j in range(2)] + pos[2:]
     if "top_motion.ramp_s" in layout.labels:
         pos = [ramp(t, sym("top_motion.ramp_s")) * v for v in pos]
     pos = ca.vertcat(*pos)

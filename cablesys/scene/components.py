@@ -108,17 +108,26 @@ class Body:
     drag_area_normal: float = spec("area", "CDABN: (C_D A_b)_n, or C_D A_b of a sphere (eq. 32-33)", 0.0)
     drag_area_tangential: float = spec("area", "CDABT: (C_D A_b)_t; equal to CDABN for a sphere (eq. 33b)", 0.0)
     axis_angle_deg: float = spec("angle_deg", "PHIBD: angle phi_b of the body's tangential axis with the vertical in degrees; |PHIBD| > 180 selects sphere drag (eq. 32)", 999.0)
+    mass_z: float | None = spec("mass", "virtual mass for motion in z (out of the x-y plane), M_bvz; used by the 3-D "
+                                "equations only; unset: mass_x (a body symmetric about the vertical)", None)
 
     def __post_init__(self):
         _check_all_finite(self, "body")
         require_positive("body.mass_x", self.mass_x, "kg")
         require_positive("body.mass_y", self.mass_y, "kg")
+        if self.mass_z is not None:
+            require_positive("body.mass_z", self.mass_z, "kg")
         require_nonnegative("body.drag_area_normal", self.drag_area_normal, "m^2")
         require_nonnegative("body.drag_area_tangential", self.drag_area_tangential, "m^2")
         if self.is_sphere and not math.isclose(self.drag_area_normal, self.drag_area_tangential, rel_tol=1e-12, abs_tol=0.0):
             raise ParameterError("body.drag_area_tangential", self.drag_area_tangential,
                                  f"must equal body.drag_area_normal = {self.drag_area_normal} for sphere drag "
                                  "(|axis_angle_deg| > 180, the report's PHIBD rule)")
+
+    @property
+    def virtual_mass_z(self) -> float:
+        """M_bvz (kg): ``mass_z``, or ``mass_x`` when unset."""
+        return self.mass_x if self.mass_z is None else self.mass_z
 
     @property
     def is_sphere(self) -> bool:
@@ -145,6 +154,10 @@ class Environment:
     system_speed: float = spec("velocity", "steady speed of the cable system in +x (ship speed); subtracted from the current: c(y) = current(y) - speed (eq. 27)", 0.0)
     top_depth: float = spec("length", "mean depth of the top of the cable below the still surface", 0.0)
     waves: tuple[Wave, ...] = spec("none", "deep-water wave components", ())
+    current_headings_deg: tuple = spec("angle_deg", "direction of the current in the horizontal plane at each current "
+                                       "depth, degrees from +x towards +z (seen from above, counter-clockwise); one value: "
+                                       "every depth; the x and z components are interpolated in depth like the speeds; "
+                                       "empty: along +x, a planar scene", ())
 
     def __post_init__(self):
         require_positive("environment.density", self.density, "kg/m^3")
@@ -165,6 +178,24 @@ class Environment:
         object.__setattr__(self, "current_depths", tuple(float(v) for v in d))
         object.__setattr__(self, "current_speeds", tuple(float(v) for v in s))
         object.__setattr__(self, "waves", tuple(self.waves))
+        h = tuple(self.current_headings_deg)
+        if len(h) not in (0, 1, len(d)):
+            raise ParameterError("environment.current_headings_deg", h,
+                                 f"must be empty (along +x), one heading or one per current depth ({len(d)})")
+        for i, hi in enumerate(h):
+            require_finite(f"environment.current_headings_deg[{i}]", hi)
+        object.__setattr__(self, "current_headings_deg", tuple(float(v) for v in h))
+
+    @property
+    def headings_per_depth_deg(self) -> tuple:
+        """The current's heading (deg) at every current depth: 0 when unset, one value repeated."""
+        h = self.current_headings_deg
+        return (h[0],) * len(self.current_depths) if len(h) == 1 else (h or (0.0,) * len(self.current_depths))
+
+    @property
+    def is_planar(self) -> bool:
+        """No current heading and no wave heading set: the flow lies in the x-y plane."""
+        return not self.current_headings_deg and all(w.heading_deg is None for w in self.waves)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -202,6 +233,9 @@ class TopMotion:
 
     x: tuple[Sinusoid, ...] = spec("none", "sinusoids in x (horizontal, + to the right)", ())
     y: tuple[Sinusoid, ...] = spec("none", "sinusoids in y (vertical, + downwards)", ())
+    z: tuple[Sinusoid, ...] = spec("none", "sinusoids in z (sway: horizontal, out of the x-y plane; (x, y, z) is "
+                                   "right-handed with y down, so seen from above z is 90 degrees counter-clockwise "
+                                   "from x); any term makes the scene 3-D", ())
     series: TimeSeries | None = spec("none", "sampled motion added to the sinusoids", None)
     spectrum: SeaSpectrum | None = spec("none", "an irregular sea (scene/sea.py SeaSpectrum), realised as sinusoids appended to x and y", None)
     rao: MotionRAO | None = spec("none", "vessel / crane-tip motion RAO turning the sea into top motion (scene/sea.py MotionRAO); "
@@ -214,6 +248,7 @@ class TopMotion:
     def __post_init__(self):
         object.__setattr__(self, "x", tuple(self.x))
         object.__setattr__(self, "y", tuple(self.y))
+        object.__setattr__(self, "z", tuple(self.z))
         if self.ramp_s is not None:
             require_finite("top_motion.ramp_s", self.ramp_s)
             require_nonnegative("top_motion.ramp_s", self.ramp_s, "s")
@@ -236,7 +271,8 @@ class TopMotion:
         if self.ramp_s is not None:
             return float(self.ramp_s)
         n = getattr(self, "_user_count", {"x": len(self.x), "y": len(self.y)})
-        periods = [2.0 * math.pi / s.frequency for axis in ("x", "y") for s in getattr(self, axis)[: n[axis]]]
+        n = {"z": len(self.z), **n}
+        periods = [2.0 * math.pi / s.frequency for axis in ("x", "y", "z") for s in getattr(self, axis)[: n[axis]]]
         if self.spectrum is not None:
             periods.append(self.spectrum.tp)
         return RAMP_PERIODS * max(periods) if periods else 0.0
@@ -286,6 +322,10 @@ class Numerics:
                                           "get twice it", 0.01)
     time_budget_s: float = spec("time", "wall time model = auto may plan for a slack scene's extrapolation runs (their "
                                         "predicted cost, steps x per-step cost); 0: no budget", 0.0)
+    dimensions: int | None = spec("none", "3: Wang's cable in three dimensions (stretch and two swing angles) even for a "
+                                  "planar scene; 2: the planar equations (refused when the scene sets a 3-D field); "
+                                  "unset: 3 when the scene sets a 3-D field (top_motion.z, a current or wave heading, "
+                                  "body.mass_z), else 2", None)
 
     def __post_init__(self):
         if not isinstance(self.drag_segments, int) or isinstance(self.drag_segments, bool) or not 1 <= self.drag_segments <= 1000:
@@ -308,6 +348,8 @@ class Numerics:
         if isinstance(self.time_budget_s, bool) or not (isinstance(self.time_budget_s, (int, float)) and 0.0 <= self.time_budget_s < float("inf")):
             raise ParameterError("numerics.time_budget_s", self.time_budget_s, "must be a finite number of seconds >= 0 "
                                                                                  "(0: no budget)")
+        if self.dimensions is not None and (isinstance(self.dimensions, bool) or self.dimensions not in (2, 3)):
+            raise ParameterError("numerics.dimensions", self.dimensions, "must be 2 or 3 (or unset)")
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

@@ -20,11 +20,16 @@ class Wave:
     amplitude: float = spec("length", "wave amplitude a")
     length: float = spec("length", "wave length lambda; n = 2 pi / lambda, sigma = sqrt(g n)")
     phase: float = spec("angle", "phase added to n x - sigma t", 0.0)
+    heading_deg: float | None = spec("angle_deg", "direction the wave travels in the horizontal plane, degrees from +x "
+                                     "towards +z (seen from above, counter-clockwise); the phase becomes "
+                                     "n (x cos b + z sin b) - sigma t; unset: along +x, a planar scene", None)
 
     def __post_init__(self):
         require_nonnegative("waves.amplitude", self.amplitude, "m")
         require_positive("waves.length", self.length, "m")
         require_finite("waves.phase", self.phase)
+        if self.heading_deg is not None:
+            require_finite("waves.heading_deg", self.heading_deg)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

@@ -49,6 +49,7 @@ class Scene:
         self._check_hanging_tension()
         self._check_initial_lengths()
         self._check_ends()
+        self._check_dimensions()
         sea = self.top_motion.spectrum
         if sea is not None and sea.waves_at_cable:   # the same sea at the cable (Wang 1971 eq. 26-28; scene/sea.py)
             env = self.environment
@@ -84,6 +85,42 @@ class Scene:
                                  self.sections[-1].cable.length,
                                  f"makes the line {length:.6g} m long (all sections, at their reference tension), "
                                  f"shorter than the {chord:.6g} m from the top's mean position to the anchor")
+    def three_d_fields(self) -> tuple:
+        """The 3-D fields this scene sets (``top_motion.z``, a current or wave heading, ``body.mass_z``)."""
+        env, out = self.environment, []
+        if self.top_motion.z:
+            out.append("top_motion.z")
+        if env.current_headings_deg:
+            out.append("environment.current_headings_deg")
+        out += [f"environment.waves[{k}].heading_deg" for k, w in enumerate(env.waves) if w.heading_deg is not None]
+        out += [f"{section_prefix(self, i)}body.mass_z" for i, s in enumerate(self.sections) if s.body.mass_z is not None]
+        return tuple(out)
+
+    @property
+    def three_d(self) -> bool:
+        """True when Wang's 3-D equations run: ``numerics.dimensions = 3``, or unset and a 3-D field is set."""
+        dims = self.numerics.dimensions
+        return dims == 3 or (dims is None and bool(self.three_d_fields()))
+
+    def _check_dimensions(self) -> None:
+        """A 3-D field needs the 3-D equations; the 3-D equations are built for Wang's straight cable so far."""
+        fields = self.three_d_fields()
+        if self.numerics.dimensions == 2 and fields:
+            raise ParameterError("numerics.dimensions", 2, f"must be 3 or unset: the scene sets {fields[0]}, "
+                                 "which only the 3-D equations take")
+        if self.three_d:
+            for i, s in enumerate(self.sections):
+                if s.cable.segments != 1:
+                    raise ParameterError(f"{section_prefix(self, i)}cable.segments", s.cable.segments,
+                                         "must be 1 in a 3-D scene: the 3-D equations are built for Wang's straight "
+                                         "cable so far (the segmented cable is planar)")
+            # the time domain's initial state sets every angle from initial.phi / phi_rate: it does not
+            # know the out-of-plane angle yet, so a 3-D run starts from its steady state (or an x0 given)
+            for name, unset in (("phi", None), ("phi_rate", 0.0)):
+                v = getattr(self.initial, name)
+                if v != unset:
+                    raise ParameterError(f"initial.{name}", v, "must be unset in a 3-D scene: the 3-D run starts "
+                                         "from its steady state so far (the Python API takes any state as x0)")
 
     def _check_initial_lengths(self) -> None:
         """An initial stretch u must leave every section a positive length l_0 + u (Wang 1971 eq. 10)."""

@@ -228,7 +228,9 @@ def sea_waves(spectrum: SeaSpectrum, gravity: float) -> tuple:
 
 def _close(u, v) -> bool:
     fu, fv = dataclasses.astuple(u), dataclasses.astuple(v)
-    return all(math.isclose(p, q, rel_tol=1e-9, abs_tol=1e-12) for p, q in zip(fu, fv))
+    # an unset field (a wave's heading_deg: along +x) matches only an unset one
+    return all(p is q if p is None or q is None else math.isclose(p, q, rel_tol=1e-9, abs_tol=1e-12)
+               for p, q in zip(fu, fv))
 
 
 def append_once(existing: tuple, new: tuple) -> tuple:

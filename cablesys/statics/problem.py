@@ -14,7 +14,7 @@ import dataclasses
 import casadi as ca
 import numpy as np
 
-from ..model import EXO_LABELS, CableModel
+from ..model import CableModel
 
 
 @dataclasses.dataclass(frozen=True)
@@ -74,9 +74,9 @@ def static_residual(model: CableModel) -> ca.Function:
         # a seabed's statics have their own laws (the laid-down line's friction: model/segmented_seabed.py)
         forces = getattr(model, "static_force", None)
         if forces is not None:
-            f = forces(q, ca.SX.zeros(model.nq), ca.SX.zeros(len(EXO_LABELS)), ps)
+            f = forces(q, ca.SX.zeros(model.nq), ca.SX.zeros(model.top.size1_out(0)), ps)
         else:
-            _, f = model.dynamics(q, ca.SX.zeros(model.nq), ca.SX.zeros(len(EXO_LABELS)), ps)
+            _, f = model.dynamics(q, ca.SX.zeros(model.nq), ca.SX.zeros(model.top.size1_out(0)), ps)
         lab = model.layout.labels
         weight = sum(ca.fabs(p[i]) for i, lb in enumerate(lab) if lb.endswith("body.weight")) + sum(
             ca.fabs(p[i] * p[lab.index(lb.replace("weight_per_length", "length"))])
@@ -91,5 +91,5 @@ def at_rest(model: CableModel, q, p, residual: float) -> SteadyState:
     """The :class:`SteadyState` at coordinates ``q`` (rates zero, top at rest: e = 0), its outputs
     evaluated with the static parameters ``p`` (:func:`static_parameters`)."""
     x = np.concatenate([q, np.zeros_like(q)])
-    y = np.array(model.outputs(x, np.zeros(len(EXO_LABELS)), p)).ravel()
+    y = np.array(model.outputs(x, np.zeros(model.top.size1_out(0)), p)).ravel()
     return SteadyState(q=q, q_labels=model.q_labels, outputs=dict(zip(model.output_labels, y)), residual=residual)
