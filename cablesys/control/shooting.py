@@ -118,7 +118,7 @@ def solve_shooting(step: ca.Function, stage: ca.Function, x0, N: int, *, params=
     else:
         opti.set_initial(Z, np.zeros((nx, N + 1)))
     opts = {"tol": 1e-8, "max_iter": 500, "print_level": 0, "sb": "yes", **(ipopt or {})}
-    opti.solver("ipopt", {"print_time": False, "expand": True}, opts)
+    opti.solver("ipopt", {"print_time": False, "expand": False}, opts)
     t0 = time.perf_counter()
     try:
         sol = opti.solve()
