@@ -27,7 +27,7 @@ from ..errors import ParameterError, require_positive
 from ..model.winch import COMPENSATOR_PARAMETERS, WINCH_OUTPUTS, WinchModel, build_winch_model, rest_state
 from ..results import ResultBase, timed
 from .limits import WinchLimits
-from .shooting import PathConstraint, solve_shooting
+from .shooting import PathConstraint, ShootingNLP
 
 # rows of the stage function's path outputs g
 G_ROWS = ("power", "tension", "tension_top")
@@ -157,6 +157,42 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
 
 
 
+def _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, control_weight):
+    """(step, stage) of one control interval as SX functions of (x, alpha, t_k), the numbers inlined.
+
+    ``interval(x, u, r, p, c, w) -> (x_next, cost, g)``: ``substeps`` classical RK4 steps of the
+    winch ODE with alpha = u constant, the stage cost at the interval start and the path outputs
+    (:data:`G_ROWS`); w = (heave at rest, T_0, c_T, c_a, dt). They run in CasADi's virtual
+    machine (the NLP's derivatives through ``map``, not expanded).
+    """
+    xs, uk, tk = ca.SX.sym("x", model.nx), ca.SX.sym("u"), ca.SX.sym("r")
+    ps, cs, ws = ca.SX.sym("p", len(p)), ca.SX.sym("c", len(c)), ca.SX.sym("w", 5)
+    v = ca.vertcat(uk, 0.0)
+    f = lambda x, t: model.ode(x, v, t, ps, cs)
+    h = ws[4] / substeps
+    x = xs
+    for i in range(substeps):                       # classical RK4
+        t = tk + i * h
+        k1 = f(x, t)
+        k2 = f(x + h / 2 * k1, t + h / 2)
+        k3 = f(x + h / 2 * k2, t + h / 2)
+        k4 = f(x + h * k3, t + h)
+        x = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+    y = model.outputs(xs, v, tk, ps, cs)
+    oi = WINCH_OUTPUTS.index
+    cost = ws[4] * ((y[oi("heave")] - ws[0]) ** 2 + ws[2] * ((y[oi("tension_top")] - ws[1]) / ws[1]) ** 2
+                    + ws[3] * uk ** 2)
+    g = ca.vertcat(*(y[oi(name)] for name in G_ROWS))
+    interval = ca.Function("interval", [xs, uk, tk, ps, cs, ws], [x, cost, g],
+                           ["x", "u", "r", "p", "c", "w"], ["xn", "cost", "g"])
+    w = ca.DM([y_rest["heave"], y_rest["tension_top"], tension_weight, control_weight, dt])
+    xa, ua, ra = ca.SX.sym("x", model.nx), ca.SX.sym("u"), ca.SX.sym("r")
+    xn, cost, g = interval(xa, ua, ra, ca.DM(p), ca.DM(c), w)
+    step = ca.Function("step", [xa, ua, ra], [xn])
+    stage = ca.Function("stage", [xa, ua, ra], [cost, g])
+    return step, stage
+
+
 @dataclasses.dataclass(frozen=True)
 class PayoutResult(ResultBase):
     """An open-loop optimal payout (or any payout evaluated on the problem's grid) and its response.
@@ -255,6 +291,41 @@ def payout_result(problem: HeaveProblem, X, U, *, status: str, violated: str = "
                         success=success, message=message, stats=dict(stats or {}))
 
 
+def payout_nlp(problem: HeaveProblem, N: int, *, max_iter: int = 300, tol: float = 1e-8,
+               expand: bool = False) -> ShootingNLP:
+    """The multiple-shooting NLP of ``problem`` over N intervals (start state and times are its
+    parameters: :meth:`.shooting.ShootingNLP.solve` takes them), with the last node's heave
+    in the cost (the stage cost at alpha = 0)."""
+    ub, xb = problem.bounds()
+    xN, tN = ca.SX.sym("x", problem.model.nx), ca.SX.sym("t")
+    terminal = ca.Function("terminal", [xN, tN], [problem.stage(xN, 0.0, tN)[0]])   # the last node's cost
+    return ShootingNLP(problem.step, problem.stage, N, constraints=problem.constraints(), u_bounds=ub,
+                       x_bounds=xb, terminal=terminal, x_ref=problem.x_rest, x_scale=problem.scales(),
+                       ipopt={"max_iter": max_iter, "tol": tol}, expand=expand)
+
+
+def check_window(problem: HeaveProblem, t0: float, horizon: float) -> int:
+    """Number of intervals of [t0, t0 + horizon]; a window beyond the record or under 2 intervals is refused."""
+    require_positive("horizon", horizon, "s")
+    if t0 + horizon > problem.record_s + 1e-9:
+        raise ParameterError("horizon", horizon, f"must end within the top-motion record, {problem.record_s:g} s "
+                                                 f"(numerics.duration or the series' end), starting at {t0:g} s")
+    N = int(round(horizon / problem.dt))
+    if N < 2:
+        raise ParameterError("horizon", horizon, f"must span at least 2 control intervals of {problem.dt:g} s")
+    return N
+
+
+def solution_message(sol) -> str:
+    """'' on success; else which constraint could not be met, or why IPOPT stopped."""
+    if sol.success:
+        return ""
+    if sol.worst:
+        return (f"infeasible: '{sol.worst}' cannot be met within the winch limits (needs "
+                f"{sol.violations[sol.worst]:.3g} of its scale more; IPOPT: {sol.status})")
+    return f"IPOPT stopped with {sol.status}; try more iterations (max_iter) or a warm start"
+
+
 @timed
 def optimal_payout(problem: HeaveProblem, horizon: float, *, warm_start: PayoutResult | None = None,
                    max_iter: int = 300, tol: float = 1e-8, stats_start: float | None = None) -> PayoutResult:
@@ -267,7 +338,7 @@ def optimal_payout(problem: HeaveProblem, horizon: float, *, warm_start: PayoutR
     horizon : float
         Length of the optimized record (s); at most the record (:attr:`HeaveProblem.record_s`).
     warm_start : PayoutResult, optional
-        A previous optimum (same dt; truncated or padded with its last control) as IPOPT's start.
+        A previous optimum (same dt; truncated, or repeated to length) as IPOPT's start.
     max_iter, tol : int, float
         IPOPT's iteration limit and tolerance.
     stats_start : float, optional
@@ -280,69 +351,12 @@ def optimal_payout(problem: HeaveProblem, horizon: float, *, warm_start: PayoutR
         point (the phase-one problem of :func:`.shooting.solve_shooting` names it), or when it
         stops early (``status``); the trajectory computed is kept either way.
     """
-    require_positive("horizon", horizon, "s")
-    if horizon > problem.record_s + 1e-9:
-        raise ParameterError("horizon", horizon, f"must be <= the top-motion record, {problem.record_s:g} s "
-                                                 "(numerics.duration or the series' end)")
-    N = int(round(horizon / problem.dt))
-    if N < 2:
-        raise ParameterError("horizon", horizon, f"must span at least 2 control intervals of {problem.dt:g} s")
-    if warm_start is not None:
-        U = np.resize(warm_start.acceleration, N) if len(warm_start.acceleration) < N else warm_start.acceleration[:N]
-        guess = (problem.rollout(problem.x_rest, U), U[:, None])
-    else:
-        guess = (problem.rollout(problem.x_rest, np.zeros(N)), np.zeros((N, 1)))
-    ub, xb = problem.bounds()
-    xN = ca.SX.sym("x", problem.model.nx)
-    terminal = ca.Function("terminal", [xN], [problem.stage(xN, 0.0, N * problem.dt)[0]])   # the last node counts too
-    sol = solve_shooting(problem.step, problem.stage, problem.x_rest, N,
-                         params=problem.dt * np.arange(N)[:, None], constraints=problem.constraints(),
-                         u_bounds=ub, x_bounds=xb, x_ref=problem.x_rest, x_scale=problem.scales(),
-                         guess=guess, terminal=terminal, ipopt={"max_iter": max_iter, "tol": tol})
-    if sol.success:
-        msg = ""
-    elif sol.worst:
-        msg = (f"infeasible: '{sol.worst}' cannot be met within the winch limits (needs "
-               f"{sol.violations[sol.worst]:.3g} of its scale more; IPOPT: {sol.status})")
-    else:
-        msg = f"IPOPT stopped with {sol.status}; try more iterations (max_iter) or a warm start"
+    N = check_window(problem, 0.0, horizon)
+    U = np.zeros(N) if warm_start is None else np.resize(warm_start.acceleration, N)
+    guess = (problem.rollout(problem.x_rest, U), U[:, None])
+    sol = payout_nlp(problem, N, max_iter=max_iter, tol=tol).solve(problem.x_rest, problem.dt * np.arange(N + 1)[:, None],
+                                                                   guess)
     return payout_result(problem, sol.X, sol.U, status=sol.status, violated=sol.worst, violations=sol.violations,
-                         objective=sol.objective, success=sol.success, message=msg,
+                         objective=sol.objective, success=sol.success, message=solution_message(sol),
                          stats={"iterations": sol.iterations, "solve_s": sol.solve_s, "intervals": N},
                          stats_start=stats_start)
-
-
-def _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, control_weight):
-    """(step, stage) of one control interval as SX functions of (x, alpha, t_k), the numbers inlined.
-
-    ``interval(x, u, r, p, c, w) -> (x_next, cost, g)``: ``substeps`` classical RK4 steps of the
-    winch ODE with alpha = u constant, the stage cost at the interval start and the path outputs
-    (:data:`G_ROWS`); w = (heave at rest, T_0, c_T, c_a, dt). They run in CasADi's virtual
-    machine (the NLP's derivatives through ``map``, not expanded).
-    """
-    xs, uk, tk = ca.SX.sym("x", model.nx), ca.SX.sym("u"), ca.SX.sym("r")
-    ps, cs, ws = ca.SX.sym("p", len(p)), ca.SX.sym("c", len(c)), ca.SX.sym("w", 5)
-    v = ca.vertcat(uk, 0.0)
-    f = lambda x, t: model.ode(x, v, t, ps, cs)
-    h = ws[4] / substeps
-    x = xs
-    for i in range(substeps):                       # classical RK4
-        t = tk + i * h
-        k1 = f(x, t)
-        k2 = f(x + h / 2 * k1, t + h / 2)
-        k3 = f(x + h / 2 * k2, t + h / 2)
-        k4 = f(x + h * k3, t + h)
-        x = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-    y = model.outputs(xs, v, tk, ps, cs)
-    oi = WINCH_OUTPUTS.index
-    cost = ws[4] * ((y[oi("heave")] - ws[0]) ** 2 + ws[2] * ((y[oi("tension_top")] - ws[1]) / ws[1]) ** 2
-                    + ws[3] * uk ** 2)
-    g = ca.vertcat(*(y[oi(name)] for name in G_ROWS))
-    interval = ca.Function("interval", [xs, uk, tk, ps, cs, ws], [x, cost, g],
-                           ["x", "u", "r", "p", "c", "w"], ["xn", "cost", "g"])
-    w = ca.DM([y_rest["heave"], y_rest["tension_top"], tension_weight, control_weight, dt])
-    xa, ua, ra = ca.SX.sym("x", model.nx), ca.SX.sym("u"), ca.SX.sym("r")
-    xn, cost, g = interval(xa, ua, ra, ca.DM(p), ca.DM(c), w)
-    step = ca.Function("step", [xa, ua, ra], [xn])
-    stage = ca.Function("stage", [xa, ua, ra], [cost, g])
-    return step, stage

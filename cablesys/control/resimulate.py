@@ -14,24 +14,33 @@ import numpy as np
 from ..model.winch import WINCH_OUTPUTS
 
 
+class Plant:
+    """CVODES on a winch model over one control interval of ``dt`` s with alpha (and F_a) held,
+    outputs at ``per_interval`` equal steps: ``advance(x, alpha, t_k) -> states (per_interval, nx)``."""
+
+    def __init__(self, model, p, c, dt: float, per_interval: int = 1, *, reltol: float = 1e-8):
+        x, tau, par = ca.SX.sym("x", model.nx), ca.SX.sym("tau"), ca.SX.sym("par", 3)   # (alpha, F_a, t_k)
+        ode = model.ode(x, par[:2], par[2] + tau, p, c)
+        self.grid = np.linspace(0.0, dt, per_interval + 1)
+        self.F = ca.integrator("plant", "cvodes", {"x": x, "p": par, "t": tau, "ode": ode}, 0.0, self.grid[1:],
+                               {"reltol": reltol, "abstol": reltol * 1e-2})
+
+    def advance(self, x, alpha: float, t: float, force: float = 0.0) -> np.ndarray:
+        return np.array(self.F(x0=x, p=[alpha, force, t])["xf"]).T
+
+
 def simulate_payout(problem, U, *, x0=None, t0: float = 0.0, per_interval: int = 4):
     """(times, states, outputs) of CVODES on the winch model under the piecewise-constant ``U``."""
-    model, dt = problem.model, problem.dt
-    x, tau, par = ca.SX.sym("x", model.nx), ca.SX.sym("tau"), ca.SX.sym("par", 2)   # par = (alpha, t_k)
-    ode = model.ode(x, ca.vertcat(par[0], 0.0), par[1] + tau, problem.p, problem.c)
-    grid = np.linspace(0.0, dt, per_interval + 1)
-    F = ca.integrator("resim", "cvodes", {"x": x, "p": par, "t": tau, "ode": ode}, 0.0, grid[1:],
-                      {"reltol": 1e-8, "abstol": 1e-10})
+    plant = Plant(problem.model, problem.p, problem.c, problem.dt, per_interval)
     xk = np.asarray(problem.x_rest if x0 is None else x0, float)
     X, T, A = [xk], [t0], [U[0] if len(U) else 0.0]
     for k, a in enumerate(np.ravel(U)):
-        tk = t0 + k * dt
-        xf = np.array(F(x0=xk, p=[a, tk])["xf"])
-        for j in range(per_interval):
-            X.append(xf[:, j])
-            T.append(tk + grid[j + 1])
-            A.append(a)
-        xk = xf[:, -1]
+        tk = t0 + k * problem.dt
+        xf = plant.advance(xk, a, tk)
+        X += list(xf)
+        T += list(tk + plant.grid[1:])
+        A += [a] * per_interval
+        xk = xf[-1]
     X, T = np.array(X), np.array(T)
     return T, X, problem.outputs(X, np.array(A), T)
 

@@ -47,7 +47,8 @@ class ShootingSolution:
 
 def solve_shooting(step: ca.Function, stage: ca.Function, x0, N: int, *, params=None, constraints=(),
                    u_bounds=None, x_bounds=None, terminal: ca.Function | None = None,
-                   x_ref=None, x_scale=None, u_scale=None, guess=None, ipopt=None, elastic=False) -> ShootingSolution:
+                   x_ref=None, x_scale=None, u_scale=None, guess=None, ipopt=None,
+                   elastic=False) -> ShootingSolution:
     """Solve min sum_k stage(x_k, u_k, r_k)[0] + terminal(x_N) over a multiple-shooting grid.
 
     Parameters
@@ -60,13 +61,13 @@ def solve_shooting(step: ca.Function, stage: ca.Function, x0, N: int, *, params=
         Fixed initial state.
     N : int
         Number of intervals.
-    params : array (N, nr), optional
-        The per-interval parameters r_k (e.g. the interval's start time).
+    params : array (N, nr) or (N+1, nr), optional
+        The per-interval parameters r_k (e.g. the interval's start time); row N is the terminal's.
     constraints : sequence of PathConstraint
     u_bounds, x_bounds : (lb, ub) arrays, optional
         Simple bounds on every control / node state (inf: none).
     terminal : casadi.Function, optional
-        x_N -> cost.
+        x_N -> cost, or (x_N, r_N) -> cost with r_N the last row of ``params`` (N+1 rows).
     x_ref, x_scale, u_scale : arrays, optional
         Scaling: x = x_ref + x_scale z, u = u_scale v.
     guess : (X, U), optional
@@ -83,83 +84,108 @@ def solve_shooting(step: ca.Function, stage: ca.Function, x0, N: int, *, params=
     -------
     ShootingSolution
     """
-    nx, nu = step.size1_in(0), step.size1_in(1)
-    x0 = np.asarray(x0, float).ravel()
-    x_ref = x0 if x_ref is None else np.asarray(x_ref, float)
-    xs = np.ones(nx) if x_scale is None else np.asarray(x_scale, float)
-    us = np.ones(nu) if u_scale is None else np.asarray(u_scale, float)
-    R = np.zeros((N, max(step.size1_in(2), 1))) if params is None else np.asarray(params, float).reshape(N, -1)
-    opti = ca.Opti()
-    Z, V = opti.variable(nx, N + 1), opti.variable(nu, N)
-    X = ca.repmat(ca.DM(x_ref), 1, N + 1) + ca.mtimes(ca.diag(ca.DM(xs)), Z)
-    U = ca.mtimes(ca.diag(ca.DM(us)), V)
-    Rm = ca.DM(R.T)
-    Xn = step.map(N)(X[:, :N], U, Rm)
-    cost, G = stage.map(N)(X[:, :N], U, Rm)
-    opti.subject_to(ca.vec(Z[:, 1:]) == ca.vec(ca.mtimes(ca.diag(ca.DM(1 / xs)), Xn - ca.repmat(ca.DM(x_ref), 1, N))))
-    opti.subject_to(Z[:, 0] == (x0 - x_ref) / xs)
-    J = ca.sum2(cost)
-    if terminal is not None:
-        J = J + terminal(X[:, N])
-    slacks = _path_constraints(opti, G, constraints, elastic)
-    opti.minimize(J if not elastic else ca.sum1(ca.vertcat(*slacks.values())))
-    for bounds, var, ref, sc in ((u_bounds, V, np.zeros(nu), us), (x_bounds, Z[:, 1:], x_ref, xs)):
-        if bounds is None:
-            continue
-        for i, (lo, hi) in enumerate(zip(*bounds)):
-            if np.isfinite(lo):
-                opti.subject_to(var[i, :] >= (lo - ref[i]) / sc[i])
-            if np.isfinite(hi):
-                opti.subject_to(var[i, :] <= (hi - ref[i]) / sc[i])
-    if guess is not None:
-        Xg, Ug = (np.asarray(a, float) for a in guess)
-        opti.set_initial(Z, ((Xg - x_ref) / xs).T)
-        opti.set_initial(V, (Ug / us).T)
-    else:
-        opti.set_initial(Z, np.zeros((nx, N + 1)))
-    opts = {"tol": 1e-8, "max_iter": 500, "print_level": 0, "sb": "yes", **(ipopt or {})}
-    opti.solver("ipopt", {"print_time": False, "expand": False}, opts)
-    t0 = time.perf_counter()
-    try:
-        sol = opti.solve()
-        val = sol.value
-    except RuntimeError:
-        val = opti.debug.value
-    solve_s = time.perf_counter() - t0
-    stats = opti.stats()
-    Xv, Uv = np.array(val(X)).reshape(nx, N + 1).T, np.array(val(U)).reshape(nu, N).T
-    Gv = np.array(val(G)).reshape(-1, N).T
-    violations = {}
-    for c in constraints:
-        g = Gv[:, list(c.rows)]
-        v = np.max(np.maximum(np.maximum(c.lb - g, g - c.ub), 0.0)) / c.scale
-        violations[c.name] = max(violations.get(c.name, 0.0), float(v))
-    for name, bounds, A in (("control bounds", u_bounds, Uv), ("state bounds", x_bounds, Xv[1:])):
-        if bounds is not None:
-            lo, hi = (np.asarray(b, float) for b in bounds)
-            sc = us if A is Uv else xs
-            violations[name] = float(np.max(np.maximum(np.maximum(lo - A, A - hi), 0.0) / sc))
-    Xs = np.array(val(Xn)).reshape(nx, N).T          # each interval's end, integrated from its start
-    defect = float(np.max(np.abs((Xs - Xv[1:]) / xs)))
-    violations["dynamics (continuity)"] = defect
-    worst = max(violations, key=violations.get) if violations else ""
-    worst = worst if violations.get(worst, 0.0) > 1e-6 else ""
-    status = str(stats.get("return_status", "unknown"))
-    if elastic:
-        violations = {name: float(val(sv)) for name, sv in slacks.items()}
-        worst = max(violations, key=violations.get) if violations else ""
-        worst = worst if violations.get(worst, 0.0) > 1e-6 else ""
-    elif not (stats.get("success", False) and not worst) and constraints:
-        phase1 = solve_shooting(step, stage, x0, N, params=params, constraints=constraints, u_bounds=u_bounds,
-                                x_bounds=x_bounds, x_ref=x_ref, x_scale=x_scale, u_scale=u_scale,
-                                guess=(Xv, Uv), ipopt=ipopt, elastic=True)
-        if phase1.worst:            # a path constraint no control within the bounds can meet
-            violations, worst = phase1.violations, phase1.worst
-    return ShootingSolution(X=Xv, U=Uv, G=Gv, objective=float(val(J)), status=status,
-                            success=bool(stats.get("success", False)) and not worst,
-                            iterations=int(stats.get("iter_count", -1)), solve_s=solve_s,
-                            violations=violations, worst=worst)
+    nlp = ShootingNLP(step, stage, N, constraints=constraints, u_bounds=u_bounds, x_bounds=x_bounds,
+                      terminal=terminal, x_ref=np.asarray(x0, float) if x_ref is None else x_ref,
+                      x_scale=x_scale, u_scale=u_scale, ipopt=ipopt, elastic=elastic)
+    return nlp.solve(x0, params, guess)
 
+
+class ShootingNLP:
+    """The transcription of :func:`solve_shooting` built once; ``solve(x0, params, guess)`` re-solves
+    it for a new initial state and interval parameters (the receding horizon of MPC: IPOPT and
+    its derivative functions are reused, only the numbers change)."""
+
+    def __init__(self, step, stage, N, *, constraints=(), u_bounds=None, x_bounds=None, terminal=None,
+                 x_ref=None, x_scale=None, u_scale=None, ipopt=None, elastic=False, expand=False):
+        nx, nu = step.size1_in(0), step.size1_in(1)
+        self.N, self.nx, self.nu, self.elastic = N, nx, nu, elastic
+        self.args = dict(step=step, stage=stage, N=N, constraints=constraints, u_bounds=u_bounds,
+                         x_bounds=x_bounds, x_scale=x_scale, u_scale=u_scale, ipopt=ipopt)
+        self.x_ref = np.zeros(nx) if x_ref is None else np.asarray(x_ref, float)
+        self.xs = np.ones(nx) if x_scale is None else np.asarray(x_scale, float)
+        self.us = np.ones(nu) if u_scale is None else np.asarray(u_scale, float)
+        self.constraints, self.u_bounds, self.x_bounds = constraints, u_bounds, x_bounds
+        nr = max(step.size1_in(2), 1)
+        opti = self.opti = ca.Opti()
+        self.Z, self.V = opti.variable(nx, N + 1), opti.variable(nu, N)
+        self.X0, self.R = opti.parameter(nx), opti.parameter(nr, N + 1)   # column N: the terminal's
+        x_ref, xs = ca.DM(self.x_ref), ca.DM(self.xs)
+        self.Xe = ca.repmat(x_ref, 1, N + 1) + ca.mtimes(ca.diag(xs), self.Z)
+        self.Ue = ca.mtimes(ca.diag(ca.DM(self.us)), self.V)
+        self.Xn = step.map(N)(self.Xe[:, :N], self.Ue, self.R[:, :N])
+        cost, self.G = stage.map(N)(self.Xe[:, :N], self.Ue, self.R[:, :N])
+        opti.subject_to(ca.vec(self.Z[:, 1:]) == ca.vec(ca.mtimes(ca.diag(1 / xs), self.Xn - ca.repmat(x_ref, 1, N))))
+        opti.subject_to(self.Z[:, 0] == (self.X0 - x_ref) / xs)
+        if terminal is None:
+            self.J = ca.sum2(cost)
+        else:
+            self.J = ca.sum2(cost) + terminal(*([self.Xe[:, N], self.R[:, N]][: terminal.n_in()]))
+        self.slacks = _path_constraints(opti, self.G, constraints, elastic)
+        opti.minimize(self.J if not elastic else ca.sum1(ca.vertcat(*self.slacks.values())))
+        for bounds, var, ref, sc in ((u_bounds, self.V, np.zeros(nu), self.us), (x_bounds, self.Z[:, 1:], self.x_ref, self.xs)):
+            if bounds is None:
+                continue
+            for i, (lo, hi) in enumerate(zip(*bounds)):
+                if np.isfinite(lo):
+                    opti.subject_to(var[i, :] >= (lo - ref[i]) / sc[i])
+                if np.isfinite(hi):
+                    opti.subject_to(var[i, :] <= (hi - ref[i]) / sc[i])
+        opts = {"tol": 1e-8, "max_iter": 500, "print_level": 0, "sb": "yes", **(ipopt or {})}
+        opti.solver("ipopt", {"print_time": False, "expand": expand}, opts)
+
+    def solve(self, x0, params=None, guess=None) -> ShootingSolution:
+        """Solve from ``x0`` with interval parameters ``params`` (N, nr) and warm start ``guess`` (X, U)."""
+        opti, N, nx, nu = self.opti, self.N, self.nx, self.nu
+        x0 = np.asarray(x0, float).ravel()
+        nr = self.R.shape[0]
+        R = np.zeros((N + 1, nr)) if params is None else np.asarray(params, float).reshape(-1, nr)
+        if len(R) == N:                  # no terminal parameters given: repeat the last interval's
+            R = np.vstack([R, R[-1:]])
+        opti.set_value(self.X0, x0)
+        opti.set_value(self.R, R.T)
+        if guess is not None:
+            Xg, Ug = (np.asarray(a, float) for a in guess)
+            opti.set_initial(self.Z, ((Xg - self.x_ref) / self.xs).T)
+            opti.set_initial(self.V, (Ug.reshape(N, nu) / self.us).T)
+        else:
+            opti.set_initial(self.Z, np.tile(((x0 - self.x_ref) / self.xs)[:, None], (1, N + 1)))
+            opti.set_initial(self.V, np.zeros((nu, N)))
+        t0 = time.perf_counter()
+        try:
+            val = opti.solve().value
+        except RuntimeError:
+            val = opti.debug.value
+        solve_s = time.perf_counter() - t0
+        stats = opti.stats()
+        Xv, Uv = np.array(val(self.Xe)).reshape(nx, N + 1).T, np.array(val(self.Ue)).reshape(nu, N).T
+        Gv = np.array(val(self.G)).reshape(-1, N).T
+        violations = {}
+        for c in self.constraints:
+            g = Gv[:, list(c.rows)]
+            v = np.max(np.maximum(np.maximum(c.lb - g, g - c.ub), 0.0)) / c.scale
+            violations[c.name] = max(violations.get(c.name, 0.0), float(v))
+        for name, bounds, A, sc in (("control bounds", self.u_bounds, Uv, self.us),
+                                    ("state bounds", self.x_bounds, Xv[1:], self.xs)):
+            if bounds is not None:
+                lo, hi = (np.asarray(b, float) for b in bounds)
+                violations[name] = float(np.max(np.maximum(np.maximum(lo - A, A - hi), 0.0) / sc))
+        Xs = np.array(val(self.Xn)).reshape(nx, N).T          # each interval's end, integrated from its start
+        violations["dynamics (continuity)"] = float(np.max(np.abs((Xs - Xv[1:]) / self.xs)))
+        worst = max(violations, key=violations.get)
+        worst = worst if violations[worst] > 1e-6 else ""
+        status = str(stats.get("return_status", "unknown"))
+        ok = bool(stats.get("success", False)) and not worst
+        if self.elastic:
+            violations = {name: float(val(sv)) for name, sv in self.slacks.items()}
+            worst = max(violations, key=violations.get) if violations else ""
+            worst = worst if violations.get(worst, 0.0) > 1e-6 else ""
+        elif not ok and self.constraints:
+            phase1 = ShootingNLP(**self.args, x_ref=self.x_ref, elastic=True).solve(x0, R, (Xv, Uv))
+            if phase1.worst:            # a path constraint no control within the bounds can meet
+                violations, worst = phase1.violations, phase1.worst
+        return ShootingSolution(X=Xv, U=Uv, G=Gv, objective=float(val(self.J)), status=status,
+                                success=ok, iterations=int(stats.get("iter_count", -1)),
+                                solve_s=solve_s, violations=violations, worst=worst)
 
 def _path_constraints(opti, G, constraints, elastic: bool) -> dict:
     """Impose lb <= g <= ub (scaled) for every constraint row; with ``elastic`` one slack per group."""
