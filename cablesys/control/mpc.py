@@ -198,7 +198,7 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
         runs["optimal"] = _run(plant, prob_p, lambda k, x: U[k], N, prob_p.x_rest)
         step_s["optimal"] = np.array([sol.solve_s])
     if "mpc" in strategies:
-        nlp = payout_nlp(prob_c, n_h, max_iter=max_iter)
+        nlp = payout_nlp(prob_c, n_h, max_iter=max_iter, expand=True)   # built once, solved N times
         memo = {"X": None, "U": np.zeros(n_h), "fail": 0}
         offset = prob_p.x_rest - prob_c.x_rest         # the models' rest states differ (drag in the current)
 

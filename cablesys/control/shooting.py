@@ -96,7 +96,8 @@ class ShootingNLP:
     its derivative functions are reused, only the numbers change)."""
 
     def __init__(self, step, stage, N, *, constraints=(), u_bounds=None, x_bounds=None, terminal=None,
-                 x_ref=None, x_scale=None, u_scale=None, ipopt=None, elastic=False, expand=False):
+                 x_ref=None, x_scale=None, u_scale=None, ipopt=None, elastic=False, expand=False,
+                 warm_duals=False):
         nx, nu = step.size1_in(0), step.size1_in(1)
         self.N, self.nx, self.nu, self.elastic = N, nx, nu, elastic
         self.args = dict(step=step, stage=stage, N=N, constraints=constraints, u_bounds=u_bounds,
@@ -131,6 +132,10 @@ class ShootingNLP:
                 if np.isfinite(hi):
                     opti.subject_to(var[i, :] <= (hi - ref[i]) / sc[i])
         opts = {"tol": 1e-8, "max_iter": 500, "print_level": 0, "sb": "yes", **(ipopt or {})}
+        self.warm_duals, self.lam_g = warm_duals, None
+        if warm_duals:     # IPOPT restarted near the previous solution: small barrier, previous multipliers
+            opts = {"warm_start_init_point": "yes", "mu_init": 1e-5, "warm_start_bound_push": 1e-6,
+                    "warm_start_mult_bound_push": 1e-6, **opts}
         opti.solver("ipopt", {"print_time": False, "expand": expand}, opts)
 
     def solve(self, x0, params=None, guess=None) -> ShootingSolution:
@@ -150,6 +155,8 @@ class ShootingNLP:
         else:
             opti.set_initial(self.Z, np.tile(((x0 - self.x_ref) / self.xs)[:, None], (1, N + 1)))
             opti.set_initial(self.V, np.zeros((nu, N)))
+        if self.warm_duals and self.lam_g is not None:
+            opti.set_initial(opti.lam_g, self.lam_g)
         t0 = time.perf_counter()
         try:
             val = opti.solve().value
@@ -157,6 +164,8 @@ class ShootingNLP:
             val = opti.debug.value
         solve_s = time.perf_counter() - t0
         stats = opti.stats()
+        if self.warm_duals:
+            self.lam_g = np.array(val(opti.lam_g)).ravel()
         Xv, Uv = np.array(val(self.Xe)).reshape(nx, N + 1).T, np.array(val(self.Ue)).reshape(nu, N).T
         Gv = np.array(val(self.G)).reshape(-1, N).T
         violations = {}
