@@ -53,6 +53,8 @@ class HeaveProblem:
     control_weight: float
     step: ca.Function = dataclasses.field(repr=False)     # (x, alpha, t_k) -> x_{k+1}
     stage: ca.Function = dataclasses.field(repr=False)    # (x, alpha, t_k) -> (cost, g)
+    # (x, alpha, t_k, p, c, w) -> (x_{k+1}, cost, g) with the parameters symbolic (sensitivities)
+    interval: ca.Function = dataclasses.field(repr=False, default=None)
 
     @property
     def record_s(self) -> float:
@@ -149,16 +151,18 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
     y_rest = dict(zip(WINCH_OUTPUTS, np.array(model.outputs(x_rest, [0, 0], 0.0, p, c)).ravel()))
     floor, wl = limits.band(scene, y_rest["tension_top"])
     T0 = y_rest["tension_top"]
-    step, stage = _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, control_weight)
+    step, stage, interval = _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, control_weight)
     return HeaveProblem(scene=scene, model=model, p=p, c=c, x_rest=x_rest, limits=limits, floor=floor,
                         working_load=wl, static_tension=T0, heave_rest=y_rest["heave"], dt=float(dt),
                         substeps=substeps, tension_weight=float(tension_weight),
-                        control_weight=float(control_weight), step=step, stage=stage)
+                        control_weight=float(control_weight), step=step, stage=stage,
+                        interval=interval)
 
 
 
 def _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, control_weight):
-    """(step, stage) of one control interval as SX functions of (x, alpha, t_k), the numbers inlined.
+    """(step, stage, interval) of one control interval; step and stage are SX functions of (x, alpha, t_k)
+    with the numbers inlined.
 
     ``interval(x, u, r, p, c, w) -> (x_next, cost, g)``: ``substeps`` classical RK4 steps of the
     winch ODE with alpha = u constant, the stage cost at the interval start and the path outputs
@@ -190,7 +194,7 @@ def _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, contr
     xn, cost, g = interval(xa, ua, ra, ca.DM(p), ca.DM(c), w)
     step = ca.Function("step", [xa, ua, ra], [xn])
     stage = ca.Function("stage", [xa, ua, ra], [cost, g])
-    return step, stage
+    return step, stage, interval
 
 
 @dataclasses.dataclass(frozen=True)
