@@ -16,7 +16,9 @@ Strategies, each run from rest over the same sea:
 - ``mpc``: the optimal payout over a receding horizon of ``horizon`` s with a preview of the
   tip motion over it (the scene's record), re-solved every control interval from the measured
   plant state, warm-started from the previous solution shifted by one interval; the first
-  interval's alpha is applied. The plant's and the controller's rest states differ (the drag
+  interval's alpha is applied (a step that does not converge applies the previous plan,
+  shifted; the path constraints start at the second node, the first being the measured
+  state). The plant's and the controller's rest states differ (the drag
   of the current on a differently discretized cable sets another angle and stretch): the
   controller sees the measured state minus that difference (a constant-offset estimate, so the
   mismatch does not read as a pendulum swing or a heave error to be corrected);
@@ -198,7 +200,8 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
         runs["optimal"] = _run(plant, prob_p, lambda k, x: U[k], N, prob_p.x_rest)
         step_s["optimal"] = np.array([sol.solve_s])
     if "mpc" in strategies:
-        nlp = payout_nlp(prob_c, n_h, max_iter=max_iter, expand=True)   # built once, solved N times
+        # built once, solved N times; no path constraint on the measured state itself
+        nlp = payout_nlp(prob_c, n_h, max_iter=max_iter, expand=True, constrain_first=False)
         memo = {"X": None, "U": np.zeros(n_h), "fail": 0}
         offset = prob_p.x_rest - prob_c.x_rest         # the models' rest states differ (drag in the current)
 
@@ -208,13 +211,14 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
             t = dt * (k + np.arange(n_h + 1))
             Xg = prob_c.rollout(x, U, t0=t[0])
             sol = nlp.solve(x, t[:, None], (Xg, U[:, None]))
-            memo["U"] = sol.U.ravel()
             memo["fail"] += not sol.success
+            memo["U"] = sol.U.ravel() if sol.success else U      # a failed step keeps the previous plan
             return memo["U"][0]
         runs["mpc"] = _run(plant, prob_p, mpc, N, prob_p.x_rest)
         step_s["mpc"] = runs["mpc"][3]
         if memo["fail"]:
-            messages.append(f"MPC: {memo['fail']} of {N} steps did not converge (their iterate was applied)")
+            messages.append(f"MPC: {memo['fail']} of {N} steps did not converge (the previous plan, shifted, "
+                            "was applied)")
     if "passive" in strategies:
         runs["passive"] = _passive_run(scene, plant_scene, limits, kw, passive_ratio, N)
 

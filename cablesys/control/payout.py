@@ -296,7 +296,7 @@ def payout_result(problem: HeaveProblem, X, U, *, status: str, violated: str = "
 
 
 def payout_nlp(problem: HeaveProblem, N: int, *, max_iter: int = 300, tol: float = 1e-8,
-               expand: bool = False, warm_duals: bool = False) -> ShootingNLP:
+               expand: bool = False, warm_duals: bool = False, constrain_first: bool = True) -> ShootingNLP:
     """The multiple-shooting NLP of ``problem`` over N intervals (start state and times are its
     parameters: :meth:`.shooting.ShootingNLP.solve` takes them), with the last node's heave
     in the cost (the stage cost at alpha = 0)."""
@@ -305,7 +305,8 @@ def payout_nlp(problem: HeaveProblem, N: int, *, max_iter: int = 300, tol: float
     terminal = ca.Function("terminal", [xN, tN], [problem.stage(xN, 0.0, tN)[0]])   # the last node's cost
     return ShootingNLP(problem.step, problem.stage, N, constraints=problem.constraints(), u_bounds=ub,
                        x_bounds=xb, terminal=terminal, x_ref=problem.x_rest, x_scale=problem.scales(),
-                       ipopt={"max_iter": max_iter, "tol": tol}, expand=expand, warm_duals=warm_duals)
+                       ipopt={"max_iter": max_iter, "tol": tol}, expand=expand, warm_duals=warm_duals,
+                       constrain_first=constrain_first)
 
 
 def check_window(problem: HeaveProblem, t0: float, horizon: float) -> int:

@@ -97,11 +97,12 @@ class ShootingNLP:
 
     def __init__(self, step, stage, N, *, constraints=(), u_bounds=None, x_bounds=None, terminal=None,
                  x_ref=None, x_scale=None, u_scale=None, ipopt=None, elastic=False, expand=False,
-                 warm_duals=False):
+                 warm_duals=False, constrain_first=True):
         nx, nu = step.size1_in(0), step.size1_in(1)
         self.N, self.nx, self.nu, self.elastic = N, nx, nu, elastic
         self.args = dict(step=step, stage=stage, N=N, constraints=constraints, u_bounds=u_bounds,
-                         x_bounds=x_bounds, x_scale=x_scale, u_scale=u_scale, ipopt=ipopt)
+                         x_bounds=x_bounds, x_scale=x_scale, u_scale=u_scale, ipopt=ipopt,
+                         constrain_first=constrain_first)
         self.x_ref = np.zeros(nx) if x_ref is None else np.asarray(x_ref, float)
         self.xs = np.ones(nx) if x_scale is None else np.asarray(x_scale, float)
         self.us = np.ones(nu) if u_scale is None else np.asarray(u_scale, float)
@@ -121,7 +122,9 @@ class ShootingNLP:
             self.J = ca.sum2(cost)
         else:
             self.J = ca.sum2(cost) + terminal(*([self.Xe[:, N], self.R[:, N]][: terminal.n_in()]))
-        self.slacks = _path_constraints(opti, self.G, constraints, elastic)
+        # constrain_first=False: no path constraint at node 0, whose state is given (a measured state
+        # just outside a limit must not make the whole horizon infeasible)
+        self.slacks = _path_constraints(opti, self.G if constrain_first else self.G[:, 1:], constraints, elastic)
         opti.minimize(self.J if not elastic else ca.sum1(ca.vertcat(*self.slacks.values())))
         for bounds, var, ref, sc in ((u_bounds, self.V, np.zeros(nu), self.us), (x_bounds, self.Z[:, 1:], self.x_ref, self.xs)):
             if bounds is None:
@@ -168,6 +171,8 @@ class ShootingNLP:
             self.lam_g = np.array(val(opti.lam_g)).ravel()
         Xv, Uv = np.array(val(self.Xe)).reshape(nx, N + 1).T, np.array(val(self.Ue)).reshape(nu, N).T
         Gv = np.array(val(self.G)).reshape(-1, N).T
+        if not self.args["constrain_first"]:
+            Gv = Gv[1:]
         violations = {}
         for c in self.constraints:
             g = Gv[:, list(c.rows)]
