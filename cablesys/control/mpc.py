@@ -11,7 +11,8 @@ Strategies, each run from rest over the same sea:
   omega_n = omega_p / ``passive_ratio`` of the body + cable mass, damping ratio 0.3;
 - ``pi``: a vendor-style active heave compensation: feed-forward of the measured tip heave
   rate plus a PI on the payout error, w_cmd = -y_s' + K_p e + K_i int e with e = L_0 - y_s - L
-  (the length that cancels the tip's heave), through the speed limit, and a servo
+  (the length that cancels the tip's heave), through the speed limit and the power limit at
+  the measured tension (|w| <= P_max / T_top), and a servo
   alpha = (w_cmd - w) / tau within the acceleration limit;
 - ``mpc``: the optimal payout over a receding horizon of ``horizon`` s with a preview of the
   tip motion over it (the scene's record), re-solved every control interval from the measured
@@ -121,11 +122,16 @@ def _pi_controller(problem, limits: WinchLimits, kp: float, ki: float, tau: floa
     L0 = problem.x_rest[-2]
     state = {"int": 0.0}
 
+    i_top = WINCH_OUTPUTS.index("tension_top")
+
     def control(k, x):
         e = np.array(m.top(k * dt, p)).ravel()
         err = (L0 - e[2]) - x[-2]
         state["int"] += err * dt
-        w_cmd = float(np.clip(-e[4] + kp * err + ki * state["int"], -limits.speed, limits.speed))
+        # the drive's speed limit, and the power limit at the measured line tension
+        tension = abs(float(np.array(m.outputs(x, [0.0, 0.0], k * dt, p, problem.c)).ravel()[i_top]))
+        w_lim = min(limits.speed, limits.power / max(tension, 1.0))
+        w_cmd = float(np.clip(-e[4] + kp * err + ki * state["int"], -w_lim, w_lim))
         return float(np.clip((w_cmd - x[-1]) / tau, -limits.acceleration, limits.acceleration))
     return control
 
