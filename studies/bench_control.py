@@ -122,7 +122,7 @@ def main(argv=None) -> int:
     doc.update(ocp_wall_s=ocp.stats["solve_s"], ocp_iterations=ocp.stats["iterations"], ocp_status=ocp.status,
                ocp_heave_reduction_db=ocp.heave_reduction_db, ocp_intervals=ocp.stats["intervals"],
                ocp_heave_rms_m=ocp.heave_rms_m, ocp_uncompensated_heave_rms_m=ocp.uncompensated_heave_rms_m,
-               ocp_target="600 s record, 2-DOF model: at most 10 s of IPOPT wall time (issue 26)")
+               ocp_target="600 s record, 2-DOF model: at most 10 s of IPOPT wall time")
     check = resimulate(problem, ocp, per_interval=4)
     doc["resimulated_constraint_violation_rel"] = check["max_relative_violation"]
     doc["resimulated"] = check
@@ -136,7 +136,7 @@ def main(argv=None) -> int:
                mpc_step_ms=1e3 * m["mpc"]["compute_per_step_s"], mpc_realtime_factor=m["mpc"]["realtime_factor"],
                mpc_horizon_s=horizon, mpc_closed_loop_s=duration, mpc_plant_segments=cmp.stats["plant_segments"],
                mpc_success=cmp.success, mpc_message=cmp.message, closed_loop=m,
-               mpc_note="CasADi virtual machine (no compiled code); target >= 50x real time compiled (issue 26)")
+               mpc_note="CasADi virtual machine (no compiled code); target >= 50x real time compiled")
 
     grad = design_gradient(problem, 30.0 if quick else 120.0)
     doc.update(gradient_fd_rel_err=grad["rel_err"], design_gradient_cost_ratio=grad["cost_ratio"],

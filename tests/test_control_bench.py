@@ -1,4 +1,4 @@
-"""studies/bench_control.py --quick: every key of issue 26, and the numbers that are checks."""
+"""studies/bench_control.py --quick: every key the benchmark promises, and the numbers that are checks."""
 
 import json
 
