@@ -36,7 +36,7 @@ LAYERS = [
     ("model", ("cablesys.model",)),
     ("statics", ("cablesys.statics",)),
     ("analyses", ("cablesys.time_domain", "cablesys.linear", "cablesys.slack", "cablesys.towed")),
-    ("design", ("cablesys.isolation", "cablesys.ladder", "cablesys.verdict", "cablesys.examples", "cablesys.export")),
+    ("design", ("cablesys.isolation", "cablesys.control", "cablesys.ladder", "cablesys.verdict", "cablesys.examples", "cablesys.export")),
     ("workflows", ("cablesys.sweeps",)),
     ("plots", ("cablesys.plots",)),
     ("cli", ("cablesys.cli", "cablesys.__main__", "cablesys.commands")),

@@ -1,0 +1,17 @@
+"""Optimal heave compensation by the winch: open-loop optimum, MPC, and the strategies it replaces.
+
+``heave_problem(scene, WinchLimits(...))`` sets the problem up on the winch model
+(:mod:`cablesys.model.winch`: Wang's 2-DOF cable with the unstretched length driven by the
+payout rate); ``optimal_payout(problem, horizon)`` solves it by direct multiple shooting with
+IPOPT and exact AD derivatives; ``resimulate`` checks an optimum with CVODES between the grid
+points; ``compare_compensation`` runs no compensation, a passive compensator, a PI/feed-forward
+AHC, MPC with preview and the open-loop optimum in closed loop on a finer plant.
+"""
+
+from .limits import WinchLimits
+from .mpc import STRATEGIES, Comparison, compare_compensation
+from .payout import HeaveProblem, PayoutResult, heave_problem, optimal_payout
+from .resimulate import resimulate
+
+__all__ = ["STRATEGIES", "Comparison", "HeaveProblem", "PayoutResult", "WinchLimits", "compare_compensation",
+           "heave_problem", "optimal_payout", "resimulate"]

@@ -1,0 +1,72 @@
+"""The ``cablesys control`` sub-command: heave compensation by the winch for a scene."""
+
+from __future__ import annotations
+
+import math
+import sys
+
+from ..errors import ParameterError
+
+
+def register(sub) -> None:
+    """Add ``control SCENE.toml [--out DIR]`` to the cablesys parser."""
+    p = sub.add_parser("control", help="optimal and MPC heave compensation by the winch (IPOPT)",
+                       description="Compare no compensation, a passive compensator, a PI/feed-forward AHC, MPC "
+                                   "with a wave preview and the open-loop optimal payout on the scene's nonlinear "
+                                   "winch model (Wang's 2-DOF cable with a variable length), under winch speed, "
+                                   "acceleration and power limits and the tension band. Writes control.json, "
+                                   "control_heave_tension.png and control_winch.png.")
+    p.add_argument("scene", help="scene TOML file (one section)")
+    p.add_argument("--out", default="control_out", help="output directory (default: control_out)")
+    p.add_argument("--duration", type=float, default=120.0, help="closed-loop run [s] (default 120)")
+    p.add_argument("--horizon", type=float, default=20.0, help="MPC horizon and preview [s] (default 20)")
+    p.add_argument("--dt", type=float, default=0.5, help="control interval [s] (default 0.5)")
+    p.add_argument("--speed", type=float, default=1.0, help="payout speed limit [m/s] (default 1; inf: none)")
+    p.add_argument("--acceleration", type=float, default=1.0, help="payout acceleration limit [m/s^2] (default 1)")
+    p.add_argument("--power", type=float, default=math.inf, help="winch power limit [W] (default: none)")
+    p.add_argument("--plant-segments", type=int, default=None,
+                   help="drag segments of the plant's cable (default: the scene's numerics.drag_segments)")
+    p.add_argument("--strategies", default="none,passive,pi,mpc,optimal",
+                   help="comma-separated subset of none,passive,pi,mpc,optimal")
+    p.add_argument("--overwrite", action="store_true", help="replace results of another scene in --out")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from ..outputs import OutputDir
+    from ..scene import load_scene
+    from .limits import WinchLimits
+    from .mpc import STRATEGIES, compare_compensation
+    from .plots import plot_heave_tension, plot_winch
+
+    strategies = tuple(s.strip() for s in args.strategies.split(",") if s.strip())
+    bad = [s for s in strategies if s not in STRATEGIES]
+    if bad:
+        raise ParameterError("--strategies", bad, f"allowed: {', '.join(STRATEGIES)}")
+    scene = load_scene(args.scene)
+    limits = WinchLimits(speed=args.speed, acceleration=args.acceleration, power=args.power)
+    settings = {"duration": args.duration, "horizon": args.horizon, "dt": args.dt, "speed": args.speed,
+                "acceleration": args.acceleration, "power": args.power, "strategies": strategies,
+                "plant_segments": args.plant_segments}
+    outdir = OutputDir(args.out, "control", {"scene": scene, "control": settings},
+                       overwrite=args.overwrite, owned=("control.json",))
+    with outdir.start(scene=scene.name):
+        res = compare_compensation(scene, limits, duration=args.duration, horizon=args.horizon, dt=args.dt,
+                                   plant_segments=args.plant_segments, strategies=strategies)
+        outdir.write_json("control.json", {"scene": scene.name, "settings": settings, **res.summary()})
+        title = f"{scene.name}: heave compensation, |w| <= {args.speed:g} m/s, |w'| <= {args.acceleration:g} m/s^2"
+        for name, fn in (("control_heave_tension.png", plot_heave_tension), ("control_winch.png", plot_winch)):
+            with outdir.writing(name) as tmp:
+                fn(res, tmp, title=title)
+        outdir.finish("success" if res.success else "failed", message=res.message)
+    w = sys.stdout.write
+    w(f"{scene.name}\n{'' if res.success else 'WARNING: ' + res.message + chr(10)}")
+    w(f"{'strategy':<10s} {'rms heave':>10s} {'dB':>7s} {'T max':>9s} {'F min':>9s} {'slack':>6s} "
+      f"{'|P| max':>9s} {'step':>9s}\n")
+    for name, m in res.metrics.items():
+        step = m.get("compute_per_step_s")
+        w(f"{name:<10s} {m['heave_rms_m']:9.3f}m {m['heave_reduction_db']:7.1f} {m['tension_max_n'] / 1e3:8.1f}k "
+          f"{m['tension_min_n'] / 1e3:8.1f}k {m['slack_time_s']:5.1f}s {m['power_max_w'] / 1e3:8.1f}k "
+          f"{'' if step is None else f'{step * 1e3:7.1f}ms'}\n")
+    w(f"wrote {outdir.path / 'control.json'}, control_heave_tension.png, control_winch.png\n")
+    return 0 if res.success else 1

@@ -1,0 +1,270 @@
+"""Closed-loop heave compensation against the nonlinear plant: MPC and the strategies it replaces.
+
+The plant is the winch model of the scene with ``plant_segments`` drag segments on the cable
+(Wang 1971 eq. 38-45), integrated by CVODES (:class:`.resimulate.Plant`); the controller's
+model has ``controller_segments`` (coarser: a model mismatch) and its own RK4 transcription.
+Strategies, each run from rest over the same sea:
+
+- ``none``: winch still (alpha = 0);
+- ``passive``: no payout, the sheave on a passive heave compensator (piston mass m_p, gas
+  spring k_p, damper c_p; precharge carrying the static load), tuned to
+  omega_n = omega_p / ``passive_ratio`` of the body + cable mass, damping ratio 0.3;
+- ``pi``: a vendor-style active heave compensation: feed-forward of the measured tip heave
+  rate plus a PI on the payout error, w_cmd = -y_s' + K_p e + K_i int e with e = L_0 - y_s - L
+  (the length that cancels the tip's heave), through the speed limit and the power limit at
+  the measured tension (|w| <= P_max / T_top), and a servo
+  alpha = (w_cmd - w) / tau within the acceleration limit;
+- ``mpc``: the optimal payout over a receding horizon of ``horizon`` s with a preview of the
+  tip motion over it (the scene's record), re-solved every control interval from the measured
+  plant state, warm-started from the previous solution shifted by one interval; the first
+  interval's alpha is applied (a step that does not converge applies the previous plan,
+  shifted; the path constraints start at the second node, the first being the measured
+  state). The plant's and the controller's rest states differ (the drag
+  of the current on a differently discretized cable sets another angle and stretch): the
+  controller sees the measured state minus that difference (a constant-offset estimate, so the
+  mismatch does not read as a pendulum swing or a heave error to be corrected);
+- ``optimal``: the open-loop optimum of the whole record on the controller's model, played
+  open-loop on the plant (the physical limit for these winch limits, up to the mismatch).
+
+Reported per strategy: residual body heave (rms over the statistics window, m, and in dB
+against ``none``), peak top tension and least spring force (N), time with F_bc below the
+cable's tension floor (s: slack by Wang's rule, eq. 54; the plant keeps the spring law there,
+so a slack run's later response is not that of a slack cable), largest |winch power| (W), and
+the controller's compute time per step (s).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from typing import ClassVar
+
+import numpy as np
+
+from ..model.winch import WINCH_OUTPUTS
+from ..results import ResultBase, timed
+from .limits import WinchLimits
+from .payout import check_window, heave_problem, heave_reduction_db, payout_nlp, statistics_window
+from .resimulate import Plant
+
+STRATEGIES = ("none", "passive", "pi", "mpc", "optimal")
+
+
+@dataclasses.dataclass(frozen=True)
+class Comparison(ResultBase):
+    """Closed-loop runs of every strategy on the plant (module docstring), on one time grid.
+
+    ``heave`` / ``tension_top`` / ``tension`` / ``speed`` / ``power`` map a strategy to its series
+    (m, N, N, m/s, W) at ``times`` (s); ``metrics`` a strategy to its headline numbers.
+    """
+
+    times: np.ndarray
+    heave: dict
+    tension_top: dict
+    tension: dict
+    speed: dict
+    power: dict
+    length: dict
+    metrics: dict
+    limits: dict
+    success: bool = True
+    message: str = ""
+    stats: dict = dataclasses.field(default_factory=dict)
+
+    VARIABLES: ClassVar[dict] = {"heave": ("m", "body heave from rest (down +)"),
+                                 "tension_top": ("N", "tension at the sheave"),
+                                 "tension": ("N", "spring force F_bc (Wang 1971 eq. 54)"),
+                                 "speed": ("m/s", "payout rate"), "power": ("W", "winch power T_top w"),
+                                 "length": ("m", "unstretched length in the water"), "strategy": ("1", "strategy")}
+
+    def summary(self) -> dict:
+        return {**super().summary(), "metrics": self.metrics, "limits": self.limits}
+
+    def to_xarray(self):
+        import xarray as xr
+        names = [s for s in STRATEGIES if s in self.heave]
+        data = {k: (("strategy", "time"), np.array([getattr(self, k)[s] for s in names]))
+                for k in ("heave", "tension_top", "tension", "speed", "power", "length")}
+        return xr.Dataset(data, coords={"strategy": names, "time": self.times})
+
+
+def _metrics(problem, T, Y, heave0, mask, tens_floor):
+    oi = WINCH_OUTPUTS.index
+    h = Y[:, oi("heave")] - problem.heave_rest
+    dt = np.diff(T, prepend=T[0])
+    return {"heave_rms_m": float(np.sqrt(np.mean(h[mask] ** 2))),
+            "heave_reduction_db": heave_reduction_db(h, heave0, mask),
+            "tension_max_n": float(np.max(Y[:, oi("tension_top")])),
+            "tension_min_n": float(np.min(Y[:, oi("tension")])),
+            "slack_time_s": float(np.sum(dt[Y[:, oi("tension")] < tens_floor])),
+            "power_max_w": float(np.max(np.abs(Y[:, oi("power")]))),
+            "speed_max_m_s": float(np.max(np.abs(Y[:, oi("speed")])))}
+
+
+def _run(plant, problem_plant, controller, N: int, x0):
+    """Closed loop: ``controller(k, x) -> alpha``; returns (T, X, alpha per node, step times)."""
+    dt = problem_plant.dt
+    X, A, S = [np.asarray(x0, float)], [], []
+    for k in range(N):
+        t0 = time.perf_counter()
+        a = float(controller(k, X[-1]))
+        S.append(time.perf_counter() - t0)
+        A.append(a)
+        X.append(plant.advance(X[-1], a, k * dt)[-1])
+    A.append(0.0)
+    return dt * np.arange(N + 1), np.array(X), np.array(A), np.array(S)
+
+
+def _pi_controller(problem, limits: WinchLimits, kp: float, ki: float, tau: float):
+    """The vendor-style AHC (module docstring) as ``controller(k, x) -> alpha``."""
+    m, p, dt = problem.model, problem.p, problem.dt
+    L0 = problem.x_rest[-2]
+    state = {"int": 0.0}
+
+    i_top = WINCH_OUTPUTS.index("tension_top")
+
+    def control(k, x):
+        e = np.array(m.top(k * dt, p)).ravel()
+        err = (L0 - e[2]) - x[-2]
+        state["int"] += err * dt
+        # the drive's speed limit, and the power limit at the measured line tension
+        tension = abs(float(np.array(m.outputs(x, [0.0, 0.0], k * dt, p, problem.c)).ravel()[i_top]))
+        w_lim = min(limits.speed, limits.power / max(tension, 1.0))
+        w_cmd = float(np.clip(-e[4] + kp * err + ki * state["int"], -w_lim, w_lim))
+        return float(np.clip((w_cmd - x[-1]) / tau, -limits.acceleration, limits.acceleration))
+    return control
+
+
+@timed
+def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon: float = 20.0, dt: float = 0.5,
+                         plant_segments: int | None = None, controller_segments: int = 1,
+                         tension_weight: float = 0.0, control_weight: float = 1e-3,
+                         passive_ratio: float = 3.0, pi_gains=(0.5, 0.05), servo_tau: float | None = None,
+                         strategies=STRATEGIES, stats_start: float | None = None, max_iter: int = 100) -> Comparison:
+    """Run the strategies of the module docstring on the plant and compare them.
+
+    Parameters
+    ----------
+    scene : Scene
+        One section; its top motion is the sea (and the MPC's preview).
+    limits : WinchLimits
+    duration : float
+        Closed-loop run (s); with the MPC's horizon within the record.
+    horizon : float
+        MPC horizon = preview (s).
+    dt : float
+        Control interval (s), of the controller and the plant's zero-order hold.
+    plant_segments, controller_segments : int
+        Drag segments of the plant (default: the scene's) and of the controller's model.
+    tension_weight, control_weight : float
+        Objective weights (:func:`.payout.heave_problem`).
+    passive_ratio : float
+        omega_p / omega_n of the passive compensator (omega_p from the scene's sea, else its
+        slowest sinusoid).
+    pi_gains : (float, float)
+        K_p (1/s) and K_i (1/s^2) of the PI AHC; ``servo_tau`` (s) its speed servo (default dt).
+    strategies : sequence of str
+        A subset of :data:`STRATEGIES`.
+    stats_start : float, optional
+        Start of the statistics window (s; default 20 % of the run).
+    max_iter : int
+        IPOPT iterations per MPC step.
+
+    Returns
+    -------
+    Comparison
+        ``success`` False (with the reason) when an MPC step or the open-loop optimum did not
+        converge; the runs computed are kept.
+    """
+    from ..errors import ParameterError
+    unknown = [s for s in strategies if s not in STRATEGIES]
+    if unknown:
+        raise ParameterError("strategies", unknown, f"allowed: {STRATEGIES}")
+    plant_scene = scene if plant_segments is None else scene.with_numerics(drag_segments=plant_segments)
+    ctrl_scene = scene.with_numerics(drag_segments=controller_segments)
+    kw = dict(dt=dt, tension_weight=tension_weight, control_weight=control_weight)
+    prob_p = heave_problem(plant_scene, limits, **kw)
+    prob_c = heave_problem(ctrl_scene, limits, **kw)
+    N = check_window(prob_c, 0.0, duration)
+    n_h = check_window(prob_c, duration, horizon) if "mpc" in strategies else 0
+    plant = Plant(prob_p.model, prob_p.p, prob_p.c, dt)
+    runs, step_s, messages = {}, {}, []
+
+    runs["none"] = _run(plant, prob_p, lambda k, x: 0.0, N, prob_p.x_rest)     # the reference of every dB
+    if "pi" in strategies:
+        ctl = _pi_controller(prob_p, limits, pi_gains[0], pi_gains[1], servo_tau or dt)
+        runs["pi"] = _run(plant, prob_p, ctl, N, prob_p.x_rest)
+        step_s["pi"] = runs["pi"][3]
+    if "optimal" in strategies:
+        nlp = payout_nlp(prob_c, N, max_iter=max(max_iter, 300))
+        sol = nlp.solve(prob_c.x_rest, dt * np.arange(N + 1)[:, None],
+                        (prob_c.rollout(prob_c.x_rest, np.zeros(N)), np.zeros((N, 1))))
+        if not sol.success:
+            messages.append(f"open-loop optimum: {sol.status} {sol.worst}".strip())
+        U = sol.U.ravel()
+        runs["optimal"] = _run(plant, prob_p, lambda k, x: U[k], N, prob_p.x_rest)
+        step_s["optimal"] = np.array([sol.solve_s])
+    if "mpc" in strategies:
+        # built once, solved N times; no path constraint on the measured state itself
+        nlp = payout_nlp(prob_c, n_h, max_iter=max_iter, expand=True, constrain_first=False)
+        memo = {"X": None, "U": np.zeros(n_h), "fail": 0}
+        offset = prob_p.x_rest - prob_c.x_rest         # the models' rest states differ (drag in the current)
+
+        def mpc(k, x):
+            x = x - offset                                  # the measured state about the controller's rest
+            U = np.append(memo["U"][1:], memo["U"][-1])       # warm start: shifted by one interval
+            t = dt * (k + np.arange(n_h + 1))
+            Xg = prob_c.rollout(x, U, t0=t[0])
+            sol = nlp.solve(x, t[:, None], (Xg, U[:, None]))
+            memo["fail"] += not sol.success
+            memo["U"] = sol.U.ravel() if sol.success else U      # a failed step keeps the previous plan
+            return memo["U"][0]
+        runs["mpc"] = _run(plant, prob_p, mpc, N, prob_p.x_rest)
+        step_s["mpc"] = runs["mpc"][3]
+        if memo["fail"]:
+            messages.append(f"MPC: {memo['fail']} of {N} steps did not converge (the previous plan, shifted, "
+                            "was applied)")
+    if "passive" in strategies:
+        runs["passive"] = _passive_run(scene, plant_scene, limits, kw, passive_ratio, N)
+
+    T = dt * np.arange(N + 1)
+    mask = statistics_window(T, stats_start)
+    out = {name: {} for name in ("heave", "tension_top", "tension", "speed", "power", "length")}
+    metrics = {}
+    oi = WINCH_OUTPUTS.index
+    Y0 = prob_p.outputs(runs["none"][1], runs["none"][2], T)
+    h0 = Y0[:, oi("heave")] - prob_p.heave_rest
+    floor = float(prob_p.p[prob_p.model.layout.index("cable.tension_floor")])
+    for name in [s for s in STRATEGIES if s in runs]:
+        prob, (_, X, A, _) = (runs[name][4], runs[name][:4]) if name == "passive" else (prob_p, runs[name])
+        Y = prob.outputs(X, A, T)
+        for k in out:
+            out[k][name] = Y[:, oi(k)] - (prob.heave_rest if k == "heave" else 0.0)
+        metrics[name] = _metrics(prob, T, Y, h0, mask, floor)
+        if name in step_s:
+            metrics[name]["compute_per_step_s"] = float(np.mean(step_s[name]))
+            metrics[name]["compute_max_step_s"] = float(np.max(step_s[name]))
+    if "mpc" in metrics:
+        metrics["mpc"]["realtime_factor"] = dt / metrics["mpc"]["compute_per_step_s"]
+    lim = {"speed_m_s": limits.speed, "acceleration_m_s2": limits.acceleration, "power_w": limits.power,
+           "working_load_n": prob_p.working_load, "tension_floor_n": prob_p.floor,
+           "static_tension_n": prob_p.static_tension}
+    return Comparison(times=T, metrics=metrics, limits=lim, success=not messages, message="; ".join(messages),
+                      stats={"steps": N, "horizon_intervals": n_h, "dt_s": dt,
+                             "plant_segments": plant_scene.numerics.drag_segments,
+                             "controller_segments": controller_segments}, **out)
+
+
+def _passive_run(scene, plant_scene, limits, kw, ratio, N):
+    """The passive compensator on the plant: (T, X, alpha, step times, its problem)."""
+    sea = scene.top_motion.spectrum
+    omega_p = 2 * math.pi / sea.tp if sea is not None else min(s.frequency for s in scene.top_motion.y)
+    body, cable = scene.sections[0].body, scene.sections[0].cable
+    m = body.mass_y + cable.mass_per_length * cable.length
+    wn = omega_p / ratio
+    comp = {"mass": 200.0, "stiffness": m * wn ** 2, "damping": 2 * 0.3 * m * wn}
+    prob = heave_problem(plant_scene, limits, compensator=comp, **kw)
+    plant = Plant(prob.model, prob.p, prob.c, prob.dt)
+    T, X, A, S = _run(plant, prob, lambda k, x: 0.0, N, prob.x_rest)
+    return T, X, A, S, prob

@@ -1,0 +1,367 @@
+"""Optimal heave compensation by the winch: the open-loop optimal payout for a known top motion.
+
+The problem (on the winch model of :mod:`cablesys.model.winch`, Wang's 2-DOF cable with the
+unstretched length L driven by the payout rate w, w' = alpha the control):
+
+    minimize   int_0^T [ (y_b - y_b0)^2 + c_T ((T_top - T_0) / T_0)^2 + c_a alpha^2 ] dt
+    subject to |w| <= w_max, |alpha| <= a_max, |T_top w| <= P_max,
+               F_bc >= T_floor (no slack, Wang 1971 eq. 54), T_top <= working load,
+
+from the rest state, with the scene's top motion (sinusoids or a realised JONSWAP sea, which
+the model composes in). y_b is the body's depth below the top's mean depth, earth-fixed: its
+deviation from rest is the body heave relative to the seabed. Transcription: direct multiple
+shooting (:mod:`.shooting`) with ``substeps`` RK4 steps per control interval of ``dt``
+seconds, alpha piecewise constant, exact first and second derivatives by CasADi's AD, IPOPT.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import ClassVar
+
+import casadi as ca
+import numpy as np
+
+from ..errors import ParameterError, require_positive
+from ..model.winch import COMPENSATOR_PARAMETERS, WINCH_OUTPUTS, WinchModel, build_winch_model, rest_state
+from ..results import ResultBase, timed
+from .limits import WinchLimits
+from .shooting import PathConstraint, ShootingNLP
+
+# rows of the stage function's path outputs g
+G_ROWS = ("power", "tension", "tension_top")
+
+
+@dataclasses.dataclass(frozen=True)
+class HeaveProblem:
+    """A scene, its winch model and the numbers of the compensation problem (SI units)."""
+
+    scene: object
+    model: WinchModel
+    p: np.ndarray
+    c: np.ndarray                     # compensator parameters (COMPENSATOR_PARAMETERS)
+    x_rest: np.ndarray
+    limits: WinchLimits
+    floor: float                      # least F_bc (N)
+    working_load: float               # largest top tension (N)
+    static_tension: float             # T_top at rest (N)
+    heave_rest: float                 # y_b at rest (m)
+    dt: float
+    substeps: int
+    tension_weight: float
+    control_weight: float
+    step: ca.Function = dataclasses.field(repr=False)     # (x, alpha, t_k) -> x_{k+1}
+    stage: ca.Function = dataclasses.field(repr=False)    # (x, alpha, t_k) -> (cost, g)
+    # (x, alpha, t_k, p, c, w) -> (x_{k+1}, cost, g) with the parameters symbolic (sensitivities)
+    interval: ca.Function = dataclasses.field(repr=False, default=None)
+
+    @property
+    def record_s(self) -> float:
+        """Length of the known top-motion record (s): a sampled series' end, else the scene's duration."""
+        series = self.scene.top_motion.series
+        return float(series.times[-1]) if series is not None else float(self.scene.numerics.duration)
+
+    def outputs(self, X: np.ndarray, U: np.ndarray, t: np.ndarray) -> np.ndarray:
+        """Winch-model outputs (:data:`WINCH_OUTPUTS`) at states X (n, nx), controls U (n,), times t."""
+        v = np.vstack([np.ravel(U), np.zeros(len(t))])
+        f = self.model.outputs.map(len(t))
+        return np.array(f(X.T, v, np.asarray(t, float)[None, :], self.p, self.c)).T
+
+    def rollout(self, x0, U: np.ndarray, t0: float = 0.0) -> np.ndarray:
+        """Node states (N+1, nx) of the transcription's RK4 steps under the controls ``U`` (N,)."""
+        N = len(U)
+        f = self.step.mapaccum(N)
+        X = np.array(f(np.asarray(x0, float), np.ravel(U)[None, :], (t0 + self.dt * np.arange(N))[None, :])).T
+        return np.vstack([x0, X])
+
+    def constraints(self) -> list[PathConstraint]:
+        """The path constraints: power, no slack, working load (rows of ``stage``'s g)."""
+        lim = self.limits
+        return [PathConstraint("winch power", (0,), -lim.power, lim.power, max(self.static_tension, 1.0)),
+                PathConstraint("tension floor (no slack)", (1,), self.floor, math.inf, self.static_tension),
+                PathConstraint("working load", (2,), -math.inf, self.working_load, self.static_tension)]
+
+    def bounds(self):
+        """(u_bounds, x_bounds): |alpha| <= a_max; |w| <= w_max on the state w."""
+        n = self.model.nx
+        lo, hi = np.full(n, -np.inf), np.full(n, np.inf)
+        lo[-1], hi[-1] = -self.limits.speed, self.limits.speed
+        a = self.limits.acceleration
+        return ([-a], [a]), (lo, hi)
+
+    def scales(self):
+        """State scales (phi and its rate 0.05, lengths and speeds 1) for IPOPT."""
+        nq = self.model.nq
+        q = np.array([0.05] + [1.0] * (nq - 1))
+        return np.concatenate([q, q, [1.0, 1.0]])
+
+
+def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25, substeps: int = 2,
+                  tension_weight: float = 0.0, control_weight: float = 1e-3,
+                  compensator: dict | None = None, model: WinchModel | None = None) -> HeaveProblem:
+    """Set up the heave-compensation problem of ``scene`` (module docstring).
+
+    Parameters
+    ----------
+    scene : Scene
+        A one-section scene (its top motion is the known record).
+    limits : WinchLimits, optional
+        Winch and tension limits (default: unbounded winch, the scene's tension band).
+    dt : float
+        Control interval (s): alpha is constant on each.
+    substeps : int
+        RK4 steps per interval.
+    tension_weight : float
+        c_T, weight of the relative tension fluctuation (m^2 per unit of ((T - T_0)/T_0)^2).
+    control_weight : float
+        c_a, weight of alpha^2 (m^2 s^4 / m^2): keeps the optimum unique and smooth.
+    compensator : dict, optional
+        ``mass``, ``stiffness``, ``damping`` of a passive compensator under the sheave (the
+        precharge is set to hold the static load at zero stroke).
+    model : WinchModel, optional
+        A model built before for this scene's structure.
+
+    Returns
+    -------
+    HeaveProblem
+    """
+    limits = WinchLimits() if limits is None else limits
+    require_positive("dt", dt, "s")
+    if not (isinstance(substeps, int) and substeps >= 1):
+        raise ParameterError("substeps", substeps, "must be an integer >= 1")
+    for name, v in (("tension_weight", tension_weight), ("control_weight", control_weight)):
+        if not (v >= 0 and math.isfinite(v)):
+            raise ParameterError(name, v, "must be a finite number >= 0")
+    model = model or build_winch_model(scene, compensator=compensator is not None)
+    p = model.parameters(scene)
+    c = np.zeros(len(COMPENSATOR_PARAMETERS))
+    if compensator is not None:
+        unknown = set(compensator) - {"mass", "stiffness", "damping"}
+        if unknown:
+            raise ParameterError("compensator", sorted(unknown), "allowed keys: mass, stiffness, damping")
+        require_positive("compensator.mass", compensator.get("mass", 0.0), "kg")
+        c[:3] = [compensator["mass"], compensator.get("stiffness", 0.0), compensator.get("damping", 0.0)]
+        plain = build_winch_model(scene)
+        x_plain = rest_state(plain, p)
+        t_top = dict(zip(WINCH_OUTPUTS, np.array(plain.outputs(x_plain, [0, 0], 0.0, p, c)).ravel()))["tension_top"]
+        # y down: the precharge pushes the sheave up against the cable's vertical pull and its own weight
+        c[3] = -t_top * math.cos(x_plain[0]) - c[0] * p[model.layout.index("environment.gravity")]
+    x_rest = rest_state(model, p, c)
+    y_rest = dict(zip(WINCH_OUTPUTS, np.array(model.outputs(x_rest, [0, 0], 0.0, p, c)).ravel()))
+    floor, wl = limits.band(scene, y_rest["tension_top"])
+    T0 = y_rest["tension_top"]
+    step, stage, interval = _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, control_weight)
+    return HeaveProblem(scene=scene, model=model, p=p, c=c, x_rest=x_rest, limits=limits, floor=floor,
+                        working_load=wl, static_tension=T0, heave_rest=y_rest["heave"], dt=float(dt),
+                        substeps=substeps, tension_weight=float(tension_weight),
+                        control_weight=float(control_weight), step=step, stage=stage,
+                        interval=interval)
+
+
+
+def _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, control_weight):
+    """(step, stage, interval) of one control interval; step and stage are SX functions of (x, alpha, t_k)
+    with the numbers inlined.
+
+    ``interval(x, u, r, p, c, w) -> (x_next, cost, g)``: ``substeps`` classical RK4 steps of the
+    winch ODE with alpha = u constant, the stage cost at the interval start and the path outputs
+    (:data:`G_ROWS`); w = (heave at rest, T_0, c_T, c_a, dt). They run in CasADi's virtual
+    machine (the NLP's derivatives through ``map``, not expanded).
+    """
+    xs, uk, tk = ca.SX.sym("x", model.nx), ca.SX.sym("u"), ca.SX.sym("r")
+    ps, cs, ws = ca.SX.sym("p", len(p)), ca.SX.sym("c", len(c)), ca.SX.sym("w", 5)
+    v = ca.vertcat(uk, 0.0)
+    f = lambda x, t: model.ode(x, v, t, ps, cs)
+    h = ws[4] / substeps
+    x = xs
+    for i in range(substeps):                       # classical RK4
+        t = tk + i * h
+        k1 = f(x, t)
+        k2 = f(x + h / 2 * k1, t + h / 2)
+        k3 = f(x + h / 2 * k2, t + h / 2)
+        k4 = f(x + h * k3, t + h)
+        x = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+    y = model.outputs(xs, v, tk, ps, cs)
+    oi = WINCH_OUTPUTS.index
+    cost = ws[4] * ((y[oi("heave")] - ws[0]) ** 2 + ws[2] * ((y[oi("tension_top")] - ws[1]) / ws[1]) ** 2
+                    + ws[3] * uk ** 2)
+    g = ca.vertcat(*(y[oi(name)] for name in G_ROWS))
+    interval = ca.Function("interval", [xs, uk, tk, ps, cs, ws], [x, cost, g],
+                           ["x", "u", "r", "p", "c", "w"], ["xn", "cost", "g"])
+    w = ca.DM([y_rest["heave"], y_rest["tension_top"], tension_weight, control_weight, dt])
+    xa, ua, ra = ca.SX.sym("x", model.nx), ca.SX.sym("u"), ca.SX.sym("r")
+    xn, cost, g = interval(xa, ua, ra, ca.DM(p), ca.DM(c), w)
+    step = ca.Function("step", [xa, ua, ra], [xn])
+    stage = ca.Function("stage", [xa, ua, ra], [cost, g])
+    return step, stage, interval
+
+
+@dataclasses.dataclass(frozen=True)
+class PayoutResult(ResultBase):
+    """An open-loop optimal payout (or any payout evaluated on the problem's grid) and its response.
+
+    ``times`` (N+1,) s; ``states`` (N+1, nx) with labels ``state_labels``; ``acceleration`` (N,)
+    m/s^2, the control alpha on each interval; ``outputs`` (N+1, n_out) with labels
+    ``output_labels`` (:data:`cablesys.model.winch.WINCH_OUTPUTS`) and the same for the run
+    without compensation (``uncompensated``, alpha = 0). ``status`` is IPOPT's return status,
+    ``violated`` the constraint that could not be met ("" when all hold), ``violations`` the
+    largest violation of each, relative to its scale (the static tension for forces).
+    """
+
+    times: np.ndarray
+    states: np.ndarray
+    acceleration: np.ndarray
+    outputs: np.ndarray
+    uncompensated: np.ndarray
+    state_labels: tuple
+    output_labels: tuple
+    status: str
+    violated: str
+    violations: dict
+    objective: float
+    heave_rms_m: float
+    uncompensated_heave_rms_m: float
+    heave_reduction_db: float
+    tension_max_n: float
+    tension_min_n: float
+    speed_max_m_s: float
+    power_max_w: float
+    success: bool = True
+    message: str = ""
+    stats: dict = dataclasses.field(default_factory=dict)
+
+    VARIABLES: ClassVar[dict] = {
+        "heave": ("m", "body heave from rest, earth-fixed (down +)"),
+        "heave_uncompensated": ("m", "body heave from rest without compensation"),
+        "tension_top": ("N", "cable tension at the sheave"),
+        "tension_top_uncompensated": ("N", "cable tension at the sheave without compensation"),
+        "tension": ("N", "spring force F_bc of the cable (Wang 1971 eq. 54)"),
+        "length": ("m", "unstretched length in the water"), "speed": ("m/s", "payout rate w"),
+        "acceleration": ("m/s^2", "payout acceleration (the control)"), "power": ("W", "winch power T_top w")}
+
+    def output(self, name: str, compensated: bool = True) -> np.ndarray:
+        """One output's time series (``heave`` is taken from rest)."""
+        Y = self.outputs if compensated else self.uncompensated
+        y = Y[:, self.output_labels.index(name)]
+        return y - Y[0, self.output_labels.index(name)] if name == "heave" else y
+
+    def to_xarray(self):
+        """The trajectories on dimension ``time`` (the control on the interval starts)."""
+        import xarray as xr
+        data = {name: ("time", self.output(name)) for name in ("heave", "tension", "tension_top", "length",
+                                                               "speed", "power")}
+        data["heave_uncompensated"] = ("time", self.output("heave", False))
+        data["tension_top_uncompensated"] = ("time", self.output("tension_top", False))
+        data["acceleration"] = ("time", np.append(self.acceleration, np.nan))
+        return xr.Dataset(data, coords={"time": self.times})
+
+
+def statistics_window(times: np.ndarray, start: float | None) -> np.ndarray:
+    """Mask of the samples in the statistics window: from ``start`` (s; default 20 % of the run)."""
+    start = 0.2 * times[-1] if start is None else start
+    return times >= start
+
+
+def heave_reduction_db(heave, reference, mask) -> float:
+    """20 log10(rms(heave) / rms(reference)) over ``mask`` (dB; negative: reduced)."""
+    a, b = np.sqrt(np.mean(np.square(heave[mask]))), np.sqrt(np.mean(np.square(reference[mask])))
+    return float(20 * np.log10(max(a, 1e-300) / b)) if b > 0 else float("nan")
+
+
+def payout_result(problem: HeaveProblem, X, U, *, status: str, violated: str = "", violations=None,
+                  objective: float = float("nan"), success: bool = True, message: str = "",
+                  stats=None, stats_start: float | None = None) -> PayoutResult:
+    """A :class:`PayoutResult` of node states ``X`` and controls ``U`` on the problem's grid."""
+    N = len(U)
+    t = problem.dt * np.arange(N + 1)
+    Uext = np.append(np.ravel(U), 0.0)
+    Y = problem.outputs(X, Uext, t)
+    X0 = problem.rollout(problem.x_rest, np.zeros(N))
+    Y0 = problem.outputs(X0, np.zeros(N + 1), t)
+    mask = statistics_window(t, stats_start)
+    oi = WINCH_OUTPUTS.index
+    h, h0 = Y[:, oi("heave")] - problem.heave_rest, Y0[:, oi("heave")] - problem.heave_rest
+    return PayoutResult(times=t, states=np.asarray(X), acceleration=np.ravel(U), outputs=Y, uncompensated=Y0,
+                        state_labels=problem.model.state_labels, output_labels=WINCH_OUTPUTS, status=status,
+                        violated=violated, violations=dict(violations or {}), objective=float(objective),
+                        heave_rms_m=float(np.sqrt(np.mean(h[mask] ** 2))),
+                        uncompensated_heave_rms_m=float(np.sqrt(np.mean(h0[mask] ** 2))),
+                        heave_reduction_db=heave_reduction_db(h, h0, mask),
+                        tension_max_n=float(np.max(Y[:, oi("tension_top")])),
+                        tension_min_n=float(np.min(Y[:, oi("tension")])),
+                        speed_max_m_s=float(np.max(np.abs(Y[:, oi("speed")]))),
+                        power_max_w=float(np.max(np.abs(Y[:, oi("power")]))),
+                        success=success, message=message, stats=dict(stats or {}))
+
+
+def payout_nlp(problem: HeaveProblem, N: int, *, max_iter: int = 300, tol: float = 1e-8,
+               expand: bool = False, warm_duals: bool = False, constrain_first: bool = True) -> ShootingNLP:
+    """The multiple-shooting NLP of ``problem`` over N intervals (start state and times are its
+    parameters: :meth:`.shooting.ShootingNLP.solve` takes them), with the last node's heave
+    in the cost (the stage cost at alpha = 0)."""
+    ub, xb = problem.bounds()
+    xN, tN = ca.SX.sym("x", problem.model.nx), ca.SX.sym("t")
+    terminal = ca.Function("terminal", [xN, tN], [problem.stage(xN, 0.0, tN)[0]])   # the last node's cost
+    return ShootingNLP(problem.step, problem.stage, N, constraints=problem.constraints(), u_bounds=ub,
+                       x_bounds=xb, terminal=terminal, x_ref=problem.x_rest, x_scale=problem.scales(),
+                       ipopt={"max_iter": max_iter, "tol": tol}, expand=expand, warm_duals=warm_duals,
+                       constrain_first=constrain_first)
+
+
+def check_window(problem: HeaveProblem, t0: float, horizon: float) -> int:
+    """Number of intervals of [t0, t0 + horizon]; a window beyond the record or under 2 intervals is refused."""
+    require_positive("horizon", horizon, "s")
+    if t0 + horizon > problem.record_s + 1e-9:
+        raise ParameterError("horizon", horizon, f"must end within the top-motion record, {problem.record_s:g} s "
+                                                 f"(numerics.duration or the series' end), starting at {t0:g} s")
+    N = int(round(horizon / problem.dt))
+    if N < 2:
+        raise ParameterError("horizon", horizon, f"must span at least 2 control intervals of {problem.dt:g} s")
+    return N
+
+
+def solution_message(sol) -> str:
+    """'' on success; else which constraint could not be met, or why IPOPT stopped."""
+    if sol.success:
+        return ""
+    if sol.worst:
+        return (f"infeasible: '{sol.worst}' cannot be met within the winch limits (needs "
+                f"{sol.violations[sol.worst]:.3g} of its scale more; IPOPT: {sol.status})")
+    return f"IPOPT stopped with {sol.status}; try more iterations (max_iter) or a warm start"
+
+
+@timed
+def optimal_payout(problem: HeaveProblem, horizon: float, *, warm_start: PayoutResult | None = None,
+                   max_iter: int = 300, tol: float = 1e-8, stats_start: float | None = None) -> PayoutResult:
+    """The open-loop optimal payout over [0, horizon] for the problem's known top motion.
+
+    Parameters
+    ----------
+    problem : HeaveProblem
+        From :func:`heave_problem`.
+    horizon : float
+        Length of the optimized record (s); at most the record (:attr:`HeaveProblem.record_s`).
+    warm_start : PayoutResult, optional
+        A previous optimum (same dt; truncated, or repeated to length) as IPOPT's start.
+    max_iter, tol : int, float
+        IPOPT's iteration limit and tolerance.
+    stats_start : float, optional
+        Start of the window of the heave statistics (s; default 20 % of the horizon).
+
+    Returns
+    -------
+    PayoutResult
+        ``success`` False with ``violated`` naming the constraint when IPOPT finds no feasible
+        point (the phase-one problem of :func:`.shooting.solve_shooting` names it), or when it
+        stops early (``status``); the trajectory computed is kept either way.
+    """
+    N = check_window(problem, 0.0, horizon)
+    U = np.zeros(N) if warm_start is None else np.resize(warm_start.acceleration, N)
+    guess = (problem.rollout(problem.x_rest, U), U[:, None])
+    sol = payout_nlp(problem, N, max_iter=max_iter, tol=tol).solve(problem.x_rest, problem.dt * np.arange(N + 1)[:, None],
+                                                                   guess)
+    return payout_result(problem, sol.X, sol.U, status=sol.status, violated=sol.worst, violations=sol.violations,
+                         objective=sol.objective, success=sol.success, message=solution_message(sol),
+                         stats={"iterations": sol.iterations, "solve_s": sol.solve_s, "intervals": N},
+                         stats_start=stats_start)

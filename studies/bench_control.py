@@ -1,0 +1,157 @@
+"""Benchmark of heave compensation by the winch (cablesys.control) on the ROV lift.
+
+Measured in one run:
+
+- the open-loop optimal payout for the ROV lift's JONSWAP sea (Hs 2.5 m, Tp 10 s; ``--quick``:
+  the first 60 s, else 600 s) on the 2-DOF winch model (one drag segment), dt = 0.5 s, speed
+  1 m/s, acceleration 1 m/s^2: IPOPT wall time, iterations, status, and the body heave
+  against the uncompensated run (dB, negative = reduced);
+- that optimum re-simulated by CVODES on a 4x finer output grid: the largest relative
+  constraint violation;
+- closed loop on a finer plant (the scene's 10 drag segments; ``--quick``: 4): PI/feed-forward
+  AHC and MPC with a 20 s horizon (``--quick``: 10 s) and preview: heave in dB against the
+  uncompensated plant run, mean time per MPC step and the real-time factor dt / step time;
+- the LQ check: the multiple-shooting optimum of a spring-mass plant against the discrete
+  Riccati law (relative error);
+- a time-domain design gradient: d(mean square heave of the uncompensated 2-DOF run)/d(AE, C_I)
+  by reverse-mode AD through the RK4 roll-out, against central finite differences (relative
+  error per parameter at the best of three steps, the largest of the two), and its cost over
+  one roll-out.
+
+Writes bench_control.json. Usage: python studies/bench_control.py --out DIR [--quick]
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+import casadi as ca
+import numpy as np
+from scipy.linalg import expm, solve_discrete_are
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _common import parse_args, write_json
+
+from cablesys.control import WinchLimits, heave_problem, optimal_payout, resimulate
+from cablesys.control.mpc import compare_compensation
+from cablesys.control.shooting import solve_shooting
+from cablesys.examples import example_path
+from cablesys.scene import load_scene
+
+
+def lq_error() -> float:
+    """max |u_shooting - u_Riccati| / max |u_Riccati| for a spring-mass plant (tests/test_control_lq.py)."""
+    dt, m, k, c = 0.1, 2.0, 8.0, 0.3
+    Ac, Bc = np.array([[0.0, 1.0], [-k / m, -c / m]]), np.array([[0.0], [1.0 / m]])
+    E = expm(np.block([[Ac, Bc], [np.zeros((1, 3))]]) * dt)
+    A, B = E[:2, :2], E[:2, 2:]
+    Q, R = np.diag([1.0, 0.1]), np.array([[0.05]])
+    P = solve_discrete_are(A, B, Q, R)
+    K = np.linalg.solve(R + B.T @ P @ B, B.T @ P @ A)
+    x, u, r = ca.SX.sym("x", 2), ca.SX.sym("u"), ca.SX.sym("r")
+    step = ca.Function("step", [x, u, r], [ca.mtimes(ca.DM(A), x) + ca.mtimes(ca.DM(B), u)])
+    stage = ca.Function("stage", [x, u, r], [ca.bilin(ca.DM(Q), x, x) + ca.bilin(ca.DM(R), u, u), u])
+    sol = solve_shooting(step, stage, [1.0, -0.5], 60, terminal=ca.Function("t", [x], [ca.bilin(ca.DM(P), x, x)]),
+                         ipopt={"tol": 1e-12})
+    u_lqr = -(K @ sol.X[:-1].T).ravel()
+    return float(np.max(np.abs(sol.U.ravel() - u_lqr)) / np.max(np.abs(u_lqr)))
+
+
+def design_gradient(problem, duration: float) -> dict:
+    """AD gradient of the uncompensated mean square heave over [0, duration] w.r.t. (AE, C_I) through
+    the RK4 roll-out of the winch model at w = 0, against central differences. The start state is
+    the nominal rest state for every (AE, C_I): its own dependence on AE is not differentiated."""
+    model, lay = problem.model, problem.model.layout
+    theta = ca.MX.sym("theta", 2)
+    idx = [lay.index("cable.ae"), lay.index("cable.internal_damping")]
+    p_nom = problem.p.copy()
+    pm = ca.MX(ca.DM(p_nom))
+    pm[idx[0]], pm[idx[1]] = theta[0], theta[1]
+    xs, ts, ps = ca.SX.sym("x", model.nx), ca.SX.sym("t"), ca.SX.sym("p", len(p_nom))
+    w = ca.DM([problem.heave_rest, problem.static_tension, 0.0, 0.0, problem.dt])   # cost = dt (heave - rest)^2
+    x_next, sq, _ = problem.interval(xs, 0.0, ts, ps, problem.c, w)
+    step = ca.Function("step", [xs, ts, ps], [x_next, sq])
+    N = int(round(duration / problem.dt))
+    roll = step.mapaccum("roll", N, [0], [0])
+    tgrid = ca.DM(problem.dt * np.arange(N)).T
+    _, h2 = roll(ca.DM(problem.x_rest), tgrid, ca.repmat(pm, 1, N))
+    J = ca.sum2(h2) / (N * problem.dt)
+    fJ = ca.Function("J", [theta], [J])
+    fG = ca.Function("G", [theta], [J, ca.gradient(J, theta)])
+    th0 = np.array([p_nom[idx[0]], p_nom[idx[1]]])
+
+    def timed(f, n=3):
+        f(th0)
+        t0 = time.perf_counter()
+        for _ in range(n):
+            out = f(th0)
+        return (time.perf_counter() - t0) / n, out
+    t_sim, _ = timed(fJ)
+    t_grad, (_, g) = timed(fG)
+    g = np.array(g).ravel()
+    # central differences at three relative steps; per parameter the step that agrees best (the C_I
+    # derivative is ~1e-13 of J's units: at a small step its difference is rounding, at a large one truncation)
+    steps = (1e-3, 1e-4, 1e-5)
+    fd = np.zeros((len(steps), 2))
+    for j, rel in enumerate(steps):
+        for i in range(2):
+            d = np.zeros(2)
+            d[i] = rel * th0[i]
+            fd[j, i] = float((fJ(th0 + d) - fJ(th0 - d)) / (2 * d[i]))
+    errs = np.abs(fd - g) / np.abs(g)
+    best = np.argmin(errs, axis=0)
+    return {"gradient_ad": g.tolist(), "gradient_fd": fd[best, [0, 1]].tolist(), "fd_steps_rel": list(steps),
+            "fd_rel_err_by_step": errs.tolist(), "rel_err": float(np.max(errs[best, [0, 1]])),
+            "cost_ratio": t_grad / t_sim, "simulation_s": t_sim, "gradient_s": t_grad}
+
+
+def main(argv=None) -> int:
+    args = parse_args(__doc__.splitlines()[0], argv)
+    quick = args.quick
+    scene = load_scene(example_path("rov-lift"))
+    limits = WinchLimits(speed=1.0, acceleration=1.0)
+    record = 60.0 if quick else 600.0
+    ctrl = scene.with_numerics(drag_segments=1, duration=record)
+    doc: dict = {"quick": quick, "scene": scene.name, "record_s": record, "limits": {"speed_m_s": 1.0,
+                                                                                     "acceleration_m_s2": 1.0}}
+
+    problem = heave_problem(ctrl, limits, dt=0.5)
+    ocp = optimal_payout(problem, record, max_iter=300)
+    doc.update(ocp_wall_s=ocp.stats["solve_s"], ocp_iterations=ocp.stats["iterations"], ocp_status=ocp.status,
+               ocp_heave_reduction_db=ocp.heave_reduction_db, ocp_intervals=ocp.stats["intervals"],
+               ocp_heave_rms_m=ocp.heave_rms_m, ocp_uncompensated_heave_rms_m=ocp.uncompensated_heave_rms_m,
+               ocp_target="600 s record, 2-DOF model: at most 10 s of IPOPT wall time")
+    check = resimulate(problem, ocp, per_interval=4)
+    doc["resimulated_constraint_violation_rel"] = check["max_relative_violation"]
+    doc["resimulated"] = check
+
+    duration, horizon = (30.0, 10.0) if quick else (120.0, 20.0)
+    loop_scene = scene.with_numerics(duration=duration + horizon)
+    cmp = compare_compensation(loop_scene, limits, duration=duration, horizon=horizon, dt=0.5,
+                               plant_segments=4 if quick else None, strategies=("none", "pi", "mpc"))
+    m = cmp.metrics
+    doc.update(mpc_heave_reduction_db=m["mpc"]["heave_reduction_db"], pi_heave_reduction_db=m["pi"]["heave_reduction_db"],
+               mpc_step_ms=1e3 * m["mpc"]["compute_per_step_s"], mpc_realtime_factor=m["mpc"]["realtime_factor"],
+               mpc_horizon_s=horizon, mpc_closed_loop_s=duration, mpc_plant_segments=cmp.stats["plant_segments"],
+               mpc_success=cmp.success, mpc_message=cmp.message, closed_loop=m,
+               mpc_note="CasADi virtual machine (no compiled code); target >= 50x real time compiled")
+
+    grad = design_gradient(problem, 30.0 if quick else 120.0)
+    doc.update(gradient_fd_rel_err=grad["rel_err"], design_gradient_cost_ratio=grad["cost_ratio"],
+               design_gradient=grad,
+               design_gradient_note="reverse-mode AD through the RK4 roll-out of the uncompensated 2-DOF run, "
+                                    "parameters (AE, C_I); objective mean square body heave. No time-domain "
+                                    "design optimization is built on it yet")
+    doc["lq_rel_err"] = lq_error()
+    write_json(args.out / "bench_control.json", doc)
+    print({k: doc[k] for k in ("ocp_wall_s", "ocp_iterations", "ocp_status", "ocp_heave_reduction_db",
+                               "mpc_heave_reduction_db", "pi_heave_reduction_db", "mpc_step_ms", "mpc_realtime_factor",
+                               "design_gradient_cost_ratio", "lq_rel_err", "gradient_fd_rel_err",
+                               "resimulated_constraint_violation_rel")})
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
