@@ -27,6 +27,7 @@ COMMAND_MODULES = (
     "cablesys.isolation.cli",      # design (dual-isolation NLP)
     "cablesys.towed.cli",       # towed  (Kennedy & Strahan 1981)
     "cablesys.sweeps.cli",       # sweep  (parameter sweeps of any analysis)
+    "cablesys.control.cli",      # control (heave compensation by the winch: optimum, MPC)
 )
 
 

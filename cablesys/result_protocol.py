@@ -42,6 +42,9 @@ QUANTITIES = {
     "tension": ("N", "cable tension"), "x_s": ("m", "top (ship) horizontal motion"),
     "tension_top": ("N", "cable tension at the top end"), "tension_bottom": ("N", "cable tension at the body end"),
     "y_s": ("m", "top (ship) vertical motion"),
+    "phi_z": ("rad", "cable angle out of the x-y plane"), "phi_z_rate": ("rad/s", "out-of-plane angular rate"),
+    "z_b": ("m", "body sway position"), "z_b_rate": ("m/s", "body sway velocity"),
+    "z_s": ("m", "top (ship) sway motion"),
 }
 UNITS = {k: v[0] for k, v in QUANTITIES.items()}
 

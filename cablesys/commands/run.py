@@ -46,6 +46,9 @@ def register(sub) -> None:
     p.add_argument("--max-steps", type=int, default=None,
                    help=f"integrator step budget per output interval (default {_DEFAULT_STEPS}); a run that needs more "
                         "fails with a named message")
+    p.add_argument("--time-budget", type=float, default=None, metavar="S",
+                   help="wall seconds model = auto may plan for a slack scene's extrapolation runs "
+                        "(numerics.time_budget_s; 0: none): N is lowered to fit, or the plan refused at once")
     p.set_defaults(func=_run)
     s = sub.add_parser("scene", help="print an annotated example scene, or check a scene file",
                        description="With --example: print an annotated scene (the Dale default). With a file: "
@@ -109,6 +112,9 @@ def _check_options(args) -> None:
         require_positive("--duration", args.duration, "s")
     if getattr(args, "model", None) is not None:
         check_rung(args.model)
+    budget = getattr(args, "time_budget", None)
+    if budget is not None and not (0 <= budget < float("inf")):
+        raise ParameterError("--time-budget", budget, "must be a finite number of seconds >= 0 (0: no budget)")
     if args.max_steps is not None and not 100 <= args.max_steps <= 10**9:
         raise ParameterError("--max-steps", args.max_steps, "must be an integer in [100, 1e9] (steps per output interval)")
 
@@ -126,7 +132,9 @@ class _Streams:
         from ..export import series_table
         from ..time_domain.record import RunRecord
         self.count += 1
-        progress = _Progress(f"{self.label} [{description}, run {self.count}]")
+        # the plan's own descriptions count its runs ("run 2 of 3"); others get the count of runs so far
+        progress = _Progress(f"{self.label} [{description}]" if "(run " in description
+                             else f"{self.label} [{description}, run {self.count}]")
         if not candidate:
             return None, progress
         if self.stream is not None:
@@ -160,6 +168,8 @@ def _run(args) -> int:
     scene = load_scene(args.scene)
     if args.duration is not None:
         scene = scene.with_numerics(duration=args.duration)
+    if getattr(args, "time_budget", None) is not None:
+        scene = scene.with_numerics(time_budget_s=args.time_budget)
     check_scene_run_size(scene)                       # limits, before anything is built
     outdir = OutputDir(out, "run", scene, overwrite=args.overwrite, owned=RUN_FILES)   # --out checked here
     from ..export import units_of_file
@@ -266,7 +276,7 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
     if period and scene.top_motion.spectrum is None and result.time[-1] - result.time[0] >= 6 * period:
         summary["amplitude_periods"] = 3
         amps = {lbl: result.steady_amplitude(lbl, period, 3)
-                for lbl in result.labels if lbl.startswith(("x_b", "y_b", "phi", "u", "tension"))
+                for lbl in result.labels if lbl.startswith(("x_b", "y_b", "z_b", "phi", "u", "tension"))
                 and not lbl.endswith("rate")}
         for unit in ("m", "rad", "N"):      # grouped by quantity, the unit in the key
             summary[f"amplitudes_{unit}"] = {k: v for k, v in amps.items() if unit_of(k) == unit}

@@ -159,6 +159,34 @@ def _went_slack(result, scene: Scene) -> bool:
     return bool(result.events) or result.time_slack() > 0 or low <= floor
 
 
+ENDS_SEGMENTS = 16     # the first N of an anchored line or a seabed scene (the a posteriori check grows it)
+
+
+def _only_rung(scene: Scene, name: str, segments, tol):
+    """The decision where one model alone can run the scene, else None: a 3-D scene runs Wang's straight cable in
+    three dimensions (the other rungs are planar so far); an anchored line or a seabed runs the node model, N checked
+    a posteriori on every quantity (the straight cable has no nodes to anchor or to lay on a bed). Neither has an a
+    priori estimate against the converged cable: the error is the check's or, for Wang's 3-D cable, not estimated."""
+    nan = {"body": math.nan, "tension": math.nan}
+    if getattr(scene, "three_d", False):
+        if name not in ("auto", "wang"):
+            raise ParameterError("numerics.model", name, "must be auto or wang in a 3-D scene: the other rungs "
+                                 "(frequency, quasi-static, segmented) are planar so far")
+        return Choice("wang", 1, "a 3-D scene: Wang's straight cable in three dimensions (stretch and two swing "
+                      "angles); the other rungs are planar so far, so its error against the segmented cable is not "
+                      "estimated", nan, {"valid": True}), tol, False
+    if getattr(scene, "anchor", None) is not None or getattr(scene, "seabed", None) is not None:
+        if name not in ("auto", "segmented"):
+            raise ParameterError("numerics.model", name, "must be auto, segmented or as-built with an [anchor] or a "
+                                 "[seabed]: only the node model has nodes to anchor and to lay on the bed")
+        scene_n = max(s.cable.segments for s in scene.sections)
+        n = int(segments or (scene_n if name == "segmented" and scene_n > 1 else max(scene_n, ENDS_SEGMENTS)))
+        return Choice("segmented", n, f"an anchored line or a seabed: the node model with N = {n}, the only rung with "
+                      "nodes to anchor and to lay on the bed; N checked a posteriori on every quantity",
+                      nan, {"valid": True}), tol, name == "auto"
+    return None
+
+
 def decide(scene: Scene, model, tolerance, segments, cache: RungCache | None = None):
     """The ladder's decision for a model request, before any run.
 
@@ -185,6 +213,9 @@ def decide(scene: Scene, model, tolerance, segments, cache: RungCache | None = N
         raise ParameterError("model", AS_BUILT, "runs the scene's own model with no choice: call simulate")
     name = check_rung(model or getattr(scene.numerics, "model", "auto"))
     tol = tolerances(scene, tolerance)
+    only = _only_rung(scene, name, segments, tol)
+    if only is not None:
+        return only
     if name == "auto":
         return choose(scene, tol, cache=cache), tol, True
     choice = forced(scene, name, segments, tol, cache=cache)

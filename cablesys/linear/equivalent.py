@@ -44,6 +44,7 @@ from .linearization import (
     functions,
     operating_xi,
     taut_parameters,
+    top_inputs,
     xi_blocks,
 )
 from .steady import steady_state
@@ -73,8 +74,9 @@ def complex_xi(model: CableModel, Q, Z, omega) -> np.ndarray:
     s = 1j * omega
     Xi = np.zeros(b["n"], complex)
     Xi[b["q"]], Xi[b["qd"]], Xi[b["qdd"]] = Q, s * Q, s**2 * Q
-    Xi[b["z"]], Xi[b["zd"]], Xi[b["zdd"]] = Z[:2], s * Z[:2], s**2 * Z[:2]
-    Xi[b["w"]] = Z[2:]
+    nz = len(top_inputs(model))               # x_s, y_s (and z_s in 3-D), then the wave inputs
+    Xi[b["z"]], Xi[b["zd"]], Xi[b["zdd"]] = Z[:nz], s * Z[:nz], s**2 * Z[:nz]
+    Xi[b["w"]] = Z[nz:]
     return Xi
 
 

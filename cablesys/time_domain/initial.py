@@ -34,8 +34,21 @@ def initial_state(scene: Scene, model: CableModel, p) -> np.ndarray:
         from ..statics.catenary import segmented_initial_state
         return segmented_initial_state(scene, model, p)
     ini = scene.initial
-    q = steady_state(model, p).q if (ini.phi is None or ini.u is None) else None
-    q0 = np.array([(ini.phi if ini.phi is not None else q[i]) if lbl.startswith("phi")
-                   else (ini.u if ini.u is not None else q[i]) for i, lbl in enumerate(model.q_labels)])
-    qd0 = np.array([ini.phi_rate if lbl.startswith("phi") else ini.u_rate for lbl in model.q_labels])
+    labels = model.q_labels
+    out_of_plane = any(lbl.startswith("phi_z") for lbl in labels)
+    q = steady_state(model, p).q if (ini.phi is None or ini.u is None or out_of_plane) else None
+
+    def start(i: int, lbl: str) -> float:
+        if lbl.startswith("phi_z"):            # the out-of-plane angle starts at its steady state
+            return q[i]
+        given = ini.phi if _in_plane_angle(lbl) else ini.u
+        return given if given is not None else q[i]
+    q0 = np.array([start(i, lbl) for i, lbl in enumerate(labels)])
+    qd0 = np.array([ini.phi_rate if _in_plane_angle(lbl) else (0.0 if lbl.startswith("phi_z") else ini.u_rate)
+                    for lbl in model.q_labels])
     return np.concatenate([q0, qd0])
+
+
+def _in_plane_angle(label: str) -> bool:
+    """True for a swing angle in the vertical x-y plane (``phi``, ``phi_2``), not the out-of-plane ``phi_z``."""
+    return label.startswith("phi") and not label.startswith("phi_z")

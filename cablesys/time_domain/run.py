@@ -392,6 +392,8 @@ class Simulator(ev.EventLocator):
         Y = self._outputs_cols(np.asarray(X, float), E, P)[0]
         data = {lbl: Y[i] for i, lbl in enumerate(self.model.output_labels)}
         data["x_s"], data["y_s"] = E[1], E[2]
+        if E.shape[0] == 10:                      # a 3-D top input (t, x, y, z and their rates, accelerations)
+            data["z_s"] = E[3]
         return data
 
 
