@@ -28,7 +28,7 @@ whose window lies in its ~100 s transient: body 29 %, against 14 % for the N = 6
 The time series the user gets is the N run's: its own first-order Richardson estimate
 |f(N) - L(N)| is stated apart (``time_series_error``), so nothing is hidden.
 
-Time step: RK4 at h |lambda|_max = RK4_MARGIN (issue 11: on snap loads the fast and accurate method; the
+Time step: RK4 at h |lambda|_max = RK4_MARGIN (on snap loads the fast and accurate method; the
 compiled element kernel makes it cheap). Against half that step the statistics of the 300 m slack
 scene (360 s, output 0.01 s) move by < 1e-5 relative at N = 8, 16, 32 (body amplitude 7e-6, top
 maximum 4e-6, bottom maximum 5e-6): far below the extrapolated values' errors (3e-4 to 3e-3).
@@ -80,7 +80,7 @@ REMAINDER_ORDER = est.REMAINDER_ORDER   # q of the next term (an expansion in in
 ORDER_RANGE = (0.5, 3.0)    # observed orders accepted as asymptotic (above 1: the remainder dominates, still N^-q)
 MAX_SEGMENTS = 80           # doubling stops here (RK4, compiled kernel: 0.14 s per simulated s at N = 80)
 RKC_GAIN = 0.8              # RKC replaces RK4 when its right-hand sides per output are below this fraction of RK4's
-RK4_MARGIN = 2.0            # h |lambda|_max of the stable step (RK4's boundary is 2.78; issue 11's choice)
+RK4_MARGIN = 2.0            # h |lambda|_max of the stable step (RK4's boundary is 2.78)
 SAMPLES_PER_SNAP = 6        # output samples per axial travel time in the statistics runs (see statistics_step)
 MIN_SEGMENTS = 8            # the smallest plan a time budget may shrink to (runs at N = 2, 4, 8)
 TIMING_S = 0.05             # wall time spent measuring one run's cost per RK4 step before the plan starts

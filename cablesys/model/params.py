@@ -46,7 +46,7 @@ def structure_of(scene: Scene) -> tuple:
     return (len(scene.sections), scene.angles, tuple(s.body.is_sphere for s in scene.sections),
             scene.numerics.drag_segments, len(env.current_depths), len(env.waves),
             len(top.x), len(top.y),
-            # the series' samples are constants of the top-motion function (top_motion.py, issue 13)
+            # the series' samples are constants of the top-motion function (top_motion.py)
             None if top.series is None else (top.series.times, top.series.x, top.series.y),
             tuple(s.cable.segments for s in scene.sections)) + _ends_structure(scene) + (
             # Wang's cable in 3-D (stretch and two angles): one more entry, only then, so that a
@@ -110,7 +110,7 @@ def parameter_items(scene: Scene) -> list[tuple[str, float]]:
         for k, s in enumerate(getattr(top, axis)):
             items += [(f"top_motion.{axis}[{k}].{a}", float(getattr(s, a))) for a in _SINE]
     # a sampled series is not in p: its samples are constants of the model (structure_of,
-    # model/top_motion.py; issue 13): 2n dead entries cost a copy in every integrator step
+    # model/top_motion.py): 2n dead entries cost a copy in every integrator step
     items.append(("top_motion.ramp_s", top.effective_ramp_s))  # smooth start (model/top_motion.py; unset: 3 periods)
     if scene.anchor is not None:           # the fixed lower end and the seabed (model/segmented.py)
         items += [(f"anchor.{a}", float(getattr(scene.anchor, a))) for a in _ANCHOR]
@@ -149,7 +149,7 @@ class ParameterLayout:
     @property
     def series_samples(self) -> tuple | None:
         """The sampled top-motion series as (times, x, y) tuples of numbers, None without one:
-        part of the structure (the top-motion function holds them as constants, issue 13)."""
+        part of the structure (the top-motion function holds them as constants)."""
         return self.structure[8]
 
     # -- the one owner of label arithmetic: sections, waves, tension floors --------------------

@@ -5,7 +5,7 @@ plus an optional sampled series (the report's "non-periodic motions") interpolat
 not-a-knot cubic spline through the samples (the spline of ``scipy.interpolate.
 make_interp_spline``, held at its end values outside the sampled span).
 
-The spline is evaluated at a cost independent of the number of samples (issue 13), and the
+The spline is evaluated at a cost independent of the number of samples, and the
 model stays SX and compilable:
 
 - the second derivatives M_i at the samples solve the not-a-knot moment equations

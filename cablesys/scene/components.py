@@ -31,7 +31,7 @@ def _check_all_finite(obj, prefix: str) -> None:
 
 
 # no cable or body number in SI comes near this (AE of the largest steel ropes ~1e10 N); a cable
-# 1e300 m long passed the range checks and overflowed the steady-state solve (fuzzing, issue 9)
+# 1e300 m long passed the range checks and overflowed the steady-state solve (found by fuzzing)
 MAX_MAGNITUDE = 1e15
 MAX_SEGMENTS = 2000       # elements per section (the model's size grows linearly with it)
 
@@ -224,7 +224,7 @@ class TimeSeries:
         object.__setattr__(self, "times", t)
 
 
-RAMP_PERIODS = 3   # default smooth start: this many of the longest forcing periods (issue 13)
+RAMP_PERIODS = 3   # default smooth start: this many of the longest forcing periods
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

@@ -457,7 +457,7 @@ def simulate(scene: Scene, *, model: CableModel | None = None, method: str | Non
         record, interrupted = simulator.run(p, x0, on_block=on_block, progress=progress), False
     except RunInterrupted as err:
         record, interrupted = err.result, True
-    # build_s apart from load_s (issue 13): a caller's simulator was built (and its library loaded) before this call
+    # build_s apart from load_s: a caller's simulator was built (and its library loaded) before this call
     record = record.named(scene.name, model, build_s - (record.stats.get("load_s", 0.0) if built_here else 0.0))
     if interrupted:
         raise RunInterrupted(record) from None
