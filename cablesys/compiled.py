@@ -156,7 +156,7 @@ def compiler_command(size: int = 0) -> list[str]:
 def _compiler_identity(cmd: list[str]) -> str | None:
     """The compiler's path and first line of ``--version`` (part of the cache key); None when
     there is no compiler. Remembered per process and, on disk, per executable (path, size,
-    modification time): asking the compiler costs a process start (~5 ms)."""
+    modification time): asking the compiler costs a process start."""
     return _identity(cmd[0], os.environ.get("PATH", ""))
 
 
@@ -232,7 +232,7 @@ def generate(functions, *, jacobians=True) -> str:
 def cache_key(serialized, jacobians, ident: str, cmd: list[str]) -> str:
     """Hash of what the library is made of: the functions' serialized form (CasADi's exact,
     deterministic description of the expression graphs, from which the C code is generated;
-    hashing it costs ~1 ms where generating the C costs ~100 ms), whether Jacobians are
+    hashing it is much cheaper than generating the C), whether Jacobians are
     included, the compiler identity, its flags and the cache format."""
     return digest(*serialized, jacobians, ident, " ".join(cmd[1:]), CACHE_FORMAT)[:24]
 

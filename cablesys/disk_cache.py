@@ -158,7 +158,7 @@ def code_fingerprint() -> str:
     """Fingerprint of the source files the cached functions are built from (paths, sizes and
     modification times of ``cablesys/model``, ``cablesys/time_domain``, ``cablesys/scene`` and the
     cache modules): an edit of any of them starts fresh cache entries, so a development tree
-    never loads a function built by older code. Costs a few ``stat`` calls (< 1 ms)."""
+    never loads a function built by older code. Costs a few ``stat`` calls."""
     pkg = Path(__file__).resolve().parent
     files = [pkg / "compiled.py", pkg / "disk_cache.py"]
     for sub in ("model", "time_domain", "scene"):

@@ -30,13 +30,13 @@ on the side of refusing.
 Why the ladder uses rk23 and not dopri5 (both guarded alike): at rest, without current, the string modes lie
 on the imaginary axis (Dale N = 4: 11-27 rad/s), which rk23's region contains up to sqrt(3) but DOPRI5's
 only touches, so DOPRI5's stability step there is 1.0 / 26.6 s and the guard refuses it, although in motion
-the drag damps those modes and DOPRI5 ran Dale in 926 steps (mean 0.065 s). Measured run times are close
-(Dale: rk23 6.7-7.3 ms, dopri5 7.5 ms); dopri5 is 5-15x more accurate at equal rtol, which the ladder gets
+the drag damps those modes and DOPRI5 ran Dale in 926 steps (mean 0.065 s). Their run times are close
+(``studies/work_precision.py``); dopri5 is 5-15x more accurate at equal rtol, which the ladder gets
 instead by tightening rtol where the stated error is small (:data:`cablesys.ladder.auto.STATED_ROOM`).
 
-Measured (Dale 60 s, quasi-static N = 4, rtol 1e-4, compiled, second runs, load ~0.2): rk23 1438 steps, 4.7k
-right-hand sides, run 8.1 ms; dopri5 926 steps, 5.7k, 8.8 ms; CVODES (variable-order BDF) 1762 steps, 13.5 ms,
-of which ~5.5 ms are the outputs and the Simulator's own work, the same for all three. Body / tension error
+Counted (Dale 60 s, quasi-static N = 4, rtol 1e-4, compiled): rk23 1438 steps, 4.7k right-hand sides; dopri5
+926 steps, 5.7k; CVODES (variable-order BDF) 1762 steps, with fewer operations per step for the explicit pairs
+(their run times: ``studies/work_precision.py``). Body / tension error
 against the rung's own rtol 1e-10 run: rk23 8.7e-6 / 3.6e-7, CVODES 6.7e-7 / 4.2e-7, dopri5 8.7e-7 / 2.8e-8,
 against the stated model error 4.0e-3 / 1.0e-4. (The variable-order BDF had replaced BDF2 there: straight
 1748 -> 592 steps, body error 1e-3 -> 1.5e-4; N = 3: 2623 -> 1363 steps, 5e-4 -> 4e-6.)
@@ -139,8 +139,7 @@ def probe_function(model):
     """``(x0, p, motion) -> (J(x0), J(x0 + motion S_rates), S)``: the rung's ODE Jacobian at its start and
     moving at ``motion`` x the rate scales, and the state scales S (:mod:`cablesys.model.scales`), one
     function built once per model and compiled up to PROBE_COMPILE_MAX serialized bytes (cached on disk; CasADi's
-    VM without a compiler or past that size): in the VM the two Jacobians and the scales cost 0.4 ms on the Dale
-    rung (quasi-static N = 4)."""
+    VM without a compiler or past that size)."""
     def build():
         import casadi as ca
 

@@ -111,8 +111,8 @@ def _build_hb1(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Functio
                    ca.mtimes(R, 2.0 / n_theta * np.cos(theta)),
                    ca.mtimes(R, -2.0 / n_theta * np.sin(theta)))
     G = ca.Function(f"hb1_{n_theta}", [v, ca.vertcat(w, Zr, Zi, p)], [g], ["v", "par"], ["g"])
-    # compiled with its v-Jacobian (C, cached on disk): KINSOL's residual and Jacobian evaluations in
-    # CasADi's VM were 1.4 ms of a 1.5 ms solve (Dale, 16 phases); the VM without a compiler
+    # compiled with its v-Jacobian (C, cached on disk): in CasADi's VM KINSOL's residual and Jacobian
+    # evaluations were nearly all of a solve (Dale, 16 phases); the VM without a compiler
     G = compile_functions([G], jacobians=("v",)).functions[G.name()]
     rf = ca.rootfinder("hb1_solve", "kinsol", G, {"strategy": "linesearch", "abstol": 1e-13,
                                                   "error_on_fail": False, "print_level": 0,
@@ -122,8 +122,8 @@ def _build_hb1(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Functio
 
 def _orbit_jacobians(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Function, ca.Function]:
     """dr/dxi and (y, dy/dxi) at ``n_theta`` columns of xi, and dr/dxi at one: the linearization's functions
-    mapped once and compiled (cached on disk), not mapped anew on every call (in the VM, a map per call,
-    these cost 0.8 ms of the Dale scene's describing function)."""
+    mapped once and compiled (cached on disk), not mapped anew on every call (in the VM a map per call
+    costs more than the describing function's solve)."""
     def build():
         fns = functions(model)
         xi, p = fns["jac"].mx_in()

@@ -91,7 +91,7 @@ def build_model(scene: Scene) -> CableModel:
 
     With compilation enabled (the default; ``CABLESYS_COMPILE=0`` disables it) a structure
     built before, by this or another process, is loaded from the disk cache instead
-    (:mod:`.store`: 3 ms instead of 15 ms for Wang's model), and ``model.cache`` is attached to
+    (:mod:`.store`, faster than building it: ``studies/bench_start.py``), and ``model.cache`` is attached to
     the disk index of its compiled functions (:class:`cablesys.compiled.DerivedStore`), so a
     second start loads the compiled DAE without building it. ``model.build_info`` says which
     (``stored``: loaded from disk; ``build_s``: seconds spent here; ``structure_key``).

@@ -1,8 +1,8 @@
 """A model structure's functions kept on disk, so that a second start skips the symbolic build.
 
-Building a model derives its equations of motion symbolically (Lagrange's equations by AD:
-15 ms for Wang's model, 75-160 ms for a segmented cable of 20 elements); CasADi's serialized
-form of the same functions loads in a fraction of that (3 ms and ~25 ms). The functions
+Building a model derives its equations of motion symbolically (Lagrange's equations by AD);
+CasADi's serialized form of the same functions loads in a fraction of that time
+(``studies/bench_start.py`` measures both). The functions
 depend on the scene's structure only (every scene number is an entry of ``p``), so they are
 stored under a **structure key**: a hash of
 
@@ -14,7 +14,7 @@ stored under a **structure key**: a hash of
 
 Two scenes with equal keys build identical functions, so a key collision would need a
 SHA-256 collision. Each function is deserialized on its first use (a run never asks for the
-energy, for instance: 5 of the 65 ms of a 20-element cable). The entry is sealed with the SHA-256
+energy, for instance). The entry is sealed with the SHA-256
 of its content (:func:`cablesys.disk_cache.write_sealed`), checked before unpickling: a truncated
 or corrupt file is detected, removed with a one-line warning and rebuilt. Only used when
 compilation is enabled (the compiled path; ``CABLESYS_COMPILE=0`` keeps everything in memory).

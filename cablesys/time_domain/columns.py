@@ -1,8 +1,7 @@
 """A CasADi function evaluated over many columns, numpy arrays in and out.
 
 Calling a ``casadi.Function`` with numpy arrays converts them to and from ``DM`` number by
-number (about 40 ns each: 8 ms for the 174 outputs x 1201 output times of a 20-element cable,
-three times the cost of evaluating them), and a call with several columns builds a new
+number (for the outputs of a segmented cable over a run, several times the cost of evaluating them), and a call with several columns builds a new
 ``map`` every time. :class:`Columns` maps the function once over a fixed block of columns and
 evaluates it through CasADi's ``FunctionBuffer`` on numpy memory: no conversion, no rebuild.
 """

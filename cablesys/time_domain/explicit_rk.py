@@ -11,12 +11,10 @@ SciPy's RK23 uses the same). Why rk23 on Wang's model: its stability function 1 
 z^3/6 is stable on the imaginary axis up to |h lambda| = sqrt(3), so on the undamped Dale
 stretch mode (254 rad/s) the step settles at ~60 x 254 / 1.7 = 9k steps per 60 s at rtol
 1e-3-1e-4, ~33k right-hand sides against DOPRI5's ~85k, while the slow swing is resolved to
-~1e-9 m at that step anyway. Measured (``studies/bench_time_domain.py``, 60 s ramped Dale,
-load ~1, interleaved rounds against SciPy LSODA at rtol 1e-6, 2.46 s, body error 4.9e-9 m):
-at equal accuracy rk23 (rtol 1e-3: 9.0k steps, 32.5k right-hand sides, 3.6e-9 m, 12 ms) median
-220x, dopri5 (rtol 1e-4: 11.4k steps, 85k, 1.8e-9 m, 25 ms) 102x; at rtol 1e-6 rk23 104x
-(23k steps: there its accuracy, not stability, sets the step) and dopri5 90x. Below rtol ~1e-6
-DOPRI5's higher order wins (rk23 at 1e-8: 114k steps).
+~1e-9 m at that step anyway (``studies/bench_time_domain.py`` times both against SciPy's LSODA at
+equal accuracy: rk23 at rtol 1e-3, 9.0k steps and 32.5k right-hand sides, against DOPRI5 at 1e-4, 11.4k steps
+and 85k). At rtol 1e-6 rk23's accuracy, not its stability, sets the step (23k steps); below ~1e-6 DOPRI5's
+higher order wins (rk23 at 1e-8: 114k steps).
 
 The DOPRI5 pair:
 
@@ -53,17 +51,12 @@ that growth, |h lambda| ~ 1.35: ~11k accepted steps per 60 s (plus ~20 % rejecte
 from 1e-3 to 1e-6, 7 right-hand sides each (FSAL: 6 new) at ~0.25 us compiled. It controls its
 error, which the compiled ``rk`` loop (h |lambda| up to 2.8, 4 evaluations per step) does not.
 
-Where it helps (measured 60 s, ramped start, second runs, loaded 2-core machine): Wang's 2-DOF
-model, whose only fast mode is the stretch mode: Dale at SciPy LSODA's accuracy (rtol 1e-4,
-11.4k steps, 85k right-hand sides, 1.8e-9 m; ~20 ms) 107-135x LSODA in interleaved rounds, median
-132x, against 20-29x for CVODES (``studies/bench_time_domain.py``; the load slows SciPy more
-than compiled code, so expect ~100-115x on a quiet machine, where LSODA takes ~2.4 s).
-Not on segmented cables: their axial element modes are fast and as undamped (segmented Dale
-N = 4: |lambda| ~ 6000 1/s, 220-380k steps, 1.5-2.3 s against 50-170 ms for ``cvodes-bdf2`` and
-0.57 s for ``rk``; at rtol 1e-3 the top tension is wrong by hundreds of times its range, since rtol
-acts on node coordinates of metres while the tension follows micrometre stretches; 300 m heave
-N = 20: |lambda| ~ 530 1/s, ~9.7k steps, 0.34 s against 0.06-0.11 s for ``cvodes-bdf2`` at
-equal tension accuracy). There the A-stable BDF2 steps over the modes and is the choice.
+Where it helps: Wang's 2-DOF model, whose only fast mode is the stretch mode (Dale at SciPy LSODA's
+accuracy, rtol 1e-4: 11.4k steps, 85k right-hand sides; ``studies/bench_time_domain.py`` times it against LSODA
+and CVODES). Not on segmented cables: their axial element modes are fast and as undamped (segmented Dale
+N = 4: |lambda| ~ 6000 1/s, 220-380k steps; at rtol 1e-3 the top tension is wrong by hundreds of times its
+range, since rtol acts on node coordinates of metres while the tension follows micrometre stretches; 300 m
+heave N = 20: |lambda| ~ 530 1/s, ~9.7k steps). There the A-stable BDF2 steps over the modes and is the choice.
 
 Tolerances: the same state scales as the other adaptive methods (``IntegratorSettings.scaled``,
 :mod:`cablesys.model.scales`), applied as a per-state absolute tolerance atol x S_i(p) on the
@@ -100,7 +93,7 @@ DRIVER = "cablesys_dopri5"
 PAIRS = {"dopri5": (1, DRIVER), "rk23": (2, "cablesys_rk23")}
 HEAD = 13                  # carry layout: see explicit_rk.c
 # output times per driver call: the grid is a mapaccum over blocks of them. CasADi's mapaccum costs
-# time superlinear in its length to build (1024 calls: ~75 ms, 4096: more), the Simulator's chunks
+# time superlinear in its length to build, the Simulator's chunks
 # are up to 4096 output times long, and one block call costs nothing extra at run time
 BLOCK = 64
 PAUSED = 4                 # the call's step budget is used up: not a failure (explicit_rk.c)

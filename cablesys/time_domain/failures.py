@@ -114,8 +114,8 @@ def rk4_stability_note(h: float, lam_max: float, steps_per_output: int) -> str:
 
 
 def ode_jacobian(model) -> ca.Function:
-    """dx'/dx of ``model``'s ODE, ``(x, t, p) -> J``, built once per model (``model.derive``; ~100 ms
-    of AD for 20 elements, so only when asked: RK4's stability check, slack events, studies)."""
+    """dx'/dx of ``model``'s ODE, ``(x, t, p) -> J``, built once per model (``model.derive``; its
+    AD grows with the elements, so only when asked: RK4's stability check, slack events, studies)."""
     x, t, p = model.sym("x", 2 * model.nq), model.sym("t"), model.sym("p", len(model.layout))
     return model.derive("ode_jacobian", lambda: ca.Function("ode_jacobian", [x, t, p], [ca.jacobian(model.ode(x, t, p), x)]))
 

@@ -288,7 +288,7 @@ def rk4_interval(model: CableModel, n_sub: int, compiled: bool = True, stages: i
         xm, s0, ds, pm = ca.MX.sym("x", nx), ca.MX.sym("s0"), ca.MX.sym("ds"), ca.MX.sym("p", npx)
         X, _ = loop(xm, s0, ca.repmat(ds / n_sub, 1, n_sub), ca.repmat(pm, 1, n_sub))
         interval = ca.Function("cablesys_rk4_interval", [xm, s0, ds, pm], [X[:, -1]])
-        # the flags by the loop's C (~30 kB at any N for the kernel, 2 ms to generate), not by its serialized
+        # the flags by the loop's C (~30 kB at any N for the kernel, cheap to generate), not by its serialized
         # form, which grows with N (0.57 MB at N = 80: -O1 instead of -O2, 17 % slower)
         size = len(generate([interval], jacobians=False)) if S is ca.MX else None
         return compile_functions([interval], jacobians=False, enabled=compiled, size=size)
