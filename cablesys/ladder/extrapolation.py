@@ -338,8 +338,8 @@ def _planned_run(scene: Scene, n: int, cache: RungCache, kw: dict, output_step: 
     per_output = 2 * model.nq + len(model.slack_index) + len(model.output_labels) + 2
     step_s = None
     if measure and s.method in ("rk", "rkc"):
-        key = ("step_s", id(model), s.method, s.stages, bool(s.compiled))           # one cost per model and method
-        step_s = cache.memo(key, lambda: _step_seconds(model, s, x0, output_step, model.parameters(sc)))
+        step_s = cache.memo(model, "step_s", (s.method, s.stages, bool(s.compiled)),     # one cost per model and method
+                            lambda: _step_seconds(model, s, x0, output_step, model.parameters(sc)))
     return PlannedRun(n, output_step, int(outputs), int(s.steps_per_output), step_s,
                       run_memory_bytes(outputs, 1, per_output), candidate, s.method, int(s.stages))
 
