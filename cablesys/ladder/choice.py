@@ -207,7 +207,11 @@ class ElementPlan:
     note: str = ""                   # what the plan left out and why (a rung past MAX_MODEL_OPERATIONS)
 
     def as_dict(self) -> dict:
-        return dataclasses.asdict(self)
+        """The plan's fields for summary.json (``note`` only when there is one)."""
+        d = dataclasses.asdict(self)
+        if not d["note"]:
+            del d["note"]
+        return d
 
 
 def checkable(scene: Scene, n: int) -> bool:
