@@ -1,9 +1,9 @@
 """Runs that end: the model's size is predicted before it is built, and a plan past the limit is not built.
 
-The Dale cable in a 2.5 m/s current (1 s of motion) made auto ask for the quasi-static segmented cable with
-N = 82, about 5 M generated operations: its build and compile ran 13 min and past 14 GB. The ladder now predicts
-that size (:func:`cablesys.ladder.choice.model_operations`), runs the node model there and says why; a user
-who forces the quasi-static rung at that N gets a named refusal before anything is built.
+The Dale cable in a 2.5 m/s current (1 s of motion) needs N = 82 for the tolerance; the quasi-static segmented
+cable at that N is about 5 M generated operations (over 14 GB to build and compile). The ladder predicts that
+size (:func:`cablesys.ladder.choice.model_operations`), runs the node model there and says why; a user who forces
+the quasi-static rung at that N gets a named refusal before anything is built.
 """
 
 import json

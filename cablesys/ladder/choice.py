@@ -139,9 +139,9 @@ CHECK_COST = 1.5
 # The quasi-static segmented cable's functions grow as about N^2.75 per section (the chord solve's rows for every
 # element stretch, each through the dense eliminated mass matrix), the node model's linearly: operation counts of
 # the ODE plus the outputs measured on the Dale scene (CasADi SX, cse on): quasi-static 0.07 M / 0.2 M / 0.42 M /
-# 1.27 M at N = 16 / 24 / 32 / 48 (built in 1.0 / 2.4 / 4.8 / 14 s, 0.7 GB at 48 before any compile); node model
-# 0.01 M / 0.02 M / 0.03 M at N = 16 / 32 / 48. An N past MAX_MODEL_OPERATIONS is not built: the quasi-static
-# segmented cable at N = 82 (Dale in a 2.5 m/s current) is 5 M operations, and its build and compile ran past 14 GB.
+# 1.27 M at N = 16 / 24 / 32 / 48 (0.7 GB to build at 48, before any compile); node model 0.01 M / 0.02 M /
+# 0.03 M at N = 16 / 32 / 48. An N past MAX_MODEL_OPERATIONS is not built: the quasi-static segmented cable at
+# N = 82 (Dale in a 2.5 m/s current) is 5 M operations, and building and compiling it takes over 14 GB.
 QS_OPERATIONS_PER_SECTION = 30.2        # x N^QS_OPERATIONS_EXPONENT: the fit through N = 32 and 48
 QS_OPERATIONS_EXPONENT = 2.75
 NODE_OPERATIONS_PER_ELEMENT = 600.0     # x N per section, the node model's ODE plus outputs
