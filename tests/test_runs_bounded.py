@@ -103,7 +103,7 @@ def test_forced_quasistatic_past_the_limit_is_refused_before_building(scene_file
     with pytest.raises(ParameterError) as err:
         decide(sc, "quasi-static", None, 82, cache)
     e = err.value
-    assert (e.field, e.value) == ("segments", 82)
+    assert (e.field, e.value) == ("cable.segments", 82)
     assert f"up to N = {C.quasistatic_max_segments(sc)}" in str(e)
     assert "--model segmented" in str(e) and "--model wang" in str(e) and "model_tolerance" in str(e)
     assert not any(key[0] == "quasi-static" for key in cache._models)

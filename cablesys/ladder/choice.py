@@ -175,14 +175,14 @@ def quasistatic_max_segments(scene: Scene) -> int:
 
 
 def check_model_size(scene: Scene, name: str, segments: int) -> None:
-    """Raise :class:`~cablesys.errors.ParameterError` (field ``segments``) before a model is built when its predicted
+    """Raise :class:`~cablesys.errors.ParameterError` (field ``cable.segments``) before a model is built when its predicted
     size (:func:`model_operations`) exceeds MAX_MODEL_OPERATIONS, saying what would run instead."""
     ops = model_operations(scene, name, segments)
     if ops <= MAX_MODEL_OPERATIONS:
         return
     top = quasistatic_max_segments(scene)
     raise ParameterError(
-        "segments", segments,
+        "cable.segments", segments,
         f"the quasi-static segmented cable with N = {segments} would have about {ops / 1e6:.2g} M operations "
         f"(its functions grow as N^{QS_OPERATIONS_EXPONENT:g}; more than {MAX_MODEL_OPERATIONS / 1e6:.2g} M is not "
         f"built: gigabytes and many minutes); it is built up to N = {top} here",
