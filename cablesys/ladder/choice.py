@@ -136,11 +136,58 @@ EXPLICIT_COST = 0.7
 # and the 1000 m wire's quasi-static N = 8 then ran slower than the node model (studies/model_ladder.py)
 EXPLICIT_COST_MAX_ELEMENTS = 7
 CHECK_COST = 1.5
+# The quasi-static segmented cable's functions grow as about N^2.75 per section (the chord solve's rows for every
+# element stretch, each through the dense eliminated mass matrix), the node model's linearly: operation counts of
+# the ODE plus the outputs measured on the Dale scene (CasADi SX, cse on): quasi-static 0.07 M / 0.2 M / 0.42 M /
+# 1.27 M at N = 16 / 24 / 32 / 48 (0.7 GB to build at 48, before any compile); node model 0.01 M / 0.02 M /
+# 0.03 M at N = 16 / 32 / 48. An N past MAX_MODEL_OPERATIONS is not built: the quasi-static segmented cable at
+# N = 82 (Dale in a 2.5 m/s current) is 5 M operations, and building and compiling it takes over 14 GB.
+QS_OPERATIONS_PER_SECTION = 30.2        # x N^QS_OPERATIONS_EXPONENT: the fit through N = 32 and 48
+QS_OPERATIONS_EXPONENT = 2.75
+NODE_OPERATIONS_PER_ELEMENT = 600.0     # x N per section, the node model's ODE plus outputs
+MAX_MODEL_OPERATIONS = 500_000          # the quasi-static segmented cable up to N = 33 for one section
 CHECK_MIN_SEGMENTS = 4   # the check runs N / 2 >= 2 elements
 # a checked N is kept when its Richardson estimate is within CHECK_ACCEPT x the tolerance: those estimates were
 # 0.82-0.98 x the actual error where auto checked (heavy1000 0.85, random current-4 / 9 / 10 compiled 0.98 / 0.92
 # / 0.82 against N = 32), so 0.8 keeps the actual error within 0.98 x the tolerance there; a miss runs the sure N
 CHECK_ACCEPT = 0.8
+
+
+def model_operations(scene: Scene, name: str, segments: int) -> float:
+    """Predicted operation count of a rung's generated functions (the ODE plus the outputs, CasADi SX operations)
+    before it is built: the quasi-static segmented cable QS_OPERATIONS_PER_SECTION x N^QS_OPERATIONS_EXPONENT per
+    section, the node model NODE_OPERATIONS_PER_ELEMENT x N per section (fits to the counts above); the straight
+    rungs (N = 1) a node model's element."""
+    sections = len(scene.sections)
+    if name == "quasi-static" and segments > 1:
+        return sections * QS_OPERATIONS_PER_SECTION * float(segments) ** QS_OPERATIONS_EXPONENT
+    return sections * NODE_OPERATIONS_PER_ELEMENT * max(int(segments), 1)
+
+
+def quasistatic_max_segments(scene: Scene) -> int:
+    """The largest N of the quasi-static segmented cable whose predicted size (:func:`model_operations`) is within
+    MAX_MODEL_OPERATIONS (1 when none is)."""
+    per = QS_OPERATIONS_PER_SECTION * len(scene.sections)
+    n = int((MAX_MODEL_OPERATIONS / per) ** (1.0 / QS_OPERATIONS_EXPONENT))
+    while n > 1 and model_operations(scene, "quasi-static", n) > MAX_MODEL_OPERATIONS:
+        n -= 1
+    return max(n, 1)
+
+
+def check_model_size(scene: Scene, name: str, segments: int) -> None:
+    """Raise :class:`~cablesys.errors.ParameterError` (field ``cable.segments``) before a model is built when its predicted
+    size (:func:`model_operations`) exceeds MAX_MODEL_OPERATIONS, saying what would run instead."""
+    ops = model_operations(scene, name, segments)
+    if ops <= MAX_MODEL_OPERATIONS:
+        return
+    top = quasistatic_max_segments(scene)
+    raise ParameterError(
+        "cable.segments", segments,
+        f"the quasi-static segmented cable with N = {segments} would have about {ops / 1e6:.2g} M operations "
+        f"(its functions grow as N^{QS_OPERATIONS_EXPONENT:g}; more than {MAX_MODEL_OPERATIONS / 1e6:.2g} M is not "
+        f"built: gigabytes and many minutes); it is built up to N = {top} here",
+        "run --model segmented (the node model, whose size grows linearly in N), --model wang, or a looser "
+        "numerics.model_tolerance")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -157,9 +204,14 @@ class ElementPlan:
     explicit_only: bool
     cost: float
     fallback: dict | None = None     # a checked plan's cheapest sure option ({name, segments, explicit_only}), if any
+    note: str = ""                   # what the plan left out and why (a rung past MAX_MODEL_OPERATIONS)
 
     def as_dict(self) -> dict:
-        return dataclasses.asdict(self)
+        """The plan's fields for summary.json (``note`` only when there is one)."""
+        d = dataclasses.asdict(self)
+        if not d["note"]:
+            del d["note"]
+        return d
 
 
 def checkable(scene: Scene, n: int) -> bool:
@@ -199,7 +251,7 @@ def element_plan(scene: Scene, numbers, errs: dict, tol, compiled: bool | None =
     families = [("segmented", 1.0, MAX_SEGMENTS, False)]
     if quasistatic_segments_available(scene):
         if numbers.axial_ratio <= 1.0 / STIFF_RATIO:
-            families.append(("quasi-static", STIFF_QS_COST, MAX_SEGMENTS, False))
+            families.append(("quasi-static", STIFF_QS_COST, min(MAX_SEGMENTS, quasistatic_max_segments(scene)), False))
         elif (compilation_enabled() if compiled is None else compiled):
             families.append(("quasi-static", EXPLICIT_COST, min(EXPLICIT_COST_MAX_ELEMENTS, EXPLICIT_MAX_ELEMENTS), True))
     options = []
@@ -211,11 +263,28 @@ def element_plan(scene: Scene, numbers, errs: dict, tol, compiled: bool | None =
         if n is not None:
             options.append(ElementPlan(name, n, True, explicit, weight * CHECK_COST * n))
     best = min(options, key=lambda o: (o.cost, o.checked), default=None)
+    note = _size_note(scene, errs, tol, families)
+    if best is not None and note:
+        best = dataclasses.replace(best, note=note)
     sure = min((o for o in options if not o.checked), key=lambda o: o.cost, default=None)
     if best is not None and best.checked and sure is not None:
         best = dataclasses.replace(best, fallback={"name": sure.name, "segments": sure.segments,
                                                    "explicit_only": sure.explicit_only})
     return best
+
+
+def _size_note(scene: Scene, errs: dict, tol, families) -> str:
+    """"" unless the quasi-static segmented cable was capped by its size (:func:`quasistatic_max_segments`) below the
+    N it needs for the tolerance: then a note naming that N and its predicted operation count."""
+    capped = [top for name, _, top, _ in families if name == "quasi-static" and top < MAX_SEGMENTS]
+    if not capped or _least_n(errs, tol, "quasi-static", 1.0, 2, capped[0]) is not None:
+        return ""
+    need = _least_n(errs, tol, "quasi-static", SAFETY, capped[0] + 1, MAX_SEGMENTS)
+    if need is None:
+        return ""
+    return (f"the quasi-static segmented cable would need N = {need}, about "
+            f"{model_operations(scene, 'quasi-static', need) / 1e6:.2g} M operations (it is built up to N = "
+            f"{capped[0]}, {MAX_MODEL_OPERATIONS / 1e6:.2g} M): the node model runs instead")
 
 
 def _plan_text(plan: ElementPlan, numbers) -> tuple[str, str]:
@@ -230,7 +299,7 @@ def _plan_text(plan: ElementPlan, numbers) -> tuple[str, str]:
     how_n = (f"the least N >= {CHECK_MIN_SEGMENTS} with its estimate within the tolerance, checked a posteriori "
              f"against N = {plan.segments // 2} (cheaper than the least N within {SAFETY:g} x the tolerance)"
              if plan.checked else f"the least N with its estimate within {SAFETY:g} x the tolerance")
-    return what, how_n
+    return what, how_n + (f"; {plan.note}" if plan.note else "")
 
 
 def settling_note(scene: Scene, transverse: bool = True) -> str:
@@ -425,6 +494,7 @@ def forced(scene: Scene, name: str, segments: int | None = None, tolerance=None,
         n = segments or (scene_n if scene_n > 1 else segments_for(errs, tol))
     elif name == "quasi-static" and quasistatic_segments_available(scene):
         n = segments or scene_n                                      # > 1: the quasi-static segmented rung
+        check_model_size(scene, name, n)
     else:
         n = 1
     e = est.rung_error(errs, name, n)
