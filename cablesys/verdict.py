@@ -225,7 +225,8 @@ def steady_shape(scene, result) -> dict | None:
     """The shape of a steady tow (``environment.system_speed`` != 0 and a top that does not move) at the
     run's last sample, or None for any other run: ``top_tension_N`` (the top section's pull on its top
     point), ``body_depth_m`` (the lowest body's y_b, m below the top point's mean depth, y down) and
-    ``layback_m`` (x_s - x_b, m: how far the lowest body trails behind the top point; the system moves in +x)."""
+    ``layback_m`` (x_s - x_b, m: how far the lowest body trails behind the top point; the system moves in +x),
+    with ``body_labels`` the lowest body's (x, y) output labels they are read from."""
     env = getattr(scene, "environment", None)
     labels = list(result.labels)
     body = body_labels(labels)
@@ -237,7 +238,7 @@ def steady_shape(scene, result) -> dict | None:
     x_b, y_b = (float(np.asarray(result[k])[-1]) for k in body)
     return {"time_s": float(result.time[-1]), "system_speed_m_s": float(env.system_speed),
             "top_tension_N": float(np.asarray(result[tops[0]])[-1]), "body_depth_m": y_b,
-            "layback_m": float(np.asarray(result["x_s"])[-1]) - x_b, "body": body[1][1:] or "b"}
+            "layback_m": float(np.asarray(result["x_s"])[-1]) - x_b, "body_labels": list(body)}
 
 
 def steady_shape_lines(summary: dict, scale=None) -> list[str]:
