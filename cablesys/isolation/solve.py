@@ -42,6 +42,12 @@ SCOUT_TOL = 1e-3       # IPOPT tolerance of the multistart pass when later passe
 ACTIVE_TOL = 1e-4      # a constraint is active when its normalized margin -g is within this of 0 (g = 0: just met)
 
 
+class DesignFailed(SolverError):
+    """IPOPT could not evaluate the design problem from any start (a failed computation: exit 1)."""
+
+    exit_code = 1
+
+
 class DesignInfeasible(SolverError):
     """No design within the bounds meets the constraints: a failed computation (the ``cablesys`` command
     exits 1), not bad input. ``constraint`` names the most violated constraint, ``violation`` its g > 0
@@ -117,7 +123,9 @@ def design(scene, settings: DesignSettings, *, model=None) -> DesignResult:
     Raises
     ------
     DesignInfeasible
-        If no design within the bounds meets the constraints (names the constraint).
+        If no design within the bounds meets the constraints (names the constraint, keeps the best point).
+    DesignFailed
+        If the objective or constraints are not finite at every start.
     """
     t_start = time.perf_counter()
     model = model or build_model(scene)
@@ -168,7 +176,7 @@ def design(scene, settings: DesignSettings, *, model=None) -> DesignResult:
             candidates.append((run, xv, gv, np.array(sol["lam_x"]).ravel(), np.array(sol["lam_g"]).ravel()))
         feasible = [c for c in candidates if c[0]["max_violation"] <= FEASIBILITY_TOL and np.isfinite(c[0]["objective"])]
         if not feasible and not any(np.all(np.isfinite(c[2])) for c in candidates):
-            raise SolverError(f"isolation design: IPOPT failed from every start ({candidates[0][0]['status']}): the "
+            raise DesignFailed(f"isolation design: IPOPT failed from every start ({candidates[0][0]['status']}): the "
                               "objective or constraints are not finite (check that the bounds keep AE above the "
                               "reference tension and that the scene has a taut steady state)")
         if not feasible:
