@@ -36,7 +36,9 @@ import numpy as np
 QUANTITIES = {
     "time": ("s", "time"), "omega": ("rad/s", "angular frequency"),
     "phi": ("rad", "cable angle from the vertical"), "phi_rate": ("rad/s", "cable angular rate"),
-    "u": ("m", "cable stretch"), "u_rate": ("m/s", "cable stretch rate"),
+    "u": ("m", "cable stretch beyond its zero-tension length"), "u_rate": ("m/s", "cable stretch rate"),
+    "chord_stretch": ("m", "chord (top to body) minus the cable's zero-tension length"),
+    "chord_stretch_rate": ("m/s", "rate of the chord length"),
     "x_b": ("m", "body horizontal position"), "x_b_rate": ("m/s", "body horizontal velocity"),
     "y_b": ("m", "body vertical position"), "y_b_rate": ("m/s", "body vertical velocity"),
     "tension": ("N", "cable tension"), "x_s": ("m", "top (ship) horizontal motion"),

@@ -221,18 +221,56 @@ def group_by_quantity(stats: dict) -> dict:
     return grouped
 
 
+def steady_shape(scene, result) -> dict | None:
+    """The shape of a steady tow (``environment.system_speed`` != 0 and a top that does not move) at the
+    run's last sample, or None for any other run: ``top_tension_N`` (the top section's pull on its top
+    point), ``body_depth_m`` (the lowest body's y_b, m below the top point's mean depth, y down) and
+    ``layback_m`` (x_s - x_b, m: how far the lowest body trails behind the top point; the system moves in +x),
+    with ``body_labels`` the lowest body's (x, y) output labels they are read from."""
+    env = getattr(scene, "environment", None)
+    labels = list(result.labels)
+    body = body_labels(labels)
+    tops = sorted(lbl for lbl in labels if re.fullmatch(r"tension_top(_\d+)?", lbl))
+    if env is None or env.system_speed == 0.0 or body is None or not tops or "x_s" not in labels:
+        return None
+    if np.ptp(result["x_s"]) > 0.0 or ("y_s" in labels and np.ptp(result["y_s"]) > 0.0):
+        return None
+    x_b, y_b = (float(np.asarray(result[k])[-1]) for k in body)
+    return {"time_s": float(result.time[-1]), "system_speed_m_s": float(env.system_speed),
+            "top_tension_N": float(np.asarray(result[tops[0]])[-1]), "body_depth_m": y_b,
+            "layback_m": float(np.asarray(result["x_s"])[-1]) - x_b, "body_labels": list(body)}
+
+
+def steady_shape_lines(summary: dict, scale=None) -> list[str]:
+    """Console lines of a steady tow's shape (the ``steady_shape`` entry of :func:`report`); [] for other runs.
+    ``scale(unit) -> (factor, name)`` converts SI values for display, as in :func:`format_table`."""
+    shape = summary.get("steady_shape")
+    if not shape:
+        return []
+    sc = scale or (lambda u: (1.0, u))
+    (fn, un), (fm, um) = sc("N"), sc("m")
+    return [f"steady tow at {shape['system_speed_m_s'] * fm:.4g} {um}/s (t = {shape['time_s']:.4g} s): "
+            f"top tension {shape['top_tension_N'] * fn:.5g} {un}, body depth {shape['body_depth_m'] * fm:.5g} {um} "
+            f"below the top point, layback {shape['layback_m'] * fm:.5g} {um}"]
+
+
 def report(scene, result) -> dict:
     """``summary.json`` entries of a run: ``statistics`` grouped by quantity (SI units in the group
-    names), ``verdict`` against ``scene.limits`` and the slack/snap ``warnings``."""
+    names), ``verdict`` against ``scene.limits``, the slack/snap ``warnings`` and, for a steady tow,
+    its ``steady_shape`` (:func:`steady_shape`)."""
     limits = getattr(scene, "limits", None)
     stats = run_statistics(result, limits)
     grouped = group_by_quantity(stats)
     mask = statistics_window(result.time, limits, result)
     window = [float(result.time[mask][0]), float(result.time[mask][-1])]
-    return {"statistics": {"window_s": window, "exposure_s": getattr(limits, "exposure", None) or window[1] - window[0],
-                           **grouped},
-            "verdict": evaluate(limits, stats, window_snap_loads(result, limits)[0]),
-            "warnings": warnings_of(result, limits)}
+    out = {"statistics": {"window_s": window, "exposure_s": getattr(limits, "exposure", None) or window[1] - window[0],
+                          **grouped},
+           "verdict": evaluate(limits, stats, window_snap_loads(result, limits)[0]),
+           "warnings": warnings_of(result, limits)}
+    shape = steady_shape(scene, result)
+    if shape is not None:
+        out["steady_shape"] = shape
+    return out
 
 
 def format_statistics(statistics: dict, system: str = "SI") -> list[str]:

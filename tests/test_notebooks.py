@@ -31,3 +31,8 @@ def test_notebook_runs(path, monkeypatch):
     # these few short cases sooner than compiling every structure to C on a cold cache (same equations)
     monkeypatch.setenv("CABLESYS_COMPILE", "0")
     nbclient.NotebookClient(nb, timeout=600, kernel_name="python3", resources={"metadata": {"path": str(path.parent)}}).execute()
+    # tqdm's notebook bar without ipywidgets warns "IProgress not found" in every sweep cell: the notebooks ask for
+    # a bar only where ipywidgets is installed
+    stderr = "".join(o.get("text", "") for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])
+                     if o.get("output_type") == "stream" and o.get("name") == "stderr")
+    assert "IProgress" not in stderr, stderr[:500]

@@ -134,9 +134,30 @@ def time_domain_check(scene, new_scene, settings) -> dict:
     return out
 
 
+def infeasible_doc(scene, err, before: float) -> dict:
+    """design.json of an infeasible design: the violated constraint, the best point and its margins."""
+    return {"scene": scene.name, "success": False, "status": "infeasible", "message": str(err),
+            "violated_constraint": err.constraint, "violation": err.violation, "best_point": err.best,
+            "constraint_margins": err.margins,
+            "baseline": {"significant_heave_m": before, "what": "the scene's own values, the same equivalent "
+                         "linearization in the same sea"}}
+
+
+def infeasible_lines(scene, err, before: float, path) -> str:
+    """The console report of an infeasible design (the best point, every margin, the culprit)."""
+    lines = [f"{scene.name}\nINFEASIBLE: constraint '{err.constraint}' violated by {err.violation:.3g} "
+             "(normalized; 0 = just met)",
+             f"body heave significant amplitude, baseline (the scene's values): {before:.4g} m",
+             "best point found:"]
+    lines += [f"  {name:<20s} {v:12.5g}" for name, v in err.best.items()]
+    lines += ["constraint margins there (>= 0 met): " + ", ".join(f"{k} {v:+.3g}" for k, v in err.margins.items()),
+              f"wrote {path}"]
+    return "\n".join(lines) + "\n"
+
+
 def run(args) -> int:
     from ..outputs import OutputDir
-    from .solve import design
+    from .solve import DesignInfeasible, design
 
     scene, settings = load(args.scene)
     # --out checked before any work; summary.json says running / success / failed / interrupted
@@ -144,7 +165,14 @@ def run(args) -> int:
                        overwrite=getattr(args, "overwrite", False), owned=("design.json",))
     with outdir.start(scene=scene.name):
         before = baseline(scene, settings)
-        result = design(scene, settings)
+        try:
+            result = design(scene, settings)
+        except DesignInfeasible as err:
+            # a failed computation (exit 1): the best point found and the violated constraint are kept
+            outdir.write_text("design.json", json.dumps(infeasible_doc(scene, err, before), indent=2, default=float) + "\n")
+            outdir.finish("failed", message=str(err))
+            sys.stdout.write(infeasible_lines(scene, err, before, outdir.path / "design.json"))
+            return 1
         out = outdir.path
         failed = failed_starts(result)
         doc = {"scene": scene.name, **result.to_dict(), "failed_starts": failed,

@@ -39,12 +39,38 @@ FEASIBILITY_TOL = 1e-6
 SCOUT_TOL = 1e-3       # IPOPT tolerance of the multistart pass when later passes polish the optimum
 
 
-class DesignInfeasible(SolverError):
-    """No design within the bounds meets the constraints; ``constraint`` names the culprit."""
+ACTIVE_TOL = 1e-4      # a constraint is active when its normalized margin -g is within this of 0 (g = 0: just met)
 
-    def __init__(self, message: str, constraint: str, violation: float):
+
+class DesignFailed(SolverError):
+    """IPOPT could not evaluate the design problem from any start (a failed computation: exit 1)."""
+
+    exit_code = 1
+
+
+class DesignInfeasible(SolverError):
+    """No design within the bounds meets the constraints: a failed computation (the ``cablesys`` command
+    exits 1), not bad input. ``constraint`` names the most violated constraint, ``violation`` its g > 0
+    (normalized: relative to its limit), ``best`` the point IPOPT reached (variable name -> value in the
+    variable's unit) and ``margins`` every constraint's margin -g there (>= 0 met)."""
+
+    exit_code = 1
+
+    def __init__(self, message: str, constraint: str, violation: float, best: dict | None = None,
+                 margins: dict | None = None):
         super().__init__(message)
         self.constraint, self.violation = constraint, violation
+        self.best, self.margins = dict(best or {}), dict(margins or {})
+
+
+def active_set(vars_, x_normalized, names, g) -> list:
+    """The constraints at their bound: variables within ``ACTIVE_TOL`` of a bound of their normalized
+    (0-1) box, and constraints whose margin -g is within ``ACTIVE_TOL`` of 0 (met or just violated),
+    so the list agrees with the printed margins (IPOPT's interior-point multipliers are not used:
+    they are small but nonzero off the bound)."""
+    active = [f"{v.name} at {'lower' if a < 0.5 else 'upper'} bound" for v, a in zip(vars_, x_normalized)
+              if min(a, 1 - a) < ACTIVE_TOL]
+    return active + [n for n, gk in zip(names, g) if abs(gk) <= ACTIVE_TOL]
 
 
 def equivalent_jacobian_shift(model, p, settings: DesignSettings, *, n_log2: int | None = None, start=None):
@@ -64,14 +90,16 @@ def _starts(x_scene: np.ndarray, n: int) -> list:
     return pts
 
 
-def _infeasibility(g: np.ndarray, names: tuple, settings: DesignSettings, report_row) -> DesignInfeasible:
+def _infeasibility(g: np.ndarray, names: tuple, settings: DesignSettings, report_row, vars_=(), x=()) -> DesignInfeasible:
     k = int(np.argmax(g))
     text = describe_constraint(names[k], settings)
+    best = {v.name: float(v.value(a)) for v, a in zip(vars_, x)}
+    point = ", ".join(f"{n} {val:.5g}" for n, val in best.items())
     return DesignInfeasible(
         f"design infeasible: the constraint '{names[k]}' ({text}) cannot be met within the bounds; the best point "
-        f"IPOPT reached still violates it by {g[k]:.3g} (relative; 0 = just met). {report_row}"
-        "Relax that limit, widen the bounds of the variables it depends on, or change the sea state.",
-        names[k], float(g[k]))
+        f"IPOPT reached ({point or 'no variables'}) still violates it by {g[k]:.3g} (relative; 0 = just met). "
+        f"{report_row}Relax that limit, widen the bounds of the variables it depends on, or change the sea state.",
+        names[k], float(g[k]), best, {n: float(-gk) for n, gk in zip(names, g)})
 
 
 def design(scene, settings: DesignSettings, *, model=None) -> DesignResult:
@@ -95,7 +123,9 @@ def design(scene, settings: DesignSettings, *, model=None) -> DesignResult:
     Raises
     ------
     DesignInfeasible
-        If no design within the bounds meets the constraints (names the constraint).
+        If no design within the bounds meets the constraints (names the constraint, keeps the best point).
+    DesignFailed
+        If the objective or constraints are not finite at every start.
     """
     t_start = time.perf_counter()
     model = model or build_model(scene)
@@ -116,7 +146,6 @@ def design(scene, settings: DesignSettings, *, model=None) -> DesignResult:
         "warm_start_bound_frac": 1e-9, "warm_start_slack_bound_push": 1e-9, "warm_start_slack_bound_frac": 1e-9,
         "warm_start_mult_bound_push": 1e-9}})
     names = constraint_names(model.n_sections)
-    ng = len(names)
     x_scene = np.array([v.normalized(np.clip(val, v.lower, v.upper)) for v, val in zip(vars_, current_values(scene, vars_))])
     q_guess = steady_state(model, p_base).q
     n_xi = xi_blocks(model)["n"]
@@ -147,13 +176,13 @@ def design(scene, settings: DesignSettings, *, model=None) -> DesignResult:
             candidates.append((run, xv, gv, np.array(sol["lam_x"]).ravel(), np.array(sol["lam_g"]).ravel()))
         feasible = [c for c in candidates if c[0]["max_violation"] <= FEASIBILITY_TOL and np.isfinite(c[0]["objective"])]
         if not feasible and not any(np.all(np.isfinite(c[2])) for c in candidates):
-            raise SolverError(f"isolation design: IPOPT failed from every start ({candidates[0][0]['status']}): the "
+            raise DesignFailed(f"isolation design: IPOPT failed from every start ({candidates[0][0]['status']}): the "
                               "objective or constraints are not finite (check that the bounds keep AE above the "
                               "reference tension and that the scene has a taut steady state)")
         if not feasible:
             c = min(candidates, key=lambda c: c[0]["max_violation"])
             raise _infeasibility(c[2], names, settings,
-                                 f"(IPOPT status {c[0]['status']}, {c[0]['iterations']} iterations.) ")
+                                 f"(IPOPT status {c[0]['status']}, {c[0]['iterations']} iterations.) ", vars_, c[1])
         best = min(feasible, key=lambda c: c[0]["objective"])
         f_now = best[0]["objective"]
         # update the equivalent drag damping at the optimum (the outer fixed point)
@@ -165,13 +194,11 @@ def design(scene, settings: DesignSettings, *, model=None) -> DesignResult:
         if f_prev is not None and abs(f_now - f_prev) <= settings.outer_tol * abs(f_now):
             break
         f_prev = f_now
-    run, xv, gv, lam_x, lam_g = best
+    run, xv = best[0], best[1]
     rep = report(xv, np.r_[dJ.ravel(order="F"), q_guess])
     obj, gv_final, sigma, mean_t, strain, q0, p = (np.array(a).ravel() for a in rep)
     values = np.array([v.value(a) for v, a in zip(vars_, xv)])
-    active = [f"{v.name} at {'lower' if a < 0.5 else 'upper'} bound" for v, a, lx in zip(vars_, xv, lam_x)
-              if min(a, 1 - a) < 1e-6 or abs(lx) > 1e-8 * max(1.0, abs(run["objective"]))]
-    active += [names[k] for k in range(ng) if gv_final[k] > -1e-5 or lam_g[k] > 1e-8 * max(1.0, abs(run["objective"]))]
+    active = active_set(vars_, xv, names, gv_final)
     outer_converged = len(history) >= 2 and (
         abs(history[-1]["objective"] - history[-2]["objective"]) <= settings.outer_tol * abs(history[-1]["objective"]))
     converged = run["status"] in OK_STATUS and (outer_converged or settings.outer_iterations == 1)

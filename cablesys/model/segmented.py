@@ -50,7 +50,7 @@ from .section import SectionParameters
 from .segmented_element import body_drag, dot, element_inertia, element_terms, lump_force, lump_kinetic, norm
 from .segmented_kernel import kernel_ode
 from .segmented_seabed import seabed_forces
-from .signals import EXO_LABELS, OUTPUT_NAMES
+from .signals import CHORD_NAMES, EXO_LABELS, OUTPUT_NAMES
 from .top_motion import symbolic_type, top_motion_function
 
 ELEMENT_PROFILES = ("element_tension", "element_tension_rate", "element_strain", "element_slack")
@@ -236,7 +236,11 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
         lc = norm(chord)
         phi = ca.atan2(-chord[0], chord[1])                        # e_t = (-sin phi, cos phi), eq. 10
         phid = (chord[0] * chord_v[1] - chord[1] * chord_v[0]) / lc**2
-        u, ud = lc - P.l_0, dot(chord, chord_v) / lc
+        # u: the stretch of the whole section beyond its zero-tension length, the sum of the element
+        # elongations (Wang's u, eq. 1, when the elements are in line); chord_stretch: the chord
+        # (top to body, the straight line phi measures) minus that length, negative when the cable sags
+        u, ud = sum(el["length"] for el in els) - P.l_0, sum(el["rate"] for el in els)
+        c_u, c_ud = lc - P.l_0, dot(chord, chord_v) / lc
         first, last = els[0], els[-1]
         # force of the cable on its top point and on its body: the end element's tension plus the
         # half element lumped at that node (weight, drag share, minus its inertia)
@@ -244,8 +248,9 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
         top_force = tuple(first["tension"] * first["et"][c] + lt[c] for c in range(2))
         lb = lump_force(last, "b", acc_nodes[s["body"]])
         bottom_force = tuple(-last["tension"] * last["et"][c] + lb[c] for c in range(2))
-        out += [phi, phid, u, ud, rb[0], vb[0], rb[1], vb[1], last["tension"], norm(bottom_force), norm(top_force)]
-        labels += [f"{name}{sfx(i)}" for name in OUTPUT_NAMES]
+        out += [phi, phid, u, ud, rb[0], vb[0], rb[1], vb[1], last["tension"], norm(bottom_force), norm(top_force),
+                c_u, c_ud]
+        labels += [f"{name}{sfx(i)}" for name in OUTPUT_NAMES + CHORD_NAMES]
     # profiles (element k top to bottom over all sections; node j = 0 the top) and their arc lengths
     T = ca.vertcat(*[el["tension"] for el in elements])
     T_rate = ca.jtimes(T, x, xdot) + ca.jacobian(T, e) @ ca.vertcat(1.0, zd, zdd, 0.0, 0.0)

@@ -402,7 +402,7 @@ def segmented_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
             val = lambda name, i=i: p[model.layout.section_index(i, name)]
             l_0 = val("cable.length") * (1 - val("cable.tension_ref") / val("cable.ae"))
             phi = ini.phi if ini.phi is not None else y[model.label("phi", i)]
-            u = ini.u if ini.u is not None else y[model.label("u", i)]
+            u = ini.u if ini.u is not None else y[model.label("chord_stretch", i)]
             et, en = np.array([-np.sin(phi), np.cos(phi)]), np.array([-np.cos(phi), -np.sin(phi)])
             length = l_0 + u
             for k in range(1, n_el + 1):

@@ -149,5 +149,11 @@ def sweep(scene: Scene, vary: dict, analysis: str = "run", *, metrics=None, zip=
 
 
 def _bar(total: int, desc: str, enabled: bool):
-    from tqdm.auto import tqdm
+    """tqdm's bar: its notebook form (``tqdm.auto``) only where ipywidgets can draw it (without them tqdm.auto
+    warns "IProgress not found" on import), else the text bar."""
+    import importlib.util
+    if enabled and importlib.util.find_spec("ipywidgets") is not None:
+        from tqdm.auto import tqdm
+    else:
+        from tqdm import tqdm
     return tqdm(total=total, desc=desc, unit="case", disable=not enabled or total == 0, leave=True)
