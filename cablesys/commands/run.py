@@ -314,8 +314,9 @@ def _print_summary(summary: dict, units: str = "SI") -> None:
         if lo is not None and hi is not None:
             print(f"  tension {what} min/max {lo * fn:.4g} / {hi * fn:.4g} {name_n} (over the run)")
     print(f"  time slack {summary['time_slack_s']:.3g} s")
-    from ..verdict import format_statistics, format_table
+    from ..verdict import format_statistics, format_table, steady_shape_lines
     for line in (format_statistics(summary["statistics"], units) if "statistics" in summary else []) + \
+            steady_shape_lines(summary, lambda u: output_unit(u, units)) + \
             summary.get("warnings", []) + (format_table(summary["verdict"], lambda u: output_unit(u, units))
                                            if summary.get("verdict") else []):
         print("  " + line)
