@@ -14,7 +14,7 @@ from ..errors import (ParameterError, require_finite, require_nonnegative,
                       require_positive, require_range)
 from ..integration import METHODS as INTEGRATION_METHODS
 from .fields import quantity, spec
-from .harmonics import Sinusoid, Wave
+from .harmonics import MAX_AMPLITUDE_M, Sinusoid, Wave
 from .sea import MotionRAO, SeaSpectrum, append_once, sea_sinusoids
 
 
@@ -216,7 +216,7 @@ class TimeSeries:
                 raise ParameterError(f"top_motion.series.{name}", f"{len(v)} values",
                                      f"must have one value per sample time ({len(t)})")
             for i, vi in enumerate(v):
-                require_finite(f"top_motion.series.{name}[{i}]", vi)
+                require_range(f"top_motion.series.{name}[{i}]", vi, -MAX_AMPLITUDE_M, MAX_AMPLITUDE_M, "m")
             object.__setattr__(self, name, tuple(float(a) for a in v))
         for i in range(1, len(t)):
             if not t[i] > t[i - 1]:

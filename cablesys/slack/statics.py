@@ -235,8 +235,9 @@ def solve_equilibrium(scene: SlackScene, *, n_elements: int | None = None,
     if not stats.get("success", False):
         raise SolverError(f"statics NLP did not converge: IPOPT says '{stats.get('return_status')}' "
                           f"after {stats.get('iter_count')} iterations (max_iter = {max_iter}). "
-                          "Check that the chord is shorter than the cable and the masses are sensible, "
-                          "or raise max_iter.")
+                          f"for span = {scene.span:g} m, rise = {scene.rise:g} m, L = {scene.cable.length:g} m, "
+                          f"{n} elements. Nearly coincident or near-vertical supports and a specific gravity near "
+                          "1 are hard for it: try more elements or max_iter, or a slightly different geometry.")
     w = np.asarray(sol["x"]).ravel()
     x = np.concatenate([[0.0], w[: n - 1], [scene.span]])
     z = np.concatenate([[0.0], w[n - 1:], [scene.rise]])
@@ -281,15 +282,21 @@ def solve_equilibrium_shooting(scene: SlackScene, *, n_elements: int | None = No
     t0 = time.perf_counter()
     Wtot = float(np.sum(d.weight[1:-1]))
     c, L = scene.chord, scene.cable.length
-    H0 = _elastic_parabola_tension(Wtot * math.cos(scene.inclination), c, L, EA) * math.cos(scene.inclination)
-    VA0 = -Wtot / 2 + H0 * scene.rise / max(scene.span, 1e-9)
+    try:   # the elastic parabola's start fails for chords near vertical or near zero: a solver failure
+        H0 = _elastic_parabola_tension(Wtot * math.cos(scene.inclination), c, L, EA) * math.cos(scene.inclination)
+        VA0 = -Wtot / 2 + H0 * scene.rise / max(scene.span, 1e-9)
+    except (ValueError, OverflowError, ZeroDivisionError) as err:
+        raise SolverError(f"statics shooting: no starting tension from the elastic parabola ({err}) for span = "
+                          f"{scene.span:g} m, rise = {scene.rise:g} m, L = {L:g} m; this chord is outside the "
+                          "shooting route's reach (use the NLP, solve_equilibrium)") from None
 
     def res(v):
         X, Z = _chain_ends(np.array([math.exp(v[0]), v[1]]), d, EA)
         return [(X[-1] - scene.span) / c, (Z[-1] - scene.rise) / c]
 
     for method in ("hybr", "lm"):   # Powell hybrid first, Levenberg-Marquardt as a fallback
-        sol = scipy.optimize.root(res, [math.log(H0), VA0], method=method, options={"xtol": 1e-13})
+        with np.errstate(over="ignore", invalid="ignore"):
+            sol = scipy.optimize.root(res, [math.log(H0), VA0], method=method, options={"xtol": 1e-13})
         if np.max(np.abs(sol.fun)) <= 1e-9:
             break
     if np.max(np.abs(sol.fun)) > 1e-9:
