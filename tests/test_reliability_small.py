@@ -47,6 +47,35 @@ def test_huge_top_motion_is_bad_input(tmp_path, axis, key, value, message):
     assert not (tmp_path / "out" / "timeseries.csv").exists()
 
 
+@pytest.mark.parametrize("sea, message", [
+    ({"hs": 1e6, "tp": 10.0}, "top_motion.spectrum.hs = 1000000.0: must be in (0.0, 100.0] m"),
+    ({"hs": 2.0, "tp": 1e-5}, "top_motion.spectrum.tp = 1e-05: must be in [0.1, 1000.0] s"),
+])
+def test_sea_outside_its_range_names_the_sea_field(tmp_path, sea, message):
+    """A sea whose realised sinusoids would exceed the bounds names the sea's own field, not a
+    derived top_motion.amplitude or frequency."""
+    doc = json.loads(json.dumps(SCENE))
+    doc["top_motion"]["spectrum"] = sea
+    f = tmp_path / "s.toml"
+    f.write_text(dumps(doc))
+    rc, _, err = cablesys("scene", f)
+    assert rc == 2 and message in err, err
+
+
+@pytest.mark.parametrize("wave, message", [
+    ({"amplitude": 1e20, "length": 100.0}, "waves[0].amplitude = 1e+20: must be in [0.0, 10000.0] m"),
+    ({"amplitude": 1.0, "length": 1e-300}, "waves[0].length = 1e-300: must be in [0.01, 1000000.0] m"),
+])
+def test_wave_outside_its_range_is_bad_input(tmp_path, wave, message):
+    """A surface wave's amplitude and length (which sets sigma = sqrt(g 2 pi / lambda)) are bounded."""
+    doc = json.loads(json.dumps(SCENE))
+    doc["environment"]["waves"] = [wave]
+    f = tmp_path / "s.toml"
+    f.write_text(dumps(doc))
+    rc, _, err = cablesys("scene", f)
+    assert rc == 2 and message in err, err
+
+
 def test_bounds_are_inclusive_at_the_physical_limits(tmp_path):
     """The limit itself is accepted: a 1e4 m amplitude at 1e4 rad/s is read back unchanged."""
     doc = json.loads(json.dumps(SCENE))
