@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 
-from ..errors import require_finite, require_range
+from ..errors import require_finite, require_positive, require_range
 from .fields import spec
 
 #: Largest amplitude of a wave or top-motion term (m): ten kilometres, beyond any sea state or
@@ -37,6 +37,7 @@ class Wave:
 
     def __post_init__(self):
         require_range("waves.amplitude", self.amplitude, 0.0, MAX_AMPLITUDE_M, "m")
+        require_positive("waves.length", self.length, "m")
         require_range("waves.length", self.length, *WAVE_LENGTH_RANGE_M, "m")
         require_finite("waves.phase", self.phase)
         if self.heading_deg is not None:
@@ -53,5 +54,6 @@ class Sinusoid:
 
     def __post_init__(self):
         require_range("top_motion.amplitude", self.amplitude, -MAX_AMPLITUDE_M, MAX_AMPLITUDE_M, "m")
+        require_positive("top_motion.frequency", self.frequency, "rad/s")
         require_range("top_motion.frequency", self.frequency, 0.0, MAX_FREQUENCY_RAD_S, "rad/s", lo_open=True)
         require_finite("top_motion.phase", self.phase)
