@@ -157,26 +157,28 @@ def test_towed_csv_unterminated_quote_is_named(tmp_path):
 SLACK = """[scene]
 span = {span}
 rise = {rise}
-medium = "air"
+medium = "{medium}"
 n_elements = 120
 n_modes = 4
 [cable]
 length = 23.80
 mass_per_length = 1.14
 ae = 8.9e5
+{extra}
 """
 
 
-@pytest.mark.parametrize("span, rise, reason", [
-    (1e-4, 0.0, "statics NLP did not converge"),                 # nearly coincident supports
-    (1e-3, 23.7, "statics (nlp-ipopt): element 0 is in compression"),   # near-vertical chord
+@pytest.mark.parametrize("span, rise, medium, extra, reason", [
+    (1e-4, 0.0, "air", "", "statics NLP did not converge"),                     # nearly coincident supports
+    (1e-3, 23.7, "air", "", "statics (nlp-ipopt): element 0 is in compression"),  # near-vertical chord
+    (22.9, 0.0, "water", "specific_gravity = 1.0001", "statics NLP did not converge"),   # nearly neutral
 ])
-def test_slack_solver_failure_on_valid_input_exits_1(tmp_path, monkeypatch, span, rise, reason):
+def test_slack_solver_failure_on_valid_input_exits_1(tmp_path, monkeypatch, span, rise, medium, extra, reason):
     """A valid slack geometry whose statics fail is a failed computation (exit 1, status failed, the
     reason printed), not bad input (exit 2)."""
     monkeypatch.setenv("CABLESYS_COMPILE", "0")
     f = tmp_path / "s.toml"
-    f.write_text(SLACK.format(span=span, rise=rise))
+    f.write_text(SLACK.format(span=span, rise=rise, medium=medium, extra=extra))
     rc, _, err = cablesys("slack", f, "--out", tmp_path / "out")
     assert rc == 1, err
     assert reason in err and "bad input" not in err
@@ -189,3 +191,15 @@ def test_solver_error_carries_exit_1_and_parameter_error_2(tmp_path):
     assert SolverError("x").exit_code == 1
     rc, _, err = cablesys("slack", tmp_path / "missing.toml")
     assert rc == 2 and "missing.toml" in err
+
+
+@pytest.mark.parametrize("span, rise", [(1e-4, 0.0), (1e-3, 23.7)])
+def test_slack_shooting_failure_is_a_solver_error(tmp_path, span, rise):
+    """The shooting route's start (the elastic parabola) has no root for these chords: a SolverError
+    naming the geometry, not a raw ValueError or OverflowError."""
+    from cablesys.slack.scene import load_slack_scene
+    from cablesys.slack.statics import solve_equilibrium_shooting
+    f = tmp_path / "s.toml"
+    f.write_text(SLACK.format(span=span, rise=rise, medium="air", extra=""))
+    with pytest.raises(SolverError, match=rf"statics shooting.* span = {span:g} m, rise = {rise:g} m"):
+        solve_equilibrium_shooting(load_slack_scene(f))
