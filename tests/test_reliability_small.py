@@ -76,16 +76,29 @@ def test_wave_outside_its_range_is_bad_input(tmp_path, wave, message):
     assert rc == 2 and message in err, err
 
 
-def test_bounds_are_inclusive_at_the_physical_limits(tmp_path):
-    """The limit itself is accepted: a 1e4 m amplitude at 1e4 rad/s is read back unchanged."""
+def test_top_motion_velocity_is_bounded(tmp_path):
+    """Amplitude and frequency each within range but |a| omega = 1e8 m/s (the values that overflowed the
+    ladder's linearised drag) is refused naming the product, its value and the 100 m/s limit."""
     doc = json.loads(json.dumps(SCENE))
     doc["top_motion"]["x"][0].update(amplitude=1e4, frequency=1e4)
     f = tmp_path / "s.toml"
     f.write_text(dumps(doc))
+    rc, _, err = cablesys("scene", f)
+    assert rc == 2 and "top_motion.x[0].amplitude * frequency = 100000000.0: must be <= 100 m/s" in err, err
+
+
+def test_bounds_are_inclusive_at_the_physical_limits(tmp_path):
+    """The limits themselves are accepted: 1e4 m at 0.01 rad/s and 0.01 m at 1e4 rad/s (100 m/s each)."""
+    doc = json.loads(json.dumps(SCENE))
+    doc["top_motion"]["x"][0].update(amplitude=1e4, frequency=0.01)
+    doc["top_motion"]["y"][0].update(amplitude=0.01, frequency=1e4)
+    f = tmp_path / "s.toml"
+    f.write_text(dumps(doc))
     rc, out, err = cablesys("scene", f)
     assert rc == 0, err
-    back = tomllib.loads(out)["top_motion"]["x"][0]
-    assert back["amplitude"] == 1e4 and back["frequency"] == 1e4
+    back = tomllib.loads(out)["top_motion"]
+    assert (back["x"][0]["amplitude"], back["x"][0]["frequency"]) == (1e4, 0.01)
+    assert (back["y"][0]["amplitude"], back["y"][0]["frequency"]) == (0.01, 1e4)
 
 
 def test_towed_run_length_is_bounded_before_any_allocation(tmp_path):

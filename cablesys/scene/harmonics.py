@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 
-from ..errors import require_finite, require_positive, require_range
+from ..errors import ParameterError, require_finite, require_positive, require_range
 from .fields import spec
 
 #: Largest amplitude of a wave or top-motion term (m): ten kilometres, beyond any sea state or
@@ -19,6 +19,10 @@ MAX_AMPLITUDE_M = 1e4
 #: Largest circular frequency of a top-motion term (rad/s): a period of 0.6 ms, far above any
 #: wave or vessel motion (and any frequency a cable model resolves).
 MAX_FREQUENCY_RAD_S = 1e4
+#: Largest velocity amplitude |a| omega of a top-motion term (m/s): ten times a fast ship's
+#: speed; with the two bounds above alone a term could move at 1e8 m/s, and the ladder's
+#: linearised drag (damping proportional to |a| omega) then overflows its trigonometric terms.
+MAX_VELOCITY_M_S = 100.0
 #: Range of a deep-water wave length (m): from 1 cm (below it, capillary waves, not gravity
 #: waves; sigma = sqrt(g 2 pi / lambda) ~ 78 rad/s) to 1000 km (beyond any ocean basin's swell).
 WAVE_LENGTH_RANGE_M = (1e-2, 1e6)
@@ -56,4 +60,9 @@ class Sinusoid:
         require_range("top_motion.amplitude", self.amplitude, -MAX_AMPLITUDE_M, MAX_AMPLITUDE_M, "m")
         require_positive("top_motion.frequency", self.frequency, "rad/s")
         require_range("top_motion.frequency", self.frequency, 0.0, MAX_FREQUENCY_RAD_S, "rad/s", lo_open=True)
+        v = abs(self.amplitude) * self.frequency
+        if not v <= MAX_VELOCITY_M_S:
+            raise ParameterError("top_motion.amplitude * frequency", v,
+                                 f"must be <= {MAX_VELOCITY_M_S:g} m/s (the term's velocity amplitude; amplitude = "
+                                 f"{self.amplitude:g} m, frequency = {self.frequency:g} rad/s)")
         require_finite("top_motion.phase", self.phase)
