@@ -224,7 +224,7 @@ class TimeSeries:
         object.__setattr__(self, "times", t)
 
 
-#: Largest significant wave height of a sea (m): three times the largest ever recorded (~ 30 m).
+#: Largest significant wave height of a sea (m): about five times the largest recorded (~ 19 m).
 MAX_SEA_HS_M = 100.0
 #: Range of a sea's peak period (s): from ripples to beyond the longest swell.
 SEA_TP_RANGE_S = (0.1, 1000.0)
