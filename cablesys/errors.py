@@ -48,7 +48,13 @@ def _short(value: Any, limit: int = 200) -> str:
 
 
 class SolverError(CablesysError, RuntimeError):
-    """A numerical solver failed; the message says where, why and what to try."""
+    """A numerical solver failed on valid input; the message says where, why and what to try.
+
+    The ``cablesys`` command exits with :attr:`exit_code` 1 (a failed computation), not 2
+    (which it keeps for bad input).
+    """
+
+    exit_code = 1
 
 
 def require_finite(field: str, value: float) -> float:

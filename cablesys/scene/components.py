@@ -14,7 +14,7 @@ from ..errors import (ParameterError, require_finite, require_nonnegative,
                       require_positive, require_range)
 from ..integration import METHODS as INTEGRATION_METHODS
 from .fields import quantity, spec
-from .harmonics import Sinusoid, Wave
+from .harmonics import MAX_AMPLITUDE_M, MAX_FREQUENCY_RAD_S, Sinusoid, Wave
 from .sea import MotionRAO, SeaSpectrum, append_once, sea_sinusoids
 
 
@@ -216,13 +216,18 @@ class TimeSeries:
                 raise ParameterError(f"top_motion.series.{name}", f"{len(v)} values",
                                      f"must have one value per sample time ({len(t)})")
             for i, vi in enumerate(v):
-                require_finite(f"top_motion.series.{name}[{i}]", vi)
+                require_range(f"top_motion.series.{name}[{i}]", vi, -MAX_AMPLITUDE_M, MAX_AMPLITUDE_M, "m")
             object.__setattr__(self, name, tuple(float(a) for a in v))
         for i in range(1, len(t)):
             if not t[i] > t[i - 1]:
                 raise ParameterError("top_motion.series.times", f"entry {i} = {t[i]}", "must be strictly increasing")
         object.__setattr__(self, "times", t)
 
+
+#: Largest significant wave height of a sea (m): about five times the largest recorded (~ 19 m).
+MAX_SEA_HS_M = 100.0
+#: Range of a sea's peak period (s): from ripples to beyond the longest swell.
+SEA_TP_RANGE_S = (0.1, 1000.0)
 
 RAMP_PERIODS = 3   # default smooth start: this many of the longest forcing periods
 
@@ -253,6 +258,10 @@ class TopMotion:
             require_finite("top_motion.ramp_s", self.ramp_s)
             require_nonnegative("top_motion.ramp_s", self.ramp_s, "s")
         if self.spectrum is not None:          # the sea as sinusoids: the compiled SX path (scene/sea.py)
+            # its realised terms are Sinusoids (bounded); name the sea's own fields first
+            require_range("top_motion.spectrum.hs", self.spectrum.hs, 0.0, MAX_SEA_HS_M, "m", lo_open=True)
+            require_range("top_motion.spectrum.tp", self.spectrum.tp, *SEA_TP_RANGE_S, "s")
+            require_range("top_motion.spectrum.omega_max", self.spectrum.omega_max, 0.0, MAX_FREQUENCY_RAD_S, "rad/s")
             sx, sy = sea_sinusoids(self.spectrum, self.rao)
             nx, ny = len(self.x), len(self.y)
             object.__setattr__(self, "x", append_once(self.x, sx))

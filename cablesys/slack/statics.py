@@ -234,9 +234,10 @@ def solve_equilibrium(scene: SlackScene, *, n_elements: int | None = None,
     dt = time.perf_counter() - t0
     if not stats.get("success", False):
         raise SolverError(f"statics NLP did not converge: IPOPT says '{stats.get('return_status')}' "
-                          f"after {stats.get('iter_count')} iterations (max_iter = {max_iter}). "
-                          "Check that the chord is shorter than the cable and the masses are sensible, "
-                          "or raise max_iter.")
+                          f"after {stats.get('iter_count')} iterations (max_iter = {max_iter}) "
+                          f"for span = {scene.span:g} m, rise = {scene.rise:g} m, L = {scene.cable.length:g} m, "
+                          f"{n} elements. Nearly coincident or near-vertical supports and a specific gravity near "
+                          "1 are hard for it: try more elements or max_iter, or a slightly different geometry.")
     w = np.asarray(sol["x"]).ravel()
     x = np.concatenate([[0.0], w[: n - 1], [scene.span]])
     z = np.concatenate([[0.0], w[n - 1:], [scene.rise]])
@@ -281,19 +282,30 @@ def solve_equilibrium_shooting(scene: SlackScene, *, n_elements: int | None = No
     t0 = time.perf_counter()
     Wtot = float(np.sum(d.weight[1:-1]))
     c, L = scene.chord, scene.cable.length
-    H0 = _elastic_parabola_tension(Wtot * math.cos(scene.inclination), c, L, EA) * math.cos(scene.inclination)
-    VA0 = -Wtot / 2 + H0 * scene.rise / max(scene.span, 1e-9)
+    try:   # the elastic parabola's start fails for chords near vertical or near zero: a solver failure
+        H0 = _elastic_parabola_tension(Wtot * math.cos(scene.inclination), c, L, EA) * math.cos(scene.inclination)
+        VA0 = -Wtot / 2 + H0 * scene.rise / max(scene.span, 1e-9)
+    except (ValueError, OverflowError, ZeroDivisionError) as err:
+        raise SolverError(f"statics shooting: no starting tension from the elastic parabola ({err}) for span = "
+                          f"{scene.span:g} m, rise = {scene.rise:g} m, L = {L:g} m; this chord is outside the "
+                          "shooting route's reach (use the NLP, solve_equilibrium)") from None
 
     def res(v):
         X, Z = _chain_ends(np.array([math.exp(v[0]), v[1]]), d, EA)
         return [(X[-1] - scene.span) / c, (Z[-1] - scene.rise) / c]
 
+    where = f"for span = {scene.span:g} m, rise = {scene.rise:g} m, L = {L:g} m"
     for method in ("hybr", "lm"):   # Powell hybrid first, Levenberg-Marquardt as a fallback
-        sol = scipy.optimize.root(res, [math.log(H0), VA0], method=method, options={"xtol": 1e-13})
+        try:
+            with np.errstate(over="ignore", invalid="ignore"):
+                sol = scipy.optimize.root(res, [math.log(H0), VA0], method=method, options={"xtol": 1e-13})
+        except OverflowError as err:      # the tension iterate exp(log H) left the floating-point range
+            raise SolverError(f"statics shooting ({method}): the horizontal tension iterate overflowed ({err}) "
+                              f"{where}; use the NLP, solve_equilibrium") from None
         if np.max(np.abs(sol.fun)) <= 1e-9:
             break
     if np.max(np.abs(sol.fun)) > 1e-9:
-        raise SolverError(f"statics shooting did not converge: {sol.message}")
+        raise SolverError(f"statics shooting did not converge {where}: {sol.message}")
     X, Z = _chain_ends(np.array([math.exp(sol.x[0]), sol.x[1]]), d, EA)
     x = np.concatenate([[0.0], X[:-1], [scene.span]])
     z = np.concatenate([[0.0], Z[:-1], [scene.rise]])

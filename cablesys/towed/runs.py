@@ -17,11 +17,11 @@ from typing import ClassVar
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ..errors import ParameterError, SolverError, require_positive
+from ..errors import ParameterError, SolverError, require_positive, require_range
 from ..reader import read_text
 from ..results import ResultBase, timed
 from .equation import REPORT_SEA_TRIAL, TowedCable
-from .transfer import fine_xi, transfer_grid
+from .transfer import MAX_OMEGA_ND, MAX_XI_POINTS, fine_xi, transfer_grid
 
 __all__ = ["Run", "REQUIRED_COLUMNS", "MAX_RUNS", "read_runs", "model_runs", "RunsResponse", "CnFit", "fit_normal_drag"]
 
@@ -40,12 +40,25 @@ class Run:
     columns: dict = field(default_factory=dict)
 
     def __post_init__(self):
-        require_positive(f"run {self.label}: length", self.length, "m")
+        require_range(f"run {self.label}: length", self.length, 0.0, MAX_LENGTH_M, "m", lo_open=True)
         require_positive(f"run {self.label}: speed", self.speed, "m/s")
         require_positive(f"run {self.label}: frequency", self.frequency, "Hz")
+        _require_resolvable(f"run {self.label}", self.length, self.speed, self.frequency)
+
+
+def _require_resolvable(where: str, length: float, speed: float, frequency: float) -> None:
+    """Refuse a run whose omega L / U = 2 pi f L / U exceeds what the unwrapping grid resolves."""
+    w = 2.0 * math.pi * frequency * length / speed
+    if not w <= MAX_OMEGA_ND:
+        raise ParameterError(f"{where}: omega L/U = 2 pi f L / U", w,
+                             f"must be <= {MAX_OMEGA_ND:.6g} (L = {length:g} m, U = {speed:g} m/s, "
+                             f"f = {frequency * 1e3:g} mHz): the phase lag is unwrapped on 8 points per radian "
+                             f"along the cable, at most {MAX_XI_POINTS} points")
 
 
 MAX_RUNS = 10_000      # rows of a run table (each run is one transfer-function evaluation)
+#: Longest towed cable of a run (m): 100 km, ten times the longest towed arrays.
+MAX_LENGTH_M = 1e5
 
 
 def read_runs(path) -> list[Run]:
@@ -70,14 +83,9 @@ def read_runs(path) -> list[Run]:
     """
     path = Path(path)
     text = read_text(path, "RUNS.csv")
-    lines = [(i + 1, ln) for i, ln in enumerate(text.splitlines())
-             if ln.strip() and not ln.lstrip().startswith("#")]
-    if not lines:
+    rows = _csv_records(text, path)
+    if not rows:
         raise ParameterError(f"{path}", "empty", "needs a header with columns " + ", ".join(REQUIRED_COLUMNS))
-    try:
-        rows = [(n, next(csv.reader([ln]))) for n, ln in lines]
-    except csv.Error as err:
-        raise ParameterError(f"{path}", "not CSV", f"cannot be parsed as CSV ({err})") from None
     header_line, header = rows[0][0], [h.strip() for h in rows[0][1]]
     missing = [c for c in REQUIRED_COLUMNS if c not in header]
     if missing:
@@ -104,13 +112,45 @@ def read_runs(path) -> list[Run]:
                 raise ParameterError(where, raw, f"must be a number ({_UNITS[col]})") from None
             if not math.isfinite(v) or v <= 0:
                 raise ParameterError(where, raw, f"must be a finite number > 0 ({_UNITS[col]})")
+            if col == "L_m" and v > MAX_LENGTH_M:
+                raise ParameterError(where, raw, f"must be <= {MAX_LENGTH_M:g} (m)")
             vals[col] = v
+        _require_resolvable(f"{path.name} row {k} (line {lineno})", vals["L_m"], vals["U_mps"], vals["f_mHz"] * 1e-3)
         label = row.get("run") or str(k)
         runs.append(Run(label=label, length=vals["L_m"], speed=vals["U_mps"],
                         frequency=vals["f_mHz"] * 1e-3, columns=row))
     if not runs:
         raise ParameterError(f"{path}", "no data rows", "needs at least one run")
     return runs
+
+
+def _csv_records(text: str, path: Path) -> list[tuple[int, list[str]]]:
+    """RFC 4180 records of ``text`` (quoted fields may hold commas, quotes and newlines) with the
+    file line each starts on; blank lines and lines starting with '#' between records are skipped."""
+    lines = text.splitlines(keepends=True)
+    state = {"next": 0, "start": 0}
+
+    def feed():          # csv.reader pulls lines lazily: between records, skip comments and blanks
+        while state["next"] < len(lines):
+            i = state["next"]
+            state["next"] += 1
+            if state["start"] is None:                 # inside a record (a quoted field spans lines)
+                yield lines[i]
+            elif lines[i].strip() and not lines[i].lstrip().startswith("#"):
+                state["start"] = None
+                state["line"] = i + 1
+                yield lines[i]
+
+    records = []
+    reader = csv.reader(feed(), strict=True)
+    try:
+        for cells in reader:
+            records.append((state["line"], cells))
+            state["start"] = 0
+    except csv.Error as err:
+        raise ParameterError(f"{path}, line {state.get('line', reader.line_num)}", "not CSV",
+                             f"cannot be parsed as RFC 4180 CSV ({err})") from None
+    return records
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -20,6 +20,8 @@ from ..errors import ParameterError, require_positive, require_range
 from ..reader import build, located, read_toml, typed_fields
 from ..scene.fields import quantity, spec
 from .equation import TowedCable, theory_coefficients
+from .runs import MAX_LENGTH_M
+from .transfer import MAX_OMEGA_ND
 
 __all__ = ["EXAMPLE_TOML", "MAX_FREQUENCIES", "TowedScene", "TowedSceneCable", "load_towed_scene",
            "towed_scene_from_dict"]
@@ -41,7 +43,7 @@ class TowedSceneCable:
                                 "the theory's c_n* = A C_n (Kennedy & Strahan eq. 39)")
 
     def __post_init__(self):
-        require_positive("cable.length", self.length, "m")
+        require_range("cable.length", self.length, 0.0, MAX_LENGTH_M, "m", lo_open=True)
         require_positive("cable.diameter", self.diameter, "m")
         require_positive("cable.mass_per_length", self.mass_per_length, "kg/m")
         require_range("cable.ct_tangential", self.ct_tangential, 0.0, 3.0, lo_open=True)
@@ -92,6 +94,11 @@ class TowedScene:
         if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo <= hi):
             raise ParameterError("towed.omega_min", self.omega_min,
                                  f"must satisfy 0 < omega_min <= omega_max (rad/s); got [{lo:.6g}, {hi:.6g}]")
+        if not hi * self.cable.length / self.speed <= MAX_OMEGA_ND:     # bounds the xi grid fine_xi allocates
+            raise ParameterError("towed.omega_max", hi,
+                                 f"must be <= {MAX_OMEGA_ND * self.speed / self.cable.length:.6g} rad/s, i.e. "
+                                 f"omega L/U <= {MAX_OMEGA_ND:.6g} (L = {self.cable.length:g} m, U = {self.speed:g} "
+                                 "m/s): the phase lag is unwrapped on 8 points per radian along the cable")
         # the conversion checks its inputs once more, naming them
         self.coefficients()
 

@@ -135,10 +135,26 @@ def transfer_function(coef: Coefficients, xi, omega, method: str = "exact") -> "
     return TowedResponse(xi=xi_b, omega=om_b, H=H, method=_route_name(method))
 
 
+#: Most points of the phase-unwrapping grid along the cable (8 per radian of omega xi): with one
+#: complex value per point and frequency this bounds the memory a transfer grid allocates.
+MAX_XI_POINTS = 1_000_000
+#: Largest nondimensional frequency omega L / U the unwrapping grid resolves (1.25e5).
+MAX_OMEGA_ND = (MAX_XI_POINTS - 1) / 8.0
+
+
 def fine_xi(xi_max: float, omega_max: float, n_min: int = 65) -> np.ndarray:
-    """xi grid from the tow point fine enough to unwrap the phase lag (steps << pi)."""
+    """xi grid from the tow point fine enough to unwrap the phase lag (steps << pi).
+
+    Raises ParameterError when ``omega_max * xi_max`` would need more than ``MAX_XI_POINTS`` points.
+    """
     # |psi'| <~ omega (c >~ 1): 8 points per radian keeps unwrap steps far below pi
-    n = max(n_min, int(np.ceil(8.0 * omega_max * xi_max)) + 1)
+    need = 8.0 * float(omega_max) * float(xi_max)
+    if not need <= MAX_XI_POINTS - 1:
+        raise ParameterError("omega L/U", float(omega_max),
+                             f"must be <= {MAX_OMEGA_ND:.6g} at xi = {float(xi_max):.6g} (the phase lag is unwrapped "
+                             f"on 8 points per radian along the cable, at most {MAX_XI_POINTS} points): "
+                             "a shorter cable, a lower frequency or a higher tow speed")
+    n = max(n_min, int(np.ceil(need)) + 1)
     return np.linspace(0.0, xi_max, n)
 
 
