@@ -40,7 +40,7 @@ from cablesys.time_domain import IntegratorSettings, Simulator  # noqa: E402
 from cablesys.time_domain.run import initial_state  # noqa: E402
 
 ADAPTIVE = tuple(name for name, m in METHODS.items() if m.adaptive)       # the one registry
-FIXED = tuple(name for name, m in METHODS.items() if not m.adaptive)
+FIXED = tuple(name for name, m in METHODS.items() if not m.adaptive and name != "rkc")   # rkc: stages from the model (the extrapolation picks them)
 RK4_REAL_LIMIT = 2.785293563405282      # |1 + z + z^2/2 + z^3/6 + z^4/24| = 1 on the negative real axis
 RK4_IMAG_LIMIT = 2.0 * math.sqrt(2.0)   # ... on the imaginary axis
 N_STABILITY_STEPS = 2000

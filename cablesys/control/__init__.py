@@ -11,7 +11,7 @@ AHC, MPC with preview and the open-loop optimum in closed loop on a finer plant.
 from .limits import WinchLimits
 from .mpc import STRATEGIES, Comparison, compare_compensation
 from .payout import HeaveProblem, PayoutResult, heave_problem, optimal_payout
-from .resimulate import resimulate
+from .plant import resimulate
 
 __all__ = ["STRATEGIES", "Comparison", "HeaveProblem", "PayoutResult", "WinchLimits", "compare_compensation",
            "heave_problem", "optimal_payout", "resimulate"]

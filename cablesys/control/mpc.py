@@ -1,7 +1,7 @@
 """Closed-loop heave compensation against the nonlinear plant: MPC and the strategies it replaces.
 
 The plant is the winch model of the scene with ``plant_segments`` drag segments on the cable
-(Wang 1971 eq. 38-45), integrated by CVODES (:class:`.resimulate.Plant`); the controller's
+(Wang 1971 eq. 38-45), integrated by CVODES (:class:`.plant.Plant`); the controller's
 model has ``controller_segments`` (coarser: a model mismatch) and its own RK4 transcription.
 Strategies, each run from rest over the same sea:
 
@@ -46,7 +46,7 @@ from ..model.winch import WINCH_OUTPUTS
 from ..results import ResultBase, timed
 from .limits import WinchLimits
 from .payout import check_window, heave_problem, heave_reduction_db, payout_nlp, statistics_window
-from .resimulate import Plant
+from .plant import Plant
 
 STRATEGIES = ("none", "passive", "pi", "mpc", "optimal")
 

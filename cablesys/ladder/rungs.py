@@ -71,6 +71,11 @@ def register_rung(rung: Rung) -> None:
     rung : Rung
         An object with ``name``, ``build(scene)``, ``estimate(scene, assessment)`` and ``cost(scene, assessment)``.
 
+    Returns
+    -------
+    None
+        The rung is registered (a rung of the same name before it is replaced).
+
     Raises
     ------
     ParameterError
@@ -91,6 +96,10 @@ def unregister_rung(name: str) -> None:
     ----------
     name : str
         The rung's name.
+
+    Returns
+    -------
+    None
     """
     _REGISTERED.pop(name, None)
 
