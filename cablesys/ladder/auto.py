@@ -164,7 +164,8 @@ ENDS_SEGMENTS = 16     # the first N of an anchored line or a seabed scene (the 
 
 def _only_rung(scene: Scene, name: str, segments, tol):
     """The decision where one model alone can run the scene, else None: a 3-D scene runs Wang's straight cable in
-    three dimensions (the other rungs are planar so far); an anchored line or a seabed runs the node model, N checked
+    three dimensions (the other rungs are planar so far); a massless cable (Wang's CBMAS < 0) runs Wang's straight
+    cable; an anchored line or a seabed runs the node model, N checked
     a posteriori on every quantity (the straight cable has no nodes to anchor or to lay on a bed). Neither has an a
     priori estimate against the converged cable: the error is the check's or, for Wang's 3-D cable, not estimated."""
     nan = {"body": math.nan, "tension": math.nan}
@@ -175,6 +176,13 @@ def _only_rung(scene: Scene, name: str, segments, tol):
         return Choice("wang", 1, "a 3-D scene: Wang's straight cable in three dimensions (stretch and two swing "
                       "angles); the other rungs are planar so far, so its error against the segmented cable is not "
                       "estimated", nan, {"valid": True}), tol, False
+    if any(sec.cable.cable_mass_switch < 0 for sec in scene.sections):
+        if name not in ("auto", "wang"):
+            raise ParameterError("numerics.model", name, "must be auto or wang with cable.cable_mass_switch < 0: a "
+                                 "massless cable (Wang's CBMAS) leaves the element rungs' nodes without mass")
+        return Choice("wang", 1, "a massless cable (cable.cable_mass_switch < 0, Wang 1971's CBMAS): Wang's straight "
+                      "cable, the model that idealization belongs to (the element rungs' nodes would have no mass); its "
+                      "error against a cable with mass is not estimated", nan, {"valid": True}), tol, False
     if getattr(scene, "anchor", None) is not None or getattr(scene, "seabed", None) is not None:
         if name not in ("auto", "segmented"):
             raise ParameterError("numerics.model", name, "must be auto, segmented or as-built with an [anchor] or a "
@@ -556,7 +564,8 @@ def linear_model(scene: Scene, tolerance=None, cache: RungCache | None = None):
         raise ParameterError("numerics.model", choice.name, "a registered rung has no linear model: name a built-in "
                                                             "rung or as-built for the linear analyses")
     name, n = ("segmented", choice.segments) if choice.segments > 1 else ("wang", 1)
-    e = est.rung_error(choice.numbers["estimates"], name, n)
+    e = (est.rung_error(choice.numbers["estimates"], name, n) if "estimates" in choice.numbers
+         else choice.estimated_error)           # a scene one rung alone can run: its own statement
     seg = f" N = {n}" if n > 1 else ""
     why = (f"the time-domain model is {choice.name}" + (f" N = {choice.segments}" if choice.segments > 1 else "")
            + f" ({choice.reason}); linearized: {name}{seg}")
