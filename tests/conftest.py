@@ -2,9 +2,15 @@ import os
 import sys
 from pathlib import Path
 
+import signal
+
 import pytest
 
 os.environ.setdefault("MPLBACKEND", "Agg")
+# a test run started as a background job inherits SIGINT ignored, and so would every process it starts; the
+# interrupt tests need Python's own SIGINT handling (KeyboardInterrupt), as in a terminal
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 # The suite builds well over a hundred model structures once each; compiling every one to C
 # (cablesys.compiled: seconds per structure on a fresh cache) would dominate CI time. Tests run
 # CasADi's virtual machine unless they switch compilation on themselves (tests/test_compiled.py);

@@ -32,7 +32,7 @@ from cablesys.disk_cache import (
 )
 from cablesys.errors import ParameterError
 
-HANG_GUARD_S = 600          # only against a hang; never reached by a working run
+HANG_GUARD_S = 120          # only against a hang; never reached by a working run
 
 
 @pytest.fixture
@@ -203,6 +203,8 @@ def test_a_compile_killed_by_sigkill_leaves_an_orphan_that_the_next_build_remove
 
 
 _COMPILE = """
+import signal
+signal.signal(signal.SIGINT, signal.default_int_handler)   # a background job starts with SIGINT ignored
 import casadi as ca
 from cablesys.compiled import compile_functions
 x = ca.SX.sym("x", 3)
