@@ -1,7 +1,7 @@
 """Locating taut/slack switches and snap loads (Wang 1971 eq. 54: F_bc may not fall below TENS).
 
-We do not rely on CasADi's experimental zero-crossing events (casadi issue 4393: IDAS
-ignores them, CVODES fires in one direction only). Instead the simulator integrates each
+We do not rely on CasADi's experimental zero-crossing events (in CasADi 3.6-3.8 IDAS ignores
+them and CVODES fires in one direction only). Instead the simulator integrates each
 mode (taut or slack, a parameter of the same compiled function) smoothly and checks the
 switching function g = F_bc - TENS at the output times and, between them, on a cubic Hermite
 interpolant built from g and dg/dt (which catches short excursions between output times).
