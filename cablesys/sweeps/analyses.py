@@ -16,16 +16,16 @@ import math
 import numpy as np
 
 from ..errors import ParameterError, SolverError
+from ..ladder.metrics import forcing_period
 from ..model import build_model, structure_of
 
 
 class ModelCache:
-    """One model per scene structure and one Simulator per (structure, numerics), least recently used out."""
+    """One model per scene structure (least recently used out), and the ladder's :class:`~cablesys.ladder.rungs.RungCache`."""
 
     def __init__(self, maxsize: int = 8):
         self.maxsize = maxsize
         self._models = collections.OrderedDict()
-        self._sims = collections.OrderedDict()
         self.builds = 0
         self._rungs = None
 
@@ -53,19 +53,12 @@ class ModelCache:
             return build_model(scene)
         return self._get(self._models, structure_of(scene), make)
 
-    def simulator(self, scene, jit: bool = False):
-        from ..time_domain import IntegratorSettings, Simulator
-        num = scene.numerics
-        settings = IntegratorSettings(method=num.integrator, rtol=num.rtol, atol=num.atol,
-                                      steps_per_output=num.steps_per_output, jit=jit)
-        key = (structure_of(scene), num, jit)
-        return self._get(self._sims, key, lambda: Simulator(self.model(scene), scene.output_times, settings))
-
 
 def forcing_frequency(scene) -> float | None:
-    """Lowest frequency of the top-motion sinusoids with a non-zero amplitude (rad/s)."""
-    freqs = [s.frequency for s in scene.top_motion.x + scene.top_motion.y if s.amplitude != 0.0]
-    return min(freqs) if freqs else None
+    """Lowest frequency of the top-motion sinusoids with a non-zero amplitude (rad/s): the forcing period of
+    :func:`cablesys.ladder.metrics.forcing_period`, the one definition every door uses."""
+    period = forcing_period(scene)
+    return None if period is None else 2 * math.pi / period
 
 
 def _outputs(labels) -> list:
