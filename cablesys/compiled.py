@@ -202,7 +202,8 @@ def state_jacobian(f: ca.Function, wrt) -> ca.Function:
     sensitivities: those blocks read as zero.
     """
     J = f.jacobian()
-    ins = [ca.SX.sym(name, J.sparsity_in(i)) for i, name in enumerate(J.name_in())]
+    X = ca.MX if f.is_a("MXFunction") else ca.SX     # an MX function (mapped kernels) keeps its loops
+    ins = [X.sym(name, J.sparsity_in(i)) for i, name in enumerate(J.name_in())]
     vals = f.call(ins[: f.n_in()])
     outs = []
     for k, name in enumerate(J.name_out()):          # jac_<output>_<input>
@@ -211,7 +212,7 @@ def state_jacobian(f: ca.Function, wrt) -> ca.Function:
         if i in wrt:
             outs.append(ca.jacobian(vals[f.name_out().index(o)], ins[f.name_in().index(i)]))
         else:
-            outs.append(ca.SX(J.sparsity_out(k).size1(), J.sparsity_out(k).size2()))
+            outs.append(X(J.sparsity_out(k).size1(), J.sparsity_out(k).size2()))
     return ca.Function(J.name(), ins, outs, J.name_in(), J.name_out())
 
 

@@ -17,8 +17,9 @@ import numpy as np
 from ..compiled import compilation_enabled
 from ..scene import Numerics, Scene
 from ..time_domain.initial import initial_state
-from ..time_domain.integrators import (
-    COMPILE_MAX_ELEMENTS,  # one rule, simulate's default too
+from ..time_domain.integrators import (  # one rule, simulate's default too
+    COMPILE_MAX_ELEMENTS,
+    compiled_by_default,
 )
 from .choice import Choice, tolerances
 from .rungs import rung_scene
@@ -59,7 +60,8 @@ def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rt
     tol : (float, float)
         The model tolerance (body, tension).
     elements : int, optional
-        Elements of the rung's model (compiled C up to COMPILE_MAX_ELEMENTS, else the VM).
+        Elements of the rung's model (compiled C up to COMPILE_MAX_ELEMENTS, else the VM, unless ``model``
+        is given: then :func:`~cablesys.time_domain.integrators.compiled_by_default` decides).
     method, rtol, atol, max_num_steps, jit : optional
         The caller's choices (they win).
     rung : str, optional
@@ -91,9 +93,10 @@ def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rt
         method = _quasi_static_method(scene, model, x0, rtol, elements, cache) if rung == "quasi-static" else AUTO_METHOD
         atol = rtol / 10   # scaled states (rtol / 1000 in SI was 3 % of Dale's dynamic stretch; 300 m N = 20: 502 vs 742 steps)
     extra = {} if max_num_steps is None else {"max_num_steps": int(max_num_steps)}
-    return IntegratorSettings(method=method or num.integrator, rtol=rtol or num.rtol, atol=atol or num.atol,
-                              steps_per_output=num.steps_per_output, compiled=elements <= COMPILE_MAX_ELEMENTS,
-                              jit=jit, **extra)
+    method = method or num.integrator
+    compiled = elements <= COMPILE_MAX_ELEMENTS if model is None else compiled_by_default(model, method)
+    return IntegratorSettings(method=method, rtol=rtol or num.rtol, atol=atol or num.atol,
+                              steps_per_output=num.steps_per_output, compiled=compiled, jit=jit, **extra)
 
 
 def _quasi_static_method(scene: Scene, model, x0, rtol: float, elements: int, cache=None) -> str:

@@ -107,9 +107,9 @@ class IntegratorSettings:
         return self.custom if self.custom is not None else resolve(self.method)
 
 
-# Compiled C up to this many cable elements: gcc's time and memory grow faster than linearly with the
-# segmented model's code (N = 20: seconds; N = 40: ~40 s; N = 80: 70-100 s at -O0 and 1.8 GB, for a run
-# only 1.5x faster than CasADi's virtual machine), so larger models run in the VM unless asked.
+# Element-by-element (SX) compiled C up to this many cable elements: gcc's time and memory grow faster than linearly
+# with that code (N = 20: seconds; N = 40: ~40 s; N = 80: 70-100 s at -O0 and 1.8 GB), so past it the segmented
+# cable's explicit-form DAE is built from its element kernel (kernel_dae) and other models run in the VM.
 COMPILE_MAX_ELEMENTS = 20
 
 
@@ -135,7 +135,13 @@ def compiled_by_default(model: CableModel, method=None) -> bool:
     """
     if int(getattr(model, "n_elements", 1)) <= COMPILE_MAX_ELEMENTS:
         return True
-    return method in FIXED_LOOPS and getattr(model, "kernel_ode", None) is not None
+    if getattr(model, "kernel_ode", None) is None:
+        return False
+    if method in FIXED_LOOPS:
+        return True
+    # an adaptive method integrating the ODE form: the DAE and its Jacobian from the element kernel (kernel_dae)
+    return (method is not None and method not in PAIRS and not resolve(method).implicit
+            and kernel_dae(model, implicit=False))
 
 
 def helpers_compiled(model: CableModel, settings: IntegratorSettings) -> IntegratorSettings:
@@ -166,12 +172,27 @@ def dae_function(model: CableModel, implicit: bool, compiled: bool = True, scale
     Compiled
         ``functions[name]`` is the DAE; ``build_s``/``load_s`` the times of its first build.
     """
+    kernel = kernel_dae(model, implicit, compiled)
     key = (f"dae:{'implicit' if implicit else 'explicit'}:{'compiled' if compiled else 'vm'}"
-           + (":scaled" if scaled else ""))
-    # the integrators need the state blocks of the Jacobian only (d/dp would grow with the scene's
-    # parameter count); never use this library for parameter sensitivities
-    return model.derive(key, lambda: compile_functions([relative_time_dae(model, implicit, scaled)], jacobians=("x", "z"),
-                                                       enabled=compiled))
+           + (":scaled" if scaled else "") + (":kernel" if kernel else ""))
+
+    def build():
+        # the integrators need the state blocks of the Jacobian only (d/dp would grow with the scene's
+        # parameter count); never use this library for parameter sensitivities
+        f = relative_time_dae(model, implicit, scaled, kernel=kernel)
+        size = len(generate([f], jacobians=("x", "z"))) if kernel else None   # MX serializes shorter than its C
+        return compile_functions([f], jacobians=("x", "z"), enabled=compiled, size=size)
+    return model.derive(key, build)
+
+
+def kernel_dae(model: CableModel, implicit: bool, compiled: bool = True) -> bool:
+    """Whether :func:`dae_function` builds the DAE from the segmented cable's element kernel (MX, mapped over the
+    elements: :mod:`cablesys.model.segmented_kernel`) instead of its element-by-element SX ``ode``: compiled, in
+    the explicit form, past :data:`COMPILE_MAX_ELEMENTS` elements. The straight-line SX code and its Jacobian grow
+    with N (megabytes of C that gcc takes minutes over, hence the VM past COMPILE_MAX_ELEMENTS); the kernel's C
+    grows with the Jacobian's nonzeros only and compiles in seconds (``studies/bench_kernel_dae.py``)."""
+    return (compilation_enabled(compiled) and not implicit and getattr(model, "kernel_ode", None) is not None
+            and int(getattr(model, "n_elements", 1)) > COMPILE_MAX_ELEMENTS and model.loop_ode is model.kernel_ode)
 
 
 def uses_scaling(settings: IntegratorSettings) -> bool:
