@@ -64,7 +64,9 @@ from .run_settings import (  # noqa: F401 - re-exported: the ladder's run settin
     rung_settings,
 )
 from .hooks import checking, hooks
-from .rungs import RUNGS, RungCache, check_rung, rung_scene
+from .rung.base import NOT_ESTIMATED
+from .rung.segmented import ENDS_SEGMENTS  # noqa: F401 - re-exported: the first N of an anchored line
+from .rungs import BUILTIN, RUNGS, RungCache, check_rung, get_rung, ladder_rungs, rung_scene, takes_elements, validity
 
 log = logging.getLogger(__name__)
 
@@ -159,40 +161,29 @@ def _went_slack(result, scene: Scene) -> bool:
     return bool(result.events) or result.time_slack() > 0 or low <= floor
 
 
-ENDS_SEGMENTS = 16     # the first N of an anchored line or a seabed scene (the a posteriori check grows it)
+def _alone(scene: Scene, name: str, segments, tol):
+    """The decision where one built-in rung alone is valid for the scene (each rung's ``valid``,
+    :mod:`cablesys.ladder.rung`), else None; a rung named for a scene it cannot run is a
+    :class:`~cablesys.errors.ParameterError` saying why, before any work.
 
-
-def _only_rung(scene: Scene, name: str, segments, tol):
-    """The decision where one model alone can run the scene, else None: a 3-D scene runs Wang's straight cable in
-    three dimensions (the other rungs are planar so far); a massless cable (Wang's CBMAS < 0) runs Wang's straight
-    cable; an anchored line or a seabed runs the node model, N checked
-    a posteriori on every quantity (the straight cable has no nodes to anchor or to lay on a bed). Neither has an a
-    priori estimate against the converged cable: the error is the check's or, for Wang's 3-D cable, not estimated."""
-    nan = {"body": math.nan, "tension": math.nan}
-    if getattr(scene, "three_d", False):
-        if name not in ("auto", "wang"):
-            raise ParameterError("numerics.model", name, "must be auto or wang in a 3-D scene: the other rungs "
-                                 "(frequency, quasi-static, segmented) are planar so far")
-        return Choice("wang", 1, "a 3-D scene: Wang's straight cable in three dimensions (stretch and two swing "
-                      "angles); the other rungs are planar so far, so its error against the segmented cable is not "
-                      "estimated", nan, {"valid": True}), tol, False
-    if any(sec.cable.cable_mass_switch < 0 for sec in scene.sections):
-        if name not in ("auto", "wang"):
-            raise ParameterError("numerics.model", name, "must be auto or wang with cable.cable_mass_switch < 0: a "
-                                 "massless cable (Wang's CBMAS) leaves the element rungs' nodes without mass")
-        return Choice("wang", 1, "a massless cable (cable.cable_mass_switch < 0, Wang 1971's CBMAS): Wang's straight "
-                      "cable, the model that idealization belongs to (the element rungs' nodes would have no mass); its "
-                      "error against a cable with mass is not estimated", nan, {"valid": True}), tol, False
-    if getattr(scene, "anchor", None) is not None or getattr(scene, "seabed", None) is not None:
-        if name not in ("auto", "segmented"):
-            raise ParameterError("numerics.model", name, "must be auto, segmented or as-built with an [anchor] or a "
-                                 "[seabed]: only the node model has nodes to anchor and to lay on the bed")
-        scene_n = max(s.cable.segments for s in scene.sections)
-        n = int(segments or (scene_n if name == "segmented" and scene_n > 1 else max(scene_n, ENDS_SEGMENTS)))
-        return Choice("segmented", n, f"an anchored line or a seabed: the node model with N = {n}, the only rung with "
-                      "nodes to anchor and to lay on the bed; N checked a posteriori on every quantity",
-                      nan, {"valid": True}), tol, name == "auto"
-    return None
+    The sole rung states its N, its reason and whether N is checked a posteriori (:meth:`~.rung.base.BuiltinRung.alone`:
+    a 3-D scene or a massless cable runs Wang's straight cable, an anchored line or a seabed the node model, N
+    checked on every quantity); its error has no a priori estimate against the converged cable (NaN): the check's,
+    or for Wang's cable none. Registered rungs are not considered for such a scene."""
+    why = {r.name: r.valid(scene) for r in BUILTIN}
+    runnable = [r for r in BUILTIN if not why[r.name]]
+    sole = runnable[0] if len(runnable) == 1 else None
+    requested = None if name == "auto" else get_rung(name)
+    refused = validity(requested, scene) if requested is not None else ""
+    if not runnable or (requested is not None and (refused or (sole is not None and requested is not sole))):
+        able = " or ".join([sole.name] if sole else [r.name for r in ladder_rungs() if not validity(r, scene)])
+        allowed = f"must be auto, as-built or {able} for this scene" if able else "no rung can run this scene"
+        raise ParameterError("numerics.model", name, f"{allowed}: " + (refused or "; ".join(dict.fromkeys(
+            w for w in why.values() if w))))
+    if sole is None:
+        return None
+    n, reason, checked = sole.alone(scene, name, segments)
+    return Choice(sole.name, n, reason, dict(NOT_ESTIMATED), {"valid": True}), tol, checked
 
 
 def decide(scene: Scene, model, tolerance, segments, cache: RungCache | None = None):
@@ -221,7 +212,7 @@ def decide(scene: Scene, model, tolerance, segments, cache: RungCache | None = N
         raise ParameterError("model", AS_BUILT, "runs the scene's own model with no choice: call simulate")
     name = check_rung(model or getattr(scene.numerics, "model", "auto"))
     tol = tolerances(scene, tolerance)
-    only = _only_rung(scene, name, segments, tol)
+    only = _alone(scene, name, segments, tol)
     if only is not None:
         return only
     if name == "auto":
@@ -413,7 +404,7 @@ def needs_richardson(choice: Choice, tol, scene: Scene | None = None) -> bool:
     amplitude was 2x the converged one. Runs of fewer elements, and N whose half lies across the drag rule's switch
     (:func:`~.choice.checkable`, given ``scene``), are reported unchecked with their a priori estimate."""
     n = choice.segments
-    return (choice.name in ("segmented", "quasi-static") and n >= 4 and choice.numbers.get("checked_n") != n
+    return (takes_elements(choice.name) and n >= 4 and choice.numbers.get("checked_n") != n
             and (scene is None or checkable(scene, n)))
 
 
@@ -495,7 +486,7 @@ def after_run(scene: Scene, choice: Choice, result, *, auto: bool) -> tuple[Choi
     A straight-cable run (quasi-static or wang) or a quasi-static segmented run that went slack is
     outside its validity: under "auto" the segmented cable is chosen instead (run again); a forced rung
     keeps its result with a warning and an infinite estimated error."""
-    if choice.name not in ("quasi-static", "wang") or not _went_slack(result, scene):
+    if not getattr(get_rung(choice.name), "stays_taut", False) or not _went_slack(result, scene):
         return choice, False
     note = (f"the {choice.name} run went slack: " + ("a quasi-static stretch cannot go slack" if choice.segments > 1
                                                      else "a straight cable with one stretch cannot be partly slack"))

@@ -28,7 +28,9 @@ from ..scene import Scene
 from . import estimate as est
 from . import metrics
 from .indicators import scene_numbers
-from .rungs import RUNGS, Assessment, RungCache, builtin_cost, registered_rungs, rung_scene
+from .rung.quasistatic import EXPLICIT_COST, EXPLICIT_COST_MAX_ELEMENTS, STIFF_QS_COST  # noqa: F401 - the plans' weights
+from .rung.segmented import CHECK_ACCEPT, CHECK_COST  # noqa: F401 - re-exported with the plans' other numbers
+from .rungs import BUILTIN, Assessment, RungCache, get_rung, registered_rungs, rung_scene, validity
 from .stiffness import EXPLICIT_MAX_ELEMENTS
 
 DEFAULT_TOLERANCE = 0.01          # body motion; tension extremes get twice this
@@ -125,17 +127,11 @@ def quasistatic_segments_available(scene: Scene) -> bool:
     return all(s.cable.segments == 2 for s in rung_scene(scene, "quasi-static", 2).sections)
 
 
-# The cost of N elements, relative to the node model's N stepped by BDF2 (compiled, the same run): the quasi-static
-# segmented cable where its stretch is stiff (omega/omega_ax <= 1/STIFF_RATIO: the node model must step the stretch
-# modes), and stepped by the compiled rk23 pair up to EXPLICIT_MAX_ELEMENTS; a run checked a posteriori against
-# N / 2 costs about 1.5 runs. Ratios of wall times measured by studies/model_ladder.py on the Dale scene and the
+# The cost of N elements, relative to the node model's N stepped by BDF2 (compiled, the same run), are the element
+# rungs' own: STIFF_QS_COST, EXPLICIT_COST and EXPLICIT_COST_MAX_ELEMENTS the quasi-static segmented cable's
+# (:mod:`.rung.quasistatic`), CHECK_COST and CHECK_ACCEPT of a run checked a posteriori against N / 2
+# (:mod:`.rung.segmented`); ratios of wall times measured by studies/model_ladder.py on the Dale scene and the
 # 1000 m wire (cablesys.heavy_wire_scene).
-STIFF_QS_COST = 0.25
-EXPLICIT_COST = 0.7
-# ... and only up to 7 elements: past ~1.5 MB of functions the compiler runs at -O0 (cablesys.compiled.SIZE_FLAGS),
-# and the 1000 m wire's quasi-static N = 8 then ran slower than the node model (studies/model_ladder.py)
-EXPLICIT_COST_MAX_ELEMENTS = 7
-CHECK_COST = 1.5
 # The quasi-static segmented cable's functions grow as about N^2.75 per section (the chord solve's rows for every
 # element stretch, each through the dense eliminated mass matrix), the node model's linearly: operation counts of
 # the ODE plus the outputs measured on the Dale scene (CasADi SX, cse on): quasi-static 0.07 M / 0.2 M / 0.42 M /
@@ -147,10 +143,6 @@ QS_OPERATIONS_EXPONENT = 2.75
 NODE_OPERATIONS_PER_ELEMENT = 600.0     # x N per section, the node model's ODE plus outputs
 MAX_MODEL_OPERATIONS = 500_000          # the quasi-static segmented cable up to N = 33 for one section
 CHECK_MIN_SEGMENTS = 4   # the check runs N / 2 >= 2 elements
-# a checked N is kept when its Richardson estimate is within CHECK_ACCEPT x the tolerance: those estimates were
-# 0.82-0.98 x the actual error where auto checked (heavy1000 0.85, random current-4 / 9 / 10 compiled 0.98 / 0.92
-# / 0.82 against N = 32), so 0.8 keeps the actual error within 0.98 x the tolerance there; a miss runs the sure N
-CHECK_ACCEPT = 0.8
 
 
 def model_operations(scene: Scene, name: str, segments: int) -> float:
@@ -381,18 +373,21 @@ def choose(scene: Scene, tolerance=None, *, question: str = "time", cache: RungC
     return choice
 
 
-def _cost(choice: Choice) -> float:
+def _cost(scene: Scene, choice: Choice) -> float:
+    """The relative cost of ``choice`` (a built-in rung's): its element plan's, else the rung's own."""
     plan = choice.numbers.get("plan")
     if plan and (plan.get("name"), plan.get("segments")) == (choice.name, choice.segments):
         return float(plan["cost"])
-    return builtin_cost(choice.name, choice.segments)
+    return get_rung(choice.name).cost(scene, None, choice.segments)
 
 
 def _registered(scene: Scene, tol, assessment: Assessment, choice: Choice) -> Choice:
-    """``choice``, or the cheapest registered rung (:func:`~.rungs.register_rung`) whose estimate is within the
-    tolerance and whose cost is below ``choice``'s."""
-    best, best_cost = choice, _cost(choice)
+    """``choice``, or the cheapest registered rung (:func:`~.rungs.register_rung`) valid for ``scene``
+    (:func:`~.rungs.validity`) whose estimate is within the tolerance and whose cost is below ``choice``'s."""
+    best, best_cost = choice, _cost(scene, choice)
     for rung in registered_rungs():
+        if validity(rung, scene):
+            continue
         e = rung.estimate(scene, assessment)
         c = float(rung.cost(scene, assessment))
         if within(e, tol) and c < best_cost:
@@ -410,7 +405,8 @@ def _pick(scene: Scene, tol, question: str, numbers, response, errs: dict, info:
                 f"cable/body mass {numbers.mass_ratio:.3g}, weight {numbers.weight_ratio:.3g}, "
                 f"bow/chord static {numbers.static_bow:.2g} dynamic {numbers.dynamic_bow:.2g}, "
                 f"least tension (linear) {response.least_tension:.4g} N vs floor {numbers.tension_floor:.4g} N")
-    order = [r for r in RUNGS if r != "segmented" and (question == "steady" or r != "frequency")]
+    # the straight rungs (one element per section) valid for the scene; the periodic orbit for a steady amplitude only
+    order = [r.name for r in BUILTIN if r.straight and not r.valid(scene) and (question == "steady" or r.time_domain)]
     swing_free = _swing_free(scene, numbers)
     note = settling_note(scene, transverse=not swing_free)
     if note:

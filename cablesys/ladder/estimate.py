@@ -82,11 +82,12 @@ import numpy as np
 from ..errors import SolverError
 from ..linear import harmonic_response, linearize, steady_state
 from ..linear.periodic import scene_input_amplitude
+from ..model import build_model
 from ..scene import Scene
 from ..scene.labels import section_suffix
 from . import continuum, local_drag
 from .indicators import SceneNumbers, static_angle
-from .rungs import build_rung, rung_scene
+from .rung.base import with_segments
 
 ORDER = 2.0         # convergence order of the segmented cable in N (taut; Dale study: 2-3)
 REMAINDER_ORDER = 2.0   # q of the next term after the first order under partial slack (integer powers of 1/N)
@@ -138,8 +139,8 @@ def linear_response(scene: Scene, numbers: SceneNumbers, model=None) -> LinearRe
     """Wang's one-harmonic (describing-function) response to the scene's forcing, or for several
     frequencies the exact linear response at each component summed (a bound). ``model``: Wang's
     model of the scene's structure if already built (its cached solvers are reused)."""
-    sc = rung_scene(scene, "wang")
-    model = model or build_rung(sc, "wang")
+    sc = with_segments(scene, 1)                 # Wang's straight cable (the wang rung's scene and model)
+    model = model or build_model(sc)
     p = model.parameters(sc)
     # every section's tensions ("tension": Wang's F_bc, the slack switch, eq. 54) and bodies; a chain of
     # sections labels them tension_2, x_b_2, ... (cablesys.scene.labels.section_suffix)

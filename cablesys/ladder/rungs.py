@@ -1,4 +1,6 @@
-"""The rungs of the model ladder, cheapest first, and how to build each one for a scene.
+"""The rungs of the model ladder, cheapest first, and the registry that holds them with the rungs registered from
+outside: each built-in rung is one module of :mod:`cablesys.ladder.rung` (what it builds, which scenes it can run,
+its error estimate and its cost), and the ladder asks the registry (:func:`ladder_rungs`, :func:`get_rung`).
 
 - ``frequency``: the periodic steady state of Wang's model (Fourier collocation,
   :func:`cablesys.linear.periodic_steady_state`), for a steady amplitude under one forcing frequency;
@@ -17,13 +19,16 @@ from typing import Protocol, runtime_checkable
 import numpy as np
 
 from ..errors import ParameterError
-from ..model import CableModel, build_model
+from ..model import CableModel
 from ..model.params import structure_of
-from ..model.quasistatic import build_quasistatic, default_iterations
 from ..scene import Scene
 from ..scene.components import MODEL_CHOICES, RUNGS
+from .rung import frequency, quasistatic, segmented, wang
+from .rung.base import with_segments  # noqa: F401 - re-exported: the scene of N elements, as before the split
 
-TIME_DOMAIN_RUNGS = ("quasi-static", "wang", "segmented")
+BUILTIN = (frequency.RUNG, quasistatic.RUNG, wang.RUNG, segmented.RUNG)     # in ladder order: RUNGS
+_BUILTIN = {r.name: r for r in BUILTIN}
+TIME_DOMAIN_RUNGS = tuple(r.name for r in BUILTIN if r.time_domain)
 
 
 @runtime_checkable
@@ -34,11 +39,15 @@ class Rung(Protocol):
     body motion and of the tension extremes against the converged segmented cable; ``assessment`` is the ladder's
     :class:`Assessment` of the scene (its numbers and every built-in rung's estimate, to build on).
     ``cost(scene, assessment)`` is the run's cost relative to Wang's straight cable (1; the node model with N
-    elements costs N, the quasi-static straight cable 0.5, the frequency rung 0.2: :func:`builtin_cost`).
+    elements costs N, the quasi-static straight cable 0.5, the frequency rung 0.2: the built-in rungs' ``cost``).
     ``build(scene)`` returns the :class:`~cablesys.model.CableModel` that runs (in the time domain as built).
-    Register one with :func:`register_rung`; the ladder then takes it under "auto" where its estimate is within the
-    tolerance and it costs less than the built-in choice, and ``numerics.model`` may not name it (scene files are
-    checked against the built-in names) but ``cablesys.simulate(scene, model=name)`` may.
+    Optionally ``valid(scene) -> str``: "" when the rung can run ``scene``, else why not (without it, every scene;
+    the ladder never chooses a rung for a scene it says it cannot run: :func:`validity`).
+    Register one with :func:`register_rung`; the ladder then takes it under "auto" where it is valid, its estimate
+    is within the tolerance and it costs less than the built-in choice, and ``numerics.model`` may not name it
+    (scene files are checked against the built-in names) but ``cablesys.simulate(scene, model=name)`` may.
+    The built-in rungs (:mod:`cablesys.ladder.rung`) are Rungs too, whose ``build``, ``estimate`` and ``cost`` also
+    take the elements per section.
     """
 
     name: str
@@ -48,6 +57,12 @@ class Rung(Protocol):
     def estimate(self, scene: Scene, assessment) -> dict: ...
 
     def cost(self, scene: Scene, assessment) -> float: ...
+
+
+def validity(rung, scene: Scene) -> str:
+    """"" when ``rung`` can run ``scene`` (its ``valid(scene)``; a rung without one: every scene), else why not."""
+    valid = getattr(rung, "valid", None)
+    return "" if valid is None else str(valid(scene) or "")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -115,11 +130,25 @@ def registered_rungs() -> tuple:
     return tuple(_REGISTERED.values())
 
 
-def builtin_cost(name: str, segments: int = 1) -> float:
-    """The relative cost of a built-in rung's run, in the units of :meth:`Rung.cost` (Wang's straight cable 1, the
-    node model N elements N; the quasi-static segmented cable's element plans carry their own,
-    :func:`~cablesys.ladder.choice.element_plan`)."""
-    return {"frequency": 0.2, "quasi-static": 0.5, "wang": 1.0}.get(name, 1.0) if segments <= 1 else float(segments)
+def ladder_rungs() -> tuple:
+    """Every rung the ladder may choose: the built-in ones in ladder order (cheapest first), then the registered ones.
+
+    Returns
+    -------
+    tuple of Rung
+    """
+    return BUILTIN + registered_rungs()
+
+
+def get_rung(name: str):
+    """The built-in or registered rung ``name`` (:class:`ParameterError` for any other name)."""
+    check_rung(name)
+    return _REGISTERED.get(name) or _BUILTIN[name]
+
+
+def takes_elements(name: str) -> bool:
+    """Whether rung ``name`` runs N elements per section (the segmented and quasi-static rungs)."""
+    return getattr(_BUILTIN.get(name), "elements", False)
 
 
 def check_rung(name: str) -> str:
@@ -129,21 +158,12 @@ def check_rung(name: str) -> str:
     return name
 
 
-def with_segments(scene: Scene, n: int) -> Scene:
-    """``scene`` with every section divided into ``n`` elements (1: Wang's straight cable). Elements each have their
-    own inclination: a chain whose sections share one swing angle (``angles = "shared"``, the dual-isolation model
-    of Wang 1971 p. 33) is divided with every element's angle its own (``per_section``)."""
-    secs = tuple(dataclasses.replace(s, cable=dataclasses.replace(s.cable, segments=int(n))) for s in scene.sections)
-    angles = "per_section" if n > 1 else scene.angles
-    return dataclasses.replace(scene, sections=secs, angles=angles)
-
-
 def rung_scene(scene: Scene, name: str, segments: int = 1) -> Scene:
     """The scene a rung runs: ``segments`` elements for the segmented and quasi-static rungs (the
     quasi-static segmented cable for N > 1), 1 for the others."""
     if name in _REGISTERED:
         return scene
-    return with_segments(scene, segments if name in ("segmented", "quasi-static") else 1)
+    return _BUILTIN[name].scene(scene, segments)
 
 
 def build_rung(scene: Scene, name: str, segments: int = 1) -> CableModel:
@@ -164,14 +184,8 @@ def build_rung(scene: Scene, name: str, segments: int = 1) -> CableModel:
     CableModel
         The model; ``model.parameters(rung_scene(scene, name, segments))`` gives its ``p``.
     """
-    check_rung(name)
-    if name in _REGISTERED:
-        return _REGISTERED[name].build(scene)
-    if name == "quasi-static":
-        return build_quasistatic(rung_scene(scene, name, segments))
-    if name == "segmented" and segments < 2:
-        raise ParameterError("segments", segments, "the segmented rung needs at least 2 elements per section")
-    return build_model(rung_scene(scene, name, segments))
+    rung = get_rung(name)
+    return rung.build(scene) if name in _REGISTERED else rung.build(scene, segments)
 
 
 class RungCache:
@@ -192,9 +206,9 @@ class RungCache:
         self.build_s = 0.0
 
     def _key(self, scene: Scene, name: str, segments: int) -> tuple:
-        sc = rung_scene(scene, name, segments)
-        n = segments if name in ("segmented", "quasi-static") else 1
-        return (name, n, structure_of(sc), default_iterations(sc) if name == "quasi-static" else 0)
+        rung = _BUILTIN[name]
+        sc = rung.scene(scene, segments)
+        return (name, rung.segments(segments), structure_of(sc)) + rung.structure(sc)
 
     def model(self, scene: Scene, name: str, segments: int = 1) -> CableModel:
         """The model of rung ``name`` for ``scene``'s structure (built on first use).
@@ -211,9 +225,12 @@ class RungCache:
         Returns
         -------
         CableModel
-            As :func:`build_rung` builds it; the straight quasi-static rung shares the cached Wang model.
+            As the rung builds it (:mod:`cablesys.ladder.rung`); the frequency rung and the straight quasi-static
+            rung share the cached Wang model.
         """
-        name = "wang" if name == "frequency" else check_rung(name)
+        rung = get_rung(name)
+        if getattr(rung, "model_of", None):
+            return self.model(scene, rung.model_of)
         if name in _REGISTERED:
             key = (name, 1, structure_of(scene), 0)
             if key not in self._models:
@@ -223,13 +240,10 @@ class RungCache:
             return self._models[key]
         key = self._key(scene, name, segments)
         if key not in self._models:
-            full = self.model(scene, "wang") if name == "quasi-static" and segments == 1 else None
-            t0 = time.perf_counter()
-            if name == "quasi-static":
-                self._models[key] = build_quasistatic(rung_scene(scene, name, segments), full=full)
-            else:
-                self._models[key] = build_rung(scene, name, segments)
-            self.build_s += time.perf_counter() - t0
+            t0, b0 = time.perf_counter(), self.build_s
+            model = rung.build(scene, segments, cache=self)      # may build another rung's model on self
+            self._models[key] = model
+            self.build_s = b0 + time.perf_counter() - t0
         return self._models[key]
 
     MAX_SIMULATORS = 32      # a sweep over output grids or settings keeps the newest ones

@@ -1,0 +1,109 @@
+"""What the built-in rungs share: the scene a rung runs, the scene kinds that limit which rungs can run a scene,
+and the base of every built-in rung (:class:`BuiltinRung`).
+
+A rung's validity (:meth:`BuiltinRung.valid`) is "" when it can run a scene, else the sentence saying why not. Three
+kinds of scene limit the rungs so far: a 3-D scene (only Wang's straight cable has three-dimensional equations,
+Wang 1971 p. 32), a massless cable (Wang's CBMAS < 0, Wang 1971 program notes: an idealization of his straight
+cable; the element rungs' nodes would have no mass) and an anchored line or a seabed (they act on the nodes of the
+segmented cable, which the straight cable has none of).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from ...scene import Scene
+
+
+def with_segments(scene: Scene, n: int) -> Scene:
+    """``scene`` with every section divided into ``n`` elements (1: Wang's straight cable). Elements each have their
+    own inclination: a chain whose sections share one swing angle (``angles = "shared"``, the dual-isolation model
+    of Wang 1971 p. 33) is divided with every element's angle its own (``per_section``)."""
+    secs = tuple(dataclasses.replace(s, cable=dataclasses.replace(s.cable, segments=int(n))) for s in scene.sections)
+    angles = "per_section" if n > 1 else scene.angles
+    return dataclasses.replace(scene, sections=secs, angles=angles)
+
+
+def three_d(scene: Scene) -> bool:
+    """True when Wang's 3-D equations run the scene (:attr:`cablesys.scene.Scene.three_d`)."""
+    return bool(getattr(scene, "three_d", False))
+
+
+def massless(scene: Scene) -> bool:
+    """True when a section's cable is massless (``cable.cable_mass_switch < 0``, Wang 1971's CBMAS)."""
+    return any(sec.cable.cable_mass_switch < 0 for sec in scene.sections)
+
+
+def has_ends(scene: Scene) -> bool:
+    """True when the scene has an ``[anchor]`` or a ``[seabed]``, which act on the segmented cable's nodes."""
+    return getattr(scene, "anchor", None) is not None or getattr(scene, "seabed", None) is not None
+
+
+PLANAR = ("a 3-D scene: only Wang's straight cable has three-dimensional equations so far, the other rungs "
+          "(frequency, quasi-static, segmented) are planar")
+WITH_MASS = ("a massless cable (cable.cable_mass_switch < 0, Wang 1971's CBMAS) belongs to Wang's straight cable: the "
+             "element rungs' nodes would have no mass, and the ladder has no estimate of the other rungs against it")
+NO_NODES = ("an anchored line or a seabed: only the node model (segmented) has nodes to anchor and to lay on the bed")
+
+
+def straight_validity(scene: Scene) -> str:
+    """The validity of a rung built on Wang's planar straight cable with mass (frequency, quasi-static): "" or
+    why not (see the module docstring)."""
+    if three_d(scene):
+        return PLANAR
+    if massless(scene):
+        return WITH_MASS
+    return NO_NODES if has_ends(scene) else ""
+
+
+NOT_ESTIMATED = {"body": math.nan, "tension": math.nan}
+
+
+class BuiltinRung:
+    """A rung of the ladder's own (a :class:`~cablesys.ladder.rungs.Rung` with elements).
+
+    ``name`` is its model name (:data:`cablesys.scene.components.RUNGS`); ``elements`` whether it takes N elements per
+    section (the scene it runs keeps ``segments``, :meth:`scene`); ``time_domain`` whether it steps in time (the
+    frequency rung is a periodic orbit); ``stays_taut`` whether a run that goes slack is outside its validity (one
+    stretch per section, or a quasi-static one: :func:`cablesys.ladder.auto.after_run`). ``straight_cost`` is its
+    run's cost relative to Wang's straight cable with one element; with N > 1 elements a rung costs N (the node
+    model's N, the unit of :meth:`~cablesys.ladder.rungs.Rung.cost`; the element plans weigh their own,
+    :func:`~cablesys.ladder.choice.element_plan`).
+    """
+
+    name = ""
+    elements = False
+    straight = True            # it runs one element per section (the segmented rung needs two)
+    time_domain = True
+    stays_taut = False
+    straight_cost = 1.0
+    model_of = None            # another rung whose model this one runs (a RungCache builds it once for both)
+
+    def valid(self, scene: Scene) -> str:
+        """"" when this rung can run ``scene``, else why not."""
+        return straight_validity(scene)
+
+    def segments(self, segments: int) -> int:
+        """The elements per section this rung runs when asked for ``segments`` (1 unless it takes elements)."""
+        return int(segments) if self.elements else 1
+
+    def scene(self, scene: Scene, segments: int = 1) -> Scene:
+        """The scene this rung runs: ``scene`` with :meth:`segments` elements per section."""
+        return with_segments(scene, self.segments(segments))
+
+    def structure(self, scene_run: Scene) -> tuple:
+        """What sets this rung's model besides the structure of the scene it runs (a cache key's part)."""
+        return ()
+
+    def cost(self, scene: Scene, assessment=None, segments: int = 1) -> float:
+        """The run's relative cost (see the class docstring)."""
+        n = self.segments(segments)
+        return self.straight_cost if n <= 1 else float(n)
+
+    def alone(self, scene: Scene, requested: str, segments) -> tuple:
+        """(segments, reason, checked a posteriori) where this rung is the only one valid for ``scene``."""
+        raise NotImplementedError(f"the {self.name} rung is never the only valid one")
+
+    def __repr__(self) -> str:
+        return f"<rung {self.name}>"

@@ -1,0 +1,52 @@
+"""The segmented rung: N straight tension-only elements per section, every element stretch stepped (the node model,
+:mod:`cablesys.model.segmented`); the only rung with nodes to anchor and to lay on a seabed."""
+
+from __future__ import annotations
+
+from ...errors import ParameterError
+from ...model import CableModel, build_model
+from ...scene import Scene
+from .. import estimate as est
+from .base import PLANAR, WITH_MASS, BuiltinRung, massless, three_d
+
+ENDS_SEGMENTS = 16
+"""The first N of an anchored line or a seabed scene (the a posteriori check at N / 2 grows it)."""
+CHECK_COST = 1.5
+"""Cost of a run of N elements checked a posteriori against N / 2, in runs of N (either element rung; a wall-time ratio measured by studies/model_ladder.py)."""
+CHECK_ACCEPT = 0.8
+"""A checked N is kept when its Richardson estimate is within this fraction of the tolerance: those estimates were 0.82-0.98 x the actual error (studies/model_ladder.py: heavy1000 0.85, random current-4 / 9 / 10 0.98 / 0.92 / 0.82 against N = 32)."""
+
+
+class Segmented(BuiltinRung):
+    """The node model with N >= 2 elements per section."""
+
+    name = "segmented"
+    elements = True
+    straight = False
+
+    def valid(self, scene: Scene) -> str:
+        """"" unless the scene is 3-D (the node model is planar) or its cable massless (the nodes would have no mass)."""
+        if three_d(scene):
+            return PLANAR
+        return WITH_MASS if massless(scene) else ""
+
+    def build(self, scene: Scene, segments: int = 2, cache=None) -> CableModel:
+        """The node model with ``segments`` >= 2 elements per section (:func:`cablesys.model.build_model`)."""
+        if segments < 2:
+            raise ParameterError("segments", segments, "the segmented rung needs at least 2 elements per section")
+        return build_model(self.scene(scene, segments))
+
+    def estimate(self, scene: Scene, assessment, segments: int = 2) -> dict:
+        """Estimated errors of N elements against the converged cable (:func:`cablesys.ladder.estimate.segmented_error`)."""
+        return est.segmented_error(assessment.estimates, self.segments(segments))
+
+    def alone(self, scene: Scene, requested: str, segments) -> tuple:
+        """An anchored line or a seabed: the node model with the caller's N, else the scene's (named segmented rung),
+        else at least ENDS_SEGMENTS, checked a posteriori on every quantity when the ladder chose it."""
+        scene_n = max(s.cable.segments for s in scene.sections)
+        n = int(segments or (scene_n if requested == self.name and scene_n > 1 else max(scene_n, ENDS_SEGMENTS)))
+        return n, (f"an anchored line or a seabed: the node model with N = {n}, the only rung with nodes to anchor "
+                   "and to lay on the bed; N checked a posteriori on every quantity"), requested == "auto"
+
+
+RUNG = Segmented()
