@@ -259,12 +259,15 @@ class SceneKind:
 
     cls: type
     load: Callable
+    name: str
     text: str
 
 
-SCENES = {"wang": SceneKind(Scene, load_scene, "a Wang scene (cablesys.load_scene, cablesys.dale_scene)"),
-          "slack": SceneKind(SlackScene, load_slack_scene, "a slack scene (cablesys.slack.load_slack_scene)"),
-          "towed": SceneKind(TowedScene, load_towed_scene, "a towed scene (cablesys.towed.load_towed_scene)")}
+SCENES = {"wang": SceneKind(Scene, load_scene, "Wang scene", "a Wang scene (cablesys.load_scene, cablesys.dale_scene)"),
+          "slack": SceneKind(SlackScene, load_slack_scene, "slack scene",
+                             "a slack scene (cablesys.slack.load_slack_scene)"),
+          "towed": SceneKind(TowedScene, load_towed_scene, "towed scene",
+                             "a towed scene (cablesys.towed.load_towed_scene)")}
 
 
 @dataclasses.dataclass(frozen=True)
