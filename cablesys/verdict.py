@@ -16,6 +16,10 @@ Criteria (each checked only when its limit is given; values over the statistics 
 margin = (limit - value) / |limit| for upper limits, (value - limit) / |limit| for lower limits
 (absolute when the limit is 0): >= 0 passes.
 
+A static analysis (a slack span's element tensions, a towed cable's steady tensions: results with
+``static_tensions()``) is judged by :func:`judge` through the same :func:`evaluate`, on the working load and
+the least tension only; its scene refuses the limits that need a time run.
+
 The statistics are those of :mod:`cablesys.statistics`; a tension's are never below 0 N (a Gaussian most probable
 minimum below 0 is 0 with the slack probability), and the warnings count the same snap loads the verdict reads.
 """
