@@ -15,6 +15,9 @@ labelled data (fields named by the physical quantity, labels for outputs and coo
 ``summary()``    a JSON-able dict of the headline numbers;
 a short ``repr`` (shapes, not arrays: safe to display in Jupyter).
 
+A static analysis whose scene carries ``limits`` (a slack span, a towed cable) also offers
+``static_tensions()`` -> {tension label: array of N}: what :func:`cablesys.verdict.judge` reads.
+
 To add an analysis: write a frozen dataclass deriving from :class:`ResultBase` with the fields
 ``success``, ``message`` and ``stats`` (or properties of those names), a ``to_xarray`` that
 builds the dataset (units and long names of well-known labels are filled in from

@@ -16,6 +16,10 @@ Criteria (each checked only when its limit is given; values over the statistics 
 margin = (limit - value) / |limit| for upper limits, (value - limit) / |limit| for lower limits
 (absolute when the limit is 0): >= 0 passes.
 
+A static analysis (a slack span's element tensions, a towed cable's steady tensions: results with
+``static_tensions()``) is judged by :func:`judge` through the same :func:`evaluate`, on the working load and
+the least tension only; its scene refuses the limits that need a time run.
+
 The statistics are those of :mod:`cablesys.statistics`; a tension's are never below 0 N (a Gaussian most probable
 minimum below 0 is 0 with the slack probability), and the warnings count the same snap loads the verdict reads.
 """
@@ -156,6 +160,43 @@ def evaluate(limits, stats: dict, snaps=()) -> dict:
             k = max(exc, key=exc.get)
             out["excursion"] = _upper(exc[k], limits.max_excursion, "m", f"largest excursion of the body ({k}) from its mean")
     return out
+
+
+def static_statistics(tensions: dict) -> dict:
+    """{label: statistics} of static tensions {label: array of N} in the form :func:`evaluate` reads: the largest,
+    smallest and mean value over the array (elements along the cable, or one steady value), no spread (std 0)
+    and no most probable extremes (nothing varies in time)."""
+    out = {}
+    for label, values in tensions.items():
+        t = np.asarray(values, float)
+        out[label] = {"max": float(np.max(t)), "min": float(np.min(t)), "mean": float(np.mean(t)), "std": 0.0,
+                      "most_probable_max": None, "most_probable_min": None}
+    return out
+
+
+def judge(result) -> dict:
+    """The verdict of a static analysis result against its scene's ``limits`` (:func:`evaluate`, the one
+    definition): the largest tension against the working load, the smallest against ``least_tension``.
+
+    A result is static when it offers ``static_tensions()`` (:mod:`cablesys.result_protocol`): a slack span's
+    element tensions (:class:`cablesys.slack.SlackAnalysis`, Griffin & Rosenthal 1985), a towed cable's steady
+    tensions at the tow point and the drogue (:class:`cablesys.towed.TowedAnalysis`). A time run is judged by
+    :func:`report` (statistics over its window). Without limits the verdict is {} (passes vacuously).
+
+    Raises
+    ------
+    ParameterError
+        ``result``: not a static result (its kind and what the verdict reads instead); ``limits.<name>``: a
+        limit that needs a time run (slack fraction, excursion, DAF, statistics window, exposure).
+    """
+    from .errors import ParameterError
+    from .scene.limits import static_limits
+    tensions = getattr(result, "static_tensions", None)
+    if tensions is None:
+        raise ParameterError("result", type(result).__name__, "the static verdict reads static_tensions() (a slack "
+                             "or towed analysis); judge a time run with cablesys.verdict.report(scene, result)")
+    limits = static_limits(getattr(getattr(result, "scene", None), "limits", None))
+    return evaluate(limits, static_statistics(tensions()))
 
 
 def warnings_of(result, limits=None) -> list[str]:

@@ -6,6 +6,7 @@ Every limit is optional; a criterion is checked only when its limit is given.
 from __future__ import annotations
 
 import dataclasses
+from typing import ClassVar
 
 from ..errors import (
     ParameterError,
@@ -61,3 +62,30 @@ class Limits:
         if self.minimum_breaking_load is not None:
             return self.minimum_breaking_load / (self.safety_factor or 1.0)
         return None
+
+    # limits that need a motion or a time series: a static analysis (a slack span's or a towed cable's
+    # steady tensions) has neither
+    DYNAMIC_FIELDS: ClassVar[tuple] = ("slack_fraction", "max_excursion", "max_daf", "statistics_start", "exposure")
+
+    def require_static(self, where: str = "limits") -> Limits:
+        """These limits, if a static analysis can judge all of them: the working load (peak tension) and
+        ``least_tension``; a ParameterError names the first limit that needs a time run (slack fraction,
+        excursion, DAF, statistics window, exposure)."""
+        for name in self.DYNAMIC_FIELDS:
+            value = getattr(self, name)
+            if value is not None:
+                raise ParameterError(f"{where}.{name}", value,
+                                     "needs a time run (statistics of a motion or a tension history); a static "
+                                     "analysis is judged on safe_working_load (or minimum_breaking_load / "
+                                     "safety_factor) and least_tension only: remove it")
+        return self
+
+
+def static_limits(limits, where: str = "limits") -> Limits | None:
+    """``limits`` checked for a static analysis (None, or a :class:`Limits` passing
+    :meth:`Limits.require_static`); a ParameterError otherwise."""
+    if limits is None:
+        return None
+    if not isinstance(limits, Limits):
+        raise ParameterError(where, limits, "must be a cablesys.scene.limits.Limits (or None)")
+    return limits.require_static(where)

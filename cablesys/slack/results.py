@@ -130,6 +130,11 @@ class Equilibrium(ResultBase):
                           coords={"s": ("node", self.s)},
                           attrs={"method": self.method, "sag_m": self.sag, "horizontal_tension_N": self.horizontal_tension})
 
+    def static_tensions(self) -> dict:
+        """{"tension": element tensions (N)}: what the verdict judges against ``scene.limits``
+        (:func:`cablesys.verdict.judge`)."""
+        return {"tension": np.asarray(self.tension, float)}
+
     @property
     def element_lengths(self) -> np.ndarray:
         return np.hypot(np.diff(self.x), np.diff(self.z))
@@ -345,6 +350,15 @@ class SlackAnalysis(ResultBase):
         parts = [f"{name}: {r.message}" for name, r in (("equilibrium", self.equilibrium), ("modes", self.modes))
                  if r.message]
         return "; ".join(parts)
+
+    @property
+    def scene(self):
+        """The slack scene analysed (the equilibrium's)."""
+        return self.equilibrium.scene
+
+    def static_tensions(self) -> dict:
+        """The equilibrium's element tensions, N (:meth:`Equilibrium.static_tensions`)."""
+        return self.equilibrium.static_tensions()
 
     def __iter__(self):
         warnings.warn("unpacking slack.analyze(...) as (equilibrium, modes) is deprecated: use its "

@@ -16,6 +16,7 @@ from pathlib import Path
 from ..errors import ParameterError, require_finite, require_nonnegative, require_positive
 from ..reader import build, located, read_toml, typed_fields
 from ..scene.fields import quantity, spec
+from ..scene.limits import Limits, static_limits
 from ..units import G_STANDARD
 
 MEDIA = ("air", "water")
@@ -129,7 +130,8 @@ class SlackScene:
     gravity (m/s^2); n_elements: lumped-mass elements (mass positions are
     added as nodes); n_modes: number of natural modes an analysis reports
     (:func:`~cablesys.slack.analyze` and :func:`~cablesys.slack.converge` use it
-    when not given one).
+    when not given one); limits: the working load and least tension the
+    equilibrium's element tensions are judged against (:func:`cablesys.verdict.judge`).
     """
 
     cable: SlackCable = spec("none", "the cable", symbol="")
@@ -140,9 +142,12 @@ class SlackScene:
     gravity: float = quantity("gravity", "gravitational acceleration", G_STANDARD)
     n_elements: int = spec("none", "lumped-mass elements (mass positions are added as nodes)", 120, symbol="N")
     n_modes: int = spec("none", "natural modes an analysis reports", 12, symbol="")
+    limits: Limits | None = spec("none", "what the span's static tensions are checked against (cablesys.verdict): "
+                                 "working load and least_tension", None, symbol="")
 
     def __post_init__(self):
         require_positive("scene.span", self.span, "m")
+        static_limits(self.limits)          # the criteria a static analysis can judge, or a named error
         require_finite("scene.rise", self.rise)
         require_positive("scene.gravity", self.gravity, "m/s^2")
         if self.medium not in MEDIA:
@@ -220,6 +225,11 @@ ae = 8.9e5                # axial stiffness EA, N
 # added_mass_per_length = 0.71         # kg/m, overrides C_am m / S
 # max_strain = 0.02
 
+# optional: what the verdict checks the static element tensions against (N)
+# [limits]
+# safe_working_load = 5000.0   # or minimum_breaking_load with safety_factor
+# least_tension = 100.0
+
 # one [[masses]] table per attached point mass
 [[masses]]
 name = "heavy-1"
@@ -283,8 +293,8 @@ def _scene_from_dict(doc: dict) -> SlackScene:
     if not isinstance(doc, dict):
         raise ParameterError("document", doc, "must be a TOML document (a table)")
     for k in doc:
-        if k not in ("scene", "cable", "masses"):
-            raise ParameterError(k, doc[k], "unknown table; allowed: scene, cable, masses")
+        if k not in ("scene", "cable", "masses", "limits"):
+            raise ParameterError(k, doc[k], "unknown table; allowed: scene, cable, masses, limits")
     if "cable" not in doc:
         raise ParameterError("cable", None, "a [cable] table is required")
     cable = build(SlackCable, _renamed(doc["cable"], "cable"), "cable")
@@ -294,8 +304,9 @@ def _scene_from_dict(doc: dict) -> SlackScene:
     if not isinstance(masses, list) or not all(isinstance(m, dict) for m in masses):
         raise ParameterError("masses", masses, "must be an array of tables [[masses]]")
     masses = tuple(build(PointMass, _renamed(m, f"masses[{i}]"), f"masses[{i}]") for i, m in enumerate(masses))
-    kw = typed_fields(SlackScene, doc.get("scene", {}), "scene", skip=("cable", "masses"))
-    scene = SlackScene(cable=cable, masses=masses, **kw)
+    kw = typed_fields(SlackScene, doc.get("scene", {}), "scene", skip=("cable", "masses", "limits"))
+    limits = build(Limits, doc["limits"], "limits") if "limits" in doc else None
+    scene = SlackScene(cable=cable, masses=masses, limits=limits, **kw)
     if scene.n_modes > 3 * (scene.n_elements - 1) - 1:
         raise ParameterError("scene.n_modes", scene.n_modes, f"must be < 3 (n_elements - 1) = {3 * (scene.n_elements - 1)}, "
                              "the number of degrees of freedom")

@@ -1,6 +1,7 @@
 """Parameter sweeps: ``cablesys.sweep(scene, vary={...}, analysis="run")`` -> ``xarray.Dataset``.
 
-Cases run on all local cores (or a Dask cluster), one compiled model per scene structure
+The analyses are the registry :data:`cablesys.sweeps.analyses.ANALYSES` (the Wang model's run, rao,
+periodic, stochastic, design and ladder; the slack and towed models' slack and towed). Cases run on all local cores (or a Dask cluster), one compiled model per scene structure
 and worker, finished cases written as they complete so an interrupted sweep resumes.
 ``cablesys.sweep`` is :func:`cablesys.sweeps.sweep` (the package is a noun, its verb is exported
 at the top level).

@@ -1,4 +1,4 @@
-"""What one case computes, per analysis, and the per-process cache of compiled models.
+"""What one case computes, per analysis (the registry :data:`ANALYSES`), and the per-process cache of models.
 
 Each analysis takes (scene, options, cache) and returns (summary dict, success, message);
 the summary is the result's own ``summary()`` where it has one, so statistics and verdicts
@@ -12,12 +12,16 @@ from __future__ import annotations
 import collections
 import dataclasses
 import math
+from typing import Callable
 
 import numpy as np
 
 from ..errors import ParameterError, SolverError
 from ..ladder.metrics import forcing_period
-from ..model import build_model, structure_of
+from ..model import FunctionCache, build_model, structure_of
+from ..scene import Scene, load_scene
+from ..slack.scene import SlackScene, load_slack_scene
+from ..towed.scene import TowedScene, load_towed_scene
 
 
 class ModelCache:
@@ -28,6 +32,7 @@ class ModelCache:
         self._models = collections.OrderedDict()
         self.builds = 0
         self._rungs = None
+        self.functions = FunctionCache()   # the slack model's CasADi functions, keyed by element count
 
     @property
     def rungs(self):
@@ -212,4 +217,100 @@ def ladder(scene, options, cache):
     return {"model": c.as_dict(), "numbers": numbers, "estimates": est}, True, ""
 
 
-ANALYSIS = {"run": run, "rao": rao, "periodic": periodic, "stochastic": stochastic, "design": design, "ladder": ladder}
+def slack(scene, options, cache):
+    """Statics and natural modes of a slack span (:func:`cablesys.slack.analyze`, Griffin & Rosenthal 1985), option
+    ``solver`` ('auto', 'dense', 'sparse'): the equilibrium's tensions (N), sag (m) and Irvine parameter lambda^2
+    (eq. 4, 22), the natural frequencies ``omega_n`` (rad/s, ascending, as ``rao`` names them) with their mode types,
+    and the verdict of the element tensions against ``scene.limits``."""
+    from ..slack import analyze
+    r = analyze(scene, solver=options.get("solver", "auto"), cache=cache.functions)
+    eq = r.equilibrium.summary()
+    s = {k: v for k, v in eq.items() if k not in ("result", "success", "message", "stats", "seconds", "method")}
+    s["omega_n"] = {f"{k}_rad_s": float(w) for k, w in enumerate(r.modes.omega)}
+    s["mode_type"] = {str(k): t for k, t in enumerate(r.modes.mode_type)}
+    s["stats"] = dict(r.stats)
+    return _with_verdict(s, r), r.success, r.message
+
+
+def towed(scene, options, cache):
+    """The towed cable's response (:func:`cablesys.towed.analyze`, Kennedy & Strahan 1981): its ``summary()``
+    (steady tensions in N, damping times in s, the theory's coefficients, |H| and c* (m/s) at the far end at the
+    lowest and highest frequency) with the modes one group each, and the verdict of the steady tensions against
+    ``scene.limits``."""
+    from ..towed import analyze
+    r = analyze(scene)
+    s = dict(r.summary())
+    s["modes"] = {str(k): m for k, m in enumerate(s["modes"])}
+    return _with_verdict(s, r), r.success, r.message
+
+
+def _with_verdict(summary: dict, result) -> dict:
+    """``summary`` with the static verdict of ``result`` (:func:`cablesys.verdict.judge`) when its scene has limits."""
+    from ..verdict import judge, passed
+    if getattr(result.scene, "limits", None) is not None:
+        summary["verdict"] = judge(result)
+        summary["verdict_pass"] = passed(summary["verdict"])
+    return summary
+
+
+@dataclasses.dataclass(frozen=True)
+class SceneKind:
+    """A kind of scene a sweep varies: its class, the file loader of the command line, and how it is named."""
+
+    cls: type
+    load: Callable
+    name: str
+    text: str
+
+
+SCENES = {"wang": SceneKind(Scene, load_scene, "Wang scene", "a Wang scene (cablesys.load_scene, cablesys.dale_scene)"),
+          "slack": SceneKind(SlackScene, load_slack_scene, "slack scene",
+                             "a slack scene (cablesys.slack.load_slack_scene)"),
+          "towed": SceneKind(TowedScene, load_towed_scene, "towed scene",
+                             "a towed scene (cablesys.towed.load_towed_scene)")}
+
+
+@dataclasses.dataclass(frozen=True)
+class Analysis:
+    """One analysis a sweep runs: ``compute(scene, options, cache) -> (summary, success, message)``, the kind of scene
+    it takes (a key of :data:`SCENES`), what it computes (generated into :func:`cablesys.sweep`'s docstring, the
+    command's help and the README), its options (None: not checked here) and whether the command line offers it."""
+
+    compute: Callable
+    scene: str
+    text: str
+    options: tuple | None = None
+    cli: bool = True
+
+
+ANALYSES = {
+    "run": Analysis(run, "wang", "time domain (Wang 1971 eq. 47-48) of the model the ladder chooses; amplitudes, "
+                                 "statistics and the verdict against [limits]"),
+    "rao": Analysis(rao, "wang", "linearization: natural frequencies omega_n, damping ratios, RAOs"),
+    "periodic": Analysis(periodic, "wang", "harmonic balance: the nonlinear periodic steady state"),
+    "stochastic": Analysis(stochastic, "wang", "Gaussian linearization in a JONSWAP sea (options hs, tp, gamma)"),
+    "design": Analysis(design, "wang", "the isolation design NLP (options={'settings': DesignSettings(...)})",
+                       cli=False),
+    "ladder": Analysis(ladder, "wang", "which model the scene needs (cablesys.ladder.choose), without running it"),
+    "slack": Analysis(slack, "slack", "statics and natural modes of a slack span (Griffin & Rosenthal 1985): "
+                                      "omega_n, mode types, lambda^2, tensions, the verdict against [limits]",
+                      options=("solver",)),
+    "towed": Analysis(towed, "towed", "a towed cable's transfer function, c*, modes and damping time (Kennedy & "
+                                      "Strahan 1981): steady tensions, far-end |H| and c*, the verdict against [limits]",
+                      options=()),
+}
+"""The registry of sweep analyses, name -> :class:`Analysis` (the one list: docstring, help and README come from it)."""
+
+ANALYSIS = {name: a.compute for name, a in ANALYSES.items()}
+"""name -> compute function of :data:`ANALYSES`."""
+
+
+def analyses_text() -> str:
+    """The analyses as one sentence of the docstring: ``name`` (what, on which scene); ..."""
+    return "; ".join(f"``{n}`` ({a.text}; {SCENES[a.scene].text})" for n, a in ANALYSES.items())
+
+
+def analyses_markdown() -> str:
+    """The analyses as the README's list (one line each: name, scene kind, what it computes)."""
+    return "\n".join(f"- `{n}` on {SCENES[a.scene].text}: {a.text}" + ("" if a.cli else " (Python only)")
+                     for n, a in ANALYSES.items())

@@ -6,9 +6,8 @@ import logging
 import time
 
 from ..errors import ParameterError
-from ..scene import Scene
 from . import backends
-from .analyses import ANALYSIS
+from .analyses import ANALYSES, SCENES, analyses_text
 from .grid import Grid
 from .store import CaseStore, assemble
 from .values import check_labels, check_values, long_name_of_label, unit_of_label
@@ -31,25 +30,24 @@ class SweepInterrupted(KeyboardInterrupt):
         super().__init__(f"{self.n_finished} of {self.n_cases} cases finished, {kept}")
 
 
-def sweep(scene: Scene, vary: dict, analysis: str = "run", *, metrics=None, zip=False, options: dict | None = None,
+def sweep(scene, vary: dict, analysis: str = "run", *, metrics=None, zip=False, options: dict | None = None,
           out=None, workers: int | None = None, scheduler=None, chunk_size: int | None = None,
           progress: bool = True, retry_failed: bool = False):
     """Run ``analysis`` for every combination of the values in ``vary``; one labelled Dataset back.
 
     Parameters
     ----------
-    scene : Scene
-        The base scene; each case replaces the varied values (SI) and is validated again.
+    scene : Scene, SlackScene or TowedScene
+        The base scene, of the kind its analysis takes; each case replaces the varied values (SI)
+        and is validated again.
     vary : dict
         {label: values}. Labels of the parameter vector (``cable.ae``, ``sections[1].body.weight``,
         ``top_motion.y[0].frequency``, ``environment.current_speeds[0]``), other scene fields
-        (``numerics.drag_segments``: a model per structure), or options of the analysis
-        (``stochastic.hs``, ``stochastic.tp``, ``design.hs``, ``run.periods``).
+        (``numerics.drag_segments``: a model per structure; a slack scene's ``span``, ``cable.ae``,
+        ``masses[0].mass``; a towed scene's ``speed``, ``cable.cd_normal``), or options of the analysis
+        (``stochastic.hs``, ``stochastic.tp``, ``design.hs``, ``run.periods``, ``slack.solver``).
     analysis : str
-        ``run`` (time domain, Wang 1971 eq. 47-48), ``rao`` (linearization: natural frequencies,
-        RAOs), ``periodic`` (harmonic balance), ``stochastic`` (Gaussian linearization in a JONSWAP
-        sea), ``design`` (isolation NLP; ``options={"settings": DesignSettings(...)}``) or ``ladder``
-        (which model the scene needs, :func:`cablesys.ladder.choose`, without running it).
+        One of the registry :data:`cablesys.sweeps.analyses.ANALYSES`: {analyses}.
     metrics : list of str, optional
         Glob patterns of the metric names to keep (``["tension_*", "amplitude_x_b"]``); default all
         numbers and strings of the result's ``summary()`` (flattened, see :mod:`.metrics`).
@@ -59,7 +57,7 @@ def sweep(scene: Scene, vary: dict, analysis: str = "run", *, metrics=None, zip=
     options : dict, optional
         Analysis options: run ``model`` (None: as built; "auto" or a rung: the model ladder), ``periods``;
         rao ``omega_max``, ``n_omega``; periodic ``n_harmonics``; stochastic ``hs``, ``tp``, ``gamma``,
-        ``direction``; design ``settings``; ladder ``tolerance``.
+        ``direction``; design ``settings``; ladder ``tolerance``; slack ``solver``; towed none.
     out : path, optional
         Folder for finished cases (netCDF per chunk, written as they finish) and ``sweep.nc``.
         Calling again with the same sweep and folder computes only the missing cases. Checked before
@@ -86,19 +84,22 @@ def sweep(scene: Scene, vary: dict, analysis: str = "run", *, metrics=None, zip=
     Raises
     ------
     ParameterError
-        Before any case runs: an unknown or repeated label, an entry of the wrong type for its label
+        Before any case runs: a scene of another kind than the analysis takes, an unknown option of a
+        slack or towed analysis, an unknown or repeated label, an entry of the wrong type for its label
         (text for a number, a fraction for an integer), an ``out`` that is a file or cannot be written.
     SweepInterrupted
         (a KeyboardInterrupt) on Ctrl-C or SIGTERM: the workers are stopped, the finished cases are on
         disk (with ``out``) and in the exception's ``dataset``.
     """
-    if analysis not in ANALYSIS:
-        raise ParameterError("analysis", analysis, f"must be one of {tuple(ANALYSIS)}")
-    if not isinstance(scene, Scene):
-        raise ParameterError("scene", type(scene).__name__, "must be a cablesys Scene (load_scene, dale_scene)")
+    if analysis not in ANALYSES:
+        raise ParameterError("analysis", analysis, f"must be one of {tuple(ANALYSES)}")
+    kind = SCENES[ANALYSES[analysis].scene]
+    if not isinstance(scene, kind.cls):
+        raise ParameterError("scene", type(scene).__name__, f"the {analysis} analysis takes {kind.text}")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
         raise ParameterError("workers", workers, "must be an integer >= 1")
     grid = Grid.build(vary, zip)
+    check_options(analysis, options, grid.all_names)
     check_labels(scene, grid.all_names, analysis)
     check_values(scene, grid, analysis)
     patterns = None if metrics is None else tuple([metrics] if isinstance(metrics, str) else metrics)
@@ -137,7 +138,7 @@ def sweep(scene: Scene, vary: dict, analysis: str = "run", *, metrics=None, zip=
     units = {n: unit_of_label(scene, n, analysis) for n in grid.all_names}
     long_names = {n: long_name_of_label(scene, n, analysis) for n in grid.all_names}
     n_ok = sum(r["status"] == "ok" for r in records.values())
-    attrs = {"analysis": analysis, "scene": scene.name, "n_cases": len(grid), "n_computed": len(todo),
+    attrs = {"analysis": analysis, "scene": getattr(scene, "name", type(scene).__name__), "n_cases": len(grid), "n_computed": len(todo),
              "n_ok": n_ok, "wall_s": time.perf_counter() - t0, "backend": backend,
              "workers": n_workers if scheduler is None else -1, "options": repr(sorted((options or {}).items()))}
     ds = assemble(spec, records, units, attrs, long_names)
@@ -146,6 +147,22 @@ def sweep(scene: Scene, vary: dict, analysis: str = "run", *, metrics=None, zip=
     if store:
         ds.to_netcdf(store.out / "sweep.nc", engine="scipy")
     return ds
+
+
+sweep.__doc__ = sweep.__doc__.replace("{analyses}", analyses_text())
+
+
+def check_options(analysis: str, options: dict | None, labels) -> None:
+    """Refuse an option the analysis does not read (given in ``options`` or varied as ``<analysis>.<name>``), for
+    the analyses whose options the registry lists."""
+    known = ANALYSES[analysis].options
+    if known is None:
+        return
+    given = list(options or {}) + [n.split(".", 1)[1] for n in labels if n.split(".", 1)[0] == analysis and "." in n]
+    for name in given:
+        if name not in known:
+            raise ParameterError(f"options[{name!r}]", (options or {}).get(name),
+                                 f"is not an option of the {analysis} analysis; its options: {list(known) or 'none'}")
 
 
 def _bar(total: int, desc: str, enabled: bool):

@@ -19,13 +19,16 @@ def register(sub) -> None:
                                    "ones. Values of the wrong type for their label, a label given twice and an --out that "
                                    "cannot be written are refused before any case runs. Ctrl-C stops the workers, keeps "
                                    "the finished cases and exits with 130.")
-    p.add_argument("scene", type=Path, help="scene TOML file (see `cablesys scene --example`)")
+    from .analyses import ANALYSES, SCENES
+    offered = [n for n, a in ANALYSES.items() if a.cli]
+    p.add_argument("scene", type=Path, help="scene TOML file of the kind the analysis takes: a Wang scene (`cablesys "
+                                            "scene --example`), a slack scene (--analysis slack) or a towed scene "
+                                            "(--analysis towed)")
     p.add_argument("--vary", action="append", required=True, metavar="NAME=VALUES",
                    help="a labelled value and its values: a list (body.weight=2000,3000,4000) or a range "
                         "start:stop:lin|log:count (cable.ae=1e5:1e7:log:20); repeat for more dimensions")
-    p.add_argument("--analysis", default="run", choices=("run", "rao", "periodic", "stochastic", "ladder"),
-                   help="run (time domain), rao (linearization), periodic (harmonic balance), stochastic (JONSWAP "
-                        "sea), ladder (which model each case needs, without running it)")
+    p.add_argument("--analysis", default="run", choices=offered,
+                   help="; ".join(f"{n} ({SCENES[ANALYSES[n].scene].name}): {ANALYSES[n].text}" for n in offered))
     p.add_argument("--metric", action="append", default=None, metavar="PATTERN",
                    help="keep metrics matching this glob (repeatable; default all, e.g. 'tension_*')")
     p.add_argument("--model", default="scene",
@@ -41,14 +44,19 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from ..scene import load_scene
+    from ..errors import ParameterError
     from . import sweep
+    from .analyses import ANALYSES, SCENES
     from .api import SweepInterrupted
     from .grid import parse_vary
     from .plots import plot_sweep
     from .store import write_csv
     vary = parse_vary(args.vary)           # a label given twice: refused before the scene is even read
-    scene = load_scene(args.scene)
+    kind = ANALYSES[args.analysis].scene
+    if args.duration is not None and kind != "wang":
+        raise ParameterError("--duration", args.duration, f"sets a time run's duration; the {args.analysis} analysis "
+                             f"takes {SCENES[kind].text}, which has none")
+    scene = SCENES[kind].load(args.scene)
     if args.duration is not None:          # 0 or negative is refused by the scene, not ignored
         scene = scene.with_numerics(duration=args.duration)
     options = {"model": None if args.model == "built" else args.model} if args.analysis == "run" else {}
@@ -61,7 +69,7 @@ def run(args) -> int:
     write_csv(ds, args.out / "sweep.csv")
     figs = [] if args.no_plots else plot_sweep(ds, args.out / "plots")
     status = ds["status"].values.ravel()
-    print(f"{scene.name}: {ds.attrs['analysis']} over {' x '.join(f'{d} ({n})' for d, n in ds.sizes.items())} = "
+    print(f"{ds.attrs['scene']}: {ds.attrs['analysis']} over {' x '.join(f'{d} ({n})' for d, n in ds.sizes.items())} = "
           f"{ds.attrs['n_cases']} cases, {ds.attrs['n_computed']} computed now ({ds.attrs['backend']}, "
           f"{ds.attrs['wall_s']:.1f} s); ok {int((status == 'ok').sum())}, not ok {int((status != 'ok').sum())}")
     for k in [i for i, s in enumerate(status) if s != "ok"][:5]:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import fnmatch
 import math
+import re
 
 import numpy as np
 
@@ -59,10 +60,12 @@ def select(metrics: dict, patterns) -> dict:
 
 
 def metric_unit(name: str) -> str:
-    """Unit of a metric from its name: a ``_N``/``_s``/``_m`` suffix or an output label in it."""
-    for suffix, unit in (("_N", "N"), ("_s", "s"), ("_m", "m"), ("_rad_s", "rad/s")):
-        if name.endswith(suffix):
-            return "rad/s" if name.endswith("_rad_s") else unit
+    """Unit of a metric from its name: a ``_N``/``_s``/``_m``/``_m_s``/``_rad_s`` suffix (before an entry's index,
+    ``c_star_m_s_1``) or an output label in it."""
+    stem = re.sub(r"_\d+$", "", name)
+    for suffix, unit in (("_rad_s", "rad/s"), ("_m_s", "m/s"), ("_N", "N"), ("_s", "s"), ("_m", "m")):
+        if stem.endswith(suffix):
+            return unit
     for head in ("amplitude_", "std_", "mean_", "significant_"):
         if name.startswith(head):
             return unit_of(name[len(head):])

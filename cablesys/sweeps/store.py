@@ -11,6 +11,7 @@ same folder is refused. The folder is checked as every sub-command's ``--out`` i
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import logging
@@ -30,8 +31,9 @@ FIELDS = ("status", "message", "wall_s")
 
 def fingerprint(spec) -> str:
     """A hash of what defines the sweep's cases and their numbers."""
-    from ..scene import dump_scene
-    doc = {"scene": dump_scene(spec.scene), "analysis": spec.analysis, "options": repr(sorted(spec.options.items())),
+    from ..scene import Scene, dump_scene
+    scene = dump_scene(spec.scene) if isinstance(spec.scene, Scene) else repr(dataclasses.asdict(spec.scene))
+    doc = {"scene": scene, "analysis": spec.analysis, "options": repr(sorted(spec.options.items())),
            "names": spec.grid.names, "values": repr(spec.grid.values), "metrics": spec.metrics}
     return hashlib.sha256(json.dumps(doc, sort_keys=True, default=repr).encode()).hexdigest()[:16]
 

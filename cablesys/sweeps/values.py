@@ -3,7 +3,9 @@
 Labels follow the parameter vector (:mod:`cablesys.model.params`): ``cable.ae`` (one section),
 ``sections[1].body.weight``, ``environment.current_speeds[0]``, ``top_motion.y[0].frequency``,
 and any other scene field such as ``numerics.drag_segments`` or ``numerics.integrator``
-(those may change the model's structure; the sweep then builds a model for it). Labels that
+(those may change the model's structure; the sweep then builds a model for it). A slack or towed
+scene's fields are named the same way (``span``, ``cable.ae``, ``masses[0].mass``, ``limits.least_tension``;
+``speed``, ``cable.cd_normal``, ``xi[1]``). Labels that
 start with the analysis name (``stochastic.hs``, ``design.tp``, ``run.periods``) are options
 of the analysis, not scene values. Each value passes the scene's own validation, so a bad
 value fails its case with the field, the value and the allowed range.
@@ -17,9 +19,9 @@ import re
 
 from ..errors import ParameterError
 from ..scene.fields import SI_UNIT
+from .analyses import ANALYSES
 
 _TOKEN = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?$")
-ANALYSES = ("run", "rao", "periodic", "stochastic", "design", "ladder")
 # units of analysis options that can be varied (others are dimensionless)
 OPTION_UNITS = {"hs": "m", "tp": "s", "omega_min": "rad/s", "omega_max": "rad/s", "periods": "-", "gamma": "-"}
 
@@ -43,7 +45,7 @@ def is_option(label: str, analysis: str) -> bool:
 
 def _scene_tokens(scene, label: str) -> list:
     tokens = split_label(label)
-    if tokens[0][0] in ("cable", "body") and tokens[0][1] is None:
+    if tokens[0][0] in ("cable", "body") and tokens[0][1] is None and hasattr(scene, "sections"):
         if len(scene.sections) != 1:
             raise ParameterError("vary", label, f"is ambiguous for {len(scene.sections)} sections: "
                                                 f"use sections[i].{label}")

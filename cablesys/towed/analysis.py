@@ -76,6 +76,11 @@ class TowedAnalysis(ResultBase):
         M = added_fluid_mass(self.scene.density, self.scene.cable.diameter)
         return 2.0 * M * self.scene.speed**2 * self.coefficients["c_t_drogue"]
 
+    def static_tensions(self) -> dict:
+        """{"tension_top", "tension_bottom"}: the steady tensions (N) the verdict judges against ``scene.limits``
+        (:func:`cablesys.verdict.judge`)."""
+        return {"tension_top": np.array([self.tension_top]), "tension_bottom": np.array([self.tension_bottom])}
+
     @property
     def frequency(self) -> np.ndarray:
         """Frequencies of the tow-point motion, Hz (omega / 2 pi)."""

@@ -19,6 +19,7 @@ import numpy as np
 from ..errors import ParameterError, require_positive, require_range
 from ..reader import build, located, read_toml, typed_fields
 from ..scene.fields import quantity, spec
+from ..scene.limits import Limits, static_limits
 from .equation import TowedCable, theory_coefficients
 from .runs import MAX_LENGTH_M
 from .transfer import MAX_OMEGA_ND
@@ -57,7 +58,8 @@ class TowedScene:
     ``xi``: positions x/L along the cable (0 at the tow point, 1 at the drogue); the angular
     frequencies of the tow-point motion are ``n_omega`` log-spaced in [``omega_min``,
     ``omega_max``] (rad/s; default 0.1 to 30 U/L, the report's Figs. 6-7); ``n_modes`` mode
-    pairs of the complementary solution (eq. 18-20).
+    pairs of the complementary solution (eq. 18-20); ``limits`` the working load and least tension
+    the steady tensions are judged against (:func:`cablesys.verdict.judge`).
     """
 
     cable: TowedSceneCable = spec("none", "the towed cable", symbol="")
@@ -74,8 +76,11 @@ class TowedScene:
                                    symbol="omega_max")
     n_omega: int = spec("none", "number of log-spaced angular frequencies", 120, symbol="")
     n_modes: int = spec("none", "mode pairs of the complementary solution (eq. 18-20)", 5, symbol="")
+    limits: Limits | None = spec("none", "what the steady tensions at the tow point and the drogue are checked "
+                                 "against (cablesys.verdict): working load and least_tension", None, symbol="")
 
     def __post_init__(self):
+        static_limits(self.limits)          # the criteria a static analysis can judge, or a named error
         require_positive("towed.speed", self.speed, "m/s")
         require_positive("environment.density", self.density, "kg/m^3")
         require_positive("towed.amplification", self.amplification)
@@ -150,6 +155,11 @@ xi = [0.5, 1.0]          # positions x/L to report
 # omega_max = 0.126      # rad/s (default 30 U/L)
 n_omega = 120
 n_modes = 5
+
+# optional: what the verdict checks the steady tensions (tow point, drogue) against, N
+# [limits]
+# safe_working_load = 20000.0   # or minimum_breaking_load with safety_factor
+# least_tension = 100.0
 """
 
 
@@ -183,8 +193,8 @@ def _scene_from_dict(doc) -> TowedScene:
     if not isinstance(doc, dict):
         raise ParameterError("document", doc, "must be a TOML document (a table)")
     for k in doc:
-        if k not in ("cable", "environment", "towed"):
-            raise ParameterError(k, doc[k], "unknown table; allowed: cable, environment, towed")
+        if k not in ("cable", "environment", "towed", "limits"):
+            raise ParameterError(k, doc[k], "unknown table; allowed: cable, environment, towed, limits")
     for k in ("cable", "towed"):
         if k not in doc:
             raise ParameterError(k, None, f"a [{k}] table is required")
@@ -192,7 +202,9 @@ def _scene_from_dict(doc) -> TowedScene:
     env = doc.get("environment", {})
     if not isinstance(env, dict) or set(env) - {"density"}:
         raise ParameterError("environment", env, "must be a table with at most the key density (kg/m^3)")
-    kw = typed_fields(TowedScene, doc["towed"], "towed", skip=("cable", "density"))
+    kw = typed_fields(TowedScene, doc["towed"], "towed", skip=("cable", "density", "limits"))
+    if "limits" in doc:
+        kw["limits"] = build(Limits, doc["limits"], "limits")
     if "density" in env:
         kw["density"] = typed_fields(TowedScene, {"density": env["density"]}, "environment",
                                      skip=tuple(f for f in TowedScene.__dataclass_fields__ if f != "density"))["density"]
