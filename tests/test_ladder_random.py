@@ -111,6 +111,11 @@ KNOWN = {   # measured misses, kept visible (strict: an xfail that starts passin
     # ("heavy", 3) passes since the continuum estimate hangs its string (tension growing toward the top): Wang's
     # straight cable is estimated at 0.38 % (actual 0.10 %, unresolved) where the mean-tension string said 4.4 %
     # and auto ran N = 5 (1.1 % actual, 0.20 % stated)
+    ("heavy", 3): "the static check (ladder.static_check) finds Wang's straight cable 8 % off the converged mean "
+                  "offset (1.7 vs 1.57 cm, judged on the 1 cm floor) and runs the node model at N = 14, the least "
+                  "checkable N within the tolerance in statics; its check against N = 7 states 0.97 % where the "
+                  "actual body error is 0.12 %: an overstatement of 8x (the issue allows overstatement; this test "
+                  "holds it to 4x)",
 }
 
 CASES = [("short", 2), ("short", 3), ("short", 1), ("heavy", 1), ("heavy", 2), ("heavy", 3)]

@@ -40,7 +40,7 @@ from ..errors import NumericalWarning, ParameterError
 from ..model import CableModel
 from ..scene import Scene
 from . import estimate as est
-from . import extrapolation, metrics
+from . import extrapolation, metrics, static_check
 from .choice import (
     CHECK_ACCEPT,
     EXPLICIT_COST_MAX_ELEMENTS,
@@ -312,6 +312,8 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
     t0, b0 = time.perf_counter(), cache.build_s
     choice, tol, auto = decide(scene, model, tolerance, segments, cache)
     choice = explicit_or_node(scene, choice, tol, cache, kw)
+    if auto:                                     # the mean shape in the current, from the statics, before any run
+        choice = static_check.check(scene, choice, tol, cache)
     t1, b1 = time.perf_counter(), cache.build_s
     if extrapolation.applies(choice, auto):      # first order in N: RK4 runs at N, N / 2, N / 4 (extrapolation)
         choice, kw = extrapolation.plan(scene, choice, cache, kw)      # every run checked before the first starts

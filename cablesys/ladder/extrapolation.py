@@ -638,6 +638,10 @@ def model_dict(choice) -> dict:
                     else "a priori only: unchecked")
     if per is not None and d["checked"].startswith("a posteriori"):
         d["estimated_error_per_quantity"] = {k: float(v) for k, v in per.items()}
+    static = choice.numbers.get("static_errors")
+    if static is not None:      # the mean shape checked before the run (:mod:`.static_check`)
+        d["static_shape_error"] = {"segments": static["segments"], "reference_segments": static["reference_segments"],
+                                   **{k: float(v) for k, v in static["errors"].items()}}
     block = choice.numbers.get("extrapolated")
     if block is not None:
         d.update(estimated_error_refers_to="the extrapolated statistics (model.extrapolated.statistics)",
