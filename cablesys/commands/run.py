@@ -40,7 +40,8 @@ def register(sub) -> None:
                                                 "the model ladder's rung (cablesys.ladder)")
     p.add_argument("--duration", type=float, default=None, help="simulated time in s (overrides the scene)")
     p.add_argument("--window", type=float, nargs=2, default=None, metavar=("T0", "T1"),
-                   help="statistics window in s for summary.json (default: the last 5 forcing periods, or the last 20 %% of the run)")
+                   help="statistics window in s for summary.json (default: the last 5 forcing periods in the run's "
+                        "second half, after the smooth start)")
     p.add_argument("--jit", action="store_true", help="compile the model with the C compiler whatever its size "
                                                       "(compiled code is the default up to a size limit)")
     p.add_argument("--strict", action="store_true", help="exit with status 3 when a criterion of the scene's [limits] fails")
@@ -324,6 +325,9 @@ def _print_summary(summary: dict, units: str = "SI") -> None:
         if lo is not None and hi is not None:
             print(f"  tension {what} min/max {lo * fn:.4g} / {hi * fn:.4g} {name_n} (over the run)")
     print(f"  time slack {summary['time_slack_s']:.3g} s")
+    if "window" in summary:
+        w = summary["window"]
+        print(f"  statistics window {w['start_s']:.4g} - {w['end_s']:.4g} s ({w['how']})")
     from ..verdict import format_statistics, format_table, steady_shape_lines
     for line in (format_statistics(summary["statistics"], units) if "statistics" in summary else []) + \
             steady_shape_lines(summary, lambda u: output_unit(u, units)) + \
