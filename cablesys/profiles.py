@@ -18,6 +18,8 @@ import re
 
 import numpy as np
 
+from . import statistics as st
+
 _LABEL = re.compile(r"^(\w+)\[(\d+)\]$")
 COORDINATES = {"element": "element_s", "node": "node_s"}
 
@@ -56,21 +58,11 @@ def dimension_of(name: str) -> str:
 
 
 def statistics_window(time, window_s=None, period=None, settled_s=0.0) -> tuple[float, float]:
-    """The statistics window [t0, t1] (s): as given, else the last 5 forcing periods, else the last 20 %
-    of the run; a default window starts after the smooth start (``settled_s`` from the first time, the
-    ramp of ``[top_motion] ramp_s``) when at least one forcing period (or 10 % of the run) is left
-    after it, so that the ramp's reduced amplitudes do not enter the statistics."""
-    t = np.asarray(time, float)
+    """The statistics window [t0, t1] (s): as given (``window_s``), else :func:`cablesys.statistics.window` of the
+    run with forcing period ``period`` (s) and smooth start ``settled_s`` (s)."""
     if window_s is not None:
         return float(window_s[0]), float(window_s[1])
-    span = t[-1] - t[0]
-    settled = t[0] + max(float(settled_s or 0.0), 0.0)
-    if period and t[-1] - 5 * period >= settled:
-        return float(t[-1] - 5 * period), float(t[-1])
-    start = t[-1] - 0.2 * span
-    if settled > start and t[-1] - settled >= max(period or 0.0, 0.1 * span):
-        start = settled                # the ramp covers the last 20 %: what follows it
-    return float(start), float(t[-1])
+    return st.window(time, period, settled_s)[:2]
 
 
 def hermite_peak(t0, t1, y0, y1, d0, d1) -> tuple[float, float]:

@@ -46,6 +46,58 @@ def resolution(y, floor: float = 0.0) -> float:
     return max(float(floor), ROUNDOFF * float(np.max(np.abs(y))) if y.size else 0.0)
 
 
+WINDOW_PERIODS = 5     # forcing periods in the statistics window of a settled periodic response
+
+
+def window(time, period: float | None = None, ramp_s: float = 0.0, n_periods: int = WINDOW_PERIODS) -> tuple:
+    """The statistics window [t0, t1] (s) of a run, and how it was chosen: the one window of a run's summary
+    (statistics, amplitudes, the model ladder's error checks and its settling note).
+
+    The window holds the settled forced response: it ends at the last time and starts at the latest of
+
+    * the end of the smooth start (``ramp_s`` after the first time): the ramp's reduced amplitudes are not the
+      forced response;
+    * the middle of the run: the start-up transient from the initial state decays over the first half (a run
+      of a damped system is judged on its second half; a build-up still under way there shows as a change of
+      the amplitudes between the window's halves, :func:`settled`);
+    * ``n_periods`` forcing periods before the end (the longest ``period``, s; None for no periodic forcing):
+      5 periods give each half of the window 2.5 periods, enough for the amplitude (half the peak-to-peak, one
+      period of a periodic response suffices) to be compared between the halves, while a long run keeps its
+      window on the most settled part.
+
+    A short run still gets a window: when less than ``least`` = min(one period, half the run) (no period:
+    10 % of the run) follows the ramp, the window is the last ``least`` seconds, ramp included, and ``how``
+    says so.
+
+    Returns
+    -------
+    (float, float, str)
+        t0, t1 (s) and the rule that set t0.
+    """
+    t = np.asarray(time, float)
+    first, last = float(t[0]), float(t[-1])
+    span = last - first
+    after_ramp, middle = first + max(float(ramp_s or 0.0), 0.0), first + 0.5 * span
+    start, how = middle, "the second half of the run"
+    if after_ramp > start:
+        start, how = after_ramp, f"after the smooth start ({float(ramp_s):.4g} s)"
+    if period and last - n_periods * period > start:
+        start, how = last - n_periods * period, f"the last {n_periods} forcing periods ({period:.4g} s)"
+    least = min(period, 0.5 * span) if period else 0.1 * span
+    if last - start < least:
+        start = last - least
+        how = (f"the last {'forcing period' if period and least == period else 'half' if period else '10 %'} "
+               f"of the run, inside the smooth start ({float(ramp_s):.4g} s): too short to settle")
+    return start, last, how
+
+
+def window_mask(time, t0: float, t1: float) -> np.ndarray:
+    """The samples of ``time`` in [t0, t1] (s), with a relative slack of 1e-9 for round-off in the ends."""
+    t = np.asarray(time, float)
+    eps = 1e-9 * max(1.0, abs(t1))
+    return (t >= t0 - eps) & (t <= t1 + eps)
+
+
 def significant_amplitude(sigma: float) -> float:
     """A_s = 2 sigma (unit of sigma): the mean of the highest third of the Rayleigh amplitudes of a narrow-band
     Gaussian process (Longuet-Higgins 1952; H_s = 4 sqrt(m0), Bai & Jin, Marine Structural Design, sec. 2.2.5)."""

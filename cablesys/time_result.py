@@ -79,7 +79,7 @@ class TimeResult(ResultBase):
     # element_s / node_s (1-D); labels ``name[k]`` given in ``data`` are moved here
     profiles: dict = dataclasses.field(default_factory=dict)
     window_s: tuple | None = None            # statistics window [t0, t1] (s); None: the default
-    forcing_period_s: float | None = None    # sets the default window: the last 5 periods
+    forcing_period_s: float | None = None    # sets the default window (cablesys.statistics.window)
     ramp_s: float = 0.0                      # the smooth start (s): a default window starts after it
     model_info: dict = dataclasses.field(default_factory=dict)   # {"name", "segments"} of the model run
 
@@ -106,10 +106,20 @@ class TimeResult(ResultBase):
 
     @property
     def statistics_window(self) -> tuple:
-        """[t0, t1] (s) of the summary statistics: ``window_s``, else the last 5 forcing periods, else
-        the last 20 % of the run, after the smooth start (:func:`cablesys.profiles.statistics_window`)."""
-        from .profiles import statistics_window
-        return statistics_window(self.time, self.window_s, self.forcing_period_s, self.ramp_s)
+        """[t0, t1] (s) of the summary statistics: ``window_s``, else :func:`cablesys.statistics.window` of the
+        run (the last 5 forcing periods, in the second half of the run, after the smooth start)."""
+        return tuple(self.statistics_window_chosen[:2])
+
+    @property
+    def statistics_window_chosen(self) -> tuple:
+        """(t0, t1, how): :attr:`statistics_window` and the rule that set it (text)."""
+        if self.window_s is not None:
+            return float(self.window_s[0]), float(self.window_s[1]), "given (window_s)"
+        return st.window(self.time, self.forcing_period_s, self.ramp_s)
+
+    def window_mask(self) -> np.ndarray:
+        """The samples of :attr:`statistics_window` (:func:`cablesys.statistics.window_mask`)."""
+        return st.window_mask(self.time, *self.statistics_window)
 
     @property
     def segmented(self) -> bool:
@@ -215,11 +225,6 @@ class TimeResult(ResultBase):
                 out.append({"element": int(k), **ev})
         return out
 
-    def _window_mask(self) -> np.ndarray:
-        t0, t1 = self.statistics_window
-        eps = 1e-9 * max(1.0, abs(t1))
-        return (self.time >= t0 - eps) & (self.time <= t1 + eps)
-
     def _last(self, base: str) -> str | None:
         """``base`` or ``base_<n>`` with the largest n (the lowest section), if present."""
         if base in self.data:
@@ -237,13 +242,13 @@ class TimeResult(ResultBase):
         :meth:`snap_loads` for every model). ``body.settled``: the lowest body's x and y amplitudes changed between
         the halves of the window by at most SETTLED_RTOL or 1 micrometre (:func:`cablesys.statistics.settled`);
         ``body.amplitude_change`` the larger relative change."""
-        mask = self._window_mask()
+        mask = self.window_mask()
         if not np.any(mask):                  # a run that failed before the window: report no statistics
             mask = np.ones_like(self.time, dtype=bool)
-        t0, t1 = self.statistics_window
+        t0, t1, how = self.statistics_window_chosen
         ext = lambda lbl, f: None if lbl is None else max(float(f(self.data[lbl][mask])), 0.0)
         top, bottom = self._first("tension_top"), self._last("tension_bottom")
-        out = {"window_s": [t0, t1],
+        out = {"window_s": [t0, t1], "window": {"start_s": t0, "end_s": t1, "how": how},
                "tension": {"top_min_N": ext(top, np.min), "top_max_N": ext(top, np.max),
                            "bottom_min_N": ext(bottom, np.min), "bottom_max_N": ext(bottom, np.max)}}
         body, changes = {}, []

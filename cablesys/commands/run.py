@@ -9,12 +9,16 @@ import math
 import sys
 from pathlib import Path
 
+import numpy as np
+
 from .. import units as U
 from ..ladder.metrics import forcing_period
 from ..integration import METHODS
 from ..ladder.rungs import MODEL_CHOICES, RUNGS, check_rung
 from ..time_domain.integrators import IntegratorSettings
 from ..results import unit_of
+from ..statistics import half_range
+from ..statistics import window_mask as st_window_mask
 
 log = logging.getLogger(__name__)
 
@@ -36,7 +40,8 @@ def register(sub) -> None:
                                                 "the model ladder's rung (cablesys.ladder)")
     p.add_argument("--duration", type=float, default=None, help="simulated time in s (overrides the scene)")
     p.add_argument("--window", type=float, nargs=2, default=None, metavar=("T0", "T1"),
-                   help="statistics window in s for summary.json (default: the last 5 forcing periods, or the last 20 %% of the run)")
+                   help="statistics window in s for summary.json (default: the last 5 forcing periods in the run's "
+                        "second half, after the smooth start)")
     p.add_argument("--jit", action="store_true", help="compile the model with the C compiler whatever its size "
                                                       "(compiled code is the default up to a size limit)")
     p.add_argument("--strict", action="store_true", help="exit with status 3 when a criterion of the scene's [limits] fails")
@@ -265,6 +270,9 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
             write_csv(result, tmp, units)
     with out.writing("timeseries.nc") as tmp:       # SI, conventions and the scene to reproduce the run
         write_netcdf(result, tmp, scene_toml=dump_scene(scene), scene_units=units)
+    start = getattr(scene.limits, "statistics_start", None)
+    if start is not None and getattr(result, "window_s", None) is None:     # one window: the verdict's start
+        result = dataclasses.replace(result, window_s=(float(start), float(result.time[-1])))
     summary = result.summary()
     summary.pop("status", None)
     st = result.stats
@@ -273,9 +281,12 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
         summary["timing"].update(build_s=float(st["ladder_timing"].get("build_s", 0.0)),
                                  run_s=float(st["ladder_timing"].get("run_s", 0.0)))
     period = forcing_period(scene)
-    if period and scene.top_motion.spectrum is None and result.time[-1] - result.time[0] >= 6 * period:
-        summary["amplitude_periods"] = 3
-        amps = {lbl: result.steady_amplitude(lbl, period, 3)
+    t0, t1 = (summary["window"]["start_s"], summary["window"]["end_s"]) if "window" in summary else (0.0, 0.0)
+    if period and scene.top_motion.spectrum is None and t1 - t0 >= period * (1 - 1e-9):
+        # the amplitudes over the one statistics window (cablesys.statistics.window), which holds a whole period
+        summary["amplitude_periods"] = (t1 - t0) / period
+        mask = st_window_mask(result.time, t0, t1)
+        amps = {lbl: half_range(np.asarray(result[lbl])[mask])
                 for lbl in result.labels if lbl.startswith(("x_b", "y_b", "z_b", "phi", "u", "tension"))
                 and not lbl.endswith("rate")}
         for unit in ("m", "rad", "N"):      # grouped by quantity, the unit in the key
@@ -314,6 +325,9 @@ def _print_summary(summary: dict, units: str = "SI") -> None:
         if lo is not None and hi is not None:
             print(f"  tension {what} min/max {lo * fn:.4g} / {hi * fn:.4g} {name_n} (over the run)")
     print(f"  time slack {summary['time_slack_s']:.3g} s")
+    if "window" in summary:
+        w = summary["window"]
+        print(f"  statistics window {w['start_s']:.4g} - {w['end_s']:.4g} s ({w['how']})")
     from ..verdict import format_statistics, format_table, steady_shape_lines
     for line in (format_statistics(summary["statistics"], units) if "statistics" in summary else []) + \
             steady_shape_lines(summary, lambda u: output_unit(u, units)) + \

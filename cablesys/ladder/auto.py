@@ -389,7 +389,7 @@ def settled_check(scene: Scene, choice: Choice, result) -> Choice:
     front still arriving is the run's, not the model's (extrapolated runs: :mod:`.extrapolation` has its own)."""
     if not getattr(result, "success", False) or "extrapolated" in choice.numbers or choice.name == "frequency":
         return choice
-    change = metrics.window_change(result, metrics.forcing_period(scene))
+    change = metrics.window_change(result, metrics.forcing_period(scene), scene.top_motion.effective_ramp_s)
     stated = choice.estimated_error.get("body", math.inf)
     if not (change > max(stated, est.RESOLUTION)):
         return choice
@@ -421,7 +421,7 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
     coarse = _run(scene, dataclasses.replace(choice, segments=n // 2), tol, cache, checking(kw), candidate=False)
     if not (coarse.success and result.success):
         return choice, False
-    fine_st, coarse_st = metrics.statistics(result, period), metrics.statistics(coarse, period)
+    fine_st, coarse_st = (metrics.statistics(r, period, scene.top_motion.effective_ramp_s) for r in (result, coarse))
     diff = metrics.errors(coarse_st, fine_st)
     order = choice.numbers.get("estimates", {}).get("segmented_1", {}).get("order", est.ORDER)
     factor = 1.0 / (2.0 ** order - 1.0)

@@ -295,8 +295,8 @@ def _plan_text(plan: ElementPlan, numbers) -> tuple[str, str]:
 
 
 def settling_note(scene: Scene, transverse: bool = True) -> str:
-    """"" when the statistics window of the scene's run (:func:`.metrics.window`: the last 5 forcing periods, at
-    most the last half) starts after :func:`.estimate.settling_time` (``transverse``: with the transverse wave's
+    """"" when the statistics window of the scene's run (:func:`.metrics.window`: the last 5 forcing periods, in
+    the second half, after the ramp) starts after :func:`.estimate.settling_time` (``transverse``: with the transverse wave's
     travel down the cable; False where nothing drives the swing: the ramp alone), else a note for the reason, on
     the console and in summary.json, that it holds the start-up transient, of which the estimates (of the settled
     response) say nothing. A note, not a warning: short runs are legitimate (quick looks, tests, sweeps)."""
@@ -304,7 +304,7 @@ def settling_note(scene: Scene, transverse: bool = True) -> str:
     period = metrics.forcing_period(scene)
     if period is None or times.size < 2:
         return ""
-    start = float(times[metrics.window(times, period)][0])
+    start = float(times[metrics.window(times, period, scene.top_motion.effective_ramp_s)][0])
     settle = est.settling_time(scene) if transverse else float(scene.top_motion.effective_ramp_s)
     if start >= settle:
         return ""

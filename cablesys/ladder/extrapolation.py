@@ -188,7 +188,7 @@ def run(scene: Scene, n: int, cache: RungCache, kw: dict | None = None, candidat
         plan.finished(n, candidate, result)
     if sub > 1:
         if result.success:
-            plan.statistics[n] = statistics(result, metrics.forcing_period(scene))
+            plan.statistics[n] = statistics(result, metrics.forcing_period(scene), scene.top_motion.effective_ramp_s)
         result = every(result, sub)
     return result
 
@@ -517,12 +517,12 @@ def refined_maximum(y, i: int) -> float:
     return float(b) if den >= 0 else float(b - (c - a) ** 2 / (8 * den))
 
 
-def statistics(result, period: float | None) -> dict:
-    """:func:`.metrics.statistics` of ``result`` with the tension maxima refined between samples
-    (:func:`refined_maximum`)."""
-    st = metrics.statistics(result, period)
+def statistics(result, period: float | None, ramp_s: float | None = None) -> dict:
+    """:func:`.metrics.statistics` of ``result`` (forcing period and smooth start ``ramp_s`` in s, default the
+    run's own) with the tension maxima refined between samples (:func:`refined_maximum`)."""
+    st = metrics.statistics(result, period, ramp_s)
     t = np.asarray(result.time)
-    idx = np.nonzero(metrics.window(t, period))[0]
+    idx = np.nonzero(metrics.window(t, period, ramp_s))[0]
     for k in result.labels:
         if metrics.base_label(k) in metrics.TENSIONS:
             y = np.asarray(result[k])
@@ -682,7 +682,7 @@ def complete(scene: Scene, choice, result, tol, cache: RungCache, kw: dict | Non
         (the caller runs 2 N and calls again with ``known``).
     """
     known = {} if known is None else known
-    period = metrics.forcing_period(scene)
+    period, ramp = metrics.forcing_period(scene), scene.top_motion.effective_ramp_s
     n = choice.segments
     if not result.success:
         return choice, None, False
@@ -692,16 +692,16 @@ def complete(scene: Scene, choice, result, tol, cache: RungCache, kw: dict | Non
     if plan_ is not None:
         known.update({m: v for m, v in plan_.statistics.items() if m not in known})
     if n not in known and fine.numerics.output_step == scene.numerics.output_step and (kw or {}).get("times") is None:
-        known[n] = statistics(result, period)
+        known[n] = statistics(result, period, ramp)
     for m in (n, n // 2, n // 4):       # the N run again only when its output step does not resolve the snaps
         if m not in known:
             r = run(fine, m, cache, coarse_kw, candidate=False)
             if not r.success:
                 reason = choice.reason + f"; extrapolation failed: the run at N = {m} failed ({r.message})"
                 return dataclasses.replace(choice, reason=reason), None, False
-            known[m] = statistics(r, period)
+            known[m] = statistics(r, period, ramp)
     block = extrapolate(known, n, max(s.cable.tension_floor for s in scene.sections))
-    w = metrics.window(np.asarray(result.time), period)
+    w = metrics.window(np.asarray(result.time), period, ramp)
     block["window_s"] = [float(np.asarray(result.time)[w][0]), float(result.time[-1])]
     e = block["estimated_error"]
     stop = ""

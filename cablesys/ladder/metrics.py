@@ -1,6 +1,6 @@
 """How far one run is from another: the errors the model tolerance speaks of.
 
-Over a statistics window (default: the last 5 forcing periods, at most the last half of the run):
+Over the run's statistics window (:func:`cablesys.statistics.window`, the one window of a run's summary):
 ``body``, the largest difference of the body's x and y amplitudes (half peak-to-peak) relative to
 the larger reference amplitude; ``tension``, the largest difference of the top and body-end tension
 extremes relative to the largest reference tension.
@@ -31,17 +31,22 @@ def _labels(result, bases) -> list:
     return list(bases) if labels is None else [k for k in labels if base_label(k) in bases]
 
 
-def window(time: np.ndarray, period: float | None, n_periods: int = 5) -> np.ndarray:
-    """Boolean mask of the statistics window: the last ``n_periods`` periods, at most the last half."""
-    t0, t1 = float(time[0]), float(time[-1])
-    span = 0.5 * (t1 - t0) if period is None else min(n_periods * period, 0.5 * (t1 - t0))
-    return time >= t1 - span - 1e-12
+def window(time: np.ndarray, period: float | None, ramp_s: float = 0.0) -> np.ndarray:
+    """Boolean mask of the statistics window (:func:`cablesys.statistics.window`; forcing period and smooth start
+    in s)."""
+    return st.window_mask(time, *st.window(time, period, ramp_s)[:2])
 
 
-def statistics(result, period: float | None) -> dict:
+def _ramp(result, ramp_s):
+    """``ramp_s`` (s), else the smooth start the run ``result`` carries (0 without one)."""
+    return float(getattr(result, "ramp_s", 0.0) or 0.0) if ramp_s is None else float(ramp_s)
+
+
+def statistics(result, period: float | None, ramp_s: float | None = None) -> dict:
     """Body amplitudes and means and tension extremes of ``result`` (a TimeResult) over the window (every section's
-    bodies and end tensions in a chain: ``x_b_2_amplitude``, ``x_b_2_mean``, ``tension_top_2_max``, ...)."""
-    w = window(np.asarray(result.time), period)
+    bodies and end tensions in a chain: ``x_b_2_amplitude``, ``x_b_2_mean``, ``tension_top_2_max``, ...); the smooth
+    start ``ramp_s`` (s) defaults to the run's own."""
+    w = window(np.asarray(result.time), period, _ramp(result, ramp_s))
     out = {f"{k}_amplitude": a for k, a in _amplitudes(result, w).items()}
     out.update({f"{k}_mean": float(np.mean(np.asarray(result[k])[w])) for k in _labels(result, BODY)})
     for k in _labels(result, TENSIONS):
@@ -55,14 +60,14 @@ def _amplitudes(result, mask) -> dict:
     return {k: st.half_range(np.asarray(result[k])[mask]) for k in _labels(result, BODY)}
 
 
-def window_change(result, period: float | None) -> float:
+def window_change(result, period: float | None, ramp_s: float | None = None) -> float:
     """How much the body amplitudes still change within the statistics window: the largest difference of the
     x and y amplitudes (half peak-to-peak) between its first and second half, relative to the larger second-half
     amplitude (the body error's normalization). Settled runs: below 1e-3 (Dale 60 s 0, the 1000 m wire 120 s
     8e-4); runs still building up: 0.02-0.2 (the 1000 m wire over 40 s 0.046, a cable forced at its first
     string mode over 7 periods 0.11, over 25 periods 2e-4)."""
     t = np.asarray(result.time)
-    w = window(t, period)
+    w = window(t, period, _ramp(result, ramp_s))
     tw = t[w]
     if tw.size < 4:
         return 0.0

@@ -32,8 +32,8 @@ class Limits:
     max_excursion: float | None = spec("length", "largest allowed excursion of the (lowest) body from its mean position, "
                                                  "horizontal or vertical", None)
     max_daf: float | None = spec("none", "largest allowed dynamic amplification factor peak / static (mean) tension", None)
-    statistics_start: float | None = spec("time", "start of the statistics window (default: after the first 20 % "
-                                                  "of the run, to skip the start-up transient)", None)
+    statistics_start: float | None = spec("time", "start of the statistics window (default: the last 5 forcing "
+                                                  "periods in the run's second half, after the smooth start)", None)
     exposure: float | None = spec("time", "duration of the operation for the most probable maxima (default: the "
                                           "statistics window); with a longer exposure the verdict uses the larger of "
                                           "the observed and the most probable extreme", None)
