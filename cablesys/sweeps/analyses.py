@@ -17,6 +17,7 @@ from typing import Callable
 import numpy as np
 
 from ..errors import ParameterError, SolverError
+from ..statistics import half_range
 from ..ladder.metrics import forcing_period
 from ..model import FunctionCache, build_model, structure_of
 from ..scene import Scene, load_scene
@@ -72,7 +73,8 @@ def _outputs(labels) -> list:
 
 def run(scene, options, cache):
     """Time-domain run of the model :func:`cablesys.simulate` runs for ``scene`` (the ladder's choice, as every door
-    runs it); amplitudes over the last ``periods`` forcing periods.
+    runs it); amplitudes (half the peak-to-peak) over the run's statistics window, the one of its summary
+    (:func:`cablesys.statistics.window`), or over the last ``periods`` forcing periods when that option is given.
 
     Option ``model``: a model name of :data:`cablesys.ladder.MODEL_CHOICES` ("auto", "as-built", a rung) in place of
     the scene's ``numerics.model`` (the default; "scene" says the same). The model that ran is reported
@@ -87,7 +89,7 @@ def run(scene, options, cache):
     s["model"] = choice
     s.pop("warnings", None)
     w = forcing_frequency(scene)
-    n = int(options.get("periods", 3))
+    n = options.get("periods")
     try:
         from ..verdict import (  # statistics and the verdict against scene.limits
             passed,
@@ -101,8 +103,11 @@ def run(scene, options, cache):
             s["verdict_pass"] = passed(s["verdict"])
     if getattr(scene.top_motion, "spectrum", None) is not None:
         w = None                 # an irregular sea: statistics, not amplitudes over periods
-    if w and r.time[-1] - r.time[0] >= 2 * n * 2 * math.pi / w:
-        s["amplitude"] = {lbl: r.steady_amplitude(lbl, 2 * math.pi / w, n) for lbl in _outputs(r.labels)}
+    if w and n is None:
+        mask = r.window_mask()
+        s["amplitude"] = {lbl: half_range(np.asarray(r[lbl])[mask]) for lbl in _outputs(r.labels)}
+    elif w and r.time[-1] - r.time[0] >= 2 * int(n) * 2 * math.pi / w:
+        s["amplitude"] = {lbl: r.steady_amplitude(lbl, 2 * math.pi / w, int(n)) for lbl in _outputs(r.labels)}
     return s, r.success, r.message
 
 
