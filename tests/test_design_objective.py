@@ -50,7 +50,7 @@ def test_objective_equals_the_stochastic_linearization(which, dual):
         model = build_model(scene)
         p = model.parameters(scene)
         dJ, st = equivalent_jacobian_shift(model, p, settings, n_log2=7)
-        labels = ("y_b", "tension")
+        labels = ("y_b", "tension_mid")
     q0 = steady_state(model, p).q
     omega, w_s, w_band = sea_weights(settings)
     obj, _, sigma, mean_t, strain = (np.array(a).ravel() for a in
