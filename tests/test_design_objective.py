@@ -44,7 +44,7 @@ def test_objective_equals_the_stochastic_linearization(which, dual):
     spectral sums reproduce cablesys.linear.stochastic (only its small mean-drag shift of q_0 differs)."""
     if which == "dual":
         scene, settings, model, p, dJ, st = dual
-        labels = ("y_b_2", "tension_1", "tension_2")
+        labels = ("y_b_2", "tension_mid_1", "tension_mid_2")
     else:
         scene, settings = baseline_scene(), example_settings(**ONE_ROPE)
         model = build_model(scene)
