@@ -55,14 +55,14 @@ STRATEGIES = ("none", "passive", "pi", "mpc", "optimal")
 class Comparison(ResultBase):
     """Closed-loop runs of every strategy on the plant (module docstring), on one time grid.
 
-    ``heave`` / ``tension_top`` / ``tension`` / ``speed`` / ``power`` map a strategy to its series
-    (m, N, N, m/s, W) at ``times`` (s); ``metrics`` a strategy to its headline numbers.
+    ``heave`` / ``tension_top`` / ``tension_mid`` (the spring force F_bc, the mid-length tension) / ``speed`` /
+    ``power`` map a strategy to its series (m, N, N, m/s, W) at ``times`` (s); ``metrics`` a strategy to its headline numbers.
     """
 
     times: np.ndarray
     heave: dict
     tension_top: dict
-    tension: dict
+    tension_mid: dict
     speed: dict
     power: dict
     length: dict
