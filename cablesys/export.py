@@ -18,15 +18,18 @@ from .units import output_unit
 CONVENTIONS = {
     "axes": "x horizontal, + to the right (the direction of +current and of wave travel); "
             "y vertical, + downwards from the still surface (Wang 1971, Fig. 1)",
-    "phi": "cable angle from the vertical (rad); the cable's unit tangent is (-sin phi, cos phi), so a positive "
-           "phi puts the lower end at -x of the top",
+    "phi": "angle from the vertical of the section's chord, the straight line from its top end to its body (rad); "
+           "the chord's unit vector is (-sin phi, cos phi), so a positive phi puts the lower end at -x of the top",
     "u": "stretch of the cable beyond its zero-tension length (m)",
-    "tension": "cable tension, + in tension (N); tension_top at the top end, tension_bottom at the body",
+    "tension": "cable tension, + in tension (N), always named by where it is: tension_top at the top end, "
+               "tension_bottom at the body, tension_mid at mid-length (unstretched arc length), element_tension[k] "
+               "per element of a segmented cable",
     "top_motion": "x_s, y_s: prescribed top (ship / crane-tip) motion in the same axes",
 }
 
 LONG_NAMES = {"tension_top": "cable tension at the top (ship) end of the section",
-              "tension_bottom": "cable tension at the body end of the section"}
+              "tension_bottom": "cable tension at the body end of the section",
+              "tension_mid": "cable tension at mid-length of the section"}
 
 
 def si_unit(label: str) -> str:

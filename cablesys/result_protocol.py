@@ -38,13 +38,13 @@ import numpy as np
 # label -> (SI unit, long name): the one table of units and names of labelled quantities.
 QUANTITIES = {
     "time": ("s", "time"), "omega": ("rad/s", "angular frequency"),
-    "phi": ("rad", "cable angle from the vertical"), "phi_rate": ("rad/s", "cable angular rate"),
+    "phi": ("rad", "chord (top end to body) angle from the vertical"), "phi_rate": ("rad/s", "cable angular rate"),
     "u": ("m", "cable stretch beyond its zero-tension length"), "u_rate": ("m/s", "cable stretch rate"),
     "chord_stretch": ("m", "chord (top to body) minus the cable's zero-tension length"),
     "chord_stretch_rate": ("m/s", "rate of the chord length"),
     "x_b": ("m", "body horizontal position"), "x_b_rate": ("m/s", "body horizontal velocity"),
     "y_b": ("m", "body vertical position"), "y_b_rate": ("m/s", "body vertical velocity"),
-    "tension": ("N", "cable tension"), "x_s": ("m", "top (ship) horizontal motion"),
+    "tension_mid": ("N", "cable tension at mid-length"), "x_s": ("m", "top (ship) horizontal motion"),
     "tension_top": ("N", "cable tension at the top end"), "tension_bottom": ("N", "cable tension at the body end"),
     "y_s": ("m", "top (ship) vertical motion"),
     "phi_z": ("rad", "cable angle out of the x-y plane"), "phi_z_rate": ("rad/s", "out-of-plane angular rate"),
@@ -55,7 +55,7 @@ UNITS = {k: v[0] for k, v in QUANTITIES.items()}
 
 
 def _base(label: str) -> tuple[str, str]:
-    """('phi', '2') for 'phi_2'; ('tension', '') for 'tension'."""
+    """('phi', '2') for 'phi_2'; ('tension_mid', '') for 'tension_mid'."""
     head, _, tail = label.rpartition("_")
     return (head, tail) if tail.isdigit() and head else (label, "")
 

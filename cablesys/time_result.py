@@ -163,7 +163,7 @@ class TimeResult(ResultBase):
         switched = {ev.section for ev in self.events} | set(self.initially_slack)
         n = self._n_sections()
         for i in range(n):      # a model without the slack switch (quasi-static, a -inf floor): its tension's samples
-            lbl = "tension" + ("" if n == 1 else f"_{i + 1}")
+            lbl = "tension_mid" + ("" if n == 1 else f"_{i + 1}")
             if i not in switched and lbl in self.data and np.any(self.data[lbl] <= 0.0):
                 out[("section", i)] = st.flagged_intervals(t, np.asarray(self.data[lbl]) <= 0.0)
         return out

@@ -35,7 +35,7 @@ from cablesys.scene import TopMotion, dale_scene, load_scene
 from cablesys.time_domain import IntegratorSettings, Simulator, initial_state
 
 DATA = Path(cablesys.__file__).resolve().parent / "data"
-KEYS = ("tension", "tension_top", "tension_bottom", "x_b", "y_b", "u_rate")
+KEYS = ("tension_mid", "tension_top", "tension_bottom", "x_b", "y_b", "u_rate")
 
 
 def scenes(quick: bool) -> list:
@@ -103,7 +103,7 @@ def plot(path, results):
     n = len(results)
     fig, axes = plt.subplots(1, n, figsize=(max(5.6 * n, 7.0), 5.0), squeeze=False)
     for ax, res in zip(axes[0], results):
-        key = "tension" if "tension" in res["ranges"] else "tension_top"
+        key = "tension_mid" if "tension_mid" in res["ranges"] else "tension_top"
         for r in res["rows"]:
             if not r["success"]:
                 continue

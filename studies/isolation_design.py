@@ -72,7 +72,7 @@ def time_domain(scene, top, duration):
     n = scene.n_sections
     lbl = "y_b" if n == 1 else f"y_b_{n}"
     keep = res.time >= TRANSIENT_S
-    tens = [res["tension" if n == 1 else f"tension_{i + 1}"][keep] for i in range(n)]
+    tens = [res["tension_mid" if n == 1 else f"tension_mid_{i + 1}"][keep] for i in range(n)]
     return {"success": res.success, "message": res.message, "std_y_b_m": float(np.std(res[lbl][keep])),
             "significant_y_b_m": 2 * float(np.std(res[lbl][keep])), "slack_events": len(res.events),
             "min_tension_N": [float(t.min()) for t in tens], "max_tension_N": [float(t.max()) for t in tens],
@@ -166,7 +166,7 @@ def main(argv=None) -> int:
     top, sea_std = sea_realization(settings, 120 if args.quick else 300, seed=7)
     td_base, r_base = time_domain(base, top, duration)
     td_opt, r_opt = time_domain(opt, top, duration)
-    plot_time({"baseline": (r_base, "y_b", "tension"), "dual, optimized": (r_opt, "y_b_2", "tension_1")},
+    plot_time({"baseline": (r_base, "y_b", "tension_top"), "dual, optimized": (r_opt, "y_b_2", "tension_top_1")},
               args.out / "isolation_time_domain.png")
     td_db = 20 * np.log10(td_opt["std_y_b_m"] / td_base["std_y_b_m"])
     factor_ratio = 10 ** ((td_db - reduction_db) / 20)

@@ -106,7 +106,8 @@ def analyse(scene, omega_meas, tag, out: Path, quick: bool) -> dict:
     raos = {"exact linearization": r_exact, f"describing function, x only, a = {a:.3g} m": h_x.rao(label="x_s"),
             f"describing function, circular, a = {a:.3g} m": h_circ.rao(label="x_s")}
     plot_rao_bode(raos, "x_b", "x_s", natural, out / f"{tag}_rao_x_b.png", title=f"{scene.name}: x_b RAO")
-    plot_rao_bode(raos, "tension", "x_s", natural, out / f"{tag}_rao_tension.png", title=f"{scene.name}: tension RAO")
+    plot_rao_bode(raos, "tension_mid", "x_s", natural, out / f"{tag}_rao_tension.png",
+                  title=f"{scene.name}: mid-length tension RAO")
     plot_modes(md, lin, out / f"{tag}_modes.png", title=f"{scene.name}: modes")     # about the real rest shape
 
     # nonlinear RAO: periodic solve along frequency (continuation) vs describing function
@@ -185,8 +186,8 @@ def analyse(scene, omega_meas, tag, out: Path, quick: bool) -> dict:
                       "exact_x_b_per_x_s": {"omega_rad_s": r_exact.peak("x_b", "x_s")[0], "note": "undamped: unbounded"}},
         "sea_state": {"hs_m": 2 * a, "tp_s": 2 * np.pi / w_n, "gamma": 3.3,
                       "significant_amplitude_x_b_m": st.significant_amplitude("x_b"),
-                      "significant_amplitude_tension_N": st.significant_amplitude("tension"),
-                      "mean_tension_N": float(st.output_mean[model.output_labels.index("tension")]),
+                      "significant_amplitude_tension_mid_N": st.significant_amplitude("tension_mid"),
+                      "mean_tension_mid_N": float(st.output_mean[model.output_labels.index("tension_mid")]),
                       "slack_probability": st.slack_probability(), "iterations": st.iterations,
                       "converged": st.converged},
         "small_amplitude": small,

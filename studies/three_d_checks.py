@@ -64,7 +64,7 @@ from cablesys.time_domain.run import simulate  # noqa: E402
 
 NOT_BUILT = ("chain_out_of_plane_mode_rel_err", "span_out_of_plane_vs_irvine_rel_err", "rigid_body_momentum_drift_rel",
              "turning_tow_steady_vs_time_domain_rel_err", "towed_linear_vs_theory_max_rel_err", "towed_sea_trials")
-PLANAR_OUTPUTS = ("phi", "phi_rate", "u", "u_rate", "x_b", "x_b_rate", "y_b", "y_b_rate", "tension",
+PLANAR_OUTPUTS = ("phi", "phi_rate", "u", "u_rate", "x_b", "x_b_rate", "y_b", "y_b_rate", "tension_mid",
                   "tension_bottom", "tension_top")
 
 
@@ -239,7 +239,7 @@ def rotation_invariance(quick: bool, alpha: float = math.radians(35.0)) -> dict:
     p, pr = m.parameters(sc), mt.parameters(sr)
     lab = m.output_labels
     vec = lambda y, name: np.array([y[lab.index(f"{ax}{name}")] for ax in ("x_b", "y_b", "z_b")])
-    scalars = [lab.index(n) for n in ("u", "u_rate", "tension", "tension_bottom", "tension_top")]
+    scalars = [lab.index(n) for n in ("u", "u_rate", "tension_mid", "tension_bottom", "tension_top")]
     rng = np.random.default_rng(3)
     worst = worst_rel = 0.0          # vectors (m, m/s, top e): absolute; scalars (u, tensions, u''): relative
     for _ in range(4 if quick else 20):
@@ -267,7 +267,7 @@ def rotation_invariance(quick: bool, alpha: float = math.radians(35.0)) -> dict:
     pos_r = np.vstack([np.asarray(rr[n]) for n in ("x_b", "y_b", "z_b")])
     run_pos = float(np.max(np.abs(np.array([rotate(alpha, c) for c in pos.T]).T - pos_r)))
     run_t = max(float(np.max(np.abs(np.asarray(r[n]) - np.asarray(rr[n])) / np.max(np.abs(np.asarray(r[n])))))
-                for n in ("tension", "tension_top", "tension_bottom"))
+                for n in ("tension_mid", "tension_top", "tension_bottom"))
     return {"equations_max_abs": worst, "equations_scalars_max_rel": worst_rel, "run_position_max_abs_m": run_pos, "run_tension_max_rel": run_t,
             "alpha_deg": math.degrees(alpha), "run_rtol": 1e-12,
             "body_excursion_m": float(np.max(np.ptp(pos, axis=1)))}
@@ -315,7 +315,7 @@ def conical_pendulum(quick: bool, alpha_deg=(15.0, 30.0, 50.0), omega_factor: fl
         wander = float(np.ptp(rad) / np.mean(rad))
         # the cone's tension, T = W_b / cos(alpha) at both ends of the massless cable and as k u
         t_cone = sc.body.weight / math.cos(alpha)
-        t_err = max(float(np.max(np.abs(np.asarray(r[n]) / t_cone - 1.0))) for n in ("tension", "tension_top", "tension_bottom"))
+        t_err = max(float(np.max(np.abs(np.asarray(r[n]) / t_cone - 1.0))) for n in ("tension_mid", "tension_top", "tension_bottom"))
         out[f"{a:g}"] = {"omega_closed_form": omega, "omega_measured": float(abs(w_meas)), "rel_err_omega2": float(err),
                          "radius_rel_wander": wander, "tension_rel_err": t_err, "cone_angle_deg_mean": math.degrees(float(np.mean(cone))),
                          "revolutions": n_rev}

@@ -97,7 +97,7 @@ def test_rigid_short_lower_section_reproduces_the_2dof_model_of_the_combined_bod
     w0, w1 = md_ref.omega_undamped
     cases = ((("x_b", "x_b_2"), np.array([0.3, 0.7, 3.0]) * w0),
              (("y_b", "y_b_2"), np.array([0.3, 3.0, 0.5 * w1 / w0]) * w0),
-             (("tension", "tension_1"), np.array([0.3, 3.0, 0.5 * w1 / w0]) * w0))
+             (("tension_mid", "tension_mid_1"), np.array([0.3, 3.0, 0.5 * w1 / w0]) * w0))
     for (out_ref, out), w in cases:
         a = lin_ref.transfer(w)[1][:, lin_ref.output_labels.index(out_ref), :2]
         b = lin.transfer(w)[1][:, lin.output_labels.index(out), :2]
@@ -117,7 +117,7 @@ def test_hanging_chain_tensions_equal_the_weights_below(angles):
     for i in reversed(range(3)):
         c, b = secs[i].cable, secs[i].body
         # eq. 49b: k u = W_b + W_c/2 for one section; the bodies and cables below add their weight
-        assert ss.outputs[f"tension_{i + 1}"] == pytest.approx(below + b.weight + 0.5 * c.total_weight, rel=1e-9)
+        assert ss.outputs[f"tension_mid_{i + 1}"] == pytest.approx(below + b.weight + 0.5 * c.total_weight, rel=1e-9)
         assert ss.outputs[f"phi_{i + 1}"] == pytest.approx(0.0, abs=1e-12)
         below += b.weight + c.total_weight
     depth = sum(s.cable.length_zero for s in secs) + sum(ss.q[[j for j, l in enumerate(model.q_labels) if l.startswith("u")]])
@@ -163,7 +163,7 @@ def test_shared_and_per_section_agree_in_pure_heave():
     for r in res.values():
         assert r.success and not r.events
     assert np.ptp(res["shared"]["y_b_2"]) > 0.5
-    for lbl in ("y_b_1", "y_b_2", "tension_1", "tension_2", "u_2"):
+    for lbl in ("y_b_1", "y_b_2", "tension_mid_1", "tension_mid_2", "u_2"):
         np.testing.assert_allclose(res["per_section"][lbl], res["shared"][lbl], rtol=1e-6,
                                    atol=1e-6 * np.abs(res["shared"][lbl]).max())
     assert np.abs(res["per_section"]["phi_2"]).max() < 1e-9

@@ -38,7 +38,7 @@ def test_fixed_length_is_wangs_model(rov):
         np.testing.assert_allclose(a[:4], b, rtol=1e-10, atol=1e-9)
         yw = dict(zip(WINCH_OUTPUTS, np.array(wm.outputs(xw, [0, 0], t, p, np.zeros(4))).ravel()))
         yb = dict(zip(m.output_labels, np.array(m.outputs(np.r_[q, qd], m.top(t, p), p)).ravel()))
-        for mine, wang in (("heave", "y_b"), ("tension", "tension"), ("tension_top", "tension_top"),
+        for mine, wang in (("heave", "y_b"), ("tension_mid", "tension_mid"), ("tension_top", "tension_top"),
                            ("tension_bottom", "tension_bottom")):
             assert yw[mine] == pytest.approx(yb[wang], rel=1e-9, abs=1e-6)
 
@@ -75,7 +75,7 @@ def test_rest_state_holds_the_weight(rov):
     y = dict(zip(WINCH_OUTPUTS, np.array(wm.outputs(x, [0, 0], 0.0, p, np.zeros(4))).ravel()))
     lay = wm.layout
     W_b, W_c = p[lay.index("body.weight")], p[lay.index("cable.weight_per_length")] * p[lay.index("cable.length")]
-    assert abs(y["tension"] * np.cos(x[0])) == pytest.approx(W_b + W_c / 2, rel=2e-3)   # current: the angle
+    assert abs(y["tension_mid"] * np.cos(x[0])) == pytest.approx(W_b + W_c / 2, rel=2e-3)   # current: the angle
 
 
 def test_passive_compensator_is_a_spring_in_series(rov):

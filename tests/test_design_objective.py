@@ -44,13 +44,13 @@ def test_objective_equals_the_stochastic_linearization(which, dual):
     spectral sums reproduce cablesys.linear.stochastic (only its small mean-drag shift of q_0 differs)."""
     if which == "dual":
         scene, settings, model, p, dJ, st = dual
-        labels = ("y_b_2", "tension_1", "tension_2")
+        labels = ("y_b_2", "tension_mid_1", "tension_mid_2")
     else:
         scene, settings = baseline_scene(), example_settings(**ONE_ROPE)
         model = build_model(scene)
         p = model.parameters(scene)
         dJ, st = equivalent_jacobian_shift(model, p, settings, n_log2=7)
-        labels = ("y_b", "tension")
+        labels = ("y_b", "tension_mid")
     q0 = steady_state(model, p).q
     omega, w_s, w_band = sea_weights(settings)
     obj, _, sigma, mean_t, strain = (np.array(a).ravel() for a in

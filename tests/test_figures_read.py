@@ -74,7 +74,7 @@ def _assert_no_offset(fig):
 
 
 def _run(t, *, tension_top, tension_bottom, phi, u, x_b, y_b, x_s=None, y_s=None, nodes=None, **kw):
-    data = {"phi": phi, "u": u, "x_b": x_b, "y_b": y_b, "tension": 0.5 * (tension_top + tension_bottom),
+    data = {"phi": phi, "u": u, "x_b": x_b, "y_b": y_b, "tension_mid": 0.5 * (tension_top + tension_bottom),
             "tension_top": tension_top, "tension_bottom": tension_bottom,
             "x_s": np.zeros_like(t) if x_s is None else x_s, "y_s": np.zeros_like(t) if y_s is None else y_s}
     for k, (x, y) in enumerate(nodes or ()):

@@ -315,7 +315,7 @@ def test_a_quasi_static_segmented_run_whose_middle_goes_slack_is_rejected():
 
 
 def test_auto_runs_a_chain_of_sections():
-    """Two Dale sections in a chain (outputs labelled tension_1, x_b_2, ...): the choice's linear response and
+    """Two Dale sections in a chain (outputs labelled tension_mid_1, x_b_2, ...): the choice's linear response and
     the a-posteriori checks read every section's tensions and bodies, and the error metrics compare them all."""
     import dataclasses
     d = dale_scene(duration=4.0)

@@ -2,6 +2,8 @@
 
 import math
 
+import numpy as np
+
 import pytest
 
 from cablesys.linear.linearization import linearize
@@ -17,7 +19,7 @@ def test_hanging_tensions_are_hand_statics(dale):
     w_b, w_c = scene.body.weight, scene.cable.total_weight
     assert y["tension_top"] == pytest.approx(w_b + w_c, rel=1e-10)
     assert y["tension_bottom"] == pytest.approx(w_b, rel=1e-10)
-    assert y["tension"] == pytest.approx(w_b + 0.5 * w_c, rel=1e-10)
+    assert y["tension_mid"] == pytest.approx(w_b + 0.5 * w_c, rel=1e-10)
 
 
 def test_slow_heave_tension_is_weight_plus_inertia(dale):
@@ -83,3 +85,30 @@ def test_top_tension_matches_the_segmented_cable_quasi_statically(current, monke
     assert b_w == pytest.approx(b_s, rel=1e-9)
     if current == 0:
         assert a_w == pytest.approx(a_s, rel=1e-6)
+
+
+@pytest.mark.parametrize("kind, n", [("segmented", 4), ("segmented", 5), ("quasi-static", 1), ("quasi-static", 4),
+                                     ("winch", 1)])
+def test_every_model_names_its_hanging_tensions_alike(kind, n):
+    """Hanging at rest in still water every model's tension_top is the submerged weight of cable and body,
+    tension_bottom the body's and tension_mid the body's plus half the cable's (statics of the hanging line,
+    Wang 1971 eq. 49b): the segmented cable's mid-length interpolation (N even: the two elements at the
+    middle node; N odd: the middle element) and the quasi-static reductions mean the same as Wang's."""
+    from cablesys.model.quasistatic import build_quasistatic
+    from cablesys.model.winch import WINCH_OUTPUTS, build_winch_model, rest_state
+    from cablesys.statics.steady import steady_state as rest
+    scene = dale_scene().replace_section(0, cable={"segments": n})
+    w_b, w_c = scene.body.weight, scene.cable.total_weight
+    if kind == "winch":
+        wm = build_winch_model(scene)
+        p = wm.parameters(scene)
+        for axis in "xy":                                    # the top held still
+            p[wm.layout.index(f"top_motion.{axis}[0].amplitude")] = 0.0
+        y = dict(zip(WINCH_OUTPUTS, np.array(wm.outputs(rest_state(wm, p), [0, 0], 0.0, p, np.zeros(4))).ravel()))
+    else:
+        model = build_model(scene) if kind == "segmented" else build_quasistatic(scene)
+        y = rest(model, model.parameters(scene)).outputs
+        assert "tension" not in model.output_labels          # a tension is named by where it is
+    assert y["tension_top"] == pytest.approx(w_b + w_c, rel=1e-6)
+    assert y["tension_bottom"] == pytest.approx(w_b, rel=1e-6)
+    assert y["tension_mid"] == pytest.approx(w_b + 0.5 * w_c, rel=1e-6)

@@ -46,7 +46,7 @@ def test_state_space_matches_second_order_and_tension_is_weights(dale):
     lin = linearize(m, p)
     w = np.linspace(0.1, 5, 7)
     assert np.allclose(lin.transfer_state_space(w), lin.transfer(w)[1], rtol=1e-10, atol=1e-12)
-    T0 = lin.y0[m.output_labels.index("tension")]
+    T0 = lin.y0[m.output_labels.index("tension_mid")]
     assert T0 == pytest.approx(s.body.weight + s.cable.total_weight / 2, rel=1e-9)
     r = rao(lin, w)
     assert r.to_xarray().dims == ("omega", "output", "input")

@@ -24,7 +24,7 @@ def test_current_deflected_equilibrium_is_where_a_long_run_settles(current, spee
     assert r.success
     assert r["phi"][-1] == pytest.approx(ss.q[0], abs=1e-6)
     assert r["u"][-1] == pytest.approx(ss.q[1], rel=1e-6)
-    assert r["tension"][-1] == pytest.approx(ss.outputs["tension"], rel=1e-6)
+    assert r["tension_mid"][-1] == pytest.approx(ss.outputs["tension_mid"], rel=1e-6)
     # the body drifts downstream: x_b > 0 for a current in +x, x_b < 0 when towed in +x
     assert np.sign(ss.outputs["x_b"]) == (1 if speed == 0 else -1)
 
@@ -35,7 +35,7 @@ def test_hanging_tension_equals_submerged_weights():
     model = build_model(scene)
     ss = steady_state(model, model.parameters(scene))
     assert ss.q[0] == 0.0
-    assert ss.outputs["tension"] == pytest.approx(scene.body.weight + 0.5 * scene.cable.total_weight, rel=1e-12)
+    assert ss.outputs["tension_mid"] == pytest.approx(scene.body.weight + 0.5 * scene.cable.total_weight, rel=1e-12)
     assert ss.outputs["y_b"] == pytest.approx(scene.cable.length_zero + ss.q[1], rel=1e-14)
 
 

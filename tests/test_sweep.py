@@ -18,7 +18,7 @@ AE = (5.0 * U.LBF, 500.0 * U.LBF)
 FREQ = {"top_motion.x[0].frequency": [r * OMEGA_N_MEASURED for r in RATIOS],
         "top_motion.y[0].frequency": [r * OMEGA_N_MEASURED for r in RATIOS]}
 ZIP = [("top_motion.x[0].frequency", "top_motion.y[0].frequency")]
-METRICS = ["tension_max_N", "tension_min_N", "amplitude_x_b", "amplitude_y_b"]
+METRICS = ["tension_mid_max_N", "tension_mid_min_N", "amplitude_x_b", "amplitude_y_b"]
 
 
 def base():
@@ -31,7 +31,7 @@ def one_by_one(ae, ratio):
     r = cablesys.simulate(scene)        # the door the sweep runs: the scene's numerics.model (as built here)
     w = r.window_mask()                 # the run's one statistics window, which the sweep's amplitudes use too
     half = lambda y: 0.5 * (np.max(y[w]) - np.min(y[w]))
-    return {"tension_max_N": np.max(r["tension"]), "tension_min_N": np.min(r["tension"]),
+    return {"tension_mid_max_N": np.max(r["tension_mid"]), "tension_mid_min_N": np.min(r["tension_mid"]),
             "amplitude_x_b": half(np.asarray(r["x_b"])), "amplitude_y_b": half(np.asarray(r["y_b"]))}
 
 
@@ -41,7 +41,7 @@ def test_sweep_equals_the_cases_run_one_by_one():
     assert ds.attrs["backend"] == "processes"
     assert ds["status"].dims == ("cable.ae", "top_motion.x[0].frequency") and ds["status"].shape == (2, 2)
     assert ds["cable.ae"].attrs["units"] == "N" and ds["top_motion.x[0].frequency"].attrs["units"] == "rad/s"
-    assert ds["tension_max_N"].attrs["units"] == "N" and ds["amplitude_x_b"].attrs["units"] == "m"
+    assert ds["tension_mid_max_N"].attrs["units"] == "N" and ds["amplitude_x_b"].attrs["units"] == "m"
     assert (ds["status"] == "ok").all()
     for i, ae in enumerate(AE):
         for j, ratio in enumerate(RATIOS):
@@ -56,11 +56,11 @@ def test_one_model_per_structure_values_only_through_p(monkeypatch):
     n0 = len(cache.rungs)                            # the run analysis builds through the ladder's cache
     scene = dale_scene(duration=1.0).with_numerics(model="as-built")
     ds = cablesys.sweep(scene, {"cable.ae": [20.0, 40.0, 80.0], "body.weight": [0.2, 0.3]},
-                        "run", metrics=["tension_max_N"], workers=1, progress=False)
+                        "run", metrics=["tension_mid_max_N"], workers=1, progress=False)
     assert (ds["status"] == "ok").all() and len(cache.rungs) - n0 <= 1
     n1 = len(cache.rungs)
     ds = cablesys.sweep(scene, {"numerics.drag_segments": [3, 5, 7]}, "run",
-                        metrics=["tension_max_N"], workers=1, progress=False)
+                        metrics=["tension_mid_max_N"], workers=1, progress=False)
     assert (ds["status"] == "ok").all() and len(cache.rungs) - n1 == 3      # the structure changes: one model each
 
 
@@ -72,7 +72,7 @@ def test_failures_are_recorded_and_the_sweep_completes():
     ds = cablesys.sweep(scene, {"cable.ae": [22.0, 1e5], "body.weight": [0.11, -1.0]}, "run",
                         metrics=["tension_*"], workers=1, progress=False)
     status, msg = ds["status"].values, ds["message"].values
-    assert status[0, 0] == "ok" and np.isfinite(float(ds["tension_max_N"][0, 0]))
+    assert status[0, 0] == "ok" and np.isfinite(float(ds["tension_mid_max_N"][0, 0]))
     assert status[1, 0] == "failed" and "rk failed" in msg[1, 0] and "stability limit" in msg[1, 0]
     assert list(status[:, 1]) == ["error", "error"]
     assert all("body.weight" in m and "tension_floor" in m for m in msg[:, 1])
@@ -102,7 +102,7 @@ def _interrupt_after(n, monkeypatch):
 
 def test_an_interrupted_sweep_resumes_with_the_missing_cases_only(tmp_path, monkeypatch):
     scene, vary = dale_scene(duration=1.0), {"cable.ae": [20.0, 40.0, 80.0], "body.weight": [0.2, 0.3]}
-    kw = {"metrics": ["tension_max_N"], "workers": 1, "progress": False, "out": tmp_path, "chunk_size": 1}
+    kw = {"metrics": ["tension_mid_max_N"], "workers": 1, "progress": False, "out": tmp_path, "chunk_size": 1}
     _interrupt_after(4, monkeypatch)
     with pytest.raises(KeyboardInterrupt):
         cablesys.sweep(scene, vary, "run", **kw)
@@ -111,8 +111,8 @@ def test_an_interrupted_sweep_resumes_with_the_missing_cases_only(tmp_path, monk
     (tmp_path / "cases" / "chunk-99999999-damaged.nc").write_bytes(b"CDF\x01 truncated")   # a torn write
     ds = cablesys.sweep(scene, vary, "run", **kw)
     assert ds.attrs["n_computed"] == 2 and (ds["status"] == "ok").all()
-    fresh = cablesys.sweep(scene, vary, "run", metrics=["tension_max_N"], workers=1, progress=False)
-    np.testing.assert_array_equal(ds["tension_max_N"].values, fresh["tension_max_N"].values)
+    fresh = cablesys.sweep(scene, vary, "run", metrics=["tension_mid_max_N"], workers=1, progress=False)
+    np.testing.assert_array_equal(ds["tension_mid_max_N"].values, fresh["tension_mid_max_N"].values)
     again = cablesys.sweep(scene, vary, "run", **kw)
     assert again.attrs["n_computed"] == 0
     with pytest.raises(ParameterError, match="different sweep"):

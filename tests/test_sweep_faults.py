@@ -37,7 +37,7 @@ def spy(monkeypatch):
 
     def run(scene, options, cache):
         calls.append(scene)
-        return {"tension_max_N": 1.0}, True, ""
+        return {"tension_mid_max_N": 1.0}, True, ""
     monkeypatch.setitem(analyses.ANALYSIS, "run", run)
     return calls
 
@@ -110,7 +110,7 @@ def test_parameter_columns_carry_units_and_long_names(tmp_path, capsys, spy):
     assert ds["cable.ae"].attrs["units"] == "N" and ds[FX].attrs["units"] == "rad/s"
     assert ds["cable.ae"].attrs["long_name"].endswith("(cable.ae)") and len(ds["cable.ae"].attrs["long_name"]) > 12
     head = (out / "sweep.csv").read_text().splitlines()[0].split(",")
-    assert head[:3] == ["cable.ae [N]", f"{FX} [rad/s]", "status"] and "tension_max_N [N]" in head
+    assert head[:3] == ["cable.ae [N]", f"{FX} [rad/s]", "status"] and "tension_mid_max_N [N]" in head
 
 
 # --------------------------------------------------------------------------------- processes
@@ -145,7 +145,7 @@ def _start_sweep(tmp_path) -> tuple:
             "from cablesys.cli import main; sys.exit(main(sys.argv[1:]))")
     env = dict(os.environ, CABLESYS_COMPILE="0", PYTHONPATH=str(ROOT))
     proc = subprocess.Popen([sys.executable, "-c", code, "sweep", str(scene), "--vary", "cable.ae=10:1000:log:40",
-                             "--metric", "tension_max_N", "--workers", "2", "--out", str(out), "--no-plots"],
+                             "--metric", "tension_mid_max_N", "--workers", "2", "--out", str(out), "--no-plots"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
                             start_new_session=True)
     return proc, out

@@ -119,5 +119,5 @@ def test_steady_state_in_a_current_at_a_heading_is_the_planar_one_turned():
     x, _, z = checks.rotate(math.radians(heading), [s2["x_b"], 0.0, 0.0])
     assert s3["x_b"] == pytest.approx(x, abs=1e-9) and s3["z_b"] == pytest.approx(z, abs=1e-9)
     assert s3["y_b"] == pytest.approx(s2["y_b"], abs=1e-9)
-    for name in ("tension", "tension_top", "tension_bottom"):
+    for name in ("tension_mid", "tension_top", "tension_bottom"):
         assert s3[name] == pytest.approx(s2[name], rel=1e-10)

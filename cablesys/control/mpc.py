@@ -55,14 +55,14 @@ STRATEGIES = ("none", "passive", "pi", "mpc", "optimal")
 class Comparison(ResultBase):
     """Closed-loop runs of every strategy on the plant (module docstring), on one time grid.
 
-    ``heave`` / ``tension_top`` / ``tension`` / ``speed`` / ``power`` map a strategy to its series
-    (m, N, N, m/s, W) at ``times`` (s); ``metrics`` a strategy to its headline numbers.
+    ``heave`` / ``tension_top`` / ``tension_mid`` (the spring force F_bc, the mid-length tension) / ``speed`` /
+    ``power`` map a strategy to its series (m, N, N, m/s, W) at ``times`` (s); ``metrics`` a strategy to its headline numbers.
     """
 
     times: np.ndarray
     heave: dict
     tension_top: dict
-    tension: dict
+    tension_mid: dict
     speed: dict
     power: dict
     length: dict
@@ -74,7 +74,7 @@ class Comparison(ResultBase):
 
     VARIABLES: ClassVar[dict] = {"heave": ("m", "body heave from rest (down +)"),
                                  "tension_top": ("N", "tension at the sheave"),
-                                 "tension": ("N", "spring force F_bc (Wang 1971 eq. 54)"),
+                                 "tension_mid": ("N", "tension at mid-length: the spring force F_bc (Wang 1971 eq. 54)"),
                                  "speed": ("m/s", "payout rate"), "power": ("W", "winch power T_top w"),
                                  "length": ("m", "unstretched length in the water"), "strategy": ("1", "strategy")}
 
@@ -85,7 +85,7 @@ class Comparison(ResultBase):
         import xarray as xr
         names = [s for s in STRATEGIES if s in self.heave]
         data = {k: (("strategy", "time"), np.array([getattr(self, k)[s] for s in names]))
-                for k in ("heave", "tension_top", "tension", "speed", "power", "length")}
+                for k in ("heave", "tension_top", "tension_mid", "speed", "power", "length")}
         return xr.Dataset(data, coords={"strategy": names, "time": self.times})
 
 
@@ -96,8 +96,8 @@ def _metrics(problem, T, Y, heave0, mask, tens_floor):
     return {"heave_rms_m": float(np.sqrt(np.mean(h[mask] ** 2))),
             "heave_reduction_db": heave_reduction_db(h, heave0, mask),
             "tension_max_n": float(np.max(Y[:, oi("tension_top")])),
-            "tension_min_n": float(np.min(Y[:, oi("tension")])),
-            "slack_time_s": float(np.sum(dt[Y[:, oi("tension")] < tens_floor])),
+            "tension_min_n": float(np.min(Y[:, oi("tension_mid")])),
+            "slack_time_s": float(np.sum(dt[Y[:, oi("tension_mid")] < tens_floor])),
             "power_max_w": float(np.max(np.abs(Y[:, oi("power")]))),
             "speed_max_m_s": float(np.max(np.abs(Y[:, oi("speed")])))}
 
@@ -230,7 +230,7 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
 
     T = dt * np.arange(N + 1)
     mask = statistics_window(T, stats_start)
-    out = {name: {} for name in ("heave", "tension_top", "tension", "speed", "power", "length")}
+    out = {name: {} for name in ("heave", "tension_top", "tension_mid", "speed", "power", "length")}
     metrics = {}
     oi = WINCH_OUTPUTS.index
     Y0 = prob_p.outputs(runs["none"][1], runs["none"][2], T)

@@ -30,7 +30,7 @@ from .limits import WinchLimits
 from .shooting import PathConstraint, ShootingNLP
 
 # rows of the stage function's path outputs g
-G_ROWS = ("power", "tension", "tension_top")
+G_ROWS = ("power", "tension_mid", "tension_top")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -236,7 +236,7 @@ class PayoutResult(ResultBase):
         "heave_uncompensated": ("m", "body heave from rest without compensation"),
         "tension_top": ("N", "cable tension at the sheave"),
         "tension_top_uncompensated": ("N", "cable tension at the sheave without compensation"),
-        "tension": ("N", "spring force F_bc of the cable (Wang 1971 eq. 54)"),
+        "tension_mid": ("N", "tension at mid-length: the spring force F_bc of the cable (Wang 1971 eq. 54)"),
         "length": ("m", "unstretched length in the water"), "speed": ("m/s", "payout rate w"),
         "acceleration": ("m/s^2", "payout acceleration (the control)"), "power": ("W", "winch power T_top w")}
 
@@ -249,7 +249,7 @@ class PayoutResult(ResultBase):
     def to_xarray(self):
         """The trajectories on dimension ``time`` (the control on the interval starts)."""
         import xarray as xr
-        data = {name: ("time", self.output(name)) for name in ("heave", "tension", "tension_top", "length",
+        data = {name: ("time", self.output(name)) for name in ("heave", "tension_mid", "tension_top", "length",
                                                                "speed", "power")}
         data["heave_uncompensated"] = ("time", self.output("heave", False))
         data["tension_top_uncompensated"] = ("time", self.output("tension_top", False))
@@ -289,7 +289,7 @@ def payout_result(problem: HeaveProblem, X, U, *, status: str, violated: str = "
                         uncompensated_heave_rms_m=float(np.sqrt(np.mean(h0[mask] ** 2))),
                         heave_reduction_db=heave_reduction_db(h, h0, mask),
                         tension_max_n=float(np.max(Y[:, oi("tension_top")])),
-                        tension_min_n=float(np.min(Y[:, oi("tension")])),
+                        tension_min_n=float(np.min(Y[:, oi("tension_mid")])),
                         speed_max_m_s=float(np.max(np.abs(Y[:, oi("speed")]))),
                         power_max_w=float(np.max(np.abs(Y[:, oi("power")]))),
                         success=success, message=message, stats=dict(stats or {}))

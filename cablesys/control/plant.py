@@ -62,7 +62,7 @@ def resimulate(problem, result, *, per_interval: int = 4) -> dict:
     viol = {"speed": rel(np.abs(Y[:, oi("speed")]) - lim.speed, lim.speed) if np.isfinite(lim.speed) else 0.0,
             "power": rel(np.abs(Y[:, oi("power")]) - lim.power, lim.power) if np.isfinite(lim.power) else 0.0,
             "working load": rel(Y[:, oi("tension_top")] - problem.working_load, problem.working_load),
-            "tension floor (no slack)": rel(problem.floor - Y[:, oi("tension")], problem.static_tension)}
+            "tension floor (no slack)": rel(problem.floor - Y[:, oi("tension_mid")], problem.static_tension)}
     start = result.times[-1] * 0.2
     h = Y[:, oi("heave")] - problem.heave_rest
     dev = np.max(np.abs(X[::per_interval] - result.states) / problem.scales())

@@ -147,7 +147,7 @@ def response_functions(model: CableModel, n_omega: int) -> ca.Function:
     y0, Jy = fns["out_jac"](xi, p)
     M, C, K = -J[:, b["qdd"]], -J[:, b["qd"]], -J[:, b["q"]]
     F0, F1, F2 = J[:, b["z"]], J[:, b["zd"]], J[:, b["zdd"]]
-    rows = [model.output_index("y_b", n - 1)] + [model.output_index("tension", i) for i in range(n)]
+    rows = [model.output_index("y_b", n - 1)] + [model.output_index("tension_mid", i) for i in range(n)]
     Cq, Cv = Jy[rows, b["q"]], Jy[rows, b["qd"]]
     D0, D1, D2 = Jy[rows, b["z"]], Jy[rows, b["zd"]], Jy[rows, b["zdd"]]
     # one frequency's |Y|^2 as an SX function, built once and inlined at every grid frequency
@@ -160,7 +160,7 @@ def response_functions(model: CableModel, n_omega: int) -> ca.Function:
         var += w_s[k] * mag2
         band_ms += w_band[k] * mag2[0]
     sigma = ca.sqrt(var)
-    mean_t = ca.vertcat(*[y0[model.output_index("tension", i)] for i in range(n)])
+    mean_t = ca.vertcat(*[y0[model.output_index("tension_mid", i)] for i in range(n)])
     strain = []
     for i in range(n):
         l_r, t_r, ae = (p[model.layout.section_index(i, f"cable.{name}")] for name in ("length", "tension_ref", "ae"))

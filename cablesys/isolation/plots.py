@@ -29,7 +29,7 @@ def plot_rao_before_after(model, p_before, p_after, settings, path, *, title: st
     labels = before.output_labels
     y_b = "y_b" if "y_b" in labels else max((o for o in labels if o.startswith("y_b_") and o[4:].isdigit()),
                                                  key=lambda o: int(o[4:]))   # the lowest body
-    tens = next((o for o in ("tension_top", "tension_top_1", "tension", "tension_1") if o in labels),
+    tens = next((o for o in ("tension_top", "tension_top_1", "tension_mid", "tension_mid_1") if o in labels),
                 next(o for o in labels if o.startswith("tension")))
     outputs = outputs or (y_b, tens)
     fig, axes = plt.subplots(len(outputs), 1, figsize=(8, 3.2 * len(outputs)), sharex=True, squeeze=False)

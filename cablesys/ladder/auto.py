@@ -154,7 +154,7 @@ def _went_slack(result, scene: Scene) -> bool:
     """True when the run's least tension (ends, Wang's F_bc, and every element of a segmented cable)
     reached the floor, or the run located a slack event."""
     floor = max(s.cable.tension_floor for s in scene.sections)
-    low = min(float(np.min(result[k])) for k in result.labels if metrics.base_label(k) in ("tension_bottom", "tension"))
+    low = min(float(np.min(result[k])) for k in result.labels if metrics.base_label(k) in ("tension_bottom", "tension_mid"))
     profiles = getattr(result, "profiles", {}) or {}
     if "element_tension" in profiles:         # a segmented cable: an element can slacken between the ends
         low = min(low, float(np.min(profiles["element_tension"])))

@@ -142,10 +142,10 @@ def linear_response(scene: Scene, numbers: SceneNumbers, model=None) -> LinearRe
     sc = with_segments(scene, 1)                 # Wang's straight cable (the wang rung's scene and model)
     model = model or build_model(sc)
     p = model.parameters(sc)
-    # every section's tensions ("tension": Wang's F_bc, the slack switch, eq. 54) and bodies; a chain of
-    # sections labels them tension_2, x_b_2, ... (cablesys.scene.labels.section_suffix)
+    # every section's tensions ("tension_mid": Wang's F_bc, the slack switch, eq. 54) and bodies; a chain of
+    # sections labels them tension_mid_2, x_b_2, ... (cablesys.scene.labels.section_suffix)
     sfx = [section_suffix(scene, i) for i in range(len(scene.sections))]
-    keys = tuple(k + x for x in sfx for k in ("tension_top", "tension_bottom", "tension"))
+    keys = tuple(k + x for x in sfx for k in ("tension_top", "tension_bottom", "tension_mid"))
     bodies = tuple(k + x for x in sfx for k in ("x_b", "y_b"))
     stretches = tuple("u" + x for x in sfx)
     if numbers.single_frequency and not scene.environment.waves:

@@ -87,7 +87,7 @@ class StochasticResponse(ResultBase):
     def std(self, output: str) -> float:
         return float(self.output_std[self.output_labels.index(output)])
 
-    def slack_probability(self, output: str = "tension") -> float:
+    def slack_probability(self, output: str = "tension_mid") -> float:
         """P(tension < TENS) under the Gaussian assumption."""
         i = self.output_labels.index(output)
         return slack_probability(self.output_mean[i], self.output_std[i], self.tension_floor)

@@ -60,8 +60,8 @@ def _end_forces(momenta, ext, M, f, q, qd, z, zd, zdd):
     - on the body: M_bv a_b - W_b - D_b - F_below (eq. 16, 32-35), F_below the force of the next
       section's cable on its top point (this body; zero for the lowest): the cable tension at the
       body end. Hanging at rest it is W_b plus everything hanging below the body, whereas the
-      spring force F_bc = k u (eq. 54, the ``tension`` output) adds W_c/2 to it: the uniform
-      stretch makes k u the mean tension of the cable;
+      spring force F_bc = k u (eq. 54, the ``tension_mid`` output) adds W_c/2 to it: the uniform
+      stretch makes k u the mean tension of the cable, at rest the tension at mid-length;
     - on the top point of section i: sum over the cables and bodies below of W + D - dP/dt, with
       weights in water (eq. 12, 15), drag (eq. 32-35, 42, 44) and momenta of the virtual masses of
       the kinetic energy (eq. 16, 22-25). Spring, Voigt damper and slack rule (eq. 46, 54) are
@@ -144,6 +144,8 @@ def _build(scene: Scene) -> CableModel:
         K, V = K + T["K"], V + T["V"]
         forces += T["point_forces"]
         Q_direct += ca.jacobian(u, q).T * T["Q_u"]      # eq. 46 acts on this section's stretch
+        # phi: Wang's cable is straight (body at top + l e_t, eq. 10), so its angle is the chord's angle;
+        # tension_mid: the spring force F_bc with the slack floor (eq. 46, 54), the tension of the uniform stretch
         out.append([phi, phid, u, ud, T["r_b"][0], T["v_b"][0], T["r_b"][1] - depth0, T["v_b"][1], T["tension"]])
         if space:
             out[-1] += [theta[0], thetad[0], T["r_b"][2], T["v_b"][2]]

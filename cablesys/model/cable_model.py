@@ -174,7 +174,7 @@ class CableModel:
         return self.cache.get(key, build)
 
     def label(self, name: str, i: int) -> str:
-        """Coordinate or output label of section ``i``: ``tension`` (one section) or ``tension_2``."""
+        """Coordinate or output label of section ``i``: ``tension_mid`` (one section) or ``tension_mid_2``."""
         return f"{name}{section_suffix(self.n_sections, i)}"
 
     def output_index(self, name: str, i: int) -> int:

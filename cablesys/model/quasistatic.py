@@ -252,7 +252,7 @@ def axial_frequencies(scene: Scene) -> tuple:
 def least_tension_margin(result, scene: Scene) -> float:
     """The least tension above the floor over a quasi-static run (N): min over time of every
     element's tension (``element_tension[k]``, the constraint force of the segmented reduction),
-    Wang's F_bc (``tension``) and the body-end force, minus the largest tension floor TENS (eq. 54).
+    Wang's F_bc (``tension_mid``) and the body-end force, minus the largest tension floor TENS (eq. 54).
     A quasi-static stretch cannot go slack, so a margin <= 0 says the run left the model's validity
     (run the segmented rung instead).
 
@@ -269,7 +269,7 @@ def least_tension_margin(result, scene: Scene) -> float:
         min(T) - TENS in N.
     """
     floor = max(s.cable.tension_floor for s in scene.sections)
-    low = [float(np.min(result[k])) for k in ("tension_bottom", "tension") if k in result.labels]
+    low = [float(np.min(result[k])) for k in ("tension_bottom", "tension_mid") if k in result.labels]
     profiles = getattr(result, "profiles", {}) or {}
     if "element_tension" in profiles:
         low.append(float(np.min(profiles["element_tension"])))

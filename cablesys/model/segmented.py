@@ -109,6 +109,20 @@ def drag_points(scene: Scene, n_el: int) -> int:
     return max(1, round(scene.numerics.drag_segments / n_el))
 
 
+def mid_tension(els):
+    """The section's tension at mid-length (N), s = l_0 / 2 in unstretched arc length, from its N element
+    tensions T_k (k = 0.. top to bottom), each taken at its element's mid-point s_k = (k + 1/2) l_0 / N:
+    linear interpolation in s between the two element mid-points around l_0 / 2, which for N even is the
+    mean (T_{N/2-1} + T_{N/2}) / 2 of the elements meeting at the middle node and for N odd the middle
+    element's tension T_{(N-1)/2}. Hanging at rest the element tensions are W_b + w (l_0 - s_k) with w the
+    weight in water per unstretched length (Wang 1971 eq. 12, weight lumped half to each node), linear in
+    s, so the interpolation is exact: W_b + W_c / 2."""
+    n = len(els)
+    if n % 2:
+        return els[n // 2]["tension"]
+    return 0.5 * (els[n // 2 - 1]["tension"] + els[n // 2]["tension"])
+
+
 def build_segmented_model(scene: Scene) -> SegmentedModel:
     """Build the segmented-cable functions for ``scene`` (elements per section: ``cable.segments``).
 
@@ -248,7 +262,7 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
         top_force = tuple(first["tension"] * first["et"][c] + lt[c] for c in range(2))
         lb = lump_force(last, "b", acc_nodes[s["body"]])
         bottom_force = tuple(-last["tension"] * last["et"][c] + lb[c] for c in range(2))
-        out += [phi, phid, u, ud, rb[0], vb[0], rb[1], vb[1], last["tension"], norm(bottom_force), norm(top_force),
+        out += [phi, phid, u, ud, rb[0], vb[0], rb[1], vb[1], mid_tension(els), norm(bottom_force), norm(top_force),
                 c_u, c_ud]
         labels += [f"{name}{sfx(i)}" for name in OUTPUT_NAMES + CHORD_NAMES]
     # profiles (element k top to bottom over all sections; node j = 0 the top) and their arc lengths

@@ -51,7 +51,7 @@ from .top_motion import top_motion_function
 
 # the compensator parameters c = (m_p, k_p, c_p, F_pre) in that order
 COMPENSATOR_PARAMETERS = ("mass", "stiffness", "damping", "precharge")
-WINCH_OUTPUTS = ("heave", "heave_rate", "x_b", "tension", "tension_top", "tension_bottom",
+WINCH_OUTPUTS = ("heave", "heave_rate", "x_b", "tension_mid", "tension_top", "tension_bottom",
                  "stretch", "length", "speed", "acceleration", "power", "stroke")
 
 
@@ -100,8 +100,9 @@ class WinchModel:
     the compensator parameters (:data:`COMPENSATOR_PARAMETERS`; ignored without compensator).
 
     ``ode(x, v, t, p, c) -> x'``; ``outputs(x, v, t, p, c) -> y`` (labels :data:`WINCH_OUTPUTS`:
-    body heave y_b (m, down, from the top's mean depth) and its rate, x_b, the spring force
-    F_bc = k(L) u + (C_I / l_r)(l' - a) (N, eq. 54), the cable's pull on the sheave and on the
+    body heave y_b (m, down, from the top's mean depth) and its rate, x_b, ``tension_mid`` the spring
+    force F_bc = k(L) u + (C_I / l_r)(l' - a) (N, eq. 54: the tension of the uniform stretch, at rest the
+    mid-length tension W_b + W_c / 2 as in :data:`.signals.OUTPUT_NAMES`), the cable's pull on the sheave and on the
     body (N, momentum balances as in :func:`.build._end_forces`), u, L, w, alpha, the winch
     power T_top w (W) and the stroke s); ``accel(q, qd, e, winch, p, c) -> q''`` with an explicit
     exogenous vector e (:data:`.signals.EXO_LABELS`) and winch = (L, w, alpha, F_a).

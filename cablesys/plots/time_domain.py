@@ -132,7 +132,7 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
         phis.append((name, np.degrees(phi), f"C{k}"))
         us.append((name, result[f"u{s}"] * fu, f"C{k}"))
         ends = [(f"tension_top{s}", "top"), (f"tension_bottom{s}", "at the body")]
-        ends = [(lbl, where) for lbl, where in ends if lbl in data] or [(f"tension{s}", "")]
+        ends = [(lbl, where) for lbl, where in ends if lbl in data] or [(f"tension_mid{s}", "at mid-length")]
         for j, (lbl, where) in enumerate(ends):
             traces.append((" ".join(x for x in (name if len(sfx) > 1 else "", where) if x) or name,
                            result[lbl] * ff, f"C{2 * k + j}"))

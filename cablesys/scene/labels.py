@@ -1,7 +1,7 @@
 """Labels of a scene's sections: one rule for the prefix of parameter labels and the suffix of outputs.
 
-A one-section scene writes ``cable.ae`` and ``tension``; a scene of several sections writes
-``sections[1].cable.ae`` and ``tension_2``. The scene's error messages, the model's parameter
+A one-section scene writes ``cable.ae`` and ``tension_mid``; a scene of several sections writes
+``sections[1].cable.ae`` and ``tension_mid_2``. The scene's error messages, the model's parameter
 vector and its coordinate and output labels all use these two functions
 (:mod:`cablesys.model.params` re-exports them).
 """
@@ -42,7 +42,7 @@ def section_suffix(scene_or_n, i: int) -> str:
     Returns
     -------
     str
-        The suffix (``_2`` in ``tension_2``, ``u_2``).
+        The suffix (``_2`` in ``tension_mid_2``, ``u_2``).
     """
     return "" if _count(scene_or_n) == 1 else f"_{i + 1}"
 

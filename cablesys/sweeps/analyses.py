@@ -138,7 +138,7 @@ def rao_summary(scene, lin, options):
     omega = w_min + (w_max - w_min) * (np.arange(n) + 0.5) / n
     _, Y = lin.transfer(omega)
     for j, inp in enumerate(lin.input_labels[:2]):
-        for o in ("x_b", "y_b", "tension"):
+        for o in ("x_b", "y_b", "tension_mid"):
             if o in lin.output_labels:
                 a = np.abs(Y[:, lin.output_labels.index(o), j])
                 k = int(np.argmax(a))
