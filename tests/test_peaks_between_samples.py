@@ -79,3 +79,18 @@ def test_taut_harmonic_peak_matches_the_closed_form():
     assert s["tension_bottom_max_N"] == pytest.approx(exact, rel=1e-5)
     assert exact - s["tension_bottom_max_N"] == pytest.approx(est["resolution"] * exact, rel=0.05)   # the sampling error
     assert s["tension_bottom_min_N"] == pytest.approx(W - K * v0 / w, rel=1e-5)
+
+
+def test_fixed_step_refinement_takes_the_integrators_own_steps():
+    """RK4 with 10 steps per output: the refined peak is the largest of its own steps, the maximum of the same
+    steps output one by one (steps_per_output = 1 on a 10x finer grid: the same arithmetic)."""
+    w, v0 = math.sqrt(K / M), 0.002
+    sc = _scene(0.02, Initial(phi=0.0, u=W / K, u_rate=v0)).with_numerics(duration=0.07, integrator="rk")
+    coarse = simulate(sc.with_numerics(steps_per_output=10))
+    steps = simulate(sc.with_numerics(output_step=0.002, steps_per_output=1))
+    assert coarse.success and steps.success
+    s = coarse.summary()
+    assert s["peak_refinement"]["fine_per_interval"] == 10
+    assert abs(float(np.max(coarse["tension_bottom"])) - float(np.max(steps["tension_bottom"]))) > 0.1   # N
+    assert s["tension_bottom_max_N"] == pytest.approx(float(np.max(steps["tension_bottom"])), rel=1e-9)
+    assert s["tension_bottom_max_N"] == pytest.approx(W + K * v0 / w, rel=1e-3)      # RK4 at h w = 0.2

@@ -4,9 +4,10 @@ where they can lie.
 A run's outputs are samples: a snap that lasts a fraction of the output step peaks between them, and
 the grid's maximum misses it. :func:`refine_extremes` re-runs only the output intervals where the
 true extreme can lie, each from the state stored at its start (:attr:`RunRecord.states` keeps the
-state at every output time), on a local grid ``FINE`` times finer, with the same model, parameters
-and integrator settings (a :class:`~cablesys.time_domain.run.Simulator` of the same class, so the
-switches inside the interval are located as in the run, :mod:`.events`), and takes the extreme of
+state at every output time), on a local grid ``FINE`` times finer (a fixed-step method: at its own
+steps, one step per local sample, so the local run repeats the run's arithmetic), with the same model,
+parameters and integrator settings (a :class:`~cablesys.time_domain.run.Simulator` of the same class, so
+the switches inside the interval are located as in the run, :mod:`.events`), and takes the extreme of
 the fine samples.
 
 Which intervals (every tension output, its maximum and its minimum, over the run and over the
@@ -19,7 +20,8 @@ statistics window):
   of length h, y <= (y_a + y_b)/2 + R h/2 inside it (the rise from one end meets the fall to the other),
   with R the largest sample slope ``|dy|/h`` of the interval and its two neighbours. Intervals are
   refined in the order of that bound and the search stops when the next bound is below the best
-  refined value (branch and bound) or after ``MAX_INTERVALS`` intervals (then ``complete`` is False).
+  refined value (branch and bound) or after ``MAX_INTERVALS`` intervals for that extreme (then
+  ``complete`` is False; the intervals already run serve every extreme).
 
 How well a peak is resolved: the gap between the largest fine sample and the vertex of the parabola
 through it and its two neighbours (the leading term of the sampling error of a smooth peak, Taylor),
@@ -43,7 +45,7 @@ from .integrators import ADAPTIVE
 
 FINE = 64            # samples of an adaptive method's local grid per output interval
 TOP = 3              # local maxima of the grid whose neighbouring intervals are always refined
-MAX_INTERVALS = 24   # output intervals re-integrated per run at most
+MAX_INTERVALS = 24   # output intervals re-integrated per extreme at most
 
 
 @dataclasses.dataclass(frozen=True)
@@ -51,9 +53,10 @@ class PeakEstimate:
     """The extreme of one tension output: grid value, refined value and how well it is resolved.
 
     ``key``: the summary entry it replaces (``tension_top_max_N``, ``tension.top_max_N``,
-    ``slack.snap_peak_N``); ``grid`` and ``refined`` in N, ``time`` (s) of the refined extreme,
+    ``slack.snap_peak_N``); ``grid`` (the summary's value without refinement: the grid's extreme, for a
+    segmented snap peak its Hermite estimate) and ``refined`` in N, ``time`` (s) of the refined extreme,
     ``resolution``: how far the refined value may lie below the true extreme, relative to it or to the run's
-largest tension when that is larger (:func:`_resolution`, 1);
+    largest tension when that is larger (:func:`_resolution`, 1);
     ``complete``: False when the search stopped at :data:`MAX_INTERVALS` with intervals left whose bound
     reaches the refined value.
     """
@@ -190,7 +193,11 @@ class PeakRefiner:
         return _refined(self, record)
 
     def apply(self, record, summary: dict) -> dict:
-        """``summary`` with the refined extremes of ``record`` (:meth:`Peaks.apply`)."""
+        """``summary`` with the refined extremes of ``record`` (:meth:`Peaks.apply`); a record whose states are
+        not this run's (a copy with other states) keeps its grid extremes, and its ``peaks`` line says so."""
+        if record.states is not self.states:
+            return {**summary, "peaks": "maxima of the output samples (the record's states are not the run's "
+                                        "that would refine them)"}
         return self.peaks(record).apply(summary)
 
 
