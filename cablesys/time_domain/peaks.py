@@ -318,9 +318,7 @@ def _refined(ref: PeakRefiner, record) -> Peaks:
     t = record.time
     sw = _switching(record)
     everywhere = np.ones(t.size, bool)
-    t0, t1 = record.statistics_window
-    eps = 1e-9 * max(1.0, abs(t1))
-    window = (t >= t0 - eps) & (t <= t1 + eps)
+    window = record.window_mask()          # the summary's statistics window
     if not np.any(window):                 # a run that failed before the window: its statistics are the run's
         window = everywhere
     out = []
