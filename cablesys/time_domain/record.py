@@ -42,12 +42,16 @@ class RunRecord(TimeResult):
         Labels of the rows of ``states`` (``phi``, ``u``, ``phi_rate``, ``u_rate``...).
     interrupted : bool
         True when the run was stopped by an interrupt (``success`` is then False).
+    peaks : cablesys.time_domain.peaks.Peaks, optional
+        The tension extremes located between the output samples (:func:`.peaks.refine_extremes`); the
+        summary reports them in place of the grid's.
     """
 
     states: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((0, 0)))
     modes: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((0, 0)))
     state_labels: tuple = ()
     interrupted: bool = False
+    peaks: object = None
 
     @property
     def status(self) -> str:
@@ -111,7 +115,7 @@ class RunRecord(TimeResult):
         return abs(self.steady_amplitude(label, period, n_periods) - 0.5 * float(np.max(y) - np.min(y)))
 
     def summary(self) -> dict:
-        """The :class:`TimeResult` summary plus ``status`` and ``n_outputs``.
+        """The :class:`TimeResult` summary plus ``status`` and ``n_outputs``, with the extremes of ``peaks``.
 
         Returns
         -------
@@ -120,7 +124,9 @@ class RunRecord(TimeResult):
         """
         out = super().summary()
         out.update(status=self.status, n_outputs=self.n_outputs)
-        return out
+        if self.peaks is None:
+            return {**out, "peaks": "maxima of the output samples (not refined between them)"}
+        return self.peaks.apply(self, out)
 
 
 class RunInterrupted(KeyboardInterrupt):

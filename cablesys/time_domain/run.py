@@ -37,6 +37,7 @@ from .failures import (
 )
 from .explicit_rk import PAIRS
 from .initial import initial_state
+from .peaks import attach as attach_peaks
 from .integrators import (
     ADAPTIVE,
     IntegratorSettings,
@@ -463,5 +464,5 @@ def simulate(scene: Scene, *, model: CableModel | None = None, method: str | Non
         raise RunInterrupted(record) from None
     if not record.success:
         log.warning(record.message)
-    return record
+    return attach_peaks(record, simulator, p)      # the summary's extremes located between samples
 
