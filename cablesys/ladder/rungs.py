@@ -60,7 +60,20 @@ class Rung(Protocol):
 
 
 def validity(rung, scene: Scene) -> str:
-    """"" when ``rung`` can run ``scene`` (its ``valid(scene)``; a rung without one: every scene), else why not."""
+    """Whether ``rung`` can run ``scene``.
+
+    Parameters
+    ----------
+    rung : Rung
+        A built-in or registered rung (its ``valid(scene)``; a rung without one runs every scene).
+    scene : Scene
+        The scene.
+
+    Returns
+    -------
+    str
+        "" when the rung can run the scene, else why not (a sentence for the reason or the error).
+    """
     valid = getattr(rung, "valid", None)
     return "" if valid is None else str(valid(scene) or "")
 
