@@ -52,8 +52,9 @@ def register(sub) -> None:
                    help=f"integrator step budget per output interval (default {_DEFAULT_STEPS}); a run that needs more "
                         "fails with a named message")
     p.add_argument("--time-budget", type=float, default=None, metavar="S",
-                   help="wall seconds model = auto may plan for a slack scene's extrapolation runs "
-                        "(numerics.time_budget_s; 0: none): N is lowered to fit, or the plan refused at once")
+                   help="wall seconds model = auto may plan for a run (numerics.time_budget_s; 0: none): a run predicted "
+                        "past it (compile and steps) is refused before it is built, a slack scene's extrapolation "
+                        "lowers N to fit first")
     p.set_defaults(func=_run)
     s = sub.add_parser("scene", help="print an annotated example scene, or check a scene file",
                        description="With --example: print an annotated scene (the Dale default). With a file: "
@@ -108,6 +109,11 @@ class _Progress:
         sys.stderr.write(("\r" if self.tty else "") + line + end)
         sys.stderr.flush()
         self.shown = True
+
+
+def _print_plan(prediction) -> None:
+    """The run's predicted cost on stderr before its model is built (:meth:`cablesys.ladder.plan_cost.Prediction.line`)."""
+    print(f"cablesys run: {prediction.line()}", file=sys.stderr, flush=True)
 
 
 def _check_options(args) -> None:
@@ -183,7 +189,7 @@ def _run(args) -> int:
         streams = _Streams(outdir, units)
         try:
             result = simulate(scene, model=args.model, method=args.method, max_num_steps=args.max_steps, jit=args.jit,
-                              on_run=streams)
+                              on_run=streams, on_plan=_print_plan)
         except RunInterrupted as err:
             # the stream holds whole rows: kept when they are exactly the interrupted record's series
             on_disk = streams.stream is not None and streams.stream.holds(err.result.time) and streams.close()

@@ -40,7 +40,7 @@ from ..errors import NumericalWarning, ParameterError
 from ..model import CableModel
 from ..scene import Scene
 from . import estimate as est
-from . import extrapolation, metrics, static_check
+from . import extrapolation, metrics, plan_cost, static_check
 from .choice import (
     CHECK_ACCEPT,
     EXPLICIT_COST_MAX_ELEMENTS,
@@ -253,7 +253,7 @@ def _windowed(scene: Scene, result):
 def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None = None, method: str | None = None,
              rtol: float | None = None, atol: float | None = None, max_num_steps: int | None = None, jit: bool = False,
              times=None, x0=None, on_block=None, progress=None, on_run=None, simulator=None, quantities=None,
-             cache: RungCache | None = None):
+             cache: RungCache | None = None, on_plan=None):
     """Simulate ``scene`` with the model the ladder chooses for it, or the one named; say which ran, why, and its error.
 
     Every door runs this: the Python API (``cablesys.simulate``), ``cablesys run`` and ``sweep``.
@@ -290,6 +290,10 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
     cache : RungCache, optional
         Built models and simulators to reuse; pass one cache to many calls on scenes of one
         structure (default: a new one, so nothing is built twice within this call).
+    on_plan : callable, optional
+        ``on_plan(prediction)`` with the candidate run's :class:`~.plan_cost.Prediction` (elements, operations, steps,
+        compile, memory, wall time), before its model is built; a run predicted past ``numerics.time_budget_s`` is
+        refused then (:class:`~.extrapolation.PlanRefused`).
 
     Returns
     -------
@@ -303,7 +307,7 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
         (:class:`~cablesys.errors.NumericalWarning`) with the reason.
     """
     kw = {k: v for k, v in dict(method=method, rtol=rtol, atol=atol, max_num_steps=max_num_steps, jit=jit, times=times,
-                                  x0=x0, on_block=on_block, progress=progress, on_run=on_run,
+                                  x0=x0, on_block=on_block, progress=progress, on_run=on_run, on_plan=on_plan,
                                   quantities=None if quantities is None else tuple(quantities)).items() if v is not None}
     if simulator is not None or isinstance(model, CableModel) or \
             (model or getattr(scene.numerics, "model", "auto")) == AS_BUILT:
@@ -317,14 +321,21 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
     t1, b1 = time.perf_counter(), cache.build_s
     if extrapolation.applies(choice, auto):      # first order in N: RK4 runs at N, N / 2, N / 4 (extrapolation)
         choice, kw = extrapolation.plan(scene, choice, cache, kw)      # every run checked before the first starts
+        prediction = plan_cost.from_plan(scene, choice, kw["extrapolation_plan"])
+        plan_cost.announce(prediction, kw)
         result = extrapolation.run(scene, choice.segments, cache, kw)
     else:
+        prediction = plan_cost.for_run(scene, choice, tol, kw)     # before the run's model is built
+        plan_cost.check_budget(scene, prediction) if prediction is not None else None
+        plan_cost.announce(prediction, kw)
         result = _run(scene, choice, tol, cache, kw)
     t2, b2 = time.perf_counter(), cache.build_s
     result, choice = _check(scene, choice, tol, result, cache, kw, auto=auto)
     choice = settled_check(scene, choice, result)
     t3, b3 = time.perf_counter(), cache.build_s
     info = extrapolation.model_dict(choice)
+    if prediction is not None:            # the candidate run's prediction, made before its build
+        info["prediction"] = prediction.as_dict()
     timing = {"choose_s": (t1 - t0) - (b1 - b0), "build_s": b3 - b0, "run_s": (t2 - t1) - (b2 - b1),
               "check_s": (t3 - t2) - (b3 - b2), "total_s": t3 - t0}
     log.info("model %s (N = %d): %s", choice.name, choice.segments, choice.reason)

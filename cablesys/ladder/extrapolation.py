@@ -218,7 +218,10 @@ def every(result, sub: int):
 
 class PlanRefused(CablesysError):
     """The extrapolation's plan (runs the tool chose) cannot fit its limits (output count, memory, time budget):
-    refused before any run, with the reason and what would fit. Not a bad input: the scene itself is valid."""
+    refused before any run, with the reason and what would fit. Not a bad input: the scene itself is valid, and the
+    ``cablesys`` command exits with :attr:`exit_code` 1 (what the tool planned does not fit), not 2 (bad input)."""
+
+    exit_code = 1
 
 
 @dataclasses.dataclass

@@ -1,0 +1,228 @@
+"""The cost of a ladder run predicted before its model is built: elements, operations, steps, compile time,
+memory of the outputs and wall time; and the time budget's limit on it.
+
+Every time-domain run the ladder plans gets a :class:`Prediction` (:func:`predict`) after the choice and before
+anything of the run is built; ``numerics.time_budget_s`` (``--time-budget``) > 0 refuses a run predicted past it
+(:func:`check_budget`, :class:`~.extrapolation.PlanRefused`: the tool's plan, not the user's input), naming the
+prediction and what would fit. The slack extrapolation plans its runs itself (:func:`.extrapolation.plan`: steps at
+the stable step x a measured per-step cost); its prediction is read from that plan (:func:`from_plan`), not made
+twice.
+
+Operations: :func:`.choice.model_operations` (the generated functions' SX operation count, fits to built models).
+
+Steps. Fixed-step methods (``rk``, ``rkc``, ``collocation``): exactly steps_per_output x output intervals, i.e.
+duration / step. Adaptive methods: from the tolerance and the forcing period, a fit to counted steps (Dale scene,
+120 s, 21.8 forcing periods, ``studies/results/run_prediction_calibration.json``):
+
+    steps = periods x STEPS_PER_PERIOD[method] x (rtol / 1e-4)^(-RTOL_EXPONENT) x (elements / 4)^ELEMENT_EXPONENT
+
+BDF2 at rtol 1e-4: 320, 484, 705, 962 steps per period at N = 4, 8, 16, 32 (x N^0.55); 1e-4 -> 1e-5 multiplied
+the steps by 1.55-2.0 (an accuracy-limited p = 2 method would give 10^(1/3) = 2.15: part of the steps are set by
+the element modes, not by the tolerance), hence the exponent 1/4. rk23 (quasi-static rung): 142, 186 steps per
+period at N = 4, 8 (x N^0.39). Its accuracy is O((h omega)^p) per step (:mod:`.stiffness`), so steps scale with
+the number of forcing periods; a scene without a period (a sea state) takes its peak period. How good it is:
+``studies/run_prediction.py`` reports the ratio actual / predicted on six scenes.
+
+Wall time per step: STEP_OVERHEAD_S + operations x SECONDS_PER_OPERATION (compiled C or CasADi's VM), the same
+Dale runs (BDF2 compiled N = 4, 8, 16: 6.2, 7.2, 8.6 us per step; VM N = 32: 63 us; rk23 compiled N = 4, 8:
+4.5, 7.5 us).
+
+Compile time (a model compiled and not yet in the cache): COMPILE_S0 + COMPILE_S_PER_OPERATION x operations, the
+cold-cache builds of the same models (2.2 s, 4.4 s, 3.9 s for the node model at N = 4, 8, 16; 1.0 s, 2.5 s for
+the quasi-static N = 4, 8, one machine, the fit and the machine in the calibration JSON). Whether the library is
+already cached is known only once the functions are built (their hash): the line says "if not cached".
+
+Memory: :func:`cablesys.time_domain.record.run_memory_bytes` of the output grid, with 2 nq + outputs numbers per
+output time (nq = 2 per node-model element, 1 per quasi-static element, 2 for Wang's cable, per section).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+import math
+
+from ..compiled import compilation_enabled
+from ..scene import Scene
+from .choice import model_operations
+from .metrics import forcing_period
+from .rungs import rung_scene
+
+log = logging.getLogger(__name__)
+
+FIXED_STEP = ("rk", "rkc", "collocation")
+# adaptive methods: steps per forcing period at rtol 1e-4 and 4 elements, and their N exponent (Dale fits, above)
+STEPS_PER_PERIOD = {"cvodes-bdf2": (320.0, 0.55), "cvodes": (320.0, 0.55), "idas": (320.0, 0.55),
+                    "cvodes-adams": (320.0, 0.55), "rk23": (142.0, 0.39), "dopri5": (92.0, 0.39)}
+RTOL_EXPONENT = 0.25
+STEP_OVERHEAD_S = 5e-6                                  # per step, compiled (CVODES's own work, the call)
+SECONDS_PER_OPERATION = {True: 3.5e-10, False: 3.0e-9}  # per step and operation: compiled C, CasADi VM
+COMPILE_S0 = 0.6                                        # s: the compiler's start, Jacobian generation
+COMPILE_S_PER_OPERATION = 3.5e-4                        # s per operation of the generated functions
+OUTPUT_LABELS = 24                                      # series per output time besides the states (about)
+
+
+@dataclasses.dataclass(frozen=True)
+class Prediction:
+    """A run's cost predicted before it is built.
+
+    ``what`` the run ("segmented N = 64"); ``elements`` over all sections; ``operations`` of the generated functions;
+    ``method``; ``steps`` (integrator steps; ``steps_from`` says how they were predicted); ``compiled`` whether the
+    model runs as compiled C; ``compile_s`` the compile's predicted wall time if not cached (s; 0 for the VM);
+    ``memory_bytes`` of the output series; ``run_s`` the stepping's predicted wall time (s); ``runs`` how many runs
+    the plan holds (the extrapolation: 3 or 4; their sum is ``run_s``).
+    """
+
+    what: str
+    elements: int
+    operations: float
+    method: str
+    steps: int
+    steps_from: str
+    compiled: bool
+    compile_s: float
+    memory_bytes: float
+    run_s: float
+    runs: int = 1
+
+    @property
+    def wall_s(self) -> float:
+        """Predicted wall time of build and run (s), the compile counted as not cached."""
+        return self.compile_s + self.run_s
+
+    def line(self) -> str:
+        """The console line before the build: "building segmented N = 64: about 38 k operations, compile about 12 s
+        if not cached; run about 20 k steps (rk, duration / step), about 6 s; outputs 3.1 MB"."""
+        comp = f"compile about {self.compile_s:.2g} s if not cached" if self.compiled else "no compile (CasADi VM)"
+        runs = f" over {self.runs} runs" if self.runs > 1 else ""
+        return (f"building {self.what}: about {_k(self.operations)} operations, {comp}; run about {_k(self.steps)} "
+                f"steps{runs} ({self.method}, {self.steps_from}), about {self.run_s:.2g} s; outputs "
+                f"{self.memory_bytes / 1e6:.2g} MB")
+
+    def as_dict(self) -> dict:
+        """JSON-able numbers for summary.json's model block (``prediction``)."""
+        d = dataclasses.asdict(self)
+        d["wall_s"] = self.wall_s
+        return d
+
+
+def _k(x: float) -> str:
+    return f"{x / 1e3:.3g} k" if x >= 1e3 else f"{x:.3g}"
+
+
+def predicted_steps(scene_run: Scene, method: str, rtol: float, elements: int, steps_per_output: int) -> tuple:
+    """(steps, how) of a run of ``scene_run`` with ``method``: fixed-step methods steps_per_output x output intervals
+    (duration / step, exact); adaptive ones from the forcing periods and rtol (the module docstring's fit)."""
+    outputs = len(scene_run.output_times)
+    if method in FIXED_STEP:
+        return int(steps_per_output) * (outputs - 1), "duration / step"
+    k, alpha = STEPS_PER_PERIOD.get(method, STEPS_PER_PERIOD["cvodes"])
+    period = forcing_period(scene_run) or scene_run.numerics.duration
+    periods = scene_run.numerics.duration / period
+    steps = periods * k * (max(rtol, 1e-14) / 1e-4) ** (-RTOL_EXPONENT) * (max(elements, 1) / 4.0) ** alpha
+    return int(math.ceil(steps)), f"from rtol {rtol:.2g} and {periods:.3g} forcing periods"
+
+
+def step_seconds(operations: float, compiled: bool) -> float:
+    """Predicted wall time (s) of one integrator step of a model of ``operations`` operations."""
+    return STEP_OVERHEAD_S + operations * SECONDS_PER_OPERATION[bool(compiled)]
+
+
+def compile_seconds(operations: float) -> float:
+    """Predicted wall time (s) of generating and compiling a model's C (cold cache)."""
+    return COMPILE_S0 + COMPILE_S_PER_OPERATION * operations
+
+
+def state_count(scene_run: Scene, name: str, segments: int) -> int:
+    """2 nq of a rung's model before it is built (the module docstring)."""
+    per = {"segmented": 2 * segments, "quasi-static": segments}.get(name, 2)
+    return 2 * per * len(scene_run.sections)
+
+
+def predict(scene: Scene, choice, settings) -> Prediction:
+    """The :class:`Prediction` of the run of ``choice`` (a ladder :class:`~.choice.Choice`) with ``settings`` (its
+    :class:`~cablesys.time_domain.IntegratorSettings`, from :func:`.run_settings.integrator_settings`), before its
+    model is built."""
+    from ..time_domain.record import run_memory_bytes
+    n = max(int(choice.segments), 1)
+    sc = rung_scene(scene, choice.name, n)
+    elements = n * len(sc.sections)
+    ops = model_operations(sc, choice.name, n)
+    method = str(settings.method)
+    steps, how = predicted_steps(sc, method, float(settings.rtol), elements, int(settings.steps_per_output))
+    compiled = bool(settings.compiled)
+    outputs = len(sc.output_times)
+    memory = run_memory_bytes(outputs, len(sc.sections), state_count(sc, choice.name, n) + OUTPUT_LABELS)
+    what = choice.name + (f" N = {n}" if n > 1 else "")
+    return Prediction(what, elements, ops, method, steps, how, compiled,
+                      compile_seconds(ops) if compiled else 0.0, memory, steps * step_seconds(ops, compiled))
+
+
+def from_plan(scene: Scene, choice, plan) -> Prediction:
+    """The :class:`Prediction` of the slack extrapolation's plan (:class:`.extrapolation.Plan`): its runs' steps and
+    predicted times (stable step x measured per-step cost), the candidate's operations and memory; the compiled
+    element kernel is built while planning (the per-step cost is measured on it), so nothing is left to compile."""
+    n = int(choice.segments)
+    sc = rung_scene(scene, "segmented", n)
+    runs = plan.runs
+    return Prediction(f"segmented N = {n} (extrapolation)", n * len(sc.sections),
+                      model_operations(sc, "segmented", n), runs[0].method,
+                      sum(r.steps for r in runs), "duration / stable step", False, 0.0,
+                      max(r.memory_bytes for r in runs), float(sum(r.predicted_s or 0.0 for r in runs)), len(runs))
+
+
+def check_budget(scene: Scene, prediction: Prediction, budget_s: float | None = None) -> None:
+    """Refuse (:class:`~.extrapolation.PlanRefused`) before any build a run predicted past ``budget_s`` (default the
+    scene's ``numerics.time_budget_s``; 0: none), naming the prediction and what would fit."""
+    from .extrapolation import PlanRefused
+    budget = float(getattr(scene.numerics, "time_budget_s", 0.0) or 0.0) if budget_s is None else float(budget_s)
+    if not budget or prediction.wall_s <= budget:
+        return
+    cheaper = []
+    if prediction.compile_s > 0 and prediction.run_s <= budget:
+        cheaper.append("a second run once the model is in the cache (no compile)")
+    if prediction.method not in FIXED_STEP:
+        cheaper.append("a looser numerics.model_tolerance (fewer elements, a looser rtol)")
+    else:
+        cheaper.append("a looser numerics.model_tolerance (fewer elements) or a shorter numerics.duration")
+    raise PlanRefused(
+        f"time budget {budget:g} s: {prediction.what} is predicted to take about {prediction.wall_s:.3g} s (compile "
+        f"{prediction.compile_s:.2g} s if not cached, {prediction.steps} steps of {prediction.method} "
+        f"{prediction.run_s:.2g} s); nothing was built: raise numerics.time_budget_s (--time-budget), or what "
+        f"would fit: {'; '.join(cheaper)}")
+
+
+def for_run(scene: Scene, choice, tol, kw: dict) -> Prediction | None:
+    """The :class:`Prediction` of the ladder's run of ``choice`` with the caller's options ``kw`` (``method``,
+    ``rtol``, ``atol``, ``times``): the settings :func:`.run_settings.integrator_settings` gives it, the quasi-static
+    rungs with QUASI_STATIC_METHOD (the method their guard, which needs the built model, accepts first). None for
+    a run with no time-domain model to predict (the frequency rung, a registered rung)."""
+    from .rungs import RUNGS
+    from .run_settings import QUASI_STATIC_METHOD, integrator_settings
+    if choice.name not in RUNGS or choice.name == "frequency":
+        return None
+    sc = rung_scene(scene, choice.name, choice.segments)
+    elements = sum(s.cable.segments for s in sc.sections)
+    s = integrator_settings(sc, tol, elements, method=kw.get("method"), rtol=kw.get("rtol"), atol=kw.get("atol"),
+                            rung=None, stated=choice.estimated_error.get("body"))
+    s = dataclasses.replace(s, compiled=bool(s.compiled and compilation_enabled()))
+    if choice.name == "quasi-static" and kw.get("method") is None and s.method not in FIXED_STEP and s.compiled:
+        s = dataclasses.replace(s, method=QUASI_STATIC_METHOD)     # uncompiled, the guard falls back to CVODES
+    times = kw.get("times")
+    if times is not None:      # the caller's grid: its outputs and span
+        import numpy as np
+        t = np.asarray(times, dtype=float)
+        scene = scene.with_numerics(duration=float(t[-1] - t[0]) or scene.numerics.duration,
+                                    output_step=float(np.min(np.diff(t))) if t.size > 1 else scene.numerics.output_step)
+    return predict(scene, choice, s)
+
+
+def announce(prediction: Prediction | None, kw: dict) -> None:
+    """Hand ``prediction`` to the caller's ``on_plan`` (the ``run`` command prints :meth:`Prediction.line`) and the
+    log, before the build."""
+    if prediction is None:
+        return
+    log.info("%s", prediction.line())
+    on_plan = kw.get("on_plan")
+    if on_plan is not None:
+        on_plan(prediction)
