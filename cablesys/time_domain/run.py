@@ -175,10 +175,17 @@ class Simulator(ev.EventLocator):
         """Evaluate integrator ``f`` and count its steps; an interrupt inside CasADi becomes KeyboardInterrupt.
 
         CasADi catches the signal and reports a generic failure ("CV_RHSFUNC_FAIL"), so the
-        interrupt flag set by our handler (or the text, for plugins that pass it on) tells.
+        interrupt flag set by our handler (or the text, for plugins that pass it on) tells. A handler that raises
+        inside a conversion of CasADi's result to NumPy (``DM.__array__``) surfaces as a SystemError ("returned a
+        result with an exception set"): the flag tells that one too.
         """
         try:
             out = f(**kw)
+        except SystemError as err:
+            self._count(f)
+            if self._flag.hit or isinstance(err.__cause__, KeyboardInterrupt):
+                raise KeyboardInterrupt("interrupted while reading the integrator's result") from err
+            raise
         except RuntimeError as err:
             self._count(f)
             if self._flag.hit or "KeyboardInterrupt" in str(err):
