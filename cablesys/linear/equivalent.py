@@ -38,6 +38,7 @@ from ..compiled import compile_functions
 from ..errors import ParameterError
 from ..model import CableModel
 from ..results import ResultBase, timed
+from ..statics.problem import residual_scales
 from .frequency_response import RAO
 from .linearization import (
     from_jacobian,
@@ -106,7 +107,9 @@ def _build_hb1(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Functio
         z = Zr * c - Zi * s
         zd = -w * (Zi * c + Zr * s)
         cols.append(ca.vertcat(q0 + q, qd, -w**2 * q, z[:2], zd[:2], -w**2 * z[:2], z[2:]))
-    R = fns["residual"].map(n_theta)(ca.horzcat(*cols), p)
+    # each row over its scale (the submerged weight; x length for moments; at least 1): KINSOL's tolerance and the 1e-8 test
+    # are then relative, reachable in double precision by a 300 m steel wire as by the Dale model
+    R = fns["residual"].map(n_theta)(ca.horzcat(*cols), p) / ca.repmat(ca.fmax(residual_scales(model, p), 1.0), 1, n_theta)
     g = ca.vertcat(ca.mtimes(R, np.full(n_theta, 1.0 / n_theta)),
                    ca.mtimes(R, 2.0 / n_theta * np.cos(theta)),
                    ca.mtimes(R, -2.0 / n_theta * np.sin(theta)))

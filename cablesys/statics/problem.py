@@ -77,14 +77,20 @@ def static_residual(model: CableModel) -> ca.Function:
             f = forces(q, ca.SX.zeros(model.nq), ca.SX.zeros(model.top.size1_out(0)), ps)
         else:
             _, f = model.dynamics(q, ca.SX.zeros(model.nq), ca.SX.zeros(model.top.size1_out(0)), ps)
-        lab = model.layout.labels
-        weight = sum(ca.fabs(p[i]) for i, lb in enumerate(lab) if lb.endswith("body.weight")) + sum(
-            ca.fabs(p[i] * p[lab.index(lb.replace("weight_per_length", "length"))])
-            for i, lb in enumerate(lab) if lb.endswith("cable.weight_per_length"))
-        length = sum(p[i] for i, lb in enumerate(lab) if lb.endswith("cable.length"))
-        scale = ca.vertcat(*[weight * length if lbl.startswith("phi") else weight for lbl in model.q_labels])
-        return ca.Function("static_residual", [q, p], [f / scale], ["q", "p"], ["r"])
+        return ca.Function("static_residual", [q, p], [f / residual_scales(model, p)], ["q", "p"], ["r"])
     return model.derive("static_residual", build)
+
+
+def residual_scales(model: CableModel, p):
+    """The scale of each equation of motion's residual, from the (symbolic) parameters ``p``: the total submerged
+    weight (N) for the force rows, weight x cable length (N m) for the moment rows (``phi``); dividing by it makes
+    solver tolerances relative, not below round-off for heavy, long systems."""
+    lab = model.layout.labels
+    weight = sum(ca.fabs(p[i]) for i, lb in enumerate(lab) if lb.endswith("body.weight")) + sum(
+        ca.fabs(p[i] * p[lab.index(lb.replace("weight_per_length", "length"))])
+        for i, lb in enumerate(lab) if lb.endswith("cable.weight_per_length"))
+    length = sum(p[i] for i, lb in enumerate(lab) if lb.endswith("cable.length"))
+    return ca.vertcat(*[weight * length if lbl.startswith("phi") else weight for lbl in model.q_labels])
 
 
 def at_rest(model: CableModel, q, p, residual: float) -> SteadyState:
