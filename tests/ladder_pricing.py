@@ -3,9 +3,10 @@
 :func:`cablesys.ladder.choice.choose` prices the rungs as they will run, by ``compilation_enabled()``
 (:func:`~cablesys.ladder.choice.element_plan`: the quasi-static segmented cable competes by cost only compiled;
 ``_pick``: where nothing drives the swing the quasi-static rung goes first only compiled). :func:`priced` sets that
-pricing alone; the linear response the estimates rest on is evaluated in the VM either way, so a decision test
-builds no C (with ``CABLESYS_COMPILE=1`` the choice itself compiles Wang's describing-function Jacobians, ~20 s a
-structure on a fresh cache). Runs compiled as users run them are in tests/test_ladder_compiled.py.
+pricing alone; the linear response the estimates rest on is evaluated as ``CABLESYS_COMPILE`` says (the VM in the
+suite), so a decision test builds no C there (compiled, the choice itself compiles Wang's describing-function
+Jacobians: hb1_16, 2.5 MB of C, ~20 s at -O1 a structure on a fresh cache). Runs compiled as users run them are
+in tests/test_ladder_compiled.py.
 """
 
 import contextlib
