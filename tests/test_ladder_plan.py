@@ -14,6 +14,7 @@ import warnings
 
 import numpy as np
 import pytest
+from ladder_pricing import both, priced, said
 from test_ladder_random import random_scene
 
 from cablesys.errors import NumericalWarning
@@ -31,10 +32,19 @@ TOL = (0.01, 0.02)
 
 @pytest.fixture(scope="module")
 def heavy():
-    """(scene, its numbers, its estimates) of the 1000 m wire, 120 s (choosing only: no run)."""
+    """(scene, its choice in CasADi's VM) of the 1000 m wire, 120 s (choosing only: no run); the choice compiled
+    code gets is :func:`heavy_compiled`'s."""
     scene = heavy_wire_scene(duration=120.0)
-    c = ch.choose(scene)
+    with priced(False):
+        c = ch.choose(scene)
     return scene, c
+
+
+@pytest.fixture(scope="module")
+def heavy_compiled(heavy):
+    """The 1000 m wire's choice priced as compiled code runs (as users run)."""
+    with priced(True):
+        return ch.choose(heavy[0])
 
 
 def test_estimates_of_the_heavy_wire_have_no_straight_cable_floor(heavy):
@@ -54,11 +64,14 @@ def test_estimates_of_the_heavy_wire_have_no_straight_cable_floor(heavy):
     assert 0.0005 < stretch < 0.002
 
 
-def test_uncompiled_the_node_model_runs_its_sure_n(heavy):
+def test_uncompiled_the_node_model_runs_its_sure_n(heavy, heavy_compiled):
     """In CasADi's VM (the explicit pair needs compiled code) the quasi-static segmented cable does not
     compete (omega/omega_ax = 0.152 > 1/30); the node model's sure N = 9 (0.46 %, cost 9) ties with its
-    checked N = 6 (0.84 %, cost 1.5 x 6) and the sure one wins the tie."""
+    checked N = 6 (0.84 %, cost 1.5 x 6) and the sure one wins the tie. The reason names what compiled code
+    runs instead (the quasi-static segmented cable at N = 6: the next test)."""
     scene, c = heavy
+    said(heavy_compiled, c)
+    assert c.reason.endswith("with it the ladder would run quasi-static N = 6")
     assert c.name == "segmented" and c.segments == 9
     assert c.numbers["plan"] == {"name": "segmented", "segments": 9, "checked": False, "explicit_only": False,
                                  "cost": 9.0, "fallback": None}
@@ -66,33 +79,34 @@ def test_uncompiled_the_node_model_runs_its_sure_n(heavy):
     assert "the least N with its estimate within 0.5 x the tolerance" in c.reason
 
 
-def test_compiled_the_quasi_static_segmented_cable_checked_at_n_6_is_cheapest(heavy, monkeypatch):
+def test_compiled_the_quasi_static_segmented_cable_checked_at_n_6_is_cheapest(heavy, heavy_compiled):
     """Compiled, the quasi-static segmented cable stepped by rk23 costs 0.7 of the node model per element:
     N = 6 checked (estimate 0.95 %, within 1 % but not 0.5 %) costs 0.7 x 1.5 x 6 = 6.3 against the node
     model's 9; no N <= 8 of it is sure (N = 8: 0.91 %)."""
     scene, c = heavy
-    monkeypatch.setattr(ch, "compilation_enabled", lambda: True)
     numbers = scene_numbers(scene)
-    plan = ch.element_plan(scene, numbers, c.numbers["estimates"], TOL)
+    plan = ch.element_plan(scene, numbers, c.numbers["estimates"], TOL, compiled=True)
     assert (plan.name, plan.segments, plan.checked, plan.explicit_only) == ("quasi-static", 6, True, True)
     assert plan.cost == pytest.approx(ch.EXPLICIT_COST * ch.CHECK_COST * 6)
     e = est.rung_error(c.numbers["estimates"], "quasi-static", 6)
     assert ch.SAFETY * TOL[0] < e["body"] <= TOL[0]
     assert all(est.rung_error(c.numbers["estimates"], "quasi-static", n)["body"] > ch.SAFETY * TOL[0]
                for n in range(2, ch.EXPLICIT_MAX_ELEMENTS + 1))
-    chosen = ch.choose(scene)
+    chosen = heavy_compiled
     assert (chosen.name, chosen.segments) == ("quasi-static", 6)
+    assert chosen.numbers["plan"] == plan.as_dict()
+    # the check's fallback is the cheapest sure option, the node model's sure N = 9 (the VM's choice)
+    assert plan.fallback == {"name": "segmented", "segments": 9, "explicit_only": False}
     assert "checked a posteriori against N = 3" in chosen.reason
 
 
-def test_the_explicit_only_plan_falls_back_to_the_node_model(heavy, monkeypatch):
-    """A quasi-static segmented choice made for the explicit pair's sake becomes the node model at the same
-    N, with the node model's estimate, when the pair will not step it (here: CasADi's VM, where the guard
-    does not run the explicit pair; also a method named by the caller)."""
-    scene, _ = heavy
-    with monkeypatch.context() as mp:
-        mp.setattr(ch, "compilation_enabled", lambda: True)
-        c = ch.choose(scene)
+def test_the_explicit_only_plan_falls_back_to_the_node_model(heavy_compiled, heavy, monkeypatch):
+    """A quasi-static segmented choice made for the explicit pair's sake (the compiled choice) becomes the node
+    model at the same N, with the node model's estimate, when the pair will not step it (here: CasADi's VM, where
+    the guard does not run the explicit pair; also a method named by the caller). Compiled, the pair steps it
+    (test_compiled_auto_on_the_heavy_wire_within_tolerance)."""
+    scene, c = heavy[0], heavy_compiled
+    monkeypatch.setenv("CABLESYS_COMPILE", "0")     # the guard's VM, whatever the module's fixtures set
     cache = RungCache()
     for kw in ({}, {"method": "cvodes"}):
         got = explicit_or_node(scene, c, TOL, cache, kw)
@@ -109,8 +123,8 @@ def test_dale_keeps_its_sure_n():
     would cost more (1.5 x 4): the plan does not change them."""
     from cablesys.scene import dale_scene
     for ratio, n in ((1.0, 4), (2.0, 3)):
-        c = ch.choose(dale_scene(omega_ratio=ratio, duration=60.0))
-        assert c.segments == n and c.numbers["plan"]["checked"] is False, c.reason
+        for c in both(dale_scene(omega_ratio=ratio, duration=60.0)):      # compiled and in the VM alike
+            assert c.segments == n and c.numbers["plan"]["checked"] is False, c.reason
 
 
 def test_a_window_before_the_response_settles_is_noted():
@@ -123,7 +137,8 @@ def test_a_window_before_the_response_settles_is_noted():
     assert 3.5 * period < settle < 20 * period - 5 * period
     note = ch.settling_note(scene)
     assert "before the forced response settles" in note and f"{settle:.4g} s" in note
-    assert note in ch.choose(scene).reason
+    for c in both(scene):
+        assert note in c.reason
     long = scene.with_numerics(duration=20 * period)
     assert ch.settling_note(long) == ""
     # the length it asks for is enough: a window of min(5 periods, half the run) then starts at the settling time
@@ -182,7 +197,8 @@ def test_a_checked_n_that_misses_its_check_runs_the_sure_n():
     tolerance (the 7-period run is still building up), so auto runs the sure N = 10 with its a priori estimate,
     unchecked, and says why."""
     scene = random_scene(np.random.default_rng(9), "heavy")
-    c = ch.choose(scene)
+    c, vm = both(scene)           # compiled, the quasi-static segmented cable does not beat it: the same plan
+    assert vm.numbers["plan"] == c.numbers["plan"]
     plan = c.numbers["plan"]
     assert (plan["name"], plan["segments"], plan["checked"]) == ("segmented", 6, True)
     assert plan["fallback"] == {"name": "segmented", "segments": 10, "explicit_only": False}
