@@ -16,10 +16,13 @@ from pathlib import Path
 import numpy as np
 
 
-def parse_args(description: str, argv=None) -> argparse.Namespace:
+def parse_args(description: str, argv=None, extra=None) -> argparse.Namespace:
+    """--out DIR (created) and --quick; ``extra(parser)`` adds a study's own options."""
     ap = argparse.ArgumentParser(description=description)
     ap.add_argument("--out", required=True, type=Path, help="output directory (created if missing)")
     ap.add_argument("--quick", action="store_true", help="a much shorter run (for tests)")
+    if extra is not None:
+        extra(ap)
     args = ap.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
     return args

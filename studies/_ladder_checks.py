@@ -6,9 +6,31 @@ from __future__ import annotations
 
 import math
 
+from cablesys.ladder import metrics
 from cablesys.ladder.choice import SAFETY
 
 NOISE_FACTOR = 2.0        # a cheaper run "beats" auto's when its time is below 1/2 of auto's (shared machine)
+QUANTITY_TOL = {"body": 0.01, "tension": 0.02}    # the ladder's default tolerance per group (choice.tolerances)
+RESOLVED = 0.05      # an actual error below this fraction of its tolerance need not be resolved by the estimate
+
+
+def quantity_rows(actual: dict, stated: dict, held=None, tol: dict = QUANTITY_TOL) -> list:
+    """Issue 22's two verdicts per reported quantity, sorted by name: ``actual`` {quantity: relative error} of auto
+    against a reference (:func:`cablesys.ladder.metrics.quantity_errors`), ``stated`` auto's
+    ``model.estimated_error_per_quantity`` (missing or ``None`` where the run was not checked a posteriori),
+    ``held`` the quantities auto was asked to hold (``None``: all). Each row: ``within_tolerance`` (actual <= its
+    group's tolerance), ``stated_at_least_half`` (stated >= actual / 2, the issue's strict inequality; ``None``
+    without a statement) and ``stated_honest`` (the same, or an actual error below RESOLVED x the tolerance, which
+    no estimate need resolve)."""
+    rows = []
+    for k, e in sorted(actual.items()):
+        s = (stated or {}).get(k)
+        t = tol[metrics.group(k)]
+        half = None if s is None else bool(s >= 0.5 * e)
+        rows.append({"quantity": k, "actual": e, "stated": s, "tolerance": t, "within_tolerance": e <= t,
+                     "held": held is None or k in held, "stated_at_least_half": half,
+                     "stated_honest": None if s is None else bool(half or e <= RESOLVED * t)})
+    return rows
 
 
 def _same(r: dict, rung: str, n: int) -> bool:

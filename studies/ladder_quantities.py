@@ -28,6 +28,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
+from _ladder_checks import QUANTITY_TOL as TOL, quantity_rows  # noqa: E402
 
 import cablesys  # noqa: E402
 from cablesys.isolation.example import dual_scene  # noqa: E402
@@ -35,8 +36,6 @@ from cablesys.ladder import metrics  # noqa: E402
 from cablesys.scene import Body, Cable, Environment, Numerics, Scene, Section, TopMotion  # noqa: E402
 from cablesys.scene.harmonics import Sinusoid  # noqa: E402
 
-TOL = {"body": 0.01, "tension": 0.02}
-RESOLVED = 0.05      # an actual error below this fraction of its tolerance need not be resolved by the estimate
 
 def sheared_scene(length: float = 150.0, duration: float = 90.0) -> Scene:
     """25 mm wire, a 4 kN sphere, current 1.2 / 0.6 / 0.1 m/s over the depth, 1.5 m surge and 1 m heave at 9 s."""
@@ -71,13 +70,7 @@ def case(name: str, scene: Scene, quantities=None) -> dict:
         ref = cablesys.simulate(scene, model="segmented", segments=n_ref)
     actual = metrics.quantity_errors(metrics.statistics(auto, period), metrics.statistics(ref, period))
     stated = m.get("estimated_error_per_quantity") or {}
-    rows = []
-    for k, e in sorted(actual.items()):
-        s = stated.get(k)
-        rows.append({"quantity": k, "actual": e, "stated": s, "tolerance": TOL[metrics.group(k)],
-                     "within_tolerance": e <= TOL[metrics.group(k)],
-                     "held": quantities is None or k in quantities,
-                     "stated_honest": None if s is None else bool(s >= 0.5 * e or e <= RESOLVED * TOL[metrics.group(k)])})
+    rows = quantity_rows(actual, stated, quantities)
     return {"case": name, "scene": scene.name, "model": {k: m.get(k) for k in ("name", "segments", "checked")},
             "reference_segments": n_ref, "auto_wall_s": wall, "quantities_held": "all" if quantities is None
             else list(quantities), "rows": rows,
