@@ -109,6 +109,13 @@ def compilation_enabled(enabled: bool = True) -> bool:
     return enabled and text.lower() not in _OFF
 
 
+def compiles(enabled: bool = True) -> bool:
+    """Whether functions will run compiled: :func:`compilation_enabled` and a C compiler found
+    (``CABLESYS_CC``, default ``cc``); without one every function runs in CasADi's VM (with a one-line notice),
+    so whatever prices runs by how they will run asks this, not the setting alone."""
+    return compilation_enabled(enabled) and _compiler_identity(compiler_command()) is not None
+
+
 _NOTICES: set = set()
 _NOTICES_LOCK = threading.Lock()
 

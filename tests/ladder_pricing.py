@@ -1,6 +1,6 @@
 """The ladder's choice as users get it (compiled C) and as the suite runs (CasADi's VM, tests/conftest.py).
 
-:func:`cablesys.ladder.choice.choose` prices the rungs as they will run, by ``compilation_enabled()``
+:func:`cablesys.ladder.choice.choose` prices the rungs as they will run, by ``compiles()`` (compilation on and a C compiler found)
 (:func:`~cablesys.ladder.choice.element_plan`: the quasi-static segmented cable competes by cost only compiled;
 ``_pick``: where nothing drives the swing the quasi-static rung goes first only compiled). :func:`priced` sets that
 pricing alone; the linear response the estimates rest on is evaluated as ``CABLESYS_COMPILE`` says (the VM in the
@@ -23,7 +23,7 @@ VM_NOTE = "compiled code is off (CasADi's virtual machine): with it the ladder w
 def priced(compiled: bool):
     """Within the block the ladder prices its rungs as compiled code (``compiled``) or the VM runs them."""
     with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(ch, "compilation_enabled", lambda enabled=True: bool(compiled and enabled))
+        mp.setattr(ch, "compiles", lambda enabled=True: bool(compiled and enabled))
         yield
 
 

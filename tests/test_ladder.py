@@ -103,8 +103,6 @@ def test_pure_heave_compiled_gets_the_quasi_static_rung():
         assert "nothing drives the swing" not in c.reason
 
 
-@pytest.mark.xfail(strict=True, reason="choice.py prices by CABLESYS_COMPILE alone, not the compiler's presence: "
-                   "without cc it picks the compiled choice, runs the VM and its reason does not say so")
 def test_without_a_compiler_the_choice_is_the_vms_or_says_why_not(monkeypatch, tmp_path):
     """Compilation asked for (CABLESYS_COMPILE=1) but no C compiler found (cablesys.compiled falls back to the VM):
     the pure heave then runs in the VM, where Wang's model is the cheaper rung; the choice is the VM's, or its

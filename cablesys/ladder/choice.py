@@ -21,7 +21,7 @@ import dataclasses
 import math
 import warnings
 
-from ..compiled import compilation_enabled
+from ..compiled import compiles
 from ..errors import NumericalWarning, ParameterError
 from ..model.segmented import drag_points
 from ..scene import Scene
@@ -244,7 +244,7 @@ def element_plan(scene: Scene, numbers, errs: dict, tol, compiled: bool | None =
     if quasistatic_segments_available(scene):
         if numbers.axial_ratio <= 1.0 / STIFF_RATIO:
             families.append(("quasi-static", STIFF_QS_COST, min(MAX_SEGMENTS, quasistatic_max_segments(scene)), False))
-        elif (compilation_enabled() if compiled is None else compiled):
+        elif (compiles() if compiled is None else compiled):
             families.append(("quasi-static", EXPLICIT_COST, min(EXPLICIT_COST_MAX_ELEMENTS, EXPLICIT_MAX_ELEMENTS), True))
     options = []
     for name, weight, top, explicit in families:
@@ -361,7 +361,7 @@ def choose(scene: Scene, tolerance=None, *, question: str = "time", cache: RungC
     """
     tol = tolerances(scene, tolerance)
     numbers, response, errs, info = _assess(scene, tol, cache)
-    compiled = compilation_enabled()
+    compiled = compiles()
     choice = _pick(scene, tol, question, numbers, response, errs, info, compiled)
     choice = _registered(scene, tol, Assessment(numbers, response, errs), choice) if registered_rungs() else choice
     if not compiled:       # the choice prices rungs as they run: say what the compiled code would run instead

@@ -42,7 +42,7 @@ import dataclasses
 import logging
 import math
 
-from ..compiled import compilation_enabled
+from ..compiled import compiles
 from ..scene import Scene
 from .choice import model_operations
 from .metrics import forcing_period
@@ -205,7 +205,7 @@ def for_run(scene: Scene, choice, tol, kw: dict) -> Prediction | None:
     elements = sum(s.cable.segments for s in sc.sections)
     s = integrator_settings(sc, tol, elements, method=kw.get("method"), rtol=kw.get("rtol"), atol=kw.get("atol"),
                             rung=None, stated=choice.estimated_error.get("body"))
-    s = dataclasses.replace(s, compiled=bool(s.compiled and compilation_enabled()))
+    s = dataclasses.replace(s, compiled=bool(s.compiled and compiles()))
     if choice.name == "quasi-static" and kw.get("method") is None and s.method not in FIXED_STEP and s.compiled:
         s = dataclasses.replace(s, method=QUASI_STATIC_METHOD)     # uncompiled, the guard falls back to CVODES
     times = kw.get("times")

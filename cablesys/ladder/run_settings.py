@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from ..compiled import compilation_enabled
+from ..compiled import compiles
 from ..scene import Numerics, Scene
 from ..time_domain.initial import initial_state
 from ..time_domain.integrators import (  # one rule, simulate's default too
@@ -102,7 +102,7 @@ def integrator_settings(scene: Scene, tol, elements: int = 1, *, method=None, rt
 def _quasi_static_method(scene: Scene, model, x0, rtol: float, elements: int, cache=None) -> str:
     """QUASI_STATIC_METHOD where :func:`.stiffness.explicit_fit` accepts ``model`` at ``x0`` (compiled runs
     only: uncompiled, the explicit pair would fall back to CVODES anyway), else QUASI_STATIC_FALLBACK."""
-    if model is None or x0 is None or elements > EXPLICIT_MAX_ELEMENTS or not compilation_enabled():
+    if model is None or x0 is None or elements > EXPLICIT_MAX_ELEMENTS or not compiles():
         return QUASI_STATIC_FALLBACK
     p = np.asarray(model.parameters(scene), dtype=float).ravel()
     x0 = np.asarray(x0, dtype=float).ravel()

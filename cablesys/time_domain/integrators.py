@@ -54,7 +54,7 @@ import dataclasses
 import casadi as ca
 import numpy as np
 
-from ..compiled import Compiled, compilation_enabled, compile_functions, generate
+from ..compiled import Compiled, compilation_enabled, compile_functions, compiles, generate
 from ..integration import METHODS, IntegratorMethod, resolve
 from ..model import CableModel
 from ..model.scales import state_scales
@@ -188,10 +188,11 @@ def dae_function(model: CableModel, implicit: bool, compiled: bool = True, scale
 def kernel_dae(model: CableModel, implicit: bool, compiled: bool = True) -> bool:
     """Whether :func:`dae_function` builds the DAE from the segmented cable's element kernel (MX, mapped over the
     elements: :mod:`cablesys.model.segmented_kernel`) instead of its element-by-element SX ``ode``: compiled, in
-    the explicit form, past :data:`COMPILE_MAX_ELEMENTS` elements. The straight-line SX code and its Jacobian grow
+    the explicit form, past :data:`COMPILE_MAX_ELEMENTS` elements, with a C compiler found (in the VM the MX form is
+    slower than the SX one). The straight-line SX code and its Jacobian grow
     with N (megabytes of C that gcc takes minutes over, hence the VM past COMPILE_MAX_ELEMENTS); the kernel's C
     grows with the Jacobian's nonzeros only and compiles in seconds (``studies/bench_kernel_dae.py``)."""
-    return (compilation_enabled(compiled) and not implicit and getattr(model, "kernel_ode", None) is not None
+    return (compiles(compiled) and not implicit and getattr(model, "kernel_ode", None) is not None
             and int(getattr(model, "n_elements", 1)) > COMPILE_MAX_ELEMENTS and model.loop_ode is model.kernel_ode)
 
 
@@ -290,7 +291,7 @@ def rk4_interval(model: CableModel, n_sub: int, compiled: bool = True, stages: i
         # a model may offer an ode for compiled loops (the segmented element kernel, MX: its C has constant
         # size); in CasADi's VM its map calls cost more than the SX ode's straight line (72 vs 53 us per RHS
         # at N = 80), so the VM steps the SX ode
-        ode = getattr(model, "loop_ode", model.ode) if compilation_enabled(compiled) else model.ode
+        ode = getattr(model, "loop_ode", model.ode) if compiles(compiled) else model.ode
         S = ca.MX if ode.is_a("MXFunction") else ca.SX
         x, s, hs, p = S.sym("x", nx), S.sym("s"), S.sym("hs"), S.sym("p", npx)
 
