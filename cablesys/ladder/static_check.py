@@ -103,25 +103,22 @@ def check(scene: Scene, choice: Choice, tol, cache: RungCache) -> Choice:
             f"tension {worst['tension']:.2g}")
     if worst["body"] <= tol[0] and worst["tension"] <= tol[1]:
         return _stated(choice, errs, note, ref_n)
+    # the element rungs share the node model's statics: one search over N; past the quasi-static segmented cable's
+    # size cap the node model (whose size grows linearly) runs instead
     name = choice.name if choice.segments > 1 else "segmented"
     top = min(MAX_SEGMENTS, quasistatic_max_segments(scene)) if name == "quasi-static" else MAX_SEGMENTS
-    start = max(choice.segments, 2) if choice.segments > 1 else 2
-    for n in (start, *_candidates(scene, start, top)) if choice.segments <= 1 else _candidates(scene, start, top):
+    first = () if choice.segments > 1 else (2,)
+    for n in (*first, *_candidates(scene, max(choice.segments, 2), MAX_SEGMENTS)):
         try:
-            e = static_errors(static_values(scene, name, n, cache), reference)
+            e = static_errors(static_values(scene, "segmented", n, cache), reference)
         except SolverError:
             continue
         w = _worst(e)
         if w["body"] <= tol[0] and w["tension"] <= tol[1]:
-            return _raised(choice, name, n, e, f"{note} at N = {choice.segments}, within the tolerance from N = {n}",
-                              ref_n)
-    if name == "quasi-static":          # capped by its size: the node model, whose size grows linearly
-        for n in _candidates(scene, top, MAX_SEGMENTS):
-            e = static_errors(static_values(scene, "segmented", n, cache), reference)
-            w = _worst(e)
-            if w["body"] <= tol[0] and w["tension"] <= tol[1]:
-                return _raised(choice, "segmented", n, e, f"{note} at N = {choice.segments}, within the tolerance "
-                                                         f"from N = {n} (the node model)", ref_n)
+            rung = name if n <= top else "segmented"
+            why = "" if rung == name else " (the node model: the quasi-static segmented cable is capped by its size)"
+            return _raised(choice, rung, n, e, f"{note} at N = {choice.segments}, within the tolerance from N = {n}{why}",
+                           ref_n)
     return _stated(choice, errs, f"{note}: outside the tolerance, and no N up to {MAX_SEGMENTS} meets it", ref_n)
 
 
