@@ -326,7 +326,8 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
         result = extrapolation.run(scene, choice.segments, cache, kw)
     else:
         prediction = plan_cost.for_run(scene, choice, tol, kw)     # before the run's model is built
-        plan_cost.check_budget(scene, prediction) if prediction is not None else None
+        if prediction is not None:
+            plan_cost.check_budget(scene, prediction)
         plan_cost.announce(prediction, kw)
         result = _run(scene, choice, tol, cache, kw)
     t2, b2 = time.perf_counter(), cache.build_s
