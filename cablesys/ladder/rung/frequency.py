@@ -14,7 +14,8 @@ class Frequency(BuiltinRung):
 
     name = "frequency"
     time_domain = False
-    straight_cost = 0.2      # the periodic orbit's cost against Wang's time-domain run (a collocation solve, no steps)
+    straight_cost = 0.2      # the periodic orbit's cost against Wang's time-domain run (a collocation solve, no steps;
+    #                          scene-dependent: studies/results/rung_costs.json)
 
     model_of = "wang"        # the rung whose model it solves (a RungCache builds it once for both)
 

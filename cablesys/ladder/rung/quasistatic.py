@@ -11,11 +11,13 @@ from .. import estimate as est
 from .base import BuiltinRung
 
 STIFF_QS_COST = 0.25
-"""Cost per element of the quasi-static segmented cable where its stretch is stiff (omega/omega_ax <= 1/STIFF_RATIO), relative to the node model's element stepped by BDF2, compiled (a wall-time ratio measured by studies/model_ladder.py)."""
+"""Cost per element of the quasi-static segmented cable where its stretch is stiff (omega/omega_ax <= 1/STIFF_RATIO), relative to the node model's element stepped by BDF2, compiled, at one rtol (a wall-time ratio: studies/bench_rung_costs.py, its
+measurement and machine in studies/results/rung_costs.json)."""
 EXPLICIT_COST = 0.7
-"""Cost per element of the quasi-static segmented cable stepped by the compiled rk23 pair where its stretch is not that stiff, relative to the node model's element (wall-time ratio, studies/model_ladder.py)."""
+"""Cost per element of the quasi-static segmented cable stepped by the compiled rk23 pair where its stretch is not that stiff, relative to the node model's element at one rtol (a wall-time ratio: studies/bench_rung_costs.py, measured in
+studies/results/rung_costs.json)."""
 EXPLICIT_COST_MAX_ELEMENTS = 7
-"""Most elements per section at which EXPLICIT_COST holds: past ~1.5 MB of functions the compiler runs at -O0 (cablesys.compiled.SIZE_FLAGS) and the 1000 m wire's N = 8 ran slower than the node model (studies/model_ladder.py)."""
+"""Most elements per section at which EXPLICIT_COST holds: past ~1.5 MB of functions the compiler runs at -O0 (cablesys.compiled.SIZE_FLAGS) and the 1000 m wire's N = 8 runs as slowly as the node model (studies/results/rung_costs.json)."""
 
 
 class QuasiStatic(BuiltinRung):
@@ -24,7 +26,7 @@ class QuasiStatic(BuiltinRung):
     name = "quasi-static"
     elements = True
     stays_taut = True          # a quasi-static stretch cannot go slack
-    straight_cost = 0.5        # the straight quasi-static cable against Wang's (no stretch mode to step)
+    straight_cost = 0.5        # the straight quasi-static cable against Wang's (no stretch mode to step; studies/results/rung_costs.json)
 
     def build(self, scene: Scene, segments: int = 1, cache=None) -> CableModel:
         """The quasi-static model (:func:`cablesys.model.quasistatic.build_quasistatic`); the straight one reuses

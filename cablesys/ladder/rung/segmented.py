@@ -12,7 +12,8 @@ from .base import PLANAR, WITH_MASS, BuiltinRung, massless, three_d
 ENDS_SEGMENTS = 16
 """The first N of an anchored line or a seabed scene (the a posteriori check at N / 2 grows it)."""
 CHECK_COST = 1.5
-"""Cost of a run of N elements checked a posteriori against N / 2, in runs of N (either element rung; a wall-time ratio measured by studies/model_ladder.py)."""
+"""Cost of a run of N elements checked a posteriori against N / 2, in runs of N (either element rung; a wall-time ratio:
+studies/bench_rung_costs.py, measured in studies/results/rung_costs.json)."""
 CHECK_ACCEPT = 0.8
 """A checked N is kept when its Richardson estimate is within this fraction of the tolerance: those estimates were 0.82-0.98 x the actual error (studies/model_ladder.py: heavy1000 0.85, random current-4 / 9 / 10 0.98 / 0.92 / 0.82 against N = 32)."""
 
