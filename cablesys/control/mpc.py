@@ -167,7 +167,7 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
     strategies : sequence of str
         A subset of :data:`STRATEGIES`.
     stats_start : float, optional
-        Start of the statistics window (s; default 20 % of the run).
+        Start of the statistics window (s; default the window of every run's summary, :func:`cablesys.statistics.window`).
     max_iter : int
         IPOPT iterations per MPC step.
 
@@ -229,7 +229,7 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
         runs["passive"] = _passive_run(scene, plant_scene, limits, kw, passive_ratio, N)
 
     T = dt * np.arange(N + 1)
-    mask = statistics_window(T, stats_start)
+    mask = statistics_window(T, stats_start, prob_c.scene.top_motion)
     out = {name: {} for name in ("heave", "tension_top", "tension_mid", "speed", "power", "length")}
     metrics = {}
     oi = WINCH_OUTPUTS.index

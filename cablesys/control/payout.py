@@ -25,6 +25,7 @@ import numpy as np
 
 from ..errors import ParameterError, require_positive
 from ..model.winch import COMPENSATOR_PARAMETERS, WINCH_OUTPUTS, WinchModel, build_winch_model, rest_state
+from .. import statistics as st
 from ..results import ResultBase, timed
 from .limits import WinchLimits
 from .shooting import PathConstraint, ShootingNLP
@@ -257,9 +258,13 @@ class PayoutResult(ResultBase):
         return xr.Dataset(data, coords={"time": self.times})
 
 
-def statistics_window(times: np.ndarray, start: float | None) -> np.ndarray:
-    """Mask of the samples in the statistics window: from ``start`` (s; default 20 % of the run)."""
-    start = 0.2 * times[-1] if start is None else start
+def statistics_window(times: np.ndarray, start: float | None, top_motion=None) -> np.ndarray:
+    """Mask of the samples in the statistics window: from ``start`` (s), by default the window of every run's
+    summary (:func:`cablesys.statistics.window` with the top motion's forcing period and smooth start)."""
+    if start is None:
+        period = None if top_motion is None else top_motion.forcing_period_s
+        ramp = 0.0 if top_motion is None else top_motion.effective_ramp_s
+        start = st.window(times, period, ramp)[0]
     return times >= start
 
 
@@ -279,7 +284,7 @@ def payout_result(problem: HeaveProblem, X, U, *, status: str, violated: str = "
     Y = problem.outputs(X, Uext, t)
     X0 = problem.rollout(problem.x_rest, np.zeros(N))
     Y0 = problem.outputs(X0, np.zeros(N + 1), t)
-    mask = statistics_window(t, stats_start)
+    mask = statistics_window(t, stats_start, problem.scene.top_motion)
     oi = WINCH_OUTPUTS.index
     h, h0 = Y[:, oi("heave")] - problem.heave_rest, Y0[:, oi("heave")] - problem.heave_rest
     return PayoutResult(times=t, states=np.asarray(X), acceleration=np.ravel(U), outputs=Y, uncompensated=Y0,
@@ -347,7 +352,7 @@ def optimal_payout(problem: HeaveProblem, horizon: float, *, warm_start: PayoutR
     max_iter, tol : int, float
         IPOPT's iteration limit and tolerance.
     stats_start : float, optional
-        Start of the window of the heave statistics (s; default 20 % of the horizon).
+        Start of the window of the heave statistics (s; default the window of every run's summary, :func:`cablesys.statistics.window`).
 
     Returns
     -------

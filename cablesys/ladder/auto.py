@@ -240,12 +240,12 @@ def _as_built(scene: Scene, model, simulator, kw: dict, cache: RungCache | None)
     info.update(reason=("the caller's model, as built" if given
                         else "numerics.model = 'as-built': the scene's own model, as built") +
                 "; no ladder choice, its error not estimated", estimated_error={"body": None, "tension": None})
-    return _windowed(scene, dataclasses.replace(r, model_info=info, stats={**r.stats, "model": info}))
+    return windowed(scene, dataclasses.replace(r, model_info=info, stats={**r.stats, "model": info}))
 
 
-def _windowed(scene: Scene, result):
-    """``result`` with the scene's forcing period and smooth start, which set its statistics window (the last 5
-    forcing periods after the ramp, :mod:`cablesys.time_result`): one window for every door's summary."""
+def windowed(scene: Scene, result):
+    """``result`` with the scene's forcing period and smooth start, which set its statistics window
+    (:func:`cablesys.statistics.window`): one window for every door's summary and table."""
     return dataclasses.replace(result, forcing_period_s=metrics.forcing_period(scene),
                                ramp_s=float(scene.top_motion.effective_ramp_s))
 
@@ -340,7 +340,7 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
     timing = {"choose_s": (t1 - t0) - (b1 - b0), "build_s": b3 - b0, "run_s": (t2 - t1) - (b2 - b1),
               "check_s": (t3 - t2) - (b3 - b2), "total_s": t3 - t0}
     log.info("model %s (N = %d): %s", choice.name, choice.segments, choice.reason)
-    return _windowed(scene, dataclasses.replace(result, model_info=info,
+    return windowed(scene, dataclasses.replace(result, model_info=info,
                                                 stats={**result.stats, "model": info, "ladder_timing": timing}))
 
 

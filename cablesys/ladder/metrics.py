@@ -115,6 +115,6 @@ def quantity_errors(stats: dict, reference: dict) -> dict:
 
 
 def forcing_period(scene) -> float | None:
-    """The longest period of the top-motion sinusoids (None without sinusoids)."""
-    freqs = [s.frequency for s in scene.top_motion.x + scene.top_motion.y if s.amplitude != 0.0]
-    return 2 * np.pi / min(freqs) if freqs else None
+    """The longest period of the top-motion sinusoids (s; None without sinusoids):
+    :attr:`cablesys.scene.TopMotion.forcing_period_s`."""
+    return scene.top_motion.forcing_period_s

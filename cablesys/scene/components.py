@@ -286,6 +286,14 @@ class TopMotion:
             periods.append(self.spectrum.tp)
         return RAMP_PERIODS * max(periods) if periods else 0.0
 
+    @property
+    def forcing_period_s(self) -> float | None:
+        """The longest period (s) of the top-motion sinusoids with a non-zero amplitude, a realised sea's
+        components included; None without sinusoids. It sets every statistics window
+        (:func:`cablesys.statistics.window`)."""
+        freqs = [s.frequency for axis in (self.x, self.y, self.z) for s in axis if s.amplitude != 0.0]
+        return 2.0 * math.pi / min(freqs) if freqs else None
+
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class Initial:
