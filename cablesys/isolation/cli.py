@@ -117,8 +117,9 @@ def check_lines(c: dict) -> str:
     sampling error, and whether they agree, for each scene and for the ratio."""
     def pm(value, rel):
         return f"{value:.4g} +- {value * rel:.2g}"
-    lines = [f"time-domain check ({c['designed']['model']}, window {c['designed']['window_s'][0]:.0f}-"
-             f"{c['designed']['window_s'][1]:.0f} s; predicted +- linearization error, time domain +- sampling error):"]
+    lines = [f"time-domain check ({c['designed']['model']}, the design sea on the buoy orbit, window {c['designed']['window_s'][0]:.0f}-"
+             f"{c['designed']['window_s'][1]:.0f} s; predicted +- linearization error, time domain +- sampling error; "
+             "allowed: both plus the realised sea's offset):"]
     for name, key in (("baseline", "baseline"), ("designed", "designed"), ("ratio designed/baseline", "ratio")):
         e = c[key]
         unit = " m" if key != "ratio" else ""
