@@ -61,3 +61,19 @@ def test_capture_keeps_other_lines_and_names_the_flags(capsys):
     err = capsys.readouterr().err
     assert err == "a line of the user's\n"
     assert len(got) == 2 and kinsol_flags(got + got) == ["KIN_MAXITER_REACHED", "KIN_LINESEARCH_NONCONV"]
+
+
+def test_a_failed_statics_names_the_flags_once_in_its_error(dale, capfd):
+    """Every guess fails (a residual (q - 100)^2 + 1 with no root, stalling far from any equilibrium): the SolverError names KINSOL's flags; stderr stays clean."""
+    import casadi as ca
+
+    from cablesys.errors import SolverError
+    _, m, p = dale
+    q, pp = ca.SX.sym("q", m.nq), ca.SX.sym("p", len(m.layout))
+    no_root = ca.rootfinder("no_root", "kinsol", ca.Function("r", [q, pp], [(q - 100) ** 2 + 1]),
+                            {"strategy": "linesearch", "error_on_fail": False, "print_level": 0,
+                             "disable_internal_warnings": True, "max_iter": 20})
+    with pytest.raises(SolverError, match=r"steady state not found.*\(KINSOL: KIN_[A-Z_]+"):
+        steady_state(m, p, solver=no_root)
+    sys.stderr.flush()
+    assert "KIN" not in capfd.readouterr().err
