@@ -140,7 +140,12 @@ def test_cli_design_writes_json(tmp_path, capsys):
     # l_0 = l_r (1 - T_r / AE) (Wang 1971 eq. 1), so u_0 / l_0 = T_1 / (AE - T_r) = 0.10
     t_1, t_r = doc["mean_tension_N"][0], dual_scene().sections[0].cable.tension_ref
     assert doc["variables"]["ae_1"]["value"] == pytest.approx(t_1 / 0.10 + t_r, rel=1e-5)
-    assert "active: " in capsys.readouterr().out
+    # the prediction states its linearization error: two criteria a few % apart, never zero
+    e = doc["prediction_error"]
+    assert e["baseline_m"] == pytest.approx(doc["baseline"]["significant_heave_m"], rel=1e-9)
+    assert all(0 < e[k] < 0.1 for k in ("baseline_error_rel", "designed_error_rel", "ratio_error_rel"))
+    out = capsys.readouterr().out
+    assert "active: " in out and "linearization error" in out
 
 
 def test_settings_toml_round_trip():

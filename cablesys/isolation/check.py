@@ -83,6 +83,32 @@ def _heave(lin, omega, index: int) -> np.ndarray:
     return Y[:, index, :] @ d
 
 
+def _predict(scene, settings: DesignSettings) -> tuple:
+    """(2 sigma by the design's criterion, 2 sigma by the equal-mean-square one (m), the stochastic linear
+    model, the body heave's output index and label)."""
+    model = build_model(scene)
+    p = model.parameters(scene)
+    _, st = equivalent_jacobian_shift(model, p, settings)
+    label = model.label("y_b", model.n_sections - 1)
+    k = st.output_labels.index(label)
+    S = jonswap(settings.omega, settings.hs, settings.tp, settings.gamma)
+    alt = _blend(linearize(model, p), st.linear, CRITERIA_FACTOR)
+    sig_alt = math.sqrt(float(np.trapezoid(np.abs(_heave(alt, settings.omega, k)) ** 2 * S, settings.omega)))
+    return float(st.significant_amplitude(label)), 2.0 * sig_alt, st.linear, k, label
+
+
+def linearization_errors(scene, new_scene, settings: DesignSettings) -> dict:
+    """The design's predictions of the body heave 2 sigma (m) of the baseline and the designed scene and of their
+    ratio, each with its linearization error |ln(alt / design)| (module docstring): what the design states
+    without a time-domain check."""
+    (a, a_alt, *_), (b, b_alt, *_) = _predict(scene, settings), _predict(new_scene, settings)
+    return {"baseline_m": a, "designed_m": b, "ratio": b / a,
+            "baseline_error_rel": abs(math.log(a_alt / a)), "designed_error_rel": abs(math.log(b_alt / b)),
+            "ratio_error_rel": abs(math.log((b_alt / a_alt) / (b / a))),
+            "how": f"the spread between the design's least-squares linearization criterion and equal mean squares "
+                   f"(equivalent damping x {CRITERIA_FACTOR:.4f}, Roberts & Spanos ch. 5)"}
+
+
 def prediction(scene, settings: DesignSettings, sea: SeaSpectrum) -> dict:
     """The design's prediction for ``scene`` and what its errors are computed from.
 
@@ -93,17 +119,10 @@ def prediction(scene, settings: DesignSettings, sea: SeaSpectrum) -> dict:
         equal-mean-square criterion), and for the sampling error the body heave's complex amplitudes
         ``z`` (m) at the realised components of ``sea``.
     """
-    model = build_model(scene)
-    p = model.parameters(scene)
-    _, st = equivalent_jacobian_shift(model, p, settings)
-    label = model.label("y_b", model.n_sections - 1)
-    k = st.output_labels.index(label)
-    S = jonswap(settings.omega, settings.hs, settings.tp, settings.gamma)
-    alt = _blend(linearize(model, p), st.linear, CRITERIA_FACTOR)
-    sig_alt = math.sqrt(float(np.trapezoid(np.abs(_heave(alt, settings.omega, k)) ** 2 * S, settings.omega)))
+    sig, sig_alt, lin, k, label = _predict(scene, settings)
     w, a, _ = sea.components()
-    return {"significant_heave_m": float(st.significant_amplitude(label)), "significant_heave_alt_m": 2.0 * sig_alt,
-            "z": a * _heave(st.linear, w, k), "omega": w, "label": label}
+    return {"significant_heave_m": sig, "significant_heave_alt_m": sig_alt, "z": a * _heave(lin, w, k), "omega": w,
+            "label": label}
 
 
 def time_domain_check(scene, new_scene, settings: DesignSettings, run) -> dict:

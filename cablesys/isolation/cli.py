@@ -175,7 +175,9 @@ def run(args) -> int:
         doc = {"scene": scene.name, **result.to_dict(), "failed_starts": failed,
                "baseline": {"significant_heave_m": before, "what": "the scene's own values, the same equivalent "
                             "linearization in the same sea"}}
-        new_scene = designed_scene(scene, settings, result) if (args.write_scene or args.check) else None
+        from .check import linearization_errors
+        new_scene = designed_scene(scene, settings, result)
+        doc["prediction_error"] = errors = linearization_errors(scene, new_scene, settings)
         if args.write_scene:
             from ..atomic import atomic_path
             from ..scene import dump_scene
@@ -198,6 +200,9 @@ def run(args) -> int:
     gain = 20 * math.log10(max(result.stochastic_sig_y_b, 1e-300) / max(before, 1e-300))
     w(f"body heave significant amplitude: baseline (the scene's values) {before:.4g} m -> designed "
       f"{result.stochastic_sig_y_b:.4g} m ({gain:+.1f} dB)\n")
+    w(f"  linearization error (least-squares vs equal-mean-square criterion): baseline "
+      f"{100 * errors['baseline_error_rel']:.1f} %, designed {100 * errors['designed_error_rel']:.1f} %, ratio "
+      f"{errors['ratio']:.3g} +- {100 * errors['ratio_error_rel']:.1f} %\n")
     if scene.top_motion.rao is not None:
         w("note: the design's objective moves the top with the surface orbit (Wang 1971 eq. 26 at x = 0); "
           "the scene's [top_motion.rao] is used by run and rao, not by the design\n")
