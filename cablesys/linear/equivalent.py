@@ -36,6 +36,7 @@ import numpy as np
 
 from ..compiled import compile_functions
 from ..errors import ParameterError
+from ..messages import casadi_warnings_captured
 from ..model import CableModel
 from ..results import ResultBase, timed
 from ..statics.problem import residual_scales
@@ -239,7 +240,8 @@ def harmonic_response(model: CableModel, p, omega, input_amplitude, *, n_theta: 
     res = {}
     for k, w in enumerate(list(pre) + list(omega[order])):
         par = np.concatenate([[w], Z.real, Z.imag, p])
-        v_new = np.array(rf(v, par)).ravel()
+        with casadi_warnings_captured():      # KINSOL's flag of a failed step: the residual below reports the outcome
+            v_new = np.array(rf(v, par)).ravel()
         v = v_new if np.all(np.isfinite(v_new)) else v
         if k >= len(pre):           # the residual of the requested frequencies (the continuation's are not reported)
             res[k - len(pre)] = (v.copy(), float(np.max(np.abs(np.array(G(v_new, par))))))

@@ -18,6 +18,7 @@ import casadi as ca
 import numpy as np
 
 from ..errors import SolverError
+from ..messages import casadi_warnings_captured, kinsol_flags
 from .problem import SteadyState, at_rest, static_parameters, static_residual
 
 TOLERANCE = 1e-10     # largest static force residual over the total weight
@@ -227,26 +228,35 @@ def segmented_equilibrium(model, p, *, guess=None):
         q_pol = np.array(nodes(q, pp)).ravel()
         return min(((q, residual(q, pp)), (q_pol, residual(q_pol, pp))), key=lambda a: a[1])
 
-    q, r = solve(g0, p)
-    if not r < tol:                   # continuation in flow speed, adaptive steps
-        flow = _flow_indices(model)
-        lam, step = 0.0, 0.25
-        q = hanging_guess(model, p)
-        while lam < 1.0 and step > 1.0 / 1024:
-            pp = p.copy()
-            pp[flow] *= min(1.0, lam + step)
-            q_try, r = solve(q, pp)
-            if r < tol:
-                q, lam, step = q_try, min(1.0, lam + step), 2.0 * step
-            else:
-                step *= 0.5
-        if lam < 1.0:
-            r = np.inf
+    # KINSOL's stalls on a guess are expected (the next guess or continuation step is tried): collected,
+    # named in the error if every try fails, otherwise dropped
+    with casadi_warnings_captured() as kinsol:
+        q, r = solve(g0, p)
+        if not r < tol:                   # continuation in flow speed, adaptive steps
+            flow = _flow_indices(model)
+            lam, step = 0.0, 0.25
+            q = hanging_guess(model, p)
+            while lam < 1.0 and step > 1.0 / 1024:
+                pp = p.copy()
+                pp[flow] *= min(1.0, lam + step)
+                q_try, r = solve(q, pp)
+                if r < tol:
+                    q, lam, step = q_try, min(1.0, lam + step), 2.0 * step
+                else:
+                    step *= 0.5
+            if lam < 1.0:
+                r = np.inf
     if not r < tol:
         raise SolverError(f"segmented cable equilibrium not found (best scaled residual {r:.3g}): KINSOL failed from "
-                          "the hanging cable and along the flow-speed continuation; a very strong current or tow "
-                          "streams the cable horizontally: check weights and speeds, or give a guess")
+                          f"the hanging cable and along the flow-speed continuation{_flags(kinsol)}; a very strong "
+                          "current or tow streams the cable horizontally: check weights and speeds, or give a guess")
     return q, r
+
+
+def _flags(blocks) -> str:
+    """`` (KINSOL: FLAG, ...)`` of the collected CasADi warnings, or nothing."""
+    flags = kinsol_flags(blocks)
+    return f" (KINSOL: {', '.join(flags)})" if flags else ""
 
 
 def _max_residual(resid, q, p) -> float:
@@ -271,16 +281,17 @@ def _anchored_equilibrium(model, p, guess):
     tol = _tolerance(model, p)
     q = anchored_guess(model, p) if guess is None else np.asarray(guess, float)
     best = np.inf
-    for _ in range(3):                        # KINSOL restarted from its own last iterate
-        q_new = np.array(nodes(q, p)).ravel()
-        r = _max_residual(resid, q_new, p)
-        if r < best:
-            q, best = q_new, r
-        if best < tol:
-            break
+    with casadi_warnings_captured() as kinsol:
+        for _ in range(3):                        # KINSOL restarted from its own last iterate
+            q_new = np.array(nodes(q, p)).ravel()
+            r = _max_residual(resid, q_new, p)
+            if r < best:
+                q, best = q_new, r
+            if best < tol:
+                break
     if not best < tol:
         raise SolverError(f"anchored line equilibrium not found (best scaled residual {best:.3g} > {tol:.3g}): "
-                          "KINSOL failed from the line laid along the seabed and up to the top; give a guess")
+                          f"KINSOL failed from the line laid along the seabed and up to the top{_flags(kinsol)}; give a guess")
     if "seabed.depth" in model.layout.labels:
         T = _static_tensions(model, q, p)
         floor = -1e3 * np.finfo(float).eps * max(1.0, float(np.max(np.abs(T)))) - tol * _total_weight(model, p)

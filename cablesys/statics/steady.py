@@ -13,6 +13,7 @@ import casadi as ca
 import numpy as np
 
 from ..errors import SolverError
+from ..messages import casadi_warnings_captured, kinsol_flags
 from ..model import CableModel
 from .catenary import segmented_steady
 from .problem import SteadyState, at_rest, static_parameters, static_residual
@@ -22,7 +23,8 @@ def _rootfinder(model: CableModel) -> ca.Function:
     return model.derive("steady_kinsol", lambda: ca.rootfinder(
         "steady", "kinsol", static_residual(model),
         {"strategy": "linesearch", "abstol": 1e-12, "error_on_fail": False, "print_level": 0,
-         # failed starting guesses are expected and retried: keep KINSOL's messages off stderr
+         # failed starting guesses are expected and retried: KINSOL's own messages off (its return
+         # flag is printed regardless: steady_state collects it, cablesys.messages)
          "disable_internal_warnings": True}))
 
 
@@ -94,9 +96,11 @@ def steady_state(model: CableModel, p, *, guess=None, solver: ca.Function | None
     resid_fn = static_residual(model)
     guesses = ([np.asarray(guess, float)] if guess is not None else []) + list(starting_guesses(model, p))
     gap_fn = model.cable_force
-    best = None
+    best, flags = None, set()
     for g0 in guesses:
-        q = np.array(rf(g0, p)).ravel()
+        with casadi_warnings_captured() as kinsol:      # a guess that stalls is expected: the next is tried
+            q = np.array(rf(g0, p)).ravel()
+        flags.update(kinsol_flags(kinsol))
         if not np.all(np.isfinite(q)):
             continue
         r = float(np.max(np.abs(np.array(resid_fn(q, p)))))
@@ -113,5 +117,5 @@ def steady_state(model: CableModel, p, *, guess=None, solver: ca.Function | None
                           "equilibrium (every |phi| < 90 deg, every section's tension above its floor; best residual "
                           f"{best[1] if best else float('nan'):.3g}); a buoyant body on a rod only balances inverted, "
                           "and a very strong current or tow speed streams the cable horizontally: check weights and "
-                          "speeds, or give an initial guess")
+                          f"speeds, or give an initial guess{' (KINSOL: ' + ', '.join(sorted(flags)) + ')' if flags else ''}")
     return at_rest(model, best[0], p, best[1])
