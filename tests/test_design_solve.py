@@ -146,6 +146,9 @@ def test_cli_design_writes_json(tmp_path, capsys):
     assert all(0 < e[k] < 0.1 for k in ("baseline_error_rel", "designed_error_rel", "ratio_error_rel"))
     out = capsys.readouterr().out
     assert "active: " in out and "linearization error" in out
+    # which model the design linearizes, and the ladder's estimate of its error, as every result says
+    assert doc["model"]["name"] == "wang" and "as built" in doc["model"]["reason"]
+    assert doc["model"]["estimated_error"]["body"] > 0 and "model: wang" in out
 
 
 def test_settings_toml_round_trip():

@@ -152,6 +152,25 @@ def infeasible_lines(scene, err, before: float, path) -> str:
     return "\n".join(lines) + "\n"
 
 
+def design_model(scene) -> dict:
+    """design.json's ``model``: the model the design linearizes (the scene's own, as built: Wang's section chain, or
+    the node model where the scene's sections have elements) with the model ladder's estimate of that model's error
+    for the scene's time domain, and what the ladder would run instead (every result says which model ran, why,
+    and its error)."""
+    from ..ladder.choice import choose, forced
+    from ..ladder.rungs import RungCache
+    n = max(s.cable.segments for s in scene.sections)
+    rung = "wang" if n == 1 else "segmented"
+    cache = RungCache()
+    own, auto = forced(scene, rung, segments=None if n == 1 else n, cache=cache), choose(scene, cache=cache)
+    d = own.as_dict()
+    d["reason"] = ("the design optimizes the equivalent linearization of the scene's own model, as built "
+                   f"({'Wang' + chr(39) + 's section chain' if n == 1 else f'the node model, N = {n} per section'}); "
+                   f"the model ladder would run {auto.name}" + (f" N = {auto.segments}" if auto.segments > 1 else "")
+                   + " for this scene's time domain")
+    return d
+
+
 def run(args) -> int:
     from ..outputs import OutputDir
     from .solve import DesignInfeasible, design
@@ -175,6 +194,7 @@ def run(args) -> int:
         doc = {"scene": scene.name, **result.to_dict(), "failed_starts": failed,
                "baseline": {"significant_heave_m": before, "what": "the scene's own values, the same equivalent "
                             "linearization in the same sea"}}
+        doc["model"] = model = design_model(scene)
         from .check import linearization_errors
         new_scene = designed_scene(scene, settings, result)
         doc["prediction_error"] = errors = linearization_errors(scene, new_scene, settings)
@@ -197,6 +217,10 @@ def run(args) -> int:
     w(f"{scene.name}\n{'converged' if result.converged else 'NOT converged'} (best solve: {result.status}); "
       f"{result.nlp_iterations} IPOPT iterations in {result.nlp_wall_s:.2f} s (total {result.total_wall_s:.2f} s)\n")
     w(f"sea: JONSWAP Hs {settings.hs:g} m, Tp {settings.tp:g} s, gamma {settings.gamma:g}\n")
+    est = model["estimated_error"]
+    w(f"model: {model['name']}" + (f" N = {model['segments']}" if model.get("segments", 1) > 1 else "")
+      + f", the scene's own (the ladder's estimate of its time-domain error: body "
+      f"{100 * est['body']:.2g} %, tension {100 * est['tension']:.2g} %)\n")
     gain = 20 * math.log10(max(result.stochastic_sig_y_b, 1e-300) / max(before, 1e-300))
     w(f"body heave significant amplitude: baseline (the scene's values) {before:.4g} m -> designed "
       f"{result.stochastic_sig_y_b:.4g} m ({gain:+.1f} dB)\n")
