@@ -52,6 +52,7 @@ from .choice import (
     checkable,
     choose,
     forced,
+    quasistatic_max_segments,
     tolerances,
 )
 from .run_settings import (  # noqa: F401 - re-exported: the ladder's run settings, as before the split
@@ -479,6 +480,10 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
     if _explicit_only(choice) and n_next > EXPLICIT_COST_MAX_ELEMENTS:      # past where it pays (choice.element_plan)
         return node_model(choice, f"a posteriori (N = {n} vs {n // 2}): body {e['body']:.2g}, tension "
                                   f"{e['tension']:.2g}, N grows past {EXPLICIT_COST_MAX_ELEMENTS}", n_next), True
+    top = quasistatic_max_segments(scene)
+    if choice.name == "quasi-static" and n_next > top:    # past its size cap (choice.MAX_MODEL_OPERATIONS): not built
+        return node_model(choice, f"{said}; N grows to {n_next}, past the quasi-static segmented cable's size cap "
+                                  f"N = {top}", n_next), True
     return dataclasses.replace(choice, segments=n_next), True
 
 
