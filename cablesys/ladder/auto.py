@@ -492,8 +492,9 @@ JUMP_MARGIN = 1.25    # the next N aims at the tolerance with this margin on the
 
 def next_segments(scene: Scene, n: int, ratio: float, order: float, cap: int) -> int:
     """N after a check at ``n`` whose worst quantity is ``ratio`` x its accepted error: the N where an error ~ N^-p
-    (``order``) meets it, JUMP_MARGIN over, at least 2 n, at most ``cap``, and checkable against its half
-    (:func:`~.choice.checkable`: both on one side of the drag rule's switch)."""
+    (``order``) meets it, JUMP_MARGIN over, at least 2 n, at most ``cap``, and checkable against its half on the
+    scene's own drag rule (:func:`~.choice.checkable`: both on one side of the drag rule's switch), as the plans
+    prefer."""
     grow = min(4.0, max(2.0, JUMP_MARGIN * max(ratio, 1.0) ** (1.0 / max(order, 1.0))))
     m = min(cap, math.ceil(n * grow))
     while m < cap and not checkable(scene, m):
