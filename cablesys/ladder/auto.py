@@ -484,7 +484,7 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
     if choice.name == "quasi-static" and n_next > top:    # past its size cap (choice.MAX_MODEL_OPERATIONS): not built
         return node_model(choice, f"{said}; N grows to {n_next}, past the quasi-static segmented cable's size cap "
                                   f"N = {top}", n_next), True
-    return dataclasses.replace(choice, segments=n_next), True
+    return dataclasses.replace(choice, segments=n_next, reason=f"{choice.reason}; {said}: N = {n_next}"), True
 
 
 JUMP_MARGIN = 1.25    # the next N aims at the tolerance with this margin on the observed error's N^-p law
