@@ -218,6 +218,13 @@ def test_a_checked_n_that_misses_its_check_runs_the_sure_n():
 
 def test_a_checked_n_and_its_half_share_the_drag_rule(heavy):
     """With 10 drag points per section an element has two or more up to N = 6 and one from N = 7, where the
-    segmented error changes sign: N = 7..13 are not checked against N / 2 (3..6), N = 4..6 and 14.. are."""
+    segmented error changes sign: N = 7..13 and their halves (3..6) lie across the switch, N = 4..6 and 14.. do
+    not. The check of N = 7..13 runs N / 2 with one drag point per element, as N has (ch.check_scene); the others
+    run the scene's own rule."""
+    from cablesys.model.segmented import drag_points
     scene, _ = heavy
     assert [n for n in range(4, 16) if not ch.checkable(scene, n)] == list(range(7, 14))
+    for n in range(4, 40):
+        coarse = ch.check_scene(scene, n)
+        assert (drag_points(coarse, n // 2) > 1) == (drag_points(scene, n) > 1), n
+        assert (coarse is scene) == ch.checkable(scene, n)
