@@ -194,8 +194,9 @@ def test_a_run_still_building_up_says_so():
 def test_a_checked_n_that_misses_its_check_runs_the_sure_n():
     """Random heavy-9 (forced at its first string mode): the node model checked at N = 6 (estimate 0.82 %,
     cost 9) beats the sure N = 10 (0.48 %) a priori; its check against N = 3 states more than CHECK_ACCEPT x the
-    tolerance (the 7-period run is still building up), so auto runs the sure N = 10 with its a priori estimate,
-    unchecked, and says why."""
+    tolerance (the 7-period run is still building up), so auto runs the sure N = 10 and says why; N = 10 is checked
+    in turn, against N = 5 with one drag point per element as N = 10 has (choice.check_scene), and grows as that
+    check asks: no run of N >= 4 is left with its a priori estimate alone."""
     scene = random_scene(np.random.default_rng(9), "heavy")
     c, vm = both(scene)           # compiled, the quasi-static segmented cable does not beat it: the same plan
     assert vm.numbers["plan"] == c.numbers["plan"]
@@ -206,14 +207,24 @@ def test_a_checked_n_that_misses_its_check_runs_the_sure_n():
         warnings.simplefilter("ignore", NumericalWarning)
         got = simulate(scene, quantities=())      # the body and tension groups: the plan's own measure
     m = got.stats["model"]
-    assert (m["name"], m["segments"]) == ("segmented", 10)
-    assert f"not within {ch.CHECK_ACCEPT:g} x the tolerance" in m["reason"]
-    assert m["estimated_error"]["body"] == pytest.approx(est.segmented_error(c.numbers["estimates"], 10)["body"])
-    assert m["estimated_error"]["body"] <= ch.SAFETY * TOL[0]
+    assert f"not within {ch.CHECK_ACCEPT:g} x the tolerance: segmented with N = 10" in m["reason"]
+    assert "a posteriori (N = 10 vs 5, one drag point per element in both" in m["reason"]
+    n = m["segments"]
+    assert m["name"] == "segmented" and m["checked"] == f"a posteriori: N = {n} against N = {n // 2}"
+    # stated: the check's estimate, never below the a priori one at that N
+    assert m["estimated_error"]["body"] >= est.segmented_error(c.numbers["estimates"], n)["body"]
+    assert m["estimated_error"]["body"] <= ch.CHECK_ACCEPT * TOL[0] or n == ch.MAX_SEGMENTS
 
 
 def test_a_checked_n_and_its_half_share_the_drag_rule(heavy):
     """With 10 drag points per section an element has two or more up to N = 6 and one from N = 7, where the
-    segmented error changes sign: N = 7..13 are not checked against N / 2 (3..6), N = 4..6 and 14.. are."""
+    segmented error changes sign: N = 7..13 and their halves (3..6) lie across the switch, N = 4..6 and 14.. do
+    not. The check of N = 7..13 runs N / 2 with one drag point per element, as N has (ch.check_scene); the others
+    run the scene's own rule."""
+    from cablesys.model.segmented import drag_points
     scene, _ = heavy
     assert [n for n in range(4, 16) if not ch.checkable(scene, n)] == list(range(7, 14))
+    for n in range(4, 40):
+        coarse = ch.check_scene(scene, n)
+        assert (drag_points(coarse, n // 2) > 1) == (drag_points(scene, n) > 1), n
+        assert (coarse is scene) == ch.checkable(scene, n)

@@ -48,9 +48,11 @@ from .choice import (
     SAFETY,
     SLACK_MAX_SEGMENTS,
     Choice,
+    check_scene,
     checkable,
     choose,
     forced,
+    quasistatic_max_segments,
     tolerances,
 )
 from .run_settings import (  # noqa: F401 - re-exported: the ladder's run settings, as before the split
@@ -385,7 +387,7 @@ def _check(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict
             break
         log.info("rejected a posteriori; running %s with N = %d", choice.name, choice.segments)
         result = _run(scene, choice, tol, cache, kw)
-    while needs_richardson(choice, tol, scene):        # N / 2 checks, on every quantity
+    while needs_richardson(choice, tol):        # N / 2 checks, on every quantity
         choice, again = richardson_step(scene, choice, tol, result, cache, kw, auto=auto)
         if not again:
             break
@@ -410,16 +412,15 @@ def settled_check(scene: Scene, choice: Choice, result) -> Choice:
     return dataclasses.replace(choice, reason=f"{choice.reason}; {note}", numbers=dict(choice.numbers, unsettled=change))
 
 
-def needs_richardson(choice: Choice, tol, scene: Scene | None = None) -> bool:
+def needs_richardson(choice: Choice, tol) -> bool:
     """Whether a run of ``choice`` gets the a posteriori check at N / 2 (:func:`richardson_step`): every run of N >= 4
     elements not checked yet. The a priori estimates see the body and tension groups through a linear response;
     the check sees every reported quantity (each body coordinate's amplitude and mean, each tension extreme): in a
     sheared current the a priori body error of the quasi-static segmented N = 4 was 0.15 % while its surge
-    amplitude was 2x the converged one. Runs of fewer elements, and N whose half lies across the drag rule's switch
-    (:func:`~.choice.checkable`, given ``scene``), are reported unchecked with their a priori estimate."""
-    n = choice.segments
-    return (takes_elements(choice.name) and n >= 4 and choice.numbers.get("checked_n") != n
-            and (scene is None or checkable(scene, n)))
+    amplitude was 2x the converged one. An N whose half lies across the drag rule's switch is checked against a
+    run with one drag point per element (:func:`~.choice.check_scene`); runs of fewer elements are reported
+    unchecked with their a priori estimate."""
+    return takes_elements(choice.name) and choice.segments >= 4 and choice.numbers.get("checked_n") != choice.segments
 
 
 def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict, *, auto: bool):
@@ -430,7 +431,8 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
     (:func:`~.estimate.quasistatic_segmented_error`), which both runs share and their difference cannot see
     (heavy1000 N = 6 vs 3: 0.31 + 0.11 % body against an actual 0.49 %, 0.006 + 0.11 % tension against 0.11 %)."""
     period, n = metrics.forcing_period(scene), choice.segments
-    coarse = _run(scene, dataclasses.replace(choice, segments=n // 2), tol, cache, checking(kw), candidate=False)
+    coarse = _run(check_scene(scene, n), dataclasses.replace(choice, segments=n // 2), tol, cache, checking(kw),
+                  candidate=False)
     if not (coarse.success and result.success):
         return choice, False
     fine_st, coarse_st = (metrics.statistics(r, period, scene.top_motion.effective_ramp_s) for r in (result, coarse))
@@ -448,7 +450,8 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
     judged = {k: v for k, v in per.items() if asked is None or k in asked}
     worst = max(judged, key=lambda k: judged[k] / limit[metrics.group(k)], default=None)
     cap = MAX_SEGMENTS if order >= est.ORDER else SLACK_MAX_SEGMENTS
-    said = (f"a posteriori (N = {n} vs {n // 2}, order {order:g}): body {e['body']:.2g}, tension {e['tension']:.2g}"
+    same_rule = "" if checkable(scene, n) else ", one drag point per element in both"
+    said = (f"a posteriori (N = {n} vs {n // 2}{same_rule}, order {order:g}): body {e['body']:.2g}, tension {e['tension']:.2g}"
             + (f", the quantity furthest from its tolerance {worst} {judged[worst]:.2g}" if worst else ""))
     ok = (e["body"] <= CHECK_ACCEPT * tol[0] and e["tension"] <= CHECK_ACCEPT * tol[1]
           and all(v <= CHECK_ACCEPT * limit[metrics.group(k)] for k, v in judged.items()))
@@ -477,7 +480,11 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
     if _explicit_only(choice) and n_next > EXPLICIT_COST_MAX_ELEMENTS:      # past where it pays (choice.element_plan)
         return node_model(choice, f"a posteriori (N = {n} vs {n // 2}): body {e['body']:.2g}, tension "
                                   f"{e['tension']:.2g}, N grows past {EXPLICIT_COST_MAX_ELEMENTS}", n_next), True
-    return dataclasses.replace(choice, segments=n_next), True
+    top = quasistatic_max_segments(scene)
+    if choice.name == "quasi-static" and n_next > top:    # past its size cap (choice.MAX_MODEL_OPERATIONS): not built
+        return node_model(choice, f"{said}; N grows to {n_next}, past the quasi-static segmented cable's size cap "
+                                  f"N = {top}", n_next), True
+    return dataclasses.replace(choice, segments=n_next, reason=f"{choice.reason}; {said}: N = {n_next}"), True
 
 
 JUMP_MARGIN = 1.25    # the next N aims at the tolerance with this margin on the observed error's N^-p law
@@ -485,8 +492,9 @@ JUMP_MARGIN = 1.25    # the next N aims at the tolerance with this margin on the
 
 def next_segments(scene: Scene, n: int, ratio: float, order: float, cap: int) -> int:
     """N after a check at ``n`` whose worst quantity is ``ratio`` x its accepted error: the N where an error ~ N^-p
-    (``order``) meets it, JUMP_MARGIN over, at least 2 n, at most ``cap``, and checkable against its half
-    (:func:`~.choice.checkable`: both on one side of the drag rule's switch)."""
+    (``order``) meets it, JUMP_MARGIN over, at least 2 n, at most ``cap``, and checkable against its half on the
+    scene's own drag rule (:func:`~.choice.checkable`: both on one side of the drag rule's switch), as the plans
+    prefer."""
     grow = min(4.0, max(2.0, JUMP_MARGIN * max(ratio, 1.0) ** (1.0 / max(order, 1.0))))
     m = min(cap, math.ceil(n * grow))
     while m < cap and not checkable(scene, m):

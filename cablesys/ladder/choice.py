@@ -207,11 +207,27 @@ class ElementPlan:
 
 
 def checkable(scene: Scene, n: int) -> bool:
-    """Whether N can be checked against N / 2 by Richardson: both on the same side of the drag rule's switch
-    from several points per element to one (:func:`cablesys.model.segmented.drag_points`; 10 drag points: N <= 6
-    against N >= 7), across which the segmented error changes sign (:mod:`.estimate`, the 1000 m wire: settled
-    errors -0.59 % at N = 6, +1.23 % at 7), so that |y_N - y_N/2| / 3 may understate the error of N."""
+    """Whether N and N / 2 lie on the same side of the drag rule's switch from several points per element to one
+    (:func:`cablesys.model.segmented.drag_points`; 10 drag points: N <= 6 against N >= 7), across which the
+    segmented error changes sign (:mod:`.estimate`, the 1000 m wire: settled errors -0.59 % at N = 6, +1.23 % at
+    7), so that |y_N - y_N/2| / 3 between the scene's own models may understate the error of N. Such an N is still
+    checked: its check run takes one drag point per element as N does (:func:`check_scene`); the plans prefer a
+    checkable N, whose check runs the scene's own drag rule."""
     return (drag_points(scene, n) > 1) == (drag_points(scene, n // 2) > 1)
+
+
+def check_scene(scene: Scene, n: int) -> Scene:
+    """The scene of the a posteriori check run at N / 2 for a run at N: ``scene`` itself when :func:`checkable`,
+    else with ``numerics.drag_segments`` = N // 2, so that the check run, like the N run, takes one drag point per
+    element (its mid-point: round((N // 2) / (N // 2)) = 1 in :func:`~cablesys.model.segmented.drag_points`).
+    The two runs then belong to one discretization, the mid-point rule on every element, whose error in the
+    drag resultant is O(h^2) in the element length h (the composite mid-point rule's error (b - a) h^2 f''/24:
+    Davis & Rabinowitz, *Methods of Numerical Integration*, 2nd ed. 1984, ch. 2) as the chords' is, so the Richardson estimate |y_N - y_N/2| / (2^p - 1) speaks of
+    the N run's error against the cable both converge to (one drag point per element, N -> infinity: every
+    count of drag points per element has the same limit)."""
+    if checkable(scene, n):
+        return scene
+    return scene.with_numerics(drag_segments=max(1, n // 2))
 
 
 def _least_n(errs: dict, tol, name: str, fraction: float, lo: int, hi: int, ok=lambda n: True) -> int | None:

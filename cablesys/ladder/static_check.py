@@ -76,8 +76,9 @@ def applies(scene: Scene, choice: Choice) -> bool:
 
 
 def _candidates(scene: Scene, n: int, top: int):
-    """N to try above ``n``: 1.5x steps (at least +1) up to ``top``, skipping N >= 4 that the a posteriori check
-    cannot hold against N / 2 (:func:`~.choice.checkable`: the two across the drag rule's switch)."""
+    """N to try above ``n``: 1.5x steps (at least +1) up to ``top``, skipping N >= 4 whose a posteriori check at
+    N / 2 would not run the scene's own drag rule (:func:`~.choice.checkable`: the two across the drag rule's switch;
+    such an N is checked with one drag point per element, :func:`~.choice.check_scene`), as the plans do."""
     while n < top:
         n = min(top, max(n + 1, math.ceil(1.5 * n)))
         while n < top and n >= 4 and not checkable(scene, n):
