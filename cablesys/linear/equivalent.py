@@ -193,7 +193,7 @@ def _hb1_newton(model: CableModel, p, omega: float, v, Z, n_theta: int) -> tuple
 
 def _orbit_jacobians(model: CableModel, n_theta: int) -> dict:
     """The linearization's functions (:func:`.linearization.functions`) at ``n_theta`` columns of xi: ``res`` r,
-    ``res_jac`` (r, dr/dxi), ``out`` y, and ``static_jac`` dr/dxi at one; mapped once
+    ``res_jac`` (r, dr/dxi), ``out`` y, and ``static_jac`` dr/dxi at one (not compiled); mapped once
     and compiled (cached on disk), not mapped anew on every call (in the VM a map per call costs more than the
     describing function's solve). A serial map is one phase's code in a loop: the C does not grow with
     ``n_theta``."""
@@ -204,10 +204,11 @@ def _orbit_jacobians(model: CableModel, n_theta: int) -> dict:
         y = ca.Function("lin_out", [xi, p], [fns["out_jac"](xi, p)[0]], ["xi", "p"], ["y"])
         maps = {"res": fns["residual"].map(f"orbit_res_{n_theta}", "serial", n_theta, [1], []),
                 "res_jac": res_jac.map(f"orbit_res_jac_{n_theta}", "serial", n_theta, [1], []),
-                "out": y.map(f"orbit_out_{n_theta}", "serial", n_theta, [1], []),
-                "static_jac": ca.Function(f"static_jac_{n_theta}", [xi, p], fns["jac"].call([xi, p]))}
+                "out": y.map(f"orbit_out_{n_theta}", "serial", n_theta, [1], [])}
         out = compile_functions(list(maps.values()), jacobians=False).functions
-        return {k: out[m.name()] for k, m in maps.items()}
+        # dr/dxi at the steady state, evaluated once per sweep: in the VM (its C would be another copy of the
+        # Jacobian's code, ~40 % of this library at N = 16)
+        return {"static_jac": fns["jac"], **{k: out[m.name()] for k, m in maps.items()}}
     return model.cache.get(f"orbit_jacobians_{n_theta}", build)
 
 
