@@ -193,7 +193,7 @@ def _hb1_newton(model: CableModel, p, omega: float, v, Z, n_theta: int) -> tuple
 
 def _orbit_jacobians(model: CableModel, n_theta: int) -> dict:
     """The linearization's functions (:func:`.linearization.functions`) at ``n_theta`` columns of xi: ``res`` r,
-    ``res_jac`` (r, dr/dxi), ``out`` y, and ``static_jac`` dr/dxi at one (not compiled); mapped once
+    ``res_jac`` (r, dr/dxi), and ``out`` y and ``static_jac`` dr/dxi at one (these two not compiled); mapped once
     and compiled (cached on disk), not mapped anew on every call (in the VM a map per call costs more than the
     describing function's solve). A serial map is one phase's code in a loop: the C does not grow with
     ``n_theta``."""
@@ -201,14 +201,17 @@ def _orbit_jacobians(model: CableModel, n_theta: int) -> dict:
         fns = functions(model)
         xi, p = fns["jac"].mx_in()
         res_jac = ca.Function("lin_res_jac", [xi, p], [fns["residual"](xi, p), fns["jac"](xi, p)], ["xi", "p"], ["r", "J"])
-        y = ca.Function("lin_out", [xi, p], [fns["out_jac"](xi, p)[0]], ["xi", "p"], ["y"])
         maps = {"res": fns["residual"].map(f"orbit_res_{n_theta}", "serial", n_theta, [1], []),
-                "res_jac": res_jac.map(f"orbit_res_jac_{n_theta}", "serial", n_theta, [1], []),
-                "out": y.map(f"orbit_out_{n_theta}", "serial", n_theta, [1], [])}
+                "res_jac": res_jac.map(f"orbit_res_jac_{n_theta}", "serial", n_theta, [1], [])}
         out = compile_functions(list(maps.values()), jacobians=False).functions
-        # dr/dxi at the steady state, evaluated once per sweep: in the VM (its C would be another copy of the
-        # Jacobian's code, ~40 % of this library at N = 16)
-        return {"static_jac": fns["jac"], **{k: out[m.name()] for k, m in maps.items()}}
+        # the outputs y alone (SX: the Jacobian's part of out_jac dropped), in the VM: evaluated twice per
+        # frequency, not per Newton step, and compiled they would double this library's C (and gcc's time)
+        xs, ps = ca.SX.sym("xi", xi.shape[0]), ca.SX.sym("p", p.shape[0])
+        y = ca.Function("lin_out", [xs, ps], [fns["out_jac"](xs, ps)[0]], ["xi", "p"], ["y"])
+        # dr/dxi at the steady state, evaluated once per sweep: in the VM too
+        return {"static_jac": fns["jac"], "out": y.map(f"orbit_out_{n_theta}", "serial", n_theta, [1], []),
+                "gap": model.cable_force.map(f"orbit_gap_{n_theta}", "serial", n_theta, [1], []),
+                **{k: out[m.name()] for k, m in maps.items()}}
     return model.cache.get(f"orbit_jacobians_{n_theta}", build)
 
 
@@ -238,7 +241,7 @@ def orbit_slack(model: CableModel, X: np.ndarray, p) -> tuple[bool, float]:
         return bool(np.any(y[flags] > 0.5)), least
     b = xi_blocks(model)
     x = np.vstack([X[b["q"]], X[b["qd"]]])
-    gap = np.array(model.cable_force.map(n)(x, p))
+    gap = _numpy(_orbit_jacobians(model, n)["gap"](x, p))
     return bool(gap.size and np.min(gap) < 0.0), least
 
 
