@@ -134,8 +134,10 @@ def hb1_residual(model: CableModel, p, omega: float, v, Z, n_theta: int, *, jaco
     R, J = (_numpy(a) for a in fo["res_jac"](X, p))
     R = R / scale[:, None]
     J = J.reshape(nq, n_theta, -1) / scale[:, None, None]                  # (nq, n, n_xi)
-    Jk = np.stack([J[:, :, b[k]] for k in ("q", "qd", "qdd")])              # (3, nq, n, nq)
-    G = np.einsum("rj,ckj,kajb->racb", W, C, Jk, optimize=True).reshape(3 * nq, 3 * nq)
+    # G[r a, c b] = sum_{k, j} W[r, j] C[c, k, j] (dr_a/dxi_kb)_j: one (9, 3 n) x (3 n, nq^2) product
+    Jk = np.stack([J[:, :, b[k]] for k in ("q", "qd", "qdd")]).transpose(0, 2, 1, 3)   # (3, n, nq, nq)
+    WC = (W[:, None, None, :] * C[None, :, :, :]).reshape(9, 3 * n_theta)
+    G = (WC @ Jk.reshape(3 * n_theta, nq * nq)).reshape(3, 3, nq, nq).transpose(0, 2, 1, 3).reshape(3 * nq, 3 * nq)
     return (W @ R.T).ravel(), G
 
 
