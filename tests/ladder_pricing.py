@@ -5,7 +5,7 @@
 ``_pick``: where nothing drives the swing the quasi-static rung goes first only compiled). :func:`priced` sets that
 pricing alone; the linear response the estimates rest on is evaluated as ``CABLESYS_COMPILE`` says (the VM in the
 suite), so a decision test builds no C there (compiled, the choice itself compiles Wang's describing-function
-Jacobians: hb1_16, 2.5 MB of C, ~20 s at -O1 a structure on a fresh cache). Runs compiled as users run them are
+residual and its per-phase Jacobian, mapped over 16 phases: a small library, once a structure on a fresh cache). Runs compiled as users run them are
 in tests/test_ladder_compiled.py.
 """
 

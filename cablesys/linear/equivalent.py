@@ -15,9 +15,11 @@ so the describing-function matrix reproducing F1 on the response is N = J0 - J2 
 For one scalar element |v| v with v = V sin theta this is N = 8 |V| / (3 pi), the classical
 equivalent-damping result (e.g. Roberts & Spanos, "Random Vibration and Statistical
 Linearization", ch. 5; Borgman 1967 for Morison drag). Self-consistency, N(Xi) Xi = 0 with the
-mean balanced as well, is the one-harmonic balance; we solve it by Newton's method (CasADi
-KINSOL) with continuation in frequency, because fixed-point substitution oscillates at
-resonance where the damping is entirely drag.
+mean balanced as well, is the one-harmonic balance; we solve it by Newton's method with the
+exact Jacobian, assembled by the chain rule from the per-phase Jacobians of one mapped, compiled
+function (:func:`hb1_residual`), with continuation in frequency, because fixed-point
+substitution oscillates at resonance where the damping is entirely drag. An orbit that goes
+slack (a tension at its floor, eq. 54) is outside the method's domain and is marked so.
 
 Stochastic (Gaussian). For xi ~ N(xi_0, Sigma) the mean-square optimal linear matrix is the
 expected Jacobian, N = E[dr/dxi] (Atalik & Utku 1976; Roberts & Spanos ch. 5). For one scalar
@@ -36,7 +38,6 @@ import numpy as np
 
 from ..compiled import compile_functions
 from ..errors import ParameterError
-from ..messages import casadi_warnings_captured
 from ..model import CableModel
 from ..results import ResultBase, timed
 from ..statics.problem import residual_scales
@@ -85,58 +86,165 @@ def complex_xi(model: CableModel, Q, Z, omega) -> np.ndarray:
 # --------------------------------------------------------------------------------------------
 # harmonic
 # --------------------------------------------------------------------------------------------
-def _hb1_rootfinder(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Function]:
-    """KINSOL on (mean residual, first harmonic) = 0 for unknowns (q0, Re Q, Im Q), and that residual."""
-    return model.cache.get(f"hb1_{n_theta}", lambda: _build_hb1(model, n_theta))
+def _hb1_matrices(n_theta: int, omega: float) -> tuple[np.ndarray, np.ndarray]:
+    """The one-harmonic balance as matrices over the phases theta_j = 2 pi j / n.
 
-
-def _build_hb1(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Function]:
-    fns = functions(model)
-    nq, b = model.nq, xi_blocks(model)
-    nu = 2 + (b["w"].stop - b["w"].start)
-    v = ca.SX.sym("v", 3 * nq)
-    w = ca.SX.sym("omega")
-    Zr, Zi = ca.SX.sym("Zr", nu), ca.SX.sym("Zi", nu)
-    p = ca.SX.sym("p", len(model.layout))
-    q0, Qr, Qi = v[:nq], v[nq:2 * nq], v[2 * nq:]
+    ``W`` (3, n): the rows that take a phase-sampled residual R_j to its balance, (mean, 2 <R cos>, -2 <R sin>),
+    i.e. (R_0, Re R_1, Im R_1) of R(theta) ~ R_0 + Re(R_1 e^{i theta}); ``C`` (3 unknown blocks, 3 xi blocks, n):
+    d(q, q', q'')_j / d(q0, Re Q, Im Q) for q(theta) = q0 + Re(Q e^{i theta}), q' = Re(i omega Q e^{i theta}),
+    q'' = Re(-omega^2 Q e^{i theta}) (Krylov-Bogoliubov; Roberts & Spanos ch. 5)."""
     theta = 2 * np.pi * np.arange(n_theta) / n_theta
-    cols = []
-    for th in theta:
-        c, s = np.cos(th), np.sin(th)
-        q = Qr * c - Qi * s                      # Re(Q e^{i th})
-        qd = -w * (Qi * c + Qr * s)              # Re(i w Q e^{i th})
-        z = Zr * c - Zi * s
-        zd = -w * (Zi * c + Zr * s)
-        cols.append(ca.vertcat(q0 + q, qd, -w**2 * q, z[:2], zd[:2], -w**2 * z[:2], z[2:]))
-    # each row over its scale (the submerged weight; x length for moments; at least 1): KINSOL's tolerance and the 1e-8 test
-    # are then relative, reachable in double precision by a 300 m steel wire as by the Dale model
-    R = fns["residual"].map(n_theta)(ca.horzcat(*cols), p) / ca.repmat(ca.fmax(residual_scales(model, p), 1.0), 1, n_theta)
-    g = ca.vertcat(ca.mtimes(R, np.full(n_theta, 1.0 / n_theta)),
-                   ca.mtimes(R, 2.0 / n_theta * np.cos(theta)),
-                   ca.mtimes(R, -2.0 / n_theta * np.sin(theta)))
-    G = ca.Function(f"hb1_{n_theta}", [v, ca.vertcat(w, Zr, Zi, p)], [g], ["v", "par"], ["g"])
-    # compiled with its v-Jacobian (C, cached on disk): in CasADi's VM KINSOL's residual and Jacobian
-    # evaluations were nearly all of a solve (Dale, 16 phases); the VM without a compiler
-    G = compile_functions([G], jacobians=("v",)).functions[G.name()]
-    rf = ca.rootfinder("hb1_solve", "kinsol", G, {"strategy": "linesearch", "abstol": 1e-13,
-                                                  "error_on_fail": False, "print_level": 0,
-                                                  "disable_internal_warnings": True})
-    return rf, G
+    c, s = np.cos(theta), np.sin(theta)
+    W = np.stack([np.full(n_theta, 1.0 / n_theta), 2.0 / n_theta * c, -2.0 / n_theta * s])
+    one, zero = np.ones(n_theta), np.zeros(n_theta)
+    C = np.array([[one, zero, zero],
+                  [c, -omega * s, -omega**2 * c],
+                  [-s, -omega * c, omega**2 * s]])
+    return W, C
 
 
-def _orbit_jacobians(model: CableModel, n_theta: int) -> tuple[ca.Function, ca.Function, ca.Function]:
-    """dr/dxi and (y, dy/dxi) at ``n_theta`` columns of xi, and dr/dxi at one: the linearization's functions
-    mapped once and compiled (cached on disk), not mapped anew on every call (in the VM a map per call
-    costs more than the describing function's solve)."""
+def hb1_residual(model: CableModel, p, omega: float, v, Z, n_theta: int, *, jacobian: bool = True):
+    """The one-harmonic balance g(v) of the equations of motion for v = (q0, Re Q, Im Q) at ``omega``, the top input
+    Re(Z e^{i omega t}), and, with ``jacobian``, dg/dv (exact: the chain rule through the phase samples).
+
+    g = W R with R_j = r(xi(theta_j)) / s the model's residual (:func:`.linearization.functions`, Wang 1971
+    eq. 47-48) at the orbit's phase samples, each row over its scale s (the submerged weight; x length for
+    moments; at least 1: :func:`cablesys.statics.problem.residual_scales`), so tolerances are relative; W and the
+    orbit's derivatives from :func:`_hb1_matrices`. dg/dv = sum_j W_rj (dr/dxi)_j d xi_j/dv from the per-phase
+    Jacobians of one mapped, compiled function (:func:`_orbit_jacobians`): its C is one phase's code in a loop,
+    whatever ``n_theta`` (the whole balance written out as one expression and differentiated is ~150 MB of C
+    for the node model of the 300 m heave wire at N = 16, 64 phases: past the compiler limit, VM-slow).
+
+    Returns
+    -------
+    (ndarray, ndarray or None)
+        g (3 nq) and dg/dv (3 nq, 3 nq).
+    """
+    nq, b = model.nq, xi_blocks(model)
+    fo = _orbit_jacobians(model, n_theta)
+    scale = _residual_scale(model, p)
+    theta = 2 * np.pi * np.arange(n_theta) / n_theta
+    v = np.asarray(v, float)
+    xi0 = operating_xi(model, v[:nq])
+    X, _ = orbit(model, xi0, v[nq:2 * nq] + 1j * v[2 * nq:], np.asarray(Z, complex), omega, theta)
+    W, C = _hb1_matrices(n_theta, omega)
+    if not jacobian:
+        R = _numpy(fo["res"](X, p)) / scale[:, None]                          # (nq, n)
+        return (W @ R.T).ravel(), None
+    R, J = (_numpy(a) for a in fo["res_jac"](X, p))
+    R = R / scale[:, None]
+    J = J.reshape(nq, n_theta, -1) / scale[:, None, None]                  # (nq, n, n_xi)
+    # G[r a, c b] = sum_{k, j} W[r, j] C[c, k, j] (dr_a/dxi_kb)_j: one (9, 3 n) x (3 n, nq^2) product
+    Jk = np.stack([J[:, :, b[k]] for k in ("q", "qd", "qdd")]).transpose(0, 2, 1, 3)   # (3, n, nq, nq)
+    WC = (W[:, None, None, :] * C[None, :, :, :]).reshape(9, 3 * n_theta)
+    G = (WC @ Jk.reshape(3 * n_theta, nq * nq)).reshape(3, 3, nq, nq).transpose(0, 2, 1, 3).reshape(3 * nq, 3 * nq)
+    return (W @ R.T).ravel(), G
+
+
+def _numpy(dm: ca.DM) -> np.ndarray:
+    """``dm`` as a dense array from its nonzeros (``DM.full`` builds a Python list of every entry: ~25x slower
+    for the per-phase Jacobians, most of a describing-function sweep)."""
+    nz = np.array(dm.nonzeros(), float)
+    if dm.is_dense():
+        return nz.reshape(dm.shape, order="F")
+    out = np.zeros(dm.shape)
+    r, c = dm.sparsity().get_triplet()
+    out[r, c] = nz
+    return out
+
+
+def _residual_scale(model: CableModel, p) -> np.ndarray:
+    """:func:`cablesys.statics.problem.residual_scales` at ``p``, at least 1 (per equation)."""
+    return np.maximum(np.array(ca.DM(residual_scales(model, ca.DM(np.asarray(p, float))))).ravel(), 1.0)
+
+
+HB_TOLERANCE = 1e-8       # max |g| of a converged balance (relative: rows over their scales)
+HB_MAX_ITER = 25
+HB_HALVINGS = 8           # step halvings per Newton step before the step counts as failed
+
+
+def _hb1_newton(model: CableModel, p, omega: float, v, Z, n_theta: int) -> tuple[np.ndarray, float, int]:
+    """Newton's method with step halving on :func:`hb1_residual` from ``v``: (v, max |g|, iterations).
+
+    Stops at max |g| below 1e-3 HB_TOLERANCE, when no halved step decreases max |g| (below HB_TOLERANCE: the
+    round-off floor, ~2e-11 on the 300 m heave wire), or after HB_MAX_ITER steps. Semi-smooth where the model
+    has kinks (the tension floor, eq. 54): the Jacobian is the one of the side each phase sample is on."""
+    g, G = hb1_residual(model, p, omega, v, Z, n_theta)
+    res = float(np.max(np.abs(g)))
+    it = 0
+    while res > 1e-3 * HB_TOLERANCE and it < HB_MAX_ITER and np.isfinite(res):
+        it += 1
+        try:
+            step = np.linalg.solve(G, g)
+        except np.linalg.LinAlgError:
+            break
+        for k in range(HB_HALVINGS + 1):
+            vn = v - 0.5**k * step
+            gn, _ = hb1_residual(model, p, omega, vn, Z, n_theta, jacobian=False)
+            rn = float(np.max(np.abs(gn)))
+            if np.isfinite(rn) and rn < res:
+                break
+            if res < HB_TOLERANCE:
+                return v, res, it                        # converged to round-off: nothing decreases any more
+        else:
+            break                                        # no decrease along the Newton direction: stuck
+        v, res = vn, rn
+        g, G = hb1_residual(model, p, omega, v, Z, n_theta)
+    return v, res, it
+
+
+def _orbit_jacobians(model: CableModel, n_theta: int) -> dict:
+    """The linearization's functions (:func:`.linearization.functions`) at ``n_theta`` columns of xi: ``res`` r,
+    ``res_jac`` (r, dr/dxi), and ``out`` y and ``static_jac`` dr/dxi at one (these two not compiled); mapped once
+    and compiled (cached on disk), not mapped anew on every call (in the VM a map per call costs more than the
+    describing function's solve). A serial map is one phase's code in a loop: the C does not grow with
+    ``n_theta``."""
     def build():
         fns = functions(model)
         xi, p = fns["jac"].mx_in()
-        maps = [fns["jac"].map(f"orbit_jac_{n_theta}", "serial", n_theta, [1], []),
-                fns["out_jac"].map(f"orbit_out_jac_{n_theta}", "serial", n_theta, [1], []),
-                ca.Function(f"static_jac_{n_theta}", [xi, p], fns["jac"].call([xi, p]))]
-        out = compile_functions(maps, jacobians=False).functions
-        return tuple(out[m.name()] for m in maps)
+        res_jac = ca.Function("lin_res_jac", [xi, p], [fns["residual"](xi, p), fns["jac"](xi, p)], ["xi", "p"], ["r", "J"])
+        maps = {"res": fns["residual"].map(f"orbit_res_{n_theta}", "serial", n_theta, [1], []),
+                "res_jac": res_jac.map(f"orbit_res_jac_{n_theta}", "serial", n_theta, [1], [])}
+        out = compile_functions(list(maps.values()), jacobians=False).functions
+        # the outputs y alone (SX: the Jacobian's part of out_jac dropped), in the VM: evaluated twice per
+        # frequency, not per Newton step, and compiled they would double this library's C (and gcc's time)
+        xs, ps = ca.SX.sym("xi", xi.shape[0]), ca.SX.sym("p", p.shape[0])
+        y = ca.Function("lin_out", [xs, ps], [fns["out_jac"](xs, ps)[0]], ["xi", "p"], ["y"])
+        # dr/dxi at the steady state, evaluated once per sweep: in the VM too
+        return {"static_jac": fns["jac"], "out": y.map(f"orbit_out_{n_theta}", "serial", n_theta, [1], []),
+                "gap": model.cable_force.map(f"orbit_gap_{n_theta}", "serial", n_theta, [1], []),
+                **{k: out[m.name()] for k, m in maps.items()}}
     return model.cache.get(f"orbit_jacobians_{n_theta}", build)
+
+
+def _orbit_output_jacobian(model: CableModel, n_theta: int) -> ca.Function:
+    """(y, dy/dxi) at ``n_theta`` columns of xi, mapped and compiled (a library of its own: only the equivalent
+    linear models need it)."""
+    def build():
+        f = functions(model)["out_jac"].map(f"orbit_out_jac_{n_theta}", "serial", n_theta, [1], [])
+        return compile_functions([f], jacobians=False).functions[f.name()]
+    return model.cache.get(f"orbit_out_jacobian_{n_theta}", build)
+
+
+def orbit_slack(model: CableModel, X: np.ndarray, p) -> tuple[bool, float]:
+    """Whether the cable goes slack somewhere on the orbit xi(theta_j) (columns of ``X``), and the least
+    tension on it (N). Slack: an element's tension law at its floor (the segmented cable's ``element_slack``,
+    eq. 54 per element), or Wang's F_bc below TENS (``cable_force`` < 0, eq. 54). A one-harmonic orbit that
+    goes slack is outside the describing function's domain: the response has snap loads, whose harmonics the
+    balance drops."""
+    n = X.shape[1]
+    lab = model.output_labels
+    y = _numpy(_orbit_jacobians(model, n)["out"](X, p))
+    tens = [k for k, lb in enumerate(lab) if lb.startswith(("element_tension[", "tension_"))
+            and "rate" not in lb]
+    least = float(np.min(y[tens])) if tens else float("nan")
+    flags = [k for k, lb in enumerate(lab) if lb.startswith("element_slack[")]
+    if flags:
+        return bool(np.any(y[flags] > 0.5)), least
+    b = xi_blocks(model)
+    x = np.vstack([X[b["q"]], X[b["qd"]]])
+    gap = _numpy(_orbit_jacobians(model, n)["gap"](x, p))
+    return bool(gap.size and np.min(gap) < 0.0), least
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -145,7 +253,9 @@ class HarmonicResponse(ResultBase):
 
     ``q_amplitude[k]`` complex dq at ``omega[k]``; ``output_amplitude[k]`` the exact first
     harmonic of every output along that orbit; ``output_mean`` its mean; ``linear[k]`` the
-    equivalent (complex) linear model at omega[k].
+    equivalent (complex) linear model at omega[k] (None where not solved; empty unless asked for). ``slack[k]``: the orbit
+    goes slack (outside the describing function's domain); ``solved[k]``: a balance was solved;
+    ``least_tension[k]`` the least tension on the orbit (N).
     """
 
     omega: np.ndarray
@@ -160,6 +270,9 @@ class HarmonicResponse(ResultBase):
     linear: tuple
     success: bool = True
     message: str = ""
+    slack: np.ndarray | None = None
+    solved: np.ndarray | None = None
+    least_tension: np.ndarray | None = None
     stats: dict = dataclasses.field(default_factory=dict)
 
     VARIABLES: ClassVar[dict] = {"output_amplitude": ("SI", "complex first-harmonic amplitude of each output"),
@@ -191,7 +304,7 @@ class HarmonicResponse(ResultBase):
 
 @timed
 def harmonic_response(model: CableModel, p, omega, input_amplitude, *, n_theta: int = 64,
-                      ladder: int = 6) -> HarmonicResponse:
+                      ladder: int = 6, slack_stop: int | None = None, linear_models: bool = True) -> HarmonicResponse:
     """Describing-function equivalent linearization at each ``omega`` for the regular input
     Re(Z e^{i omega t}), Z = ``input_amplitude`` = (x_s, y_s, wave amplitudes...) complex.
 
@@ -212,15 +325,23 @@ def harmonic_response(model: CableModel, p, omega, input_amplitude, *, n_theta: 
         Phase samples per cycle of the harmonic balance.
     ladder : int, optional
         Continuation steps below ``omega.min()``.
+    slack_stop : int, optional
+        After this many consecutive frequencies (ascending) whose orbit goes slack, the higher ones are not
+        solved (``solved`` False, NaN values); None solves every frequency.
+    linear_models : bool, optional
+        Also the equivalent linear model at each frequency (``linear``; the describing matrices of dr/dxi and
+        dy/dxi along the orbit); False leaves ``linear`` empty (the amplitudes alone).
 
     Returns
     -------
     HarmonicResponse
-        ``success`` is False when a frequency's harmonic-balance residual stays above 1e-8.
+        ``success`` is False when a frequency's harmonic-balance residual stays above 1e-8 (or it was not
+        solved); ``slack`` marks the frequencies whose orbit goes slack (:func:`orbit_slack`).
     """
     p = taut_parameters(model, p)
     st = steady_state(model, p)
-    jac_map, out_map, jac_static = _orbit_jacobians(model, n_theta)
+    fo = _orbit_jacobians(model, n_theta)
+    jac_map, jac_static = fo["res_jac"], fo["static_jac"]
     xi0 = operating_xi(model, st.q)
     # the exact linearization's dq response (the continuation's start); its outputs are not needed
     ny = len(model.output_labels)
@@ -230,46 +351,82 @@ def harmonic_response(model: CableModel, p, omega, input_amplitude, *, n_theta: 
     if Z.shape != (len(lin0.input_labels),):
         raise ParameterError("input_amplitude", f"shape {Z.shape}",
                              f"needs {len(lin0.input_labels)} entries {lin0.input_labels}")
-    rf, G = _hb1_rootfinder(model, n_theta)
     order = np.argsort(omega)
     pre = np.geomspace(omega[order[0]] / 4.0, omega[order[0]], ladder + 1)[:-1]
     nq = model.nq
     Q0, _ = lin0.transfer(pre[:1])
     v = np.concatenate([st.q, (Q0[0] @ Z).real, (Q0[0] @ Z).imag])
     theta = 2 * np.pi * np.arange(n_theta) / n_theta
-    res = {}
+    n_w = len(omega)
+    res, iters, slack, least = {}, np.zeros(n_w, int), np.zeros(n_w, bool), np.full(n_w, np.nan)
+    run = 0                      # consecutive slack orbits among the requested frequencies
     for k, w in enumerate(list(pre) + list(omega[order])):
-        par = np.concatenate([[w], Z.real, Z.imag, p])
-        with casadi_warnings_captured():      # KINSOL's flag of a failed step: the residual below reports the outcome
-            v_new = np.array(rf(v, par)).ravel()
-        v = v_new if np.all(np.isfinite(v_new)) else v
-        if k >= len(pre):           # the residual of the requested frequencies (the continuation's are not reported)
-            res[k - len(pre)] = (v.copy(), float(np.max(np.abs(np.array(G(v_new, par))))))
+        j = k - len(pre)         # index into the sorted requested frequencies (< 0: a continuation step)
+        if j >= 0 and slack_stop is not None and run >= slack_stop:
+            break                # the rest are not solved (reported: residual NaN, ``solved`` False)
+        v_new, r, it = _hb1_newton(model, p, float(w), v, Z, n_theta)
+        ok = np.all(np.isfinite(v_new))
+        if j >= 0:               # the residual of the requested frequencies (the continuation's are not reported)
+            xi0[xi_blocks(model)["q"]] = v_new[:nq] if ok else v[:nq]
+            X, _ = orbit(model, xi0, (v_new if ok else v)[nq:2 * nq] + 1j * (v_new if ok else v)[2 * nq:], Z, w, theta)
+            i = int(order[j])
+            slack[i], least[i] = orbit_slack(model, X, p)
+            iters[i] = it
+            res[i] = ((v_new if ok else v).copy(), r)
+            run = run + 1 if slack[i] else 0
+        if ok and r < HB_TOLERANCE:
+            v = v_new            # continuation: the next frequency starts from the last converged balance
+    nan = np.full(nq, np.nan)
     Qa, Qm, Ya, Ym, R, lins = [], [], [], [], [], []
-    for j in range(len(omega)):
-        v, r = res[int(np.where(order == j)[0][0])]
+    for j in range(n_w):
         w = omega[j]
+        if j not in res:
+            ny = len(model.output_labels)
+            Qa.append(nan + 0j); Qm.append(nan); R.append(np.nan)
+            if linear_models:
+                lins.append(None)
+            Ya.append(np.full(ny, np.nan + 0j)); Ym.append(np.full(ny, np.nan))
+            continue
+        v, r = res[j]
         Q = v[nq:2 * nq] + 1j * v[2 * nq:]
         xi0[xi_blocks(model)["q"]] = v[:nq]
         X, Xi = orbit(model, xi0, Q, Z, w, theta)
-        J = np.array(jac_map(X, p)).reshape(model.nq, n_theta, -1).transpose(1, 0, 2)
-        y, Jy = (np.array(a) for a in out_map(X, p))
-        J0, J2 = describing_matrices(J, theta)
-        N = describing_function(J0, J2, Xi)
-        Jy = Jy.reshape(y.shape[0], n_theta, -1).transpose(1, 0, 2)
-        Jy0, Jy2 = describing_matrices(Jy, theta)
-        lins.append(from_jacobian(model, N, describing_function(Jy0, Jy2, Xi), v[:nq], y.mean(axis=1),
-                                  kind="harmonic", omega=float(w)))
+        if linear_models:
+            J = _numpy(jac_map(X, p)[1]).reshape(model.nq, n_theta, -1).transpose(1, 0, 2)
+            y, Jy = (_numpy(a) for a in _orbit_output_jacobian(model, n_theta)(X, p))
+            J0, J2 = describing_matrices(J, theta)
+            N = describing_function(J0, J2, Xi)
+            Jy = Jy.reshape(y.shape[0], n_theta, -1).transpose(1, 0, 2)
+            Jy0, Jy2 = describing_matrices(Jy, theta)
+            lins.append(from_jacobian(model, N, describing_function(Jy0, Jy2, Xi), v[:nq], y.mean(axis=1),
+                                      kind="harmonic", omega=float(w)))
+        else:
+            y = _numpy(fo["out"](X, p))
         Qa.append(Q); Qm.append(v[:nq]); R.append(r)
         Ya.append(2.0 / n_theta * (y @ np.exp(-1j * theta))); Ym.append(y.mean(axis=1))
+    R = np.array(R)
+    solved = np.array([j in res for j in range(n_w)])
     return HarmonicResponse(omega=omega, input=Z, input_labels=lin0.input_labels, output_labels=model.output_labels,
                             q_amplitude=np.array(Qa), q_mean=np.array(Qm), output_amplitude=np.array(Ya),
-                            output_mean=np.array(Ym), residual=np.array(R), linear=tuple(lins),
-                            success=bool(np.all(np.array(R) < 1e-8)), message=_harmonic_message(omega, R),
-                            stats={"n_theta": n_theta, "continuation_steps": ladder})
+                            output_mean=np.array(Ym), residual=R, linear=tuple(lins),
+                            success=bool(np.all(R < HB_TOLERANCE)), message=_harmonic_message(omega, R, slack, solved),
+                            slack=slack, solved=solved, least_tension=least,
+                            stats={"n_theta": n_theta, "continuation_steps": ladder, "newton_iterations": iters.tolist()})
 
 
-def _harmonic_message(omega, residual) -> str:
-    bad = [f"{w:.4g}" for w, r in zip(omega, residual) if not r < 1e-8]
-    return "" if not bad else (f"harmonic balance did not converge at omega = {', '.join(bad)} rad/s "
-                               "(residual > 1e-8): refine the grid near those frequencies or use simulate()")
+def _harmonic_message(omega, residual, slack, solved) -> str:
+    """What did not converge (taut orbits: a solver failure), which orbits go slack and what was not solved."""
+    parts = []
+    bad = [f"{w:.4g}" for w, r, s, d in zip(omega, residual, slack, solved) if d and not s and not r < HB_TOLERANCE]
+    if bad:
+        parts.append(f"harmonic balance did not converge at omega = {', '.join(bad)} rad/s "
+                     f"(residual > {HB_TOLERANCE:g}): refine the grid near those frequencies or use simulate()")
+    sl = np.asarray(omega)[np.asarray(slack)]
+    if sl.size:
+        parts.append(f"the one-harmonic orbit goes slack at {sl.size} frequencies in {sl.min():.4g} .. {sl.max():.4g} "
+                     "rad/s (the describing function does not hold there: snap loads; use simulate())")
+    skipped = np.asarray(omega)[~np.asarray(solved)]
+    if skipped.size:
+        parts.append(f"{skipped.size} frequencies from {skipped.min():.4g} rad/s up not solved "
+                     "(above consecutive slack orbits)")
+    return "; ".join(parts)
