@@ -148,10 +148,13 @@ MAX_C_BYTES = 40_000_000
 LOUD_BUILD_BYTES = 1_000_000
 # while C is generated and compiled, a line every PROGRESS_EVERY_S (s) with the time elapsed and the prediction
 PROGRESS_EVERY_S = 10.0
-# predicted compile time: COMPILE_START_S + MB of C x COMPILE_S_PER_MB[optimization flag] (s); the fit and the
-# machine: studies/results/run_prediction.json ("compiles"); a 1.6 MB top-motion series took 39 s at -O2, 7 s at -O0
+# predicted compile time: COMPILE_START_S + MB of C x COMPILE_S_PER_MB[optimization flag] (s), least-squares fits to
+# the compiler's CPU time (its wall time on an idle machine) over 50 cold-cache compiles of 0.03-18.5 MB of C
+# (studies/results/run_prediction.json, "compile_rates": -O0 1.8, -O1 4.5, -O2 11.3 s/MB; gcc, x86_64); a loaded
+# machine stretches the wall time (2-3x at a load of 6.6 on 2 cores), gcc's time grows faster than linearly with
+# the size (small -O2 libraries take about 4 s/MB, 0.5 MB ones 12 s/MB); -O3 is not measured (-O2's rate x 1.25)
 COMPILE_START_S = 0.3
-COMPILE_S_PER_MB = {"-O0": 4.4, "-O1": 12.0, "-O2": 24.0, "-O3": 30.0}
+COMPILE_S_PER_MB = {"-O0": 1.9, "-O1": 4.5, "-O2": 11.5, "-O3": 14.0}
 
 
 def _split_setting(name: str, default: str) -> list[str]:
