@@ -36,7 +36,6 @@ Writes DIR/run_prediction.json and DIR/run_prediction.png.
 from __future__ import annotations
 
 import json
-import math
 import os
 import platform
 import subprocess
@@ -241,34 +240,54 @@ def fit_compile_rates(rows: list) -> dict:
 
 
 def plot(rows: list, path: Path) -> None:
+    """Predicted (x) against actual (y), log-log, the 1:1 line and the factor-3 band; one colour per scene; wall
+    times filled, the same measured in CPU time (compiler, stepping) open."""
     from _common import setup_matplotlib
     plt = setup_matplotlib()
-    fig, axes = plt.subplots(1, len(QUANTITIES), figsize=(4.2 * len(QUANTITIES), 4.4))
-    for ax, (key, label) in zip(axes, QUANTITIES):
-        pts = [(float(r["prediction"].get(key) or 0.0), float(r["actual"][key]), r["scene"]) for r in rows]
-        pts = [(p, a, s) for p, a, s in pts if p > 0 and a > 0]
+    colours = {r["scene"]: f"C{i}" for i, r in enumerate(rows)}
+    fig, axes = plt.subplots(2, 3, figsize=(14, 8.6))
+    order = ("steps", "operations", "memory_bytes", "compile_s", "run_s")
+    labels = dict(QUANTITIES)
+    for ax, key in zip(axes.flat, order):
+        label = labels[key]
+        pts = []
+        for r in rows:
+            p = float(r["prediction"].get(key) or 0.0)
+            pts.append((p, float(r["actual"][key]), r["scene"], True))
+            if key in CPU:
+                pts.append((p, float(r["actual"][CPU[key]]), r["scene"], False))
+        pts = [q for q in pts if q[0] > 0 and q[1] > 0]
         if not pts:
             ax.set_title(f"{label}: nothing to compare")
-            ax.axis("off")
             continue
-        lo = min(min(p, a) for p, a, _ in pts) / 5
-        hi = max(max(p, a) for p, a, _ in pts) * 5
+        lo = min(min(p, a) for p, a, _, _ in pts) / 4
+        hi = max(max(p, a) for p, a, _, _ in pts) * 4
         line = [lo, hi]
-        ax.fill_between(line, [v / FACTOR for v in line], [v * FACTOR for v in line], color="0.9",
-                        label=f"within {FACTOR:g}x")
-        ax.plot(line, line, "k-", lw=1, label="actual = predicted")
-        for p, a, s in pts:
-            ax.plot(p, a, "o", label=s)
-            ax.annotate(s, (p, a), textcoords="offset points", xytext=(4, 4), fontsize=7)
+        ax.fill_between(line, [v / FACTOR for v in line], [v * FACTOR for v in line], color="0.9")
+        ax.plot(line, line, "k-", lw=1)
+        for p, a, name, wall in pts:
+            ax.plot(p, a, "o", ms=7, color=colours[name], mfc=colours[name] if wall else "none")
+            if wall:
+                k = list(colours).index(name)
+                ax.annotate(name, (p, a), textcoords="offset points", xytext=(5, -3 + 7 * (k % 3 - 1)), fontsize=7)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlim(lo, hi)
         ax.set_ylim(lo, hi)
         ax.set_xlabel(f"predicted {label}")
         ax.set_ylabel(f"actual {label}")
-        ax.set_title(label)
-    axes[0].legend(fontsize=7, loc="upper left")
-    fig.suptitle("cablesys.ladder.plan_cost: predicted before the build vs actual (cold cache, compiled)")
+        ax.set_title(label + (" (filled: wall, open: CPU)" if key in CPU else ""))
+    key_ax = axes.flat[-1]
+    key_ax.axis("off")
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+    handles = [Patch(color="0.9", label=f"within {FACTOR:g}x"), Line2D([], [], color="k", lw=1, label="actual = predicted"),
+               Line2D([], [], marker="o", ls="", color="0.3", label="wall time"),
+               Line2D([], [], marker="o", ls="", color="0.3", mfc="none", label="CPU time (compiler, stepping)")]
+    handles += [Line2D([], [], marker="o", ls="", color=colours[r["scene"]],
+                       label=f"{r['scene']}: {r['prediction']['what']}") for r in rows]
+    key_ax.legend(handles=handles, loc="center", fontsize=8, frameon=False)
+    fig.suptitle("cablesys.ladder.plan_cost: the run's cost predicted before its build vs actual (cold cache, compiled)")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

@@ -22,7 +22,8 @@ def test_run_prediction_quick(run_study):
     mine = [c for c in row["compiles"] if c["phase"] == "predicted"]
     assert len(mine) >= 2 and all(c["actual_s"] > 0 and c["predicted_s"] > 0 and c["c_mb"] > 0 for c in mine)
     assert act["compile_s"] == pytest.approx(sum(c["actual_s"] for c in mine))
-    for key in ("steps", "operations", "memory_bytes"):          # machine-independent: within the factor 3
+    for key in ("operations", "memory_bytes"):          # machine-independent: within the factor 3
         assert row["within_3x"][key], (key, pred[key], act[key])
-    assert row["ratio"]["steps"] == pytest.approx(act["steps"] / pred["steps"])
+    [run] = [r for r in row["runs"] if r["covered"]]
+    assert act["steps"] == run["nsteps"] > 0 and row["ratio"]["steps"] == pytest.approx(act["steps"] / pred["steps"])
     assert (out / "run_prediction.png").stat().st_size > 10_000

@@ -27,11 +27,16 @@ duration / step. Adaptive methods: from the tolerance and the forcing period, a 
 BDF2 at rtol 1e-4: 320, 484, 705, 962 steps per period at N = 4, 8, 16, 32 (x N^0.55); 1e-4 -> 1e-5 multiplied
 the steps by 1.55-2.0 (an accuracy-limited p = 2 method would give 10^(1/3) = 2.15: part of the steps are set by
 the element modes, not by the tolerance), hence the exponent 1/4. rk23 (quasi-static rung): 142, 186 steps per
-period at N = 4, 8 on the Dale scene (x N^0.39), but 52 per period on the heavy wire (N = 6, rtol 1e-4) and 136
-on the sheared current (N = 14, rtol 1e-5) (``studies/run_prediction.py``): the constant is their geometric
-middle, 80 at N = 4 and rtol 1e-4, within 2x of each. Its accuracy is O((h omega)^p) per step (:mod:`.stiffness`),
-so steps scale with the number of forcing periods; a scene without a period (a sea state) takes its peak period.
-How good it is: ``studies/run_prediction.py`` reports the ratio actual / predicted on six scenes.
+period at N = 4, 8 (x N^0.39). Its accuracy is O((h omega)^p) per step (:mod:`.stiffness`), so steps scale with
+the number of forcing periods; a scene without a period (a sea state) takes its peak period.
+
+The quasi-static segmented cable's method is known only once its model is built: its stiffness guard
+(:mod:`.stiffness`) accepts the explicit pair or hands the run to CVODES, whose dense Jacobian costs more per step
+and far more C (QS_IMPLICIT_STEPS, IMPLICIT_STEP_S_PER_MB, measured on the heavy wire and the sheared current,
+where the guard refused rk23). Unless the caller named the method, its prediction is the middle of the two
+(geometric for steps and stepping time, arithmetic for the compile), each of which was within 3x of the middle on
+the six scenes; the line names both methods. How good it is: ``studies/run_prediction.py`` reports the ratio
+actual / predicted on six scenes.
 
 Wall time per step: STEP_OVERHEAD_S + operations x SECONDS_PER_OPERATION (compiled C or CasADi's VM), the same
 Dale runs (BDF2 compiled N = 4, 8, 16: 6.2, 7.2, 8.6 us per step; VM N = 32: 63 us; rk23 compiled N = 4, 8:
@@ -70,7 +75,12 @@ log = logging.getLogger(__name__)
 FIXED_STEP = ("rk", "rkc", "collocation")
 # adaptive methods: steps per forcing period at rtol 1e-4 and 4 elements, and their N exponent (Dale fits, above)
 STEPS_PER_PERIOD = {"cvodes-bdf2": (320.0, 0.55), "cvodes": (320.0, 0.55), "idas": (320.0, 0.55),
-                    "cvodes-adams": (320.0, 0.55), "rk23": (80.0, 0.39), "dopri5": (92.0, 0.39)}
+                    "cvodes-adams": (320.0, 0.55), "rk23": (142.0, 0.39), "dopri5": (92.0, 0.39)}
+# the quasi-static segmented cable stepped by CVODES (BDF2) once its guard refuses the explicit pair: 52 steps per
+# period on the heavy wire (N = 6, rtol 1e-4), 137 in the sheared current (N = 14, rtol 1e-5), i.e. 40 at N = 4
+QS_IMPLICIT_STEPS = (40.0, 0.55)
+# its wall time per step over the MB of its implicit DAE's C (the dense Jacobian: 56 us at 1.6 MB, 332 us at 18 MB)
+IMPLICIT_STEP_S_PER_MB = 2e-5
 RTOL_EXPONENT = 0.25
 STEP_OVERHEAD_S = 5e-6                                  # per step, compiled (CVODES's own work, the call)
 SECONDS_PER_OPERATION = {True: 3.5e-10, False: 3.0e-9}  # per step and operation: compiled C, CasADi VM
@@ -222,10 +232,11 @@ def state_count(scene_run: Scene, name: str, segments: int) -> int:
     return 2 * per * len(scene_run.sections)
 
 
-def predict(scene: Scene, choice, settings) -> Prediction:
+def predict(scene: Scene, choice, settings, guard_decides: bool = False) -> Prediction:
     """The :class:`Prediction` of the run of ``choice`` (a ladder :class:`~.choice.Choice`) with ``settings`` (its
     :class:`~cablesys.time_domain.IntegratorSettings`, from :func:`.run_settings.integrator_settings`), before its
-    model is built."""
+    model is built. ``guard_decides``: the quasi-static segmented cable's explicit method is a guess its stiffness
+    guard may overturn once the model is built (the module docstring: the middle of the two paths)."""
     from ..time_domain.record import run_memory_bytes
     n = max(int(choice.segments), 1)
     sc = rung_scene(scene, choice.name, n)
@@ -237,9 +248,20 @@ def predict(scene: Scene, choice, settings) -> Prediction:
     outputs = len(sc.output_times)
     memory = run_memory_bytes(outputs, len(sc.sections), state_count(sc, choice.name, n) + OUTPUT_LABELS)
     what = choice.name + (f" N = {n}" if n > 1 else "")
-    return Prediction(what, elements, ops, method, steps, how, compiled,
-                      compile_guess(ops, choice.name, method, n) if compiled else 0.0, memory,
-                      steps * step_seconds(ops, compiled))
+    run_s = steps * step_seconds(ops, compiled)
+    compile_s = compile_guess(ops, choice.name, method, n) if compiled else 0.0
+    if guard_decides and choice.name == "quasi-static" and n > 1 and method in EXPLICIT:
+        k, alpha = QS_IMPLICIT_STEPS
+        period = forcing_period(sc) or sc.numerics.duration
+        steps_i = (sc.numerics.duration / period) * k * (max(float(settings.rtol), 1e-14) / 1e-4) ** (-RTOL_EXPONENT) \
+            * (max(elements, 1) / 4.0) ** alpha
+        [(_, jac_bytes)] = [lib for lib in compile_plan(ops, choice.name, "cvodes", n) if lib[0] == "implicit"]
+        run_i = steps_i * (step_seconds(ops, compiled) + IMPLICIT_STEP_S_PER_MB * jac_bytes / 1e6)
+        steps, run_s = int(math.ceil(math.sqrt(steps * steps_i))), math.sqrt(run_s * run_i)
+        method, how = f"{method} or cvodes-bdf2", f"{how}; the middle of both methods, the stiffness guard decides"
+    else:
+        compile_s = compile_seconds(compile_plan(ops, choice.name, method, n)) if compiled else 0.0
+    return Prediction(what, elements, ops, method, steps, how, compiled, compile_s, memory, run_s)
 
 
 def from_plan(scene: Scene, choice, plan) -> Prediction:
@@ -295,7 +317,8 @@ def for_run(scene: Scene, choice, tol, kw: dict) -> Prediction | None:
     s = integrator_settings(sc, tol, elements, method=kw.get("method"), rtol=kw.get("rtol"), atol=kw.get("atol"),
                             rung=None, stated=choice.estimated_error.get("body"))
     s = dataclasses.replace(s, compiled=bool(s.compiled and compiles()))
-    if choice.name == "quasi-static" and kw.get("method") is None and s.method not in FIXED_STEP and s.compiled:
+    guessed = choice.name == "quasi-static" and kw.get("method") is None and s.method not in FIXED_STEP and s.compiled
+    if guessed:
         s = dataclasses.replace(s, method=QUASI_STATIC_METHOD)     # uncompiled, the guard falls back to CVODES
     times = kw.get("times")
     if times is not None:      # the caller's grid: its outputs and span
@@ -303,7 +326,7 @@ def for_run(scene: Scene, choice, tol, kw: dict) -> Prediction | None:
         t = np.asarray(times, dtype=float)
         scene = scene.with_numerics(duration=float(t[-1] - t[0]) or scene.numerics.duration,
                                     output_step=float(np.min(np.diff(t))) if t.size > 1 else scene.numerics.output_step)
-    return predict(scene, choice, s)
+    return predict(scene, choice, s, guard_decides=guessed)
 
 
 def announce(prediction: Prediction | None, kw: dict) -> None:
