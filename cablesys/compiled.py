@@ -29,6 +29,13 @@ and the folder removed before the interruption goes on (a signal left at its def
 then ends the process as it would have), so nothing partial is left; a folder left by
 ``kill -9`` is removed by the next eviction.
 
+Progress of a build, in the log (``cablesys`` prints warnings on stderr, info lines with ``-v``): a start line
+with the size of the generated C and the predicted compile time (:func:`predicted_compile_s`), a line every
+``PROGRESS_EVERY_S`` while the C is generated and compiled (elapsed against predicted; from a thread that only
+logs, so a signal still interrupts the main thread's wait on the compiler at once), and an end line with the
+actual time beside the prediction. A build predicted past ``PROGRESS_EVERY_S`` or of more than
+``LOUD_BUILD_BYTES`` of C is announced as warnings (seen without ``-v``), others at info level.
+
 Settings (environment), checked whenever read (a bad value is a
 :class:`~cablesys.errors.ParameterError` naming it): ``CABLESYS_CC`` the compiler command
 (default ``cc``), ``CABLESYS_CFLAGS`` its optimization flags (default ``-O2``, less for very
@@ -73,7 +80,7 @@ from .errors import ParameterError
 log = logging.getLogger(__name__)
 
 __all__ = ["CACHE_FORMAT", "Compiled", "DerivedStore", "cache_dir", "compilation_enabled", "compile_functions",
-           "compiler_command", "generate", "state_jacobian"]
+           "compiler_command", "generate", "predicted_compile_s", "state_jacobian"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -139,6 +146,15 @@ SIZE_FLAGS = ((400_000, "-O2"), (1_500_000, "-O1"), (float("inf"), "-O0"))
 MAX_C_BYTES = 40_000_000
 # a compile of more C than this is announced as a warning (seen without -v), smaller ones at info level
 LOUD_BUILD_BYTES = 1_000_000
+# while C is generated and compiled, a line every PROGRESS_EVERY_S (s) with the time elapsed and the prediction
+PROGRESS_EVERY_S = 10.0
+# predicted compile time: COMPILE_START_S + MB of C x COMPILE_S_PER_MB[optimization flag] (s), least-squares fits to
+# the compiler's CPU time (its wall time on an idle machine) over 50 cold-cache compiles of 0.03-18.5 MB of C
+# (studies/results/run_prediction.json, "compile_rates": -O0 1.8, -O1 4.5, -O2 11.3 s/MB; gcc, x86_64); a loaded
+# machine stretches the wall time (2-3x at a load of 6.6 on 2 cores), gcc's time grows faster than linearly with
+# the size (small -O2 libraries take about 4 s/MB, 0.5 MB ones 12 s/MB); -O3 is not measured (-O2's rate x 1.25)
+COMPILE_START_S = 0.3
+COMPILE_S_PER_MB = {"-O0": 1.9, "-O1": 4.5, "-O2": 11.5, "-O3": 14.0}
 
 
 def _split_setting(name: str, default: str) -> list[str]:
@@ -317,20 +333,71 @@ def _known_too_large(marker: Path) -> int | None:
     return c_bytes if c_bytes > MAX_C_BYTES else None
 
 
-def _build(code: str, cmd: list[str], target: Path, what: str = "") -> None:
+def predicted_compile_s(c_bytes: int, cmd: list[str]) -> float:
+    """Predicted wall time (s) of compiling ``c_bytes`` of generated C with ``cmd`` (its last ``-O`` flag chooses the
+    rate; ``COMPILE_START_S`` + MB x ``COMPILE_S_PER_MB``, the fit of ``studies/run_prediction.py``)."""
+    flags = [a for a in cmd if a.startswith("-O")]
+    rate = COMPILE_S_PER_MB.get(flags[-1] if flags else "-O0", COMPILE_S_PER_MB["-O2"])
+    return COMPILE_START_S + rate * c_bytes / 1e6
+
+
+class _Ticker:
+    """A line in the log every ``every`` s (a thread of its own) while C is generated and compiled: what is done and
+    how long it has taken against the prediction (``phase(text, predicted_s)`` names the current step). The lines are
+    warnings (a step this long is worth seeing without ``-v``); the thread only logs, so a signal still reaches the
+    main thread, which stops it on the way out (a daemon thread: it never holds the process)."""
+
+    def __init__(self, what: str, every: float):
+        self.what, self.every = what, float(every)
+        self.text, self.predicted, self.t0 = "generating the C of", None, time.perf_counter()
+        self.ticks = 0
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._loop, name="cablesys-compile-progress", daemon=True)
+
+    def phase(self, text: str, predicted_s: float | None = None) -> None:
+        self.text, self.predicted = text, predicted_s
+
+    def line(self) -> str:
+        elapsed = time.perf_counter() - self.t0
+        pred = "" if self.predicted is None else (
+            f" of about {self.predicted:.2g} s predicted" if elapsed <= self.predicted
+            else f", past the {self.predicted:.2g} s predicted")
+        return f"{self.text} {self.what}: {elapsed:.0f} s elapsed{pred}"
+
+    def _loop(self) -> None:
+        while not self._stop.wait(self.every):
+            self.ticks += 1
+            log.warning("%s", self.line())
+
+    def __enter__(self):
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc):
+        self._stop.set()
+        self._thread.join(timeout=1.0)
+        return False
+
+
+def _build(code: str, cmd: list[str], target: Path, what: str = "", ticker: _Ticker | None = None) -> float:
     """Compile ``code`` to ``target``: in a build folder of the cache, sealed with its SHA-256,
     then an atomic rename; nothing is left behind on failure or interruption. Hold the entry's
-    lock around it. ``what`` names the functions in the progress messages. Code above
-    ``MAX_C_BYTES`` is not compiled (RuntimeError) and its size recorded beside the entry
-    (``<key>.vm``), so that later runs skip generating it."""
+    lock around it. ``what`` names the functions in the progress messages: a start line with the size of the C and
+    the predicted compile time (:func:`predicted_compile_s`), ``ticker``'s periodic lines, an end line with the
+    actual time; returns that time (s). Code above ``MAX_C_BYTES`` is not compiled (RuntimeError) and its size
+    recorded beside the entry (``<key>.vm``), so that later runs skip generating it."""
     if len(code) > MAX_C_BYTES:
         with contextlib.suppress(OSError):
             write_sealed(target.with_suffix(".vm"), json.dumps({"c_bytes": len(code)}).encode())
         raise RuntimeError(_too_large(len(code), what or target.stem))
     key = target.stem
-    log.log(logging.WARNING if len(code) > LOUD_BUILD_BYTES else logging.INFO,
-            "compiling %s (%.2f MB of C, %s) into the cache %s: once, later runs load it",
-            what or key, len(code) / 1e6, " ".join(cmd[:-2]), target.parent)
+    predicted = predicted_compile_s(len(code), cmd)
+    loud = len(code) > LOUD_BUILD_BYTES or predicted > PROGRESS_EVERY_S
+    log.log(logging.WARNING if loud else logging.INFO,
+            "compiling %s (%.2f MB of C, %s) into the cache %s, predicted about %.2g s: once, later runs load it",
+            what or key, len(code) / 1e6, " ".join(cmd[:-2]), target.parent, predicted)
+    if ticker is not None:
+        ticker.phase("compiling", predicted)
     t0 = time.perf_counter()
     try:
         with _signals_stop_build(), build_folder(target.parent, key) as tmp:
@@ -346,7 +413,11 @@ def _build(code: str, cmd: list[str], target: Path, what: str = "") -> None:
         signal.signal(stop.args[0], signal.SIG_DFL)
         os.kill(os.getpid(), stop.args[0])
         raise KeyboardInterrupt(f"signal {stop.args[0]}") from None   # pragma: no cover (the signal ends it)
-    log.info("compiled %s in %.1f s: %s", what or key, time.perf_counter() - t0, target.name)
+    took = time.perf_counter() - t0
+    loud = loud or (ticker is not None and ticker.ticks > 0)      # the end of what was shown is shown
+    log.log(logging.WARNING if loud else logging.INFO, "compiled %s in %.2g s (predicted about %.2g s, %.2f MB of C): %s",
+            what or key, took, predicted, len(code) / 1e6, target.name)
+    return took
 
 
 def _load(target: Path, names) -> dict:
@@ -452,7 +523,8 @@ def compile_functions(functions, *, jacobians=True, enabled: bool = True, extra_
                     if damage not in (None, "missing"):
                         _discard(target, damage)
                     if not cached:
-                        _build(generate(functions, jacobians=jacobians) + extra_c, cmd, target, what)
+                        with _Ticker(what, PROGRESS_EVERY_S) as ticker:
+                            _build(generate(functions, jacobians=jacobians) + extra_c, cmd, target, what, ticker)
             except (OSError, RuntimeError) as err:
                 note = f"compilation failed ({err}): running the CasADi virtual machine (slower)"
                 _notice(note)

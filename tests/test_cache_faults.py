@@ -15,6 +15,7 @@ import signal
 import subprocess
 import sys
 import textwrap
+import threading
 import time
 from pathlib import Path
 
@@ -398,3 +399,34 @@ def test_code_known_too_large_goes_to_the_vm_without_generating_it_again(cache, 
     assert done.compiled and done.library.with_suffix(".vm") == marker
     assert np.allclose(np.array(done.functions["too_big_f"]([0.1, 0.2, 0.3])).ravel(),
                        np.sin([0.1, 0.2, 0.3]) * np.cos([0.1, 0.2, 0.3]) + np.array([0.1, 0.2, 0.3]) ** 3, rtol=1e-14)
+
+
+def test_a_compile_announces_its_prediction_ticks_and_ends_with_the_actual_time(cache, monkeypatch, caplog):
+    """The start line carries the size of the C and the predicted compile time (the rate of the flags times the
+    size); lines while it runs say elapsed against predicted; the end line carries the actual time, the one the
+    build reports (``Compiled.build_s`` bounds it: code generation and the load come on top)."""
+    import re
+
+    import cablesys.compiled as C
+    monkeypatch.setattr(C, "PROGRESS_EVERY_S", 0.01)     # a tick well inside the compile's own time
+    real = C._run_compiler
+
+    def slower(argv, workdir):
+        time.sleep(0.2)           # a compile long enough for ticks, whatever the machine
+        return real(argv, workdir)
+    monkeypatch.setattr(C, "_run_compiler", slower)
+    x = ca.SX.sym("x", 4)
+    with caplog.at_level(logging.INFO, logger="cablesys.compiled"):
+        out = compile_functions([ca.Function("told_f", [x], [ca.sin(x) * x])], jacobians=True)
+    msgs = [r.getMessage() for r in caplog.records]
+    [start] = [m for m in msgs if m.startswith("compiling told_f (")]
+    mb, pred = re.search(r"\(([0-9.]+) MB of C, cc -O0\).*predicted about ([0-9.e+-]+) s", start).groups()
+    c = C.generate([ca.Function("told_f", [x], [ca.sin(x) * x])], jacobians=True)
+    assert float(mb) == pytest.approx(len(c) / 1e6, abs=0.006)
+    assert float(pred) == pytest.approx(C.COMPILE_START_S + C.COMPILE_S_PER_MB["-O0"] * len(c) / 1e6, rel=0.05)
+    ticks = [m for m in msgs if m.startswith("compiling told_f: ")]
+    assert ticks and all(re.search(r"\d+ s elapsed(, past the| of about) ", m) for m in ticks)
+    [end] = [m for m in msgs if m.startswith("compiled told_f in ")]
+    took, pred_end = map(float, re.search(r"in ([0-9.e+-]+) s \(predicted about ([0-9.e+-]+) s", end).groups())
+    assert pred_end == float(pred) and took > 0 and out.compiled and not out.cached
+    assert not [t for t in threading.enumerate() if t.name == "cablesys-compile-progress"]   # the ticker ended
