@@ -400,9 +400,12 @@ def settled_check(scene: Scene, choice: Choice, result) -> Choice:
     the halves of the statistics window (:func:`.metrics.window_change`) by more than the stated body error.
     The estimates speak of the settled response; a build-up (a cable forced at its first string mode over 7
     periods: 11 %, the segmented estimates 2x short of the window's errors, within 1.2x over 25 periods) or a
-    front still arriving is the run's, not the model's (extrapolated runs: :mod:`.extrapolation` has its own)."""
+    front still arriving is the run's, not the model's (extrapolated runs: :mod:`.extrapolation` has its own). Not for
+    an irregular sea or a recorded motion, whose halves differ by sampling."""
     if not getattr(result, "success", False) or "extrapolated" in choice.numbers or choice.name == "frequency":
         return choice
+    if scene.top_motion.spectrum is not None or scene.top_motion.series is not None:
+        return choice      # an irregular sea: half the peak-to-peak of each half is a sample, not a build-up
     change = metrics.window_change(result, metrics.forcing_period(scene), scene.top_motion.effective_ramp_s)
     stated = choice.estimated_error.get("body", math.inf)
     if not (change > max(stated, est.RESOLUTION)):
@@ -521,6 +524,16 @@ def after_run(scene: Scene, choice: Choice, result, *, auto: bool) -> tuple[Choi
                   est.segmented_error(choice.numbers["estimates"], n), choice.numbers), True
 
 
+def short_reason(reason: str, segments: int) -> str:
+    """The console's reason: its first clause (the first choice) and, where a later step changed the model (a
+    rung replaced, N grown by the static or a posteriori check), the last clause that did, so that the line never
+    names another model than the one that ran."""
+    clauses = reason.split("; ")
+    changed = [c for c in clauses[1:] if " instead" in c or f"with N = {segments}" in c or " rejected " in c]
+    text = clauses[0] + (f"; then {changed[-1]}" if changed and changed[-1] != clauses[0] else "")
+    return text + (" (the whole reason in summary.json)" if len(clauses) > 1 + bool(changed) else "")
+
+
 def describe(choice_dict: dict, full: bool = False) -> str:
     """The console lines (at most three): which model ran and its estimated error, whether that error was checked
     (and the quantity furthest from the tolerance), and why, the reason's first clause (``full``: the whole reason,
@@ -529,7 +542,7 @@ def describe(choice_dict: dict, full: bool = False) -> str:
     fmt = lambda v: "n/a" if v is None else f"{100 * v:.2g} %"
     seg = f", N = {choice_dict['segments']}" if (choice_dict.get("segments") or 1) > 1 else ""
     reason = choice_dict.get("reason", "")
-    why = reason if full else reason.split("; ")[0] + (" (the whole reason in summary.json)" if "; " in reason else "")
+    why = reason if full else short_reason(reason, choice_dict.get("segments") or 1)
     if choice_dict.get("extrapolated"):      # the extrapolated statistics' error first, the time series' too
         return extrapolation.describe(dict(choice_dict, reason=why), fmt, seg)
     head = f"model {choice_dict.get('name')}{seg}: estimated error body {fmt(e.get('body'))}, tension {fmt(e.get('tension'))}"
@@ -538,7 +551,9 @@ def describe(choice_dict: dict, full: bool = False) -> str:
     if per:
         worst = max(per, key=per.get)
         check = f"{check}; largest per quantity: {worst} {fmt(per[worst])}"
-    return "\n".join(line for line in (head, f"  {check}" if check else "", f"  why: {why}") if line)
+    notes = [] if full else [c for c in reason.split("; ")[1:] if c.startswith("the run has not settled") or "NOT " in c]
+    return "\n".join(line for line in (head, f"  {check}" if check else "", f"  why: {why}",
+                                        *(f"  note: {c}" for c in notes)) if line)
 
 
 def linear_model(scene: Scene, tolerance=None, cache: RungCache | None = None):
