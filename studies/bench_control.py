@@ -69,14 +69,14 @@ def design_gradient(problem, duration: float) -> dict:
     p_nom = problem.p.copy()
     pm = ca.MX(ca.DM(p_nom))
     pm[idx[0]], pm[idx[1]] = theta[0], theta[1]
-    xs, ts, ps = ca.SX.sym("x", model.nx), ca.SX.sym("t"), ca.SX.sym("p", len(p_nom))
+    xs, Es, ps = ca.SX.sym("x", model.nx), ca.SX.sym("E", problem.step.size1_in(2)), ca.SX.sym("p", len(p_nom))
     w = ca.DM([problem.heave_rest, problem.static_tension, 0.0, 0.0, problem.dt])   # cost = dt (heave - rest)^2
-    x_next, sq, _ = problem.interval(xs, 0.0, ts, ps, problem.c, w)
-    step = ca.Function("step", [xs, ts, ps], [x_next, sq])
+    x_next, sq, _ = problem.interval(xs, 0.0, Es, ps, problem.c, w)
+    step = ca.Function("step", [xs, Es, ps], [x_next, sq])
     N = int(round(duration / problem.dt))
     roll = step.mapaccum("roll", N, [0], [0])
-    tgrid = ca.DM(problem.dt * np.arange(N)).T
-    _, h2 = roll(ca.DM(problem.x_rest), tgrid, ca.repmat(pm, 1, N))
+    Egrid = ca.DM(problem.exogenous(problem.dt * np.arange(N)).T)     # the top motion does not depend on (AE, C_I)
+    _, h2 = roll(ca.DM(problem.x_rest), Egrid, ca.repmat(pm, 1, N))
     J = ca.sum2(h2) / (N * problem.dt)
     fJ = ca.Function("J", [theta], [J])
     fG = ca.Function("G", [theta], [J, ca.gradient(J, theta)])
