@@ -389,5 +389,6 @@ def optimal_payout(problem: HeaveProblem, horizon: float, *, warm_start: PayoutR
                                                                    problem.exogenous(problem.dt * np.arange(N + 1)), guess)
     return payout_result(problem, sol.X, sol.U, status=sol.status, violated=sol.worst, violations=sol.violations,
                          objective=sol.objective, success=sol.success, message=solution_message(sol),
-                         stats={"iterations": sol.iterations, "solve_s": sol.solve_s, "intervals": N},
+                         stats={"iterations": sol.iterations, "solve_s": sol.solve_s, "intervals": N,
+                                "ipopt_timing_s": sol.timing},
                          stats_start=stats_start)
