@@ -198,7 +198,7 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
         step_s["pi"] = runs["pi"][3]
     if "optimal" in strategies:
         nlp = payout_nlp(prob_c, N, max_iter=max(max_iter, 300))
-        sol = nlp.solve(prob_c.x_rest, dt * np.arange(N + 1)[:, None],
+        sol = nlp.solve(prob_c.x_rest, prob_c.exogenous(dt * np.arange(N + 1)),
                         (prob_c.rollout(prob_c.x_rest, np.zeros(N)), np.zeros((N, 1))))
         if not sol.success:
             messages.append(f"open-loop optimum: {sol.status} {sol.worst}".strip())
@@ -214,9 +214,9 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
         def mpc(k, x):
             x = x - offset                                  # the measured state about the controller's rest
             U = np.append(memo["U"][1:], memo["U"][-1])       # warm start: shifted by one interval
-            t = dt * (k + np.arange(n_h + 1))
-            Xg = prob_c.rollout(x, U, t0=t[0])
-            sol = nlp.solve(x, t[:, None], (Xg, U[:, None]))
+            E = prob_c.exogenous(dt * (k + np.arange(n_h + 1)))
+            Xg = prob_c.rollout(x, U, t0=k * dt)
+            sol = nlp.solve(x, E, (Xg, U[:, None]))
             memo["fail"] += not sol.success
             memo["U"] = sol.U.ravel() if sol.success else U      # a failed step keeps the previous plan
             return memo["U"][0]

@@ -12,6 +12,11 @@ the model composes in). y_b is the body's depth below the top's mean depth, eart
 deviation from rest is the body heave relative to the seabed. Transcription: direct multiple
 shooting (:mod:`.shooting`) with ``substeps`` RK4 steps per control interval of ``dt``
 seconds, alpha piecewise constant, exact first and second derivatives by CasADi's AD, IPOPT.
+The top motion depends on time only, so it is tabulated outside the NLP: each interval's
+parameters are the exogenous vector e (:data:`cablesys.model.signals.EXO_LABELS`) at the
+2 ``substeps`` + 1 times its RK4 stages read (:meth:`HeaveProblem.exogenous`); the NLP's
+functions and their derivatives then contain the cable and body dynamics only (the 60 sinusoids of
+a JONSWAP sea, their rates and accelerations were two thirds of the right-hand side).
 """
 
 from __future__ import annotations
@@ -52,9 +57,10 @@ class HeaveProblem:
     substeps: int
     tension_weight: float
     control_weight: float
-    step: ca.Function = dataclasses.field(repr=False)     # (x, alpha, t_k) -> x_{k+1}
-    stage: ca.Function = dataclasses.field(repr=False)    # (x, alpha, t_k) -> (cost, g)
-    # (x, alpha, t_k, p, c, w) -> (x_{k+1}, cost, g) with the parameters symbolic (sensitivities)
+    step: ca.Function = dataclasses.field(repr=False)     # (x, alpha, E_k) -> x_{k+1}
+    stage: ca.Function = dataclasses.field(repr=False)    # (x, alpha, E_k) -> (cost, g)
+    # (x, alpha, E_k, p, c, w) -> (x_{k+1}, cost, g) with the parameters symbolic (sensitivities);
+    # E_k = exogenous(t_k), the top motion at the interval's RK4 stage times
     interval: ca.Function = dataclasses.field(repr=False, default=None)
 
     @property
@@ -69,11 +75,21 @@ class HeaveProblem:
         f = self.model.outputs.map(len(t))
         return np.array(f(X.T, v, np.asarray(t, float)[None, :], self.p, self.c)).T
 
+    def exogenous(self, t_start) -> np.ndarray:
+        """The interval parameters E_k (n, 7 (2 substeps + 1)) of intervals starting at ``t_start`` (n,) s:
+        the top's exogenous vector (t, x_s, y_s, x_s', y_s', x_s'', y_s'') at t_k + j h / 2,
+        j = 0 .. 2 substeps, h = dt / substeps (the RK4 stage times; j = 0 is also the stage cost's)."""
+        t_start = np.ravel(np.asarray(t_start, float))
+        m = 2 * self.substeps + 1
+        times = (t_start[:, None] + (self.dt / (m - 1)) * np.arange(m)[None, :]).ravel()
+        e = np.array(self.model.top.map(len(times))(times[None, :], self.p))      # (7, n m)
+        return e.T.reshape(len(t_start), -1)
+
     def rollout(self, x0, U: np.ndarray, t0: float = 0.0) -> np.ndarray:
         """Node states (N+1, nx) of the transcription's RK4 steps under the controls ``U`` (N,)."""
         N = len(U)
         f = self.step.mapaccum(N)
-        X = np.array(f(np.asarray(x0, float), np.ravel(U)[None, :], (t0 + self.dt * np.arange(N))[None, :])).T
+        X = np.array(f(np.asarray(x0, float), np.ravel(U)[None, :], self.exogenous(t0 + self.dt * np.arange(N)).T)).T
         return np.vstack([x0, X])
 
     def constraints(self) -> list[PathConstraint]:
@@ -162,36 +178,41 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
 
 
 def _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, control_weight):
-    """(step, stage, interval) of one control interval; step and stage are SX functions of (x, alpha, t_k)
+    """(step, stage, interval) of one control interval; step and stage are SX functions of (x, alpha, E_k)
     with the numbers inlined.
 
-    ``interval(x, u, r, p, c, w) -> (x_next, cost, g)``: ``substeps`` classical RK4 steps of the
-    winch ODE with alpha = u constant, the stage cost at the interval start and the path outputs
-    (:data:`G_ROWS`); w = (heave at rest, T_0, c_T, c_a, dt). They run in CasADi's virtual
-    machine (the NLP's derivatives through ``map``, not expanded).
+    ``interval(x, u, E, p, c, w) -> (x_next, cost, g)``: ``substeps`` classical RK4 steps of the
+    winch ODE with alpha = u constant and the top motion read from E (:meth:`HeaveProblem.exogenous`:
+    e at the 2 substeps + 1 stage times), the stage cost at the interval start and the path outputs
+    (:data:`G_ROWS`); w = (heave at rest, T_0, c_T, c_a, dt).
     """
-    xs, uk, tk = ca.SX.sym("x", model.nx), ca.SX.sym("u"), ca.SX.sym("r")
+    nq, ne = model.nq, 7
+    xs, uk = ca.SX.sym("x", model.nx), ca.SX.sym("u")
+    Es = ca.SX.sym("E", ne * (2 * substeps + 1))
     ps, cs, ws = ca.SX.sym("p", len(p)), ca.SX.sym("c", len(c)), ca.SX.sym("w", 5)
-    v = ca.vertcat(uk, 0.0)
-    f = lambda x, t: model.ode(x, v, t, ps, cs)
+    e_at = lambda j: Es[ne * j: ne * (j + 1)]
+    winch = lambda x: ca.vertcat(x[2 * nq], x[2 * nq + 1], uk, 0.0)      # (L, w, alpha, F_a)
+
+    def f(x, j):                                    # the winch ODE (model.ode) at stage time j
+        qdd = model.accel(x[:nq], x[nq:2 * nq], e_at(j), winch(x), ps, cs)
+        return ca.vertcat(x[nq:2 * nq], qdd, x[2 * nq + 1], uk)
     h = ws[4] / substeps
     x = xs
     for i in range(substeps):                       # classical RK4
-        t = tk + i * h
-        k1 = f(x, t)
-        k2 = f(x + h / 2 * k1, t + h / 2)
-        k3 = f(x + h / 2 * k2, t + h / 2)
-        k4 = f(x + h * k3, t + h)
+        k1 = f(x, 2 * i)
+        k2 = f(x + h / 2 * k1, 2 * i + 1)
+        k3 = f(x + h / 2 * k2, 2 * i + 1)
+        k4 = f(x + h * k3, 2 * i + 2)
         x = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-    y = model.outputs(xs, v, tk, ps, cs)
+    y = model.outputs_e(xs[:nq], xs[nq:2 * nq], e_at(0), winch(xs), ps, cs)
     oi = WINCH_OUTPUTS.index
     cost = ws[4] * ((y[oi("heave")] - ws[0]) ** 2 + ws[2] * ((y[oi("tension_top")] - ws[1]) / ws[1]) ** 2
                     + ws[3] * uk ** 2)
     g = ca.vertcat(*(y[oi(name)] for name in G_ROWS))
-    interval = ca.Function("interval", [xs, uk, tk, ps, cs, ws], [x, cost, g],
-                           ["x", "u", "r", "p", "c", "w"], ["xn", "cost", "g"])
+    interval = ca.Function("interval", [xs, uk, Es, ps, cs, ws], [x, cost, g],
+                           ["x", "u", "E", "p", "c", "w"], ["xn", "cost", "g"])
     w = ca.DM([y_rest["heave"], y_rest["tension_top"], tension_weight, control_weight, dt])
-    xa, ua, ra = ca.SX.sym("x", model.nx), ca.SX.sym("u"), ca.SX.sym("r")
+    xa, ua, ra = ca.SX.sym("x", model.nx), ca.SX.sym("u"), ca.SX.sym("E", Es.numel())
     xn, cost, g = interval(xa, ua, ra, ca.DM(p), ca.DM(c), w)
     step = ca.Function("step", [xa, ua, ra], [xn])
     stage = ca.Function("stage", [xa, ua, ra], [cost, g])
@@ -302,12 +323,12 @@ def payout_result(problem: HeaveProblem, X, U, *, status: str, violated: str = "
 
 def payout_nlp(problem: HeaveProblem, N: int, *, max_iter: int = 300, tol: float = 1e-8,
                expand: bool = False, warm_duals: bool = False, constrain_first: bool = True) -> ShootingNLP:
-    """The multiple-shooting NLP of ``problem`` over N intervals (start state and times are its
+    """The multiple-shooting NLP of ``problem`` over N intervals (start state and the tabulated top motion, :meth:`HeaveProblem.exogenous`, are its
     parameters: :meth:`.shooting.ShootingNLP.solve` takes them), with the last node's heave
     in the cost (the stage cost at alpha = 0)."""
     ub, xb = problem.bounds()
-    xN, tN = ca.SX.sym("x", problem.model.nx), ca.SX.sym("t")
-    terminal = ca.Function("terminal", [xN, tN], [problem.stage(xN, 0.0, tN)[0]])   # the last node's cost
+    xN, EN = ca.SX.sym("x", problem.model.nx), ca.SX.sym("E", problem.step.size1_in(2))
+    terminal = ca.Function("terminal", [xN, EN], [problem.stage(xN, 0.0, EN)[0]])   # the last node's cost
     return ShootingNLP(problem.step, problem.stage, N, constraints=problem.constraints(), u_bounds=ub,
                        x_bounds=xb, terminal=terminal, x_ref=problem.x_rest, x_scale=problem.scales(),
                        ipopt={"max_iter": max_iter, "tol": tol}, expand=expand, warm_duals=warm_duals,
@@ -364,9 +385,10 @@ def optimal_payout(problem: HeaveProblem, horizon: float, *, warm_start: PayoutR
     N = check_window(problem, 0.0, horizon)
     U = np.zeros(N) if warm_start is None else np.resize(warm_start.acceleration, N)
     guess = (problem.rollout(problem.x_rest, U), U[:, None])
-    sol = payout_nlp(problem, N, max_iter=max_iter, tol=tol).solve(problem.x_rest, problem.dt * np.arange(N + 1)[:, None],
-                                                                   guess)
+    sol = payout_nlp(problem, N, max_iter=max_iter, tol=tol).solve(problem.x_rest,
+                                                                   problem.exogenous(problem.dt * np.arange(N + 1)), guess)
     return payout_result(problem, sol.X, sol.U, status=sol.status, violated=sol.worst, violations=sol.violations,
                          objective=sol.objective, success=sol.success, message=solution_message(sol),
-                         stats={"iterations": sol.iterations, "solve_s": sol.solve_s, "intervals": N},
+                         stats={"iterations": sol.iterations, "solve_s": sol.solve_s, "intervals": N,
+                                "ipopt_timing_s": sol.timing},
                          stats_start=stats_start)

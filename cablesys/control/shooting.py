@@ -43,6 +43,8 @@ class ShootingSolution:
     solve_s: float
     violations: dict            # name -> largest violation / scale (0 when met)
     worst: str                  # the most violated constraint ("" when all hold to 1e-6)
+    # IPOPT's own timing (s): t_proc_/t_wall_ total and per NLP function (nlp_hess_l, nlp_jac_g, ...)
+    timing: dict = dataclasses.field(default_factory=dict)
 
 
 def solve_shooting(step: ca.Function, stage: ca.Function, x0, N: int, *, params=None, constraints=(),
@@ -139,7 +141,7 @@ class ShootingNLP:
         if warm_duals:     # IPOPT restarted near the previous solution: small barrier, previous multipliers
             opts = {"warm_start_init_point": "yes", "mu_init": 1e-5, "warm_start_bound_push": 1e-6,
                     "warm_start_mult_bound_push": 1e-6, **opts}
-        opti.solver("ipopt", {"print_time": False, "expand": expand}, opts)
+        opti.solver("ipopt", {"print_time": False, "record_time": True, "expand": expand}, opts)
 
     def solve(self, x0, params=None, guess=None) -> ShootingSolution:
         """Solve from ``x0`` with interval parameters ``params`` (N, nr) and warm start ``guess`` (X, U)."""
@@ -199,7 +201,9 @@ class ShootingNLP:
                 violations, worst = phase1.violations, phase1.worst
         return ShootingSolution(X=Xv, U=Uv, G=Gv, objective=float(val(self.J)), status=status,
                                 success=ok, iterations=int(stats.get("iter_count", -1)),
-                                solve_s=solve_s, violations=violations, worst=worst)
+                                solve_s=solve_s, violations=violations, worst=worst,
+                                timing={k: float(v) for k, v in stats.items() if k.startswith(("t_proc_", "t_wall_"))
+                                        and isinstance(v, (int, float))})
 
 def _path_constraints(opti, G, constraints, elastic: bool) -> dict:
     """Impose lb <= g <= ub (scaled) for every constraint row; with ``elastic`` one slack per group."""

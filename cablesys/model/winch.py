@@ -105,7 +105,9 @@ class WinchModel:
     mid-length tension W_b + W_c / 2 as in :data:`.signals.OUTPUT_NAMES`), the cable's pull on the sheave and on the
     body (N, momentum balances as in :func:`.build._end_forces`), u, L, w, alpha, the winch
     power T_top w (W) and the stroke s); ``accel(q, qd, e, winch, p, c) -> q''`` with an explicit
-    exogenous vector e (:data:`.signals.EXO_LABELS`) and winch = (L, w, alpha, F_a).
+    exogenous vector e (:data:`.signals.EXO_LABELS`) and winch = (L, w, alpha, F_a);
+    ``outputs_e(q, qd, e, winch, p, c) -> y`` the outputs with that explicit e (a transcription that
+    tabulates the top motion once, outside its NLP, calls ``accel`` and ``outputs_e``).
     """
 
     layout: ParameterLayout
@@ -115,6 +117,7 @@ class WinchModel:
     outputs: ca.Function
     accel: ca.Function
     top: ca.Function
+    outputs_e: ca.Function
 
     @property
     def nq(self) -> int:
@@ -200,7 +203,7 @@ def build_winch_model(scene: Scene, *, compensator: bool = False) -> WinchModel:
     y = ca.vertcat(T["r_b"][1] - depth0, T["v_b"][1], T["r_b"][0], T["tension"], t_top, t_bottom,
                    l - L, L, w, alpha, t_top * w, s)
     accel = ca.Function("accel", [q, qd, e, winch, p, c], [qdd], ["q", "qd", "e", "winch", "p", "c"], ["qdd"])
-    out_e = ca.Function("out_e", [q, qd, e, winch, p, c], [y])
+    out_e = ca.Function("winch_outputs_e", [q, qd, e, winch, p, c], [y], ["q", "qd", "e", "winch", "p", "c"], ["y"])
 
     top = top_motion_function(scene, layout)
     nq = len(q_labels)
@@ -212,7 +215,7 @@ def build_winch_model(scene: Scene, *, compensator: bool = False) -> WinchModel:
     outputs = ca.Function("winch_outputs", [xs, vs, ts, p, c],
                           [out_e(xs[:nq], xs[nq:2 * nq], ex, wx, p, c)], ["x", "v", "t", "p", "c"], ["y"])
     return WinchModel(layout=layout, compensator=compensator, q_labels=q_labels, ode=ode,
-                      outputs=outputs, accel=accel, top=top)
+                      outputs=outputs, accel=accel, top=top, outputs_e=out_e)
 
 
 def rest_state(model: WinchModel, p, c=None, length: float | None = None) -> np.ndarray:
