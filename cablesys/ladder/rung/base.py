@@ -40,8 +40,8 @@ def has_ends(scene: Scene) -> bool:
     return getattr(scene, "anchor", None) is not None or getattr(scene, "seabed", None) is not None
 
 
-PLANAR = ("a 3-D scene: only Wang's straight cable has three-dimensional equations so far, the other rungs "
-          "(frequency, quasi-static, segmented) are planar")
+PLANAR = ("a 3-D scene: the frequency and quasi-static rungs are planar; Wang's straight cable and the node model "
+          "(segmented) have three-dimensional equations")
 WITH_MASS = ("a massless cable (cable.cable_mass_switch < 0, Wang 1971's CBMAS) belongs to Wang's straight cable: the "
              "element rungs' nodes would have no mass, and the ladder has no estimate of the other rungs against it")
 NO_NODES = ("an anchored line or a seabed: only the node model (segmented) has nodes to anchor and to lay on the bed")
