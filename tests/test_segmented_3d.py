@@ -82,3 +82,20 @@ def test_the_ladder_chooses_for_a_3d_scene_whose_stretch_is_not_stiff():
     sc = checks.rotation_scene().replace_section(0, cable={"ae": 2e5}).with_numerics(duration=12.0)
     choice, _, _ = decide(sc, "auto", None, None)
     assert choice.name in ("wang", "segmented")
+
+
+def test_3d_kernel_ode_equals_the_element_by_element_ode():
+    """Two sections with a joint body in a 3-D scene (current and wave with headings, sway): the mapped element
+    kernel (3 x 3 node blocks) is the same function as the element-by-element ode, to rounding."""
+    from three_d_checks import Section
+    sc = checks.rotation_scene()
+    low = Section(cable=checks.wire(length=30.0, segments=5), body=sc.body)
+    two = nodes.divided(type(sc)(sections=(sc.sections[0], low), environment=sc.environment, top_motion=sc.top_motion,
+                                 numerics=sc.numerics), 6)
+    m = build_model(two)
+    assert m.dim == 3 and m.kernel_ode is not None and m.loop_ode is m.kernel_ode
+    p = m.parameters(two)
+    for x in nodes._random_states(m, p, np.random.default_rng(2), 3, 3):
+        for t in (0.0, 4.2):
+            a, b = (np.array(f(x, t, p)).ravel() for f in (m.ode, m.kernel_ode))
+            assert np.max(np.abs(b - a)) <= 1e-12 * np.max(np.abs(a))

@@ -29,6 +29,17 @@ laid-down line's friction (:func:`.segmented_seabed.seabed_forces`); without one
 statics use ``dynamics``. Scenes with an anchor or a seabed evaluate the element-by-element
 ``ode`` (no mapped kernel).
 
+In three dimensions (``scene.three_d``: Wang 1971 p. 32, "allow the cable to swing out of the vertical
+plane") the same elements and bodies are built with node positions r_j = (x_j, y_j, z_j), z the sway
+(q labels ``x[j]``, ``y[j]``, ``z[j]``, e = :data:`.top_motion.EXO_LABELS_3D`): the normal drag by the
+cross-flow principle on the part of the relative velocity normal to the element (eq. 42; in the plane
+exactly eq. 42's (v . e_n) e_n), the added mass on the normal part of the node velocities, the current
+and waves with their headings (:func:`.fluid.fluid_velocity_3d`), the body's virtual mass M_bvz and its
+3-D drag (eq. 32-35, :func:`.fluid.axial_body_drag_3d`); 3 x 3 blocks per node. A planar scene builds the
+planar equations (2 x 2 blocks); both have the mapped kernel (:mod:`.segmented_kernel`); the 3-D model
+has no anchor and no seabed yet. Outputs add Wang's 3-D
+``phi_z``, ``phi_z_rate``, ``z_b``, ``z_b_rate`` per section and the profile ``node_z[j]``.
+
 The element's terms are in :mod:`.segmented_element` (shared with the mapped kernel of
 :mod:`.segmented_kernel`). The inertia terms come from the Lagrangian by AD, element by element
 (:func:`.segmented_element.element_inertia`), gravity from eq. 15; tension and drag are
@@ -47,7 +58,7 @@ from ..scene import Scene
 from .cable_model import CableModel
 from .params import ParameterLayout, environment_symbols, section_prefix
 from .section import SectionParameters
-from .segmented_element import body_drag, dot, element_inertia, element_terms, lump_force, lump_kinetic, norm
+from .segmented_element import block_solve, body_drag, dot, element_inertia, element_terms, lump_force, lump_kinetic, norm
 from .segmented_kernel import kernel_ode
 from .segmented_seabed import seabed_forces
 from .signals import CHORD_NAMES, EXO_LABELS, OUTPUT_NAMES
@@ -62,7 +73,7 @@ OUTPUTS_3D = ("phi_z", "phi_z_rate", "z_b", "z_b_rate")
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class SegmentedModel(CableModel):
-    """A :class:`CableModel` whose coordinates are node positions (``x[j]``, ``y[j]``, j = 1..).
+    """A :class:`CableModel` whose coordinates are node positions (``x[j]``, ``y[j]``, j = 1..; ``z[j]`` too in 3-D).
 
     Same functions as the 2-DOF model; ``cable_force`` is empty (the tension law max(TENS, ...)
     is integrated directly, element by element: no switch is located, see :mod:`.segmented_post`).
@@ -125,19 +136,6 @@ def mid_tension(els):
     if n % 2:
         return els[n // 2]["tension"]
     return 0.5 * (els[n // 2 - 1]["tension"] + els[n // 2]["tension"])
-
-
-def block_solve(m, f) -> tuple:
-    """x with m x = f for one node's 2 x 2 or 3 x 3 mass block, in closed form (Cramer's rule)."""
-    if m.shape[0] == 2:
-        m11, m12, m21, m22 = m[0, 0], m[0, 1], m[1, 0], m[1, 1]
-        f1, f2 = f[0], f[1]
-        det = m11 * m22 - m12 * m21
-        return (m22 * f1 - m12 * f2) / det, (m11 * f2 - m21 * f1) / det
-    cof = [[m[(r + 1) % 3, (c + 1) % 3] * m[(r + 2) % 3, (c + 2) % 3] - m[(r + 1) % 3, (c + 2) % 3] * m[(r + 2) % 3, (c + 1) % 3]
-            for c in range(3)] for r in range(3)]                  # cofactors C_rc
-    det = m[0, 0] * cof[0][0] + m[0, 1] * cof[0][1] + m[0, 2] * cof[0][2]
-    return tuple((cof[0][c] * f[0] + cof[1][c] * f[1] + cof[2][c] * f[2]) / det for c in range(3))   # adj = C^T
 
 
 def build_segmented_model(scene: Scene) -> SegmentedModel:
@@ -335,7 +333,7 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
     # a sampled series is an MX node inside the SX physics: no kernel form of that model; the kernel
     # has no anchor and no seabed (such scenes evaluate the element-by-element ode)
     kernel = (kernel_ode(scene, lambda n_el: drag_points(scene, n_el))
-              if S is ca.SX and not anchored and scene.seabed is None and dim == 2 else None)
+              if S is ca.SX and not anchored and scene.seabed is None else None)
     return SegmentedModel(layout=layout, n_sections=n_sec, angles=scene.angles, q_labels=q_labels,
                           output_labels=tuple(labels), dynamics=dynamics, ode=ode, top=top, outputs=outputs,
                           energy=energy, cable_force=cable_force, slack_index=(), symbolic=S,

@@ -152,6 +152,19 @@ def element_inertia(P: SectionParameters, n_el: int, p, rho, t, env, depth0, n_p
     return ca.Function("element_inertia", [ra, rb, va, vb, p], [M[:dim, :dim], M[dim:, dim:], f[:dim], f[dim:]])
 
 
+def block_solve(m, f) -> tuple:
+    """x with m x = f for one node's 2 x 2 or 3 x 3 mass block, in closed form (Cramer's rule)."""
+    if m.shape[0] == 2:
+        m11, m12, m21, m22 = m[0, 0], m[0, 1], m[1, 0], m[1, 1]
+        f1, f2 = f[0], f[1]
+        det = m11 * m22 - m12 * m21
+        return (m22 * f1 - m12 * f2) / det, (m11 * f2 - m21 * f1) / det
+    cof = [[m[(r + 1) % 3, (c + 1) % 3] * m[(r + 2) % 3, (c + 2) % 3] - m[(r + 1) % 3, (c + 2) % 3] * m[(r + 2) % 3, (c + 1) % 3]
+            for c in range(3)] for r in range(3)]                  # cofactors C_rc
+    det = m[0, 0] * cof[0][0] + m[0, 1] * cof[0][1] + m[0, 2] * cof[0][2]
+    return tuple((cof[0][c] * f[0] + cof[1][c] * f[1] + cof[2][c] * f[2]) / det for c in range(3))   # adj = C^T
+
+
 def lump_force(el, end: str, acc):
     """Weight, drag share and minus the inertia of the element's half lumped at one end (a 2- or 3-vector)."""
     m, a = el["mass"], el["added"]
