@@ -99,3 +99,9 @@ def test_3d_kernel_ode_equals_the_element_by_element_ode():
         for t in (0.0, 4.2):
             a, b = (np.array(f(x, t, p)).ravel() for f in (m.ode, m.kernel_ode))
             assert np.max(np.abs(b - a)) <= 1e-12 * np.max(np.abs(a))
+
+
+def test_the_planar_element_coordinates_refuse_a_3d_scene():
+    from cablesys.model.element_coordinates import build_element_model
+    with pytest.raises(ParameterError, match="numerics.dimensions = 3.*planar"):
+        build_element_model(nodes.divided(checks.rotation_scene(), 3))
