@@ -30,6 +30,7 @@ import dataclasses
 
 import casadi as ca
 
+from ..errors import ParameterError
 from ..scene import Scene
 from .cable_model import CableModel
 from .params import ParameterLayout, section_prefix
@@ -162,6 +163,9 @@ def build_element_model(scene: Scene, node: CableModel | None = None) -> Element
         ``q_labels`` ``phi[k]``, ``u[k]`` (rad, m); ``outputs`` with the node model's labels;
         ``kind`` ``"element-coordinates"`` (state scales: none, atol in SI).
     """
+    if scene.three_d:
+        raise ParameterError("numerics.dimensions", 3, "must be 2 or unset for the element coordinates (phi_k, u_k): "
+                             "they are planar (one inclination per element); the node model runs 3-D scenes")
     if node is None:
         from .segmented import build_segmented_model
         node = build_segmented_model(scene)

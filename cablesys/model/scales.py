@@ -109,7 +109,7 @@ def _segmented_scales(model) -> ca.SX:
         delta = static_stretch(lay, i, n_el)
         h = p[lay.section_index(i, "cable.length")] / n_el
         omega_e = ca.sqrt(p[lay.section_index(i, "cable.ae")] / (p[lay.section_index(i, "cable.mass_per_length")] * h**2))
-        pos += [delta] * (2 * n_el)                         # x[j], y[j] of the section's nodes
+        pos += [delta] * (getattr(model, "dim", 2) * n_el)  # x[j], y[j] (z[j] in 3-D) of the section's nodes
         speed = ca.fmax(speed, delta * omega_e)
     pos = pos[: model.nq]                                    # an anchored line's fixed last node is no state
     return ca.vertcat(*pos, ca.repmat(speed, len(pos), 1))

@@ -29,6 +29,17 @@ laid-down line's friction (:func:`.segmented_seabed.seabed_forces`); without one
 statics use ``dynamics``. Scenes with an anchor or a seabed evaluate the element-by-element
 ``ode`` (no mapped kernel).
 
+In three dimensions (``scene.three_d``: Wang 1971 p. 32, "allow the cable to swing out of the vertical
+plane") the same elements and bodies are built with node positions r_j = (x_j, y_j, z_j), z the sway
+(q labels ``x[j]``, ``y[j]``, ``z[j]``, e = :data:`.top_motion.EXO_LABELS_3D`): the normal drag by the
+cross-flow principle on the part of the relative velocity normal to the element (eq. 42; in the plane
+exactly eq. 42's (v . e_n) e_n), the added mass on the normal part of the node velocities, the current
+and waves with their headings (:func:`.fluid.fluid_velocity_3d`), the body's virtual mass M_bvz and its
+3-D drag (eq. 32-35, :func:`.fluid.axial_body_drag_3d`); 3 x 3 blocks per node. A planar scene builds the
+planar equations (2 x 2 blocks); both have the mapped kernel (:mod:`.segmented_kernel`); the 3-D model
+has no anchor and no seabed yet. Outputs add Wang's 3-D
+``phi_z``, ``phi_z_rate``, ``z_b``, ``z_b_rate`` per section and the profile ``node_z[j]``.
+
 The element's terms are in :mod:`.segmented_element` (shared with the mapped kernel of
 :mod:`.segmented_kernel`). The inertia terms come from the Lagrangian by AD, element by element
 (:func:`.segmented_element.element_inertia`), gravity from eq. 15; tension and drag are
@@ -47,19 +58,22 @@ from ..scene import Scene
 from .cable_model import CableModel
 from .params import ParameterLayout, environment_symbols, section_prefix
 from .section import SectionParameters
-from .segmented_element import body_drag, dot, element_inertia, element_terms, lump_force, lump_kinetic, norm
+from .segmented_element import block_solve, body_drag, dot, element_inertia, element_terms, lump_force, lump_kinetic, norm
 from .segmented_kernel import kernel_ode
 from .segmented_seabed import seabed_forces
 from .signals import CHORD_NAMES, EXO_LABELS, OUTPUT_NAMES
-from .top_motion import symbolic_type, top_motion_function
+from .top_motion import EXO_LABELS_3D, symbolic_type, top_motion_function
 
 ELEMENT_PROFILES = ("element_tension", "element_tension_rate", "element_strain", "element_slack")
 NODE_PROFILES = ("node_x", "node_y")
+# a section's outputs in 3-D besides the planar ones: the chord's angle out of the x-y plane (rad) and its
+# rate, the body's sway z_b (m, from the top's mean position) and its rate (the names of Wang's 3-D model)
+OUTPUTS_3D = ("phi_z", "phi_z_rate", "z_b", "z_b_rate")
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class SegmentedModel(CableModel):
-    """A :class:`CableModel` whose coordinates are node positions (``x[j]``, ``y[j]``, j = 1..).
+    """A :class:`CableModel` whose coordinates are node positions (``x[j]``, ``y[j]``, j = 1..; ``z[j]`` too in 3-D).
 
     Same functions as the 2-DOF model; ``cable_force`` is empty (the tension law max(TENS, ...)
     is integrated directly, element by element: no switch is located, see :mod:`.segmented_post`).
@@ -78,6 +92,7 @@ class SegmentedModel(CableModel):
     kernel_ode: ca.Function | None = None     # the same ode from mapped element kernels (MX; .segmented_kernel)
     name: str = "segmented"
     kind: str = "segmented"                  # the model-ladder rung (integrators cap BDF at order 2 for it)
+    dim: int = 2                              # coordinates per node: 2 (x, y) in the plane, 3 (x, y, z) in space
 
     @property
     def n_elements(self) -> int:
@@ -147,33 +162,40 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
     n_nodes = sum(segs)
     anchored = scene.anchor is not None
     n_free = n_nodes - int(anchored)                 # an anchored line's last node is fixed
-    q_labels = tuple(f"{c}[{j}]" for j in range(1, n_free + 1) for c in ("x", "y"))
-    q, qd = ca.SX.sym("q", 2 * n_free), ca.SX.sym("qd", 2 * n_free)
-    e = ca.SX.sym("e", len(EXO_LABELS))
-    t, z, zd, zdd = e[0], e[1:3], e[3:5], e[5:7]
+    # a 3-D scene (scene.three_d) has nodes (x, y, z): the same elements and bodies in space, z the sway
+    # (Wang 1971 p. 32, "allow the cable to swing out of the vertical plane"); the plane is dim = 2
+    dim = 3 if scene.three_d else 2
+    if dim == 3 and (anchored or scene.seabed is not None):
+        raise ParameterError("anchor" if anchored else "seabed", "set", "must be unset in a 3-D scene: the node "
+                             "model's anchor and seabed are planar so far")
+    axes = ("x", "y", "z")[:dim]
+    q_labels = tuple(f"{c}[{j}]" for j in range(1, n_free + 1) for c in axes)
+    q, qd = ca.SX.sym("q", dim * n_free), ca.SX.sym("qd", dim * n_free)
+    e = ca.SX.sym("e", len(EXO_LABELS_3D if dim == 3 else EXO_LABELS))
+    t, z, zd, zdd = e[0], e[1:1 + dim], e[1 + dim:1 + 2 * dim], e[1 + 2 * dim:1 + 3 * dim]
     env = environment_symbols(layout, scene)          # Wang 1971 eq. 26-28 inputs
     rho, depth0 = env["density"], env["top_depth"]
-    node_r = [(z[0], z[1])] + [(q[2 * j], q[2 * j + 1]) for j in range(n_free)]
-    node_v = [(zd[0], zd[1])] + [(qd[2 * j], qd[2 * j + 1]) for j in range(n_free)]
+    node_r = [tuple(z[c] for c in range(dim))] + [tuple(q[dim * j + c] for c in range(dim)) for j in range(n_free)]
+    node_v = [tuple(zd[c] for c in range(dim))] + [tuple(qd[dim * j + c] for c in range(dim)) for j in range(n_free)]
     if anchored:
         node_r.append((layout.sym("anchor.x"), layout.sym("anchor.y")))
         node_v.append((0.0, 0.0))
     static_law = scene.seabed is not None            # the seabed's statics: elements elastic both ways (catenary.py)
 
     K, V_grav, V_strain = 0.0, 0.0, 0.0
-    Q = [[0.0, 0.0] for _ in range(n_nodes + 1)]            # generalized forces per node (node 0: top)
-    Q_static = [[0.0, 0.0] for _ in range(n_nodes + 1)]     # the same at rest with the statics' tension law
+    Q = [[0.0] * dim for _ in range(n_nodes + 1)]            # generalized forces per node (node 0: top)
+    Q_static = [[0.0] * dim for _ in range(n_nodes + 1)]     # the same at rest with the statics' tension law
     contact_area = [0.0] * (n_nodes + 1)                     # d l per node (seabed contact)
-    M_nodes = [ca.SX.zeros(2, 2) for _ in range(n_nodes + 1)]     # 2 x 2 mass block per node
-    F_inertia = [ca.SX.zeros(2, 1) for _ in range(n_nodes + 1)]   # inertial forces of the added mass
+    M_nodes = [ca.SX.zeros(dim, dim) for _ in range(n_nodes + 1)]     # dim x dim mass block per node
+    F_inertia = [ca.SX.zeros(dim, 1) for _ in range(n_nodes + 1)]   # inertial forces of the added mass
     weights = [0.0] * (n_nodes + 1)
     sections, elements = [], []
     j0 = 0
     for i, sec in enumerate(scene.sections):
-        P = SectionParameters.from_layout(layout, section_prefix(n_sec, i), sec.body.is_sphere)
+        P = SectionParameters.from_layout(layout, section_prefix(n_sec, i), sec.body.is_sphere, dim == 3)
         n_el = segs[i]
         els = []
-        inertia = element_inertia(P, n_el, p, rho, t, env, depth0, drag_points(scene, n_el))
+        inertia = element_inertia(P, n_el, p, rho, t, env, depth0, drag_points(scene, n_el), dim)
         for k in range(n_el):
             a, b = j0 + k, j0 + k + 1
             el = element_terms(P, n_el, node_r[a], node_v[a], node_r[b], node_v[b], rho=rho, t=t, env=env,
@@ -188,7 +210,7 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
             weights[b] += 0.5 * el["weight"]
             V_strain += el["strain_energy"]
             el["static_tension"] = P.ae * el["strain"] if static_law else el["tension"]
-            for c in range(2):     # tension -T dl/dr (virtual work of eq. 46/54), drag shares
+            for c in range(dim):     # tension -T dl/dr (virtual work of eq. 46/54), drag shares
                 Q[a][c] += el["tension"] * el["et"][c] + el["drag_a"][c]
                 Q[b][c] += -el["tension"] * el["et"][c] + el["drag_b"][c]
                 Q_static[a][c] += el["static_tension"] * el["et"][c] + el["drag_a"][c]
@@ -198,12 +220,13 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
             els.append(el)
         jb = j0 + n_el                                         # the body's node
         rb, vb = node_r[jb], node_v[jb]
-        K += 0.5 * (P.m_bx * vb[0] ** 2 + P.m_by * vb[1] ** 2)  # eq. 16
-        M_nodes[jb] = M_nodes[jb] + ca.diag(ca.vertcat(P.m_bx, P.m_by))
+        masses = (P.m_bx, P.m_by) + ((P.m_bz,) if dim == 3 else ())   # eq. 16; M_bvz in space
+        K += 0.5 * sum((masses[c] * vb[c] ** 2 for c in range(2, dim)), P.m_bx * vb[0] ** 2 + P.m_by * vb[1] ** 2)
+        M_nodes[jb] = M_nodes[jb] + ca.diag(ca.vertcat(*masses))
         weights[jb] += P.w_b
         D_b = body_drag(P, rho, rb, vb, t, env, depth0)        # eq. 32-35
-        Q[jb][0] += D_b[0]
-        Q[jb][1] += D_b[1]
+        for c in range(dim):
+            Q[jb][c] += D_b[c]
         sections.append(dict(P=P, top=j0, body=jb, elements=els, body_drag=D_b))
         elements += els
         j0 = jb
@@ -219,21 +242,18 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
     # Lagrange's equations node by node (element by element, see element_inertia): M q'' = f with
     # f = generalized forces + weights (-dV/dq, eq. 15) + inertial forces of the added mass
     blocks = M_nodes[1:n_free + 1]
-    f_nodes = [F_inertia[j] + ca.vertcat(Q[j][0], Q[j][1] + weights[j]) for j in range(1, n_free + 1)]
-    f_static = ca.vertcat(*[F_inertia[j] + ca.vertcat(Q_static[j][0], Q_static[j][1] + weights[j])
+    f_nodes = [F_inertia[j] + ca.vertcat(Q[j][0], Q[j][1] + weights[j], *Q[j][2:]) for j in range(1, n_free + 1)]
+    f_static = ca.vertcat(*[F_inertia[j] + ca.vertcat(Q_static[j][0], Q_static[j][1] + weights[j], *Q_static[j][2:])
                             for j in range(1, n_free + 1)])
     M, f = ca.diagcat(*blocks), ca.vertcat(*f_nodes)
 
-    # q'' node by node: M is block diagonal (2 x 2 per node); solve each block in closed form
-    acc_nodes = [(zdd[0], zdd[1])]
+    # q'' node by node: M is block diagonal (dim x dim per node); solve each block in closed form
+    acc_nodes = [tuple(zdd[c] for c in range(dim))]
     acc = []
     for j in range(n_free):
-        m11, m12, m21, m22 = blocks[j][0, 0], blocks[j][0, 1], blocks[j][1, 0], blocks[j][1, 1]
-        f1, f2 = f_nodes[j][0], f_nodes[j][1]
-        det = m11 * m22 - m12 * m21
-        ax, ay = (m22 * f1 - m12 * f2) / det, (m11 * f2 - m21 * f1) / det
-        acc += [ax, ay]
-        acc_nodes.append((ax, ay))
+        a_j = block_solve(blocks[j], f_nodes[j])
+        acc += list(a_j)
+        acc_nodes.append(a_j)
     acc = ca.vertcat(*acc)
     if anchored:
         acc_nodes.append((0.0, 0.0))
@@ -245,11 +265,12 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
     for i, s in enumerate(sections):
         P, els = s["P"], s["elements"]
         rt, vt_, rb, vb = node_r[s["top"]], node_v[s["top"]], node_r[s["body"]], node_v[s["body"]]
-        chord = (rb[0] - rt[0], rb[1] - rt[1])
-        chord_v = (vb[0] - vt_[0], vb[1] - vt_[1])
+        chord = tuple(rb[c] - rt[c] for c in range(dim))
+        chord_v = tuple(vb[c] - vt_[c] for c in range(dim))
         lc = norm(chord)
         phi = ca.atan2(-chord[0], chord[1])                        # e_t = (-sin phi, cos phi), eq. 10
-        phid = (chord[0] * chord_v[1] - chord[1] * chord_v[0]) / lc**2
+        lp2 = chord[0] ** 2 + chord[1] ** 2 if dim == 3 else lc**2  # the chord's square in the x-y plane
+        phid = (chord[0] * chord_v[1] - chord[1] * chord_v[0]) / lp2
         # u: the stretch of the whole section beyond its zero-tension length, the sum of the element
         # elongations (Wang's u, eq. 1, when the elements are in line); chord_stretch: the chord
         # (top to body, the straight line phi measures) minus that length, negative when the cable sags
@@ -259,19 +280,28 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
         # force of the cable on its top point and on its body: the end element's tension plus the
         # half element lumped at that node (weight, drag share, minus its inertia)
         lt = lump_force(first, "a", acc_nodes[s["top"]])
-        top_force = tuple(first["tension"] * first["et"][c] + lt[c] for c in range(2))
+        top_force = tuple(first["tension"] * first["et"][c] + lt[c] for c in range(dim))
         lb = lump_force(last, "b", acc_nodes[s["body"]])
-        bottom_force = tuple(-last["tension"] * last["et"][c] + lb[c] for c in range(2))
+        bottom_force = tuple(-last["tension"] * last["et"][c] + lb[c] for c in range(dim))
         out += [phi, phid, u, ud, rb[0], vb[0], rb[1], vb[1], mid_tension(els), norm(bottom_force), norm(top_force),
                 c_u, c_ud]
         labels += [f"{name}{sfx(i)}" for name in OUTPUT_NAMES + CHORD_NAMES]
+        if dim == 3:
+            # Wang's 3-D angles of the chord, e_t = (-sin phi cos phi_z, cos phi cos phi_z, sin phi_z)
+            # (section._frame): phi_z = atan2(c_z, |c_xy|), its rate d/dt of that
+            lp = ca.sqrt(lp2)
+            lpd = (chord[0] * chord_v[0] + chord[1] * chord_v[1]) / lp
+            out += [ca.atan2(chord[2], lp), (lp * chord_v[2] - chord[2] * lpd) / lc**2, rb[2], vb[2]]
+            labels += [f"{name}{sfx(i)}" for name in OUTPUTS_3D]
     # profiles (element k top to bottom over all sections; node j = 0 the top) and their arc lengths
     T = ca.vertcat(*[el["tension"] for el in elements])
-    T_rate = ca.jtimes(T, x, xdot) + ca.jacobian(T, e) @ ca.vertcat(1.0, zd, zdd, 0.0, 0.0)
+    T_rate = ca.jtimes(T, x, xdot) + ca.jacobian(T, e) @ ca.vertcat(1.0, zd, zdd, ca.DM.zeros(dim))
     prof = {"element_tension": T, "element_tension_rate": T_rate,
             "element_strain": ca.vertcat(*[el["strain"] for el in elements]),
             "element_slack": ca.vertcat(*[el["slack"] for el in elements]),
             "node_x": ca.vertcat(*[r[0] for r in node_r]), "node_y": ca.vertcat(*[r[1] for r in node_r])}
+    if dim == 3:
+        prof["node_z"] = ca.vertcat(*[r[2] for r in node_r])
     if bed is not None:
         prof["seabed_normal"] = ca.vertcat(*bed["normal"])
         prof["seabed_friction"] = ca.vertcat(*bed["friction"])
@@ -291,7 +321,7 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
     accel = ca.Function("accel", [q, qd, e, p], [acc], ["q", "qd", "e", "p"], ["qdd"])
     top = top_motion_function(scene, layout)
     S = symbolic_type(scene)
-    nq = 2 * n_free
+    nq = dim * n_free
     xs, ts, ps = S.sym("x", 2 * nq), S.sym("t"), S.sym("p", p.shape[0])
     ode = ca.Function("ode", [xs, ts, ps], [ca.vertcat(xs[nq:], accel(xs[:nq], xs[nq:], top(ts, ps), ps))],
                       ["x", "t", "p"], ["xdot"])
@@ -308,4 +338,4 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
                           output_labels=tuple(labels), dynamics=dynamics, ode=ode, top=top, outputs=outputs,
                           energy=energy, cable_force=cable_force, slack_index=(), symbolic=S,
                           segments=segs, accel=accel, kernel_ode=kernel, anchored=anchored,
-                          static_force=static)
+                          static_force=static, dim=dim)

@@ -103,17 +103,17 @@ class Scene:
         return dims == 3 or (dims is None and bool(self.three_d_fields()))
 
     def _check_dimensions(self) -> None:
-        """A 3-D field needs the 3-D equations; the 3-D equations are built for Wang's straight cable so far."""
+        """A 3-D field needs the 3-D equations; those of Wang's straight cable and of the node model (segmented) have
+        no anchor or seabed in space yet."""
         fields = self.three_d_fields()
         if self.numerics.dimensions == 2 and fields:
             raise ParameterError("numerics.dimensions", 2, f"must be 3 or unset: the scene sets {fields[0]}, "
                                  "which only the 3-D equations take")
         if self.three_d:
-            for i, s in enumerate(self.sections):
-                if s.cable.segments != 1:
-                    raise ParameterError(f"{section_prefix(self, i)}cable.segments", s.cable.segments,
-                                         "must be 1 in a 3-D scene: the 3-D equations are built for Wang's straight "
-                                         "cable so far (the segmented cable is planar)")
+            if self.anchor is not None or self.seabed is not None:
+                raise ParameterError("anchor" if self.anchor is not None else "seabed", "set",
+                                     "must be unset in a 3-D scene: the 3-D equations (Wang's straight cable, the "
+                                     "node model) have no anchor or seabed in space so far")
             # the time domain's initial state sets every angle from initial.phi / phi_rate: it does not
             # know the out-of-plane angle yet, so a 3-D run starts from its steady state (or an x0 given)
             for name, unset in (("phi", None), ("phi_rate", 0.0)):

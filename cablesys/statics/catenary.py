@@ -43,7 +43,8 @@ def hanging_guess(model, p) -> np.ndarray:
     Returns
     -------
     numpy.ndarray
-        q = (x_1, y_1, x_2, y_2, ...) in m (y down from the top).
+        q = (x_1, y_1, x_2, y_2, ...) in m (y down from the top); (x_1, y_1, z_1, ...) with z = 0 for a
+        3-D model (``model.dim`` = 3).
     """
     lab = model.layout.labels
     val = lambda lbl: p[lab.index(lbl)]
@@ -64,7 +65,13 @@ def hanging_guess(model, p) -> np.ndarray:
             tension = bottom[i] + w * h_r * (n_el - k - 0.5)        # weight below the element mid-point
             y += h_0 + max(tension, 0.0) * h_r / ae                 # l = h_0 + T h_r / AE (eq. 1 per element)
             ys.append(y)
-    return np.column_stack([np.zeros(len(ys)), ys]).ravel()
+    cols = [np.zeros(len(ys)), ys] + [np.zeros(len(ys))] * (_dim(model) - 2)
+    return np.column_stack(cols).ravel()
+
+
+def _dim(model) -> int:
+    """Coordinates per node of a segmented model: 2 in the plane, 3 in space."""
+    return getattr(model, "dim", 2)
 
 
 def anchored_guess(model, p) -> np.ndarray:
@@ -139,12 +146,18 @@ def _polar(model):
     with e_t = (-sin theta, cos theta) (Wang 1971 eq. 10). A rotation is linear in these variables,
     which is what Newton needs to swing a hanging cable into a current (in node coordinates it
     sees a sideways step as a stretch). The Jacobian is dense: the solution is polished in node
-    coordinates (sparse)."""
+    coordinates (sparse). In space v = (theta_1.., psi_1.., l_1..) with Wang's 3-D tangent
+    e_t = (-sin theta cos psi, cos theta cos psi, sin psi) (:func:`cablesys.model.section._frame`)."""
     def build():
-        n = model.n_elements
-        v = ca.SX.sym("v", 2 * n)
-        th, ln = v[:n], v[n:]
-        q = ca.vec(ca.horzcat(ca.cumsum(-ln * ca.sin(th)), ca.cumsum(ln * ca.cos(th))).T)
+        n, dim = model.n_elements, _dim(model)
+        v = ca.SX.sym("v", dim * n)
+        th, ln = v[:n], v[(dim - 1) * n:]
+        if dim == 2:
+            q = ca.vec(ca.horzcat(ca.cumsum(-ln * ca.sin(th)), ca.cumsum(ln * ca.cos(th))).T)
+        else:
+            ps = v[n:2 * n]
+            q = ca.vec(ca.horzcat(ca.cumsum(-ln * ca.sin(th) * ca.cos(ps)), ca.cumsum(ln * ca.cos(th) * ca.cos(ps)),
+                                  ca.cumsum(ln * ca.sin(ps))).T)
         return ca.Function("polar_to_nodes", [v], [q])
     return model.derive("catenary_polar", build)
 
@@ -153,7 +166,7 @@ def _rootfinders(model):
     def build():
         resid = static_residual(model)
         to_q = _polar(model)
-        v, p = ca.SX.sym("v", 2 * model.n_elements), ca.SX.sym("p", len(model.layout))
+        v, p = ca.SX.sym("v", _dim(model) * model.n_elements), ca.SX.sym("p", len(model.layout))
         G = ca.Function("polar_residual", [v, p], [resid(to_q(v), p)])
         opts = {"strategy": "linesearch", "abstol": 1e-13, "error_on_fail": False, "print_level": 0,
                 "disable_internal_warnings": True, "max_iter": 200}
@@ -180,9 +193,13 @@ def _tolerance(model, p) -> float:
     return max(TOLERANCE, 1e3 * np.finfo(float).eps * k_max * total_l / weight)
 
 
-def _to_polar(q):
-    d = np.diff(np.concatenate([[0.0, 0.0], q]).reshape(-1, 2), axis=0)
-    return np.concatenate([np.arctan2(-d[:, 0], d[:, 1]), np.hypot(d[:, 0], d[:, 1])])
+def _to_polar(q, dim: int = 2):
+    """The inverse of :func:`_polar`: element angles and lengths of node positions q."""
+    d = np.diff(np.concatenate([np.zeros(dim), q]).reshape(-1, dim), axis=0)
+    theta, flat = np.arctan2(-d[:, 0], d[:, 1]), np.hypot(d[:, 0], d[:, 1])
+    if dim == 2:
+        return np.concatenate([theta, flat])
+    return np.concatenate([theta, np.arctan2(d[:, 2], flat), np.linalg.norm(d, axis=1)])
 
 
 def segmented_equilibrium(model, p, *, guess=None):
@@ -223,7 +240,7 @@ def segmented_equilibrium(model, p, *, guess=None):
         r0 = residual(q0, pp)
         if r0 < tol:
             return q0, r0
-        v = np.array(polar(_to_polar(q0), pp)).ravel()
+        v = np.array(polar(_to_polar(q0, _dim(model)), pp)).ravel()
         q = np.array(to_q(v)).ravel() if np.all(np.isfinite(v)) else q0
         q_pol = np.array(nodes(q, pp)).ravel()
         return min(((q, residual(q, pp)), (q_pol, residual(q_pol, pp))), key=lambda a: a[1])
@@ -305,7 +322,7 @@ def _anchored_equilibrium(model, p, guess):
 def _static_tensions(model, q, p) -> np.ndarray:
     """(AE)_r strain of every element at the node positions q (N): the statics' tension law."""
     x = np.concatenate([q, np.zeros_like(q)])
-    y = dict(zip(model.output_labels, np.array(model.outputs(x, np.zeros(7), p)).ravel()))
+    y = dict(zip(model.output_labels, np.array(model.outputs(x, np.zeros(model.top.size1_out(0)), p)).ravel()))
     strain = np.array([y[f"element_strain[{k}]"] for k in range(model.n_elements)])
     ae = np.concatenate([[p[model.layout.section_index(i, "cable.ae")]] * n for i, n in enumerate(model.segments)])
     return ae * strain
@@ -400,9 +417,10 @@ def segmented_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
     """
     ini = scene.initial
     e = np.array(model.top(t0, p)).ravel()
-    z, zd = e[1:3], e[3:5]
+    dim = _dim(model)                       # a 3-D scene starts from its equilibrium (initial.phi, u unset)
+    z, zd = e[1:1 + dim], e[1 + dim:1 + 2 * dim]
     if ini.phi is None and ini.u is None:
-        q = segmented_steady(model, p).q.reshape(-1, 2)
+        q = segmented_steady(model, p).q.reshape(-1, dim)
         v = np.zeros_like(q)
     else:
         if ini.phi is None or ini.u is None:

@@ -2,8 +2,8 @@
 and the base of every built-in rung (:class:`BuiltinRung`).
 
 A rung's validity (:meth:`BuiltinRung.valid`) is "" when it can run a scene, else the sentence saying why not. Three
-kinds of scene limit the rungs so far: a 3-D scene (only Wang's straight cable has three-dimensional equations,
-Wang 1971 p. 32), a massless cable (Wang's CBMAS < 0, Wang 1971 program notes: an idealization of his straight
+kinds of scene limit the rungs so far: a 3-D scene (Wang's straight cable and the node model have three-dimensional equations,
+Wang 1971 p. 32; the frequency and quasi-static rungs are planar), a massless cable (Wang's CBMAS < 0, Wang 1971 program notes: an idealization of his straight
 cable; the element rungs' nodes would have no mass) and an anchored line or a seabed (they act on the nodes of the
 segmented cable, which the straight cable has none of).
 """
@@ -40,8 +40,8 @@ def has_ends(scene: Scene) -> bool:
     return getattr(scene, "anchor", None) is not None or getattr(scene, "seabed", None) is not None
 
 
-PLANAR = ("a 3-D scene: only Wang's straight cable has three-dimensional equations so far, the other rungs "
-          "(frequency, quasi-static, segmented) are planar")
+PLANAR = ("a 3-D scene: the frequency and quasi-static rungs are planar; Wang's straight cable and the node model "
+          "(segmented) have three-dimensional equations")
 WITH_MASS = ("a massless cable (cable.cable_mass_switch < 0, Wang 1971's CBMAS) belongs to Wang's straight cable: the "
              "element rungs' nodes would have no mass, and the ladder has no estimate of the other rungs against it")
 NO_NODES = ("an anchored line or a seabed: only the node model (segmented) has nodes to anchor and to lay on the bed")

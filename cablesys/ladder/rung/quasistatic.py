@@ -8,7 +8,7 @@ from ...model import CableModel
 from ...model.quasistatic import build_quasistatic, default_iterations
 from ...scene import Scene
 from .. import estimate as est
-from .base import BuiltinRung
+from .base import BuiltinRung, three_d
 
 STIFF_QS_COST = 0.25
 """Cost per element of the quasi-static segmented cable where its stretch is stiff (omega/omega_ax <= 1/STIFF_RATIO), relative to the node model's element stepped by BDF2, compiled, at one rtol (a wall-time ratio: studies/bench_rung_costs.py, its
@@ -33,6 +33,11 @@ class QuasiStatic(BuiltinRung):
         Wang's model from ``cache`` (a :class:`~cablesys.ladder.rungs.RungCache`) when given."""
         full = cache.model(scene, "wang") if cache is not None and self.segments(segments) == 1 else None
         return build_quasistatic(self.scene(scene, segments), full=full)
+
+    def scene(self, scene: Scene, segments: int = 1) -> Scene:
+        """The scene this rung runs; a 3-D scene keeps one element per section: the quasi-static reduction is planar
+        (outside its validity, :func:`.base.straight_validity`), so it offers the ladder no elements there."""
+        return super().scene(scene, 1 if three_d(scene) else segments)
 
     def structure(self, scene_run: Scene) -> tuple:
         """What besides the scene's structure sets the model: the stretch solve's Newton iterations."""

@@ -7,7 +7,7 @@ from ...errors import ParameterError
 from ...model import CableModel, build_model
 from ...scene import Scene
 from .. import estimate as est
-from .base import PLANAR, WITH_MASS, BuiltinRung, massless, three_d
+from .base import WITH_MASS, BuiltinRung, massless
 
 ENDS_SEGMENTS = 16
 """The first N of an anchored line or a seabed scene (the a posteriori check at N / 2 grows it)."""
@@ -26,9 +26,8 @@ class Segmented(BuiltinRung):
     straight = False
 
     def valid(self, scene: Scene) -> str:
-        """"" unless the scene is 3-D (the node model is planar) or its cable massless (the nodes would have no mass)."""
-        if three_d(scene):
-            return PLANAR
+        """"" unless the scene's cable is massless (the nodes would have no mass); a 3-D scene runs the node model with
+        nodes (x, y, z) (:mod:`cablesys.model.segmented`)."""
         return WITH_MASS if massless(scene) else ""
 
     def build(self, scene: Scene, segments: int = 2, cache=None) -> CableModel:

@@ -1,12 +1,12 @@
 """The wang rung: Wang's (1971) 2-DOF straight cable per section, stretch and swing (:mod:`cablesys.model.build`);
-in a 3-D scene the same cable with two swing angles (Wang 1971 p. 32), the only rung with 3-D equations so far."""
+in a 3-D scene the same cable with two swing angles (Wang 1971 p. 32)."""
 
 from __future__ import annotations
 
 from ...model import CableModel, build_model
 from ...scene import Scene
 from .. import estimate as est
-from .base import NO_NODES, BuiltinRung, has_ends, three_d
+from .base import NO_NODES, BuiltinRung, has_ends
 
 
 class Wang(BuiltinRung):
@@ -29,11 +29,8 @@ class Wang(BuiltinRung):
         return est.rung_error(assessment.estimates, self.name)
 
     def alone(self, scene: Scene, requested: str, segments) -> tuple:
-        """A 3-D scene or a massless cable: Wang's straight cable, its error against the segmented cable not
+        """A massless cable (in the plane or in 3-D): Wang's straight cable, its error against the segmented cable not
         estimated (there is no other rung to estimate it by), and no a posteriori check."""
-        if three_d(scene):
-            return 1, ("a 3-D scene: Wang's straight cable in three dimensions (stretch and two swing angles); the "
-                       "other rungs are planar so far, so its error against the segmented cable is not estimated"), False
         return 1, ("a massless cable (cable.cable_mass_switch < 0, Wang 1971's CBMAS): Wang's straight cable, the model "
                    "that idealization belongs to (the element rungs' nodes would have no mass); its error against a "
                    "cable with mass is not estimated"), False
