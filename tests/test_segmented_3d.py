@@ -74,9 +74,6 @@ def test_cablesys_run_of_a_3d_scene_says_the_node_model_ran(tmp_path):
     assert 0 < model["estimated_error"]["body"] < 0.01
 
 
-@pytest.mark.xfail(strict=True, raises=ValueError, reason="ladder/choice.py _pick moves 'wang' before 'quasi-static' "
-                   "in the straight rungs' order when the stretch is not stiff, assuming the quasi-static rung is valid; "
-                   "in a 3-D scene it is not (planar), so order.index('quasi-static') raises")
 def test_the_ladder_chooses_for_a_3d_scene_whose_stretch_is_not_stiff():
     from cablesys.ladder.auto import decide
     sc = checks.rotation_scene().replace_section(0, cable={"ae": 2e5}).with_numerics(duration=12.0)

@@ -427,9 +427,10 @@ def _pick(scene: Scene, tol, question: str, numbers, response, errs: dict, info:
     note = settling_note(scene, transverse=not swing_free)
     if note:
         deciding += "; " + note
-    if numbers.axial_ratio > 1.0 / STIFF_RATIO and not (swing_free and compiled):
+    if numbers.axial_ratio > 1.0 / STIFF_RATIO and not (swing_free and compiled) and "quasi-static" in order:
         # the stretch mode is within STIFF_RATIO of the forcing: stepping it costs less than the
         # quasi-static reduction (whose stretch is a Newton solve at every evaluation), and is exact
+        # (without a quasi-static rung, a 3-D scene, Wang's cable keeps its place)
         order.remove("wang")
         order.insert(order.index("quasi-static"), "wang")
     for name in order:
