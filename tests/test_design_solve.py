@@ -2,6 +2,7 @@
 
 import argparse
 import json
+import math
 
 import numpy as np
 import pytest
@@ -208,3 +209,13 @@ def test_cli_design_writes_the_designed_scene_and_checks_it_in_the_time_domain(t
     out = capsys.readouterr().out
     assert "DISAGREE" not in out and out.count(": agree") == 3
     assert "baseline (the scene's values)" in out and "time domain" in out
+    # `cablesys run` of the written scene is the check's designed run: the same 2 sigma of the body heave (another
+    # door: the run command, its summary window), so the written scene reproduces the predicted improvement
+    from cablesys.cli import main
+    assert main(["run", str(written), "--out", str(tmp_path / "run")]) == 0
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert summary["model"]["name"] == check["designed"]["model"]
+    sigma = summary["statistics"]["length_m"]["y_b_2"]["std"]
+    d = check["designed"]
+    assert 2 * sigma == pytest.approx(d["time_domain_m"], rel=1e-6)
+    assert abs(math.log(2 * sigma / d["predicted_m"])) <= d["allowed_rel"]

@@ -283,7 +283,7 @@ def statistics_window(times: np.ndarray, start: float | None, top_motion=None) -
     """Mask of the samples in the statistics window: from ``start`` (s), by default the window of every run's
     summary (:func:`cablesys.statistics.window` with the top motion's forcing period and smooth start)."""
     if start is None:
-        period = None if top_motion is None else top_motion.forcing_period_s
+        period = None if top_motion is None else top_motion.window_period_s
         ramp = 0.0 if top_motion is None else top_motion.effective_ramp_s
         start = st.window(times, period, ramp)[0]
     return times >= start

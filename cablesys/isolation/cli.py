@@ -18,7 +18,8 @@ def register(sub) -> None:
     p.add_argument("--out", default="design_out", help="output directory (default: design_out)")
     p.add_argument("--overwrite", action="store_true", help="replace results of another scene in --out")
     p.add_argument("--write-scene", default=None, metavar="FILE",
-                   help="write the scene with the designed values (AE, C_I, ...) to FILE, ready for `cablesys run`")
+                   help="write the scene with the designed values (AE, C_I, ...) in the design sea on the buoy orbit, "
+                        "model as-built, to FILE: `cablesys run FILE` is the run whose heave the design predicts")
     p.add_argument("--check", action="store_true",
                    help="run the baseline and the designed scene in the time domain in the design's sea on the "
                         "design's buoy orbit (the design's own model, as built) and compare their body heave "
@@ -152,6 +153,12 @@ def infeasible_lines(scene, err, before: float, path) -> str:
     return "\n".join(lines) + "\n"
 
 
+WRITTEN_HEADER = ("# written by `cablesys design --write-scene`: the scene with the designed values, in the design sea on\n"
+                  "# the design's buoy orbit (the scene's own top motion replaced), run by the design's own model\n"
+                  "# (model = \"as-built\"): `cablesys run` of this file is the time-domain run whose body heave the\n"
+                  "# design predicts (design.json significant_y_b_stochastic_m, and --check's designed run)\n")
+
+
 def design_model(scene) -> dict:
     """design.json's ``model``: the model the design linearizes (the scene's own, as built: Wang's section chain, or
     the node model where the scene's sections have elements) with the model ladder's estimate of that model's error
@@ -201,9 +208,13 @@ def run(args) -> int:
         if args.write_scene:
             from ..atomic import atomic_path
             from ..scene import dump_scene
+            from .check import check_scene
             from .problem import settings_to_toml
+            # the scene whose response the design predicts: the designed values in the design sea on the buoy
+            # orbit, run by the design's own model; `cablesys run` of it is the check's designed run
+            written = check_scene(new_scene, settings).with_numerics(model="as-built")
             with atomic_path(args.write_scene) as tmp:
-                tmp.write_text(dump_scene(new_scene) + settings_to_toml(settings))
+                tmp.write_text(WRITTEN_HEADER + dump_scene(written) + settings_to_toml(settings))
         if args.check:
             from ..ladder import simulate
             from .check import time_domain_check
@@ -241,7 +252,9 @@ def run(args) -> int:
     w("constraint margins (>= 0 met): " + ", ".join(f"{k} {v:+.3g}" for k, v in result.margins.items()) + "\n")
     w(f"active: {', '.join(result.active) or 'none'}\nwrote {out / 'design.json'} and {', '.join(figures)}\n")
     if args.write_scene:
-        w(f"wrote the designed scene to {args.write_scene} (check it: cablesys run {args.write_scene})\n")
+        w(f"wrote the designed scene in the design sea (buoy orbit, the scene's own top motion replaced; model "
+          f"as-built) to {args.write_scene}: `cablesys run {args.write_scene}` is the run whose heave the design "
+          f"predicts\n")
     if args.check:
         w(check_lines(doc["time_domain_check"]))
     return 0 if result.converged else 1

@@ -289,10 +289,17 @@ class TopMotion:
     @property
     def forcing_period_s(self) -> float | None:
         """The longest period (s) of the top-motion sinusoids with a non-zero amplitude, a realised sea's
-        components included; None without sinusoids. It sets every statistics window
-        (:func:`cablesys.statistics.window`)."""
+        components included; None without sinusoids."""
         freqs = [s.frequency for axis in (self.x, self.y, self.z) for s in axis if s.amplitude != 0.0]
         return 2.0 * math.pi / min(freqs) if freqs else None
+
+    @property
+    def window_period_s(self) -> float | None:
+        """The period that sets the statistics window (:func:`cablesys.statistics.window`): the forcing period
+        of a motion of sinusoids; None for an irregular sea or a recorded series, whose statistics (std, MPM,
+        significant amplitude) need the longest settled record, the run's second half, not 5 periods of its
+        longest component."""
+        return None if (self.spectrum is not None or self.series is not None) else self.forcing_period_s
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
