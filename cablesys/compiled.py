@@ -80,7 +80,8 @@ from .errors import ParameterError
 log = logging.getLogger(__name__)
 
 __all__ = ["CACHE_FORMAT", "Compiled", "DerivedStore", "cache_dir", "compilation_enabled", "compile_functions",
-           "compiler_command", "generate", "predicted_compile_s", "state_jacobian"]
+           "compiler_command", "generate", "predicted_compile_s", "state_derivatives", "state_forward",
+           "state_jacobian", "state_reverse"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -167,11 +168,11 @@ def _split_setting(name: str, default: str) -> list[str]:
         raise ParameterError(name, text, f"must be a shell-quoted command line ({err})") from None
 
 
-def compiler_command(size: int = 0) -> list[str]:
+def compiler_command(size: int = 0, optimization: str | None = None) -> list[str]:
     """The compiler command and flags: ``CABLESYS_CC`` (default ``cc``) and ``CABLESYS_CFLAGS``
-    (default by ``size``, the functions' serialized length: see ``SIZE_FLAGS``)."""
+    (default ``optimization`` when given, else by ``size``, the functions' serialized length: see ``SIZE_FLAGS``)."""
     cc = _split_setting("CABLESYS_CC", "cc")
-    default = next(flag for limit, flag in SIZE_FLAGS if size < limit)
+    default = optimization or next(flag for limit, flag in SIZE_FLAGS if size < limit)
     flags = _split_setting("CABLESYS_CFLAGS", default)
     return cc + flags + ["-fPIC", "-shared"]
 
@@ -237,6 +238,57 @@ def state_jacobian(f: ca.Function, wrt) -> ca.Function:
         else:
             outs.append(X(J.sparsity_out(k).size1(), J.sparsity_out(k).size2()))
     return ca.Function(J.name(), ins, outs, J.name_in(), J.name_out())
+
+
+def _symbols_like(F: ca.Function) -> list:
+    """SX symbols with the names and sparsities of ``F``'s inputs."""
+    return [ca.SX.sym(name, F.sparsity_in(i)) for i, name in enumerate(F.name_in())]
+
+
+def state_forward(f: ca.Function, wrt) -> ca.Function:
+    """``f.forward(1)``'s signature (``fwd1_<name>``, CasADi's name for the forward derivative an external
+    function looks up in its library) with the seeds of the inputs ``wrt`` only; the seeds of every
+    other input are ignored (read as zero). ``f`` must be an SX function.
+
+    The directional derivative is J_wrt s_wrt (CasADi's ``jtimes``, forward mode). As with
+    :func:`state_jacobian`, a library built this way serves derivatives with respect to ``wrt`` (the
+    decision variables of an NLP) and must not be used for sensitivities to the other inputs."""
+    F = f.forward(1)
+    ins = _symbols_like(F)
+    n, m = f.n_in(), f.n_out()
+    nominal, seeds = ins[:n], ins[n + m:]
+    keep = [i for i in range(n) if f.name_in(i) in wrt]
+    z = ca.vertcat(*(ca.vec(nominal[i]) for i in keep))
+    s = ca.vertcat(*(ca.vec(seeds[i]) for i in keep))
+    outs = [ca.reshape(ca.jtimes(ca.vec(o), z, s), o.shape) for o in f.call(nominal)]
+    return ca.Function(F.name(), ins, outs, F.name_in(), F.name_out())
+
+
+def state_reverse(f: ca.Function, wrt) -> ca.Function:
+    """``f.reverse(1)``'s signature (``adj1_<name>``) with the adjoint sensitivities of the inputs ``wrt``
+    (J_wrt^T a, reverse mode) and structurally zero ones for every other input (see :func:`state_forward`)."""
+    R = f.reverse(1)
+    ins = _symbols_like(R)
+    n, m = f.n_in(), f.n_out()
+    nominal, seeds = ins[:n], ins[n + m:]
+    o = ca.vertcat(*(ca.vec(v) for v in f.call(nominal)))
+    a = ca.vertcat(*(ca.vec(v) for v in seeds))
+    outs = [ca.reshape(ca.jtimes(o, ca.vec(nominal[i]), a, True), nominal[i].shape) if f.name_in(i) in wrt
+            else ca.SX(*R.size_out(i)) for i in range(n)]
+    return ca.Function(R.name(), ins, outs, R.name_in(), R.name_out())
+
+
+def state_derivatives(f: ca.Function, wrt) -> list:
+    """``[f, fwd1_f, adj1_f, fwd1_adj1_f]``: what an NLP's exact first and second derivatives with respect
+    to the inputs ``wrt`` need of ``f`` once it is compiled and loaded with ``casadi.external`` (which finds
+    its derivatives in the same library by these names): the forward and adjoint derivatives
+    (:func:`state_forward`, :func:`state_reverse`) and the forward derivative of the adjoint
+    (forward-over-reverse, the Hessian-vector products of the Lagrangian; Griewank & Walther,
+    *Evaluating Derivatives*, 2nd ed., sec. 5.2), all restricted to ``wrt``. Far smaller than the
+    Jacobians with respect to every input and their Jacobians (third derivatives)."""
+    adj = state_reverse(f, wrt)
+    seeds = tuple(adj.name_in()[f.n_in() + f.n_out():])      # adj_<output>: the multipliers
+    return [f, state_forward(f, wrt), adj, state_forward(adj, tuple(wrt) + seeds)]
 
 
 def generate(functions, *, jacobians=True) -> str:
@@ -449,7 +501,7 @@ def _discard(target: Path, why: str) -> None:
 
 
 def compile_functions(functions, *, jacobians=True, enabled: bool = True, extra_c: str = "",
-                      extra_names=(), size: int | None = None) -> Compiled:
+                      extra_names=(), size: int | None = None, optimization: str | None = None) -> Compiled:
     """Compiled versions of ``functions`` from the cache, building the library if needed.
 
     Parameters
@@ -472,6 +524,9 @@ def compile_functions(functions, *, jacobians=True, enabled: bool = True, extra_
         The code size that chooses the default flags (``SIZE_FLAGS``) instead of the functions'
         serialized length, for code whose serialized form overstates its C (an MX loop over
         mapped kernels: the segmented RK4 loop at N = 80 serializes to 0.57 MB for ~25 kB of C).
+    optimization : str, optional
+        The default optimization flag (e.g. ``"-O1"``) instead of the one ``SIZE_FLAGS`` picks, for
+        code whose run time matters more than its size suggests (``CABLESYS_CFLAGS`` still wins).
 
     Returns
     -------
@@ -495,7 +550,7 @@ def compile_functions(functions, *, jacobians=True, enabled: bool = True, extra_
         return Compiled(originals, False, False, 0.0, 0.0, note="compilation disabled")
     t0 = time.perf_counter()
     serialized = [f.serialize() for f in functions]
-    cmd = compiler_command(sum(len(x) for x in serialized) if size is None else int(size))
+    cmd = compiler_command(sum(len(x) for x in serialized) if size is None else int(size), optimization)
     folder = cache_dir()                      # checks the cache settings, warm or cold
     ident = _compiler_identity(cmd)
     if ident is None:

@@ -5,7 +5,9 @@ Measured in one run:
 - the open-loop optimal payout for the ROV lift's JONSWAP sea (Hs 2.5 m, Tp 10 s; ``--quick``:
   the first 60 s, else 600 s) on the 2-DOF winch model (one drag segment), dt = 0.5 s, speed
   1 m/s, acceleration 1 m/s^2: IPOPT wall time, iterations, status, and the body heave
-  against the uncompensated run (dB, negative = reduced);
+  against the uncompensated run (dB, negative = reduced); with compiled kernels (the default) also the
+  same NLP in CasADi's virtual machine (objective difference, IPOPT CPU time ratio) and the kernels' build
+  time (a cold cache: code generation and compile; a warm one: hashing and loading);
 - that optimum re-simulated by CVODES on a 4x finer output grid: the largest relative
   constraint violation;
 - closed loop on a finer plant (the scene's 10 drag segments; ``--quick``: 4): PI/feed-forward
@@ -23,6 +25,7 @@ Writes bench_control.json. Usage: python studies/bench_control.py --out DIR [--q
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import sys
@@ -38,9 +41,24 @@ from _common import parse_args, write_json
 
 from cablesys.control import WinchLimits, heave_problem, optimal_payout, resimulate
 from cablesys.control.mpc import compare_compensation
+from cablesys.control.payout import interval_kernels
 from cablesys.control.shooting import solve_shooting
 from cablesys.examples import example_path
 from cablesys.scene import load_scene
+
+
+@contextlib.contextmanager
+def _compile_off():
+    """CABLESYS_COMPILE=0 inside the block (CasADi's virtual machine)."""
+    before = os.environ.get("CABLESYS_COMPILE")
+    os.environ["CABLESYS_COMPILE"] = "0"
+    try:
+        yield
+    finally:
+        if before is None:
+            del os.environ["CABLESYS_COMPILE"]
+        else:
+            os.environ["CABLESYS_COMPILE"] = before
 
 
 def lq_error() -> float:
@@ -132,7 +150,25 @@ def main(argv=None) -> int:
                                                                                      "acceleration_m_s2": 1.0}}
 
     problem = heave_problem(ctrl, limits, dt=0.5)
+    t0 = time.perf_counter()
+    kernels = interval_kernels(problem.interval)       # compiled once per structure (a cold cache: the build)
+    doc.update(kernels_compiled=bool(kernels is not None and kernels.compiled),
+               kernels_cached=bool(kernels is not None and kernels.cached),
+               kernels_build_s=None if kernels is None else kernels.build_s,
+               kernels_setup_s=time.perf_counter() - t0,
+               kernels_note="per-interval step/stage kernels and their (x, u) derivatives, one library per "
+                            "structure (cablesys.control.payout.interval_kernels); build_s is the code generation and "
+                            "compile time when not cached")
     ocp = optimal_payout(problem, record, max_iter=300)
+    if doc["kernels_compiled"]:     # the same NLP in CasADi's virtual machine (inlined SX, full AD): an independent route
+        with _compile_off():
+            vm = optimal_payout(problem, record, max_iter=300)
+        doc.update(ocp_objective=ocp.objective, ocp_vm_objective=vm.objective,
+                   ocp_vm_objective_rel_diff=abs(ocp.objective - vm.objective) / abs(vm.objective),
+                   ocp_vm_iterations=vm.stats["iterations"], ocp_vm_wall_s=vm.stats["solve_s"],
+                   ocp_vm_ipopt_proc_s=vm.stats["ipopt_timing_s"].get("t_proc_total"),
+                   ocp_speedup_ipopt_proc=vm.stats["ipopt_timing_s"].get("t_proc_total")
+                   / ocp.stats["ipopt_timing_s"].get("t_proc_total"))
     doc.update(ocp_wall_s=ocp.stats["solve_s"], ocp_iterations=ocp.stats["iterations"], ocp_status=ocp.status,
                ocp_heave_reduction_db=ocp.heave_reduction_db, ocp_intervals=ocp.stats["intervals"],
                ocp_heave_rms_m=ocp.heave_rms_m, ocp_uncompensated_heave_rms_m=ocp.uncompensated_heave_rms_m,
@@ -154,7 +190,8 @@ def main(argv=None) -> int:
                mpc_step_ms=1e3 * m["mpc"]["compute_per_step_s"], mpc_realtime_factor=m["mpc"]["realtime_factor"],
                mpc_horizon_s=horizon, mpc_closed_loop_s=duration, mpc_plant_segments=cmp.stats["plant_segments"],
                mpc_success=cmp.success, mpc_message=cmp.message, closed_loop=m,
-               mpc_note="CasADi virtual machine (no compiled code); target >= 50x real time compiled")
+               mpc_note=("compiled per-interval kernels (the controller's NLP)" if doc["kernels_compiled"] else
+                         "CasADi virtual machine (no compiled code)") + "; target >= 50x real time compiled")
 
     grad = design_gradient(problem, 30.0 if quick else 120.0)
     doc.update(gradient_fd_rel_err=grad["rel_err"], design_gradient_cost_ratio=grad["cost_ratio"],

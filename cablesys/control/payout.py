@@ -28,6 +28,8 @@ from typing import ClassVar
 import casadi as ca
 import numpy as np
 
+from ..compiled import compile_functions, compiles, state_derivatives
+from ..disk_cache import digest
 from ..errors import ParameterError, require_positive
 from ..model.winch import COMPENSATOR_PARAMETERS, WINCH_OUTPUTS, WinchModel, build_winch_model, rest_state
 from .. import statistics as st
@@ -106,6 +108,26 @@ class HeaveProblem:
         lo[-1], hi[-1] = -self.limits.speed, self.limits.speed
         a = self.limits.acceleration
         return ([-a], [a]), (lo, hi)
+
+    def nlp_functions(self):
+        """(step, stage, compiled): the NLP's (x, alpha, E_k) -> x_{k+1} and -> (cost, g).
+
+        Compiled (:func:`interval_kernels`): MX functions that call the compiled per-interval kernels with
+        this problem's numbers (p, c and w = (heave at rest, T_0, c_T, c_a, dt)) as inputs, so one
+        library per model structure serves every scene value, and the NLP's derivatives are the kernels'
+        compiled forward, adjoint and forward-over-adjoint derivatives with respect to (x, alpha) only.
+        In CasADi's virtual machine: ``step`` and ``stage`` (the numbers inlined, SX)."""
+        kernels = interval_kernels(self.interval)
+        if kernels is None or not kernels.compiled:
+            return self.step, self.stage, False
+        f = kernels.functions
+        nx, ne = self.model.nx, self.step.size1_in(2)
+        x, u, e = ca.MX.sym("x", nx), ca.MX.sym("u"), ca.MX.sym("E", ne)
+        w = ca.DM([self.heave_rest, self.static_tension, self.tension_weight, self.control_weight, self.dt])
+        args = (x, u, e, ca.DM(self.p), ca.DM(self.c), w)
+        step = ca.Function("step", [x, u, e], [f["ocp_step"](*args)])
+        stage = ca.Function("stage", [x, u, e], f["ocp_stage"](*args))
+        return step, stage, True
 
     def scales(self):
         """State scales (phi and its rate 0.05, lengths and speeds 1) for IPOPT."""
@@ -219,6 +241,39 @@ def _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, contr
     return step, stage, interval
 
 
+# optimization flag of the kernels (see interval_kernels)
+KERNEL_OPTIMIZATION = "-O1"
+# compiled kernels by the serialized interval function (its structure: the scene numbers are its inputs)
+_KERNELS: dict = {}
+
+
+def interval_kernels(interval: ca.Function):
+    """The compiled per-interval kernels of ``interval`` (:func:`_interval_functions`), a
+    :class:`cablesys.compiled.Compiled` with ``ocp_step`` (x, u, E, p, c, w) -> x_{k+1} and ``ocp_stage``
+    -> (cost, g), each with its forward, adjoint and forward-over-adjoint derivatives with respect to
+    (x, u) (:func:`cablesys.compiled.state_derivatives`) in the same library, where ``casadi.external``
+    finds them. The NLP maps them over its intervals (``Function.map`` in :class:`.shooting.ShootingNLP`),
+    so one small kernel serves every interval. None when nothing is compiled (``CABLESYS_COMPILE=0``, no
+    compiler), and a ``Compiled`` with ``compiled`` False when compilation failed: the callers then keep
+    the inlined SX functions."""
+    if not compiles():
+        return None
+    key = digest(interval.serialize())
+    kernels = _KERNELS.get(key)
+    if kernels is None:
+        x, u, e, p, c, w = (ca.SX.sym(n, interval.sparsity_in(i)) for i, n in enumerate(interval.name_in()))
+        xn, cost, g = interval(x, u, e, p, c, w)
+        names = ["x", "u", "E", "p", "c", "w"]
+        step = ca.Function("ocp_step", [x, u, e, p, c, w], [xn], names, ["xn"])
+        stage = ca.Function("ocp_stage", [x, u, e, p, c, w], [cost, g], names, ["cost", "g"])
+        functions = state_derivatives(step, ("x", "u")) + state_derivatives(stage, ("x", "u"))
+        # -O1: 3 MB of C (the 2-DOF ROV lift) in ~16 s, and as fast as -O2 (-O0: 3x slower Hessians)
+        kernels = compile_functions(functions, jacobians=False, optimization=KERNEL_OPTIMIZATION)
+        if kernels.compiled:
+            _KERNELS[key] = kernels
+    return kernels
+
+
 @dataclasses.dataclass(frozen=True)
 class PayoutResult(ResultBase):
     """An open-loop optimal payout (or any payout evaluated on the problem's grid) and its response.
@@ -325,14 +380,17 @@ def payout_nlp(problem: HeaveProblem, N: int, *, max_iter: int = 300, tol: float
                expand: bool = False, warm_duals: bool = False, constrain_first: bool = True) -> ShootingNLP:
     """The multiple-shooting NLP of ``problem`` over N intervals (start state and the tabulated top motion, :meth:`HeaveProblem.exogenous`, are its
     parameters: :meth:`.shooting.ShootingNLP.solve` takes them), with the last node's heave
-    in the cost (the stage cost at alpha = 0)."""
+    in the cost (the stage cost at alpha = 0). ``expand``: IPOPT on the SX expansion of the NLP, for the
+    virtual machine's inlined functions only (compiled kernels, :meth:`HeaveProblem.nlp_functions`, are
+    external code, faster than any expansion, and are kept as they are)."""
     ub, xb = problem.bounds()
     xN, EN = ca.SX.sym("x", problem.model.nx), ca.SX.sym("E", problem.step.size1_in(2))
     terminal = ca.Function("terminal", [xN, EN], [problem.stage(xN, 0.0, EN)[0]])   # the last node's cost
-    return ShootingNLP(problem.step, problem.stage, N, constraints=problem.constraints(), u_bounds=ub,
+    step, stage, compiled = problem.nlp_functions()
+    return ShootingNLP(step, stage, N, constraints=problem.constraints(), u_bounds=ub,
                        x_bounds=xb, terminal=terminal, x_ref=problem.x_rest, x_scale=problem.scales(),
-                       ipopt={"max_iter": max_iter, "tol": tol}, expand=expand, warm_duals=warm_duals,
-                       constrain_first=constrain_first)
+                       ipopt={"max_iter": max_iter, "tol": tol}, expand=expand and not compiled,
+                       warm_duals=warm_duals, constrain_first=constrain_first)
 
 
 def check_window(problem: HeaveProblem, t0: float, horizon: float) -> int:
