@@ -78,3 +78,32 @@ def test_drag_linearized_at_the_models_drag_points_gives_the_settled_surge():
         t, x = np.asarray(r.time), np.asarray(r["x_b"])
         settled = 0.5 * np.ptp(x[t >= t[-1] - 20.0])
         assert abs(lin[n]["x_b"] - settled) < within * settled, (n, lin[n]["x_b"], settled)
+
+
+def test_the_mean_offset_in_a_current_settles_within_the_settling_time():
+    # 200 m of wire in a uniform 0.8 m/s current surged 1 m at T = 6 s (Wang's cable: the drift is the body's
+    # mean angle). From its steady state the forcing's added mean drag pushes the body ~4 m further (39.5 to
+    # 43.5 m); from hanging straight down (the current switched on at t = 0) it creeps out 41 m. Both decay at
+    # the slowest real eigenvalue of the cable linearized in the current (estimate.slow_decay_time: tau 64 s;
+    # per-period means decay at 0.0162 and 0.0163 1/s against 1 / tau = 0.0155), and at the settling time
+    # (ramp + string travel + ln(100) tau = 313 s) 0.7 % and 0.5 % of the first period's offset are left
+    from cablesys.ladder import estimate as est
+    from cablesys.scene import Initial
+    sc = _hanging_wire(length=200.0)
+    sc = sc.replace(environment=Environment(density=1025.0, gravity=9.80665, current_depths=(0.0, 400.0),
+                                            current_speeds=(0.8, 0.8)),
+                    top_motion=TopMotion(x=(Sinusoid(amplitude=1.0, frequency=2 * math.pi / 6.0),), ramp_s=12.0))
+    tau, settle = est.slow_decay_time(sc), est.settling_time(sc)
+    assert 30.0 < tau < 120.0 and settle > math.log(1 / est.SETTLE_FRACTION) * tau
+    for phi in (None, 0.0):             # the steady state; hanging straight down
+        r = run_rung(sc.replace(initial=Initial(phi=phi), numerics=Numerics(duration=settle + 3 * tau, output_step=0.1)),
+                     "wang")
+        t, x = np.asarray(r.time), np.asarray(r["x_b"])
+        k = np.floor(t / 6.0).astype(int)
+        means = np.array([x[k == i].mean() for i in range(k.max())])
+        centre = (np.arange(means.size) + 0.5) * 6.0
+        dev = np.abs(means - means[-2:].mean())           # 3 tau after settling: 5e-4 of the start left
+        fit = (centre > 0.3 * settle) & (centre < settle)
+        rate = -np.polyfit(centre[fit], np.log(dev[fit]), 1)[0]
+        assert abs(rate * tau - 1.0) < 0.15, (phi, rate, 1 / tau)
+        assert np.interp(settle, centre, dev) < est.SETTLE_FRACTION * dev[0], (phi, np.interp(settle, centre, dev), dev[0])

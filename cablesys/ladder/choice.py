@@ -313,7 +313,8 @@ def _plan_text(plan: ElementPlan, numbers) -> tuple[str, str]:
 def settling_note(scene: Scene, transverse: bool = True) -> str:
     """"" when the statistics window of the scene's run (:func:`.metrics.window`: the last 5 forcing periods, in
     the second half, after the ramp) starts after :func:`.estimate.settling_time` (``transverse``: with the transverse wave's
-    travel down the cable; False where nothing drives the swing: the ramp alone), else a note for the reason, on
+    travel down the cable and the slow drift of the mean offset in a current; False where nothing drives the swing:
+    the ramp alone), else a note for the reason, on
     the console and in summary.json, that it holds the start-up transient, of which the estimates (of the settled
     response) say nothing. A note, not a warning: short runs are legitimate (quick looks, tests, sweeps)."""
     times = scene.output_times
@@ -325,7 +326,8 @@ def settling_note(scene: Scene, transverse: bool = True) -> str:
     if start >= settle:
         return ""
     return (f"the run's statistics window starts at {start:.4g} s, before the forced response settles "
-            f"({settle:.4g} s: the smooth start and the wave's travel down the hanging cable): the estimated "
+            f"({settle:.4g} s: the smooth start, the wave's travel down the hanging cable and the mean offset's "
+            f"drift in the current): the estimated "
             f"error is the settled response's; run at least {settle + min(5 * period, settle):.4g} s for it to apply")
 
 

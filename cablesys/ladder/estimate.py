@@ -86,7 +86,7 @@ from ..model import build_model
 from ..scene import Scene
 from ..scene.labels import section_suffix
 from . import continuum, local_drag
-from .indicators import SceneNumbers, static_angle
+from .indicators import SceneNumbers, scene_numbers, static_angle
 from .rung.base import with_segments
 
 ORDER = 2.0         # convergence order of the segmented cable in N (taut; Dale study: 2-3)
@@ -97,6 +97,9 @@ SWING_AMPLIFICATION = 10.0
 HB_PHASES, HB_CONTINUATION = 16, 1   # harmonic balance of linear_response (see there)
 LOCAL_STRING_RATIO = 0.3     # omega / omega_string above which the string's drag is also linearized per element
 LOCAL_MAX_N = 16             # the element-by-element table stops here (one drag point per element beyond ~7)
+SETTLE_FRACTION = 0.01   # the slow drift's part left at the settling time; generated chains in currents
+#                          (studies/ladder_generated.py, seed 22, N = 128) then change 2e-4 / 5e-4 / 0 between the window's
+#                          halves (metrics.window_change), 0.012 / 0.022 / 0.107 with the ramp and string travel alone
 RESOLUTION = 1e-4    # estimates are not resolved below this (start-up transients, reference convergence)
 CONTINUUM_N = (2, 4, 8, 16, 32, 64, 128)   # elements at which the segmented estimate is tabulated (and see
 #                                            continuum_counts: where the segmented model's drag rule changes)
@@ -175,26 +178,76 @@ def linear_response(scene: Scene, numbers: SceneNumbers, model=None) -> LinearRe
                           method="exact linearization (undamped; a bound away from resonance)")
 
 
-def settling_time(scene: Scene) -> float:
+def slow_decay_time(scene: Scene, model=None) -> float:
+    """Time constant tau_slow (s) of the slowest free motion below the forcing frequency in the current: Wang's
+    cable (the wang rung's model) linearized exactly about its steady state in the flow (:func:`linearize`: the
+    drag slope 2 x 1/2 rho C_D A |U| damps the motion across the flow), whose free response is a sum of
+    c_k v_k exp(lambda_k t) (eigenvalues lambda_k of the state matrix; Meirovitch, *Fundamentals of Vibrations*,
+    2001, sec. 7.13), so each part decays as exp(Re lambda_k t) and tau_slow = 1 / min(-Re lambda_k) over the
+    eigenvalues with |lambda_k| below the forcing frequency (:attr:`SceneNumbers.omega_forcing`).
+
+    Those are the mean offset's drift under drag (real eigenvalues: a body in a current pushed off its mean by
+    the forcing's added mean drag creeps back without oscillating) and the body's swing; the axial and higher
+    string modes above the forcing carry no mean and are damped further by the forced drag. Measured on
+    generated scenes (``studies/ladder_generated.py``, seed 22): a two-body chain in a 1.41 m/s current
+    (``chain-22-3``) has its slowest real eigenvalue at -0.0214 1/s, the decay rate of the body's mean offset in
+    the run; the four scenes whose reference amplitudes still changed by 2-11 % between the halves of the
+    statistics window all had 4.6 tau_slow longer than the ramp plus the string travel time.
+
+    0 without a relative flow (no current and no tow: the linearized drag has no slope, the linear model is
+    undamped and says nothing of the decay, which quadratic drag then sets) or without periodic forcing.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    model : CableModel, optional
+        Wang's model of the scene's structure if already built.
+
+    Returns
+    -------
+    float
+        tau_slow (s); math.inf when such a motion is undamped in the flow.
+    """
+    env = scene.environment
+    omega = scene_numbers(scene).omega_forcing
+    if omega <= 0.0 or all(u == env.system_speed for u in env.current_speeds):
+        return 0.0
+    sc = with_segments(scene, 1)
+    model = model or build_model(sc)
+    lam = np.linalg.eigvals(linearize(model, model.parameters(sc)).A)
+    rate = -lam.real[np.abs(lam) < omega]
+    if rate.size == 0:
+        return 0.0
+    slowest = float(np.min(rate))
+    return math.inf if slowest <= 0.0 else 1.0 / slowest
+
+
+def settling_time(scene: Scene, model=None) -> float:
     """Earliest time (s) at which the body can carry the full forced response the estimates speak of: the
-    top motion's ramp (``effective_ramp_s``) plus the transverse wave's travel time down every section's
-    hanging string to the lowest body (:func:`continuum.string_travel_time`; the axial wave is faster). A
-    statistics window should start after it (module docstring: the 1000 m wire's 40 s run with a 30 s ramp
+    top motion's ramp (``effective_ramp_s``), plus the transverse wave's travel time down every section's
+    hanging string to the lowest body (:func:`continuum.string_travel_time`; the axial wave is faster), plus
+    ln(1 / SETTLE_FRACTION) x tau_slow, the time for the slowest free motion below the forcing in the current
+    (:func:`slow_decay_time`: the mean offset's drift under drag) to fall to SETTLE_FRACTION of its start.
+    A statistics window should start after it (module docstring: the 1000 m wire's 40 s run with a 30 s ramp
     and a 14.7 s travel time measured the arriving front).
 
     Parameters
     ----------
     scene : Scene
         The scene.
+    model : CableModel, optional
+        Wang's model of the scene's structure if already built.
 
     Returns
     -------
     float
-        Ramp plus string travel time (s).
+        Ramp plus string travel time plus the slow decay (s).
     """
     angle = static_angle(scene)
     travel = sum(continuum.string_travel_time(string) for string, _ in continuum.members(scene, 1.0, angle))
-    return float(scene.top_motion.effective_ramp_s) + travel
+    slow = math.log(1.0 / SETTLE_FRACTION) * slow_decay_time(scene, model)
+    return float(scene.top_motion.effective_ramp_s) + travel + slow
 
 
 def axial_factor(scene: Scene, numbers: SceneNumbers) -> float:
