@@ -23,11 +23,13 @@ import warnings
 
 from ..compiled import compiles
 from ..errors import NumericalWarning, ParameterError
+from ..model import build_model
 from ..model.segmented import drag_points
 from ..scene import Scene
 from . import estimate as est
 from . import metrics
 from .indicators import scene_numbers
+from .rung.base import with_segments
 from .rung.quasistatic import EXPLICIT_COST, EXPLICIT_COST_MAX_ELEMENTS, STIFF_QS_COST  # noqa: F401 - the plans' weights
 from .rung.segmented import CHECK_ACCEPT, CHECK_COST  # noqa: F401 - re-exported with the plans' other numbers
 from .rungs import BUILTIN, Assessment, RungCache, get_rung, registered_rungs, rung_scene, validity
@@ -310,11 +312,11 @@ def _plan_text(plan: ElementPlan, numbers) -> tuple[str, str]:
     return what, how_n + (f"; {plan.note}" if plan.note else "")
 
 
-def settling_note(scene: Scene, transverse: bool = True) -> str:
+def settling_note(scene: Scene, transverse: bool = True, settle: float | None = None) -> str:
     """"" when the statistics window of the scene's run (:func:`.metrics.window`: the last 5 forcing periods, in
     the second half, after the ramp) starts after :func:`.estimate.settling_time` (``transverse``: with the transverse wave's
     travel down the cable and the slow drift of the mean offset in a current; False where nothing drives the swing:
-    the ramp alone), else a note for the reason, on
+    the ramp alone; ``settle``: that settling time if already known), else a note for the reason, on
     the console and in summary.json, that it holds the start-up transient, of which the estimates (of the settled
     response) say nothing. A note, not a warning: short runs are legitimate (quick looks, tests, sweeps)."""
     times = scene.output_times
@@ -322,7 +324,10 @@ def settling_note(scene: Scene, transverse: bool = True) -> str:
     if period is None or times.size < 2:
         return ""
     start = float(times[metrics.window(times, period, scene.top_motion.effective_ramp_s)][0])
-    settle = est.settling_time(scene) if transverse else float(scene.top_motion.effective_ramp_s)
+    if not transverse:
+        settle = float(scene.top_motion.effective_ramp_s)
+    elif settle is None:
+        settle = est.settling_time(scene)
     if start >= settle:
         return ""
     return (f"the run's statistics window starts at {start:.4g} s, before the forced response settles "
@@ -349,10 +354,12 @@ def _swing_free(scene: Scene, numbers) -> bool:
 def _assess(scene: Scene, tol, cache: RungCache | None = None):
     """(numbers, Wang's linear response, every rung's estimated errors, info dict) of ``scene``."""
     numbers = scene_numbers(scene)
-    response = est.linear_response(scene, numbers, model=cache.model(scene, "wang") if cache is not None else None)
+    wang = cache.model(scene, "wang") if cache is not None else build_model(with_segments(scene, 1))
+    response = est.linear_response(scene, numbers, model=wang)
     est.check_response(response)
     errs = est.estimate_errors(scene, numbers, response)
     info = {"scene": numbers.as_dict(), "linear_response": dataclasses.asdict(response),
+            "settling_time_s": est.settling_time(scene, wang),
             "estimates": {k: dict(v) for k, v in errs.items()}, "tolerance": {"body": tol[0], "tension": tol[1]}}
     return numbers, response, errs, info
 
@@ -426,7 +433,7 @@ def _pick(scene: Scene, tol, question: str, numbers, response, errs: dict, info:
     # the straight rungs (one element per section) valid for the scene; the periodic orbit for a steady amplitude only
     order = [r.name for r in BUILTIN if r.straight and not r.valid(scene) and (question == "steady" or r.time_domain)]
     swing_free = _swing_free(scene, numbers)
-    note = settling_note(scene, transverse=not swing_free)
+    note = settling_note(scene, transverse=not swing_free, settle=info["settling_time_s"])
     if note:
         deciding += "; " + note
     if numbers.axial_ratio > 1.0 / STIFF_RATIO and not (swing_free and compiled) and "quasi-static" in order:
