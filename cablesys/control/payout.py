@@ -243,8 +243,10 @@ def _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, contr
 
 # optimization flag of the kernels (see interval_kernels)
 KERNEL_OPTIMIZATION = "-O1"
-# compiled kernels by the serialized interval function (its structure: the scene numbers are its inputs)
+# compiled kernels by the serialized interval function (its structure: the scene numbers are its inputs),
+# the KERNELS_KEPT most recent (a loaded library is not checked and opened again on every MPC step)
 _KERNELS: dict = {}
+KERNELS_KEPT = 8
 
 
 def interval_kernels(interval: ca.Function):
@@ -267,9 +269,11 @@ def interval_kernels(interval: ca.Function):
         step = ca.Function("ocp_step", [x, u, e, p, c, w], [xn], names, ["xn"])
         stage = ca.Function("ocp_stage", [x, u, e, p, c, w], [cost, g], names, ["cost", "g"])
         functions = state_derivatives(step, ("x", "u")) + state_derivatives(stage, ("x", "u"))
-        # -O1: 3 MB of C (the 2-DOF ROV lift) in ~16 s, and as fast as -O2 (-O0: 3x slower Hessians)
+        # -O1: Hessians as fast as at -O2 for a fraction of its compile; -O0 compiles sooner with slower Hessians
         kernels = compile_functions(functions, jacobians=False, optimization=KERNEL_OPTIMIZATION)
         if kernels.compiled:
+            while len(_KERNELS) >= KERNELS_KEPT:
+                _KERNELS.pop(next(iter(_KERNELS)))       # the oldest first (dicts keep insertion order)
             _KERNELS[key] = kernels
     return kernels
 

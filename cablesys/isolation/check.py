@@ -42,7 +42,7 @@ from ..linear.spectra import jonswap
 from ..linear.stochastic import BUOY
 from ..model import build_model
 from ..scene.sea import MotionRAO, SeaSpectrum
-from ..statistics import window, window_mask
+from ..statistics import significant_amplitude
 from .problem import DesignSettings
 from .solve import equivalent_jacobian_shift
 
@@ -94,7 +94,7 @@ def _predict(scene, settings: DesignSettings) -> tuple:
     S = jonswap(settings.omega, settings.hs, settings.tp, settings.gamma)
     alt = _blend(linearize(model, p), st.linear, CRITERIA_FACTOR)
     sig_alt = math.sqrt(float(np.trapezoid(np.abs(_heave(alt, settings.omega, k)) ** 2 * S, settings.omega)))
-    return float(st.significant_amplitude(label)), 2.0 * sig_alt, st.linear, k, label
+    return float(st.significant_amplitude(label)), significant_amplitude(sig_alt), st.linear, k, label
 
 
 def linearization_errors(scene, new_scene, settings: DesignSettings) -> dict:
@@ -129,9 +129,9 @@ def time_domain_check(scene, new_scene, settings: DesignSettings, run) -> dict:
     """The baseline and the designed scene in the time domain (:func:`check_scene`: the design sea on the
     buoy orbit) by the model the design optimizes (``as-built``), against the design's prediction.
 
-    The statistics window is the second half of the run, after the smooth start (the start-up transient
-    decays over the first half, :func:`cablesys.statistics.window` without its last-5-periods cap: the
-    sampling error falls with the record length).
+    The statistics window is the run's own (:attr:`cablesys.time_result.TimeResult.statistics_window`): for the
+    design sea, an irregular one, the second half of the run after the smooth start, the longest settled record
+    (the sampling error falls with its length), as `cablesys run` of the same scene reports it.
 
     Parameters
     ----------
@@ -156,17 +156,16 @@ def time_domain_check(scene, new_scene, settings: DesignSettings, run) -> dict:
         pred = prediction(sc, settings, sc.top_motion.spectrum)
         r = run(sc)
         y = np.asarray(r[pred["label"]])
-        t0, t1, _ = window(r.time, None, r.ramp_s)
-        w = window_mask(r.time, t0, t1)
+        t0, t1 = r.statistics_window          # the run's one window: an irregular sea's is the second half
         T = float(t1 - t0)
-        td = float(2.0 * np.std(y[w]))
+        td = significant_amplitude(float(np.std(y[r.window_mask()])))
         z[name], m[name], preds[name] = pred["z"], 0.5 * float(np.sum(np.abs(pred["z"]) ** 2)), pred
         v = mean_square_covariance(pred["z"], pred["z"], pred["omega"], T)
-        s_rel = significant_amplitude_error(m[name], v) / (2 * math.sqrt(m[name]))
+        s_rel = significant_amplitude_error(m[name], v) / significant_amplitude(math.sqrt(m[name]))
         lin = abs(math.log(pred["significant_heave_alt_m"] / pred["significant_heave_m"]))
-        offset = abs(math.log(2 * math.sqrt(m[name]) / pred["significant_heave_m"]))
+        offset = abs(math.log(significant_amplitude(math.sqrt(m[name])) / pred["significant_heave_m"]))
         out[name] = _entry(pred["significant_heave_m"], td, lin, s_rel, offset, "_m") | {
-            "realised_sea_m": 2 * math.sqrt(m[name]),
+            "realised_sea_m": significant_amplitude(math.sqrt(m[name])),
             "significant_heave_alt_criterion_m": pred["significant_heave_alt_m"],
             "model": r.stats["model"]["name"], "segments": r.stats["model"]["segments"], "window_s": [float(t0), float(t1)]}
     w_k = preds["baseline"]["omega"]

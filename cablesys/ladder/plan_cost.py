@@ -38,9 +38,9 @@ where the guard refused rk23). Unless the caller named the method, its predictio
 the six scenes; the line names both methods. How good it is: ``studies/run_prediction.py`` reports the ratio
 actual / predicted on six scenes.
 
-Wall time per step: STEP_OVERHEAD_S + operations x SECONDS_PER_OPERATION (compiled C or CasADi's VM), the same
-Dale runs (BDF2 compiled N = 4, 8, 16: 6.2, 7.2, 8.6 us per step; VM N = 32: 63 us; rk23 compiled N = 4, 8:
-4.5, 7.5 us).
+Wall time per step: STEP_OVERHEAD_S + operations x SECONDS_PER_OPERATION (compiled C or CasADi's VM), fitted to
+the same Dale runs (BDF2 compiled N = 4, 8, 16, the VM at N = 32, rk23 compiled N = 4, 8; the measured times are in
+``studies/results/run_prediction_calibration.json``).
 
 Compile time (a model compiled and not yet in the cache, :func:`compile_plan`): a run compiles two libraries, its
 integrator's (the DAE; with its state Jacobian for an implicit method) and its outputs', and the quasi-static
@@ -52,7 +52,7 @@ and its time is :func:`cablesys.compiled.predicted_compile_s` (the same predicti
 lines give). The slack extrapolation compiles, per run of its plan, the outputs and an RK4 interval of its N.
 Whether a library is already cached is known only once the functions are built (their hash): the line says "if
 not cached". Not counted: what the model choice itself compiles before the prediction is made (the linearization
-and the describing function's harmonic balance on a cold cache: 1.5-30 s measured, reported apart by the study).
+and the describing function's harmonic balance on a cold cache, reported apart by the study).
 
 Memory: :func:`cablesys.time_domain.record.run_memory_bytes` of the output grid, with 2 nq + outputs numbers per
 output time (nq = 2 per node-model element, 1 per quasi-static element, 2 for Wang's cable, per section).
@@ -79,7 +79,7 @@ STEPS_PER_PERIOD = {"cvodes-bdf2": (320.0, 0.55), "cvodes": (320.0, 0.55), "idas
 # the quasi-static segmented cable stepped by CVODES (BDF2) once its guard refuses the explicit pair: 52 steps per
 # period on the heavy wire (N = 6, rtol 1e-4), 137 in the sheared current (N = 14, rtol 1e-5), i.e. 40 at N = 4
 QS_IMPLICIT_STEPS = (40.0, 0.55)
-# its wall time per step over the MB of its implicit DAE's C (the dense Jacobian: 56 us at 1.6 MB, 332 us at 18 MB)
+# its wall time per step over the MB of its implicit DAE's C (the dense Jacobian; studies/results/run_prediction.json)
 IMPLICIT_STEP_S_PER_MB = 2e-5
 RTOL_EXPONENT = 0.25
 STEP_OVERHEAD_S = 5e-6                                  # per step, compiled (CVODES's own work, the call)
