@@ -288,7 +288,7 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
                                  run_s=float(st["ladder_timing"].get("run_s", 0.0)))
     period = forcing_period(scene)
     t0, t1 = (summary["window"]["start_s"], summary["window"]["end_s"]) if "window" in summary else (0.0, 0.0)
-    if period and scene.top_motion.spectrum is None and t1 - t0 >= period * (1 - 1e-9):
+    if period and t1 - t0 >= period * (1 - 1e-9):   # None for an irregular sea: no periodic amplitudes
         # the amplitudes over the one statistics window (cablesys.statistics.window), which holds a whole period
         summary["amplitude_periods"] = (t1 - t0) / period
         mask = st_window_mask(result.time, t0, t1)

@@ -248,7 +248,7 @@ def _as_built(scene: Scene, model, simulator, kw: dict, cache: RungCache | None)
 def windowed(scene: Scene, result):
     """``result`` with the scene's forcing period and smooth start, which set its statistics window
     (:func:`cablesys.statistics.window`): one window for every door's summary and table."""
-    return dataclasses.replace(result, forcing_period_s=scene.top_motion.window_period_s,
+    return dataclasses.replace(result, forcing_period_s=metrics.forcing_period(scene),
                                ramp_s=float(scene.top_motion.effective_ramp_s))
 
 

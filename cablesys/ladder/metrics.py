@@ -115,6 +115,7 @@ def quantity_errors(stats: dict, reference: dict) -> dict:
 
 
 def forcing_period(scene) -> float | None:
-    """The longest period of the top-motion sinusoids (s; None without sinusoids):
-    :attr:`cablesys.scene.TopMotion.forcing_period_s`."""
-    return scene.top_motion.forcing_period_s
+    """The forcing period (s) that sets every statistics window: the longest period of the top-motion
+    sinusoids; None without sinusoids and for an irregular sea or a recorded motion, whose window is the run's
+    second half (:attr:`cablesys.scene.TopMotion.window_period_s`)."""
+    return scene.top_motion.window_period_s

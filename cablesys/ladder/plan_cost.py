@@ -67,7 +67,6 @@ import math
 from ..compiled import SIZE_FLAGS, compiles, predicted_compile_s
 from ..scene import Scene
 from .choice import model_operations
-from .metrics import forcing_period
 from .rungs import rung_scene
 
 log = logging.getLogger(__name__)
@@ -160,7 +159,7 @@ def predicted_steps(scene_run: Scene, method: str, rtol: float, elements: int, s
     if method in FIXED_STEP:
         return int(steps_per_output) * (outputs - 1), "duration / step"
     k, alpha = STEPS_PER_PERIOD.get(method, STEPS_PER_PERIOD["cvodes"])
-    period = forcing_period(scene_run) or scene_run.numerics.duration
+    period = scene_run.top_motion.forcing_period_s or scene_run.numerics.duration
     periods = scene_run.numerics.duration / period
     steps = periods * k * (max(rtol, 1e-14) / 1e-4) ** (-RTOL_EXPONENT) * (max(elements, 1) / 4.0) ** alpha
     return int(math.ceil(steps)), f"from rtol {rtol:.2g} and {periods:.3g} forcing periods"
@@ -252,7 +251,7 @@ def predict(scene: Scene, choice, settings, guard_decides: bool = False) -> Pred
     compile_s = compile_guess(ops, choice.name, method, n) if compiled else 0.0
     if guard_decides and choice.name == "quasi-static" and n > 1 and method in EXPLICIT:
         k, alpha = QS_IMPLICIT_STEPS
-        period = forcing_period(sc) or sc.numerics.duration
+        period = sc.top_motion.forcing_period_s or sc.numerics.duration
         steps_i = (sc.numerics.duration / period) * k * (max(float(settings.rtol), 1e-14) / 1e-4) ** (-RTOL_EXPONENT) \
             * (max(elements, 1) / 4.0) ** alpha
         [(_, jac_bytes)] = [lib for lib in compile_plan(ops, choice.name, "cvodes", n) if lib[0] == "implicit"]

@@ -61,8 +61,9 @@ class ModelCache:
 
 
 def forcing_frequency(scene) -> float | None:
-    """Lowest frequency of the top-motion sinusoids with a non-zero amplitude (rad/s): the forcing period of
-    :func:`cablesys.ladder.metrics.forcing_period`, the one definition every door uses."""
+    """Lowest frequency of the top-motion sinusoids with a non-zero amplitude (rad/s; None for an irregular sea or
+    a recorded motion): the forcing period of :func:`cablesys.ladder.metrics.forcing_period`, the one definition
+    every door uses."""
     period = forcing_period(scene)
     return None if period is None else 2 * math.pi / period
 
