@@ -227,7 +227,7 @@ def state_jacobian(f: ca.Function, wrt) -> ca.Function:
     """
     J = f.jacobian()
     X = ca.MX if f.is_a("MXFunction") else ca.SX     # an MX function (mapped kernels) keeps its loops
-    ins = [X.sym(name, J.sparsity_in(i)) for i, name in enumerate(J.name_in())]
+    ins = _symbols_like(J, X)
     vals = f.call(ins[: f.n_in()])
     outs = []
     for k, name in enumerate(J.name_out()):          # jac_<output>_<input>
@@ -240,9 +240,9 @@ def state_jacobian(f: ca.Function, wrt) -> ca.Function:
     return ca.Function(J.name(), ins, outs, J.name_in(), J.name_out())
 
 
-def _symbols_like(F: ca.Function) -> list:
-    """SX symbols with the names and sparsities of ``F``'s inputs."""
-    return [ca.SX.sym(name, F.sparsity_in(i)) for i, name in enumerate(F.name_in())]
+def _symbols_like(F: ca.Function, X=ca.SX) -> list:
+    """Symbols (``X``: SX or MX) with the names and sparsities of ``F``'s inputs."""
+    return [X.sym(name, F.sparsity_in(i)) for i, name in enumerate(F.name_in())]
 
 
 def state_forward(f: ca.Function, wrt) -> ca.Function:
