@@ -28,22 +28,21 @@ def dot(a, b):
     return sum((a[j] * b[j] for j in range(2, len(a))), a[0] * b[0] + a[1] * b[1])
 
 
-def normal_part(v, el):
-    """The part of v normal to the element: (v . e_n) e_n in the plane (eq. 17a), v - (v . e_t) e_t in space
-    (the same vector when v lies in the plane)."""
+def normal_part(v, et, en=None):
+    """The part of v normal to the element of unit tangent ``et``: (v . e_n) e_n in the plane (eq. 17a, ``en``
+    its unit normal), v - (v . e_t) e_t in space (the same vector when v lies in the plane)."""
     if len(v) == 2:
-        vn = dot(v, el["en"])
-        return (vn * el["en"][0], vn * el["en"][1])
-    et = el["et"]
+        vn = dot(v, en)
+        return (vn * en[0], vn * en[1])
     vt = dot(v, et)
     return tuple(v[j] - vt * et[j] for j in range(3))
 
 
-def normal_square(v, el):
+def normal_square(v, et, en=None):
     """|v_n|^2 of :func:`normal_part`: (v . e_n)^2 in the plane, |v|^2 - (v . e_t)^2 in space."""
     if len(v) == 2:
-        return dot(v, el["en"]) ** 2
-    return dot(v, v) - dot(v, el["et"]) ** 2
+        return dot(v, en) ** 2
+    return dot(v, v) - dot(v, et) ** 2
 
 
 def flow_at(r, t, env, depth0):
@@ -106,8 +105,7 @@ def element_terms(P: SectionParameters, n_el: int, ra, va, rb, vb, *, rho, t, en
             d_n = fluid.quadratic_drag(rho, P.cd * d * seg, dot(vq, en))   # eq. 42
             F = (d_n * en[0] + d_t * et[0], d_n * en[1] + d_t * et[1])
         else:                                                              # eq. 42, cross-flow in space
-            vt = dot(vq, et)
-            D_n = fluid.crossflow_drag(rho, P.cd * d * seg, [vq[j] - vt * et[j] for j in range(3)])
+            D_n = fluid.crossflow_drag(rho, P.cd * d * seg, list(normal_part(vq, et)))
             F = tuple(D_n[j] + d_t * et[j] for j in range(3))
         for i in range(dim):                                               # virtual work shares
             fa[i] = fa[i] + (1 - s) * F[i]
@@ -120,7 +118,7 @@ def element_terms(P: SectionParameters, n_el: int, ra, va, rb, vb, *, rho, t, en
 def lump_kinetic(el, v_a, v_b):
     """Half the element's mass (all directions) and added mass (normal only) at each end node."""
     m, a = el["mass"], el["added"]
-    ke = lambda v: 0.25 * m * dot(v, v) + 0.25 * a * normal_square(v, el)
+    ke = lambda v: 0.25 * m * dot(v, v) + 0.25 * a * normal_square(v, el["et"], el["en"])
     return ke(v_a) + ke(v_b)
 
 
@@ -173,7 +171,7 @@ def lump_force(el, end: str, acc):
         an, en = dot(acc, el["en"]), el["en"]
         return tuple(drag[i] + (0.5 * el["weight"] if i == 1 else 0.0) - 0.5 * (m * acc[i] + a * an * en[i])
                      for i in range(2))
-    an = normal_part(acc, el)
+    an = normal_part(acc, el["et"], el["en"])
     return tuple(drag[i] + (0.5 * el["weight"] if i == 1 else 0.0) - 0.5 * (m * acc[i] + a * an[i])
                  for i in range(3))
 
