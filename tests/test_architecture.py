@@ -29,7 +29,7 @@ PKG = Path(__file__).resolve().parents[1] / "cablesys"
 # cli layers. New packages: add them here.
 LAYERS = [
     ("foundation", ("cablesys.units", "cablesys.errors", "cablesys.results", "cablesys.result_protocol", "cablesys.reader", "cablesys.options", "cablesys.time_result",
-                    "cablesys.statistics", "cablesys.outputs", "cablesys.compiled", "cablesys.messages",
+                    "cablesys.statistics", "cablesys.outputs", "cablesys.compiled", "cablesys.derivatives", "cablesys.messages",
                     "cablesys.integration", "cablesys.profiles", "cablesys.lazy", "cablesys.atomic", "cablesys.tables",
                     "cablesys.disk_cache")),
     ("scene", ("cablesys.scene",)),

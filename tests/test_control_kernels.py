@@ -5,7 +5,7 @@ import numpy as np
 import casadi as ca
 import pytest
 
-from cablesys.compiled import state_derivatives
+from cablesys.derivatives import state_derivatives
 from cablesys.control import WinchLimits, heave_problem, optimal_payout
 from cablesys.control.payout import interval_kernels
 from cablesys.examples import example_path

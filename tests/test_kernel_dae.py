@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 import cablesys
-from cablesys.compiled import generate, state_jacobian
+from cablesys.compiled import generate
+from cablesys.derivatives import state_jacobian
 from cablesys.examples import example_path
 from cablesys.ladder.rungs import build_rung, rung_scene
 from cablesys.time_domain import IntegratorSettings, Simulator

@@ -28,7 +28,8 @@ from typing import ClassVar
 import casadi as ca
 import numpy as np
 
-from ..compiled import compile_functions, compiles, state_derivatives
+from ..compiled import compile_functions, compiles
+from ..derivatives import state_derivatives
 from ..disk_cache import digest
 from ..errors import ParameterError, require_positive
 from ..model.winch import COMPENSATOR_PARAMETERS, WINCH_OUTPUTS, WinchModel, build_winch_model, rest_state
@@ -253,7 +254,7 @@ def interval_kernels(interval: ca.Function):
     """The compiled per-interval kernels of ``interval`` (:func:`_interval_functions`), a
     :class:`cablesys.compiled.Compiled` with ``ocp_step`` (x, u, E, p, c, w) -> x_{k+1} and ``ocp_stage``
     -> (cost, g), each with its forward, adjoint and forward-over-adjoint derivatives with respect to
-    (x, u) (:func:`cablesys.compiled.state_derivatives`) in the same library, where ``casadi.external``
+    (x, u) (:func:`cablesys.derivatives.state_derivatives`) in the same library, where ``casadi.external``
     finds them. The NLP maps them over its intervals (``Function.map`` in :class:`.shooting.ShootingNLP`),
     so one small kernel serves every interval. None when nothing is compiled (``CABLESYS_COMPILE=0``, no
     compiler), and a ``Compiled`` with ``compiled`` False when compilation failed: the callers then keep
