@@ -36,8 +36,8 @@ from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
 from cablesys.model import build_model  # noqa: E402
 from cablesys.scene import Anchor, Body, Cable, Numerics, Seabed, single_section_scene  # noqa: E402
 from cablesys.scene.components import Environment  # noqa: E402
-from cablesys.statics.catenary import (anchored_line_forces, seabed_catenary, seabed_catenary_span,  # noqa: E402
-                                       segmented_steady)
+from cablesys.statics.catenary import anchored_line_forces, segmented_steady  # noqa: E402
+from cablesys.statics.closed_forms import seabed_catenary, seabed_catenary_span  # noqa: E402
 from cablesys.time_domain.run import simulate  # noqa: E402
 
 # a studless chain in water: 300 m, w = 1300 N/m, EA = 50 MN, fairlead 100 m above a flat bed

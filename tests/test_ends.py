@@ -16,7 +16,7 @@ from cablesys.errors import ParameterError  # noqa: E402
 from cablesys.model import build_model  # noqa: E402
 from cablesys.model.params import parameter_items, structure_of  # noqa: E402
 from cablesys.scene import Anchor, Body, Cable, Seabed, dump_scene, scene_from_dict, single_section_scene  # noqa: E402
-from cablesys.statics.catenary import seabed_catenary, seabed_catenary_span  # noqa: E402
+from cablesys.statics.closed_forms import seabed_catenary, seabed_catenary_span  # noqa: E402
 
 pytestmark = pytest.mark.filterwarnings("ignore")
 BODY = Body(weight=0.0, mass_x=1.0, mass_y=1.0)

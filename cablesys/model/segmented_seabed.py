@@ -18,7 +18,7 @@ k and cBot = c per unit area):
   min(mu F_n, T_up |e_up . t|), T_up and e_up the tension and axis of the element on the fairlead
   side, so that the tension decreases by mu w per unit length along the bed towards the anchor
   and stops at zero (the classic mooring-line catenary with seabed friction, Jonkman 2007, NREL/TP-
-  500-41958; its closed form is :func:`cablesys.statics.catenary.seabed_catenary`).
+  500-41958; its closed form is :func:`cablesys.statics.closed_forms.seabed_catenary`).
 
 Forces in N, lengths in m, k in Pa/m, c in Pa s/m, v_s in m/s.
 """

@@ -5,7 +5,8 @@
 - :func:`elastic_catenary` the closed-form elastic catenary used to check it.
 """
 
-from .catenary import elastic_catenary, hanging_guess, segmented_equilibrium
+from .catenary import hanging_guess, segmented_equilibrium
+from .closed_forms import elastic_catenary
 from .problem import SteadyState, static_residual
 from .steady import steady_state
 
