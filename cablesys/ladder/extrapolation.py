@@ -84,7 +84,6 @@ RK4_MARGIN = 2.0            # h |lambda|_max of the stable step (RK4's boundary 
 SAMPLES_PER_SNAP = 6        # output samples per axial travel time in the statistics runs (see statistics_step)
 MIN_SEGMENTS = 8            # the smallest plan a time budget may shrink to (runs at N = 2, 4, 8)
 TIMING_S = 0.05             # wall time spent measuring one run's cost per RK4 step before the plan starts
-_PASS = ("x0", "max_num_steps")
 
 
 def applies(choice, auto: bool) -> bool:
