@@ -103,7 +103,10 @@ def _analyse(args, scene, outdir) -> int:
             describing[inp] = _describing_record(h, valid, abs(Z[k]), raos["exact linearization"], inp)
             if np.any(valid):
                 r = h.rao(label=inp)
-                raos[f"describing function, |{inp}| = {abs(Z[k]):.3g} m"] = dataclasses.replace(
+                slack = band[h.solved & h.slack]
+                # the legend says where the curve ends and why: the orbit goes slack there
+                ends = f" (slack from {slack.min():.2g} rad/s)" if slack.size else ""
+                raos[f"describing function, |{inp}| = {abs(Z[k]):.3g} m{ends}"] = dataclasses.replace(
                     r, omega=r.omega[valid], values=r.values[valid])
     out = outdir.path
     unique = len(set(md.dominant)) == len(md.dominant)        # else name by mode number: one key per mode
