@@ -10,7 +10,7 @@ from ..errors import ParameterError
 from .components import Anchor, Body, Cable, Environment, Initial, Numerics, Seabed, Section, TopMotion
 from .labels import section_prefix
 from .limits import Limits
-from .sea import append_once, sea_waves
+from .sea import append_once, sea_waves, user_count
 
 ANGLE_MODES = ("per_section", "shared")
 
@@ -89,7 +89,8 @@ class Scene:
         """The 3-D fields this scene sets (``top_motion.z``, a current or wave heading, ``body.mass_z``)."""
         env, out = self.environment, []
         if self.top_motion.z:
-            out.append("top_motion.z")
+            own = user_count(self.top_motion, "z")
+            out.append("top_motion.z" if own else "top_motion.vessel (the lever arm's motion has sway)")
         if env.current_headings_deg:
             out.append("environment.current_headings_deg")
         out += [f"environment.waves[{k}].heading_deg" for k, w in enumerate(env.waves) if w.heading_deg is not None]
