@@ -50,6 +50,7 @@ class Scene:
         self._check_initial_lengths()
         self._check_ends()
         self._check_dimensions()
+        self._check_track()
         sea = self.top_motion.spectrum
         if sea is not None and sea.waves_at_cable:   # the same sea at the cable (Wang 1971 eq. 26-28; scene/sea.py)
             env = self.environment
@@ -122,6 +123,28 @@ class Scene:
                 if v != unset:
                     raise ParameterError(f"initial.{name}", v, "must be unset in a 3-D scene: the 3-D run starts "
                                          "from its steady state so far (the Python API takes any state as x0)")
+
+    def _check_track(self) -> None:
+        """Towing in a circle starts on the steady turn, a steady state only in still water (in the frame turning
+        with the tow point a current or a wave would turn too): no current, waves or system speed, and the initial
+        state is the steady turn's (``initial.u``, ``initial.phi`` unset)."""
+        if self.top_motion.track is None:
+            return
+        env = self.environment
+        for i, v in enumerate(env.current_speeds):
+            if v != 0.0:
+                raise ParameterError(f"environment.current_speeds[{i}]", v, "must be 0 with top_motion.track: the "
+                                     "steady turn the run starts on is an equilibrium only in still water")
+        if env.waves:
+            raise ParameterError("environment.waves", f"{len(env.waves)} waves", "must be empty with top_motion.track "
+                                 "(the steady turn is an equilibrium only in still water)")
+        if env.system_speed != 0.0:
+            raise ParameterError("environment.system_speed", env.system_speed, "must be 0 with top_motion.track: the "
+                                 "track is the tow point's motion over the ground")
+        for name in ("u", "phi"):
+            if getattr(self.initial, name) is not None:
+                raise ParameterError(f"initial.{name}", getattr(self.initial, name), "must be unset with "
+                                     "top_motion.track: the run starts on the steady turn")
 
     def _check_initial_lengths(self) -> None:
         """An initial stretch u must leave every section a positive length l_0 + u (Wang 1971 eq. 10)."""

@@ -178,7 +178,7 @@ def _rootfinders(model):
     return model.derive("catenary_rootfinders", build)
 
 
-def _tolerance(model, p) -> float:
+def static_tolerance(model, p) -> float:
     """TOLERANCE, or the round-off floor of the scaled residual when stiff elements set it: a node
     position known to eps x (cable length) gives an element force error k_e eps L."""
     def val(i, name):
@@ -231,7 +231,7 @@ def segmented_equilibrium(model, p, *, guess=None):
     resid, to_q = static_residual(model), _polar(model)
     g0 = hanging_guess(model, p) if guess is None else np.asarray(guess, float)
 
-    tol = _tolerance(model, p)
+    tol = static_tolerance(model, p)
 
     def residual(q, pp):
         return _max_residual(resid, q, pp)
@@ -296,7 +296,7 @@ def _anchored_equilibrium(model, p, guess):
     next guess). With a seabed the statics' elements are elastic both ways (segmented_seabed.py);
     a solution with a compressed element is refused."""
     resid, nodes = static_residual(model), _node_rootfinder(model)
-    tol = _tolerance(model, p)
+    tol = static_tolerance(model, p)
     q = anchored_guess(model, p) if guess is None else np.asarray(guess, float)
     best = np.inf
     with casadi_warnings_captured() as kinsol:
