@@ -40,6 +40,8 @@ from typing import ClassVar
 import casadi as ca
 import numpy as np
 
+from ..compiled import compile_functions, compiles
+from ..disk_cache import digest
 from ..errors import ParameterError, require_positive
 from ..model.params import ParameterLayout
 from ..model.top_motion import top_motion_function
@@ -214,42 +216,75 @@ def _rest_state(problem: TimeDesignProblem, theta):
 
 
 def _step_functions(problem: TimeDesignProblem):
-    """(step, sens): one RK4 interval at zero payout, ``step(x, E_k, theta) -> (x_{k+1}, y_k)`` with y the
-    :data:`SERIES` at the interval start, and ``sens(x, S, E_k, theta) -> (x_{k+1}, S_{k+1}, y_k, dy_k)``
-    with the sensitivities S = dx/dtheta (nx, 2), S_{k+1} = F_x S_k + F_theta, dy_k = y_x S_k + y_theta
-    (the variational equation of the discrete map; Hairer, Norsett & Wanner, *Solving ODEs I*,
-    sec. I.14), both columns as forward directional derivatives of the step."""
+    """(step, sens): one RK4 interval at zero payout, ``step(x, E_k, theta, p0, c, w) -> (x_{k+1}, y_k)``
+    with y the :data:`SERIES` at the interval start, and ``sens(x, S, E_k, theta, p0, c, w) -> (x_{k+1},
+    S_{k+1}, y_k, dy_k)`` with the sensitivities S = dx/dtheta (nx, 2): S_{k+1} = F_x S_k + F_theta,
+    dy_k = y_x S_k + y_theta (the variational equation of the discrete map; Hairer, Norsett & Wanner,
+    *Solving ODEs I*, sec. I.14), both columns as forward directional derivatives of the step. The
+    scene's numbers are inputs (p0 the parameters with AE and C_I zeroed, p = p0 + B theta, B from the
+    layout; c the compensator's; w of :func:`cablesys.control.payout._interval_functions`): the functions
+    depend on the model's structure only."""
     hp = problem.heave
     model = hp.model
     nq = model.nq
-    base, B = _selection(problem)
+    _, B = _selection(problem)
     x, e, th = ca.SX.sym("x", model.nx), ca.SX.sym("E", hp.step.size1_in(2)), ca.SX.sym("theta", 2)
+    p0, c, w = ca.SX.sym("p0", len(hp.p)), ca.SX.sym("c", len(hp.c)), ca.SX.sym("w", 5)
     S = ca.SX.sym("S", model.nx, 2)
-    p = ca.DM(base) + ca.mtimes(ca.DM(B), th)
-    w = ca.DM([hp.heave_rest, hp.static_tension, 0.0, 0.0, hp.dt])
-    xn = hp.interval(x, 0.0, e, p, ca.DM(hp.c), w)[0]
-    y = model.outputs_e(x[:nq], x[nq:2 * nq], e[:7], ca.vertcat(x[2 * nq], x[2 * nq + 1], 0, 0), p, ca.DM(hp.c))
+    p = p0 + ca.mtimes(ca.DM(B), th)
+    xn = hp.interval(x, 0.0, e, p, c, w)[0]
+    y = model.outputs_e(x[:nq], x[nq:2 * nq], e[:7], ca.vertcat(x[2 * nq], x[2 * nq + 1], 0, 0), p, c)
     ys = ca.vertcat(*(y[WINCH_OUTPUTS.index(n)] for n in SERIES))
     z, seeds = ca.vertcat(x, th), ca.vertcat(S, ca.DM.eye(2))
-    step = ca.Function("design_step", [x, e, th], [xn, ys], ["x", "E", "theta"], ["xn", "y"])
-    sens = ca.Function("design_sens", [x, S, e, th], [xn, ca.jtimes(xn, z, seeds), ys, ca.jtimes(ys, z, seeds)],
-                       ["x", "S", "E", "theta"], ["xn", "Sn", "y", "dy"])
+    names = ["x", "E", "theta", "p0", "c", "w"]
+    step = ca.Function("design_step", [x, e, th, p0, c, w], [xn, ys], names, ["xn", "y"])
+    sens = ca.Function("design_sens", [x, S, e, th, p0, c, w],
+                       [xn, ca.jtimes(xn, z, seeds), ys, ca.jtimes(ys, z, seeds)],
+                       names[:1] + ["S"] + names[1:], ["xn", "Sn", "y", "dy"])
     return step, sens
+
+
+# compiled (step, sens) kernels by the serialized step (its structure: the scene's numbers are inputs),
+# the KERNELS_KEPT most recent
+_KERNELS: dict = {}
+KERNELS_KEPT = 4
+
+
+def design_kernels(problem: TimeDesignProblem):
+    """(step, sens, compiled): :func:`_step_functions` compiled once per model structure
+    (:func:`cablesys.compiled.compile_functions`, no Jacobians: the roll-outs are derivatives enough),
+    or the SX functions in CasADi's virtual machine (``CABLESYS_COMPILE=0``, no compiler, a failed build)."""
+    step, sens = _step_functions(problem)
+    if not compiles():
+        return step, sens, False
+    key = digest(step.serialize())
+    kernels = _KERNELS.get(key)
+    if kernels is None:
+        kernels = compile_functions([step, sens], jacobians=False, optimization="-O1")
+        if not kernels.compiled:
+            return step, sens, False
+        while len(_KERNELS) >= KERNELS_KEPT:
+            _KERNELS.pop(next(iter(_KERNELS)))
+        _KERNELS[key] = kernels
+    return kernels.functions["design_step"], kernels.functions["design_sens"], True
 
 
 def series_functions(problem: TimeDesignProblem):
     """(series, sensitivities) of the roll-out from the design's rest state, each a function of
     theta (2) and E (7 (2 substeps + 1), N): ``series -> (Y, strain)`` with Y (len(SERIES), N) at the
     interval starts, ``sensitivities -> (Y, dY/dAE, dY/dC_I, strain, dstrain/dtheta (1, 2))``."""
-    step, sens = _step_functions(problem)
+    hp = problem.heave
+    step, sens, _ = design_kernels(problem)
+    base, _ = _selection(problem)
+    nums = (ca.DM(base), ca.DM(hp.c), ca.DM([hp.heave_rest, hp.static_tension, 0.0, 0.0, hp.dt]))
     theta, E = ca.MX.sym("theta", 2), ca.MX.sym("E", problem.exogenous[0].shape[1], problem.N)
     x0, strain = _rest_state(problem, theta)
-    _, Y = step.mapaccum("design_roll", problem.N, [0], [0])(x0, E, theta)
+    _, Y = step.mapaccum("design_roll", problem.N, [0], [0])(x0, E, theta, *nums)
     series = ca.Function("design_series", [theta, E], [Y, strain], ["theta", "E"], ["Y", "strain"])
     S0 = ca.jacobian(x0, theta)                        # the rest state's own dependence (implicit function)
-    _, _, Y2, dY = sens.mapaccum("design_roll_sens", problem.N, [0, 1], [0, 1])(x0, S0, E, theta)
-    dY = ca.reshape(dY, Y2.size1() * 2, problem.N)      # columns [dy/dAE; dy/dC_I] per step
+    _, _, Y2, dY = sens.mapaccum("design_roll_sens", problem.N, [0, 1], [0, 1])(x0, S0, E, theta, *nums)
     n = Y2.size1()
+    dY = ca.reshape(dY, n * 2, problem.N)              # columns [dy/dAE; dy/dC_I] per step
     sensitivities = ca.Function("design_sensitivities", [theta, E],
                                 [Y2, dY[:n, :], dY[n:, :], strain, ca.jacobian(strain, theta)],
                                 ["theta", "E"], ["Y", "dY_ae", "dY_ci", "strain", "dstrain"])
