@@ -476,18 +476,21 @@ def _evaluate(problem, fns, z):
     return float(f), {r: (float(v), float(b)) for r, v, b in zip(fns.rows, g, fns.ub)}, Ys
 
 
-def scan_starts(problem, fns, n: int = 5, keep: int = 2) -> list:
-    """The ``keep`` feasible designs of least objective on an n x n grid of z (log-spaced designs):
-    IPOPT's starts (the heave variance has a local optimum on each side of the axial resonance's
-    passage through the sea band). Infeasible grids fall back to the least violation."""
-    pts = [(a, b) for a in np.linspace(0.02, 0.98, n) for b in np.linspace(0.02, 0.98, n)]
+def scan_starts(problem, fns, n_ae: int = 17, n_ci: int = 3) -> list:
+    """IPOPT's starts from a scan of n_ae x n_ci log-spaced designs: the feasible design of least
+    objective and the best one at least a quarter of the log-AE range away from it (the heave variance
+    has a local optimum on each side of the axial resonance's passage through the sea band: a soft
+    insert below it, a stiff line above). Without a feasible design: the least violations."""
+    pts = [(a, b) for a in np.linspace(0.0, 1.0, n_ae) for b in np.linspace(0.1, 0.9, n_ci)]
     scored = []
     for zz in pts:
         f, g = fns.fg(zz)
         viol = float(np.max(np.maximum(np.array(g).ravel() - fns.ub, 0.0))) if fns.ub.size else 0.0
         scored.append((viol > 0, viol if viol > 0 else float(f), zz))
     scored.sort(key=lambda t: (t[0], t[1]))
-    return [tuple(problem.theta(t[2])) for t in scored[:keep]]
+    first = scored[0]
+    other = next((t for t in scored[1:] if abs(t[2][0] - first[2][0]) >= 0.25 and t[0] == first[0]), None)
+    return [tuple(problem.theta(t[2])) for t in (first, other) if t is not None]
 
 
 @timed
@@ -500,7 +503,7 @@ def time_domain_design(problem: TimeDesignProblem, *, starts=None, max_iter: int
     problem : TimeDesignProblem
         From :func:`time_design_problem`.
     starts : sequence of (AE, C_I), optional
-        IPOPT's starting designs (default: the scene's values and the best two of a 5 x 5 scan,
+        IPOPT's starting designs (default: the scene's values and the two of a 17 x 3 scan,
         :func:`scan_starts`); the feasible optimum of least objective is kept.
     max_iter, tol : int, float
         IPOPT's iteration limit and tolerance per start.
@@ -565,3 +568,54 @@ def time_domain_design(problem: TimeDesignProblem, *, starts=None, max_iter: int
                             tension_top_baseline=Yb[:, 3], tension_mid=Y[:, 2], tension_mid_baseline=Yb[:, 2],
                             history=best["history"], limits=limits, status=best["status"], success=success,
                             message=message, stats=stats)
+
+
+def evaluate_design(problem: TimeDesignProblem, theta) -> dict:
+    """The roll-out's objective and constraint values (row -> (value, bound)) at ``theta`` = (AE, C_I):
+    e.g. the frequency-domain optimum seen by the nonlinear time domain."""
+    fns = design_functions(problem)
+    f, c, _ = _evaluate(problem, fns, problem.z(theta))
+    return {"objective_heave_variance_m2": f, "constraints": c}
+
+
+def resimulate_design(problem: TimeDesignProblem, theta) -> dict:
+    """The design ``theta`` re-run by the plain time domain (:func:`cablesys.time_domain.simulate`, the
+    scene's integrator and tolerances, output every ``numerics.output_step``) in every seed, judged over
+    the same window by the sampled extremes: peak ``tension_top`` / working load, least ``tension_mid`` /
+    its mean (the slack ratio), largest |y_b - mean| and |x_b - mean| / max excursion, and var(y_b).
+
+    Returns
+    -------
+    dict
+        per seed the values, ``max_relative_violation`` (largest (value - bound) / |bound|, 0 when all hold)
+        and ``heave_variance_m2`` (mean over the seeds).
+    """
+    from ..time_domain import simulate
+    scene = problem.designed_scene(theta)
+    per_seed, worst, variances = {}, 0.0, []
+    for s in problem.seeds:
+        sea = dataclasses.replace(scene.top_motion.spectrum, seed=int(s))
+        run = simulate(scene.replace(top_motion=dataclasses.replace(scene.top_motion, spectrum=sea)))
+        if not run.success:
+            per_seed[s] = {"success": False, "message": run.message}
+            worst = math.inf
+            continue
+        m = run.time >= problem.window_start * problem.dt - 1e-9
+        d = {k: np.asarray(run.data[k])[m] for k in ("tension_top", "tension_mid", "y_b", "x_b")}
+        h, xb = d["y_b"] - d["y_b"].mean(), d["x_b"] - d["x_b"].mean()
+        vals = {}
+        if math.isfinite(problem.working_load):
+            vals["peak_tension"] = (float(d["tension_top"].max() / problem.working_load), 1.0)
+        if problem.slack_fraction is not None:
+            vals["slack"] = (float(-d["tension_mid"].min() / d["tension_mid"].mean()), -problem.slack_fraction)
+        if problem.max_excursion is not None:
+            vals["excursion"] = (float(max(np.abs(h).max(), np.abs(xb).max()) / problem.max_excursion), 1.0)
+        viol = max([max(v - b, 0.0) / abs(b) for v, b in vals.values()] or [0.0])
+        worst = max(worst, viol)
+        variances.append(float(np.mean(h ** 2)))
+        per_seed[s] = {"success": True, "constraints": vals, "max_relative_violation": viol,
+                       "heave_variance_m2": variances[-1], "tension_top_max_n": float(d["tension_top"].max()),
+                       "tension_mid_min_n": float(d["tension_mid"].min())}
+    return {"theta": [float(v) for v in theta], "per_seed": per_seed, "max_relative_violation": worst,
+            "heave_variance_m2": float(np.mean(variances)) if variances else math.nan,
+            "integrator": scene.numerics.integrator, "drag_segments": scene.numerics.drag_segments}
