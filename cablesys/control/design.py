@@ -40,13 +40,12 @@ from typing import ClassVar
 import casadi as ca
 import numpy as np
 
-from ..compiled import compile_functions, compiles
-from ..disk_cache import digest
 from ..errors import ParameterError, require_positive
 from ..model.params import ParameterLayout
 from ..model.top_motion import top_motion_function
 from ..model.winch import WINCH_OUTPUTS
 from ..results import ResultBase, timed
+from .gradient import compiled_kernels
 from .payout import heave_problem
 
 # the rolled-out series (rows of the roll-out's output), from WINCH_OUTPUTS
@@ -244,29 +243,11 @@ def _step_functions(problem: TimeDesignProblem):
     return step, sens
 
 
-# compiled (step, sens) kernels by the serialized step (its structure: the scene's numbers are inputs),
-# the KERNELS_KEPT most recent
-_KERNELS: dict = {}
-KERNELS_KEPT = 4
-
-
 def design_kernels(problem: TimeDesignProblem):
     """(step, sens, compiled): :func:`_step_functions` compiled once per model structure
-    (:func:`cablesys.compiled.compile_functions`, no Jacobians: the roll-outs are derivatives enough),
-    or the SX functions in CasADi's virtual machine (``CABLESYS_COMPILE=0``, no compiler, a failed build)."""
-    step, sens = _step_functions(problem)
-    if not compiles():
-        return step, sens, False
-    key = digest(step.serialize())
-    kernels = _KERNELS.get(key)
-    if kernels is None:
-        kernels = compile_functions([step, sens], jacobians=False, optimization="-O1")
-        if not kernels.compiled:
-            return step, sens, False
-        while len(_KERNELS) >= KERNELS_KEPT:
-            _KERNELS.pop(next(iter(_KERNELS)))
-        _KERNELS[key] = kernels
-    return kernels.functions["design_step"], kernels.functions["design_sens"], True
+    (:func:`cablesys.control.gradient.compiled_kernels`), or the SX functions in CasADi's virtual machine
+    (``CABLESYS_COMPILE=0``, no compiler, a failed build)."""
+    return compiled_kernels(*_step_functions(problem))
 
 
 def series_functions(problem: TimeDesignProblem):
@@ -503,7 +484,7 @@ def time_domain_design(problem: TimeDesignProblem, *, starts=None, max_iter: int
     problem : TimeDesignProblem
         From :func:`time_design_problem`.
     starts : sequence of (AE, C_I), optional
-        IPOPT's starting designs (default: the scene's values and the two of a 17 x 3 scan,
+        IPOPT's starting designs (default: the two of a 17 x 3 scan,
         :func:`scan_starts`); the feasible optimum of least objective is kept.
     max_iter, tol : int, float
         IPOPT's iteration limit and tolerance per start.
@@ -520,8 +501,7 @@ def time_domain_design(problem: TimeDesignProblem, *, starts=None, max_iter: int
             "print_time": False}
     solver = ca.nlpsol("time_design", "ipopt", {"x": z, "f": f, "g": g}, opts)
     if starts is None:
-        nominal = tuple(problem.theta_nominal)
-        starts = [nominal] + [s for s in scan_starts(problem, fns) if not np.allclose(s, nominal)]
+        starts = scan_starts(problem, fns)
     scan_s = time.perf_counter() - t0
     runs = []
     for th in starts:

@@ -50,8 +50,10 @@ _KERNELS: dict = {}
 KERNELS_KEPT = 4
 
 
-def _kernels(step: ca.Function, sens: ca.Function):
-    """(step, sens, compiled): compiled once per structure (keyed by the serialized step), else as given."""
+def compiled_kernels(step: ca.Function, sens: ca.Function):
+    """(step, sens, compiled): a roll-out's step and sensitivity step compiled once per structure
+    (:func:`cablesys.compiled.compile_functions`, keyed by the serialized step, whose scene numbers are
+    inputs; no Jacobians: the sensitivity step is the derivative), else as given."""
     if not compiles():
         return step, sens, False
     key = digest(step.serialize())
@@ -111,7 +113,7 @@ def rollout_gradient(scene, duration: float, h: float, *, model=None) -> Rollout
     step = ca.Function(f"grad_step_{model.kind.replace('-', '_')}", [x, t, th, p0, hs, ref], [xn, sq])
     sens = ca.Function(f"grad_sens_{model.kind.replace('-', '_')}", [x, S, t, th, p0, hs, ref],
                        [xn, ca.jtimes(xn, z, seeds), sq, ca.jtimes(sq, z, seeds)])
-    step, sens, compiled = _kernels(step, sens)
+    step, sens, compiled = compiled_kernels(step, sens)
     y0 = float(np.array(model.outputs(x0, model.top(0.0, p_nom), p_nom)).ravel()[heave])
     times = ca.DM(h * np.arange(N)).T
     theta = ca.MX.sym("theta", 2)
