@@ -23,11 +23,13 @@ max_k g_k + ln(N) / rho, so a met KS constraint is conservative by at most ln(N)
 normalized limit (rho = 200: 3.5 % at N = 1200, in practice far less: only samples within ~1/rho of
 the peak count). The shift m cancels in exact arithmetic (d KS / d m = 0), so AD through it is exact.
 
-Derivatives: exact, by CasADi's AD through the roll-out (a ``mapaccum`` of the RK4 step; the rest
-state by ``rootfinder``, differentiated by the implicit-function theorem): the constraint Jacobian
-by forward mode (2 directions), the objective gradient by reverse mode; IPOPT with a limited-memory
-Hessian (2 variables). :func:`design_gradient` gives the gradient alone by forward sensitivities
-(the variational equation of the discrete map, Hairer, Norsett & Wanner, *Solving ODEs I*, sec. I.14).
+Derivatives: exact, by forward sensitivities of the roll-out (S_{k+1} = F_x S_k + F_theta, the
+variational equation of the discrete map, Hairer, Norsett & Wanner, *Solving ODEs I*, sec. I.14; two
+directions in one sweep per seed, the step and its sensitivity step compiled once per model structure),
+the rest state's by the implicit-function theorem (``rootfinder``), then the objective's and every
+constraint's gradient by forward mode through the (cheap) KS and variance post-processing. IPOPT
+(``nlpsol``) sees the roll-out as one function with that Jacobian (a ``casadi.Callback``) and a
+limited-memory Hessian (2 variables), from the two starts of a scan (:func:`scan_starts`).
 """
 
 from __future__ import annotations
