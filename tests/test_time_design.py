@@ -120,3 +120,21 @@ def test_control_help_documents_the_design_door(capsys):
         main(["control", "--help"])
     text = capsys.readouterr().out
     assert "--design" in text and "--seeds" in text and "time_design.json" in text
+
+
+def test_control_design_door_writes_json_and_png(tmp_path, capsys):
+    from cablesys.cli import main
+    text = example_path("rov-lift").read_text().replace("drag_segments = 10", "drag_segments = 1")
+    scene = tmp_path / "rov.toml"
+    scene.write_text(text)
+    out = tmp_path / "out"
+    rc = main(["control", str(scene), "--design", "--record", "75", "--seeds", "1", "--no-resimulate", "--out", str(out)])
+    assert rc == 0
+    doc = json.loads((out / "time_design.json").read_text())
+    td, fd = doc["time_domain"], doc["frequency_domain"]
+    assert td["success"] and td["seeds"] == [1]
+    # both designs sit on the static strain limit; the frequency optimum is also judged by the roll-out
+    assert td["ae_n"] == pytest.approx(fd["ae_n"], rel=1e-3)
+    assert fd["in_the_time_domain"]["objective_heave_variance_m2"] >= td["objective_heave_variance_m2"] * (1 - 1e-6)
+    assert (out / "time_design.png").stat().st_size > 20000
+    assert "frequency-domain design" in capsys.readouterr().out
