@@ -154,13 +154,13 @@ def figure(lin: dict, sea: dict, path: Path) -> Path:
     order = np.argsort(om)
     for ax, q, lab in ((axes[0], "H", "|H(xi = 1)|"), (axes[1], "c_star", "c*(xi = 1) / U")):
         ax.plot(om[order], np.array([r[f"{q}_data"] for r in runs])[order], "ko", ms=7, label="sea trial (Table A-2)")
-        ax.plot(om[order], np.array([r[f"{q}_linear_theory"] for r in runs])[order], "s--", color="C0", mfc="none",
+        ax.plot(om[order], np.array([r[f"{q}_linear_theory"] for r in runs])[order], "s", color="C0", mfc="none", ls="none",
                 label="linear theory, report's eq. 3 (c_n* = 0.16)")
-        ax.plot(om[order], np.array([r[f"{q}_linearized_nodes"] for r in runs])[order], "^:", color="C2", mfc="none",
+        ax.plot(om[order], np.array([r[f"{q}_linearized_nodes"] for r in runs])[order], "^", color="C2", mfc="none", ls="none",
                 label="3-D node model linearized (equivalent linear drag c_n* = 0.16)")
-        ax.plot(om[order], np.array([r[q] for r in runs])[order], "D-", color="C3",
+        ax.plot(om[order], np.array([r[q] for r in runs])[order], "D", color="C3", ls="none",
                 label="3-D node model nonlinear (quadratic drag C_n = 0.16)")
-        ax.set(xlabel="omega L / U (-)", ylabel=lab)
+        ax.set(xlabel="omega L / U (-) (each point one run: its own L, U, f)", ylabel=lab)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
     axes[0].set_title(f"Far-pinger amplitude ratio: mean |dH| nonlinear {sea['mean_abs_dH_nonlinear']:.3f}, "
@@ -176,8 +176,8 @@ def figure(lin: dict, sea: dict, path: Path) -> Path:
         ax.plot(w, row["c_star_rel_err"], "x--", color=f"C{k}", label=f"c* error, N = {row['elements']}")
     ax.axhline(0.02, color="k", lw=0.8, ls=":", label="2 %")
     ax.set(xscale="log", yscale="log", xlabel="omega L / U (-)", ylabel="relative error vs towed/ exact (-)",
-           title=f"Linearized node model vs eq. 3 (node physics): |H(1)| = "
-                 f"{', '.join(f'{h:.3f}' for h in Hth)}", )
+           title="Linearized node model vs towed/'s eq. 3 (node physics)\n|H(1)| = "
+                 f"{', '.join(f'{h:.3f}' for h in Hth)} at omega L/U = {', '.join(f'{x:g}' for x in w)}")
     ax.title.set_fontsize(9)
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7)
