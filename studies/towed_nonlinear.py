@@ -14,7 +14,9 @@
    frequency f with amplitude a = (a/lambda) U / f (lambda = U / f, the tow point's track in the water),
    speed U and length L of the run; |H| and c* at the far pinger from the harmonic at f over the last two
    periods; against the measured values, beside the linear theory's (``towed.runs.model_runs``) and the
-   linearized node model's. Quick mode: three runs, N = 16.
+   linearized node model's; and against the same quadratic drag by harmonic equivalent linearization
+   (:func:`cablesys.towed.nodes.describing_function_response`), a route independent of the time domain.
+   Quick mode: three runs, N = 16.
 
 Writes towed_nonlinear.json and towed_nonlinear.png.
 """
@@ -35,8 +37,9 @@ from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
 from cablesys.model import build_model  # noqa: E402
 from cablesys.scene import Sinusoid, TopMotion  # noqa: E402
 from cablesys.time_domain.run import simulate  # noqa: E402
-from cablesys.towed.equation import REPORT_SEA_TRIAL, TowedCable  # noqa: E402
+from cablesys.towed.equation import REPORT_SEA_TRIAL, Coefficients, TowedCable  # noqa: E402
 from cablesys.towed.nodes import (  # noqa: E402
+    describing_function_response,
     frequency_response,
     harmonic,
     node_coefficients,
@@ -58,6 +61,12 @@ def linear_vs_theory(quick: bool) -> dict:
     ref = node_coefficients(cab)
     H_th, c_th = np.abs(transfer_function(ref, 1.0, w).H), c_star(ref, 1.0, w).c_star
     H_rep, c_rep = np.abs(transfer_function(cab.coefficients(), 1.0, w).H), c_star(cab.coefficients(), 1.0, w).c_star
+    # which of the two model-form terms makes the difference: each alone in the report's eq. 3
+    r0 = cab.coefficients()
+    terms = {"friction_along_element_only": Coefficients(a=r0.a, b=r0.b, c=r0.d, d=r0.d, beta=r0.beta),
+             "no_convective_inertia_only": dataclasses.replace(ref, c=r0.c)}
+    term_diff = {k: float(max(np.max(np.abs(np.abs(transfer_function(c, 1.0, w).H) / H_rep - 1)),
+                              np.max(np.abs(c_star(c, 1.0, w).c_star / c_rep - 1)))) for k, c in terms.items()}
     rows = []
     for n in ((20, 40) if quick else (20, 40, 80)):
         rs = frequency_response(cab, w, segments=n)
@@ -73,6 +82,7 @@ def linear_vs_theory(quick: bool) -> dict:
             "theory_report_coefficients": {"H": H_rep.tolist(), "c_star": c_rep.tolist()},
             "model_form_vs_report_coefficients_max_rel": float(max(np.max(np.abs(H_th / H_rep - 1)),
                                                                    np.max(np.abs(c_th / c_rep - 1)))),
+            "model_form_terms_max_rel": term_diff,
             "model_form_note": "the node model's friction acts along the element (its cross-track part cancels "
                                "-T' y_x: c = d, the report's c = b + d) and its added mass on the node's own "
                                "acceleration (no 2 beta eta_xt, no beta in a): towed/ with those coefficients is "
@@ -123,21 +133,39 @@ def sea_trials(quick: bool, table=None) -> dict:
     lin = model_runs(runs)
     cache: dict = {}
     nl = [nonlinear_run(r, n if r.length > 900 else max(8, n // 2), cache) for r in runs]
-    lin_nodes = []
-    for r in runs:
+    lin_nodes, df = [], []
+    for r, x in zip(runs, nl):
         cab = TowedCable(length=r.length, speed=r.speed, **REPORT_SEA_TRIAL)
-        lin_nodes.append(frequency_response(cab, cab.omega(r.frequency), segments=n if r.length > 900 else max(8, n // 2))[0])
+        n_r = n if r.length > 900 else max(8, n // 2)
+        lin_nodes.append(frequency_response(cab, cab.omega(r.frequency), segments=n_r)[0])
+        df.append(describing_function_response(cab, cab.omega(r.frequency), x["amplitude_m"], segments=n_r))
     H_nl, c_nl = np.array([x["H"] for x in nl]), np.array([x["c_star"] for x in nl])
     H_ln, c_ln = np.array([abs(x.H1) for x in lin_nodes]), np.array([x.c_star1 for x in lin_nodes])
+    H_df, c_df = np.array([abs(x.H1) for x, _ in df]), np.array([x.c_star1 for x, _ in df])
     mad = lambda a, b: float(np.mean(np.abs(a - b)))
+    # the discretization: the first run again with twice the elements (full mode)
+    conv = None
+    if not quick:
+        fine = nonlinear_run(runs[0], 2 * n, cache)
+        conv = {"run": runs[0].label, "elements": [n, 2 * n], "H": [nl[0]["H"], fine["H"]],
+                "c_star": [nl[0]["c_star"], fine["c_star"]],
+                "rel_change": max(abs(fine["H"] / nl[0]["H"] - 1), abs(fine["c_star"] / nl[0]["c_star"] - 1))}
     summary = {"mean_abs_dH_nonlinear": mad(H_nl, H_d), "mean_abs_dH_linear_theory": mad(lin.H_abs, H_d),
                "mean_abs_dcstar_nonlinear": mad(c_nl, c_d), "mean_abs_dcstar_linear_theory": mad(lin.c_star, c_d)}
     return {**summary,
             "mean_abs_dH_linearized_nodes": mad(H_ln, H_d), "mean_abs_dcstar_linearized_nodes": mad(c_ln, c_d),
+            # the time-domain runs against the harmonic equivalent linearization of the same quadratic drag
+            "nonlinear_vs_describing_function_max_rel": float(max(np.max(np.abs(H_nl / H_df - 1)),
+                                                                  np.max(np.abs(c_nl / c_df - 1)))),
+            "nonlinear_convergence": conv,
+            "periodic_change_H_max": float(max(x["periodic_change_H"] for x in nl)),
             "runs": [{**{k: v for k, v in x.items() if not k.startswith("_")}, "H_data": float(hd), "c_star_data": float(cd),
                       "H_linear_theory": float(hl), "c_star_linear_theory": float(cl),
-                      "H_linearized_nodes": float(hn), "c_star_linearized_nodes": float(cn)}
-                     for x, hd, cd, hl, cl, hn, cn in zip(nl, H_d, c_d, lin.H_abs, lin.c_star, H_ln, c_ln)],
+                      "H_linearized_nodes": float(hn), "c_star_linearized_nodes": float(cn),
+                      "H_describing_function": float(hf), "c_star_describing_function": float(cf),
+                      "describing_function_c_n_star_range": info["c_n_star_range"]}
+                     for x, hd, cd, hl, cl, hn, cn, hf, cf, (_, info)
+                     in zip(nl, H_d, c_d, lin.H_abs, lin.c_star, H_ln, c_ln, H_df, c_df, df)],
             "elements_over_L": n, "quadratic_cd_normal": REPORT_SEA_TRIAL["c_n"], "quick_subset": list(QUICK_RUNS) if quick else None,
             "nonlinear_fits_better": {"H": summary["mean_abs_dH_nonlinear"] < summary["mean_abs_dH_linear_theory"],
                                       "c_star": summary["mean_abs_dcstar_nonlinear"] < summary["mean_abs_dcstar_linear_theory"]},
@@ -148,7 +176,7 @@ def figure(lin: dict, sea: dict, path: Path) -> Path:
     """|H| and c* at the far pinger per run: data, linear theory, linearized and nonlinear node model; and the
     linear check's |H| along the element counts."""
     plt = setup_matplotlib()
-    fig, axes = plt.subplots(1, 3, figsize=(16, 5.2))
+    fig, axes = plt.subplots(1, 3, figsize=(16, 6.4))
     runs = sea["runs"]
     om = np.array([r["omega_nd"] for r in runs])
     order = np.argsort(om)
@@ -159,15 +187,16 @@ def figure(lin: dict, sea: dict, path: Path) -> Path:
         ax.plot(om[order], np.array([r[f"{q}_linearized_nodes"] for r in runs])[order], "^", color="C2", mfc="none", ls="none",
                 label="3-D node model linearized (equivalent linear drag c_n* = 0.16)")
         ax.plot(om[order], np.array([r[q] for r in runs])[order], "D", color="C3", ls="none",
-                label="3-D node model nonlinear (quadratic drag C_n = 0.16)")
+                label="3-D node model nonlinear, time domain (quadratic drag C_n = 0.16)")
+        ax.plot(om[order], np.array([r[f"{q}_describing_function"] for r in runs])[order], "k+", ms=9,
+                label="same quadratic drag, describing function (independent route)")
         ax.set(xlabel="omega L / U (-) (each point one run: its own L, U, f)", ylabel=lab)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), frameon=False)
     axes[0].set_title(f"Far-pinger amplitude ratio: mean |dH| nonlinear {sea['mean_abs_dH_nonlinear']:.3f}, "
                       f"linear theory {sea['mean_abs_dH_linear_theory']:.3f}", fontsize=9)
     axes[1].set_title(f"Phase velocity: mean |dc*| nonlinear {sea['mean_abs_dcstar_nonlinear']:.2f}, "
                       f"linear theory {sea['mean_abs_dcstar_linear_theory']:.2f}", fontsize=9)
-    axes[1].set_yscale("log")
     ax = axes[2]
     w = lin["omega_nd"]
     Hth = lin["theory_node_coefficients"]["H"]
@@ -180,7 +209,7 @@ def figure(lin: dict, sea: dict, path: Path) -> Path:
                  f"{', '.join(f'{h:.3f}' for h in Hth)} at omega L/U = {', '.join(f'{x:g}' for x in w)}")
     ax.title.set_fontsize(9)
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), frameon=False, ncol=2)
     fig.suptitle("Towed cable (Kennedy & Strahan 1981) as the 3-D segmented node model", fontsize=11)
     fig.tight_layout()
     fig.savefig(path, dpi=110)

@@ -42,6 +42,7 @@ from ..scene import Body, Cable, Environment, Numerics, Scene, Section, Sinusoid
 from .equation import Coefficients, TowedCable, added_fluid_mass
 
 __all__ = ["NodeResponse", "tow_scene", "node_coefficients", "straight_tow", "frequency_response",
+           "describing_function_response",
            "harmonic", "phase_lag_along", "DEFAULT_AE"]
 
 #: Axial stiffness EA (N) of the node model's cable: 2e7 N, a 16 mm steel wire rope (the theory is
@@ -147,12 +148,14 @@ def straight_tow(model, p, scene: Scene, tol: float = 1e-12, max_iter: int = 30)
     raise ParameterError("straight tow", float(np.max(np.abs(dq))), "Newton's method on the straight tow did not converge")
 
 
-def _equivalent_drag_force(scene: Scene, q, qd, top_r, top_v, c_n_star: float):
+def _equivalent_drag_force(scene: Scene, q, qd, top_r, top_v, c_n_star):
     """Generalized forces (per free node, 3 each) of the equivalent linear normal drag
     ``(rho/2) d c_n* U v_n`` per length (Kennedy & Strahan eq. 39), v_n the part of the relative velocity
-    normal to the element, at the node model's drag points with its virtual-work shares."""
+    normal to the element, at the node model's drag points with its virtual-work shares; ``c_n_star`` one
+    coefficient per element (elements top to bottom over the sections)."""
     rho, U = scene.environment.density, scene.environment.current_speeds[0]
     n = q.shape[0] // 3
+    c_n_star = ca.vertcat(c_n_star) if not isinstance(c_n_star, (int, float)) else ca.DM.ones(n) * c_n_star
     r = [top_r] + [q[3 * j:3 * j + 3] for j in range(n)]
     v = [top_v] + [qd[3 * j:3 * j + 3] for j in range(n)]
     Q = [ca.SX.zeros(3) for _ in range(n + 1)]
@@ -169,7 +172,7 @@ def _equivalent_drag_force(scene: Scene, q, qd, top_r, top_v, c_n_star: float):
                 s = (k + 0.5) / npts
                 vq = flow - (v[j] + s * (v[j + 1] - v[j]))
                 vn = ca.vertcat(*normal_part([vq[i] for i in range(3)], [et[i] for i in range(3)]))
-                F = 0.5 * rho * c.diameter * c_n_star * U * (length / npts) * vn
+                F = 0.5 * rho * c.diameter * c_n_star[j] * U * (length / npts) * vn
                 Q[j] += (1 - s) * F
                 Q[j + 1] += s * F
             j += 1
@@ -203,6 +206,65 @@ def phase_lag_along(xi, H, omega_nd: float, pinger: int) -> NodeResponse:
                         c_star1=float(omega_nd * xi[pinger] / psi[pinger]))
 
 
+@dataclasses.dataclass(frozen=True, eq=False)
+class _LinearTow:
+    """The node model linearized about the straight tow: accelerations' Jacobians (AD) and the equivalent
+    drag's Jacobian as a function of one coefficient c_n* per element (it is linear in them)."""
+
+    scene: Scene
+    q0: np.ndarray
+    J: np.ndarray                 # d acc / d (q, qd, e) of the node model
+    drag: ca.Function             # c (one per element) -> M^-1 d F_lin / d (q, qd, e)
+
+    @property
+    def n_elements(self) -> int:
+        return sum(s.cable.segments for s in self.scene.sections)
+
+    def solve(self, cable: TowedCable, w: float, c_el) -> np.ndarray:
+        """Complex sway amplitudes Z of the free nodes (3 per node: x, y, z) per unit tow-point sway at
+        angular frequency w (rad/s)."""
+        nq = self.q0.size
+        J = self.J + np.array(self.drag(np.asarray(c_el, float)))
+        Jq, Jv, Je = J[:, :nq], J[:, nq:2 * nq], J[:, 2 * nq:]
+        iz, izd, izdd = 3, 6, 9        # e = (t, top x, y, z, rates, accelerations): the sway's columns
+        A = -w**2 * np.eye(nq) - 1j * w * Jv - Jq
+        return np.linalg.solve(A, Je[:, iz] + 1j * w * Je[:, izd] - w**2 * Je[:, izdd])
+
+
+def _linear_tow(cable: TowedCable, segments: int, density: float, ae: float) -> _LinearTow:
+    scene = tow_scene(cable, segments=segments, density=density, ae=ae)
+    model = build_model(scene)
+    p = model.parameters(scene)
+    q0 = straight_tow(model, p, scene)
+    nq = q0.size
+    q, qd, e = ca.SX.sym("q", nq), ca.SX.sym("qd", nq), ca.SX.sym("e", model.top.size1_out(0))
+    n_el = sum(s.cable.segments for s in scene.sections)
+    c = ca.SX.sym("c", n_el)
+    acc = model.accel(q, qd, e, p)
+    Mblk, _ = model.dynamics(q, qd, e, p)
+    Fl = _equivalent_drag_force(scene, q, qd, e[1:4], e[4:7], c)
+    x = ca.vertcat(q, qd, e)
+    jac = ca.Function("tow_jacobians", [q, qd, e], [ca.jacobian(acc, x), Mblk])
+    zero = (q0, np.zeros(nq), np.zeros(e.shape[0]))
+    Ja, Mm = (np.array(v) for v in jac(*zero))
+    Jf = ca.substitute(ca.jacobian(Fl, x), ca.vertcat(q, qd, e), ca.vertcat(*[ca.DM(v) for v in zero]))
+    drag = ca.Function("tow_drag_jacobian", [c], [ca.solve(ca.DM(Mm), Jf)])
+    return _LinearTow(scene=scene, q0=q0, J=Ja, drag=drag)
+
+
+def _along(lin: _LinearTow, cable: TowedCable, Z, w_nd: float) -> NodeResponse:
+    n1 = lin.scene.sections[0].cable.segments
+    xi = np.r_[0.0, lin.q0[0::3][:n1] / cable.length]
+    return phase_lag_along(xi, np.r_[1.0, Z[2::3][:n1]], float(w_nd), n1)
+
+
+def _check_omega_nd(omega_nd) -> np.ndarray:
+    omega_nd = np.atleast_1d(np.asarray(omega_nd, dtype=float))
+    if omega_nd.size == 0 or np.any(~np.isfinite(omega_nd)) or np.any(omega_nd <= 0):
+        raise ParameterError("omega_nd", omega_nd.tolist(), "must be finite and > 0")
+    return omega_nd
+
+
 def frequency_response(cable: TowedCable, omega_nd, *, segments: int, c_n_star: float | None = None,
                        density: float = 1025.0, ae: float = DEFAULT_AE) -> list:
     """The linearized node model's sway transfer function along the cable, solved directly per frequency.
@@ -228,41 +290,52 @@ def frequency_response(cable: TowedCable, omega_nd, *, segments: int, c_n_star: 
     list of NodeResponse
         One per frequency.
     """
-    omega_nd = np.atleast_1d(np.asarray(omega_nd, dtype=float))
-    if np.any(~np.isfinite(omega_nd)) or np.any(omega_nd <= 0):
-        raise ParameterError("omega_nd", omega_nd.tolist(), "must be finite and > 0")
+    omega_nd = _check_omega_nd(omega_nd)
     cns = cable.c_n if c_n_star is None else float(c_n_star)
     if not (math.isfinite(cns) and cns >= 0):
         raise ParameterError("c_n_star", c_n_star, "must be finite and >= 0")
-    scene = tow_scene(cable, segments=segments, density=density, ae=ae)
-    model = build_model(scene)
-    p = model.parameters(scene)
-    q0 = straight_tow(model, p, scene)
-    nq = q0.size
-    q, qd, e = ca.SX.sym("q", nq), ca.SX.sym("qd", nq), ca.SX.sym("e", model.top.size1_out(0))
-    acc = model.accel(q, qd, e, p)
-    Mblk, _ = model.dynamics(q, qd, e, p)
-    Fl = _equivalent_drag_force(scene, q, qd, e[1:4], e[4:7], cns)
-    zero_e = np.zeros(e.shape[0])
-    x = ca.vertcat(q, qd, e)
-    jac = ca.Function("tow_jacobians", [q, qd, e], [ca.jacobian(acc, x), ca.jacobian(Fl, x), Mblk])
-    Ja, Jf, Mm = (np.array(v) for v in jac(q0, np.zeros(nq), zero_e))
-    J = Ja + np.linalg.solve(Mm, Jf)
-    Jq, Jv = J[:, :nq], J[:, nq:2 * nq]
-    Je = J[:, 2 * nq:]
-    iz, izd, izdd = 3, 6, 9            # e = (t, top x, y, z, rates, accelerations): the sway's columns
-    n1 = scene.sections[0].cable.segments
-    xi = np.r_[0.0, q0[0::3][:n1] / cable.length]
-    U, L = cable.speed, cable.length
-    out = []
-    for w_nd in omega_nd:
-        w = w_nd * U / L
-        A = -w**2 * np.eye(nq) - 1j * w * Jv - Jq
-        b = Je[:, iz] + 1j * w * Je[:, izd] - w**2 * Je[:, izdd]
-        Z = np.linalg.solve(A, b)
-        H = np.r_[1.0, Z[2::3][:n1]]
-        out.append(phase_lag_along(xi, H, float(w_nd), n1))
-    return out
+    lin = _linear_tow(cable, segments, density, ae)
+    c_el = np.full(lin.n_elements, cns)
+    return [_along(lin, cable, lin.solve(cable, w_nd * cable.speed / cable.length, c_el), w_nd) for w_nd in omega_nd]
+
+
+def describing_function_response(cable: TowedCable, omega_nd: float, amplitude: float, *, segments: int,
+                                 cd_normal: float | None = None, density: float = 1025.0, ae: float = DEFAULT_AE,
+                                 tol: float = 1e-6, max_iter: int = 200):
+    """The sway response of the nonlinear node model by harmonic equivalent linearization (describing
+    function) of its quadratic normal drag, a route independent of the time domain.
+
+    A normal relative velocity ``v(t) = |V| sin(omega t + phase)`` meets the drag ``(rho/2) C_n d |v| v``,
+    whose first harmonic is ``(rho/2) C_n d (8 / (3 pi)) |V| v`` (Krylov & Bogoliubov; Caughey 1963,
+    "Equivalent linearization techniques", J. Acoust. Soc. Am. 35; K&S Appendix B takes the Gaussian
+    average instead). So each element gets ``c_n* = C_n (8 / (3 pi)) |V_e| / U`` with ``V_e`` its
+    mid-point's normal relative velocity amplitude ``-(i omega Z + U dZ/dx)`` (the sway Z in m for the
+    tow-point amplitude ``amplitude``), iterated to a fixed point.
+
+    Returns
+    -------
+    (NodeResponse, dict)
+        The response along the cable and ``{"iterations", "c_n_star_range"}``.
+    """
+    w_nd = float(_check_omega_nd(omega_nd)[0])
+    if not (math.isfinite(amplitude) and amplitude > 0):
+        raise ParameterError("amplitude", amplitude, "must be finite and > 0 (m)")
+    lin = _linear_tow(cable, segments, density, ae)
+    cn = cable.c_n if cd_normal is None else float(cd_normal)
+    U, w = cable.speed, w_nd * cable.speed / cable.length
+    x_nodes = np.r_[0.0, lin.q0[0::3]]
+    h = np.diff(x_nodes)
+    c_el = np.full(lin.n_elements, cn * 0.05)
+    for k in range(max_iter):
+        Z = amplitude * np.r_[1.0, lin.solve(cable, w, c_el)[2::3]]
+        V = -(1j * w * 0.5 * (Z[1:] + Z[:-1]) + U * np.diff(Z) / h)
+        new = cn * 8.0 / (3.0 * math.pi) * np.abs(V) / U
+        if np.max(np.abs(new - c_el)) <= tol * cn:
+            c_el = new
+            break
+        c_el = 0.5 * (c_el + new)            # damped fixed-point step
+    Z = lin.solve(cable, w, c_el)
+    return _along(lin, cable, Z, w_nd), {"iterations": k + 1, "c_n_star_range": [float(c_el.min()), float(c_el.max())]}
 
 
 def harmonic(t, y, omega: float) -> complex:
