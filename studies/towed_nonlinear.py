@@ -40,6 +40,7 @@ from cablesys.time_domain.run import simulate  # noqa: E402
 from cablesys.towed.equation import REPORT_SEA_TRIAL, Coefficients, TowedCable  # noqa: E402
 from cablesys.towed.nodes import (  # noqa: E402
     describing_function_response,
+    describing_function_scan,
     frequency_response,
     harmonic,
     node_coefficients,
@@ -143,6 +144,20 @@ def sea_trials(quick: bool, table=None) -> dict:
     H_ln, c_ln = np.array([abs(x.H1) for x in lin_nodes]), np.array([x.c_star1 for x in lin_nodes])
     H_df, c_df = np.array([abs(x.H1) for x, _ in df]), np.array([x.c_star1 for x, _ in df])
     mad = lambda a, b: float(np.mean(np.abs(a - b)))
+    # which quadratic C_n would the nonlinear model need (the describing-function route, full mode)
+    scan = None
+    if not quick:
+        cns = np.geomspace(0.16, 16.0, 9)
+        per_run = []
+        for r, x in zip(runs, nl):
+            cab = TowedCable(length=r.length, speed=r.speed, **REPORT_SEA_TRIAL)
+            per_run.append(describing_function_scan(cab, cab.omega(r.frequency), x["amplitude_m"], cns,
+                                                    segments=n if r.length > 900 else max(8, n // 2)))
+        dH = [mad(np.array([abs(pr[k].H1) for pr in per_run]), H_d) for k in range(cns.size)]
+        dc = [mad(np.array([pr[k].c_star1 for pr in per_run]), c_d) for k in range(cns.size)]
+        scan = {"cd_normal": cns.tolist(), "mean_abs_dH": dH, "mean_abs_dcstar": dc,
+                "best_cd_normal_H": float(cns[int(np.argmin(dH))]), "best_cd_normal_cstar": float(cns[int(np.argmin(dc))]),
+                "best_at_scan_upper_end": bool(np.argmin(dH) == cns.size - 1 and np.argmin(dc) == cns.size - 1)}
     # the discretization: the first run again with twice the elements (full mode)
     conv = None
     if not quick:
@@ -158,6 +173,7 @@ def sea_trials(quick: bool, table=None) -> dict:
             "nonlinear_vs_describing_function_max_rel": float(max(np.max(np.abs(H_nl / H_df - 1)),
                                                                   np.max(np.abs(c_nl / c_df - 1)))),
             "nonlinear_convergence": conv,
+            "quadratic_cd_normal_scan_describing_function": scan,
             "periodic_change_H_max": float(max(x["periodic_change_H"] for x in nl)),
             "runs": [{**{k: v for k, v in x.items() if not k.startswith("_")}, "H_data": float(hd), "c_star_data": float(cd),
                       "H_linear_theory": float(hl), "c_star_linear_theory": float(cl),

@@ -42,7 +42,7 @@ from ..scene import Body, Cable, Environment, Numerics, Scene, Section, Sinusoid
 from .equation import Coefficients, TowedCable, added_fluid_mass
 
 __all__ = ["NodeResponse", "tow_scene", "node_coefficients", "straight_tow", "frequency_response",
-           "describing_function_response",
+           "describing_function_response", "describing_function_scan",
            "harmonic", "phase_lag_along", "DEFAULT_AE"]
 
 #: Axial stiffness EA (N) of the node model's cable: 2e7 N, a 16 mm steel wire rope (the theory is
@@ -320,11 +320,24 @@ def describing_function_response(cable: TowedCable, omega_nd: float, amplitude: 
     w_nd = float(_check_omega_nd(omega_nd)[0])
     if not (math.isfinite(amplitude) and amplitude > 0):
         raise ParameterError("amplitude", amplitude, "must be finite and > 0 (m)")
-    lin = _linear_tow(cable, segments, density, ae)
     cn = cable.c_n if cd_normal is None else float(cd_normal)
+    if not (math.isfinite(cn) and cn > 0):
+        raise ParameterError("cd_normal", cd_normal, "must be finite and > 0")
+    return _describing(_linear_tow(cable, segments, density, ae), cable, w_nd, amplitude, cn, tol, max_iter)
+
+
+def describing_function_scan(cable: TowedCable, omega_nd: float, amplitude: float, cd_normals, *, segments: int,
+                             density: float = 1025.0, ae: float = DEFAULT_AE) -> list:
+    """:func:`describing_function_response` for several quadratic coefficients C_n (one linearization)."""
+    w_nd = float(_check_omega_nd(omega_nd)[0])
+    lin = _linear_tow(cable, segments, density, ae)
+    return [_describing(lin, cable, w_nd, amplitude, float(cn), 1e-6, 200)[0] for cn in cd_normals]
+
+
+def _describing(lin: _LinearTow, cable: TowedCable, w_nd: float, amplitude: float, cn: float, tol: float,
+                max_iter: int):
     U, w = cable.speed, w_nd * cable.speed / cable.length
-    x_nodes = np.r_[0.0, lin.q0[0::3]]
-    h = np.diff(x_nodes)
+    h = np.diff(np.r_[0.0, lin.q0[0::3]])
     c_el = np.full(lin.n_elements, cn * 0.05)
     for k in range(max_iter):
         Z = amplitude * np.r_[1.0, lin.solve(cable, w, c_el)[2::3]]
