@@ -14,7 +14,10 @@ normal drag by the cross-flow principle ``(rho/2) C_n d |v_n| v_n`` (Wang eq. 42
 with ``C_n = c_n``). Linearized about the straight tow (:func:`frequency_response`) the quadratic normal
 drag has zero slope; the theory's equivalent linear law replaces it (Kennedy & Strahan eq. 38-39):
 ``F_n = (rho/2) d c_n* U v_n``, ``c_n* = A C_n``, added here to the node model's AD Jacobian element by
-element with the node model's own drag points and virtual-work shares.
+element with the node model's own drag points and virtual-work shares. The quadratic drag itself, at the
+amplitude of a run, is linearized harmonically (:func:`describing_function_response`: first harmonic of
+``|v| v``, ``8 / (3 pi) |V| v``, per element, iterated; Caughey 1963), the frequency-domain route to what the
+time domain (``studies/towed_nonlinear.py``) integrates.
 
 What the node model's physics is, as eq. 3 (:func:`node_coefficients`), differs from the report's eq. 1 in
 two terms, both of the model and not of its discretization:
