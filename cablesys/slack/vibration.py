@@ -159,13 +159,23 @@ def modes(eq: Equilibrium, n_modes: int | None = None, *, solver: str = "auto") 
         shape = np.zeros((nn, 3))
         shape[1:-1, 0] = V_in[:ni, j]
         shape[1:-1, 2] = V_in[ni:, j]
-        f = symmetric_fraction(eq, shape[:, 0], shape[:, 2])
-        typ = "S" if f >= SYMMETRY_THRESHOLD else "A" if f <= 1 - SYMMETRY_THRESHOLD else "H"
-        rows.append((w_in[j], typ, f, shape))
+        rows.append((w_in[j], None, np.nan, shape))
     for j in range(len(w_out)):
         shape = np.zeros((nn, 3))
         shape[1:-1, 1] = V_out[:, j]
         rows.append((w_out[j], "O", np.nan, shape))
+    return classify_rows(eq, rows, n_modes, n_elements=d.n_elements, solver=used, seconds=time.perf_counter() - t0)
+
+
+def classify_rows(eq: Equilibrium, rows, n_modes: int, *, n_elements: int, solver: str, seconds: float) -> ModeSet:
+    """The :class:`ModeSet` of mode rows (omega rad/s, type 'O' or None for in-plane, nan, node shape (x, y, z)):
+    in-plane rows typed S / A / H by :func:`symmetric_fraction`, all sorted by frequency, the lowest
+    ``n_modes`` kept, each signed so that its largest displacement component is positive."""
+    for k, (om, typ, _, shape) in enumerate(rows):
+        if typ is None:
+            f = symmetric_fraction(eq, shape[:, 0], shape[:, 2])
+            typ = "S" if f >= SYMMETRY_THRESHOLD else "A" if f <= 1 - SYMMETRY_THRESHOLD else "H"
+            rows[k] = (om, typ, f, shape)
     rows.sort(key=lambda r: r[0])
     rows = rows[: int(n_modes)]
     for r in rows:  # sign convention: largest displacement component positive
@@ -175,7 +185,7 @@ def modes(eq: Equilibrium, n_modes: int | None = None, *, solver: str = "auto") 
     return ModeSet(omega=np.array([r[0] for r in rows]), mode_type=tuple(r[1] for r in rows),
                    symmetric_fraction=np.array([r[2] for r in rows]),
                    shapes=np.stack([r[3] for r in rows]), s=eq.s.copy(),
-                   n_elements=d.n_elements, solver=used, seconds=time.perf_counter() - t0)
+                   n_elements=n_elements, solver=solver, seconds=seconds)
 
 
 @timed
