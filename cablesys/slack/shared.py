@@ -11,7 +11,9 @@ water) as a main :class:`cablesys.scene.Scene` of the segmented node model (:mod
   the anchor, where it loads the support only (weight 0, any positive mass);
 - each section has the cable's EA, mass per length m and weight per length w in the medium, zero
   tension at its reference length (tension_ref = 0: the slack cable's lengths are unstretched) and
-  no lateral contraction; elements per section in proportion to the section's length;
+  no lateral contraction; elements per section in proportion to the section's length; a cable
+  stretched between its supports (chord >= L) is described at a reference tension past the chord
+  with the same zero-tension length, stiffness and totals (see :func:`to_scene`);
 - in water the cable's transverse added mass per length m_a (C_am m / S, or the scene's override) is
   the node model's gamma rho pi d^2 / 4 (Wang 1971 eq. 23) with d the diameter of the displaced
   volume, pi d^2 / 4 = m / (rho S) (rho = :data:`WATER_DENSITY`); in air there is no added mass
@@ -26,6 +28,7 @@ mass normalisation (eq. 25) and mode classification of :mod:`.vibration`.
 
 from __future__ import annotations
 
+import hashlib
 import math
 import time
 from collections import OrderedDict
@@ -33,20 +36,21 @@ from collections import OrderedDict
 import numpy as np
 
 from ..errors import ParameterError
-from ..model import build_model
+from ..model import FunctionCache, build_model
 from ..model.params import ParameterLayout, structure_of
 from ..results import timed
 from ..scene import Anchor, Body, Cable, Environment, Numerics, Scene, Section
 from ..statics.span import span_equilibrium, span_matrices
-from .results import Convergence, Equilibrium, ModeSet, SlackAnalysis
+from .results import Equilibrium, SlackAnalysis
 from .scene import SlackScene, _buoyancy_and_added
 from .statics import Discretization, shooting_nodes
-from .vibration import _eig, classify_rows
+from .modal import _eig, classify_rows
 
 WATER_DENSITY = 1025.0          # kg/m^3, sea water (the node model's default environment.density)
 AIR_DENSITY = 1.225             # kg/m^3, standard sea-level air (drag only)
 STEEL_SPECIFIC_GRAVITY = 7.85   # of a steel wire: its diameter in air when the scene gives no S (drag only)
 ANCHOR_BODY_MASS = 1.0          # kg: the last section's body sits at the anchor and moves with it (no effect)
+REACH_MARGIN = 1.0 + 1e-6       # a stretched span's reference length past its chord (relative)
 MODEL_CACHE_SIZE = 8            # node models kept in memory, by structure
 
 
@@ -86,11 +90,17 @@ def to_scene(scene: SlackScene, n_elements: int | None = None, segments: tuple[i
     area = c.mass_per_length / (WATER_DENSITY * S)          # displaced volume per length, pi d^2 / 4
     diameter = math.sqrt(4.0 * area / math.pi)
     gamma = m_a / (rho * area) if water else 0.0             # eq. 23: gamma rho pi d^2/4 = m_a
+    # a chord at or beyond L (a cable stretched between its supports, up to max_strain) is described at a
+    # reference tension T_r whose length l_r reaches past the chord: the node model's law
+    # T = (AE)_r (l - h_0) / h_r with l_0 = l_r (1 - T_r / (AE)_r) = L, (AE)_r / l_r = EA / L and the
+    # totals m_r l_r = m L, w_r l_r = w L is Griffin & Rosenthal's EA (l - L_0) / L_0 (Wang 1971 eq. 1, 5, 12)
+    stretch = max(1.0, REACH_MARGIN * scene.chord / c.length)          # l_r / L
     masses = sorted(scene.masses, key=lambda pm: pm.position)
     sections = []
     for i, n_el in enumerate(segs):
-        cable = Cable(length=cuts[i + 1] - cuts[i], ae=c.ae, diameter=diameter, mass_per_length=c.mass_per_length,
-                      weight_per_length=w, added_mass_factor=gamma, segments=n_el)
+        cable = Cable(length=stretch * (cuts[i + 1] - cuts[i]), ae=c.ae * stretch, tension_ref=c.ae * (stretch - 1.0),
+                      diameter=diameter, mass_per_length=c.mass_per_length / stretch,
+                      weight_per_length=w / stretch, added_mass_factor=gamma, segments=n_el)
         if i < len(masses):
             pm = masses[i]
             wp, ap = _buoyancy_and_added(pm.mass, pm.specific_gravity, pm.added_mass_factor, scene.medium, g, "mass")
@@ -105,9 +115,13 @@ def to_scene(scene: SlackScene, n_elements: int | None = None, segments: tuple[i
 _MODELS: OrderedDict = OrderedDict()
 
 
-def span_model(scene: Scene):
-    """The node model of a span scene, kept in memory by structure (sections, elements, labels)."""
-    key = (structure_of(scene), ParameterLayout.from_scene(scene).labels)
+def span_model(scene: Scene, cache: FunctionCache | None = None):
+    """The node model of a span scene, kept by structure (sections, elements, parameter labels): in
+    ``cache`` when given, else in a module store of the last :data:`MODEL_CACHE_SIZE` structures."""
+    key = "span_model_" + hashlib.sha256(repr((structure_of(scene), ParameterLayout.from_scene(scene).labels))
+                                         .encode()).hexdigest()[:32]
+    if cache is not None:
+        return cache.get(key, lambda: build_model(scene))
     if key not in _MODELS:
         _MODELS[key] = build_model(scene)
         while len(_MODELS) > MODEL_CACHE_SIZE:
@@ -142,14 +156,15 @@ def _discretization(scene: SlackScene, main: Scene) -> Discretization:
                           added_isotropic=added_i, mass_nodes=tuple(nodes))
 
 
-def equilibrium(scene: SlackScene, *, n_elements: int | None = None, segments=None) -> Equilibrium:
+def equilibrium(scene: SlackScene, *, n_elements: int | None = None, segments=None,
+                cache: FunctionCache | None = None) -> Equilibrium:
     """The span's static shape from the node model's statics (KINSOL on its static residual,
     :func:`cablesys.statics.span.span_equilibrium`), started from the same lumped chain solved by shooting
     on the support force (:func:`.statics.shooting_nodes`, statically determinate); an :class:`Equilibrium`
     (``method`` 'node model')."""
     t0 = time.perf_counter()
     main = to_scene(scene, n_elements, segments)
-    model = span_model(main)
+    model = span_model(main, cache)
     p = np.asarray(model.parameters(main), float)
     d = _discretization(scene, main)
     xg, zg, _ = shooting_nodes(scene, d)
@@ -195,9 +210,9 @@ def modes(eq: Equilibrium, n_modes: int | None = None, *, solver: str = "auto") 
 
 @timed
 def analyze(scene: SlackScene, n_modes: int | None = None, *, n_elements: int | None = None, segments=None,
-            solver: str = "auto") -> SlackAnalysis:
+            solver: str = "auto", cache: FunctionCache | None = None) -> SlackAnalysis:
     """Equilibrium and modes of a slack scene on the node model, as one :class:`SlackAnalysis`."""
-    eq = equilibrium(scene, n_elements=n_elements, segments=segments)
+    eq = equilibrium(scene, n_elements=n_elements, segments=segments, cache=cache)
     return SlackAnalysis(equilibrium=eq, modes=modes(eq, n_modes, solver=solver))
 
 

@@ -61,8 +61,10 @@ def span_equilibrium(model, p, *, guess=None):
     return q, r
 
 
-def _strain_indices(model) -> list[int]:
-    return [model.output_labels.index(f"element_strain[{k}]") for k in range(model.n_elements)]
+def _strain_indices(model) -> np.ndarray:
+    """Positions of ``element_strain[0..]`` in the model's outputs (one contiguous block)."""
+    first = model.output_labels.index("element_strain[0]")
+    return np.arange(first, first + model.n_elements)
 
 
 def _jacobian_function(model):
