@@ -62,7 +62,7 @@ def test_supports_carry_the_weight_and_planes_decouple():
     t0 = np.array([eq.x[1] - eq.x[0], eq.z[1] - eq.z[0]]) / eq.element_lengths[0]
     t1 = np.array([eq.x[-1] - eq.x[-2], eq.z[-1] - eq.z[-2]]) / eq.element_lengths[-1]
     assert eq.tension[-1] * t1[1] - eq.tension[0] * t0[1] == pytest.approx(W, rel=1e-8)
-    mats = span_matrices(*eq._node)
+    mats = span_matrices(*eq.node_state)
     assert mats["coupling"] < 1e-12
 
 
@@ -73,7 +73,7 @@ def test_anchored_span_hangs_in_space_as_in_the_plane():
     from cablesys.model import build_model
     from cablesys.statics.catenary import segmented_equilibrium
     eq = shared.equilibrium(scene(masses=thirds(SPAN / 0.962), rise=3.0))
-    model3, q3, _ = eq._node
+    model3, q3, _ = eq.node_state
     main = shared.to_scene(scene(masses=thirds(SPAN / 0.962), rise=3.0))
     flat = dataclasses.replace(main, numerics=dataclasses.replace(main.numerics, dimensions=2), sections=tuple(
         dataclasses.replace(s, body=dataclasses.replace(s.body, mass_z=None)) for s in main.sections))

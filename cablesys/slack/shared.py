@@ -51,6 +51,7 @@ AIR_DENSITY = 1.225             # kg/m^3, standard sea-level air (drag only)
 STEEL_SPECIFIC_GRAVITY = 7.85   # of a steel wire: its diameter in air when the scene gives no S (drag only)
 ANCHOR_BODY_MASS = 1.0          # kg: the last section's body sits at the anchor and moves with it (no effect)
 REACH_MARGIN = 1.0 + 1e-6       # a stretched span's reference length past its chord (relative)
+KINSOL_SOLVES = 2               # span_equilibrium: elements elastic both ways, then the cable's own law
 MODEL_CACHE_SIZE = 8            # node models kept in memory, by structure
 
 
@@ -161,7 +162,8 @@ def equilibrium(scene: SlackScene, *, n_elements: int | None = None, segments=No
     """The span's static shape from the node model's statics (KINSOL on its static residual,
     :func:`cablesys.statics.span.span_equilibrium`), started from the same lumped chain solved by shooting
     on the support force (:func:`.statics.shooting_nodes`, statically determinate); an :class:`Equilibrium`
-    (``method`` 'node model')."""
+    (``method`` 'node model', ``iterations`` the KINSOL solves: the node statics do not count their Newton
+    steps; the scaled residual is below the statics' tolerance, else a SolverError)."""
     t0 = time.perf_counter()
     main = to_scene(scene, n_elements, segments)
     model = span_model(main, cache)
@@ -169,21 +171,20 @@ def equilibrium(scene: SlackScene, *, n_elements: int | None = None, segments=No
     d = _discretization(scene, main)
     xg, zg, _ = shooting_nodes(scene, d)
     guess = np.column_stack([xg[1:-1], -zg[1:-1], np.zeros(len(xg) - 2)]).ravel()
-    q, r = span_equilibrium(model, p, guess=guess)
+    q, _ = span_equilibrium(model, p, guess=guess)
     nodes = q.reshape(-1, 3)
     x = np.concatenate([[0.0], nodes[:, 0], [scene.span]])
     z = np.concatenate([[0.0], -nodes[:, 1], [scene.rise]])
     tension = scene.cable.ae * (np.hypot(np.diff(x), np.diff(z)) - d.L0) / d.L0      # elastic law, T_r = 0
     eq = Equilibrium(scene=scene, s=d.s, x=x, z=z, tension=tension, discretization=d, method="node model",
-                     iterations=0, seconds=time.perf_counter() - t0, message=f"scaled residual {r:.3g}")
-    object.__setattr__(eq, "_node", (model, q, p))
+                     iterations=KINSOL_SOLVES, seconds=time.perf_counter() - t0, node_state=(model, q, p))
     return eq
 
 
 def modes(eq: Equilibrium, n_modes: int | None = None, *, solver: str = "auto") -> ModeSet:
     """The ``n_modes`` lowest modes of the node model about ``eq`` (an :func:`equilibrium`): M and K of
     :func:`cablesys.statics.span.span_matrices`, in-plane and out-of-plane, eq. 25 normalisation."""
-    node = getattr(eq, "_node", None)
+    node = eq.node_state
     if node is None:
         raise ParameterError("eq", eq.method, "must be an Equilibrium of cablesys.slack.shared.equilibrium")
     n_modes = eq.scene.n_modes if n_modes is None else n_modes
