@@ -12,7 +12,10 @@ Equations of motion M q'' + K q = 0 about the static shape:
 
 Modes are mass-normalized as eq. 25 (sum of psi^2 dm including the
 discrete masses equals 1) and classified O / A / S / H by their mirror
-symmetry about the perpendicular bisector of the chord.
+symmetry about the perpendicular bisector of the chord (:mod:`.modal`).
+
+:func:`analyze` and :func:`converge` run on the shared cable (:mod:`.shared`, the node model's
+span); :func:`modes` of a chain equilibrium is their independent check on the same nodes.
 """
 
 from __future__ import annotations
