@@ -52,7 +52,8 @@ STEEL_SPECIFIC_GRAVITY = 7.85   # of a steel wire: its diameter in air when the 
 ANCHOR_BODY_MASS = 1.0          # kg: the last section's body sits at the anchor and moves with it (no effect)
 REACH_MARGIN = 1.0 + 1e-6       # a stretched span's reference length past its chord (relative)
 KINSOL_SOLVES = 2               # span_equilibrium: elements elastic both ways, then the cable's own law
-MODEL_CACHE_SIZE = 8            # node models kept in memory, by structure
+MODEL_CACHE_SIZE = 16           # node models kept in memory, by structure (the last used) ...
+MODEL_CACHE_ELEMENTS = 4000     # ... holding at most this many elements in all (the newest always kept)
 
 
 def section_segments(scene: SlackScene, n_elements: int | None = None) -> tuple[int, ...]:
@@ -118,14 +119,16 @@ _MODELS: OrderedDict = OrderedDict()
 
 def span_model(scene: Scene, cache: FunctionCache | None = None):
     """The node model of a span scene, kept by structure (sections, elements, parameter labels): in
-    ``cache`` when given, else in a module store of the last :data:`MODEL_CACHE_SIZE` structures."""
+    ``cache`` when given, else in a module store of the last used structures (at most
+    :data:`MODEL_CACHE_SIZE` of them and :data:`MODEL_CACHE_ELEMENTS` elements in all)."""
     key = "span_model_" + hashlib.sha256(repr((structure_of(scene), ParameterLayout.from_scene(scene).labels))
                                          .encode()).hexdigest()[:32]
     if cache is not None:
         return cache.get(key, lambda: build_model(scene))
     if key not in _MODELS:
         _MODELS[key] = build_model(scene)
-        while len(_MODELS) > MODEL_CACHE_SIZE:
+        while len(_MODELS) > 1 and (len(_MODELS) > MODEL_CACHE_SIZE
+                                    or sum(m.n_elements for m in _MODELS.values()) > MODEL_CACHE_ELEMENTS):
             _MODELS.popitem(last=False)
     _MODELS.move_to_end(key)
     return _MODELS[key]
