@@ -106,16 +106,15 @@ class Scene:
 
     def _check_dimensions(self) -> None:
         """A 3-D field needs the 3-D equations; those of Wang's straight cable and of the node model (segmented) have
-        no anchor or seabed in space yet."""
+        no seabed in space yet; the node model's anchor holds its node at (anchor.x, anchor.y, 0)."""
         fields = self.three_d_fields()
         if self.numerics.dimensions == 2 and fields:
             raise ParameterError("numerics.dimensions", 2, f"must be 3 or unset: the scene sets {fields[0]}, "
                                  "which only the 3-D equations take")
         if self.three_d:
-            if self.anchor is not None or self.seabed is not None:
-                raise ParameterError("anchor" if self.anchor is not None else "seabed", "set",
-                                     "must be unset in a 3-D scene: the 3-D equations (Wang's straight cable, the "
-                                     "node model) have no anchor or seabed in space so far")
+            if self.seabed is not None:
+                raise ParameterError("seabed", "set", "must be unset in a 3-D scene: the 3-D equations (Wang's "
+                                     "straight cable, the node model) have no seabed in space so far")
             # the time domain's initial state sets every angle from initial.phi / phi_rate: it does not
             # know the out-of-plane angle yet, so a 3-D run starts from its steady state (or an x0 given)
             for name, unset in (("phi", None), ("phi_rate", 0.0)):
