@@ -129,6 +129,9 @@ class Scene:
         state is the steady turn's (``initial.u``, ``initial.phi`` unset)."""
         if self.top_motion.track is None:
             return
+        if self.anchor is not None:
+            raise ParameterError("anchor", "set", "must be unset with top_motion.track: an anchored line cannot turn "
+                                 "rigidly with the tow point")
         env = self.environment
         for i, v in enumerate(env.current_speeds):
             if v != 0.0:
