@@ -120,3 +120,39 @@ def test_contact_creates_no_energy():
     res = E.bouncing(4.0)
     assert res["success"] and res["contacts"] >= 4
     assert res["energy_drift_rel"] < 1e-4
+
+
+@pytest.mark.parametrize("sway", [False, True])
+def test_a_line_hanging_free_between_the_top_and_an_anchor_is_the_catenary(sway):
+    """No seabed: the node statics start from the default guess (a span pulled taut between its ends) and reach
+    the catenary through both supports; a nearly inextensible line's top tension is w a cosh((0 - X0) / a) with a
+    from sqrt(L^2 - v^2) = 2 a sinh(h / 2a) (Irvine 1981 ch. 1), at the lumped weights' second order."""
+    from scipy.optimize import brentq
+    from cablesys.statics.catenary import segmented_steady
+    L, h, v, w = 120.0, 80.0, 60.0, 18.0
+    text = f"""
+[cable]
+length = {L}
+ae = 4.0e7
+diameter = 0.024
+mass_per_length = 2.4
+weight_per_length = {w}
+segments = 40
+[body]
+weight = 100.0
+mass_x = 20.0
+mass_y = 20.0
+[anchor]
+x = {h}
+y = {v}
+""" + ("[numerics]\ndimensions = 3\n" if sway else "")
+    import tomllib
+    sc = scene_from_dict(tomllib.loads(text))
+    model = build_model(sc)
+    st = segmented_steady(model, model.parameters(sc))
+    u = brentq(lambda u: np.sinh(u) / u - math.sqrt(L**2 - v**2) / h, 1e-9, 20.0)
+    a = h / (2 * u)
+    x0 = 0.5 * h - a * math.atanh(-v / L)
+    assert st.outputs["tension_top"] == pytest.approx(w * a * math.cosh(x0 / a), rel=2e-3)
+    low = max(st.q.reshape(-1, 3 if sway else 2)[:, 1])                      # the sag below the top (y down)
+    assert low == pytest.approx(a * (math.cosh(x0 / a) - 1.0), rel=2e-3)

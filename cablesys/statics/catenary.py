@@ -78,8 +78,9 @@ def _dim(model) -> int:
 def anchored_guess(model, p) -> np.ndarray:
     """Free node positions of an anchored line laid along a path of its zero-tension length.
 
-    A heavy line takes the closed-form catenary of its mean properties (:func:`seabed_catenary`,
-    flat rigid bed at the anchor's depth). Otherwise, with a seabed, the path runs from the anchor
+    A heavy line without a seabed hangs free between its ends: the inextensible catenary of its length
+    through the top and the anchor (:func:`_suspended`). With a seabed it takes the closed-form catenary of its
+    mean properties (:func:`seabed_catenary`, flat rigid bed at the anchor's depth). Otherwise, with a seabed, the path runs from the anchor
     along the bed towards the top and rises straight to the top (its touchdown point found so that the path is as long as the line); without one,
     or when the bed path is shorter than the chord, it is two straight legs meeting below the chord's
     mid-point. A line shorter than the chord is laid straight (it will be stretched).
@@ -110,6 +111,9 @@ def anchored_guess(model, p) -> np.ndarray:
         s0 += l_0
     L, chord = s0, float(np.hypot(*A))
     w = _total_weight(model, p) / L
+    if w > 0 and L > chord and abs(A[0]) > 0 and "seabed.depth" not in lab:   # a span: hangs free between its ends
+        ea = min(p[model.layout.section_index(i, "cable.ae")] for i in range(model.n_sections))
+        return _in_space(model, _taut_span(L, A, np.array(arcs), min_strain=0.5 * w * L / ea))
     if w > 0 and A[1] > 0 and L > chord:            # the closed-form catenary of the mean line (flat bed)
         ea = min(p[model.layout.section_index(i, "cable.ae")] for i in range(model.n_sections))
         mu = val("seabed.friction_axial") if "seabed.friction_axial" in lab else 0.0
@@ -141,6 +145,38 @@ def anchored_guess(model, p) -> np.ndarray:
     path = lambda s: np.array([np.interp(s, cum, [c[i] for c in corners]) for i in range(2)])
     q = [path(a / L * cum[-1]) for a in arcs[:-1]]
     return _in_space(model, np.array(q))
+
+
+def _suspended(length: float, anchor, arcs) -> np.ndarray:
+    """Points (x, y down) at arc lengths ``arcs`` from the top (0, 0) of the inextensible catenary of ``length``
+    hanging between the top and ``anchor`` (x != 0): Y = a cosh((X - X0) / a) + C (Y up), a from
+    sqrt(L^2 - dY^2) = 2 a sinh(h / (2 a)), X0 = h / 2 - a atanh(dY / L) (Irvine 1981, *Cable Structures*, ch. 1)."""
+    from scipy.optimize import brentq
+    h, dY = abs(float(anchor[0])), -float(anchor[1])
+    target = np.sqrt(length**2 - dY**2) / h                       # 2 a sinh(h / 2a) / h = target > 1
+    u = brentq(lambda u: np.sinh(u) / u - target, 1e-9, 1.0 + np.arcsinh(target))   # u = h / (2 a)
+    a = h / (2.0 * u)
+    x0 = 0.5 * h - a * np.arctanh(dY / length)
+    X = x0 + a * np.arcsinh(np.asarray(arcs, float) / a - np.sinh(x0 / a))
+    Y = a * (np.cosh((X - x0) / a) - np.cosh(x0 / a))
+    return np.column_stack([np.sign(anchor[0]) * X, -Y])
+
+
+def _taut_span(length: float, anchor, arcs, min_strain: float) -> np.ndarray:
+    """The free nodes of :func:`_suspended` with every element stretched by about ``min_strain`` (the order of
+    the line's static strain w L / 2 AE): a catenary through the ends of a length stretched until each element's
+    chord exceeds its zero-tension length by that, so that no element of the guess is slack (a slack element has
+    no stiffness and leaves Newton's matrix singular) and none is far stiffer than the solution."""
+    h0 = np.diff(np.concatenate([[0.0], arcs]))
+    stretch, target = 1.0, 1.0 + max(min_strain, 1e-9)
+    for _ in range(30):
+        pts = _suspended(length * stretch, anchor, arcs * stretch)
+        chords = np.linalg.norm(np.diff(np.vstack([[0.0, 0.0], pts]), axis=0), axis=1)
+        short = float(np.min(chords / h0))
+        if short >= target:
+            break
+        stretch *= target / short
+    return pts[:-1]
 
 
 def _in_space(model, xy) -> np.ndarray:
@@ -297,25 +333,35 @@ def _node_rootfinder(model):
 
 
 def _anchored_equilibrium(model, p, guess):
-    """The static state of an anchored line: KINSOL in node coordinates from :func:`anchored_guess`,
-    then, if needed, by continuation in the weights from the weightless line (each solution the
-    next guess). With a seabed the statics' elements are elastic both ways (segmented_seabed.py);
-    a solution with a compressed element is refused."""
+    """The static state of an anchored line: KINSOL in node coordinates from :func:`anchored_guess`.
+    With a seabed the statics' elements are elastic both ways (segmented_seabed.py) and a solution with a
+    compressed element is refused; without one (a span) KINSOL first solves with the elements elastic both
+    ways, then from there with the line's own law."""
     resid, nodes = static_residual(model), _node_rootfinder(model)
     tol = static_tolerance(model, p)
     q = anchored_guess(model, p) if guess is None else np.asarray(guess, float)
     best = np.inf
+    passes = [p]
+    if "seabed.depth" not in model.layout.labels:
+        # a span hanging free: first with every element elastic both ways (tension floor -(AE)_r), so that an
+        # element Newton shortens past its zero-tension length keeps its stiffness, then with the line's own law
+        both = p.copy()
+        for i in range(model.n_sections):
+            both[model.layout.section_index(i, "cable.tension_floor")] = -p[model.layout.section_index(i, "cable.ae")]
+        passes = [both, p]
     with casadi_warnings_captured() as kinsol:
-        for _ in range(3):                        # KINSOL restarted from its own last iterate
-            q_new = np.array(nodes(q, p)).ravel()
-            r = _max_residual(resid, q_new, p)
-            if r < best:
-                q, best = q_new, r
-            if best < tol:
-                break
+        for pp in passes:
+            best = np.inf
+            for _ in range(3):                        # KINSOL restarted from its own last iterate
+                q_new = np.array(nodes(q, pp)).ravel()
+                r = _max_residual(resid, q_new, pp)
+                if r < best:
+                    q, best = q_new, r
+                if best < tol:
+                    break
     if not best < tol:
         raise SolverError(f"anchored line equilibrium not found (best scaled residual {best:.3g} > {tol:.3g}): "
-                          f"KINSOL failed from the line laid along the seabed and up to the top{_flags(kinsol)}; give a guess")
+                          f"KINSOL failed from the line's first guess{_flags(kinsol)}; give a guess")
     if "seabed.depth" in model.layout.labels:
         T = _static_tensions(model, q, p)
         floor = -1e3 * np.finfo(float).eps * max(1.0, float(np.max(np.abs(T)))) - tol * _total_weight(model, p)
