@@ -42,6 +42,8 @@ from typing import ClassVar
 
 import casadi as ca
 import numpy as np
+from scipy.interpolate import CubicSpline
+from scipy.signal import lfilter, lfiltic
 
 from ..errors import ParameterError, require_positive
 from ..model.winch import WINCH_OUTPUTS
@@ -236,7 +238,7 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
         if name not in strategies:
             continue
         predictor = ARPredictor(prob_c, ar_order) if name == "mpc_no_preview" else None
-        ctl, memo = _mpc_controller(prob_c, n_h, offset, mpc_scheme, mpc_iterations, max_iter, predictor)
+        ctl, memo = _mpc_controller(prob_c, N, n_h, offset, mpc_scheme, mpc_iterations, max_iter, predictor)
         runs[name] = _run(plant, prob_p, ctl, N, prob_p.x_rest)
         step_s[name] = runs[name][3]
         mpc_stats[name] = {"scheme": mpc_scheme, "failed_steps": memo["fail"],
@@ -277,11 +279,13 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
                              "mpc_iterations": mpc_iterations, "ar_order": ar_order}, **out)
 
 
-def _mpc_controller(prob_c, n_h, offset, scheme, iterations, max_iter, predictor=None):
-    """The MPC of the module docstring as ``controller(k, x) -> alpha`` and its record (failed steps,
-    iterations per step): the top motion over the horizon previewed (the scene's record), or predicted by
-    ``predictor`` (:class:`ARPredictor`) from the samples measured up to the step."""
+def _mpc_controller(prob_c, N, n_h, offset, scheme, iterations, max_iter, predictor=None):
+    """The MPC of the module docstring over N steps as ``controller(k, x) -> alpha`` and its record (failed
+    steps, iterations per step): the top motion over the horizon previewed (the scene's record, tabulated
+    once at the intervals' stage times before the run: the preview is data the controller receives), or
+    predicted by ``predictor`` (:class:`ARPredictor`) from the samples measured up to the step."""
     dt = prob_c.dt
+    preview = prob_c.exogenous(dt * np.arange(N + n_h + 1)) if predictor is None else None
     if scheme == "ipopt":      # built once, solved N times; no path constraint on the measured state itself
         nlp = payout_nlp(prob_c, n_h, max_iter=max_iter, expand=True, constrain_first=False)
     else:
@@ -293,7 +297,7 @@ def _mpc_controller(prob_c, n_h, offset, scheme, iterations, max_iter, predictor
         x = x - offset                                  # the measured state about the controller's rest
         U = np.append(memo["U"][1:], memo["U"][-1])       # warm start: shifted by one interval
         if predictor is None:
-            E = prob_c.exogenous(dt * (k + np.arange(n_h + 1)))
+            E = preview[k: k + n_h + 1]
         else:
             predictor.measure(k * dt)
             E = predictor.exogenous(k, n_h)
@@ -339,15 +343,16 @@ class GaussNewtonMPC:
     takes the objective's Gauss-Newton model 1/2 dU^T J^T J dU + (J^T r)^T dU (the objective is
     r^T r, :func:`.payout.gauss_newton_function`; Bock 1983) and the linearized path
     constraints (winch power, no slack, working load at nodes 1..N-1), the speed bound at nodes
-    1..N and |alpha| <= a_max, and solves that dense QP with qpOASES (Ferreau et al. 2014,
-    Math. Prog. Comp. 6, 327-363) through CasADi's ``conic``. The per-interval linearization is
+    1..N and |alpha| <= a_max, and solves that dense QP with DAQP (a dual active-set method: Arnstroem,
+    Bemporad & Axehill 2022, IEEE Trans. Autom. Control 67(8), 4362-4369; ``qpsol``: any CasADi ``conic``
+    plugin that takes dense matrices, e.g. "qpoases"). The per-interval linearization is
     one compiled kernel (:func:`.payout.gauss_newton_kernel`) mapped over the horizon; the QP has
     a fixed structure (N, the model's size, which limits are finite), built once.
 
     ``step(x0, E, U) -> (U_new, ok)``: E (N+1, ne) the horizon's exogenous rows, U (N,) the guess.
     """
 
-    def __init__(self, problem, N: int, *, iterations: int = 1, qpsol: str = "qpoases"):
+    def __init__(self, problem, N: int, *, iterations: int = 1, qpsol: str = "daqp"):
         if not (isinstance(iterations, int) and iterations >= 1):
             raise ParameterError("mpc_iterations", iterations, "must be an integer >= 1")
         self.problem, self.N, self.iterations = problem, N, iterations
@@ -419,7 +424,8 @@ class GaussNewtonMPC:
 class ARPredictor:
     """Prediction of the top motion from its measured past only: an autoregressive model per channel
     (x_s, y_s), s_j = -sum_{i=1}^{n} a_i s_{j-i}, fitted on the record measured at the control interval (the
-    last ``window`` samples, re-fitted every sample) and iterated ahead over the horizon (AR prediction of
+    last ``window`` samples; re-fitted every ``refit`` samples, and at every sample while the order grows)
+    and iterated ahead over the horizon (AR prediction of
     waves: Fusco & Ringwood 2010, "Short-term wave forecasting for real-time control of wave energy
     converters", IEEE Trans. Sustain. Energy 1(2), 99-106). The coefficients are Burg's (Burg 1975, *Maximum
     entropy spectral analysis*, PhD thesis, Stanford; the recursion as in Kay & Marple 1981, Proc. IEEE 69(11),
@@ -430,12 +436,15 @@ class ARPredictor:
     last measured samples and the predicted ones. A sinusoid obeys the AR(2) recursion s_j = 2 cos(omega dt)
     s_{j-1} - s_{j-2}, which Burg's estimate approaches as the record grows."""
 
-    def __init__(self, problem, order: int = 24, window: int = 240):
+    def __init__(self, problem, order: int = 24, window: int = 240, refit: int = 20):
         if not (isinstance(order, int) and order >= 1):
             raise ParameterError("ar_order", order, "must be an integer >= 1")
         if not (isinstance(window, int) and window >= 2 * order):
             raise ParameterError("ar_window", window, f"must be an integer >= 2 ar_order = {2 * order}")
-        self.problem, self.order, self.window = problem, order, window
+        if not (isinstance(refit, int) and refit >= 1):
+            raise ParameterError("ar_refit", refit, "must be an integer >= 1 (samples)")
+        self.problem, self.order, self.window, self.refit = problem, order, window, refit
+        self._a, self._fitted = None, 0
         self.samples: list = []                  # measured (x_s, y_s) at t_j = j dt
 
     def measure(self, t: float) -> None:
@@ -450,20 +459,18 @@ class ARPredictor:
         if n < 2:
             return np.repeat(s[-1:], steps, axis=0)
         order = min(self.order, n // 2)
+        if self._a is None or len(self._a) != order + 1 or len(self.samples) - self._fitted >= self.refit:
+            self._a, self._fitted = burg(s, order), len(self.samples)     # (order + 1, 2)
+        a = self._a
         out = np.empty((steps, 2))
-        for ch in range(2):
-            a = burg(s[:, ch], order)
-            hist = list(s[-order:, ch][::-1])       # newest first
-            for j in range(steps):
-                v = -float(np.dot(a[1:], hist))
-                out[j, ch] = v
-                hist = [v] + hist[:-1]
+        for ch in range(2):       # the AR recursion with zero innovations from the last samples: an all-pole filter
+            zi = lfiltic([1.0], a[:, ch], s[::-1, ch][:order])
+            out[:, ch] = lfilter([1.0], a[:, ch], np.zeros(steps), zi=zi)[0]
         return out
 
     def exogenous(self, k: int, n_h: int) -> np.ndarray:
         """The rows E (n_h + 1, ne) of intervals k .. k + n_h as :meth:`.payout.HeaveProblem.exogenous` lays
         them out, from the samples measured up to t_k = k dt (call :meth:`measure` first) and the prediction."""
-        from scipy.interpolate import CubicSpline
         prob = self.problem
         dt, m = prob.dt, 2 * prob.substeps + 1
         past = np.array(self.samples[-8:])
@@ -481,16 +488,19 @@ class ARPredictor:
 
 
 def burg(x: np.ndarray, order: int) -> np.ndarray:
-    """Burg's AR coefficients a (order + 1,), a_0 = 1, of the series x: x_j + sum_i a_i x_{j-i} = e_j
-    (Kay & Marple 1981, sec. V.B: each reflection coefficient k_m minimizes the sum of the forward and
-    backward prediction errors' squares, k_m = -2 f.b / (f.f + b.b), |k_m| <= 1; Levinson's update of a)."""
-    a = np.array([1.0])
-    f, b = np.asarray(x, float).copy(), np.asarray(x, float).copy()
-    for _ in range(order):
+    """Burg's AR coefficients a (order + 1, m), a_0 = 1, of each column of the series x (n, m) (or of x (n,):
+    a (order + 1,)): x_j + sum_i a_i x_{j-i} = e_j (Kay & Marple 1981, sec. V.B: each reflection
+    coefficient k_m minimizes the sum of the forward and backward prediction errors' squares,
+    k_m = -2 f.b / (f.f + b.b), |k_m| <= 1; Levinson's update of a)."""
+    x = np.asarray(x, float)
+    f = (x[:, None] if x.ndim == 1 else x).copy()
+    b = f.copy()
+    a = np.zeros((order + 1, f.shape[1]))
+    a[0] = 1.0
+    for m in range(1, order + 1):
         fp, bp = f[1:], b[:-1]
-        den = float(np.dot(fp, fp) + np.dot(bp, bp))
-        k = -2.0 * float(np.dot(fp, bp)) / den if den > 0 else 0.0
+        den = np.sum(fp * fp + bp * bp, axis=0)
+        k = np.where(den > 0, -2.0 * np.sum(fp * bp, axis=0) / np.where(den > 0, den, 1.0), 0.0)
         f, b = fp + k * bp, bp + k * fp
-        ap = np.append(a, 0.0)
-        a = ap + k * ap[::-1]
-    return a
+        a[: m + 1] = a[: m + 1] + k * a[m::-1]
+    return a[:, 0] if x.ndim == 1 else a
