@@ -64,6 +64,7 @@ def test_ar_prediction_of_a_sinusoid_matches_it_over_the_horizon():
 def test_bad_mpc_options_are_refused_before_any_work():
     sc = _scene(duration=30.0)
     for kw, field in (({"mpc_scheme": "newton"}, "mpc_scheme"), ({"mpc_iterations": 0}, "mpc_iterations"),
-                      ({"ar_order": 0}, "ar_order")):
+                      ({"ar_order": 0}, "ar_order"),
+                      ({"mpc_scheme": "ipopt", "mpc_iterations": 3}, "mpc_iterations")):
         with pytest.raises(ParameterError, match=field):
             compare_compensation(sc, WinchLimits(), duration=10.0, horizon=5.0, strategies=("mpc",), **kw)

@@ -19,10 +19,14 @@ Strategies, each run from rest over the same sea:
   plant state, warm-started from the previous solution shifted by one interval; the first
   interval's alpha is applied (a step that does not converge applies the previous plan,
   shifted; the path constraints start at the second node, the first being the measured
-  state). The plant's and the controller's rest states differ (the drag
+  state). Each step is one Gauss-Newton QP (the real-time iteration, :class:`GaussNewtonMPC`;
+  ``mpc_scheme="ipopt"``: IPOPT with exact Hessians to convergence on the same NLP). The plant's
+  and the controller's rest states differ (the drag
   of the current on a differently discretized cable sets another angle and stretch): the
   controller sees the measured state minus that difference (a constant-offset estimate, so the
   mismatch does not read as a pendulum swing or a heave error to be corrected);
+- ``mpc_no_preview``: the same MPC with the tip motion over the horizon predicted from the
+  samples of it measured up to the step only (an autoregressive model, :class:`ARPredictor`);
 - ``optimal``: the open-loop optimum of the whole record on the controller's model, played
   open-loop on the plant (the physical limit for these winch limits, up to the mismatch).
 
@@ -179,9 +183,10 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
     max_iter : int
         IPOPT iterations per MPC step (``mpc_scheme`` "ipopt").
     mpc_scheme : str
-        How each MPC step solves its horizon problem: "gauss-newton" (:class:`GaussNewtonMPC`,
-        ``mpc_iterations`` Gauss-Newton QPs per step; 1 is the real-time iteration) or "ipopt" (the full NLP
-        with exact Hessians to convergence, :func:`.payout.payout_nlp`).
+        How each MPC step solves its horizon problem: "gauss-newton" (:class:`GaussNewtonMPC`) or "ipopt"
+        (the full NLP with exact Hessians to convergence, :func:`.payout.payout_nlp`).
+    mpc_iterations : int
+        Gauss-Newton QPs per MPC step (1: the real-time iteration; "gauss-newton" only).
     ar_order : int
         Order of the autoregressive top-motion predictor of ``mpc_no_preview`` (:class:`ARPredictor`).
 
@@ -198,6 +203,9 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
         raise ParameterError("mpc_scheme", mpc_scheme, f"allowed: {MPC_SCHEMES}")
     if not (isinstance(mpc_iterations, int) and mpc_iterations >= 1):
         raise ParameterError("mpc_iterations", mpc_iterations, "must be an integer >= 1")
+    if mpc_scheme == "ipopt" and mpc_iterations != 1:
+        raise ParameterError("mpc_iterations", mpc_iterations, "is the Gauss-Newton scheme's; IPOPT iterates to "
+                                                               "convergence (max_iter)")
     if not (isinstance(ar_order, int) and ar_order >= 1):
         raise ParameterError("ar_order", ar_order, "must be an integer >= 1")
     plant_scene = scene if plant_segments is None else scene.with_numerics(drag_segments=plant_segments)
@@ -413,6 +421,9 @@ class GaussNewtonMPC:
         U = np.asarray(U, float).copy()
         for _ in range(self.iterations):
             H, grad, Acon, lba, uba, _ = self.linearization(x0, E, U)
+            if not (np.isfinite(H).all() and np.isfinite(grad).all() and np.isfinite(Acon).all()):
+                self.qp_failures += 1          # the roll-out left the model's domain: keep the plan
+                return U, False
             sol = self.qp(h=H, g=grad, a=Acon, lba=lba, uba=uba, lbx=-self.a_max - U, ubx=self.a_max - U)
             if not self.qp.stats()["success"]:
                 self.qp_failures += 1
@@ -430,8 +441,9 @@ class ARPredictor:
     converters", IEEE Trans. Sustain. Energy 1(2), 99-106). The coefficients are Burg's (Burg 1975, *Maximum
     entropy spectral analysis*, PhD thesis, Stanford; the recursion as in Kay & Marple 1981, Proc. IEEE 69(11),
     1380-1419, sec. V.B): reflection coefficients |k_m| <= 1, so the model is stable and a prediction fitted on
-    the ramp's growing start does not grow without bound. The order is ``order``, or half the samples
-    measured while fewer than 2 ``order`` (one sample: held). The rates and accelerations at the RK4 stage
+    the ramp's growing start does not grow without bound. The order is ``order``, or a quarter of the
+    samples measured while fewer than 4 ``order`` (a record short for its order gives poles near z = 1 whose
+    transient swamps a 20 s prediction; one sample: held). The rates and accelerations at the RK4 stage
     times (:meth:`.payout.HeaveProblem.exogenous`) are those of the cubic spline (not-a-knot) through the
     last measured samples and the predicted ones. A sinusoid obeys the AR(2) recursion s_j = 2 cos(omega dt)
     s_{j-1} - s_{j-2}, which Burg's estimate approaches as the record grows."""
@@ -439,8 +451,8 @@ class ARPredictor:
     def __init__(self, problem, order: int = 24, window: int = 240, refit: int = 20):
         if not (isinstance(order, int) and order >= 1):
             raise ParameterError("ar_order", order, "must be an integer >= 1")
-        if not (isinstance(window, int) and window >= 2 * order):
-            raise ParameterError("ar_window", window, f"must be an integer >= 2 ar_order = {2 * order}")
+        if not (isinstance(window, int) and window >= 4 * order):
+            raise ParameterError("ar_window", window, f"must be an integer >= 4 ar_order = {4 * order}")
         if not (isinstance(refit, int) and refit >= 1):
             raise ParameterError("ar_refit", refit, "must be an integer >= 1 (samples)")
         self.problem, self.order, self.window, self.refit = problem, order, window, refit
@@ -458,7 +470,7 @@ class ARPredictor:
         n = len(s)
         if n < 2:
             return np.repeat(s[-1:], steps, axis=0)
-        order = min(self.order, n // 2)
+        order = min(self.order, max(n // 4, 1))
         if self._a is None or len(self._a) != order + 1 or len(self.samples) - self._fitted >= self.refit:
             self._a, self._fitted = burg(s, order), len(self.samples)     # (order + 1, 2)
         a = self._a
