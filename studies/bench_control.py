@@ -43,7 +43,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import parse_args, write_json
 
 from cablesys.control import WinchLimits, heave_problem, optimal_payout, resimulate
-from cablesys.control.mpc import compare_compensation
+from cablesys.control.mpc import GaussNewtonMPC, compare_compensation
 from cablesys.control.payout import interval_kernels
 from cablesys.control.shooting import solve_shooting
 from cablesys.examples import example_path
@@ -142,6 +142,32 @@ def design_gradient(problem, duration: float) -> dict:
             "cost_ratio": t_grad / t_sim, "simulation_s": t_sim, "gradient_s": t_grad}
 
 
+def gauss_newton_breakdown(scene, limits, t0: float, horizon: float, repeats: int = 50) -> dict:
+    """Least mean time (ms, of 5 rounds of ``repeats``) of the parts of one Gauss-Newton MPC step on the 2-DOF
+    controller model at the rest state, horizon starting at t0: the kernels mapped over the horizon (roll-out
+    and linearization), the whole linearization with the condensing, and the QP."""
+    prob = heave_problem(scene.with_numerics(drag_segments=1), limits, dt=0.5)
+    n_h = int(round(horizon / prob.dt))
+    gn = GaussNewtonMPC(prob, n_h)
+    E, U, x = prob.exogenous(t0 + prob.dt * np.arange(n_h + 1)), np.zeros(n_h), prob.x_rest
+    H, g, A, lba, uba, _ = gn.linearization(x, E, U)
+    a = gn.a_max
+
+    def least(f):
+        f()
+        best = math.inf
+        for _ in range(5):
+            t = time.perf_counter()
+            for _ in range(repeats):
+                f()
+            best = min(best, (time.perf_counter() - t) / repeats)
+        return 1e3 * best
+    return {"kernels_over_horizon": least(lambda: gn.horizon(x, U[None, :], E.T)),
+            "linearization_and_condensing": least(lambda: gn.linearization(x, E, U)),
+            "qp": least(lambda: gn.qp(h=H, g=g, a=A, lba=lba, uba=uba, lbx=-a - U, ubx=a - U)),
+            "qp_rows": int(A.shape[0]), "qp_variables": n_h}
+
+
 def closed_loop_mpc(scene, limits, quick: bool) -> dict:
     """The closed-loop runs on the finer plant: PI AHC, MPC with preview and MPC without preview (the
     top motion predicted from its measured past, ``ARPredictor``) by the Gauss-Newton real-time
@@ -158,6 +184,7 @@ def closed_loop_mpc(scene, limits, quick: bool) -> dict:
     compiled = interval_kernels(heave_problem(scene.with_numerics(drag_segments=1), limits, dt=0.5).interval)
     compiled = bool(compiled is not None and compiled.compiled)
     return dict(
+        mpc_step_breakdown_ms=gauss_newton_breakdown(loop_scene, limits, duration, horizon),
         mpc_heave_reduction_db=m["mpc"]["heave_reduction_db"], pi_heave_reduction_db=m["pi"]["heave_reduction_db"],
         mpc_no_preview_heave_reduction_db=m["mpc_no_preview"]["heave_reduction_db"],
         mpc_step_ms=1e3 * m["mpc"]["compute_per_step_s"], mpc_realtime_factor=m["mpc"]["realtime_factor"],
