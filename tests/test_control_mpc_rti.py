@@ -68,3 +68,34 @@ def test_bad_mpc_options_are_refused_before_any_work():
                       ({"mpc_scheme": "ipopt", "mpc_iterations": 3}, "mpc_iterations")):
         with pytest.raises(ParameterError, match=field):
             compare_compensation(sc, WinchLimits(), duration=10.0, horizon=5.0, strategies=("mpc",), **kw)
+
+
+@pytest.fixture(scope="module")
+def quick_compile(compiling):
+    """Compilation on at -O0 (the same C as the default -O1, compiled in half the time)."""
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv("CABLESYS_CFLAGS", "-O0")
+        yield
+
+
+def test_compiled_gauss_newton_kernel_equals_the_virtual_machine(quick_compile):
+    """The compiled linearization kernel gives the condensed QP of the SX function in CasADi's virtual
+    machine (the same expressions: to rounding, 1e-9 relative), and a problem with other numbers (another
+    speed limit and tension weight) loads the same compiled kernel: the cache is keyed by structure."""
+    from cablesys.control.payout import gauss_newton_kernel
+    sc = load_scene(example_path("rov-lift")).with_numerics(drag_segments=1, duration=30.0)
+    prob = heave_problem(sc, WinchLimits(speed=1.0, acceleration=1.0), dt=0.5)
+    N = 12
+    E = prob.exogenous(10.0 + prob.dt * np.arange(N + 1))
+    x0, U = prob.x_rest, 0.1 * np.sin(np.arange(N))
+    fast = GaussNewtonMPC(prob, N)
+    assert gauss_newton_kernel(prob).class_name() == "External"
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv("CABLESYS_COMPILE", "0")
+        slow = GaussNewtonMPC(prob, N)
+    for a, b in zip(fast.linearization(x0, E, U), slow.linearization(x0, E, U)):
+        assert np.array_equal(np.isinf(a), np.isinf(b))            # the one-sided rows' infinite bounds
+        a, b = a[np.isfinite(b)], b[np.isfinite(b)]
+        np.testing.assert_allclose(a, b, rtol=1e-9, atol=1e-9 * np.max(np.abs(b)))
+    other = heave_problem(sc, WinchLimits(speed=0.8, acceleration=1.0), dt=0.5, tension_weight=0.1)
+    assert gauss_newton_kernel(other) is gauss_newton_kernel(prob)
