@@ -355,7 +355,9 @@ class GaussNewtonMPC:
     Bemporad & Axehill 2022, IEEE Trans. Autom. Control 67(8), 4362-4369; ``qpsol``: any CasADi ``conic``
     plugin that takes dense matrices, e.g. "qpoases"). The per-interval linearization is
     one compiled kernel (:func:`.payout.gauss_newton_kernel`) mapped over the horizon; the QP has
-    a fixed structure (N, the model's size, which limits are finite), built once.
+    a fixed structure (N, the model's size, which limits are finite), built once. The scheme's
+    preparation phase (the linearization) and feedback phase (the QP) both run after the measurement
+    here, so a step's time is the whole iteration, not the feedback delay alone.
 
     ``step(x0, E, U) -> (U_new, ok)``: E (N+1, ne) the horizon's exogenous rows, U (N,) the guess.
     """
