@@ -44,9 +44,8 @@ def test_gauss_newton_iterated_reaches_the_full_nlp_optimum():
 
 def test_real_time_iteration_closed_loop_equals_ipopt_mpc():
     """In closed loop (1 m, 10 s tip heave, 4 s horizon, 12 s run; the plant the 2-DOF model by CVODES), one
-    Gauss-Newton QP per step from the
-    shifted plan gives the body heave of IPOPT solving each step's NLP to convergence (6.6 iterations a
-    step) to 1e-4 m, against 1 m of uncompensated heave and ~1.3e-3 m left by either, and the same heave
+    Gauss-Newton QP per step from the shifted plan gives the body heave of IPOPT solving each step's NLP
+    to convergence (6.6 iterations a step) to 1e-4 m, against 1 m of uncompensated heave and ~1.3e-3 m left by either, and the same heave
     reduction to 0.1 dB: the real-time iteration tracks the optimum as the horizon recedes."""
     sc = _scene(ramp=5.0, duration=30.0)
     runs = {scheme: compare_compensation(sc, WinchLimits(speed=1.0, acceleration=1.0), duration=12.0, horizon=4.0,
