@@ -43,7 +43,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import parse_args, write_json
 
 from cablesys.control import WinchLimits, heave_problem, optimal_payout, resimulate
-from cablesys.control.mpc import GaussNewtonMPC, compare_compensation
+from cablesys.control.mpc import ARPredictor, GaussNewtonMPC, compare_compensation
 from cablesys.control.payout import interval_kernels
 from cablesys.control.shooting import solve_shooting
 from cablesys.examples import example_path
@@ -168,6 +168,29 @@ def gauss_newton_breakdown(scene, limits, t0: float, horizon: float, repeats: in
             "qp_rows": int(A.shape[0]), "qp_variables": n_h}
 
 
+def prediction_error(scene, limits, duration: float, horizon: float, leads=(1.0, 5.0, 10.0, 20.0)) -> dict:
+    """The no-preview MPC's top-motion prediction (``ARPredictor``, as in the closed loop: samples at
+    dt = 0.5 s from t = 0) against the record: rms error of y_s (m) at each lead time (s) over the steps
+    from duration / 4 on, and the rms of y_s itself over the same steps."""
+    prob = heave_problem(scene.with_numerics(drag_segments=1), limits, dt=0.5)
+    n_h = int(round(horizon / prob.dt))
+    pred, errs, ys = ARPredictor(prob), {lead: [] for lead in leads}, []
+    for k in range(int(round(duration / prob.dt))):
+        pred.measure(k * prob.dt)
+        E = pred.exogenous(k, n_h)
+        if k * prob.dt < duration / 4:
+            continue
+        true = prob.exogenous(prob.dt * (k + np.arange(n_h + 1)))
+        ys.append(true[0, 2])
+        for lead in leads:
+            j = int(round(lead / prob.dt))
+            if j <= n_h:
+                errs[lead].append(E[j, 2] - true[j, 2])
+    return {"lead_s": [lead for lead in leads if errs[lead]],
+            "rms_error_m": [float(np.sqrt(np.mean(np.square(errs[lead])))) for lead in leads if errs[lead]],
+            "rms_y_s_m": float(np.sqrt(np.mean(np.square(ys))))}
+
+
 def closed_loop_mpc(scene, limits, quick: bool) -> dict:
     """The closed-loop runs on the finer plant: PI AHC, MPC with preview and MPC without preview (the
     top motion predicted from its measured past, ``ARPredictor``) by the Gauss-Newton real-time
@@ -185,6 +208,7 @@ def closed_loop_mpc(scene, limits, quick: bool) -> dict:
     compiled = bool(compiled is not None and compiled.compiled)
     return dict(
         mpc_step_breakdown_ms=gauss_newton_breakdown(loop_scene, limits, duration, horizon),
+        mpc_no_preview_prediction=prediction_error(loop_scene, limits, duration, horizon),
         mpc_heave_reduction_db=m["mpc"]["heave_reduction_db"], pi_heave_reduction_db=m["pi"]["heave_reduction_db"],
         mpc_no_preview_heave_reduction_db=m["mpc_no_preview"]["heave_reduction_db"],
         mpc_step_ms=1e3 * m["mpc"]["compute_per_step_s"], mpc_realtime_factor=m["mpc"]["realtime_factor"],
