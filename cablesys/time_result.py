@@ -239,7 +239,7 @@ class TimeResult(ResultBase):
     def _statistics_groups(self) -> dict:
         """``tension``, ``slack``, ``body``, ``model`` and ``window_s`` over the statistics window (tensions never
         below 0 N, :mod:`cablesys.statistics`; slack from :meth:`slack_intervals`, :meth:`slack_events` and
-        :meth:`snap_loads` for every model). ``body.settled``: the lowest body's x and y amplitudes changed between
+        :meth:`snap_loads` for every model). ``body.settled``: the lowest body's x and y (and z in 3-D) amplitudes changed between
         the halves of the window by at most SETTLED_RTOL or 1 micrometre (:func:`cablesys.statistics.settled`);
         ``body.amplitude_change`` the larger relative change."""
         mask = self.window_mask()
@@ -252,8 +252,10 @@ class TimeResult(ResultBase):
                "tension": {"top_min_N": ext(top, np.min), "top_max_N": ext(top, np.max),
                            "bottom_min_N": ext(bottom, np.min), "bottom_max_N": ext(bottom, np.max)}}
         body, changes = {}, []
-        for axis in ("x", "y"):
+        for axis in ("x", "y", "z"):
             lbl = self._last(f"{axis}_b")
+            if axis == "z" and lbl is None:       # a planar run: no sway keys
+                continue
             y = self.data[lbl][mask] if lbl else None
             body[f"{axis}_amplitude_m"] = None if y is None else st.half_range(y)
             body[f"{axis}_mean_m"] = None if y is None else float(np.mean(y))

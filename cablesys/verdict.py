@@ -66,7 +66,7 @@ def body_labels(labels) -> tuple[str, str] | None:
 
 
 def run_statistics(result, limits=None) -> dict:
-    """Time-domain statistics (:func:`cablesys.statistics.time_domain`) of the lowest body's motion and
+    """Time-domain statistics (:func:`cablesys.statistics.time_domain`) of the lowest body's motion (x, y, and z in 3-D) and
     every tension output over the statistics window (tensions never below 0 N, resolutions from
     :data:`cablesys.statistics.FLOORS`); exposure from ``limits.exposure``."""
     mask = statistics_window(result.time, limits, result)
@@ -75,7 +75,8 @@ def run_statistics(result, limits=None) -> dict:
     labels = list(tension_labels(result.labels))
     body = body_labels(result.labels)
     if body:
-        labels = list(body) + labels
+        sway = "z" + body[0][1:]                 # the lowest body's sway in a 3-D run
+        labels = list(body) + ([sway] if sway in result.labels else []) + labels
     return {lbl: st.time_domain(t, np.asarray(result[lbl])[mask], exposure, floor=st.FLOORS.get(_unit(lbl), 0.0),
                                 nonnegative=_is_tension(lbl)) for lbl in labels}
 
@@ -154,7 +155,7 @@ def evaluate(limits, stats: dict, snaps=()) -> dict:
                 k = max(dafs, key=dafs.get)
                 out["daf"] = _upper(dafs[k], limits.max_daf, "-", f"peak / static tension ({k}) <= allowed DAF")
     if limits.max_excursion is not None:
-        body = [k for k in stats if k.startswith(("x_b", "y_b"))]
+        body = [k for k in stats if k.startswith(("x_b", "y_b", "z_b"))]
         if body:
             exc = {k: max(hi(stats[k]) - stats[k]["mean"], stats[k]["mean"] - lo(stats[k])) for k in body}
             k = max(exc, key=exc.get)

@@ -83,63 +83,45 @@ def lq_error() -> float:
 
 
 def design_gradient(problem, duration: float) -> dict:
-    """Gradient of the uncompensated mean square heave over [0, duration] w.r.t. theta = (AE, C_I) by
-    forward sensitivities of the RK4 roll-out of the winch model at w = 0, against central differences.
+    """Gradient of the uncompensated mean square body heave over [0, duration] w.r.t. theta = (AE, C_I) by
+    forward sensitivities of the RK4 roll-out (:func:`cablesys.control.gradient.rollout_gradient`), against
+    Richardson-extrapolated central differences (:func:`cablesys.control.gradient.central_differences`), for
+    the 2-DOF model (the problem's scene, RK4 step dt / substeps) and the segmented cable (4 elements,
+    h = 0.05 s, 30 s). Both at the soft insert AE = 2e5 N inside the scene's [design] bounds (the region
+    of both design optima): at the steel line's AE the segmented model's C_I derivative changes J by
+    ~1e-11 of itself per 1e-4 step, below what differences resolve. cost_ratio: the least of 5 wall
+    times of the gradient sweep over that of the plain roll-out, measured here."""
+    from cablesys.control.gradient import central_differences, rollout_gradient
+    soft = problem.scene.replace_section(0, cable={"ae": 2e5})
+    cases = {"wang": (soft, duration, problem.dt / problem.substeps),
+             "segmented": (soft.replace_section(0, cable={"segments": 4}), min(duration, 30.0), 0.05)}
+    out = {}
+    for name, (scene, dur, h) in cases.items():
+        rg = rollout_gradient(scene, dur, h)
+        th0 = rg.theta0
 
-    The sensitivities S_k = dx_k/dtheta (nx x 2) are propagated with the state in one sweep:
-    S_{k+1} = F_x S_k + F_theta (the variational equation of the discrete map F, e.g. Hairer, Norsett
-    & Wanner, *Solving ODEs I*, sec. I.14), both columns as CasADi forward directional derivatives
-    of the step; dJ/dtheta accumulates dt d(heave - rest)^2/dx S_k the same way. The simulation timed
-    against it is the same roll-out without S. The start state is the nominal rest state for
-    every (AE, C_I): its own dependence on AE is not differentiated."""
-    model, lay = problem.model, problem.model.layout
-    idx = [lay.index("cable.ae"), lay.index("cable.internal_damping")]
-    p_nom = problem.p.copy()
-    xs, Es, th = ca.SX.sym("x", model.nx), ca.SX.sym("E", problem.step.size1_in(2)), ca.SX.sym("theta", 2)
-    S = ca.SX.sym("S", model.nx, 2)
-    ps = ca.SX(ca.DM(p_nom))
-    ps[idx[0]], ps[idx[1]] = th[0], th[1]
-    w = ca.DM([problem.heave_rest, problem.static_tension, 0.0, 0.0, problem.dt])   # cost = dt (heave - rest)^2
-    x_next, sq, _ = problem.interval(xs, 0.0, Es, ps, problem.c, w)
-    seeds = ca.vertcat(S, ca.DM.eye(2))                   # d(x, theta)/dtheta
-    z = ca.vertcat(xs, th)
-    step = ca.Function("step", [xs, Es, th], [x_next, sq])
-    sens = ca.Function("sens", [xs, S, Es, th], [x_next, ca.jtimes(x_next, z, seeds), sq, ca.jtimes(sq, z, seeds)])
-    N = int(round(duration / problem.dt))
-    Egrid = ca.DM(problem.exogenous(problem.dt * np.arange(N)).T)     # the top motion does not depend on (AE, C_I)
-    theta = ca.MX.sym("theta", 2)
-    _, h2 = step.mapaccum("roll", N, [0], [0])(ca.DM(problem.x_rest), Egrid, theta)
-    fJ = ca.Function("J", [theta], [ca.sum2(h2) / (N * problem.dt)])
-    _, _, h2, dh2 = sens.mapaccum("roll_sens", N, [0, 1], [0, 1])(ca.DM(problem.x_rest), ca.DM.zeros(model.nx, 2),
-                                                                  Egrid, theta)
-    fG = ca.Function("G", [theta], [ca.sum2(h2) / (N * problem.dt), ca.sum2(ca.reshape(dh2, 2, N)) / (N * problem.dt)])
-    th0 = np.array([p_nom[idx[0]], p_nom[idx[1]]])
-
-    def timed(f, n=5):
-        """The least of n wall times of f(th0) (after one call), and its value."""
-        out, best = f(th0), math.inf
-        for _ in range(n):
-            t0 = time.perf_counter()
-            out = f(th0)
-            best = min(best, time.perf_counter() - t0)
-        return best, out
-    t_sim, _ = timed(fJ)
-    t_grad, (_, g) = timed(fG)
-    g = np.array(g).ravel()
-    # central differences at three relative steps; per parameter the step that agrees best (the C_I
-    # derivative is ~1e-13 of J's units: at a small step its difference is rounding, at a large one truncation)
-    steps = (1e-3, 1e-4, 1e-5)
-    fd = np.zeros((len(steps), 2))
-    for j, rel in enumerate(steps):
-        for i in range(2):
-            d = np.zeros(2)
-            d[i] = rel * th0[i]
-            fd[j, i] = float((fJ(th0 + d) - fJ(th0 - d)) / (2 * d[i]))
-    errs = np.abs(fd - g) / np.abs(g)
-    best = np.argmin(errs, axis=0)
-    return {"gradient_ad": g.tolist(), "gradient_fd": fd[best, [0, 1]].tolist(), "fd_steps_rel": list(steps),
-            "fd_rel_err_by_step": errs.tolist(), "rel_err": float(np.max(errs[best, [0, 1]])),
-            "cost_ratio": t_grad / t_sim, "simulation_s": t_sim, "gradient_s": t_grad}
+        def timed(f, n=5):
+            """The least of n wall times of f(th0) (after one call), and its value."""
+            val, best = f(th0), math.inf
+            for _ in range(n):
+                t0 = time.perf_counter()
+                val = f(th0)
+                best = min(best, time.perf_counter() - t0)
+            return best, val
+        t_sim, _ = timed(rg.objective)
+        t_grad, (_, g) = timed(rg.gradient)
+        g = np.array(g).ravel()
+        steps = (1e-4, 1e-5)
+        fd = central_differences(rg.objective, th0, steps)
+        errs = np.abs(fd - g) / np.abs(g)
+        best = np.argmin(errs, axis=0)
+        out[name] = {"gradient_ad": g.tolist(), "gradient_fd": fd[best, [0, 1]].tolist(), "fd_steps_rel": list(steps),
+                     "fd_rel_err_by_step": errs.tolist(), "rel_err": float(np.max(errs[best, [0, 1]])),
+                     "cost_ratio": t_grad / t_sim, "simulation_s": t_sim, "gradient_s": t_grad, "theta": th0.tolist(),
+                     "steps": rg.steps, "h_s": rg.h, "compiled": rg.compiled}
+    w = out["wang"]
+    return {**w, "rel_err": max(o["rel_err"] for o in out.values()),
+            "cost_ratio": max(o["cost_ratio"] for o in out.values()), "models": out}
 
 
 def gauss_newton_breakdown(scene, limits, t0: float, horizon: float, repeats: int = 50) -> dict:
@@ -275,9 +257,10 @@ def main(argv=None) -> int:
     grad = design_gradient(problem, 30.0 if quick else 120.0)
     doc.update(gradient_fd_rel_err=grad["rel_err"], design_gradient_cost_ratio=grad["cost_ratio"],
                design_gradient=grad,
-               design_gradient_note="forward sensitivities (2 directions) of the RK4 roll-out of the uncompensated 2-DOF run, "
-                                    "parameters (AE, C_I); objective mean square body heave. No time-domain "
-                                    "design optimization is built on it yet")
+               design_gradient_note="forward sensitivities (2 directions) of the RK4 roll-out of the uncompensated run, "
+                                    "parameters (AE, C_I) at AE = 2e5 N; objective mean square body heave; the largest "
+                                    "error and cost ratio of the 2-DOF and the segmented (4 elements) model "
+                                    "(cablesys.control.gradient); the design built on it: cablesys.control.design")
     doc["lq_rel_err"] = lq_error()
     write_json(args.out / "bench_control.json", doc)
     print({k: doc[k] for k in ("ocp_wall_s", "ocp_iterations", "ocp_status", "ocp_heave_reduction_db",

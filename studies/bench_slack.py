@@ -1,11 +1,17 @@
-"""Benchmark: 2000-element cable with five masses, statics + 50 lowest modes.
+"""Benchmark: 2000-element cable with five masses, statics + 50 lowest modes, on two routes in one run.
 
     python studies/bench_slack.py --out DIR [--elements 2000] [--modes 50] [--repeat 3]
 
-Statics by the CasADi/IPOPT NLP (the first call also builds the CasADi
-functions and the solver; that set-up is timed separately), modes by sparse
-shift-invert (scipy.sparse.linalg.eigsh). Writes DIR/bench_slack.json with
-static_s, modes_s, total_s (best of --repeat warm runs) and the set-up time.
+The lumped-mass chain of cablesys.slack: statics by the CasADi/IPOPT NLP (the first call also
+builds the CasADi functions and the solver; that set-up is timed separately), modes by sparse
+shift-invert (scipy.sparse.linalg.eigsh). The shared cable (cablesys.slack.shared): the same span
+as a node-model scene, its statics by KINSOL on the node model's residual and its modes from the
+model's mass matrix and the AD Jacobian of its forces, the same eigen solver (the first call builds
+the node model: timed separately). Warm runs alternate between the routes so that both see the same
+machine load. Writes DIR/bench_slack.json with static_s, modes_s, total_s (best of --repeat warm
+runs, chain route), shared_static_s, shared_modes_s, shared_total_s, shared_vs_chain_ratio
+(shared_total_s / total_s), both set-up times, the load average and the frequency agreement of
+the routes.
 """
 
 from __future__ import annotations
@@ -17,7 +23,10 @@ from pathlib import Path
 
 import numpy as np
 
+import os
+
 from cablesys.model import FunctionCache
+from cablesys.slack import shared
 from cablesys.slack.vibration import modes
 from cablesys.slack.scene import SlackCable, PointMass, SlackScene
 from cablesys.slack.statics import solve_equilibrium, solve_equilibrium_shooting
@@ -44,7 +53,10 @@ def main(argv=None) -> int:
     t = time.perf_counter()
     solve_equilibrium(sc, cache=cache)
     setup_s = time.perf_counter() - t
-    runs = []
+    t = time.perf_counter()
+    shared.modes(shared.equilibrium(sc), a.modes, solver="sparse")     # builds the node model
+    shared_setup_s = time.perf_counter() - t
+    runs, shared_runs = [], []
     for _ in range(a.repeat):
         t0 = time.perf_counter()
         eq = solve_equilibrium(sc, cache=cache)
@@ -52,7 +64,14 @@ def main(argv=None) -> int:
         ms = modes(eq, a.modes, solver="sparse")
         t2 = time.perf_counter()
         runs.append((t1 - t0, t2 - t1, t2 - t0))
+        t0 = time.perf_counter()
+        eq_sh = shared.equilibrium(sc)
+        t1 = time.perf_counter()
+        ms_sh = shared.modes(eq_sh, a.modes, solver="sparse")
+        t2 = time.perf_counter()
+        shared_runs.append((t1 - t0, t2 - t1, t2 - t0))
     best = min(runs, key=lambda r: r[2])
+    best_sh = min(shared_runs, key=lambda r: r[2])
     t = time.perf_counter()
     eqs = solve_equilibrium_shooting(sc)
     shoot_s = time.perf_counter() - t
@@ -68,12 +87,20 @@ def main(argv=None) -> int:
            "target_total_s": 1.0, "meets_target": best[2] < 1.0,
            "omega_first10": ms.omega[:10].tolist(),
            "rel_diff_first10_vs_400_dense": (ms.omega[:10] / ref.omega - 1).tolist(),
-           "omega_50th": float(ms.omega[-1]), "mode_types": "".join(ms.mode_type)}
+           "omega_50th": float(ms.omega[-1]), "mode_types": "".join(ms.mode_type),
+           "shared_static_s": best_sh[0], "shared_modes_s": best_sh[1], "shared_total_s": best_sh[2],
+           "shared_first_call_setup_s": shared_setup_s, "shared_vs_chain_ratio": best_sh[2] / best[2],
+           "shared_within_2x": best_sh[2] < 2.0 * best[2], "load_average_1min": os.getloadavg()[0],
+           "shared_vs_chain_max_rel_diff_omega": float(np.max(np.abs(ms_sh.omega / ms.omega - 1))),
+           "shared_mode_types": "".join(ms_sh.mode_type)}
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     (out / "bench_slack.json").write_text(json.dumps(doc, indent=1))
     print(f"statics {best[0]:.3f} s + modes {best[1]:.3f} s = {best[2]:.3f} s "
           f"(target < 1 s; first-call set-up {setup_s:.2f} s; shooting statics {shoot_s:.3f} s)")
+    print(f"shared cable: statics {best_sh[0]:.3f} s + modes {best_sh[1]:.3f} s = {best_sh[2]:.3f} s, "
+          f"{best_sh[2] / best[2]:.2f}x the chain (first-call set-up {shared_setup_s:.1f} s; "
+          f"load {os.getloadavg()[0]:.1f})")
     return 0
 
 

@@ -6,6 +6,9 @@ Writes DIR/slack_tables.json (keys table1, table2, table3_two_masses,
 table4_five_masses, table5_bare: lists of {"mode_type", "omega_rad_s"} ascending,
 Richardson-extrapolated from 3 element counts) plus a "report" block with
 comparisons, and PNG figures. --quick uses coarser grids and fewer sweep points.
+The tables come from the shared cable (``converge``: the node model's span, cablesys.slack.shared);
+the sweeps and figures from the lumped chain (``solve_equilibrium`` and ``modes``), the same
+discrete equations by the energy route.
 """
 
 from __future__ import annotations
@@ -402,6 +405,8 @@ def main(argv=None) -> int:
 
     doc["report"] = rep
     doc["meta"] = {"levels": levels, "quick": args.quick, "seconds": time.perf_counter() - t0,
+                   "route": "tables (converge): the shared cable, the node model's span (cablesys.slack.shared); "
+                            "sweeps and figures: the lumped chain (NLP statics, energy Hessian)",
                    "omega_rad_s": "Richardson-extrapolated natural angular frequency, rad/s"}
     (out / "slack_tables.json").write_text(json.dumps(doc, indent=1))
     return 0

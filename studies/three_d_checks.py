@@ -35,6 +35,21 @@ rotation invariance, energy drift; and
   chain's Bessel-J0 frequencies in ``chain_out_of_plane_vs_bessel_rel_err`` (finest N) with the observed
   order of convergence in the details.
 
+The towed cable (``studies/towed_nonlinear.py``, :mod:`cablesys.towed.nodes`): 3-D node model of Kennedy &
+Strahan's (1981) cable, towed in a current past a fixed tow point that sways:
+
+- ``towed_linear_vs_theory_max_rel_err``: linearized about the straight tow (AD Jacobian, the theory's
+  equivalent linear normal drag c_n* = A C_n, eq. 38-39), |H(1)| and c*(1) at omega L/U = 1, 3, 8 against
+  ``towed/``'s exact solution of eq. 3 with the node model's coefficients (finest N; the difference of those
+  from the report's coefficients is ``details.towed.linear_vs_theory.model_form_vs_report_coefficients_max_rel``);
+- ``towed_sea_trials``: mean |model - measured| of |H| and c* over Table A-2 (quick: runs 1, 6, 20), the
+  nonlinear node model in the time domain (quadratic normal drag, C_n = 0.16) and the linear theory.
+
+Towing in a circle (``studies/_turning.py``, :mod:`cablesys.statics.turning`):
+``turning_tow_steady_vs_time_domain_rel_err``, the body's distance from the steady turn (in the turning
+frame) after a node-model run started at rest under the tow point (quick 1.5 turns, full 4), over the
+line's length; figure ``three_d_turning_tow.png``.
+
 Keys of the issue's list that these steps do not compute are ``null`` and named in ``not_built``.
 
 Usage: python studies/three_d_checks.py --out DIR [--quick]
@@ -52,6 +67,8 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
 import _three_d_nodes as nodes  # noqa: E402
+import _turning as turning  # noqa: E402
+import towed_nonlinear as towed  # noqa: E402
 
 from cablesys.linear.frequency_response import rao  # noqa: E402
 from cablesys.linear.linearization import linearize  # noqa: E402
@@ -72,8 +89,7 @@ from cablesys.scene import (  # noqa: E402
 from cablesys.statics.steady import steady_state  # noqa: E402
 from cablesys.time_domain.run import simulate  # noqa: E402
 
-NOT_BUILT = ("span_out_of_plane_vs_irvine_rel_err", "rigid_body_momentum_drift_rel",
-             "turning_tow_steady_vs_time_domain_rel_err", "towed_linear_vs_theory_max_rel_err", "towed_sea_trials")
+NOT_BUILT = ("span_out_of_plane_vs_irvine_rel_err", "rigid_body_momentum_drift_rel")
 PLANAR_OUTPUTS = ("phi", "phi_rate", "u", "u_rate", "x_b", "x_b_rate", "y_b", "y_b_rate", "tension_mid",
                   "tension_bottom", "tension_top")
 
@@ -445,7 +461,12 @@ def main(argv=None) -> dict:
             "rotation_invariance": nodes.rotation_invariance(rotation_scene(), rotated_scene, rotate, args.quick),
             "energy": nodes.energy_drift(args.quick), "chain_modes": nodes.chain_modes(args.quick)}
     n_pl, n_rot = node["planar_equivalence"], node["rotation_invariance"]
+    tow_lin, tow_sea = towed.linear_vs_theory(args.quick), towed.sea_trials(args.quick)
+    tow_sea.pop("_profiles")
     fig = figure(cone.pop("_runs"), cone["cases"], args.out / "three_d_conical_pendulum.png")
+    towed.figure(tow_lin, tow_sea, args.out / "three_d_towed_nonlinear.png")
+    turn = turning.turning_check(1.5 if args.quick else 4.0)
+    turning.figure(turn, turning.steady_shape(), args.out / "three_d_turning_tow.png")
     doc = {
         "planar_equivalence_max_abs": max(planar["run_max_abs"], n_pl["run_max_abs"]),
         "planar_equivalence_max_rel": max(planar["max_rel"], n_pl["max_rel"]),
@@ -459,10 +480,16 @@ def main(argv=None) -> dict:
         "chain_out_of_plane_vs_bessel_rel_err": node["chain_modes"]["vs_bessel_rel_err_finest"],
         "out_of_plane_frequency_rel_err": freq["rel_err"],
         "out_of_plane_rao_rel_err": freq["rao_sway_vs_planar_surge_rel_err"],
+        "towed_linear_vs_theory_max_rel_err": tow_lin["max_rel_err"],
+        "towed_sea_trials": {k: tow_sea[k] for k in ("mean_abs_dH_nonlinear", "mean_abs_dH_linear_theory",
+                                                     "mean_abs_dcstar_nonlinear", "mean_abs_dcstar_linear_theory")},
+        "turning_tow_steady_vs_time_domain_rel_err": turn["rel_err"],
         **{k: None for k in NOT_BUILT},
         "not_built": list(NOT_BUILT),
         "details": {"planar_equivalence": planar, "rotation_invariance": rot, "conical_pendulum": cone,
-                    "energy": energy, "out_of_plane_frequency": freq, "node_model": node},
+                    "energy": energy, "out_of_plane_frequency": freq, "node_model": node,
+                    "towed": {"linear_vs_theory": tow_lin, "sea_trials": tow_sea},
+                    "turning_tow": {k: v for k, v in turn.items() if k not in ("time_s", "distance_m")}},
         "quick": args.quick,
         "figure": fig.name,
     }

@@ -62,7 +62,7 @@ def test_pure_heave_rao_phase_convention():
     w, a, e = sea.components()
     expected = -0.5 * sum(ak * np.sin(wk * t + ek + np.radians(30.0)) for wk, ak, ek in zip(w, a, e))
     np.testing.assert_allclose(y, expected, atol=1e-12)
-    _, Y = top_transfer(rao, [w0])
+    _, Y, _ = top_transfer(rao, [w0])
     assert Y[0] == pytest.approx(-0.5 * np.exp(1j * np.radians(30.0)))
 
 

@@ -154,16 +154,17 @@ def test_bad_mass_and_nonconverging_nlp():
 
 
 def test_analyze_is_one_result_with_units_and_the_same_numbers_as_its_parts():
-    """slack.analyze = solve_equilibrium then modes (one result); the old tuple unpacking warns."""
+    """slack.analyze = the shared cable's equilibrium then its modes (one result); the old tuple unpacking warns."""
     import json
 
     import cablesys.slack as slack
+    from cablesys.slack import shared
 
     sc = scene(0.962, [PointMass(position=8.0, mass=4.5)], n=48)
     res = slack.analyze(sc, 6)
     assert isinstance(res, slack.SlackAnalysis) and res.success and res.message == ""
-    eq = solve_equilibrium(sc)
-    parts = modes(eq, 6)
+    eq = shared.equilibrium(sc)
+    parts = shared.modes(eq, 6)
     assert np.array_equal(res.modes.omega, parts.omega) and res.modes.mode_type == parts.mode_type
     assert res.equilibrium.horizontal_tension == pytest.approx(eq.horizontal_tension, rel=1e-12)
     ds = res.to_xarray()
@@ -175,7 +176,7 @@ def test_analyze_is_one_result_with_units_and_the_same_numbers_as_its_parts():
     with pytest.warns(DeprecationWarning, match="unpacking slack.analyze"):
         eq_old, modes_old = res
     assert eq_old is res.equilibrium and modes_old is res.modes
-    # the modes need the element layout: an Equilibrium without one is refused by name
+    # the chain's modes need the element layout: an Equilibrium without one is refused by name
     import dataclasses
     with pytest.raises(ParameterError, match="eq.discretization"):
-        modes(dataclasses.replace(eq, discretization=None))
+        modes(dataclasses.replace(solve_equilibrium(sc), discretization=None))

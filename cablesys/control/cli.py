@@ -15,7 +15,13 @@ def register(sub) -> None:
                                    "with a wave preview and the open-loop optimal payout on the scene's nonlinear "
                                    "winch model (Wang's 2-DOF cable with a variable length), under winch speed, "
                                    "acceleration and power limits and the tension band. Writes control.json, "
-                                   "control_heave_tension.png and control_winch.png.")
+                                   "control_heave_tension.png and control_winch.png. With --design instead: the "
+                                   "time-domain design of the line's AE and C_I (bounds from the scene's [design] "
+                                   "table) that minimizes the body heave variance, mean over --seeds realisations "
+                                   "of the sea, with no slack, peak tension <= working load and the body "
+                                   "excursion limit in every seed (cablesys.control.design), compared with the "
+                                   "frequency-domain design (cablesys design) and re-run by the plain time "
+                                   "domain; writes time_design.json and time_design.png.")
     p.add_argument("scene", help="scene TOML file (one section)")
     p.add_argument("--out", default="control_out", help="output directory (default: control_out)")
     p.add_argument("--duration", type=float, default=120.0, help="closed-loop run [s] (default 120)")
@@ -32,11 +38,80 @@ def register(sub) -> None:
     p.add_argument("--mpc-scheme", default="gauss-newton", choices=("gauss-newton", "ipopt"),
                    help="how each MPC step solves its horizon: gauss-newton (real-time iteration, one QP per "
                         "step; default) or ipopt (the full NLP to convergence)")
+    p.add_argument("--design", action="store_true",
+                   help="design the line (AE, C_I) through the nonlinear time domain instead of compensating")
+    p.add_argument("--seeds", default="1,2,3", help="--design: comma-separated seeds of the sea (default 1,2,3)")
+    p.add_argument("--design-dt", type=float, default=0.5, help="--design: RK4 interval [s] (default 0.5, 2 steps)")
+    p.add_argument("--record", type=float, default=None,
+                   help="--design: record length [s] (default: the scene's numerics.duration)")
+    p.add_argument("--no-resimulate", action="store_true", help="--design: skip the plain time-domain re-run check")
     p.add_argument("--overwrite", action="store_true", help="replace results of another scene in --out")
     p.set_defaults(func=run)
 
 
+def _seeds(text: str) -> tuple:
+    try:
+        seeds = tuple(int(s) for s in text.split(",") if s.strip())
+    except ValueError:
+        raise ParameterError("--seeds", text, "comma-separated integers >= 0") from None
+    if not seeds:
+        raise ParameterError("--seeds", text, "at least one seed")
+    return seeds
+
+
+def run_design(args) -> int:
+    """``cablesys control SCENE --design``: the time-domain design against the frequency-domain one."""
+    from ..isolation import design as frequency_design, settings_from_dict
+    from ..outputs import OutputDir
+    from ..scene import load_scene
+    from .design import evaluate_design, resimulate_design, time_design_problem, time_domain_design
+    from .design_figure import plot_time_design
+
+    seeds = _seeds(args.seeds)
+    scene = load_scene(args.scene)
+    settings = {"seeds": seeds, "dt": args.design_dt, "record": args.record, "resimulate": not args.no_resimulate}
+    problem = time_design_problem(scene, seeds=seeds, duration=args.record, dt=args.design_dt)
+    outdir = OutputDir(args.out, "control", {"scene": scene, "time_design": settings},
+                       overwrite=args.overwrite, owned=("time_design.json",))
+    with outdir.start(scene=scene.name):
+        res = time_domain_design(problem)
+        doc = {"scene": scene.name, "settings": settings, "time_domain": res.summary()}
+        fd = frequency_design(scene, settings_from_dict(scene.design))
+        theta_f = [float(v) for v in fd.values]
+        doc["frequency_domain"] = {"success": bool(fd.success), "ae_n": theta_f[0], "internal_damping_n_s": theta_f[1],
+                                   "objective": float(fd.objective), "objective_kind": fd.objective_kind,
+                                   "active": list(fd.active),
+                                   "in_the_time_domain": evaluate_design(problem, theta_f)}
+        if not args.no_resimulate:
+            doc["resimulated"] = {"design": resimulate_design(problem, res.theta),
+                                  "frequency_design": resimulate_design(problem, theta_f)}
+        outdir.write_json("time_design.json", doc)
+        with outdir.writing("time_design.png") as tmp:
+            plot_time_design(res, tmp, frequency_theta=theta_f,
+                             title=f"{scene.name}: line designed through the nonlinear time domain, seeds {seeds}")
+        outdir.finish("success" if res.success else "failed", message=res.message)
+    w = sys.stdout.write
+    s = res.summary()
+    w(f"{scene.name}\n{'' if res.success else 'WARNING: ' + res.message + chr(10)}")
+    w(f"time-domain design:      AE {res.theta[0]:.4g} N, C_I {res.theta[1]:.4g} N s; heave std "
+      f"{s['baseline_heave_std_m']:.3f} -> {s['heave_std_m']:.3f} m ({s['heave_reduction_db']:+.1f} dB), "
+      f"mean over seeds {seeds}; {res.stats['iterations']} IPOPT iterations in {res.stats['solve_s']:.1f} s\n")
+    fdt = doc["frequency_domain"]["in_the_time_domain"]
+    w(f"frequency-domain design: AE {theta_f[0]:.4g} N, C_I {theta_f[1]:.4g} N s; in the time domain heave std "
+      f"{fdt['objective_heave_variance_m2'] ** 0.5:.3f} m\n")
+    for row, (v, b) in res.constraints.items():
+        fv = fdt["constraints"][row][0]
+        w(f"  {row:<28s} design {v:+.4f}  frequency design {fv:+.4f}  (<= {b:+.4g})\n")
+    if "resimulated" in doc:
+        w(f"re-run by the plain time domain: largest relative violation {doc['resimulated']['design']['max_relative_violation']:.3g} "
+          f"(design), {doc['resimulated']['frequency_design']['max_relative_violation']:.3g} (frequency design)\n")
+    w(f"wrote {outdir.path / 'time_design.json'}, time_design.png\n")
+    return 0 if res.success else 1
+
+
 def run(args) -> int:
+    if args.design:
+        return run_design(args)
     from ..outputs import OutputDir
     from ..scene import load_scene
     from .limits import WinchLimits

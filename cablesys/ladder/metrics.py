@@ -1,7 +1,7 @@
 """How far one run is from another: the errors the model tolerance speaks of.
 
 Over the run's statistics window (:func:`cablesys.statistics.window`, the one window of a run's summary):
-``body``, the largest difference of the body's x and y amplitudes (half peak-to-peak) relative to
+``body``, the largest difference of the body's x and y (and z in 3-D) amplitudes (half peak-to-peak) relative to
 the larger reference amplitude; ``tension``, the largest difference of the top and body-end tension
 extremes relative to the largest reference tension.
 """
@@ -14,7 +14,7 @@ import numpy as np
 
 from .. import statistics as st
 
-BODY = ("x_b", "y_b")
+BODY = ("x_b", "y_b", "z_b")        # z_b: the sway of a 3-D run (absent from planar runs)
 TENSIONS = ("tension_top", "tension_bottom")
 _SUFFIX = re.compile(r"_\d+$")
 

@@ -113,20 +113,21 @@ def _analyse(args, scene, outdir) -> int:
     natural = {f"omega_{d}" if unique else f"mode {k + 1} ({d})": float(w)
                for k, (d, w) in enumerate(zip(md.dominant, md.omega_undamped)) if omega[0] <= w <= w_max}
     written = []
+    tops = [i for i in ("x_s", "y_s", "z_s") if i in lin.input_labels]     # z_s: the top's sway in 3-D
     for name, r in raos.items():
         tag = "exact" if name.startswith("exact") else "describing"
-        for inp in r.input_labels[:2]:
+        for inp in [i for i in r.input_labels if i in tops]:
             head, rows = convert_rao_table(*r.table(inp), units)
             f = f"rao_{tag}_{inp}.csv"
             with outdir.writing(f) as tmp:
                 np.savetxt(tmp, rows, delimiter=",", header=",".join(head), comments="", fmt="%.8g")
             written.append(f)
-    plotted = [o for o in lin.output_labels if o.startswith(("x_b", "y_b", "tension")) and not o.endswith("rate")]
+    plotted = [o for o in lin.output_labels if o.startswith(("x_b", "y_b", "z_b", "tension")) and not o.endswith("rate")]
     zero = []
-    for inp in ("x_s", "y_s"):
+    for inp in tops:
         for o in plotted:
             sel = {k: r for k, r in raos.items() if inp in r.input_labels}
-            floor = noise_floor([r.amplitude(o, i) for r in sel.values() for i in r.input_labels[:2]])
+            floor = noise_floor([r.amplitude(o, i) for r in sel.values() for i in r.input_labels if i in tops])
             if all(is_noise(r.amplitude(o, inp), floor) for r in sel.values()):
                 zero.append(f"{o} per unit {inp}")
                 continue

@@ -100,19 +100,21 @@ class PeriodicSolution(ResultBase):
 
 
 def scene_input_amplitude(scene) -> tuple[float, np.ndarray]:
-    """(omega, Z) of a top motion made of sinusoids at one frequency: a sin(wt + ph) = Re(-i a e^{i ph} e^{iwt})."""
-    terms = [(ax, s) for ax in ("x", "y") for s in getattr(scene.top_motion, ax)]
+    """(omega, Z) of a top motion made of sinusoids at one frequency: a sin(wt + ph) = Re(-i a e^{i ph} e^{iwt}).
+    Z = (x_s, y_s[, z_s in 3-D], wave amplitudes...), the input order of the model's linearization."""
+    axes = ("x", "y", "z") if getattr(scene, "three_d", False) else ("x", "y")
+    terms = [(ax, s) for ax in axes for s in getattr(scene.top_motion, ax)]
     freqs = {round(s.frequency, 12) for _, s in terms if s.amplitude != 0.0}
     if len(freqs) != 1 or scene.top_motion.series is not None:
         raise ParameterError("top_motion", f"frequencies {sorted(freqs)}"
                              + (" and a sampled series" if scene.top_motion.series is not None else ""),
                              "the periodic solve needs a top motion of sinusoids at one frequency and no sampled "
                              "series; give one frequency or use simulate()")
-    Z = np.zeros(2 + len(scene.environment.waves), complex)
+    Z = np.zeros(len(axes) + len(scene.environment.waves), complex)
     for ax, s in terms:
         if s.amplitude == 0.0:
             continue
-        Z[0 if ax == "x" else 1] += -1j * s.amplitude * np.exp(1j * s.phase)
+        Z[axes.index(ax)] += -1j * s.amplitude * np.exp(1j * s.phase)
     return freqs.pop(), Z
 
 

@@ -1,10 +1,12 @@
 """Response spectra and short-term statistics of the linearized system in the scene's irregular sea.
 
 The sea (``scene.top_motion.spectrum``) reaches the top through the motion RAO
-(``scene.top_motion.rao``, :func:`cablesys.scene.sea.top_transfer`); the RAOs of the exact
-linearization carry it to every output:
+(``scene.top_motion.rao`` or a vessel's 6-DOF ``scene.top_motion.vessel``,
+:func:`cablesys.scene.sea.top_transfer`); the RAOs of the exact linearization carry it to every
+output:
 
-    H_o(omega) = RAO(o, x_s) X_s(omega) + RAO(o, y_s) Y_s(omega),   S_o = |H_o|^2 S(omega),
+    H_o(omega) = RAO(o, x_s) X_s(omega) + RAO(o, y_s) Y_s(omega) [+ RAO(o, z_s) Z_s(omega) in 3-D],
+    S_o = |H_o|^2 S(omega),
 
 and :func:`cablesys.statistics.frequency_domain` turns S_o into sigma, T_z and the most probable
 extremes about the static value. The waves at the cable (``waves_at_cable``) are not included
@@ -18,6 +20,7 @@ import dataclasses
 import numpy as np
 
 from .. import statistics as st
+from ..errors import ParameterError
 from ..scene.sea import top_transfer
 
 
@@ -59,16 +62,21 @@ def sea_response(scene, lin, *, outputs=None, exposure: float | None = None, n: 
     lo, hi = sea.band()
     omega = np.linspace(lo, hi, n)
     S = sea.density(omega)
-    X, Y = top_transfer(scene.top_motion.rao, omega)
+    top = scene.top_motion
+    X, Y, Z = top_transfer(top.vessel or top.rao, omega, sea.heading_deg)
     r = rao(lin, omega)
+    sway = "z_s" in r.input_labels
+    if not sway and np.any(Z != 0.0):
+        raise ParameterError("top_motion.vessel", "sway at the lever arm", "needs the 3-D equations: the linear "
+                             "model given has no z_s input (linearize the scene's own model)")
     if outputs is None:
-        outputs = [o for o in r.output_labels if o.startswith(("x_b", "y_b", "tension")) and not o.endswith("rate")]
+        outputs = [o for o in r.output_labels if o.startswith(("x_b", "y_b", "z_b", "tension")) and not o.endswith("rate")]
     limits = getattr(scene, "limits", None)
     exposure = exposure or getattr(limits, "exposure", None) or 3 * 3600.0
     mean = dict(zip(lin.output_labels, np.asarray(lin.y0, float)))
     spectra, stats = {}, {}
     for o in outputs:
-        H = r(o, "x_s") * X + r(o, "y_s") * Y
+        H = r(o, "x_s") * X + r(o, "y_s") * Y + (r(o, "z_s") * Z if sway else 0.0)
         spectra[o] = np.abs(H) ** 2 * S
         stats[o] = st.frequency_domain(omega, spectra[o], exposure, mean=float(mean.get(o, 0.0)),
                                        nonnegative=o.startswith("tension"))      # a tension-only cable: >= 0

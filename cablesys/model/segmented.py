@@ -36,8 +36,9 @@ cross-flow principle on the part of the relative velocity normal to the element 
 exactly eq. 42's (v . e_n) e_n), the added mass on the normal part of the node velocities, the current
 and waves with their headings (:func:`.fluid.fluid_velocity_3d`), the body's virtual mass M_bvz and its
 3-D drag (eq. 32-35, :func:`.fluid.axial_body_drag_3d`); 3 x 3 blocks per node. A planar scene builds the
-planar equations (2 x 2 blocks); both have the mapped kernel (:mod:`.segmented_kernel`); the 3-D model
-has no anchor and no seabed yet. Outputs add Wang's 3-D
+planar equations (2 x 2 blocks); both have the mapped kernel (:mod:`.segmented_kernel`); in 3-D an
+``[anchor]`` holds the node at (anchor.x, anchor.y, 0) (in the plane of the top's mean position); the 3-D
+model has no seabed yet. Outputs add Wang's 3-D
 ``phi_z``, ``phi_z_rate``, ``z_b``, ``z_b_rate`` per section and the profile ``node_z[j]``.
 
 The element's terms are in :mod:`.segmented_element` (shared with the mapped kernel of
@@ -165,9 +166,8 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
     # a 3-D scene (scene.three_d) has nodes (x, y, z): the same elements and bodies in space, z the sway
     # (Wang 1971 p. 32, "allow the cable to swing out of the vertical plane"); the plane is dim = 2
     dim = 3 if scene.three_d else 2
-    if dim == 3 and (anchored or scene.seabed is not None):
-        raise ParameterError("anchor" if anchored else "seabed", "set", "must be unset in a 3-D scene: the node "
-                             "model's anchor and seabed are planar so far")
+    if dim == 3 and scene.seabed is not None:
+        raise ParameterError("seabed", "set", "must be unset in a 3-D scene: the node model's seabed is planar so far")
     axes = ("x", "y", "z")[:dim]
     q_labels = tuple(f"{c}[{j}]" for j in range(1, n_free + 1) for c in axes)
     q, qd = ca.SX.sym("q", dim * n_free), ca.SX.sym("qd", dim * n_free)
@@ -178,8 +178,8 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
     node_r = [tuple(z[c] for c in range(dim))] + [tuple(q[dim * j + c] for c in range(dim)) for j in range(n_free)]
     node_v = [tuple(zd[c] for c in range(dim))] + [tuple(qd[dim * j + c] for c in range(dim)) for j in range(n_free)]
     if anchored:
-        node_r.append((layout.sym("anchor.x"), layout.sym("anchor.y")))
-        node_v.append((0.0, 0.0))
+        node_r.append((layout.sym("anchor.x"), layout.sym("anchor.y")) + (0.0,) * (dim - 2))   # z = 0 in space
+        node_v.append((0.0,) * dim)
     static_law = scene.seabed is not None            # the seabed's statics: elements elastic both ways (catenary.py)
 
     K, V_grav, V_strain = 0.0, 0.0, 0.0
@@ -256,7 +256,7 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
         acc_nodes.append(a_j)
     acc = ca.vertcat(*acc)
     if anchored:
-        acc_nodes.append((0.0, 0.0))
+        acc_nodes.append((0.0,) * dim)
 
     x = ca.vertcat(q, qd)
     xdot = ca.vertcat(qd, acc)

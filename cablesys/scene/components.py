@@ -16,6 +16,8 @@ from ..integration import METHODS as INTEGRATION_METHODS
 from .fields import quantity, spec
 from .harmonics import MAX_AMPLITUDE_M, MAX_FREQUENCY_RAD_S, Sinusoid, Wave
 from .sea import MotionRAO, SeaSpectrum, append_once, sea_sinusoids
+from .track import Track
+from .vessel import VesselRAO
 
 
 def _check_all_finite(obj, prefix: str) -> None:
@@ -245,6 +247,11 @@ class TopMotion:
     spectrum: SeaSpectrum | None = spec("none", "an irregular sea (scene/sea.py SeaSpectrum), realised as sinusoids appended to x and y", None)
     rao: MotionRAO | None = spec("none", "vessel / crane-tip motion RAO turning the sea into top motion (scene/sea.py MotionRAO); "
                                "none: the top heaves with the surface", None)
+    vessel: VesselRAO | None = spec("none", "a vessel's 6-DOF motion RAO and the lever arm of the cable's point on it (scene/vessel.py "
+                                    "VesselRAO): the sea moves the top in x, y and z (sway makes the scene 3-D); instead of rao",
+                                    None)
+    track: Track | None = spec("none", "the tow point's path in the horizontal plane (scene/track.py Track: towing in a "
+                               "circle), realised as sinusoids in x and z; the run starts on the steady turn", None)
     ramp_s: float | None = spec("time", "smooth start: every top-motion amplitude rises from 0 to full over 0 <= t <= "
                                         "ramp_s with a cosine-rate ramp u - sin(2 pi u)/(2 pi), u = t/ramp_s (no jump in top "
                                         "velocity or acceleration); unset: 3 periods of the longest forcing period (a sea: "
@@ -262,23 +269,46 @@ class TopMotion:
             require_range("top_motion.spectrum.hs", self.spectrum.hs, 0.0, MAX_SEA_HS_M, "m", lo_open=True)
             require_range("top_motion.spectrum.tp", self.spectrum.tp, *SEA_TP_RANGE_S, "s")
             require_range("top_motion.spectrum.omega_max", self.spectrum.omega_max, 0.0, MAX_FREQUENCY_RAD_S, "rad/s")
-            sx, sy = sea_sinusoids(self.spectrum, self.rao)
-            nx, ny = len(self.x), len(self.y)
-            object.__setattr__(self, "x", append_once(self.x, sx))
-            object.__setattr__(self, "y", append_once(self.y, sy))
-            object.__setattr__(self, "_user_count", {"x": len(self.x) - len(sx) if len(self.x) == nx else nx,
-                                                     "y": len(self.y) - len(sy) if len(self.y) == ny else ny})
-        elif self.rao is not None:
-            raise ParameterError("top_motion.rao", "given", "needs a [top_motion.spectrum] sea to act on")
+            if self.rao is not None and self.vessel is not None:
+                raise ParameterError("top_motion.vessel", "given with top_motion.rao",
+                                     "give one motion RAO: [top_motion.rao] (surge and heave) or [top_motion.vessel] (6-DOF)")
+            realised = dict(zip("xyz", sea_sinusoids(self.spectrum, self.vessel or self.rao)))
+            counts = {}
+            for axis, terms in realised.items():
+                n = len(getattr(self, axis))
+                object.__setattr__(self, axis, append_once(getattr(self, axis), terms))
+                counts[axis] = len(getattr(self, axis)) - len(terms) if len(getattr(self, axis)) == n else n
+            object.__setattr__(self, "_user_count", counts)
+        elif self.rao is not None or self.vessel is not None:
+            name = "top_motion.rao" if self.rao is not None else "top_motion.vessel"
+            raise ParameterError(name, "given", "needs a [top_motion.spectrum] sea to act on")
+        if self.track is not None:             # the circle as sinusoids; alone: the run starts on its steady turn
+            others = [n for n in ("spectrum", "series") if getattr(self, n) is not None]
+            sx, sz = self.track.sinusoids()
+            x, z = append_once(self.x, sx), append_once(self.z, sz)
+            others += [f"{a}[0]" for a, mine, got in (("x", sx, x), ("z", sz, z)) if len(got) != len(mine)]
+            others += ["y[0]"] if self.y else []
+            if others:
+                raise ParameterError(f"top_motion.{others[0]}", "given with top_motion.track",
+                                     "must be unset: the run starts on the steady turn, which other top motion "
+                                     "would not leave steady")
+            if self.ramp_s not in (None, 0.0):
+                raise ParameterError("top_motion.ramp_s", self.ramp_s, "must be 0 or unset with top_motion.track: "
+                                     "the run starts on the steady turn, not from rest")
+            object.__setattr__(self, "x", x)
+            object.__setattr__(self, "z", z)
+            object.__setattr__(self, "_user_count", {"x": 0, "y": 0, "z": 0})
 
     @property
     def effective_ramp_s(self) -> float:
         """The smooth start's duration (s): ``ramp_s``, or when unset RAMP_PERIODS periods of the longest
         forcing period (of the user's sinusoids and a sea's T_p, not of the sea's realised components,
         whose low-frequency tail has arbitrarily long periods); 0 without sinusoids (a recorded series
-        plays as recorded)."""
+        plays as recorded) and with a track (the run starts on the steady turn)."""
         if self.ramp_s is not None:
             return float(self.ramp_s)
+        if self.track is not None:       # the run starts on the steady turn
+            return 0.0
         n = getattr(self, "_user_count", {"x": len(self.x), "y": len(self.y)})
         n = {"z": len(self.z), **n}
         periods = [2.0 * math.pi / s.frequency for axis in ("x", "y", "z") for s in getattr(self, axis)[: n[axis]]]

@@ -18,6 +18,7 @@ SI_UNIT = {
     "acceleration": "m/s^2", "area": "m^2", "force_time": "N s", "angle": "rad",
     "angle_deg": "deg", "frequency": "rad/s", "time": "s", "none": "-",
     "stiffness_per_area": "Pa/m", "damping_per_area": "Pa s/m",     # seabed contact (scene Seabed)
+    "angle_deg_per_length": "deg/m",                                   # a vessel's rotation RAO (scene/vessel.py)
 }
 
 # factor from the report's foot-pound-second (slug) system to SI, per dimension
@@ -27,6 +28,7 @@ FPS_TO_SI = {
     "acceleration": U.FT, "area": U.FT**2, "force_time": U.LBF, "angle": 1.0,
     "angle_deg": 1.0, "frequency": 1.0, "time": 1.0, "none": 1.0,
     "stiffness_per_area": U.LBF / U.FT**3, "damping_per_area": U.LBF / U.FT**3,
+    "angle_deg_per_length": 1.0 / U.FT,
 }
 
 UNIT_SYSTEMS = ("SI", "fps")

@@ -10,7 +10,7 @@ from ..errors import ParameterError
 from .components import Anchor, Body, Cable, Environment, Initial, Numerics, Seabed, Section, TopMotion
 from .labels import section_prefix
 from .limits import Limits
-from .sea import append_once, sea_waves
+from .sea import append_once, sea_waves, user_count
 
 ANGLE_MODES = ("per_section", "shared")
 
@@ -50,6 +50,7 @@ class Scene:
         self._check_initial_lengths()
         self._check_ends()
         self._check_dimensions()
+        self._check_track()
         sea = self.top_motion.spectrum
         if sea is not None and sea.waves_at_cable:   # the same sea at the cable (Wang 1971 eq. 26-28; scene/sea.py)
             env = self.environment
@@ -89,7 +90,8 @@ class Scene:
         """The 3-D fields this scene sets (``top_motion.z``, a current or wave heading, ``body.mass_z``)."""
         env, out = self.environment, []
         if self.top_motion.z:
-            out.append("top_motion.z")
+            own = user_count(self.top_motion, "z")
+            out.append("top_motion.z" if own else "top_motion.vessel (the lever arm's motion has sway)")
         if env.current_headings_deg:
             out.append("environment.current_headings_deg")
         out += [f"environment.waves[{k}].heading_deg" for k, w in enumerate(env.waves) if w.heading_deg is not None]
@@ -104,16 +106,15 @@ class Scene:
 
     def _check_dimensions(self) -> None:
         """A 3-D field needs the 3-D equations; those of Wang's straight cable and of the node model (segmented) have
-        no anchor or seabed in space yet."""
+        no seabed in space yet; the node model's anchor holds its node at (anchor.x, anchor.y, 0)."""
         fields = self.three_d_fields()
         if self.numerics.dimensions == 2 and fields:
             raise ParameterError("numerics.dimensions", 2, f"must be 3 or unset: the scene sets {fields[0]}, "
                                  "which only the 3-D equations take")
         if self.three_d:
-            if self.anchor is not None or self.seabed is not None:
-                raise ParameterError("anchor" if self.anchor is not None else "seabed", "set",
-                                     "must be unset in a 3-D scene: the 3-D equations (Wang's straight cable, the "
-                                     "node model) have no anchor or seabed in space so far")
+            if self.seabed is not None:
+                raise ParameterError("seabed", "set", "must be unset in a 3-D scene: the 3-D equations (Wang's "
+                                     "straight cable, the node model) have no seabed in space so far")
             # the time domain's initial state sets every angle from initial.phi / phi_rate: it does not
             # know the out-of-plane angle yet, so a 3-D run starts from its steady state (or an x0 given)
             for name, unset in (("phi", None), ("phi_rate", 0.0)):
@@ -121,6 +122,31 @@ class Scene:
                 if v != unset:
                     raise ParameterError(f"initial.{name}", v, "must be unset in a 3-D scene: the 3-D run starts "
                                          "from its steady state so far (the Python API takes any state as x0)")
+
+    def _check_track(self) -> None:
+        """Towing in a circle starts on the steady turn, a steady state only in still water (in the frame turning
+        with the tow point a current or a wave would turn too): no current, waves or system speed, and the initial
+        state is the steady turn's (``initial.u``, ``initial.phi`` unset)."""
+        if self.top_motion.track is None:
+            return
+        if self.anchor is not None:
+            raise ParameterError("anchor", "set", "must be unset with top_motion.track: an anchored line cannot turn "
+                                 "rigidly with the tow point")
+        env = self.environment
+        for i, v in enumerate(env.current_speeds):
+            if v != 0.0:
+                raise ParameterError(f"environment.current_speeds[{i}]", v, "must be 0 with top_motion.track: the "
+                                     "steady turn the run starts on is an equilibrium only in still water")
+        if env.waves:
+            raise ParameterError("environment.waves", f"{len(env.waves)} waves", "must be empty with top_motion.track "
+                                 "(the steady turn is an equilibrium only in still water)")
+        if env.system_speed != 0.0:
+            raise ParameterError("environment.system_speed", env.system_speed, "must be 0 with top_motion.track: the "
+                                 "track is the tow point's motion over the ground")
+        for name in ("u", "phi"):
+            if getattr(self.initial, name) is not None:
+                raise ParameterError(f"initial.{name}", getattr(self.initial, name), "must be unset with "
+                                     "top_motion.track: the run starts on the steady turn")
 
     def _check_initial_lengths(self) -> None:
         """An initial stretch u must leave every section a positive length l_0 + u (Wang 1971 eq. 10)."""

@@ -50,7 +50,8 @@ class SeaSpectrum:
     hs: float = spec("length", "significant wave height H_s = 4 sqrt(m0)")
     tp: float = spec("time", "peak period T_p")
     gamma: float = spec("none", "JONSWAP peak-enhancement factor (1..7; ignored for pierson-moskowitz)", 3.3)
-    heading_deg: float = spec("angle_deg", "direction the waves travel, deg from +x (the RAO table is for this heading; "
+    heading_deg: float = spec("angle_deg", "direction the waves travel, deg from +x (a [top_motion.rao] table is for this heading, a "
+                                           "[top_motion.vessel] table is read at heading - vessel_heading_deg; "
                                            "waves_at_cable needs 0)", 0.0)
     seed: int = spec("none", "seed of the random phases (same seed, same sea)", 0)
     n_components: int = spec("none", "number of sinusoids (equal frequency bins)", 100)
@@ -193,30 +194,35 @@ def _read_rao_csv(path) -> dict:
 HEAVE_ONLY = None   # no RAO table: the top heaves with the surface (|R_heave| = 1, phase 0), no surge
 
 
-def top_transfer(rao: MotionRAO | None, omega) -> tuple[np.ndarray, np.ndarray]:
-    """Complex amplitudes (X_s, Y_s) of the top motion per unit wave amplitude, in cablesys axes
-    (x + right, y + down), relative to the wave elevation eta = Re(-i e^{i omega t}) = sin(omega t).
+def top_transfer(rao, omega, wave_heading_deg: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Complex amplitudes (X_s, Y_s, Z_s) of the top motion per unit wave amplitude, in cablesys axes
+    (x + right, y + down, z sway), relative to the wave elevation eta = Re(-i e^{i omega t}) = sin(omega t).
 
-    Returns the multipliers of eta's complex amplitude: x_s = Re(X_s eta_c e^{iwt}), likewise y_s."""
+    ``rao`` is None (the top heaves with the surface), a :class:`MotionRAO` (surge and heave in the
+    plane, Z_s = 0) or a :class:`cablesys.scene.vessel.VesselRAO` (a 6-DOF vessel RAO at a lever arm,
+    for waves travelling ``wave_heading_deg`` from +x). Returns the multipliers of eta's complex
+    amplitude: x_s = Re(X_s eta_c e^{iwt}), likewise y_s and z_s."""
     omega = np.asarray(omega, float)
     if rao is None:
-        return np.zeros(omega.shape, complex), -np.ones(omega.shape, complex)
-    return rao("surge", omega), -rao("heave", omega)
+        return np.zeros(omega.shape, complex), -np.ones(omega.shape, complex), np.zeros(omega.shape, complex)
+    if isinstance(rao, MotionRAO):
+        return rao("surge", omega), -rao("heave", omega), np.zeros(omega.shape, complex)
+    return rao.transfer(omega, wave_heading_deg)
 
 
-def sea_sinusoids(spectrum: SeaSpectrum, rao: MotionRAO | None) -> tuple[tuple, tuple]:
-    """(x sinusoids, y sinusoids) of the top motion realising ``spectrum`` through ``rao``."""
+def sea_sinusoids(spectrum: SeaSpectrum, rao) -> tuple[tuple, tuple, tuple]:
+    """(x, y, z sinusoids) of the top motion realising ``spectrum`` through ``rao`` (see
+    :func:`top_transfer`); an axis the motion does not reach has no terms."""
     w, a, eps = spectrum.components()
-    X, Y = top_transfer(rao, w)
     out = []
-    for T in (X, Y):
+    for T in top_transfer(rao, w, spectrum.heading_deg):
         terms = []
         for wk, ak, ek, Tk in zip(w, a, eps, T):
             amp = float(abs(Tk) * ak)
             if amp > 0.0:
                 terms.append(Sinusoid(amplitude=amp, frequency=float(wk), phase=float((ek + np.angle(Tk)) % (2 * math.pi))))
         out.append(tuple(terms))
-    return out[0], out[1]
+    return out[0], out[1], out[2]
 
 
 def sea_waves(spectrum: SeaSpectrum, gravity: float) -> tuple:

@@ -133,7 +133,8 @@ def _unit_label(dim: str, units: str) -> str:
         return {"length": "ft", "force": "lbf", "mass": "slug", "mass_per_length": "slug/ft",
                 "force_per_length": "lbf/ft", "density": "slug/ft^3", "velocity": "ft/s",
                 "acceleration": "ft/s^2", "area": "ft^2", "force_time": "lbf s",
-                "stiffness_per_area": "lbf/ft^3", "damping_per_area": "lbf s/ft^3"}.get(dim, SI_UNIT[dim])
+                "stiffness_per_area": "lbf/ft^3", "damping_per_area": "lbf s/ft^3",
+                "angle_deg_per_length": "deg/ft"}.get(dim, SI_UNIT[dim])
     return SI_UNIT[dim]
 
 

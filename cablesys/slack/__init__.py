@@ -2,11 +2,15 @@
 
 Griffin & Rosenthal (1985), "The Dynamics of Slack Marine Cables", NRL MR 5559.
 
-scene (``SlackScene``, ``SlackCable``, ``load_slack_scene``) -> statics (``solve_equilibrium`` ->
-:class:`Equilibrium`) -> natural modes (``modes(eq)`` -> :class:`ModeSet`, omega in rad/s, as
-:func:`cablesys.modes` for the Wang model; ``analyze`` does both -> :class:`SlackAnalysis`) ->
-element-count convergence (``converge`` -> :class:`Convergence`); the flat-sag theory in
-``irvine_modes``. The old names ``Cable`` and ``load_scene`` still resolve, with a DeprecationWarning.
+scene (``SlackScene``, ``SlackCable``, ``load_slack_scene``) -> ``analyze`` -> :class:`SlackAnalysis`
+(equilibrium and natural modes, omega in rad/s) -> element-count convergence (``converge`` ->
+:class:`Convergence`). ``analyze`` and ``converge`` run on the shared cable: the span is a scene of
+the segmented node model (:mod:`.shared`: support A the top, B the anchor, the point masses the
+sections' bodies), its equilibrium the node model's statics and its modes the model's own mass
+matrix and the AD Jacobian of its forces. The lumped chain of :mod:`.statics` and :mod:`.vibration`
+(``solve_equilibrium`` -> :class:`Equilibrium`, ``modes(eq)`` -> :class:`ModeSet`: the energy NLP and
+its Hessian, and the shooting route) solves the same discrete equations another way and is kept as
+their independent check. The flat-sag theory is in ``irvine_modes``. The old names ``Cable`` and ``load_scene`` still resolve, with a DeprecationWarning.
 """
 
 import warnings

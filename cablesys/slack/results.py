@@ -81,7 +81,9 @@ class Equilibrium(ResultBase):
     """Static shape of the chain: node arc length s (m, unstretched), x, z (m), element tension (N).
 
     ``discretization``: the lumped-mass element layout the shape was solved on (the modes of
-    :func:`cablesys.slack.modes` need it); ``stats``: ``wall_time_s`` (``seconds``) and
+    :func:`cablesys.slack.modes` need it); ``node_state``: on the shared cable
+    (:mod:`cablesys.slack.shared`), the node model, its node positions q* (m) and parameter vector,
+    about which its modes are taken, else None; ``stats``: ``wall_time_s`` (``seconds``) and
     ``iterations`` of the statics solver."""
 
     scene: Any
@@ -95,6 +97,7 @@ class Equilibrium(ResultBase):
     discretization: Any = None
     message: str = ""
     success: bool = True
+    node_state: Any = field(default=None, repr=False, compare=False)
 
     VARIABLES: ClassVar[dict] = {"s": ("m", "unstretched arc length"), "x": ("m", "horizontal node position"),
                                  "z": ("m", "vertical node position (up)"), "tension": ("N", "element tension"),

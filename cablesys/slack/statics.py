@@ -278,8 +278,15 @@ def solve_equilibrium_shooting(scene: SlackScene, *, n_elements: int | None = No
     :class:`Equilibrium` (``method`` 'shooting', ``iterations`` the residual evaluations).
     """
     d = discretize(scene, n_elements)
-    EA = scene.cable.ae
     t0 = time.perf_counter()
+    x, z, nfev = shooting_nodes(scene, d)
+    return _equilibrium_from_nodes(scene, d, x, z, "shooting", nfev, time.perf_counter() - t0, "")
+
+
+def shooting_nodes(scene: SlackScene, d: Discretization):
+    """Node positions (x, z, m; supports included) of the chain ``d`` at rest by shooting on (H, V_A), and
+    the residual evaluations: :func:`solve_equilibrium_shooting` on any node layout."""
+    EA = scene.cable.ae
     Wtot = float(np.sum(d.weight[1:-1]))
     c, L = scene.chord, scene.cable.length
     try:   # the elastic parabola's start fails for chords near vertical or near zero: a solver failure
@@ -309,8 +316,7 @@ def solve_equilibrium_shooting(scene: SlackScene, *, n_elements: int | None = No
     X, Z = _chain_ends(np.array([math.exp(sol.x[0]), sol.x[1]]), d, EA)
     x = np.concatenate([[0.0], X[:-1], [scene.span]])
     z = np.concatenate([[0.0], Z[:-1], [scene.rise]])
-    return _equilibrium_from_nodes(scene, d, x, z, "shooting", int(sol.nfev),
-                                   time.perf_counter() - t0, "")
+    return x, z, int(sol.nfev)
 
 
 def stiffness_inplane(eq: Equilibrium, d: Discretization):

@@ -12,7 +12,10 @@ Equations of motion M q'' + K q = 0 about the static shape:
 
 Modes are mass-normalized as eq. 25 (sum of psi^2 dm including the
 discrete masses equals 1) and classified O / A / S / H by their mirror
-symmetry about the perpendicular bisector of the chord.
+symmetry about the perpendicular bisector of the chord (:mod:`.modal`).
+
+:func:`analyze` and :func:`converge` run on the shared cable (:mod:`.shared`, the node model's
+span); :func:`modes` of a chain equilibrium is their independent check on the same nodes.
 """
 
 from __future__ import annotations
@@ -29,15 +32,11 @@ import scipy.sparse.linalg
 from ..errors import ParameterError, SolverError
 from ..results import timed
 from .results import Convergence, Equilibrium, ModeSet, SlackAnalysis
+from .modal import SYMMETRY_THRESHOLD, _eig, classify_rows, symmetric_fraction  # noqa: F401 (re-exported)
+from .shared import analyze as analyze_span, section_segments
 from .statics import Discretization, solve_equilibrium, stiffness_inplane
 
 log = logging.getLogger(__name__)
-
-#: symmetric fraction above which an in-plane mode is 'S', below 1 - this 'A'
-SYMMETRY_THRESHOLD = 0.9
-#: largest generalized problem solved densely; above it sparse shift-invert
-DENSE_LIMIT = 1200
-
 
 def _tangents(eq: Equilibrium) -> np.ndarray:
     """Unit tangent at every node (mean of the adjacent element directions)."""
@@ -72,50 +71,6 @@ def stiffness_outofplane(eq: Equilibrium) -> sp.csc_matrix:
     main = k[:-1] + k[1:]
     off = -k[1:-1]
     return sp.diags([off, main, off], [-1, 0, 1], format="csc")
-
-
-def _eig(K, M, k: int, solver: str):
-    """k lowest eigenpairs of K phi = omega^2 M phi (phi^T M phi = 1)."""
-    k = min(k, K.shape[0])
-    if solver == "auto":
-        solver = "dense" if K.shape[0] <= DENSE_LIMIT else "sparse"
-    if solver == "dense" or k >= K.shape[0] - 1:
-        lam, V = scipy.linalg.eigh(K.toarray(), M.toarray(), subset_by_index=[0, k - 1])
-    elif solver == "sparse":
-        # shift-invert about 0: K is positive definite (both ends fixed), so
-        # the largest eigenvalues of K^-1 M are the lowest modes; one sparse LU.
-        lam, V = scipy.sparse.linalg.eigsh(K.tocsc(), k=k, M=M.tocsc(), sigma=0.0, which="LM")
-        order = np.argsort(lam)
-        lam, V = lam[order], V[:, order]
-    else:
-        raise ParameterError("solver", solver, "must be 'auto', 'dense' or 'sparse'")
-    if np.any(lam <= 0):
-        raise SolverError(f"non-positive eigenvalue {lam.min():.3g}: the equilibrium is not stable")
-    # eq. 25: psi / psi_R with psi_R^2 = psi^T M psi (discrete masses included)
-    V = V / np.sqrt(np.einsum("ij,ij->j", V, M @ V))[None, :]
-    return np.sqrt(lam), V, solver
-
-
-def symmetric_fraction(eq: Equilibrium, ux: np.ndarray, uz: np.ndarray) -> float:
-    """Share of the in-plane displacement that is mirror symmetric about mid-chord.
-
-    Mirror: chordwise component u_c(s) -> -u_c(L - s), normal u_n(s) -> u_n(L - s)
-    (the symmetric modes of Irvine & Caughey: vertical motion symmetric,
-    horizontal antisymmetric). Arc-length quadrature weights.
-    """
-    th = eq.scene.inclination
-    uc = ux * math.cos(th) + uz * math.sin(th)
-    un = -ux * math.sin(th) + uz * math.cos(th)
-    s = eq.s
-    L = s[-1]
-    uc_m = -np.interp(L - s, s, uc)
-    un_m = np.interp(L - s, s, un)
-    wq = np.zeros(len(s))
-    wq[:-1] += np.diff(s) / 2
-    wq[1:] += np.diff(s) / 2
-    sym = wq @ (((uc + uc_m) / 2) ** 2 + ((un + un_m) / 2) ** 2)
-    tot = wq @ (uc ** 2 + un ** 2)
-    return float(sym / tot)
 
 
 def modes(eq: Equilibrium, n_modes: int | None = None, *, solver: str = "auto") -> ModeSet:
@@ -159,29 +114,24 @@ def modes(eq: Equilibrium, n_modes: int | None = None, *, solver: str = "auto") 
         shape = np.zeros((nn, 3))
         shape[1:-1, 0] = V_in[:ni, j]
         shape[1:-1, 2] = V_in[ni:, j]
-        f = symmetric_fraction(eq, shape[:, 0], shape[:, 2])
-        typ = "S" if f >= SYMMETRY_THRESHOLD else "A" if f <= 1 - SYMMETRY_THRESHOLD else "H"
-        rows.append((w_in[j], typ, f, shape))
+        rows.append((w_in[j], None, np.nan, shape))
     for j in range(len(w_out)):
         shape = np.zeros((nn, 3))
         shape[1:-1, 1] = V_out[:, j]
         rows.append((w_out[j], "O", np.nan, shape))
-    rows.sort(key=lambda r: r[0])
-    rows = rows[: int(n_modes)]
-    for r in rows:  # sign convention: largest displacement component positive
-        k = np.unravel_index(np.argmax(np.abs(r[3])), r[3].shape)
-        if r[3][k] < 0:
-            r[3][...] *= -1
-    return ModeSet(omega=np.array([r[0] for r in rows]), mode_type=tuple(r[1] for r in rows),
-                   symmetric_fraction=np.array([r[2] for r in rows]),
-                   shapes=np.stack([r[3] for r in rows]), s=eq.s.copy(),
-                   n_elements=d.n_elements, solver=used, seconds=time.perf_counter() - t0)
+    return classify_rows(eq, rows, n_modes, n_elements=d.n_elements, solver=used, seconds=time.perf_counter() - t0)
 
 
 @timed
 def analyze(scene, n_modes: int | None = None, *, n_elements: int | None = None, solver: str = "auto",
-            cache=None) -> SlackAnalysis:
-    """Statics (CasADi NLP) then natural modes of a slack scene, as one result.
+            cache=None, segments: tuple[int, ...] | None = None) -> SlackAnalysis:
+    """Statics then natural modes of a slack scene on the shared cable, as one result.
+
+    The span is the node model's (:mod:`.shared`: support A the top, B the anchor, the point masses the
+    sections' bodies): its equilibrium from the node model's statics and its modes from the model's
+    own mass matrix and the AD Jacobian of its forces, in-plane and out-of-plane (Griffin & Rosenthal
+    1985 section 7, eq. 25). The lumped chain of this module (:func:`solve_equilibrium` and
+    :func:`modes`) solves the same discrete equations by another route (energy NLP and its Hessian).
 
     Parameters
     ----------
@@ -190,25 +140,26 @@ def analyze(scene, n_modes: int | None = None, *, n_elements: int | None = None,
     n_modes : int, optional
         Number of modes (default ``scene.n_modes``).
     n_elements : int, optional
-        Lumped-mass elements (default from the scene).
+        Elements (default from the scene), shared among the sections between masses by length.
     solver : str, optional
         'auto', 'dense' (scipy.linalg.eigh) or 'sparse' (shift-invert eigsh).
     cache : FunctionCache, optional
-        Keeps the CasADi functions per element count (see :func:`solve_equilibrium`).
+        Keeps the node models by structure (see :func:`.shared.span_model`).
+    segments : tuple of int, optional
+        Elements per section (overrides ``n_elements``).
 
     Returns
     -------
     SlackAnalysis
         ``equilibrium`` (static shape, tensions in N) and ``modes`` (omega in rad/s).
     """
-    eq = solve_equilibrium(scene, n_elements=n_elements, cache=cache)
-    return SlackAnalysis(equilibrium=eq, modes=modes(eq, n_modes, solver=solver))
+    return analyze_span(scene, n_modes, n_elements=n_elements, segments=segments, solver=solver, cache=cache)
 
 
 @timed
 def converge(scene, n_modes: int | None = None, *, levels: tuple[int, ...] = (48, 96, 192),
              solver: str = "auto", cache=None) -> Convergence:
-    """Solve at each element count and Richardson-extrapolate (h^2 convergence).
+    """Solve at each element count on the shared cable (:func:`analyze`) and Richardson-extrapolate (h^2 convergence).
 
     Modes are matched by family ('O' versus in-plane) and index within the
     family, so that a change of in-plane order near a crossover between
@@ -221,7 +172,8 @@ def converge(scene, n_modes: int | None = None, *, levels: tuple[int, ...] = (48
     n_modes : int, optional
         Number of modes reported (default ``scene.n_modes``).
     levels : tuple of int, optional
-        Element counts, each twice the previous (at least three).
+        Element counts, each twice the previous (at least three); the first is shared among the sections
+        between masses by length and every section's count doubles with the level.
     solver : str, optional
         'auto', 'dense' (scipy.linalg.eigh) or 'sparse' (shift-invert eigsh).
     cache : FunctionCache, optional
@@ -235,11 +187,16 @@ def converge(scene, n_modes: int | None = None, *, levels: tuple[int, ...] = (48
     if len(levels) < 3:
         raise ParameterError("levels", levels, "needs at least three element counts")
     n_modes = scene.n_modes if n_modes is None else n_modes
+    base = section_segments(scene, levels[0])
+    for a, b in zip(levels[:-1], levels[1:]):
+        if b != 2 * a:
+            raise ParameterError("levels", levels, "must double from one element count to the next (h^2 Richardson)")
     fam_w = []
     types = None
     n_extra = n_modes + 4
-    for n in levels:
-        ms = analyze(scene, n_extra * 2, n_elements=n, solver=solver, cache=cache).modes
+    for n in levels:            # every section's element count doubles with the level: h halves everywhere
+        segs = tuple(k * (n // levels[0]) for k in base)
+        ms = analyze(scene, n_extra * 2, segments=segs, solver=solver, cache=cache).modes
         o = ms.of_type("O")
         i = ms.of_type("A", "S", "H")
         ti = [t for t in ms.mode_type if t != "O"]

@@ -94,7 +94,8 @@ def anchored_guess(model, p) -> np.ndarray:
     Returns
     -------
     numpy.ndarray
-        q = (x_1, y_1, ..., x_{n-1}, y_{n-1}) in m (the anchor node is not a coordinate).
+        q = (x_1, y_1, ..., x_{n-1}, y_{n-1}) in m (the anchor node is not a coordinate); z_j = 0 added
+        for a 3-D model.
     """
     from scipy.optimize import brentq
 
@@ -119,7 +120,7 @@ def anchored_guess(model, p) -> np.ndarray:
         if cat is not None:
             x, z, _ = cat["shape"](L - np.array(arcs[:-1]))
             direction = -np.sign(A[0]) if A[0] != 0 else 1.0
-            return np.column_stack([A[0] + direction * x, A[1] - z]).ravel()
+            return _in_space(model, np.column_stack([A[0] + direction * x, A[1] - z]))
     if L <= chord:
         corners = [np.zeros(2), A]
     else:
@@ -139,7 +140,12 @@ def anchored_guess(model, p) -> np.ndarray:
     cum = np.concatenate([[0.0], np.cumsum(np.hypot(legs[:, 0], legs[:, 1]))])
     path = lambda s: np.array([np.interp(s, cum, [c[i] for c in corners]) for i in range(2)])
     q = [path(a / L * cum[-1]) for a in arcs[:-1]]
-    return np.array(q).ravel()
+    return _in_space(model, np.array(q))
+
+
+def _in_space(model, xy) -> np.ndarray:
+    """Planar node positions (rows (x, y)) as the model's q: z = 0 added for a 3-D model (the anchor's plane)."""
+    return np.column_stack([xy] + [np.zeros(len(xy))] * (_dim(model) - 2)).ravel()
 
 
 def _polar(model):
@@ -178,7 +184,7 @@ def _rootfinders(model):
     return model.derive("catenary_rootfinders", build)
 
 
-def _tolerance(model, p) -> float:
+def static_tolerance(model, p) -> float:
     """TOLERANCE, or the round-off floor of the scaled residual when stiff elements set it: a node
     position known to eps x (cable length) gives an element force error k_e eps L."""
     def val(i, name):
@@ -231,7 +237,7 @@ def segmented_equilibrium(model, p, *, guess=None):
     resid, to_q = static_residual(model), _polar(model)
     g0 = hanging_guess(model, p) if guess is None else np.asarray(guess, float)
 
-    tol = _tolerance(model, p)
+    tol = static_tolerance(model, p)
 
     def residual(q, pp):
         return _max_residual(resid, q, pp)
@@ -296,7 +302,7 @@ def _anchored_equilibrium(model, p, guess):
     next guess). With a seabed the statics' elements are elastic both ways (segmented_seabed.py);
     a solution with a compressed element is refused."""
     resid, nodes = static_residual(model), _node_rootfinder(model)
-    tol = _tolerance(model, p)
+    tol = static_tolerance(model, p)
     q = anchored_guess(model, p) if guess is None else np.asarray(guess, float)
     best = np.inf
     with casadi_warnings_captured() as kinsol:

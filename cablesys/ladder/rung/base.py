@@ -40,11 +40,19 @@ def has_ends(scene: Scene) -> bool:
     return getattr(scene, "anchor", None) is not None or getattr(scene, "seabed", None) is not None
 
 
+def turning(scene: Scene) -> bool:
+    """True when the tow point runs on a circle (``top_motion.track``): the run starts on the steady turn, which
+    the statics find for the node model (:mod:`cablesys.statics.turning`)."""
+    return getattr(getattr(scene, "top_motion", None), "track", None) is not None
+
+
 PLANAR = ("a 3-D scene: the frequency and quasi-static rungs are planar; Wang's straight cable and the node model "
           "(segmented) have three-dimensional equations")
 WITH_MASS = ("a massless cable (cable.cable_mass_switch < 0, Wang 1971's CBMAS) belongs to Wang's straight cable: the "
              "element rungs' nodes would have no mass, and the ladder has no estimate of the other rungs against it")
 NO_NODES = ("an anchored line or a seabed: only the node model (segmented) has nodes to anchor and to lay on the bed")
+TURNING = ("towing in a circle (top_motion.track): the run starts on the steady turn, which the statics find for the "
+           "node model (segmented) only")
 
 
 def straight_validity(scene: Scene) -> str:

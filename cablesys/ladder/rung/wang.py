@@ -6,7 +6,7 @@ from __future__ import annotations
 from ...model import CableModel, build_model
 from ...scene import Scene
 from .. import estimate as est
-from .base import NO_NODES, BuiltinRung, has_ends
+from .base import NO_NODES, TURNING, BuiltinRung, has_ends, turning
 
 
 class Wang(BuiltinRung):
@@ -17,8 +17,11 @@ class Wang(BuiltinRung):
     straight_cost = 1.0        # the unit of the rungs' costs
 
     def valid(self, scene: Scene) -> str:
-        """"" unless the scene has an anchor or a seabed (the straight cable has no nodes)."""
-        return NO_NODES if has_ends(scene) else ""
+        """"" unless the scene has an anchor or a seabed (the straight cable has no nodes) or a turning track (its
+        steady turn is the node model's)."""
+        if has_ends(scene):
+            return NO_NODES
+        return TURNING if turning(scene) else ""
 
     def build(self, scene: Scene, segments: int = 1, cache=None) -> CableModel:
         """Wang's model of ``scene`` with one element per section (:func:`cablesys.model.build_model`)."""

@@ -1,0 +1,136 @@
+"""The steady turn: the node model's shape that rotates rigidly with a tow point on a circle.
+
+Towing in a circle (Wang 1971 p. 32; :class:`cablesys.scene.track.Track`) has a steady state in the
+frame that turns with the tow point at the rate Omega about the upward vertical through the
+circle's centre: every node keeps its place in that frame. In the earth frame (cablesys' x, y down,
+z, origin at the circle's centre) node j then moves with
+
+    v_j = Omega_up x r_j = Omega (-z_j, 0, x_j),     a_j = Omega_up x v_j = -Omega^2 (x_j, 0, z_j),
+
+and the equations of motion of the node model, M(q) q'' = f(q, q', e, p), hold with these: the
+inertia of the turn balances tension, weight and the drag of the still water on the turning cable
+(the relative velocity is -v_j). The residual M a(q) - f(q, v(q), e, p) = 0, scaled by the total
+weight as the statics' is (and held to the same tolerance), is solved by KINSOL in element angles
+and lengths (then polished in node positions), by continuation in the turn rate from the hanging
+cable (each solution the next guess), as the catenary's statics continue in the flow speed
+(:mod:`.catenary`). The tow point's position, velocity and acceleration e are those of the rigid
+turn at the start time, equal to the track's own (checked).
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+import numpy as np
+
+from ..errors import SolverError
+from ..messages import casadi_warnings_captured, kinsol_flags
+from .catenary import _polar, _to_polar, segmented_steady, static_tolerance
+from .problem import residual_scales, static_parameters
+
+
+
+def _rigid(w, r):
+    """(v, a) of points ``r`` (rows x, y, z) turning at ``w`` (rad/s) about the upward vertical (y is down)."""
+    x, z = r[:, 0], r[:, 2]
+    zero = 0 * x
+    v = ca.horzcat(-w * z, zero, w * x) if isinstance(r, (ca.SX, ca.MX)) else np.column_stack([-w * z, zero, w * x])
+    a = (ca.horzcat(-w**2 * x, zero, -w**2 * z) if isinstance(r, (ca.SX, ca.MX))
+         else np.column_stack([-w**2 * x, zero, -w**2 * z]))
+    return v, a
+
+
+def _rootfinder(model):
+    """KINSOL on ``(q; [t0, r_top, w, p]) -> (M a - f) / W`` for the model's 3-D nodes (W: the total weight,
+    :func:`.problem.residual_scales`), and on the same residual in element angles and lengths v (q = r_top +
+    the statics' polar map, :func:`.catenary._polar`), in which swinging the cable out is linear: node-coordinate
+    Newton sees a swing of a stiff line as a stretch and stalls (as in the statics)."""
+    def build():
+        nq, n_p = model.nq, len(model.layout)
+        q, t0, rt, w = ca.SX.sym("q", nq), ca.SX.sym("t0"), ca.SX.sym("r_top", 3), ca.SX.sym("w")
+        p = ca.SX.sym("p", n_p)
+        r = ca.reshape(q, 3, nq // 3).T
+        v, a = _rigid(w, r)
+        vt, at = _rigid(w, rt.T)
+        e = ca.vertcat(t0, rt, vt.T, at.T)
+        M, f = model.dynamics(q, ca.vec(v.T), e, p)
+        res = (ca.mtimes(M, ca.vec(a.T)) - f) / residual_scales(model, p)
+        F = ca.Function("turning_residual", [q, ca.vertcat(t0, rt, w, p)], [res])
+        v = ca.SX.sym("v", nq)
+        P = ca.SX.sym("P", 5 + n_p)
+        G = ca.Function("turning_polar_residual", [v, P], [F(ca.repmat(P[1:4], nq // 3, 1) + _polar(model)(v), P)])
+        opts = {"strategy": "linesearch", "abstol": 1e-13, "error_on_fail": False, "print_level": 0,
+                "disable_internal_warnings": True, "max_iter": 200}
+        nodes = ca.rootfinder("turning", "kinsol", F, dict(opts, linear_solver_type="user_defined",
+                                                            linear_solver="csparse"))
+        return F, ca.rootfinder("turning_polar", "kinsol", G, opts), nodes
+    return model.derive("turning_rootfinder", build)
+
+
+def turning_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
+    """x0 of a segmented model towed in a circle (``scene.top_motion.track``): the steady turn, continued from the
+    scene's hanging equilibrium (:func:`.catenary.segmented_steady`)."""
+    return turning_state(model, p, scene.top_motion.track.turn_rate, segmented_steady(model, p).q, t0)
+
+
+def turning_state(model, p, turn_rate: float, hanging, t0: float = 0.0) -> np.ndarray:
+    """x0 = (node positions, node velocities) of the steady turn at time ``t0``.
+
+    Parameters
+    ----------
+    model : SegmentedModel
+        In 3-D (``model.dim`` = 3), its top on the circle (``top_motion.track``).
+    p : array
+        Parameter vector (waves and the slack switches are ignored, as in the statics).
+    turn_rate : float
+        Omega (rad/s) about the upward vertical, + counter-clockwise seen from above.
+    hanging : array
+        The hanging cable's node positions relative to the top (the statics' solution at rest), the
+        continuation's start.
+    t0 : float
+        Start time (s).
+
+    Returns
+    -------
+    numpy.ndarray
+        (q, v) with q in m from the circle's centre and v = Omega_up x q in m/s.
+
+    Raises
+    ------
+    SolverError
+        When the continuation in the turn rate does not reach ``turn_rate``.
+    """
+    if getattr(model, "dim", 2) != 3:
+        raise SolverError("the steady turn needs the node model in 3-D (a track moves the tow point in x and z)")
+    p = static_parameters(model, p)
+    e = np.array(model.top(t0, p)).ravel()
+    r_top = e[1:4]
+    v_top, a_top = _rigid(turn_rate, r_top[None, :])
+    if not (np.allclose(e[4:7], v_top.ravel(), atol=1e-9 * max(1.0, abs(turn_rate) * np.linalg.norm(r_top)))
+            and np.allclose(e[7:10], a_top.ravel(), atol=1e-9 * max(1.0, turn_rate**2 * np.linalg.norm(r_top)))):
+        raise SolverError(f"the top motion at t = {t0:g} s is not a rigid turn at {turn_rate:.6g} rad/s about the "
+                          "origin: the steady turn needs the track alone")
+    F, polar, nodes = _rootfinder(model)
+    tol = static_tolerance(model, p)
+    q = (np.asarray(hanging, float).reshape(-1, 3) + r_top).ravel()
+    resid = lambda qq, w: float(np.max(np.abs(np.array(F(qq, np.concatenate([[t0], r_top, [w], p]))))))
+    lam, step = 0.0, 0.25
+    with casadi_warnings_captured() as kinsol:
+        while lam < 1.0 and step > 1.0 / 4096:
+            w = turn_rate * min(1.0, lam + step)
+            P = np.concatenate([[t0], r_top, [w], p])
+            v = np.array(polar(_to_polar(q - np.tile(r_top, q.size // 3), 3), P)).ravel()
+            q_try = np.tile(r_top, q.size // 3) + np.array(_polar(model)(v)).ravel() if np.all(np.isfinite(v)) else q
+            if not resid(q_try, w) < tol:                      # polished in node coordinates (sparse)
+                q_try = np.array(nodes(q_try, P)).ravel()
+            if np.all(np.isfinite(q_try)) and resid(q_try, w) < tol:
+                q, lam, step = q_try, min(1.0, lam + step), 2.0 * step
+            else:
+                step *= 0.5
+    if lam < 1.0:
+        flags = kinsol_flags(kinsol)
+        raise SolverError(f"steady turn not found: the continuation in the turn rate stopped at "
+                          f"{lam * turn_rate:.4g} of {turn_rate:.4g} rad/s"
+                          + (f" (KINSOL: {', '.join(flags)})" if flags else "")
+                          + "; a tight, fast turn may have no steady state with the cable taut")
+    v, _ = _rigid(turn_rate, q.reshape(-1, 3))
+    return np.concatenate([q, v.ravel()])

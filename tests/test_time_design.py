@@ -1,0 +1,140 @@
+"""Design through the nonlinear time domain (cablesys.control.design, cablesys.control.gradient): exact
+gradients against central differences, the KS envelope's bounds, the ROV lift's design against the static
+strain limit's closed form and re-run by the plain time domain, bad input, the study and the door."""
+
+import json
+import math
+
+import casadi as ca
+import numpy as np
+import pytest
+
+from cablesys.control.design import (design_functions, ks_max, resimulate_design, time_design_problem,
+                                     time_domain_design)
+from cablesys.control.gradient import central_differences, rollout_gradient
+from cablesys.errors import ParameterError
+from cablesys.examples import example_path
+from cablesys.scene import load_scene
+
+
+@pytest.fixture(scope="module")
+def rov():
+    """The ROV lift with one drag segment (the 2-DOF model's cheapest form)."""
+    return load_scene(example_path("rov-lift")).with_numerics(drag_segments=1)
+
+
+@pytest.mark.parametrize("segments,duration,h", [(1, 30.0, 0.25), (4, 20.0, 0.05)], ids=["2-dof", "segmented"])
+def test_rollout_gradient_matches_central_differences(rov, segments, duration, h):
+    # issue 26's check: the time-domain design gradient against central differences at 1e-6, both models;
+    # at a soft insert AE = 2e5 N inside the [design] bounds (near both design optima)
+    scene = rov.replace_section(0, cable={"ae": 2e5, "segments": segments})
+    rg = rollout_gradient(scene, duration, h)
+    assert rg.kind == ("wang" if segments == 1 else "segmented")
+    J, g = rg.gradient(rg.theta0)
+    g = np.array(g).ravel()
+    assert float(J) == pytest.approx(float(rg.objective(rg.theta0)), rel=1e-12)   # the same roll-out
+    fd = central_differences(rg.objective, rg.theta0, (1e-4, 1e-5))
+    err = np.min(np.abs(fd - g) / np.abs(g), axis=0)
+    assert np.all(err < 1e-6), err
+
+
+def test_ks_envelope_bounds_the_maximum():
+    # Kreisselmeier-Steinhauser: max v <= KS <= max v + ln(n) / rho, and the shift by max v is exact
+    v = np.random.default_rng(3).normal(size=(1, 500))
+    for rho in (10.0, 200.0):
+        ks = float(ks_max(ca.DM(v), rho))
+        assert v.max() <= ks <= v.max() + math.log(v.size) / rho
+        assert ks == pytest.approx(math.log(np.sum(np.exp(rho * v))) / rho, rel=1e-12)
+
+
+def test_design_jacobian_matches_central_differences(rov):
+    problem = time_design_problem(rov, seeds=(1,), duration=75.0)
+    fns = design_functions(problem)
+    z = np.array([0.1, 0.5])
+    J = np.vstack([np.array(v) for v in fns.jac(z)])
+    val = lambda zz: np.concatenate([np.array(v).ravel() for v in fns.fg(zz)])
+    fd = np.zeros_like(J)
+    for i in range(2):
+        d = np.zeros(2)
+        d[i] = 1e-5
+        D = lambda s: (val(z + s * d) - val(z - s * d)) / (2 * s * d[i])
+        fd[:, i] = (4 * D(0.5) - D(1.0)) / 3            # Richardson
+    err = np.abs(fd - J) / np.max(np.abs(J), axis=1, keepdims=True)
+    assert fns.rows == ("peak_tension (seed 1)", "slack (seed 1)", "excursion (seed 1)", "static_strain")
+    assert np.max(err) < 1e-6, err
+
+
+def test_rov_design_sits_on_the_strain_limit_and_holds_when_rerun(rov):
+    problem = time_design_problem(rov, seeds=(1,), duration=90.0)
+    res = time_domain_design(problem)
+    assert res.success, res.message
+    assert res.stats["iterations"] < 100 and res.stats["starts"] == 2
+    s = res.summary()
+    assert s["heave_reduction_db"] < -2.0                          # the soft insert isolates
+    for row, (v, b) in res.constraints.items():
+        assert v <= b + 1e-6, row
+    # the static strain limit decides AE: at rest the mid tension is T_r, so u_0 / l_0 = eps gives
+    # T_r / AE = eps / (1 + eps) (Wang 1971 eq. 1); the current shifts the rest tension slightly
+    eps, t_r = 0.15, rov.sections[0].cable.tension_ref
+    assert res.theta[0] == pytest.approx(t_r * (1 + eps) / eps, rel=5e-3)
+    assert res.constraints["static_strain"][0] == pytest.approx(eps, rel=1e-6)
+    ds = res.to_xarray()
+    assert ds["tension_top"].attrs["units"] == "N" and ds.sizes["seed"] == 1
+    # re-run by the plain time domain (CVODES): every limit holds to 1 %, and the heave variance of the
+    # RK4 roll-out agrees with it (independent integrators)
+    rerun = resimulate_design(problem, res.theta)
+    assert rerun["max_relative_violation"] <= 0.01
+    assert rerun["heave_variance_m2"] == pytest.approx(res.objective, rel=0.02)
+    # the KS envelopes are conservative: never below the re-run's sampled extremes by more than the RK4 error
+    for name, (v, b) in rerun["per_seed"][1]["constraints"].items():
+        assert res.constraints[f"{name} (seed 1)"][0] >= v - 0.01, name
+
+
+def test_bad_input(rov):
+    with pytest.raises(ParameterError, match="design"):
+        time_design_problem(rov.replace(design=None), duration=80.0)
+    with pytest.raises(ParameterError, match="seeds"):
+        time_design_problem(rov, seeds=(1, 1), duration=80.0)
+    with pytest.raises(ParameterError, match="duration"):
+        time_design_problem(rov, seeds=(1,), duration=62.0)          # window [60 s, 62 s]: too short
+    with pytest.raises(ParameterError, match="working_load"):
+        time_design_problem(rov.replace(design={**rov.design, "working_load": [1000.0]}), duration=80.0)
+    with pytest.raises(ParameterError, match="ae_bounds"):
+        time_design_problem(rov.replace(design={**rov.design, "ae_bounds": [[1e4, 9e7]]}), duration=80.0)
+
+
+def test_time_domain_design_study_quick(run_study):
+    out = run_study("time_domain_design", "--quick")
+    doc = json.loads((out / "time_domain_design.json").read_text())
+    assert doc["time_domain"]["success"] and doc["resimulated_constraint_violation_rel"] <= 0.01
+    assert doc["resimulated"]["frequency_design"]["max_relative_violation"] <= 0.01
+    assert doc["design_gradient_fd_rel_err"] < 1e-6
+    assert "static_strain" in doc["time_domain_active"] and doc["frequency_domain"]["active"] == ["static_strain_1"]
+    assert doc["ae_ratio_time_over_frequency"] == pytest.approx(1.0, rel=1e-3)     # both on the strain limit
+    assert (out / "time_domain_design.png").stat().st_size > 20000
+
+
+def test_control_help_documents_the_design_door(capsys):
+    from cablesys.cli import main
+    with pytest.raises(SystemExit):
+        main(["control", "--help"])
+    text = capsys.readouterr().out
+    assert "--design" in text and "--seeds" in text and "time_design.json" in text
+
+
+def test_control_design_door_writes_json_and_png(tmp_path, capsys):
+    from cablesys.cli import main
+    text = example_path("rov-lift").read_text().replace("drag_segments = 10", "drag_segments = 1")
+    scene = tmp_path / "rov.toml"
+    scene.write_text(text)
+    out = tmp_path / "out"
+    rc = main(["control", str(scene), "--design", "--record", "75", "--seeds", "1", "--no-resimulate", "--out", str(out)])
+    assert rc == 0
+    doc = json.loads((out / "time_design.json").read_text())
+    td, fd = doc["time_domain"], doc["frequency_domain"]
+    assert td["success"] and td["seeds"] == [1]
+    # both designs sit on the static strain limit; the frequency optimum is also judged by the roll-out
+    assert td["ae_n"] == pytest.approx(fd["ae_n"], rel=1e-3)
+    assert fd["in_the_time_domain"]["objective_heave_variance_m2"] >= td["objective_heave_variance_m2"] * (1 - 1e-6)
+    assert (out / "time_design.png").stat().st_size > 20000
+    assert "frequency-domain design" in capsys.readouterr().out
