@@ -11,8 +11,11 @@ Measured in one run:
 - that optimum re-simulated by CVODES on a 4x finer output grid: the largest relative
   constraint violation;
 - closed loop on a finer plant (the scene's 10 drag segments; ``--quick``: 4): PI/feed-forward
-  AHC and MPC with a 20 s horizon (``--quick``: 10 s) and preview: heave in dB against the
-  uncompensated plant run, mean time per MPC step and the real-time factor dt / step time;
+  AHC, MPC with a 20 s horizon (``--quick``: 10 s) and preview, and MPC without preview (the top
+  motion predicted by an AR model of its measured past), both by the Gauss-Newton real-time
+  iteration: heave in dB against the uncompensated plant run, mean time per MPC step and the
+  real-time factor dt / step time; and the preview MPC by IPOPT on the full NLP per step (heave,
+  step time, iterations per step: the reference the real-time iteration is measured against);
 - the LQ check: the multiple-shooting optimum of a spring-mass plant against the discrete
   Riccati law (relative error);
 - a time-domain design gradient: d(mean square heave of the uncompensated 2-DOF run)/d(AE, C_I)
@@ -40,7 +43,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import parse_args, write_json
 
 from cablesys.control import WinchLimits, heave_problem, optimal_payout, resimulate
-from cablesys.control.mpc import compare_compensation
+from cablesys.control.mpc import ARPredictor, GaussNewtonMPC, compare_compensation
 from cablesys.control.payout import interval_kernels
 from cablesys.control.shooting import solve_shooting
 from cablesys.examples import example_path
@@ -121,6 +124,92 @@ def design_gradient(problem, duration: float) -> dict:
             "cost_ratio": max(o["cost_ratio"] for o in out.values()), "models": out}
 
 
+def gauss_newton_breakdown(scene, limits, t0: float, horizon: float, repeats: int = 50) -> dict:
+    """Least mean time (ms, of 5 rounds of ``repeats``) of the parts of one Gauss-Newton MPC step on the 2-DOF
+    controller model at the rest state, horizon starting at t0: the kernels mapped over the horizon (roll-out
+    and linearization), the whole linearization with the condensing, and the QP."""
+    prob = heave_problem(scene.with_numerics(drag_segments=1), limits, dt=0.5)
+    n_h = int(round(horizon / prob.dt))
+    gn = GaussNewtonMPC(prob, n_h)
+    E, U, x = prob.exogenous(t0 + prob.dt * np.arange(n_h + 1)), np.zeros(n_h), prob.x_rest
+    H, g, A, lba, uba, _ = gn.linearization(x, E, U)
+    a = gn.a_max
+
+    def least(f):
+        f()
+        best = math.inf
+        for _ in range(5):
+            t = time.perf_counter()
+            for _ in range(repeats):
+                f()
+            best = min(best, (time.perf_counter() - t) / repeats)
+        return 1e3 * best
+    return {"kernels_over_horizon": least(lambda: gn.horizon(x, U[None, :], E.T)),
+            "linearization_and_condensing": least(lambda: gn.linearization(x, E, U)),
+            "qp": least(lambda: gn.qp(h=H, g=g, a=A, lba=lba, uba=uba, lbx=-a - U, ubx=a - U)),
+            "qp_rows": int(A.shape[0]), "qp_variables": n_h}
+
+
+def prediction_error(scene, limits, duration: float, horizon: float, leads=(1.0, 5.0, 10.0, 20.0)) -> dict:
+    """The no-preview MPC's top-motion prediction (``ARPredictor``, as in the closed loop: samples at
+    dt = 0.5 s from t = 0) against the record: rms error of y_s (m) at each lead time (s) over the steps
+    from duration / 4 on, and the rms of y_s itself over the same steps."""
+    prob = heave_problem(scene.with_numerics(drag_segments=1), limits, dt=0.5)
+    n_h = int(round(horizon / prob.dt))
+    pred, errs, ys = ARPredictor(prob), {lead: [] for lead in leads}, []
+    for k in range(int(round(duration / prob.dt))):
+        pred.measure(k * prob.dt)
+        E = pred.exogenous(k, n_h)
+        if k * prob.dt < duration / 4:
+            continue
+        true = prob.exogenous(prob.dt * (k + np.arange(n_h + 1)))
+        ys.append(true[0, 2])
+        for lead in leads:
+            j = int(round(lead / prob.dt))
+            if j <= n_h:
+                errs[lead].append(E[j, 2] - true[j, 2])
+    return {"lead_s": [lead for lead in leads if errs[lead]],
+            "rms_error_m": [float(np.sqrt(np.mean(np.square(errs[lead])))) for lead in leads if errs[lead]],
+            "rms_y_s_m": float(np.sqrt(np.mean(np.square(ys))))}
+
+
+def closed_loop_mpc(scene, limits, quick: bool) -> dict:
+    """The closed-loop runs on the finer plant: PI AHC, MPC with preview and MPC without preview (the
+    top motion predicted from its measured past, ``ARPredictor``) by the Gauss-Newton real-time
+    iteration (``GaussNewtonMPC``), and MPC with preview by IPOPT on the full NLP per step (exact
+    Hessian, to convergence) as the reference of quality and speed in the same run."""
+    duration, horizon = (30.0, 10.0) if quick else (120.0, 20.0)
+    loop_scene = scene.with_numerics(duration=duration + horizon)
+    kw = dict(duration=duration, horizon=horizon, dt=0.5, plant_segments=4 if quick else None)
+    load0 = os.getloadavg()[0]
+    cmp = compare_compensation(loop_scene, limits, strategies=("none", "pi", "mpc", "mpc_no_preview"), **kw)
+    load1 = os.getloadavg()[0]
+    ref = compare_compensation(loop_scene, limits, strategies=("none", "mpc"), mpc_scheme="ipopt", **kw)
+    m, r = cmp.metrics, ref.metrics["mpc"]
+    compiled = interval_kernels(heave_problem(scene.with_numerics(drag_segments=1), limits, dt=0.5).interval)
+    compiled = bool(compiled is not None and compiled.compiled)
+    return dict(
+        mpc_step_breakdown_ms=gauss_newton_breakdown(loop_scene, limits, duration, horizon),
+        mpc_no_preview_prediction=prediction_error(loop_scene, limits, duration, horizon),
+        mpc_heave_reduction_db=m["mpc"]["heave_reduction_db"], pi_heave_reduction_db=m["pi"]["heave_reduction_db"],
+        mpc_no_preview_heave_reduction_db=m["mpc_no_preview"]["heave_reduction_db"],
+        mpc_step_ms=1e3 * m["mpc"]["compute_per_step_s"], mpc_realtime_factor=m["mpc"]["realtime_factor"],
+        mpc_step_max_ms=1e3 * m["mpc"]["compute_max_step_s"],
+        mpc_no_preview_step_ms=1e3 * m["mpc_no_preview"]["compute_per_step_s"],
+        mpc_no_preview_realtime_factor=m["mpc_no_preview"]["realtime_factor"],
+        mpc_scheme="gauss-newton real-time iteration (one condensed QP per step, DAQP)",
+        mpc_ipopt_heave_reduction_db=r["heave_reduction_db"], mpc_ipopt_step_ms=1e3 * r["compute_per_step_s"],
+        mpc_ipopt_iterations_per_step=r["iterations_per_step_mean"],
+        mpc_heave_db_vs_ipopt=m["mpc"]["heave_reduction_db"] - r["heave_reduction_db"],
+        mpc_speedup_vs_ipopt=r["compute_per_step_s"] / m["mpc"]["compute_per_step_s"],
+        mpc_horizon_s=horizon, mpc_closed_loop_s=duration, mpc_plant_segments=cmp.stats["plant_segments"],
+        mpc_success=cmp.success and ref.success, mpc_message="; ".join(x for x in (cmp.message, ref.message) if x),
+        mpc_load_average_1min=[load0, load1], closed_loop=m, closed_loop_ipopt_mpc=r,
+        mpc_note=("compiled per-interval kernels" if compiled else "CasADi virtual machine (no compiled code)")
+        + "; target >= 50x real time compiled; mpc_ipopt_*: the same MPC with IPOPT on the full NLP per step "
+          "(run after the others; load averages before and after the Gauss-Newton runs in mpc_load_average_1min)")
+
+
 def main(argv=None) -> int:
     args = parse_args(__doc__.splitlines()[0], argv)
     quick = args.quick
@@ -163,17 +252,7 @@ def main(argv=None) -> int:
     doc["resimulated_constraint_violation_rel"] = check["max_relative_violation"]
     doc["resimulated"] = check
 
-    duration, horizon = (30.0, 10.0) if quick else (120.0, 20.0)
-    loop_scene = scene.with_numerics(duration=duration + horizon)
-    cmp = compare_compensation(loop_scene, limits, duration=duration, horizon=horizon, dt=0.5,
-                               plant_segments=4 if quick else None, strategies=("none", "pi", "mpc"))
-    m = cmp.metrics
-    doc.update(mpc_heave_reduction_db=m["mpc"]["heave_reduction_db"], pi_heave_reduction_db=m["pi"]["heave_reduction_db"],
-               mpc_step_ms=1e3 * m["mpc"]["compute_per_step_s"], mpc_realtime_factor=m["mpc"]["realtime_factor"],
-               mpc_horizon_s=horizon, mpc_closed_loop_s=duration, mpc_plant_segments=cmp.stats["plant_segments"],
-               mpc_success=cmp.success, mpc_message=cmp.message, closed_loop=m,
-               mpc_note=("compiled per-interval kernels (the controller's NLP)" if doc["kernels_compiled"] else
-                         "CasADi virtual machine (no compiled code)") + "; target >= 50x real time compiled")
+    doc.update(closed_loop_mpc(scene, limits, quick))
 
     grad = design_gradient(problem, 30.0 if quick else 120.0)
     doc.update(gradient_fd_rel_err=grad["rel_err"], design_gradient_cost_ratio=grad["cost_ratio"],
@@ -186,6 +265,7 @@ def main(argv=None) -> int:
     write_json(args.out / "bench_control.json", doc)
     print({k: doc[k] for k in ("ocp_wall_s", "ocp_iterations", "ocp_status", "ocp_heave_reduction_db",
                                "mpc_heave_reduction_db", "pi_heave_reduction_db", "mpc_step_ms", "mpc_realtime_factor",
+                               "mpc_no_preview_heave_reduction_db", "mpc_ipopt_heave_reduction_db", "mpc_speedup_vs_ipopt",
                                "design_gradient_cost_ratio", "lq_rel_err", "gradient_fd_rel_err",
                                "resimulated_constraint_violation_rel")})
     return 0

@@ -32,8 +32,12 @@ def register(sub) -> None:
     p.add_argument("--power", type=float, default=math.inf, help="winch power limit [W] (default: none)")
     p.add_argument("--plant-segments", type=int, default=None,
                    help="drag segments of the plant's cable (default: the scene's numerics.drag_segments)")
-    p.add_argument("--strategies", default="none,passive,pi,mpc,optimal",
-                   help="comma-separated subset of none,passive,pi,mpc,optimal")
+    p.add_argument("--strategies", default="none,passive,pi,mpc,mpc_no_preview,optimal",
+                   help="comma-separated subset of none,passive,pi,mpc,mpc_no_preview,optimal "
+                        "(mpc_no_preview: the top motion over the horizon predicted from its measured past)")
+    p.add_argument("--mpc-scheme", default="gauss-newton", choices=("gauss-newton", "ipopt"),
+                   help="how each MPC step solves its horizon: gauss-newton (real-time iteration, one QP per "
+                        "step; default) or ipopt (the full NLP to convergence)")
     p.add_argument("--design", action="store_true",
                    help="design the line (AE, C_I) through the nonlinear time domain instead of compensating")
     p.add_argument("--seeds", default="1,2,3", help="--design: comma-separated seeds of the sea (default 1,2,3)")
@@ -122,12 +126,13 @@ def run(args) -> int:
     limits = WinchLimits(speed=args.speed, acceleration=args.acceleration, power=args.power)
     settings = {"duration": args.duration, "horizon": args.horizon, "dt": args.dt, "speed": args.speed,
                 "acceleration": args.acceleration, "power": args.power, "strategies": strategies,
-                "plant_segments": args.plant_segments}
+                "plant_segments": args.plant_segments, "mpc_scheme": args.mpc_scheme}
     outdir = OutputDir(args.out, "control", {"scene": scene, "control": settings},
                        overwrite=args.overwrite, owned=("control.json",))
     with outdir.start(scene=scene.name):
         res = compare_compensation(scene, limits, duration=args.duration, horizon=args.horizon, dt=args.dt,
-                                   plant_segments=args.plant_segments, strategies=strategies)
+                                   plant_segments=args.plant_segments, strategies=strategies,
+                                   mpc_scheme=args.mpc_scheme)
         outdir.write_json("control.json", {"scene": scene.name, "settings": settings, **res.summary()})
         title = f"{scene.name}: heave compensation, |w| <= {args.speed:g} m/s, |w'| <= {args.acceleration:g} m/s^2"
         for name, fn in (("control_heave_tension.png", plot_heave_tension), ("control_winch.png", plot_winch)):
@@ -136,11 +141,11 @@ def run(args) -> int:
         outdir.finish("success" if res.success else "failed", message=res.message)
     w = sys.stdout.write
     w(f"{scene.name}\n{'' if res.success else 'WARNING: ' + res.message + chr(10)}")
-    w(f"{'strategy':<10s} {'rms heave':>10s} {'dB':>7s} {'T max':>9s} {'F min':>9s} {'slack':>6s} "
+    w(f"{'strategy':<14s} {'rms heave':>10s} {'dB':>7s} {'T max':>9s} {'F min':>9s} {'slack':>6s} "
       f"{'|P| max':>9s} {'step':>9s}\n")
     for name, m in res.metrics.items():
         step = m.get("compute_per_step_s")
-        w(f"{name:<10s} {m['heave_rms_m']:9.3f}m {m['heave_reduction_db']:7.1f} {m['tension_max_n'] / 1e3:8.1f}k "
+        w(f"{name:<14s} {m['heave_rms_m']:9.3f}m {m['heave_reduction_db']:7.1f} {m['tension_max_n'] / 1e3:8.1f}k "
           f"{m['tension_min_n'] / 1e3:8.1f}k {m['slack_time_s']:5.1f}s {m['power_max_w'] / 1e3:8.1f}k "
           f"{'' if step is None else f'{step * 1e3:7.1f}ms'}\n")
     w(f"wrote {outdir.path / 'control.json'}, control_heave_tension.png, control_winch.png\n")

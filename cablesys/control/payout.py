@@ -455,3 +455,51 @@ def optimal_payout(problem: HeaveProblem, horizon: float, *, warm_start: PayoutR
                          stats={"iterations": sol.iterations, "solve_s": sol.solve_s, "intervals": N,
                                 "ipopt_timing_s": sol.timing},
                          stats_start=stats_start)
+
+
+# the Gauss-Newton linearization kernels by the serialized kernel (structure only; see gauss_newton_kernel)
+_GN_KERNELS: dict = {}
+
+
+def gauss_newton_function(problem: HeaveProblem) -> ca.Function:
+    """The interval's linearization for a Gauss-Newton method, an SX function of (x, u, E, p, c, w):
+
+    ``(xn, A, B, r, Rx, Ru, g, Gx, Gu)`` with xn the interval's end state (the RK4 steps of
+    :func:`_interval_functions`), A = dxn/dx, B = dxn/du; r the stage cost's residuals at the interval start,
+    cost = r^T r with r = sqrt(dt) (y_b - y_b0, sqrt(c_T) (T_top - T_0) / T_0, sqrt(c_a) alpha) (the
+    objective of the module docstring is a sum of squares), Rx, Ru their Jacobians; g the path outputs
+    (:data:`G_ROWS`) and Gx, Gu theirs. w = (heave at rest, T_0, c_T, c_a, dt) as for ``interval``. The
+    Gauss-Newton Hessian of the objective is J_r^T J_r (Bock 1983, "Recent advances in parameter
+    identification techniques for ODE", in Numerical Treatment of Inverse Problems, Birkhaeuser, p. 95-121):
+    no second derivatives of the dynamics."""
+    model, interval = problem.model, problem.interval
+    x, u, e, p, c, w = (ca.SX.sym(n, interval.sparsity_in(i)) for i, n in enumerate(interval.name_in()))
+    xn, _, g = interval(x, u, e, p, c, w)
+    nq = model.nq
+    y = model.outputs_e(x[:nq], x[nq:2 * nq], e[:7], ca.vertcat(x[2 * nq], x[2 * nq + 1], u, 0.0), p, c)
+    oi = WINCH_OUTPUTS.index
+    r = ca.sqrt(w[4]) * ca.vertcat(y[oi("heave")] - w[0], ca.sqrt(w[2]) * (y[oi("tension_top")] - w[1]) / w[1],
+                                   ca.sqrt(w[3]) * u)
+    jac = lambda f, v: ca.jacobian(f, v)
+    return ca.Function("gn_interval", [x, u, e, p, c, w],
+                       [xn, jac(xn, x), jac(xn, u), r, jac(r, x), jac(r, u), g, jac(g, x), jac(g, u)],
+                       ["x", "u", "E", "p", "c", "w"], ["xn", "A", "B", "r", "Rx", "Ru", "g", "Gx", "Gu"])
+
+
+def gauss_newton_kernel(problem: HeaveProblem) -> ca.Function:
+    """:func:`gauss_newton_function` compiled (one library per model structure: the scene's numbers are its
+    inputs p, c, w; the cache is keyed by the function's serialization), or the SX function itself in
+    CasADi's virtual machine (``CABLESYS_COMPILE=0``, no compiler, a failed build)."""
+    f = gauss_newton_function(problem)
+    if not compiles():
+        return f
+    key = digest(f.serialize())
+    kernel = _GN_KERNELS.get(key)
+    if kernel is None:
+        built = compile_functions([f], jacobians=False, optimization=KERNEL_OPTIMIZATION)
+        kernel = built.functions["gn_interval"]
+        if built.compiled:
+            while len(_GN_KERNELS) >= KERNELS_KEPT:
+                _GN_KERNELS.pop(next(iter(_GN_KERNELS)))
+            _GN_KERNELS[key] = kernel
+    return kernel

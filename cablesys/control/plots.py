@@ -8,6 +8,7 @@ from ..plots.figure import save_figure
 
 _STYLE = {"none": ("uncompensated", "0.55", "-"), "passive": ("passive compensator", "tab:green", "-"),
           "pi": ("PI + feed-forward AHC", "tab:orange", "-"), "mpc": ("MPC (preview)", "tab:blue", "-"),
+          "mpc_no_preview": ("MPC (AR prediction, no preview)", "tab:purple", "-"),
           "optimal": ("open-loop optimum", "k", "--")}
 
 
@@ -64,7 +65,7 @@ def plot_winch(result, path, *, title: str = ""):
     """Payout (L - L_0), payout rate and winch power of the active strategies against their limits."""
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(3, 1, figsize=(12, 7.5), sharex=True)
-    names = [n for n in ("pi", "mpc", "optimal") if n in result.speed]
+    names = [n for n in ("pi", "mpc", "mpc_no_preview", "optimal") if n in result.speed]
     _lines(axes[0], result.times, {k: v - v[0] for k, v in result.length.items()}, names)
     axes[0].set_ylabel("payout L - L0 [m]")
     _lines(axes[1], result.times, result.speed, names)
