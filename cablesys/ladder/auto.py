@@ -479,9 +479,13 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
                     "method": str(settings.method), "rtol": tight_kw["rtol"], "atol": tight_kw["atol"],
                     "rtol_compared": settings.rtol, "error": e_i, "per_quantity": per_i})
                 result = tight
-        # stated: the larger of the check's and the a priori estimate (a check against a coarse N / 2 can understate,
-        # random heavy-4: 4 vs 2 gave 0.24 % body against an actual 0.50 %, the a priori 0.47 %)
-        stated = {k: max(v, choice.estimated_error.get(k, 0.0)) for k, v in e.items()}
+        # stated: the larger of the check's and the a priori estimate at this N (a check against a coarse N / 2 can
+        # understate, random heavy-4: 4 vs 2 gave 0.24 % body against an actual 0.50 %, the a priori 0.47 %); not the
+        # estimate of the N the plan started from, which a grown N carries (random heavy-3: N = 5's 0.97 % stated at
+        # N = 14, whose a priori estimate is 0.07 %)
+        prior = (est.rung_error(choice.numbers["estimates"], choice.name, n) if "estimates" in choice.numbers
+                 else choice.estimated_error)
+        stated = {k: max(v, prior.get(k, 0.0)) for k, v in e.items()}
         return Choice(choice.name, n, f"{choice.reason}; {said}", stated, numbers), False, result
     plan = choice.numbers.get("plan") or {}
     sure = plan.get("fallback")
