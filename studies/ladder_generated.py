@@ -190,7 +190,8 @@ def case(label: str, scene: Scene, params: dict, n_ref: int, compiled: bool) -> 
             "model": {k: m.get(k) for k in ("name", "segments", "checked", "reason", "estimated_error")},
             "reference": {"model": "segmented", "segments": n_ref, "compiled": False, **REF_INTEGRATOR},
             "integration_check": m.get("integration_check"),
-            "auto_compiled": compiled, "auto_wall_s": wall_auto, "reference_wall_s": wall_ref, "rows": rows,
+            "auto_compiled": compiled, "auto_wall_s": wall_auto, "reference_wall_s": wall_ref,
+            "auto_timing": auto.stats.get("ladder_timing"), "rows": rows,
             "all_within_tolerance": all(r["within_tolerance"] for r in rows),
             "all_stated_at_least_half": all(r["stated_at_least_half"] is True for r in rows),
             "all_stated_honest": all(r["stated_honest"] is True for r in rows)}

@@ -10,7 +10,9 @@ The choice (:func:`~cablesys.ladder.choice.choose`) is checked a posteriori:
 - segmented with N: N is chosen for SAFETY x the tolerance (:func:`~.choice.segments_for`); only
   when the estimate at N is not that far within the tolerance (N capped, or forced by the user) does
   a second run with N/2 give the Richardson estimate |y_N - y_N/2| / (2^p - 1), N doubling while it
-  exceeds the tolerance (a second run costs as much as the first: it is not spent on a sure case);
+  exceeds the tolerance (a second run costs as much as the first: it is not spent on a sure case); with an adaptive
+  integrator the N / 2 run steps at a tenth of the candidate's rtol and the N that passes runs again at it, that run
+  kept with its integration error in the stated one (:mod:`.checks`);
 - segmented under predicted partial slack (first order in N): RK4 runs at N, N/2, N/4 and the statistics
   are extrapolated (:mod:`.extrapolation`), N doubling while the runs are not asymptotic or miss the
   tolerance; ``estimated_error`` is then the extrapolated statistics' (``extrapolated`` holds them) and
