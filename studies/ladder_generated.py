@@ -29,8 +29,8 @@ linearized in the current, the mean offset's drift: :func:`cablesys.ladder.estim
 with :func:`cablesys.ladder.choice.settling_note`; output every period / 20 (quick) or / 40. ``--only`` runs
 some of the drawn scenes (the others are still drawn, so the labels keep their scenes).
 
-Writes ``ladder_generated.json`` (per scene: its parameters, auto's model, wall times, one row per quantity;
-totals) and ``ladder_generated.png`` (stated against actual per quantity, log-log, y = x and y = x / 2).
+Writes ``ladder_generated.json`` (per scene: its parameters, auto's model, wall times and ``ladder_timing``, the a
+posteriori check's integration part (:mod:`cablesys.ladder.checks`), one row per quantity; totals) and ``ladder_generated.png`` (stated against actual per quantity, log-log, y = x and y = x / 2).
 """
 
 from __future__ import annotations

@@ -51,10 +51,15 @@ def test_every_quantity_is_within_the_tolerance(doc):
 
 def test_every_run_of_elements_is_checked_a_posteriori(doc):
     """No run of N >= 4 elements goes unchecked: an N across the drag rule's switch (chain-22-1's quasi-static
-    segmented N = 11 per section) is checked against N / 2 with one drag point per element (choice.check_scene)."""
+    segmented N = 11 per section) is checked against N / 2 with one drag point per element (choice.check_scene), and
+    for its integration error against the candidate run at ten times the rtol of the run kept."""
     for c in doc["cases"]:
         if c["model"]["segments"] >= 4:
             assert c["model"]["checked"].startswith("a posteriori"), (c["case"], c["model"]["checked"])
+            # the run kept is the one at a tenth of the candidate's rtol, its integration error stated (ladder.checks)
+            ic = c["integration_check"]
+            assert ic["rtol"] == pytest.approx(ic["rtol_compared"] / 10) and set(ic["per_quantity"]) == \
+                {r["quantity"] for r in c["rows"]}, (c["case"], ic)
 
 
 def test_every_quantity_has_a_stated_error_at_least_half_the_actual(doc):
