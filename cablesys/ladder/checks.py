@@ -22,7 +22,7 @@ y(r) - y(r / TIGHTEN) = I(r / TIGHTEN) (TIGHTEN^e - 1) and the tight run's integ
 :data:`METHOD_ORDER`). On chain-22-7 (auto, N = 48, rtol 1e-4 vs 1e-5) that states 0.15 % for the surge amplitude
 of the rtol 1e-5 run (its actual integration error ~0.01 %: the errors fell faster than the rule between 1e-4 and
 1e-5, so the rule is pessimistic there) and 0.031 % for the lower tension minimum (actual ~0.002 %); on the quick
-generated wire (tests/test_ladder_checks.py) it is within 2x of the actual integration error above 3e-4 and may
+generated wire (tests/test_ladder_checks.py, rtol 1e-3 vs 1e-4) it is 1-5x the actual integration error above 3e-4 and may
 understate it up to 5x below est.RESOLUTION, the floor every stated error has. The stated error of each quantity is
 the tight pair's Richardson estimate plus that integration part.
 
