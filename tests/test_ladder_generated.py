@@ -36,7 +36,8 @@ def test_generated_scenes_are_within_the_ranges_and_settled(doc):
         p = c["params"]
         assert 0.1 <= p["mass_ratio_scene"] <= 10 and 0 <= p["surface_current_m_s"] <= 1.5
         assert 0.2 <= p["string_ratio"] <= 1.5 and c["settling_note"] == ""
-        assert c["reference"] == {"model": "segmented", "segments": 64, "compiled": False}
+        assert c["reference"] == {"model": "segmented", "segments": 64, "compiled": False, "method": "cvodes-bdf2",
+                                  "rtol": 1e-6, "atol": 1e-7}
         assert c["reference_window_change"] < 0.01, c["case"]      # the window holds the settled response
         assert {"x_b_amplitude", "x_b_mean", "y_b_amplitude"} & {r["quantity"] for r in c["rows"]} or \
             {"x_b_2_amplitude", "x_b_1_mean"} <= {r["quantity"] for r in c["rows"]}
@@ -50,10 +51,15 @@ def test_every_quantity_is_within_the_tolerance(doc):
 
 def test_every_run_of_elements_is_checked_a_posteriori(doc):
     """No run of N >= 4 elements goes unchecked: an N across the drag rule's switch (chain-22-1's quasi-static
-    segmented N = 11 per section) is checked against N / 2 with one drag point per element (choice.check_scene)."""
+    segmented N = 11 per section) is checked against N / 2 with one drag point per element (choice.check_scene), and
+    for its integration error against the candidate run at ten times the rtol of the run kept."""
     for c in doc["cases"]:
         if c["model"]["segments"] >= 4:
             assert c["model"]["checked"].startswith("a posteriori"), (c["case"], c["model"]["checked"])
+            # the run kept is the one at a tenth of the candidate's rtol, its integration error stated (ladder.checks)
+            ic = c["integration_check"]
+            assert ic["rtol"] == pytest.approx(ic["rtol_compared"] / 10) and set(ic["per_quantity"]) == \
+                {r["quantity"] for r in c["rows"]}, (c["case"], ic)
 
 
 def test_every_quantity_has_a_stated_error_at_least_half_the_actual(doc):

@@ -10,7 +10,9 @@ The choice (:func:`~cablesys.ladder.choice.choose`) is checked a posteriori:
 - segmented with N: N is chosen for SAFETY x the tolerance (:func:`~.choice.segments_for`); only
   when the estimate at N is not that far within the tolerance (N capped, or forced by the user) does
   a second run with N/2 give the Richardson estimate |y_N - y_N/2| / (2^p - 1), N doubling while it
-  exceeds the tolerance (a second run costs as much as the first: it is not spent on a sure case);
+  exceeds the tolerance (a second run costs as much as the first: it is not spent on a sure case); with an adaptive
+  integrator the N / 2 run steps at a tenth of the candidate's rtol and the N that passes runs again at it, that run
+  kept with its integration error in the stated one (:mod:`.checks`);
 - segmented under predicted partial slack (first order in N): RK4 runs at N, N/2, N/4 and the statistics
   are extrapolated (:mod:`.extrapolation`), N doubling while the runs are not asymptotic or miss the
   tolerance; ``estimated_error`` is then the extrapolated statistics' (``extrapolated`` holds them) and
@@ -40,7 +42,7 @@ from ..errors import NumericalWarning, ParameterError
 from ..model import CableModel
 from ..scene import Scene
 from . import estimate as est
-from . import extrapolation, metrics, plan_cost, static_check
+from . import checks, extrapolation, metrics, plan_cost, static_check
 from .choice import (
     CHECK_ACCEPT,
     EXPLICIT_COST_MAX_ELEMENTS,
@@ -388,7 +390,7 @@ def _check(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict
         log.info("rejected a posteriori; running %s with N = %d", choice.name, choice.segments)
         result = _run(scene, choice, tol, cache, kw)
     while needs_richardson(choice, tol):        # N / 2 checks, on every quantity
-        choice, again = richardson_step(scene, choice, tol, result, cache, kw, auto=auto)
+        choice, again, result = richardson_step(scene, choice, tol, result, cache, kw, auto=auto)
         if not again:
             break
         result = _run(scene, choice, tol, cache, kw)
@@ -428,26 +430,31 @@ def needs_richardson(choice: Choice, tol) -> bool:
 
 def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict, *, auto: bool):
     """One a posteriori check of ``result`` (N elements) against a run at N / 2: (Choice with the Richardson
-    estimate |y_N - y_N/2| / (2^p - 1), False), or under auto while it misses CHECK_ACCEPT x the tolerance
-    (Choice, True): the plan's sure option for a checked N (:func:`~.choice.element_plan`), else 2N. The
-    estimate is at least est.RESOLUTION, and for the quasi-static segmented cable it adds the stretch's part
+    estimate |y_N - y_N/2| / (2^p - 1), False, the run to keep), or under auto while it misses CHECK_ACCEPT x the
+    tolerance (Choice, True, ``result``): the plan's sure option for a checked N (:func:`~.choice.element_plan`), else
+    2N. The estimate is at least est.RESOLUTION, and for the quasi-static segmented cable it adds the stretch's part
     (:func:`~.estimate.quasistatic_segmented_error`), which both runs share and their difference cannot see
-    (heavy1000 N = 6 vs 3: 0.31 + 0.11 % body against an actual 0.49 %, 0.006 + 0.11 % tension against 0.11 %)."""
+    (heavy1000 N = 6 vs 3: 0.31 + 0.11 % body against an actual 0.49 %, 0.006 + 0.11 % tension against 0.11 %).
+
+    With an adaptive integrator the N / 2 run steps at the candidate's rtol / checks.TIGHTEN, and an N that passes is
+    run again at that rtol: that run is kept, its stated error the tight pair's Richardson estimate plus its
+    integration error from its difference with the candidate (:mod:`.checks`: the integration error of one rtol
+    does not cancel between N and N / 2)."""
     period, n = metrics.forcing_period(scene), choice.segments
-    coarse = _run(check_scene(scene, n), dataclasses.replace(choice, segments=n // 2), tol, cache, checking(kw),
+    sc = rung_scene(scene, choice.name, n)
+    settings, _ = rung_settings(sc, tol, choice, cache.model(scene, choice.name, n), cache=cache, x0=kw.get("x0"),
+                                method=kw.get("method"), rtol=kw.get("rtol"), atol=kw.get("atol"),
+                                max_num_steps=kw.get("max_num_steps"), jit=kw.get("jit", False))
+    adaptive = checks.adaptive(settings.method)
+    tight_kw = checks.tightened(kw, settings) if adaptive else kw
+    coarse = _run(check_scene(scene, n), dataclasses.replace(choice, segments=n // 2), tol, cache, checking(tight_kw),
                   candidate=False)
     if not (coarse.success and result.success):
-        return choice, False
-    fine_st, coarse_st = (metrics.statistics(r, period, scene.top_motion.effective_ramp_s) for r in (result, coarse))
-    diff = metrics.errors(coarse_st, fine_st)
+        return choice, False, result
+    ramp = scene.top_motion.effective_ramp_s
+    fine_st, coarse_st = (metrics.statistics(r, period, ramp) for r in (result, coarse))
+    e, per = checks.richardson(fine_st, coarse_st, choice)
     order = choice.numbers.get("estimates", {}).get("segmented_1", {}).get("order", est.ORDER)
-    factor = 1.0 / (2.0 ** order - 1.0)
-    e = {k: max(v * factor, est.RESOLUTION) for k, v in diff.items()}
-    per = {k: max(v * factor, est.RESOLUTION) for k, v in metrics.quantity_errors(coarse_st, fine_st).items()}
-    if choice.name == "quasi-static":      # both runs share the quasi-static stretch: its own part is added
-        stretch = choice.numbers.get("estimates", {}).get("quasi-static", {}).get("stretch", {})
-        e = {k: v + stretch.get(k, 0.0) for k, v in e.items()}
-        per = {k: v + stretch.get(metrics.group(k), 0.0) for k, v in per.items()}
     limit = {"body": tol[0], "tension": tol[1]}
     asked = kw.get("quantities")
     judged = {k: v for k, v in per.items() if asked is None or k in asked}
@@ -462,10 +469,26 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
     if not auto or ok or 2 * n > cap:
         if auto and not ok:
             said += f"; NOT within {CHECK_ACCEPT:g} x the tolerance at the cap N = {n}"
-        # stated: the larger of the check's and the a priori estimate (a check against a coarse N / 2 can understate,
-        # random heavy-4: 4 vs 2 gave 0.24 % body against an actual 0.50 %, the a priori 0.47 %)
-        stated = {k: max(v, choice.estimated_error.get(k, 0.0)) for k, v in e.items()}
-        return Choice(choice.name, n, f"{choice.reason}; {said}", stated, numbers), False
+        if adaptive:       # the same N at the check's rtol, kept: its stated error has both parts (.checks)
+            tight = _run(scene, choice, tol, cache, tight_kw)
+            if tight.success:
+                tight_st = metrics.statistics(tight, period, ramp)
+                e_d, per_d = checks.richardson(tight_st, coarse_st, choice)
+                e_i, per_i = checks.integration_errors(tight_st, fine_st, settings.method)
+                e, per = checks.total(e_d, e_i), checks.total(per_d, per_i)
+                said += "; " + checks.summary(per_i, tight_kw["rtol"], settings.method)
+                numbers.update(per_quantity=per, integration={
+                    "method": str(settings.method), "rtol": tight_kw["rtol"], "atol": tight_kw["atol"],
+                    "rtol_compared": settings.rtol, "error": e_i, "per_quantity": per_i})
+                result = tight
+        # stated: the larger of the check's and the a priori estimate at this N (a check against a coarse N / 2 can
+        # understate, random heavy-4: 4 vs 2 gave 0.24 % body against an actual 0.50 %, the a priori 0.47 %); not the
+        # estimate of the N the plan started from, which a grown N carries (random heavy-3: N = 5's 0.97 % stated at
+        # N = 14, whose a priori estimate is 0.07 %)
+        prior = (est.rung_error(choice.numbers["estimates"], choice.name, n) if "estimates" in choice.numbers
+                 else choice.estimated_error)
+        stated = {k: max(v, prior.get(k, 0.0)) for k, v in e.items()}
+        return Choice(choice.name, n, f"{choice.reason}; {said}", stated, numbers), False, result
     plan = choice.numbers.get("plan") or {}
     sure = plan.get("fallback")
     if sure and plan.get("checked") and (plan.get("name"), plan.get("segments")) == (choice.name, n):
@@ -476,18 +499,18 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
                      f"N = {sure['segments']}, its estimate within {SAFETY:g} x the tolerance",
                      {"body": e_sure["body"], "tension": e_sure["tension"]},
                      dict(choice.numbers, plan=dict(plan, **sure, checked=False, fallback=None)))
-        return explicit_or_node(scene, new, tol, cache, kw), True
+        return explicit_or_node(scene, new, tol, cache, kw), True, result
     ratio = max([e["body"] / (CHECK_ACCEPT * tol[0]), e["tension"] / (CHECK_ACCEPT * tol[1])]
                 + [v / (CHECK_ACCEPT * limit[metrics.group(k)]) for k, v in judged.items()])
     n_next = next_segments(scene, n, ratio, order, cap)
     if _explicit_only(choice) and n_next > EXPLICIT_COST_MAX_ELEMENTS:      # past where it pays (choice.element_plan)
         return node_model(choice, f"a posteriori (N = {n} vs {n // 2}): body {e['body']:.2g}, tension "
-                                  f"{e['tension']:.2g}, N grows past {EXPLICIT_COST_MAX_ELEMENTS}", n_next), True
+                                  f"{e['tension']:.2g}, N grows past {EXPLICIT_COST_MAX_ELEMENTS}", n_next), True, result
     top = quasistatic_max_segments(scene)
     if choice.name == "quasi-static" and n_next > top:    # past its size cap (choice.MAX_MODEL_OPERATIONS): not built
         return node_model(choice, f"{said}; N grows to {n_next}, past the quasi-static segmented cable's size cap "
-                                  f"N = {top}", n_next), True
-    return dataclasses.replace(choice, segments=n_next, reason=f"{choice.reason}; {said}: N = {n_next}"), True
+                                  f"N = {top}", n_next), True, result
+    return dataclasses.replace(choice, segments=n_next, reason=f"{choice.reason}; {said}: N = {n_next}"), True, result
 
 
 JUMP_MARGIN = 1.25    # the next N aims at the tolerance with this margin on the observed error's N^-p law

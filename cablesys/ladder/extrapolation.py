@@ -640,6 +640,8 @@ def model_dict(choice) -> dict:
                     else "a priori only: unchecked")
     if per is not None and d["checked"].startswith("a posteriori"):
         d["estimated_error_per_quantity"] = {k: float(v) for k, v in per.items()}
+        if "integration" in choice.numbers:      # the integration part of those, and its rtol pair (:mod:`.checks`)
+            d["integration_check"] = choice.numbers["integration"]
     static = choice.numbers.get("static_errors")
     if static is not None:      # the mean shape checked before the run (:mod:`.static_check`)
         d["static_shape_error"] = {"segments": static["segments"], "reference_segments": static["reference_segments"],
