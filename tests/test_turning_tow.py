@@ -3,11 +3,16 @@ body on a light line, a run started on it that stays on it, and the track's fiel
 
 import dataclasses
 import math
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
 import tomllib
 from scipy.optimize import brentq
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "studies"))
+import _turning  # noqa: E402
 
 import cablesys
 from cablesys.errors import ParameterError
@@ -65,28 +70,7 @@ def test_steady_turn_of_a_body_on_a_light_line_is_the_conical_pendulum_of_the_to
     assert np.hypot(v[0], v[2]) == pytest.approx(w * r_b, rel=2e-4)
 
 
-TOW = """
-name = "towing in a circle with drag"
-[cable]
-length = 60.0
-ae = 4.0e7
-diameter = 0.02
-mass_per_length = 1.5
-weight_per_length = 12.0
-cd_normal = 1.5
-segments = 6
-[body]
-weight = 3000.0
-mass_x = 500.0
-mass_y = 500.0
-mass_z = 500.0
-drag_area_normal = 0.5
-drag_area_tangential = 0.5
-axis_angle_deg = 999.0
-[top_motion.track]
-radius = 80.0
-speed = 2.0
-"""
+TOW = _turning.TOW         # the study's scene: 60 m of 20 mm wire, a 3 kN body, 80 m radius at 2 m/s
 
 
 def test_a_run_started_on_the_steady_turn_stays_on_it():
