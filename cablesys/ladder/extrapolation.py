@@ -25,6 +25,15 @@ stated error is the larger of the whole difference of the two limits (factor 1) 
 own correction |L(N) - f(N)| (it may not help), with a warning (the scene file's 60 s run of that scene,
 whose window lies in its ~100 s transient: body 29 %, against 14 % for the N = 64 series).
 
+Two triples outside the range keep their conservative (factor 1) error instead of doubling N
+(:func:`needs_doubling`): one whose error is below NOISE_FRACTION x the tolerance (its differences are then too
+small for their order to mean anything: light-cage lift, 200 s, N = 4, 8, 16 differ by 3e-5 of the top tension,
+order 0.17), and one whose leading differences keep one sign and shrink faster than the range, with its error
+within the tolerance (the same lift over 600 s: body order 3.7). Against a finer reference (200 s: the limit of
+N = 32, 64 at a fifth of the step, its own remainder estimate body 5e-5, tension 5e-6) the 200 s statement is body
+6.4e-4, tension 7.4e-4 for actual 1.6e-4, 1.7e-4 (snap peak, the top maximum, 1.7e-4 of it; least tension 1.1e-5);
+600 s against the limit of N = 16, 32: stated 1.1e-3, 1.8e-3, actual 2.7e-4, 7.6e-5.
+
 The time series the user gets is the N run's: its own first-order Richardson estimate
 |f(N) - L(N)| is stated apart (``time_series_error``), so nothing is hidden.
 
@@ -35,7 +44,10 @@ maximum 4e-6, bottom maximum 5e-6): far below the extrapolated values' errors (3
 The step is at most the scene's output step / ``steps_per_output`` (not the finer statistics step's):
 light-cage lift (60 m of 30 mm wire, 200 kg in water, Hs 5 m, 40 s, statistics step 0.0029 s), at N = 4,
 8, 16 (1, 2, 10 steps per output) the statistics move against half the step by body < 2e-10, tension
-< 1e-5.
+< 1e-5. The statistics runs at N / 2 and N / 4 step no longer than the N run (``max_step``): at their own, coarser
+RKC steps the light lift's (200 s) N = 4 and 8 top-tension maxima were 1.1 N and 0.8 N (2e-4, 1.5e-4) off their
+values at a tenth of the step, as large as the differences in N the extrapolation reads (1.4 N); at the N = 16
+run's step 0.1 N and 0.3 N.
 
 Where the internal damping C_I makes the element modes overdamped, the fastest eigenvalue is real,
 about -4 C_I / (m l_e^2), and grows as N^2 (that wire: -6.7e3, -2.9e4, -1.2e5 1/s at N = 16, 32, 64, the
