@@ -191,6 +191,14 @@ NOTES = {
                           "error): 600 s, N = 4, 8, 16, 612 k RKC steps each (4 / 2 / 2 stages), CPU 11.3, 3.6, 2.9 s "
                           "(18.5, 5.9, 4.8 us per step), the whole command 22.6 s CPU, 55.7 s wall at load ~10, "
                           "1.1 GB; stated error body 0.11 %, tension 0.18 %.",
+    "harsh_sea": "Run of 2026-12-02 03:50-04:02 UTC, --plan-duration 200 (load 5-6 on 2 cores, other studies running): "
+                 "MoorDyn N = 20 at 5.6 ms, N = 40 at 2.8 ms (12.5 s wall, 2.7 s CPU), its own convergence N = 20 vs 40 "
+                 "body 8e-5, tension 0.9 %. The scene is taut (no extrapolation plan): auto at the default tolerance "
+                 "runs the segmented cable N = 56, 20.7 s wall, 9.7 s CPU (auto_speedup 0.60 wall, 0.28 CPU); at the "
+                 "peer's convergence (1e-4) N = 128, 102 s wall, 30 s CPU (0.12, 0.09); the segmented cable at N = 40 "
+                 "(RK4 at its stable step, the extrapolation's settings) 5.4 s wall, 1.9 s CPU: speedup 2.3 wall, "
+                 "1.5 CPU. Below the issue's targets (auto_speedup >= 1, speedup >= 3): the taut path's choice of N "
+                 "and integrator is not what this change touched.",
     "speed": "Where a run's time goes (cablesys_profile): CVODES BDF(<= 2) steps, each one or two right-hand sides "
              "and a Jacobian every ~7 steps (the Jacobian costs ~8 right-hand sides: 12 colours of a banded "
              "matrix); RHS, Jacobian and CVODES (error control, sparse QR factorizations and solves) about a third "
