@@ -372,3 +372,158 @@ def bench_slack_case(name, scene, period, ns, *, timed_run, prepared, compiled_c
     if auto:
         _auto(row, scene, period, t0, ns, tights, mds, prepared, compiled_ctx, segments)
     return row
+
+
+# -- the plan cases (issue 28): light_lift and harsh_sea, irregular seas, auto's whole plan timed --------------------
+
+PLAN_NS = (20, 40)               # MoorDyn's own convergence: N = 20 against N = 40
+HARSH_SEA = {"hs": 6.0, "tp": 9.0}   # the ROV lift in a harsh sea: Hs 6 m, Tp 9 s (DNV-RP-C205 Table 3-1: rough-very rough)
+
+
+def plan_scene(name: str, duration: float | None = None):
+    """The scene of plan case ``name``: ``light_lift`` (the packaged example ``light-lift``) or ``harsh_sea`` (the
+    packaged ROV lift in :data:`HARSH_SEA`), both without the current (the MoorDyn peer, ``_moordyn``, has none: the
+    same inputs on both sides), ``duration`` s (default the scene's 600 s)."""
+    import tomllib
+
+    from cablesys.examples import example_text
+    from cablesys.scene import scene_from_dict
+    text = example_text("light-lift" if name == "light_lift" else "rov-lift")
+    subs = [("current_speeds = [1.0, 0.6, 0.2]", "current_speeds = [0.0, 0.0, 0.0]")]
+    if name == "harsh_sea":
+        subs += [("hs = 2.5 ", f"hs = {HARSH_SEA['hs']:g} "), ("tp = 10.0 ", f"tp = {HARSH_SEA['tp']:g} "),
+                 ('Hs 2.5 m Tp 10 s"', f'Hs {HARSH_SEA["hs"]:g} m Tp {HARSH_SEA["tp"]:g} s (harsh sea)"')]
+    for old, new in subs:
+        if old not in text:
+            raise ValueError(f"plan_scene({name!r}): the packaged example no longer holds {old!r}")
+        text = text.replace(old, new)
+    sc = scene_from_dict(tomllib.loads(text))
+    return sc if duration is None else sc.with_numerics(duration=duration)
+
+
+def _plan_runs(result) -> list:
+    """Each run of auto's plan (``model.extrapolated.plan.runs``): N, method, steps, wall and per-step cost."""
+    block = (result.stats.get("model") or {}).get("extrapolated") or {}
+    keys = ("segments", "candidate", "method", "stages", "steps", "step_us", "predicted_s", "wall_s", "cpu_s",
+            "wall_per_step_us", "status")
+    return [{k: r.get(k) for k in keys} for r in (block.get("plan") or {}).get("runs", [])]
+
+
+def _auto_timed(scene, tolerance: float | None, period) -> dict:
+    """Auto as a user runs it (``cablesys.simulate``, model auto, compiled), its second call on one cache timed whole
+    (the first builds and compiles); its stated error, model, N and the runs of its plan, with the load average."""
+    import warnings
+
+    from cablesys.ladder import RungCache
+    from cablesys.ladder import simulate as ladder_simulate
+    cache = RungCache()
+    kw = {} if tolerance is None else {"tolerance": tolerance}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        t0 = time.perf_counter()
+        ladder_simulate(scene, cache=cache, **kw)
+        first = time.perf_counter() - t0
+        load = os.getloadavg()[0]
+        t0, c0 = time.perf_counter(), time.process_time()
+        r = ladder_simulate(scene, cache=cache, **kw)
+        wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+    m = r.stats.get("model") or {}
+    return {"tolerance": tolerance, "wall_s": wall, "cpu_s": cpu, "first_call_s": first, "load_1min": load,
+            "success": bool(r.success),
+            "model": m.get("name"), "segments": m.get("segments"), "estimated_error": m.get("estimated_error"),
+            "plan_runs": _plan_runs(r), "statistics": reported_statistics(r, period) if r.success else None}
+
+
+def _segmented_timed(scene, n: int) -> dict:
+    """The segmented cable at ``n`` elements as the extrapolation steps it (:func:`cablesys.ladder.extrapolation.run`:
+    RKC or RK4 at its stable step, compiled) on the scene's output grid, its second run timed (the first compiles)."""
+    import warnings
+
+    from cablesys.ladder import RungCache
+    from cablesys.ladder.rungs import rung_scene
+    from cablesys.ladder.run_settings import start
+    cache = RungCache()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        X.run(scene, n, cache)
+        load = os.getloadavg()[0]
+        t0, c0 = time.perf_counter(), time.process_time()
+        r = X.run(scene, n, cache)
+        wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+        model = cache.model(scene, "segmented", n)
+        s = X.settings(rung_scene(scene, "segmented", n), model, x0=start(rung_scene(scene, "segmented", n), model, cache))
+    steps = s.steps_per_output * (len(scene.output_times) - 1)
+    return {"segments": n, "wall_s": wall, "cpu_s": cpu, "load_1min": load, "method": s.method, "stages": s.stages,
+            "steps": steps, "success": bool(r.success), "wall_per_step_us": 1e6 * wall / steps,
+            "cpu_per_step_us": 1e6 * cpu / steps}
+
+
+def reported_statistics(result, period) -> dict:
+    """auto's reported statistics (extrapolated on a slack scene, else its run's: :mod:`_bench_auto`)."""
+    from _bench_auto import reported_statistics as rs
+    return rs(result, period)
+
+
+def bench_plan_case(name: str, scene, *, quick: bool = False, ns=PLAN_NS, moordyn: bool = True) -> dict:
+    """One plan case: MoorDyn at ``ns`` (its largest stable step each, probed over the whole run) and its own
+    convergence (its statistics at the smaller N against the larger, :func:`cablesys.ladder.metrics.errors`); cablesys
+    auto at its default tolerance and at the peer's convergence (body; tension twice it, as the ladder's tolerance
+    reads); ``auto_speedup`` = MoorDyn's wall at the larger N / auto's (default tolerance), ``auto_speedup_matched`` the
+    same at the peer's convergence; ``speedup`` = MoorDyn's wall / the segmented cable's at equal N (the larger). Every
+    wall with the machine's 1-minute load; the ratios are of walls measured in this run. ``moordyn=False`` (quick
+    mode, tests): cablesys only, no ratios."""
+    period, ramp = M.forcing_period(scene), scene.top_motion.effective_ramp_s
+    dur = scene.numerics.duration
+    row = {"case": name, "scene": scene.name, "duration_s": dur, "quick": quick, "segments": list(ns),
+           "note": "no current on either side (the MoorDyn peer has none); times are wall seconds under the stated "
+                   "1-minute load average of a shared 2-core machine: compare the ratios, measured in one run"}
+    md = {}
+    if moordyn:
+        for n in ns:
+            sc = scene.replace_section(0, cable={"segments": n})
+            dt = largest_stable_dt(sc, n, agree=lambda a, b: errors_md(a, b, period, ramp))
+            load, c0 = os.getloadavg()[0], time.process_time()
+            r = run_moordyn(sc, n, dt)
+            md[n] = {"dt_s": dt, "wall_s": r["wall_s"], "cpu_s": time.process_time() - c0, "s_per_s": r["wall_s"] / dur,
+                     "load_1min": load,
+                     "stable": r["stable"], "steps": int(round(dur / dt)),
+                     "wall_per_step_us": 1e6 * r["wall_s"] / max(1, round(dur / dt)), "stats": _md_stats(r, period, ramp)}
+        lo, hi = ns
+        conv = M.errors(md[lo]["stats"], md[hi]["stats"])
+        row["moordyn"] = {str(n): v for n, v in md.items()}
+        row["moordyn_convergence"] = conv           # |f(N/2) - f(N)|: the peer's own error estimate at its smaller N
+    row["auto_default"] = _auto_timed(scene, None, period)
+    if moordyn:
+        tol = max(row["moordyn_convergence"]["body"], 1e-4)
+        row["auto_matched"] = _auto_timed(scene, tol, period)
+    row["segmented_equal_n"] = _segmented_timed(scene, max(ns))
+    if moordyn:
+        big, big_cpu = md[max(ns)]["wall_s"], md[max(ns)]["cpu_s"]
+        row["auto_speedup"] = big / row["auto_default"]["wall_s"]
+        row["auto_speedup_matched"] = big / row["auto_matched"]["wall_s"]
+        row["speedup"] = big / row["segmented_equal_n"]["wall_s"]
+        # the same ratios of process CPU time: on a loaded machine the walls also count the other processes' share
+        row["auto_speedup_cpu"] = big_cpu / row["auto_default"]["cpu_s"]
+        row["auto_speedup_matched_cpu"] = big_cpu / row["auto_matched"]["cpu_s"]
+        row["speedup_cpu"] = big_cpu / row["segmented_equal_n"]["cpu_s"]
+    return row
+
+
+def _md_stats(r: dict, period, ramp_s: float = 0.0) -> dict:
+    """MoorDyn's run in the ladder's statistics (:func:`cablesys.ladder.metrics.statistics`, over its window after
+    the smooth start ``ramp_s``, s)."""
+    class _R:
+        time = r["time"]
+        labels = ("x_b", "y_b", "tension_top", "tension_bottom")
+        profiles: dict = {}
+
+        def __getitem__(self, k):
+            return r[k]
+    return M.statistics(_R(), period, ramp_s)
+
+
+def errors_md(a: dict, b: dict, period, ramp_s: float) -> bool:
+    """MoorDyn's step probe on an irregular sea: statistics of the runs at a step and half of it within 0.5 % (body)
+    and 1 % (tension), as ``bench_vs_moordyn``'s slack probe."""
+    e = M.errors(_md_stats(a, period, ramp_s), _md_stats(b, period, ramp_s))
+    return e["body"] <= 0.005 and e["tension"] <= 0.01

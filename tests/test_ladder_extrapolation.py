@@ -145,3 +145,42 @@ def test_run_command_writes_the_extrapolated_block(tmp_path, capsys):
     assert set(KEYS) <= set(block["statistics"]) and block["window_s"][1] == pytest.approx(24.0)
     # the console line: the extrapolated statistics' error first, the N run's series' own apart
     assert "statistics extrapolated from N = " + ", ".join(map(str, block["segments"])) in capsys.readouterr().out
+
+
+def test_a_triple_far_below_the_tolerance_keeps_its_conservative_error_whatever_its_order():
+    """Differences of 1e-5 relative whose observed order is outside ORDER_RANGE (the time-step error of the coarse
+    runs, not their N): the conservative error (factor 1) is stated and N does not double under the default tolerance;
+    under a tolerance within 10x of it, or with differences as large as the tolerance, it doubles."""
+    tiny = {4: dict(LIMIT), 8: dict(LIMIT, y_b_amplitude=1.4 * (1 + 2e-5), tension_top_max=54000.0 * (1 + 1e-5)),
+            16: dict(LIMIT, y_b_amplitude=1.4 * (1 + 2.5e-5), tension_top_max=54000.0 * (1 + 1.9e-5))}
+    block = X.extrapolate(tiny, 16)
+    assert not block["asymptotic"] and block["remainder_factor"] == 1.0
+    assert block["leading_orders"]["tension_top_max"] < X.ORDER_RANGE[0]          # log2(1 / 0.9) = 0.15
+    e = block["estimated_error"]
+    assert 1e-6 < e["body"] < 1e-4 and 1e-6 < e["tension"] < 1e-4
+    assert not X.needs_doubling(block, (0.01, 0.02)) and block["settled_in_noise"]
+    assert X.needs_doubling(block, (5 * e["body"], 5 * e["tension"])) and not block["settled_in_noise"]
+    large = {4: dict(LIMIT), 8: dict(LIMIT, y_b_amplitude=1.45, tension_top_max=60000.0),
+             16: dict(LIMIT, y_b_amplitude=1.55, tension_top_max=58000.0)}
+    assert X.needs_doubling(X.extrapolate(large, 16), (0.01, 0.02))
+
+
+def test_a_triple_converging_faster_than_first_order_keeps_its_conservative_error():
+    """Differences of one sign shrinking 16x per doubling (observed order 4, above ORDER_RANGE): the conservative
+    error (factor 1) holds the tail (at most 1/15 of the last difference) and N does not double when it is within the
+    tolerance; the same sizes with alternating signs (a crossing, not convergence) double."""
+    amp, top = LIMIT["y_b_amplitude"], LIMIT["tension_top_max"]
+
+    def seq(d8, d16):
+        return {4: dict(LIMIT, y_b_amplitude=amp * (1 - 0.0016), tension_top_max=top * (1 - 0.008)),
+                8: dict(LIMIT, y_b_amplitude=amp * (1 - d8), tension_top_max=top * (1 - 0.004)),
+                16: dict(LIMIT, y_b_amplitude=amp * (1 - d16), tension_top_max=top * (1 - 0.002))}
+    block = X.extrapolate(seq(0.0001, 0.00000625), 16)
+    assert block["leading_orders"]["y_b_amplitude"] == pytest.approx(4.0, rel=0.01) and not block["asymptotic"]
+    assert block["converging"]
+    e, actual = block["estimated_error"], metrics.errors(block["statistics"], LIMIT)
+    assert e["body"] >= actual["body"] and e["tension"] >= actual["tension"] and e["body"] < 0.01
+    assert not X.needs_doubling(block, (0.01, 0.02)) and block["kept_converging"]
+    # f(8) above f(16) above f(4) at the same distances: the differences change sign
+    block = X.extrapolate(seq(0.0001, 0.0001 + 0.0015 / 16), 16)
+    assert not block["converging"] and X.needs_doubling(block, (0.01, 0.02))

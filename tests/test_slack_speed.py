@@ -60,6 +60,11 @@ def test_plan_runs_the_candidate_on_the_statistics_grid(planned):
     for r in p.runs:
         assert r.output_step / r.steps_per_output <= h / scene.numerics.steps_per_output * (1 + 1e-12)
         assert r.steps == r.steps_per_output * (r.outputs - 1) and r.predicted_s is None
+    # the statistics runs at N / 2, N / 4 step no longer than the N run: their time error is below its own, so the
+    # differences in N that the extrapolation reads are not the time steps'
+    h_n = p.runs[0].output_step / p.runs[0].steps_per_output
+    assert all(r.output_step / r.steps_per_output <= h_n * (1 + 1e-12) for r in p.runs[1:])
+    assert p.max_step() == pytest.approx(h_n)
 
 
 def test_an_output_limit_coarsens_the_statistics_grid_and_says_so(planned, monkeypatch):

@@ -25,6 +25,15 @@ stated error is the larger of the whole difference of the two limits (factor 1) 
 own correction |L(N) - f(N)| (it may not help), with a warning (the scene file's 60 s run of that scene,
 whose window lies in its ~100 s transient: body 29 %, against 14 % for the N = 64 series).
 
+Two triples outside the range keep their conservative (factor 1) error instead of doubling N
+(:func:`needs_doubling`): one whose error is below NOISE_FRACTION x the tolerance (its differences are then too
+small for their order to mean anything: light-cage lift, 200 s, N = 4, 8, 16 differ by 3e-5 of the top tension,
+order 0.17), and one whose leading differences keep one sign and shrink faster than the range, with its error
+within the tolerance (the same lift over 600 s: body order 3.7). Against a finer reference (200 s: the limit of
+N = 32, 64 at a fifth of the step, its own remainder estimate body 5e-5, tension 5e-6) the 200 s statement is body
+6.4e-4, tension 7.4e-4 for actual 1.6e-4, 1.7e-4 (snap peak, the top maximum, 1.7e-4 of it; least tension 1.1e-5);
+600 s against the limit of N = 16, 32: stated 1.1e-3, 1.8e-3, actual 2.7e-4, 7.6e-5.
+
 The time series the user gets is the N run's: its own first-order Richardson estimate
 |f(N) - L(N)| is stated apart (``time_series_error``), so nothing is hidden.
 
@@ -35,7 +44,10 @@ maximum 4e-6, bottom maximum 5e-6): far below the extrapolated values' errors (3
 The step is at most the scene's output step / ``steps_per_output`` (not the finer statistics step's):
 light-cage lift (60 m of 30 mm wire, 200 kg in water, Hs 5 m, 40 s, statistics step 0.0029 s), at N = 4,
 8, 16 (1, 2, 10 steps per output) the statistics move against half the step by body < 2e-10, tension
-< 1e-5.
+< 1e-5. The statistics runs at N / 2 and N / 4 step no longer than the N run (``max_step``): at their own, coarser
+RKC steps the light lift's (200 s) N = 4 and 8 top-tension maxima were 1.1 N and 0.8 N (2e-4, 1.5e-4) off their
+values at a tenth of the step, as large as the differences in N the extrapolation reads (1.4 N); at the N = 16
+run's step 0.1 N and 0.3 N.
 
 Where the internal damping C_I makes the element modes overdamped, the fastest eigenvalue is real,
 about -4 C_I / (m l_e^2), and grows as N^2 (that wire: -6.7e3, -2.9e4, -1.2e5 1/s at N = 16, 32, 64, the
@@ -83,6 +95,7 @@ RKC_GAIN = 0.8              # RKC replaces RK4 when its right-hand sides per out
 RK4_MARGIN = 2.0            # h |lambda|_max of the stable step (RK4's boundary is 2.78)
 SAMPLES_PER_SNAP = 6        # output samples per axial travel time in the statistics runs (see statistics_step)
 MIN_SEGMENTS = 8            # the smallest plan a time budget may shrink to (runs at N = 2, 4, 8)
+NOISE_FRACTION = 0.1        # a non-asymptotic triple whose conservative error is below this x the tolerance is kept
 TIMING_S = 0.05             # wall time spent measuring one run's cost per RK4 step before the plan starts
 
 
@@ -93,7 +106,8 @@ def applies(choice, auto: bool) -> bool:
     return bool(auto and choice.name == "segmented" and order < est.ORDER)
 
 
-def settings(scene_run: Scene, model, method: str | None = None, x0=None, base_step: float | None = None, **kw):
+def settings(scene_run: Scene, model, method: str | None = None, x0=None, base_step: float | None = None,
+             max_step: float | None = None, **kw):
     """Integrator settings of one extrapolation run: RK4 at its stable step (h |lambda|_max <= RK4_MARGIN
     at the static state, and no longer than ``base_step`` / the scene's steps per output), compiled (the element
     kernel), unless the caller names another method (then :func:`.auto.integrator_settings`).
@@ -112,6 +126,9 @@ def settings(scene_run: Scene, model, method: str | None = None, x0=None, base_s
     base_step : float, optional
         The output step (s) the scene's ``steps_per_output`` refers to (the scene's own, when ``scene_run`` has the
         finer statistics step): the step is at most base_step / steps_per_output (default: ``scene_run``'s step).
+    max_step : float, optional
+        The longest step (s) allowed: the plan's statistics runs at N / 2, N / 4 step as finely as its N run
+        (:func:`_runs`), so their time error is below the N run's and does not pollute the observed order in N.
     **kw
         ``rtol``, ``atol``, ``max_num_steps`` for another method.
 
@@ -131,6 +148,8 @@ def settings(scene_run: Scene, model, method: str | None = None, x0=None, base_s
     num = scene_run.numerics
     h = num.output_step
     floor = math.ceil(num.steps_per_output * h / (base_step or h) - 1e-9)
+    if max_step:
+        floor = max(floor, math.ceil(h / max_step - 1e-9))
     spo = max(floor, rk4_steps_per_output(float(np.max(np.abs(eig))), h, RK4_MARGIN))
     extra = {} if kw.get("max_num_steps") is None else {"max_num_steps": int(kw["max_num_steps"])}
     if method != "rk":          # RKC where its stages cost less than RK4's 4 per step (the overdamped element modes)
@@ -172,6 +191,7 @@ def run(scene: Scene, n: int, cache: RungCache, kw: dict | None = None, candidat
     if kw.get("x0") is None:                   # once: the stable step is probed there and the run starts there
         kw["x0"] = start(sc, model, cache)
     s = settings(sc, model, kw.get("method"), kw["x0"], base_step=None if plan is None else plan.base_step,
+                 max_step=None if plan is None or candidate else plan.max_step(),
                  **{k: kw.get(k) for k in ("rtol", "atol", "max_num_steps")})
     times = kw.get("times")
     sim = cache.simulator(model, sc.output_times if times is None else times, s)
@@ -287,6 +307,14 @@ class Plan:
     started: int = 0
     statistics: dict = dataclasses.field(default_factory=dict)     # {N: statistics} of shared candidate runs
 
+    def max_step(self) -> float | None:
+        """The step (s) of the plan's statistics run at its largest N: the longest step of its runs at N / 2, N / 4
+        (:func:`settings` ``max_step``), so that their time error stays below the N run's."""
+        on_grid = [r for r in self.runs if abs(r.output_step - self.statistics_step) <= 1e-12 * r.output_step]
+        top = max((r.segments for r in on_grid), default=None)
+        steps = [r.output_step / r.steps_per_output for r in on_grid if r.segments == top]
+        return min(steps) if steps else None
+
     @property
     def sub(self) -> int:
         """Statistics output steps per scene output step (the candidate keeps every sub-th when ``shared``)."""
@@ -328,14 +356,15 @@ class Plan:
 
 
 def _planned_run(scene: Scene, n: int, cache: RungCache, kw: dict, output_step: float, outputs: int,
-                 candidate: bool, measure: bool) -> PlannedRun:
+                 candidate: bool, measure: bool, max_step: float | None = None) -> PlannedRun:
     """The :class:`PlannedRun` of ``n`` elements on a grid of ``outputs`` times ``output_step`` apart: its steps
-    from :func:`settings` at the static start and, when ``measure``, its compiled RK4 step timed (:data:`TIMING_S`)."""
+    from :func:`settings` at the static start (no longer than ``max_step``, s) and, when ``measure``, its compiled
+    RK4 step timed (:data:`TIMING_S`)."""
     from ..time_domain.record import run_memory_bytes
     sc = rung_scene(scene.with_numerics(output_step=output_step), "segmented", n)
     model = cache.model(scene, "segmented", n)
     x0 = start(sc, model, cache) if kw.get("x0") is None else np.asarray(kw["x0"], dtype=float)
-    s = settings(sc, model, kw.get("method"), x0, base_step=scene.numerics.output_step,
+    s = settings(sc, model, kw.get("method"), x0, base_step=scene.numerics.output_step, max_step=max_step,
                  **{k: kw.get(k) for k in ("rtol", "atol", "max_num_steps")})
     per_output = 2 * model.nq + len(model.slack_index) + len(model.output_labels) + 2
     step_s = None
@@ -391,7 +420,9 @@ def _runs(scene: Scene, n: int, cache: RungCache, kw: dict, measure: bool) -> tu
         outs = int(math.floor(duration / step + 1e-9)) + 1
         runs = ([_planned_run(scene, n, cache, kw, step, outs, True, measure)] if cand is None else
                 [cand, _planned_run(scene, n, cache, checking(kw), step, outs, False, measure)])
-        runs += [_planned_run(scene, m, cache, checking(kw), step, outs, False, measure) for m in (n // 2, n // 4)]
+        finest = runs[-1].output_step / runs[-1].steps_per_output      # the N run's step on the statistics grid
+        runs += [_planned_run(scene, m, cache, checking(kw), step, outs, False, measure, finest)
+                 for m in (n // 2, n // 4)]
         if all(_fits(r) for r in runs) or sub == 1:
             break
         worst = max(max(r.outputs / MAX_OUTPUTS, r.memory_bytes / MAX_MEMORY_BYTES) for r in runs)
@@ -588,6 +619,10 @@ def extrapolate(stats: dict, n: int, floor: float = 0.0) -> dict:
     orders = observed_orders(f4, f2, f1)
     lead = {k: orders.get(k) for k in _leading(f1)}
     asymptotic = not crossed and all(p is not None and ORDER_RANGE[0] <= p <= ORDER_RANGE[1] for p in lead.values())
+    # converging at least as fast as the range: every leading number's differences of one sign and shrinking at an
+    # order >= ORDER_RANGE[0] (above the range: faster than the remainder, the conservative error then holds the tail)
+    monotone = {k: (f4[k] - f2[k]) * (f2[k] - f1[k]) > 0 for k in lead}
+    converging = not crossed and all(p is not None and p >= ORDER_RANGE[0] and monotone[k] for k, p in lead.items())
     factor = 1.0 / (2.0**REMAINDER_ORDER - 1.0) if asymptotic else 1.0
     diff = metrics.errors(coarse, fine)
     series = metrics.errors(f1, fine)
@@ -595,7 +630,28 @@ def extrapolate(stats: dict, n: int, floor: float = 0.0) -> dict:
     return {"segments": [n // 4, n // 2, n], "order_assumed": ORDER, "remainder_order": REMAINDER_ORDER,
             "remainder_factor": factor, "statistics": fine, "statistics_coarse": coarse,
             "observed_order": orders, "leading_orders": lead, "asymptotic": asymptotic,
-            "estimated_error": stated, "time_series_error": series, "not_extrapolated": crossed}
+            "estimated_error": stated, "time_series_error": series, "not_extrapolated": crossed,
+            "converging": converging}
+
+
+def needs_doubling(block: dict, tol) -> bool:
+    """Whether the extrapolation ``block`` (:func:`extrapolate`) asks for 2 N under the tolerances ``tol`` (body,
+    tension): its stated error misses them, or its runs are not in the asymptotic range while their conservative
+    error (factor 1, at least the correction) is above NOISE_FRACTION x the tolerances. Below that the observed order
+    is of differences too small to mean anything (light-cage lift, 200 s: N = 4, 8, 16 differ by 3e-5 of the top
+    tension, order 0.13 from the RKC steps' own error at N = 4, 8), the conservative error stands and doubling would
+    buy an order the tolerance does not need (``block["settled_in_noise"]`` is set True then). Runs converging faster
+    than the range (``block["converging"]``: the leading numbers' differences of one sign, shrinking at an order above
+    ORDER_RANGE[1] or within it; light lift, 600 s, N = 4, 8, 16: body 3.7, tension 1.6) keep their conservative error
+    when it is within the tolerance: shrinking by 2^p >= 8 per doubling, the differences past N sum to at most 1/7 of
+    the last one, which the conservative error holds; a number within the range has 3x its remainder estimate
+    (``block["kept_converging"]``)."""
+    e = block["estimated_error"]
+    block["settled_in_noise"] = bool(not block["asymptotic"]
+                                     and within(e, (NOISE_FRACTION * tol[0], NOISE_FRACTION * tol[1])))
+    block["kept_converging"] = bool(not block["asymptotic"] and not block["settled_in_noise"]
+                                    and block.get("converging", False) and within(e, tol))
+    return not within(e, tol) or not (block["asymptotic"] or block["settled_in_noise"] or block["kept_converging"])
 
 
 def until_done(scene: Scene, choice, tol, result, cache: RungCache, kw: dict | None = None) -> tuple:
@@ -709,7 +765,8 @@ def complete(scene: Scene, choice, result, tol, cache: RungCache, kw: dict | Non
     block["window_s"] = [float(np.asarray(result.time)[w][0]), float(result.time[-1])]
     e = block["estimated_error"]
     stop = ""
-    if double and (not block["asymptotic"] or not within(e, tol)) and 2 * n <= MAX_SEGMENTS:
+    again = needs_doubling(block, tol)             # sets block["settled_in_noise"]
+    if double and again and 2 * n <= MAX_SEGMENTS:
         stop = "" if plan_ is None else _admits(scene, plan_, 2 * n, cache, checking(kw or {}), known)
         if not stop:
             return dataclasses.replace(choice, segments=2 * n), block, True
@@ -722,8 +779,17 @@ def complete(scene: Scene, choice, result, tol, cache: RungCache, kw: dict | Non
               f"tension {block['time_series_error']['tension']:.2g}")
     if stop:
         reason += f"; {stop}"
-    if not block["asymptotic"]:
-        orders = ", ".join(f"{k} {v:.2g}" if v is not None else f"{k} n/a" for k, v in block["leading_orders"].items())
+    orders = ", ".join(f"{k} {v:.2g}" if v is not None else f"{k} n/a" for k, v in block["leading_orders"].items())
+    if block["kept_converging"]:
+        reason += (f"; observed orders {orders} above {ORDER_RANGE}, the differences of one sign: converging faster than "
+                   "first order, the stated error is the conservative one (the whole difference of the two limits, at "
+                   "least the extrapolation's correction) and N was not doubled")
+    elif block["settled_in_noise"]:
+        reason += (f"; observed orders {orders} outside {ORDER_RANGE}, but the whole differences of the runs are below "
+                   f"{NOISE_FRACTION:g} x the tolerance, where their order is that of the time-step and sampling errors: "
+                   "the stated error is the conservative one (the whole difference of the two limits, at least the "
+                   "extrapolation's correction) and N was not doubled")
+    elif not block["asymptotic"]:
         reason += (f"; NOT in the asymptotic range (observed orders {orders}): the stated error is the larger of the "
                    "whole difference of the two limits and the extrapolation's correction; a statistics window that "
                    "still holds the start-up transient does not converge smoothly in N (slack scenes settle slowly): "
