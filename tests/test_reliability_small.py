@@ -184,7 +184,6 @@ ae = 8.9e5
 @pytest.mark.parametrize("span, rise, medium, extra, reason", [
     (1e-4, 0.0, "air", "", "statics NLP did not converge"),                     # nearly coincident supports
     (1e-3, 23.7, "air", "", "statics (nlp-ipopt): element 0 is in compression"),  # near-vertical chord
-    (22.9, 0.0, "water", "specific_gravity = 1.0001", "statics NLP did not converge"),   # nearly neutral
 ])
 def test_slack_solver_failure_on_valid_input_exits_1(tmp_path, monkeypatch, span, rise, medium, extra, reason):
     """A valid slack geometry whose statics fail is a failed computation (exit 1, status failed, the
@@ -197,6 +196,20 @@ def test_slack_solver_failure_on_valid_input_exits_1(tmp_path, monkeypatch, span
     assert reason in err and "bad input" not in err
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     assert summary["status"] == "failed"
+
+
+def test_a_nearly_neutral_span_in_water_solves_on_the_shared_cable(tmp_path, monkeypatch):
+    """Specific gravity 1.0001 (the chain's energy NLP stalls there): the node-model statics, started by
+    shooting, find the shallow span, whose horizontal tension is the parabola's w s^2 / (8 d) to the
+    catenary's order (d / s)^2."""
+    monkeypatch.setenv("CABLESYS_COMPILE", "0")
+    f = tmp_path / "s.toml"
+    f.write_text(SLACK.format(span=22.9, rise=0.0, medium="water", extra="specific_gravity = 1.0001"))
+    rc, _, err = cablesys("slack", f, "--out", tmp_path / "out")
+    assert rc == 0, err
+    eq = json.loads((tmp_path / "out" / "slack_result.json").read_text())["equilibrium"]
+    w = 1.14 * 9.80665 * (1 - 1 / 1.0001)
+    assert eq["horizontal_tension_N"] == pytest.approx(w * 22.9**2 / (8 * eq["sag_m"]), rel=0.03)
 
 
 def test_solver_error_carries_exit_1_and_parameter_error_2(tmp_path):

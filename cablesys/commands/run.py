@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import units as U
+from ..examples import EXAMPLES
 from ..ladder.metrics import forcing_period
 from ..integration import METHODS
 from ..ladder.rungs import MODEL_CHOICES, RUNGS, check_rung
@@ -60,8 +61,9 @@ def register(sub) -> None:
                        description="With --example: print an annotated scene (the Dale default). With a file: "
                                    "validate it and print it back in SI.")
     s.add_argument("file", nargs="?", type=Path)
-    s.add_argument("--example", nargs="?", const="dale", default=None, choices=("dale", "rov-lift"),
-                   help="print an annotated example scene: dale (default) or rov-lift (irregular sea, limits, design)")
+    s.add_argument("--example", nargs="?", const="dale", default=None, choices=("dale",) + tuple(EXAMPLES),
+                   help="print an annotated example scene: dale (default), rov-lift (irregular sea, limits, design) "
+                        "or light-lift (a light cage in a steep sea: slack and snap)")
     s.add_argument("--design", action="store_true", help="with --example: append a commented [design] template")
     s.add_argument("--units", default="SI", choices=("SI", "fps"), help="units to print in")
     s.set_defaults(func=_scene)
@@ -69,9 +71,9 @@ def register(sub) -> None:
 
 def _scene(args) -> int:
     from ..scene import default_scene, dump_scene, load_scene
-    if args.example == "rov-lift":
+    if args.example in EXAMPLES:
         from ..examples import example_text
-        print(example_text("rov-lift"), end="")
+        print(example_text(args.example), end="")
         return 0
     if args.example or args.file is None:
         print(dump_scene(default_scene(), units=args.units, annotate=True), end="")

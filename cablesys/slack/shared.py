@@ -35,7 +35,7 @@ from collections import OrderedDict
 
 import numpy as np
 
-from ..errors import ParameterError
+from ..errors import ParameterError, SolverError
 from ..model import FunctionCache, build_model
 from ..model.params import ParameterLayout, structure_of
 from ..results import timed
@@ -43,7 +43,7 @@ from ..scene import Anchor, Body, Cable, Environment, Numerics, Scene, Section
 from ..statics.span import span_equilibrium, span_matrices
 from .results import Equilibrium, SlackAnalysis
 from .scene import SlackScene, _buoyancy_and_added
-from .statics import Discretization, shooting_nodes
+from .statics import Discretization, shooting_nodes, solve_equilibrium
 from .modal import _eig, classify_rows
 
 WATER_DENSITY = 1025.0          # kg/m^3, sea water (the node model's default environment.density)
@@ -164,7 +164,8 @@ def equilibrium(scene: SlackScene, *, n_elements: int | None = None, segments=No
                 cache: FunctionCache | None = None) -> Equilibrium:
     """The span's static shape from the node model's statics (KINSOL on its static residual,
     :func:`cablesys.statics.span.span_equilibrium`), started from the same lumped chain solved by shooting
-    on the support force (:func:`.statics.shooting_nodes`, statically determinate); an :class:`Equilibrium`
+    on the support force (:func:`.statics.shooting_nodes`, statically determinate; where that route cannot
+    start, the chain's energy NLP :func:`.statics.solve_equilibrium`); an :class:`Equilibrium`
     (``method`` 'node model', ``iterations`` the KINSOL solves: the node statics do not count their Newton
     steps; the scaled residual is below the statics' tolerance, else a SolverError)."""
     t0 = time.perf_counter()
@@ -172,7 +173,14 @@ def equilibrium(scene: SlackScene, *, n_elements: int | None = None, segments=No
     model = span_model(main, cache)
     p = np.asarray(model.parameters(main), float)
     d = _discretization(scene, main)
-    xg, zg, _ = shooting_nodes(scene, d)
+    try:
+        xg, zg, _ = shooting_nodes(scene, d)
+    except SolverError as shooting:       # outside the shooting's reach: the chain's energy NLP, or both reasons
+        try:
+            eq0 = solve_equilibrium(scene, n_elements=d.n_elements)
+        except SolverError as nlp:
+            raise SolverError(f"{nlp} (and {shooting})") from None
+        xg, zg = np.interp(d.s, eq0.s, eq0.x), np.interp(d.s, eq0.s, eq0.z)    # onto the span's nodes
     guess = np.column_stack([xg[1:-1], -zg[1:-1], np.zeros(len(xg) - 2)]).ravel()
     q, _ = span_equilibrium(model, p, guess=guess)
     nodes = q.reshape(-1, 3)
