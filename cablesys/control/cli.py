@@ -93,6 +93,7 @@ def run_design(args) -> int:
     w = sys.stdout.write
     s = res.summary()
     w(f"{scene.name}\n{'' if res.success else 'WARNING: ' + res.message + chr(10)}")
+    w(f"controller: {models['controller']}\nplant: {models['plant']}\nladder: {models['ladder']}\n")
     w(f"time-domain design:      AE {res.theta[0]:.4g} N, C_I {res.theta[1]:.4g} N s; heave std "
       f"{s['baseline_heave_std_m']:.3f} -> {s['heave_std_m']:.3f} m ({s['heave_reduction_db']:+.1f} dB), "
       f"mean over seeds {seeds}; {res.stats['iterations']} IPOPT iterations in {res.stats['solve_s']:.1f} s\n")
@@ -107,6 +108,26 @@ def run_design(args) -> int:
           f"(design), {doc['resimulated']['frequency_design']['max_relative_violation']:.3g} (frequency design)\n")
     w(f"wrote {outdir.path / 'time_design.json'}, time_design.png\n")
     return 0 if res.success else 1
+
+
+def _models(scene, res) -> dict:
+    """Which models ran, and what the model ladder would run for the uncompensated scene (and why): the control's
+    models are Wang's 2-DOF cable with the winch's unstretched length as a state (:mod:`cablesys.model.winch`);
+    where the ladder needs another model for this scene, it says so."""
+    from ..ladder.auto import decide
+    st = res.stats
+    out = {"controller": f"wang 2-DOF with winch (cablesys.model.winch), {st.get('controller_segments', 1)} drag "
+                         "segment(s): the optimal control's and the MPC's model",
+           "plant": f"wang 2-DOF with winch, {st.get('plant_segments')} drag segments (the closed loops' nonlinear "
+                    "plant: a model finer than the controller's)"}
+    choice = decide(scene, "auto", None, None)[0]
+    seg = f", N = {choice.segments}" if choice.segments > 1 else ""
+    agree = choice.name == "wang"
+    out["ladder"] = (f"{choice.name}{seg} for the uncompensated scene"
+                     + (": the control's model" if agree else ": NOT the control's model, whose results then carry "
+                        "that model's error") + f" ({choice.reason.split('; ')[0]})")
+    out["ladder_choice"] = choice.as_dict()
+    return out
 
 
 def run(args) -> int:
@@ -133,7 +154,9 @@ def run(args) -> int:
         res = compare_compensation(scene, limits, duration=args.duration, horizon=args.horizon, dt=args.dt,
                                    plant_segments=args.plant_segments, strategies=strategies,
                                    mpc_scheme=args.mpc_scheme)
-        outdir.write_json("control.json", {"scene": scene.name, "settings": settings, **res.summary()})
+        models = _models(scene, res)
+        outdir.write_json("control.json", {"scene": scene.name, "settings": settings, "models": models,
+                                           **res.summary()})
         title = f"{scene.name}: heave compensation, |w| <= {args.speed:g} m/s, |w'| <= {args.acceleration:g} m/s^2"
         for name, fn in (("control_heave_tension.png", plot_heave_tension), ("control_winch.png", plot_winch)):
             with outdir.writing(name) as tmp:
@@ -141,6 +164,7 @@ def run(args) -> int:
         outdir.finish("success" if res.success else "failed", message=res.message)
     w = sys.stdout.write
     w(f"{scene.name}\n{'' if res.success else 'WARNING: ' + res.message + chr(10)}")
+    w(f"controller: {models['controller']}\nplant: {models['plant']}\nladder: {models['ladder']}\n")
     w(f"{'strategy':<14s} {'rms heave':>10s} {'dB':>7s} {'T max':>9s} {'F min':>9s} {'slack':>6s} "
       f"{'|P| max':>9s} {'step':>9s}\n")
     for name, m in res.metrics.items():
