@@ -2,15 +2,11 @@
 the integration (the same N at the run's rtol against rtol / TIGHTEN).
 
 The a posteriori check of a run with N elements (:func:`cablesys.ladder.auto.richardson_step`) compares it with a run
-at N / 2. Both ran with one integrator setting, and their difference is not a measure of the integration error: the
-error a step-size controller leaves changes with the step sequence, so it differs between N and N / 2 in size and
-sign. Measured on the generated two-body chain ``chain-22-7`` (``studies/ladder_generated.py``, seed 22: a 1.07 cm
-surge amplitude of the lower body on a ~200 m chain in a current; compiled CVODES BDF2, atol = rtol / 10 on scaled
-states; errors against the node model at N = 128): the lower body's surge amplitude is +0.54 % off at N = 48,
-rtol 1e-4, +0.13 % at 1e-5 and +0.14 % at 1e-6 (its discretization error), at N = 24 -0.17 / +0.64 / +0.70 %, so
-the integration error at rtol 1e-4 is +0.4 % at N = 48 and -0.9 % at N = 24, and their difference, not either
-error, entered the check (which stated 0.018 % on that amplitude, actual 0.71 %). rtol on scaled states is relative
-to each state's value, here the current's mean angles, and the 1 cm amplitude is a small part of that.
+at N / 2. Run at one integrator setting, their difference does not measure the integration error: the error a
+step-size controller leaves changes with the step sequence, so it differs between N and N / 2 in size and sign, and a
+small quantity on large scaled states (a centimetre amplitude on a chain held at large mean angles by a current) can
+carry more integration than discretization error (the generated scenes, ``studies/ladder_generated.py``,
+``studies/results/ladder_generated.json``).
 
 So the check runs at the tighter rtol / TIGHTEN (and atol / TIGHTEN): the N / 2 run, and the same N again, whose
 result is returned. The tight run's integration error is estimated from the pair: with the local error per step held
@@ -19,19 +15,10 @@ to the tolerance Tol, a method of order p takes steps ~ Tol^(1/(p+1)) and leaves
 "Tolerance proportionality in ODE-codes", 1980), so for I(r) = c r^e, e = p / (p + 1),
 y(r) - y(r / TIGHTEN) = I(r / TIGHTEN) (TIGHTEN^e - 1) and the tight run's integration error is
 |y(r) - y(r / TIGHTEN)| / (TIGHTEN^e - 1) (:func:`integration_errors`; p is the lowest order the method steps with:
-:data:`METHOD_ORDER`). On chain-22-7 (auto, N = 48, rtol 1e-4 vs 1e-5) that states 0.15 % for the surge amplitude
-of the rtol 1e-5 run (its actual integration error ~0.01 %: the errors fell faster than the rule between 1e-4 and
-1e-5, so the rule is pessimistic there) and 0.031 % for the lower tension minimum (actual ~0.002 %); on the quick
-generated wire (tests/test_ladder_checks.py, rtol 1e-3 vs 1e-4) it is 1-5x the actual integration error above 3e-4 and may
-understate it up to 5x below est.RESOLUTION, the floor every stated error has. The stated error of each quantity is
-the tight pair's Richardson estimate plus that integration part.
-
-Cost: the candidate at rtol as before, then the N / 2 run and a second N run at rtol / TIGHTEN, where the check used
-to be the N / 2 run at rtol. CVODES BDF2 takes 1.4-2.3x the steps at a tenth of the rtol (compiled, the generated
-scenes: chain-22-7 N = 48 / 24 6493 / 4430 steps at rtol 1e-4, 9072 / 6890 at 1e-5; chain-22-9 N = 21 / 10 7700 /
-7057 at 1e-4, 17681 / 15582 at 1e-5), so the candidate with its check steps 2.1x (chain-22-7) and 2.8x (chain-22-9)
-as much as before, for a kept result whose integration error is measured and about a tenth of the candidate's.
-Fixed-step methods (``rk``, ``rkc``, ``collocation``: no rtol) are not checked for it.
+:data:`METHOD_ORDER`). The rule is pessimistic where the errors fall faster than Tol^e and may understate below
+est.RESOLUTION, the floor every stated error has (tests/test_ladder_checks.py). The stated error of each quantity
+is the tight pair's Richardson estimate plus that integration part. Fixed-step methods (``rk``, ``rkc``,
+``collocation``: no rtol) are not checked for it.
 """
 
 from __future__ import annotations

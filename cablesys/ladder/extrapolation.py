@@ -27,12 +27,9 @@ whose window lies in its ~100 s transient: body 29 %, against 14 % for the N = 6
 
 Two triples outside the range keep their conservative (factor 1) error instead of doubling N
 (:func:`needs_doubling`): one whose error is below NOISE_FRACTION x the tolerance (its differences are then too
-small for their order to mean anything: light-cage lift, 200 s, N = 4, 8, 16 differ by 3e-5 of the top tension,
-order 0.17), and one whose leading differences keep one sign and shrink faster than the range, with its error
-within the tolerance (the same lift over 600 s: body order 3.7). Against a finer reference (200 s: the limit of
-N = 32, 64 at a fifth of the step, its own remainder estimate body 5e-5, tension 5e-6) the 200 s statement is body
-6.4e-4, tension 7.4e-4 for actual 1.6e-4, 1.7e-4 (snap peak, the top maximum, 1.7e-4 of it; least tension 1.1e-5);
-600 s against the limit of N = 16, 32: stated 1.1e-3, 1.8e-3, actual 2.7e-4, 7.6e-5.
+small for their order to mean anything), and one whose leading differences keep one sign and shrink faster than
+the range, with its error within the tolerance (the packaged light-cage lift, ``cablesys scene --example
+light-lift``, is such a case over 600 s; tests/test_ladder_extrapolation.py holds both rules).
 
 The time series the user gets is the N run's: its own first-order Richardson estimate
 |f(N) - L(N)| is stated apart (``time_series_error``), so nothing is hidden.
@@ -638,11 +635,10 @@ def needs_doubling(block: dict, tol) -> bool:
     """Whether the extrapolation ``block`` (:func:`extrapolate`) asks for 2 N under the tolerances ``tol`` (body,
     tension): its stated error misses them, or its runs are not in the asymptotic range while their conservative
     error (factor 1, at least the correction) is above NOISE_FRACTION x the tolerances. Below that the observed order
-    is of differences too small to mean anything (light-cage lift, 200 s: N = 4, 8, 16 differ by 3e-5 of the top
-    tension, order 0.13 from the RKC steps' own error at N = 4, 8), the conservative error stands and doubling would
-    buy an order the tolerance does not need (``block["settled_in_noise"]`` is set True then). Runs converging faster
-    than the range (``block["converging"]``: the leading numbers' differences of one sign, shrinking at an order above
-    ORDER_RANGE[1] or within it; light lift, 600 s, N = 4, 8, 16: body 3.7, tension 1.6) keep their conservative error
+    is of differences too small to mean anything, the conservative error stands and doubling would buy an order the
+    tolerance does not need (``block["settled_in_noise"]`` is set True then). Runs converging faster than the range
+    (``block["converging"]``: the leading numbers' differences of one sign, shrinking at an order above
+    ORDER_RANGE[1] or within it) keep their conservative error
     when it is within the tolerance: shrinking by 2^p >= 8 per doubling, the differences past N sum to at most 1/7 of
     the last one, which the conservative error holds; a number within the range has 3x its remainder estimate
     (``block["kept_converging"]``)."""
