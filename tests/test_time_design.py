@@ -137,4 +137,8 @@ def test_control_design_door_writes_json_and_png(tmp_path, capsys):
     assert td["ae_n"] == pytest.approx(fd["ae_n"], rel=1e-3)
     assert fd["in_the_time_domain"]["objective_heave_variance_m2"] >= td["objective_heave_variance_m2"] * (1 - 1e-6)
     assert (out / "time_design.png").stat().st_size > 20000
-    assert "frequency-domain design" in capsys.readouterr().out
+    printed = capsys.readouterr().out
+    assert "frequency-domain design" in printed
+    # which model ran, and the ladder's own choice for the scene: the straight cable bows in the current
+    assert doc["models"]["design"].startswith("wang 2-DOF")
+    assert doc["models"]["ladder_choice"]["name"] != "wang" and "NOT the control's model" in printed

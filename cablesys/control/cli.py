@@ -75,7 +75,10 @@ def run_design(args) -> int:
                        overwrite=args.overwrite, owned=("time_design.json",))
     with outdir.start(scene=scene.name):
         res = time_domain_design(problem)
-        doc = {"scene": scene.name, "settings": settings, "time_domain": res.summary()}
+        doc = {"scene": scene.name, "settings": settings,
+               "models": {"design": f"wang 2-DOF (the winch at zero payout), RK4 roll-out at {args.design_dt:g} s: the "
+                                    "design's model, re-run by the plain time domain", **_ladder(scene)},
+               "time_domain": res.summary()}
         fd = frequency_design(scene, settings_from_dict(scene.design))
         theta_f = [float(v) for v in fd.values]
         doc["frequency_domain"] = {"success": bool(fd.success), "ae_n": theta_f[0], "internal_damping_n_s": theta_f[1],
@@ -93,7 +96,7 @@ def run_design(args) -> int:
     w = sys.stdout.write
     s = res.summary()
     w(f"{scene.name}\n{'' if res.success else 'WARNING: ' + res.message + chr(10)}")
-    w(f"controller: {models['controller']}\nplant: {models['plant']}\nladder: {models['ladder']}\n")
+    w(f"model: {doc['models']['design']}\nladder: {doc['models']['ladder']}\n")
     w(f"time-domain design:      AE {res.theta[0]:.4g} N, C_I {res.theta[1]:.4g} N s; heave std "
       f"{s['baseline_heave_std_m']:.3f} -> {s['heave_std_m']:.3f} m ({s['heave_reduction_db']:+.1f} dB), "
       f"mean over seeds {seeds}; {res.stats['iterations']} IPOPT iterations in {res.stats['solve_s']:.1f} s\n")
@@ -114,12 +117,18 @@ def _models(scene, res) -> dict:
     """Which models ran, and what the model ladder would run for the uncompensated scene (and why): the control's
     models are Wang's 2-DOF cable with the winch's unstretched length as a state (:mod:`cablesys.model.winch`);
     where the ladder needs another model for this scene, it says so."""
-    from ..ladder.auto import decide
     st = res.stats
     out = {"controller": f"wang 2-DOF with winch (cablesys.model.winch), {st.get('controller_segments', 1)} drag "
                          "segment(s): the optimal control's and the MPC's model",
            "plant": f"wang 2-DOF with winch, {st.get('plant_segments')} drag segments (the closed loops' nonlinear "
                     "plant: a model finer than the controller's)"}
+    return {**out, **_ladder(scene)}
+
+
+def _ladder(scene) -> dict:
+    """What the model ladder would run for the uncompensated scene, and why, against the control's Wang model."""
+    from ..ladder.auto import decide
+    out = {}
     choice = decide(scene, "auto", None, None)[0]
     seg = f", N = {choice.segments}" if choice.segments > 1 else ""
     agree = choice.name == "wang"
