@@ -306,6 +306,7 @@ def _timed_run(sc, method, rtol, atol):
 def _moordyn_stats(r, period):
     class _R:                        # the metrics read a result by label and time
         time = r["time"]
+        labels = [k for k in r if k != "time"]
         profiles = {"element_strain": r["element_strain"]} if "element_strain" in r else {}
 
         def __getitem__(self, k):

@@ -39,7 +39,7 @@ def test_rov_statics_print_no_raw_kinsol_line(rov_segmented, capfd):
     pp = static_parameters(m, p)
     polar, _ = C._rootfinders(m)
     # the same rootfinder called bare from the statics' first guess stalls and CasADi prints it: the capture sees it
-    polar(C._to_polar(C.hanging_guess(m, pp)), pp)
+    polar(C.to_polar(C.hanging_guess(m, pp)), pp)
     sys.stderr.flush()
     assert "KIN_LINESEARCH_NONCONV" in capfd.readouterr().err
     st = steady_state(m, p)

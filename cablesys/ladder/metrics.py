@@ -26,19 +26,9 @@ def base_label(label: str) -> str:
 
 
 def _labels(result, bases) -> list:
-    """The labels of ``result`` with these base names (a record without ``labels``: the bases it holds)."""
+    """The labels of ``result`` with these base names (a record without ``labels``: the bases themselves)."""
     labels = getattr(result, "labels", None)
-    if labels is None:
-        return [k for k in bases if _holds(result, k)]
-    return [k for k in labels if base_label(k) in bases]
-
-
-def _holds(result, key) -> bool:
-    try:
-        result[key]
-    except KeyError:
-        return False
-    return True
+    return list(bases) if labels is None else [k for k in labels if base_label(k) in bases]
 
 
 def window(time: np.ndarray, period: float | None, ramp_s: float = 0.0) -> np.ndarray:

@@ -19,7 +19,7 @@ import numpy as np
 
 from ..errors import SolverError
 from ..messages import casadi_warnings_captured, kinsol_flags
-from .closed_forms import seabed_catenary
+from .closed_forms import seabed_catenary, suspended_catenary
 from .problem import SteadyState, at_rest, static_parameters, static_residual
 
 TOLERANCE = 1e-10     # largest static force residual over the total weight
@@ -79,10 +79,11 @@ def anchored_guess(model, p) -> np.ndarray:
     """Free node positions of an anchored line laid along a path of its zero-tension length.
 
     A heavy line without a seabed hangs free between its ends: the inextensible catenary of its length
-    through the top and the anchor (:func:`_suspended`). With a seabed it takes the closed-form catenary of its
-    mean properties (:func:`seabed_catenary`, flat rigid bed at the anchor's depth). Otherwise, with a seabed, the path runs from the anchor
-    along the bed towards the top and rises straight to the top (its touchdown point found so that the path is as long as the line); without one,
-    or when the bed path is shorter than the chord, it is two straight legs meeting below the chord's
+    through the top and the anchor (:func:`.closed_forms.suspended_catenary`), pulled taut (:func:`_taut_span`).
+    With a seabed it takes the closed-form catenary of its mean properties (:func:`seabed_catenary`, flat rigid bed
+    at the anchor's depth); where that fails, the path runs from the anchor along the bed towards the top and rises
+    straight to the top (its touchdown point found so that the path is as long as the line), or, when the bed path
+    is shorter than the chord (and for a vertical chord without a bed), two straight legs meeting below the chord's
     mid-point. A line shorter than the chord is laid straight (it will be stretched).
 
     Parameters
@@ -147,30 +148,15 @@ def anchored_guess(model, p) -> np.ndarray:
     return _in_space(model, np.array(q))
 
 
-def _suspended(length: float, anchor, arcs) -> np.ndarray:
-    """Points (x, y down) at arc lengths ``arcs`` from the top (0, 0) of the inextensible catenary of ``length``
-    hanging between the top and ``anchor`` (x != 0): Y = a cosh((X - X0) / a) + C (Y up), a from
-    sqrt(L^2 - dY^2) = 2 a sinh(h / (2 a)), X0 = h / 2 - a atanh(dY / L) (Irvine 1981, *Cable Structures*, ch. 1)."""
-    from scipy.optimize import brentq
-    h, dY = abs(float(anchor[0])), -float(anchor[1])
-    target = np.sqrt(length**2 - dY**2) / h                       # 2 a sinh(h / 2a) / h = target > 1
-    u = brentq(lambda u: np.sinh(u) / u - target, 1e-9, 1.0 + np.arcsinh(target))   # u = h / (2 a)
-    a = h / (2.0 * u)
-    x0 = 0.5 * h - a * np.arctanh(dY / length)
-    X = x0 + a * np.arcsinh(np.asarray(arcs, float) / a - np.sinh(x0 / a))
-    Y = a * (np.cosh((X - x0) / a) - np.cosh(x0 / a))
-    return np.column_stack([np.sign(anchor[0]) * X, -Y])
-
-
 def _taut_span(length: float, anchor, arcs, min_strain: float) -> np.ndarray:
-    """The free nodes of :func:`_suspended` with every element stretched by about ``min_strain`` (the order of
-    the line's static strain w L / 2 AE): a catenary through the ends of a length stretched until each element's
-    chord exceeds its zero-tension length by that, so that no element of the guess is slack (a slack element has
+    """The free nodes of :func:`.closed_forms.suspended_catenary` with every element stretched by about
+    ``min_strain`` (the order of the line's static strain w L / 2 AE): a catenary through the ends of a length
+    stretched until each element's chord exceeds its zero-tension length by that, so that no element of the guess is slack (a slack element has
     no stiffness and leaves Newton's matrix singular) and none is far stiffer than the solution."""
     h0 = np.diff(np.concatenate([[0.0], arcs]))
     stretch, target = 1.0, 1.0 + max(min_strain, 1e-9)
     for _ in range(30):
-        pts = _suspended(length * stretch, anchor, arcs * stretch)
+        pts = suspended_catenary(length * stretch, anchor, arcs * stretch)
         chords = np.linalg.norm(np.diff(np.vstack([[0.0, 0.0], pts]), axis=0), axis=1)
         short = float(np.min(chords / h0))
         if short >= target:
@@ -184,7 +170,7 @@ def _in_space(model, xy) -> np.ndarray:
     return np.column_stack([xy] + [np.zeros(len(xy))] * (_dim(model) - 2)).ravel()
 
 
-def _polar(model):
+def polar_map(model):
     """q as a function of element angles and lengths, v = (theta_1.., l_1..): r_j = sum_e l_e e_t(theta_e)
     with e_t = (-sin theta, cos theta) (Wang 1971 eq. 10). A rotation is linear in these variables,
     which is what Newton needs to swing a hanging cable into a current (in node coordinates it
@@ -208,7 +194,7 @@ def _polar(model):
 def _rootfinders(model):
     def build():
         resid = static_residual(model)
-        to_q = _polar(model)
+        to_q = polar_map(model)
         v, p = ca.SX.sym("v", _dim(model) * model.n_elements), ca.SX.sym("p", len(model.layout))
         G = ca.Function("polar_residual", [v, p], [resid(to_q(v), p)])
         opts = {"strategy": "linesearch", "abstol": 1e-13, "error_on_fail": False, "print_level": 0,
@@ -236,8 +222,8 @@ def static_tolerance(model, p) -> float:
     return max(TOLERANCE, 1e3 * np.finfo(float).eps * k_max * total_l / weight)
 
 
-def _to_polar(q, dim: int = 2):
-    """The inverse of :func:`_polar`: element angles and lengths of node positions q."""
+def to_polar(q, dim: int = 2):
+    """The inverse of :func:`polar_map`: element angles and lengths of node positions q."""
     d = np.diff(np.concatenate([np.zeros(dim), q]).reshape(-1, dim), axis=0)
     theta, flat = np.arctan2(-d[:, 0], d[:, 1]), np.hypot(d[:, 0], d[:, 1])
     if dim == 2:
@@ -270,7 +256,7 @@ def segmented_equilibrium(model, p, *, guess=None):
     if getattr(model, "anchored", False):
         return _anchored_equilibrium(model, p, guess)
     polar, nodes = _rootfinders(model)
-    resid, to_q = static_residual(model), _polar(model)
+    resid, to_q = static_residual(model), polar_map(model)
     g0 = hanging_guess(model, p) if guess is None else np.asarray(guess, float)
 
     tol = static_tolerance(model, p)
@@ -283,7 +269,7 @@ def segmented_equilibrium(model, p, *, guess=None):
         r0 = residual(q0, pp)
         if r0 < tol:
             return q0, r0
-        v = np.array(polar(_to_polar(q0, _dim(model)), pp)).ravel()
+        v = np.array(polar(to_polar(q0, _dim(model)), pp)).ravel()
         q = np.array(to_q(v)).ravel() if np.all(np.isfinite(v)) else q0
         q_pol = np.array(nodes(q, pp)).ravel()
         return min(((q, residual(q, pp)), (q_pol, residual(q_pol, pp))), key=lambda a: a[1])

@@ -148,3 +148,18 @@ def seabed_catenary_span(*, length, weight_per_length, ea, height, seabed_length
     s0 = max(L_B - H / (mu * w), 0.0) if mu > 0 else 0.0
     on_bed = H * (L_B - s0) - mu * w * (L_B * (L_B - s0) - 0.5 * (L_B**2 - s0**2))
     return float(L_B + on_bed / EA + H / w * np.arcsinh(w * sig / H) + H * sig / EA)
+
+
+def suspended_catenary(length: float, anchor, arcs) -> np.ndarray:
+    """Points (x, y down) at arc lengths ``arcs`` from the top (0, 0) of the inextensible catenary of ``length``
+    hanging between the top and ``anchor`` (x != 0): Y = a cosh((X - X0) / a) + C (Y up), a from
+    sqrt(L^2 - dY^2) = 2 a sinh(h / (2 a)), X0 = h / 2 - a atanh(dY / L) (Irvine 1981, *Cable Structures*, ch. 1)."""
+    from scipy.optimize import brentq
+    h, dY = abs(float(anchor[0])), -float(anchor[1])
+    target = np.sqrt(length**2 - dY**2) / h                       # 2 a sinh(h / 2a) / h = target > 1
+    u = brentq(lambda u: np.sinh(u) / u - target, 1e-9, 1.0 + np.arcsinh(target))   # u = h / (2 a)
+    a = h / (2.0 * u)
+    x0 = 0.5 * h - a * np.arctanh(dY / length)
+    X = x0 + a * np.arcsinh(np.asarray(arcs, float) / a - np.sinh(x0 / a))
+    Y = a * (np.cosh((X - x0) / a) - np.cosh(x0 / a))
+    return np.column_stack([np.sign(anchor[0]) * X, -Y])

@@ -24,7 +24,7 @@ import numpy as np
 
 from ..errors import SolverError
 from ..messages import casadi_warnings_captured, kinsol_flags
-from .catenary import _polar, _to_polar, segmented_steady, static_tolerance
+from .catenary import polar_map, segmented_steady, static_tolerance, to_polar
 from .problem import residual_scales, static_parameters
 
 
@@ -42,7 +42,7 @@ def _rigid(w, r):
 def _rootfinder(model):
     """KINSOL on ``(q; [t0, r_top, w, p]) -> (M a - f) / W`` for the model's 3-D nodes (W: the total weight,
     :func:`.problem.residual_scales`), and on the same residual in element angles and lengths v (q = r_top +
-    the statics' polar map, :func:`.catenary._polar`), in which swinging the cable out is linear: node-coordinate
+    the statics' polar map, :func:`.catenary.polar_map`), in which swinging the cable out is linear: node-coordinate
     Newton sees a swing of a stiff line as a stretch and stalls (as in the statics)."""
     def build():
         nq, n_p = model.nq, len(model.layout)
@@ -57,7 +57,7 @@ def _rootfinder(model):
         F = ca.Function("turning_residual", [q, ca.vertcat(t0, rt, w, p)], [res])
         v = ca.SX.sym("v", nq)
         P = ca.SX.sym("P", 5 + n_p)
-        G = ca.Function("turning_polar_residual", [v, P], [F(ca.repmat(P[1:4], nq // 3, 1) + _polar(model)(v), P)])
+        G = ca.Function("turning_polar_residual", [v, P], [F(ca.repmat(P[1:4], nq // 3, 1) + polar_map(model)(v), P)])
         opts = {"strategy": "linesearch", "abstol": 1e-13, "error_on_fail": False, "print_level": 0,
                 "disable_internal_warnings": True, "max_iter": 200}
         nodes = ca.rootfinder("turning", "kinsol", F, dict(opts, linear_solver_type="user_defined",
@@ -118,8 +118,8 @@ def turning_state(model, p, turn_rate: float, hanging, t0: float = 0.0) -> np.nd
         while lam < 1.0 and step > 1.0 / 4096:
             w = turn_rate * min(1.0, lam + step)
             P = np.concatenate([[t0], r_top, [w], p])
-            v = np.array(polar(_to_polar(q - np.tile(r_top, q.size // 3), 3), P)).ravel()
-            q_try = np.tile(r_top, q.size // 3) + np.array(_polar(model)(v)).ravel() if np.all(np.isfinite(v)) else q
+            v = np.array(polar(to_polar(q - np.tile(r_top, q.size // 3), 3), P)).ravel()
+            q_try = np.tile(r_top, q.size // 3) + np.array(polar_map(model)(v)).ravel() if np.all(np.isfinite(v)) else q
             if not resid(q_try, w) < tol:                      # polished in node coordinates (sparse)
                 q_try = np.array(nodes(q_try, P)).ravel()
             if np.all(np.isfinite(q_try)) and resid(q_try, w) < tol:
