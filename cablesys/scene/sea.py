@@ -171,17 +171,28 @@ class MotionRAO:
 
     def __call__(self, dof: str, omega) -> np.ndarray:
         """Complex RAO |R| e^{i theta} of ``dof`` ('surge' or 'heave') at ``omega``."""
-        amp = np.interp(omega, self.omega, getattr(self, f"{dof}_amplitude"))
-        ph = np.interp(omega, self.omega, np.unwrap(np.radians(getattr(self, f"{dof}_phase_deg"))))
+        amp, ph = interpolate_rao(self.omega, getattr(self, f"{dof}_amplitude"),
+                                  np.radians(getattr(self, f"{dof}_phase_deg")), omega)
         return amp * np.exp(1j * ph)
 
 
-def _read_rao_csv(path) -> dict:
+def interpolate_rao(table_omega, amplitude, phase_rad, omega):
+    """(|R|, theta): a table's amplitude and unwrapped phase (rad) interpolated linearly at ``omega`` (end values
+    held); the RAO is |R| e^{i theta}."""
+    return np.interp(omega, table_omega, amplitude), np.interp(omega, table_omega, np.unwrap(phase_rad))
+
+
+def read_csv_rows(path, field: str) -> list[dict]:
+    """The rows of a CSV table file (UTF-8, BOM accepted) as dicts; errors name ``field``."""
     from ..reader import read_text  # UTF-8 (BOM accepted), named decode errors
     try:
-        rows = list(csv.DictReader(io.StringIO(read_text(path, "top_motion.rao.file"), newline="")))
+        return list(csv.DictReader(io.StringIO(read_text(path, field), newline="")))
     except csv.Error as err:
-        raise ParameterError("top_motion.rao.file", str(path), f"cannot be parsed as CSV ({err})") from None
+        raise ParameterError(field, str(path), f"cannot be parsed as CSV ({err})") from None
+
+
+def _read_rao_csv(path) -> dict:
+    rows = read_csv_rows(path, "top_motion.rao.file")
     cols = MotionRAO._COLUMNS
     if not rows or any(c not in rows[0] for c in ("omega", "heave_amplitude")):
         raise ParameterError("top_motion.rao.file", str(path), f"needs a header with columns {', '.join(cols)}")

@@ -36,15 +36,14 @@ an error naming the field.
 
 from __future__ import annotations
 
-import csv
 import dataclasses
-import io
 import math
 
 import numpy as np
 
 from ..errors import ParameterError, require_finite, require_nonnegative
 from .fields import spec
+from .sea import interpolate_rao, read_csv_rows
 
 DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 ANTISYMMETRIC = ("sway", "roll", "yaw")     # reversed by the port-starboard mirror beta -> 360 - beta
@@ -99,7 +98,7 @@ class HeadingRAO:
                 if len(v) != n:
                     raise ParameterError(f"{where}.{name}", f"{len(v)} values", f"needs one per frequency ({n})")
             scale = math.pi / 180.0 if dof in _ROTATIONS else 1.0
-            out[dof] = (np.asarray(amp) * scale, np.unwrap(np.radians(ph)))
+            out[dof] = (np.asarray(amp) * scale, np.radians(ph))
         return out
 
 
@@ -162,10 +161,8 @@ class VesselRAO:
 
     # ---------------------------------------------------------------- the RAOs
     def _at_table(self, k: int, omega: np.ndarray) -> dict:
-        out = {}
-        for dof, (amp, ph) in self._tables[k].items():
-            out[dof] = (np.interp(omega, self.omega, amp), np.interp(omega, self.omega, ph))
-        return out
+        """{dof: (|R|, unwrapped phase) at ``omega``} of table heading k (:func:`.sea.interpolate_rao`)."""
+        return {dof: interpolate_rao(self.omega, amp, ph, omega) for dof, (amp, ph) in self._tables[k].items()}
 
     def _bracket(self, beta: float):
         """(k0, k1, weight, mirrored) of the table headings around ``beta`` (deg in [0, 360))."""
@@ -215,12 +212,8 @@ class VesselRAO:
 
 
 def _read_vessel_csv(path) -> tuple[tuple, tuple]:
-    from ..reader import read_text  # UTF-8 (BOM accepted), named decode errors
     field = "top_motion.vessel.file"
-    try:
-        rows = list(csv.DictReader(io.StringIO(read_text(path, field), newline="")))
-    except csv.Error as err:
-        raise ParameterError(field, str(path), f"cannot be parsed as CSV ({err})") from None
+    rows = read_csv_rows(path, field)
     if not rows or any(c not in rows[0] for c in ("heading_deg", "omega")):
         raise ParameterError(field, str(path), "needs a header with heading_deg, omega and <dof>_amplitude, "
                              f"<dof>_phase_deg columns for any of {', '.join(DOFS)}")
