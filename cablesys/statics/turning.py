@@ -30,13 +30,11 @@ from .problem import residual_scales, static_parameters
 
 
 def _rigid(w, r):
-    """(v, a) of points ``r`` (rows x, y, z) turning at ``w`` (rad/s) about the upward vertical (y is down)."""
+    """(v, a) of points ``r`` (rows x, y, z; numbers or CasADi symbols) turning at ``w`` (rad/s) about the upward
+    vertical (y is down): the module docstring's v_j and a_j."""
     x, z = r[:, 0], r[:, 2]
-    zero = 0 * x
-    v = ca.horzcat(-w * z, zero, w * x) if isinstance(r, (ca.SX, ca.MX)) else np.column_stack([-w * z, zero, w * x])
-    a = (ca.horzcat(-w**2 * x, zero, -w**2 * z) if isinstance(r, (ca.SX, ca.MX))
-         else np.column_stack([-w**2 * x, zero, -w**2 * z]))
-    return v, a
+    cat = ca.horzcat if isinstance(r, (ca.SX, ca.MX)) else (lambda *cols: np.column_stack(cols))
+    return cat(-w * z, 0 * x, w * x), cat(-w**2 * x, 0 * x, -w**2 * z)
 
 
 def _rootfinder(model):
