@@ -43,7 +43,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import parse_args, write_json
 
 from cablesys.control import WinchLimits, heave_problem, optimal_payout, resimulate
-from cablesys.control.mpc import ARPredictor, GaussNewtonMPC, compare_compensation
+from cablesys.control.mpc import compare_compensation
+from cablesys.control.prediction import ARPredictor
+from cablesys.control.rti import GaussNewtonMPC
 from cablesys.control.payout import interval_kernels
 from cablesys.control.shooting import solve_shooting
 from cablesys.examples import example_path

@@ -1,4 +1,4 @@
-"""The MPC's Gauss-Newton real-time iteration (cablesys.control.mpc.GaussNewtonMPC) and its top-motion
+"""The MPC's Gauss-Newton real-time iteration (cablesys.control.rti.GaussNewtonMPC) and its top-motion
 predictor without preview (ARPredictor, burg)."""
 
 import math
@@ -7,7 +7,9 @@ import numpy as np
 import pytest
 
 from cablesys.control import WinchLimits, heave_problem
-from cablesys.control.mpc import ARPredictor, GaussNewtonMPC, compare_compensation
+from cablesys.control.mpc import compare_compensation
+from cablesys.control.prediction import ARPredictor
+from cablesys.control.rti import GaussNewtonMPC
 from cablesys.control.payout import payout_nlp
 from cablesys.errors import ParameterError
 from cablesys.examples import example_path

@@ -19,14 +19,14 @@ Strategies, each run from rest over the same sea:
   plant state, warm-started from the previous solution shifted by one interval; the first
   interval's alpha is applied (a step that does not converge applies the previous plan,
   shifted; the path constraints start at the second node, the first being the measured
-  state). Each step is one Gauss-Newton QP (the real-time iteration, :class:`GaussNewtonMPC`;
+  state). Each step is one Gauss-Newton QP (the real-time iteration, :class:`.rti.GaussNewtonMPC`;
   ``mpc_scheme="ipopt"``: IPOPT with exact Hessians to convergence on the same NLP). The plant's
   and the controller's rest states differ (the drag
   of the current on a differently discretized cable sets another angle and stretch): the
   controller sees the measured state minus that difference (a constant-offset estimate, so the
   mismatch does not read as a pendulum swing or a heave error to be corrected);
 - ``mpc_no_preview``: the same MPC with the tip motion over the horizon predicted from the
-  samples of it measured up to the step only (an autoregressive model, :class:`ARPredictor`);
+  samples of it measured up to the step only (an autoregressive model, :class:`.prediction.ARPredictor`);
 - ``optimal``: the open-loop optimum of the whole record on the controller's model, played
   open-loop on the plant (the physical limit for these winch limits, up to the mismatch).
 
@@ -44,18 +44,16 @@ import math
 import time
 from typing import ClassVar
 
-import casadi as ca
 import numpy as np
-from scipy.interpolate import CubicSpline
-from scipy.signal import lfilter, lfiltic
 
 from ..errors import ParameterError, require_positive
 from ..model.winch import WINCH_OUTPUTS
 from ..results import ResultBase, timed
 from .limits import WinchLimits
-from .payout import (check_window, gauss_newton_kernel, heave_problem, heave_reduction_db, payout_nlp,
-                     statistics_window)
+from .payout import check_window, heave_problem, heave_reduction_db, payout_nlp, statistics_window
 from .plant import Plant
+from .prediction import ARPredictor
+from .rti import GaussNewtonMPC
 
 STRATEGIES = ("none", "passive", "pi", "mpc", "mpc_no_preview", "optimal")
 # how an MPC step solves its horizon problem
@@ -335,186 +333,3 @@ def _passive_run(scene, plant_scene, limits, kw, ratio, N):
     plant = Plant(prob.model, prob.p, prob.c, prob.dt)
     T, X, A, S = _run(plant, prob, lambda k, x: 0.0, N, prob.x_rest)
     return T, X, A, S, prob
-
-
-class GaussNewtonMPC:
-    """The receding-horizon problem of ``payout_nlp(problem, N, constrain_first=False)`` solved by
-    Gauss-Newton sequential quadratic programming in the real-time iteration scheme (Diehl, Bock &
-    Schloeder 2005, "A real-time iteration scheme for nonlinear optimization in optimal feedback
-    control", SIAM J. Control Optim. 43(5), 1714-1736): per sample, ``iterations`` (1: the real-time
-    iteration) full Gauss-Newton steps from the previous plan shifted by one interval, each one
-    convex quadratic program.
-
-    Each step linearizes at the roll-out of the plan from the measured state (single shooting:
-    node states x_k(U), so the condensed problem has the N controls alone as variables; the
-    sensitivities S_k = dx_k/dU follow S_{k+1} = A_k S_k + B_k e_k^T from the kernel's A, B),
-    takes the objective's Gauss-Newton model 1/2 dU^T J^T J dU + (J^T r)^T dU (the objective is
-    r^T r, :func:`.payout.gauss_newton_function`; Bock 1983) and the linearized path
-    constraints (winch power, no slack, working load at nodes 1..N-1), the speed bound at nodes
-    1..N and |alpha| <= a_max, and solves that dense QP with DAQP (a dual active-set method: Arnstroem,
-    Bemporad & Axehill 2022, IEEE Trans. Autom. Control 67(8), 4362-4369; ``qpsol``: any CasADi ``conic``
-    plugin that takes dense matrices, e.g. "qpoases"). The per-interval linearization is
-    one compiled kernel (:func:`.payout.gauss_newton_kernel`) mapped over the horizon; the QP has
-    a fixed structure (N, the model's size, which limits are finite), built once. The scheme's
-    preparation phase (the linearization) and feedback phase (the QP) both run after the measurement
-    here, so a step's time is the whole iteration, not the feedback delay alone.
-
-    ``step(x0, E, U) -> (U_new, ok)``: E (N+1, ne) the horizon's exogenous rows, U (N,) the guess.
-    """
-
-    def __init__(self, problem, N: int, *, iterations: int = 1, qpsol: str = "daqp"):
-        if not (isinstance(iterations, int) and iterations >= 1):
-            raise ParameterError("mpc_iterations", iterations, "must be an integer >= 1")
-        self.problem, self.N, self.iterations = problem, N, iterations
-        nx, ne = problem.model.nx, problem.step.size1_in(2)
-        kernel = gauss_newton_kernel(problem)
-        w = ca.DM([problem.heave_rest, problem.static_tension, problem.tension_weight, problem.control_weight,
-                   problem.dt])
-        x0, U, E = ca.MX.sym("x0", nx), ca.MX.sym("U", 1, N), ca.MX.sym("E", ne, N + 1)
-        p, c = ca.DM(problem.p), ca.DM(problem.c)
-        out = kernel.mapaccum("gn_horizon", N, [0], [0])(x0, U, E[:, :N], p, c, w)
-        rN, RxN = kernel(out[0][:, N - 1], 0.0, E[:, N], p, c, w)[3:5]
-        self.horizon = ca.Function("gn_horizon", [x0, U, E], [*out, rN, RxN])
-        # constraint rows: speed at nodes 1..N, then each finite path constraint at nodes 1..N-1
-        lim = problem.limits
-        self.speed = float(lim.speed)
-        self.path = [(c.rows[0], c.lb / c.scale, c.ub / c.scale, c.scale) for c in problem.constraints()
-                     if np.isfinite(c.lb) or np.isfinite(c.ub)]
-        self.n_rows = (N if math.isfinite(self.speed) else 0) + len(self.path) * (N - 1)
-        qp = {"h": ca.Sparsity.dense(N, N), "a": ca.Sparsity.dense(max(self.n_rows, 1), N)}
-        opts = {"printLevel": "none", "error_on_fail": False} if qpsol == "qpoases" else {"error_on_fail": False}
-        self.qp = ca.conic("gn_qp", qpsol, qp, opts)
-        self.a_max = float(lim.acceleration)
-        self.qp_failures = 0
-
-    def linearization(self, x0, E, U):
-        """(H, grad, Acon, lba, uba, X) of the condensed Gauss-Newton QP at the plan U from x0."""
-        N, nx = self.N, self.problem.model.nx
-        X, A, B, r, Rx, Ru, g, Gx, Gu, rN, RxN = (np.array(v) for v in self.horizon(x0, U[None, :], E.T))
-        A = A.reshape(nx, N, nx).transpose(1, 0, 2)
-        S = np.zeros((N + 1, nx, N))
-        for k in range(N):
-            S[k + 1] = A[k] @ S[k]
-            S[k + 1][:, k] += B[:, k]
-        nr = r.shape[0]
-        Jr = np.einsum("kij,kjn->kin", Rx.reshape(nr, N, nx).transpose(1, 0, 2), S[:N])
-        Jr[np.arange(N), :, np.arange(N)] += Ru.T
-        J = np.vstack([Jr.reshape(nr * N, N), RxN @ S[N]])
-        res = np.concatenate([r.T.ravel(), rN.ravel()])
-        rows, lo, hi = [], [], []
-        if math.isfinite(self.speed):
-            rows.append(S[1:, -1, :])
-            lo.append(-self.speed - X[-1])
-            hi.append(self.speed - X[-1])
-        if self.path:
-            ng = g.shape[0]
-            Jg = np.einsum("kij,kjn->kin", Gx.reshape(ng, N, nx).transpose(1, 0, 2), S[:N])
-            Jg[np.arange(N), :, np.arange(N)] += Gu.T
-            for row, lb, ub, scale in self.path:
-                rows.append(Jg[1:, row, :] / scale)
-                lo.append(lb - g[row, 1:] / scale)
-                hi.append(ub - g[row, 1:] / scale)
-        if not rows:
-            rows, lo, hi = [np.zeros((1, N))], [np.array([-np.inf])], [np.array([np.inf])]
-        return J.T @ J, J.T @ res, np.vstack(rows), np.concatenate(lo), np.concatenate(hi), X
-
-    def step(self, x0, E, U):
-        """``iterations`` Gauss-Newton steps from the plan U (N,): (the new plan, whether every QP was solved)."""
-        U = np.asarray(U, float).copy()
-        for _ in range(self.iterations):
-            H, grad, Acon, lba, uba, _ = self.linearization(x0, E, U)
-            if not (np.isfinite(H).all() and np.isfinite(grad).all() and np.isfinite(Acon).all()):
-                self.qp_failures += 1          # the roll-out left the model's domain: keep the plan
-                return U, False
-            sol = self.qp(h=H, g=grad, a=Acon, lba=lba, uba=uba, lbx=-self.a_max - U, ubx=self.a_max - U)
-            if not self.qp.stats()["success"]:
-                self.qp_failures += 1
-                return U, False
-            U = U + np.array(sol["x"]).ravel()
-        return U, True
-
-
-class ARPredictor:
-    """Prediction of the top motion from its measured past only: an autoregressive model per channel
-    (x_s, y_s), s_j = -sum_{i=1}^{n} a_i s_{j-i}, fitted on the record measured at the control interval (the
-    last ``window`` samples; re-fitted every ``refit`` samples, and at every sample while the order grows)
-    and iterated ahead over the horizon (AR prediction of
-    waves: Fusco & Ringwood 2010, "Short-term wave forecasting for real-time control of wave energy
-    converters", IEEE Trans. Sustain. Energy 1(2), 99-106). The coefficients are Burg's (Burg 1975, *Maximum
-    entropy spectral analysis*, PhD thesis, Stanford; the recursion as in Kay & Marple 1981, Proc. IEEE 69(11),
-    1380-1419, sec. V.B): reflection coefficients |k_m| <= 1, so the model is stable and a prediction fitted on
-    the ramp's growing start does not grow without bound. The order is ``order``, or a quarter of the
-    samples measured while fewer than 4 ``order`` (a record short for its order gives poles near z = 1 whose
-    transient swamps a 20 s prediction; one sample: held). The rates and accelerations at the RK4 stage
-    times (:meth:`.payout.HeaveProblem.exogenous`) are those of the cubic spline (not-a-knot) through the
-    last measured samples and the predicted ones. A sinusoid obeys the AR(2) recursion s_j = 2 cos(omega dt)
-    s_{j-1} - s_{j-2}, which Burg's estimate approaches as the record grows."""
-
-    def __init__(self, problem, order: int = 24, window: int = 240, refit: int = 20):
-        if not (isinstance(order, int) and order >= 1):
-            raise ParameterError("ar_order", order, "must be an integer >= 1")
-        if not (isinstance(window, int) and window >= 4 * order):
-            raise ParameterError("ar_window", window, f"must be an integer >= 4 ar_order = {4 * order}")
-        if not (isinstance(refit, int) and refit >= 1):
-            raise ParameterError("ar_refit", refit, "must be an integer >= 1 (samples)")
-        self.problem, self.order, self.window, self.refit = problem, order, window, refit
-        self._a, self._fitted = None, 0
-        self.samples: list = []                  # measured (x_s, y_s) at t_j = j dt
-
-    def measure(self, t: float) -> None:
-        """Record the top's measured position (x_s, y_s) at t (s): the motion reference unit's sample."""
-        e = np.array(self.problem.model.top(t, self.problem.p)).ravel()
-        self.samples.append(e[1:3])
-
-    def predict(self, steps: int) -> np.ndarray:
-        """Positions (steps, 2) at the next ``steps`` sample times, each channel by its AR model."""
-        s = np.array(self.samples[-self.window:])
-        n = len(s)
-        if n < 2:
-            return np.repeat(s[-1:], steps, axis=0)
-        order = min(self.order, max(n // 4, 1))
-        if self._a is None or len(self._a) != order + 1 or len(self.samples) - self._fitted >= self.refit:
-            self._a, self._fitted = burg(s, order), len(self.samples)     # (order + 1, 2)
-        a = self._a
-        out = np.empty((steps, 2))
-        for ch in range(2):       # the AR recursion with zero innovations from the last samples: an all-pole filter
-            zi = lfiltic([1.0], a[:, ch], s[::-1, ch][:order])
-            out[:, ch] = lfilter([1.0], a[:, ch], np.zeros(steps), zi=zi)[0]
-        return out
-
-    def exogenous(self, k: int, n_h: int) -> np.ndarray:
-        """The rows E (n_h + 1, ne) of intervals k .. k + n_h as :meth:`.payout.HeaveProblem.exogenous` lays
-        them out, from the samples measured up to t_k = k dt (call :meth:`measure` first) and the prediction."""
-        prob = self.problem
-        dt, m = prob.dt, 2 * prob.substeps + 1
-        past = np.array(self.samples[-8:])
-        pred = self.predict(n_h + 2)
-        pos = np.vstack([past, pred])
-        tj = dt * (k - len(past) + 1 + np.arange(len(pos)))
-        times = (dt * (k + np.arange(n_h + 1))[:, None] + (dt / (m - 1)) * np.arange(m)[None, :]).ravel()
-        if len(pos) >= 4:
-            spl = CubicSpline(tj, pos, axis=0)
-            v, d1, d2 = spl(times), spl(times, 1), spl(times, 2)
-        else:
-            v, d1, d2 = np.repeat(pos[-1:], len(times), axis=0), np.zeros((len(times), 2)), np.zeros((len(times), 2))
-        e = np.column_stack([times, v, d1, d2])       # (t, x_s, y_s, x_s', y_s', x_s'', y_s'')
-        return e.reshape(n_h + 1, -1)
-
-
-def burg(x: np.ndarray, order: int) -> np.ndarray:
-    """Burg's AR coefficients a (order + 1, m), a_0 = 1, of each column of the series x (n, m) (or of x (n,):
-    a (order + 1,)): x_j + sum_i a_i x_{j-i} = e_j (Kay & Marple 1981, sec. V.B: each reflection
-    coefficient k_m minimizes the sum of the forward and backward prediction errors' squares,
-    k_m = -2 f.b / (f.f + b.b), |k_m| <= 1; Levinson's update of a)."""
-    x = np.asarray(x, float)
-    f = (x[:, None] if x.ndim == 1 else x).copy()
-    b = f.copy()
-    a = np.zeros((order + 1, f.shape[1]))
-    a[0] = 1.0
-    for m in range(1, order + 1):
-        fp, bp = f[1:], b[:-1]
-        den = np.sum(fp * fp + bp * bp, axis=0)
-        k = np.where(den > 0, -2.0 * np.sum(fp * bp, axis=0) / np.where(den > 0, den, 1.0), 0.0)
-        f, b = fp + k * bp, bp + k * fp
-        a[: m + 1] = a[: m + 1] + k * a[m::-1]
-    return a[:, 0] if x.ndim == 1 else a
