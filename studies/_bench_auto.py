@@ -24,7 +24,7 @@ import warnings
 
 import _ladder_auto as auto_run
 
-from cablesys.ladder import extrapolation as X
+from cablesys.ladder import richardson as R
 from cablesys.ladder import metrics as M
 from cablesys.model import build_model
 from cablesys.time_domain import simulate
@@ -97,9 +97,9 @@ SLACK_NOTE = ("Accuracy is each code's against its own converged answer, not aga
 def reported_statistics(result, period) -> dict:
     """What auto reports on a slack scene: the statistics extrapolated from its runs at N / 4, N / 2, N
     (:mod:`cablesys.ladder.extrapolation`), else its N run's (same definition: the last 5 periods,
-    maxima refined between samples, :func:`cablesys.ladder.extrapolation.statistics`)."""
+    maxima refined between samples, :func:`cablesys.ladder.richardson.statistics`)."""
     block = (result.stats.get("model") or {}).get("extrapolated")
-    return dict(block["statistics"]) if block else X.statistics(result, period)
+    return dict(block["statistics"]) if block else R.statistics(result, period)
 
 
 def moordyn_for(md: dict, targets: dict, auto_wall: float) -> dict:
@@ -137,7 +137,7 @@ def moordyn_for(md: dict, targets: dict, auto_wall: float) -> dict:
     out = {"estimated": True, "segments_used": [lo, hi], "order_assumed": 1.0, "wall_exponent": k,
            "assumption": "MoorDyn's converged answer = first-order Richardson limit of its two runs; error ~ 1/N"}
     for name in ("stats", "cycle_means"):
-        lim = X.limits(md[lo][name], md[hi][name], order=1.0, ratio=ratio)
+        lim = R.limits(md[lo][name], md[hi][name], order=1.0, ratio=ratio)
         e_hi = M.errors(md[hi][name], lim)
         d = {"error_at_n": {lo: M.errors(md[lo][name], lim), hi: e_hi}}
         for tname, t in targets.items():
@@ -163,7 +163,7 @@ def slack_auto_row(scene, period, ref: dict, md: dict, *, cycle_means) -> dict:
                 "asymptotic": block.get("asymptotic"), "observed_order": block.get("leading_orders"),
                 "estimated_error": m.get("estimated_error"),
                 "estimated_error_time_series": m.get("estimated_error_time_series"),
-                "error_time_series": M.errors(X.statistics(res, period), ref["stats"]),
+                "error_time_series": M.errors(R.statistics(res, period), ref["stats"]),
                 "error_time_series_cycle_means": M.errors(cycle_means(res), ref["cycle_means"])}
     n0 = min(md)
     row = auto_row(scene, period, ref["stats"], (n0, md[n0]["wall_s"]), stats=reported_statistics, diff=M.errors,

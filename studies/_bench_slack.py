@@ -42,6 +42,7 @@ from _cycles import (
 from _moordyn import largest_stable_dt, run_moordyn
 
 from cablesys.ladder import extrapolation as X
+from cablesys.ladder import richardson as R
 from cablesys.ladder import metrics as M
 from cablesys.time_domain.failures import largest_rate, rk4_steps_per_output
 from cablesys.time_domain.integrators import COMPILE_MAX_ELEMENTS
@@ -98,8 +99,8 @@ class _Run:
 
 def _both(result, period: float, t0: float) -> dict:
     """A run's statistics in auto's definition (last 5 periods, maxima refined:
-    :func:`cablesys.ladder.extrapolation.statistics`) and its cycle means over [t0, end] in the same names."""
-    return {"stats": X.statistics(result, period), "cycle_means": ladder_statistics(result, period, t0)}
+    :func:`cablesys.ladder.richardson.statistics`) and its cycle means over [t0, end] in the same names."""
+    return {"stats": R.statistics(result, period), "cycle_means": ladder_statistics(result, period, t0)}
 
 
 def _tight_run(sc, prepared):
@@ -124,14 +125,14 @@ def reference(scene, tights: dict, ns) -> dict:
     floor = max(s.cable.tension_floor for s in scene.sections)
     out = {"kind": "richardson", "segments": [lo, hi], "order_assumed": 1.0, "integrator": "rk, half the stable step"}
     for name in ("stats", "cycle_means"):
-        lim = X.limits(tights[lo][name], tights[hi][name], order=1.0)
+        lim = R.limits(tights[lo][name], tights[hi][name], order=1.0)
         lim.update({k: max(v, floor) for k, v in lim.items() if k.endswith("_min")})
         out[name] = lim
         # each tight run's own error against the limit (as MoorDyn's against its own: _bench_auto.moordyn_for)
         out.setdefault("error_at_n", {})[name] = {n: M.errors(t[name], lim) for n, t in sorted(tights.items())}
         if lo // 2 in tights:
-            prev = X.limits(tights[lo // 2][name], tights[lo][name], order=1.0)
-            out.setdefault("observed_order", {})[name] = X.observed_orders(tights[lo // 2][name], tights[lo][name],
+            prev = R.limits(tights[lo // 2][name], tights[lo][name], order=1.0)
+            out.setdefault("observed_order", {})[name] = R.observed_orders(tights[lo // 2][name], tights[lo][name],
                                                                         tights[hi][name])
             out.setdefault("uncertainty", {})[name] = {k: v / 3.0 for k, v in M.errors(prev, lim).items()}
     return out

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cablesys.ladder.extrapolation import refined_maximum
+from cablesys.ladder.richardson import refined_maximum
 
 
 def cycle_statistics(time, series: dict, period: float, t0: float, t1: float | None = None,

@@ -6,7 +6,7 @@ its runs (else the check is circular): the first-order Richardson limit of RK4 r
 ``reference_segments`` (full: N = 40, 80; auto takes N = 32), compiled (the element kernel) in full
 mode. The reference runs give both kinds of statistics: cycle means over the settled window (the
 rows' figures, :func:`_cycles.ladder_statistics`) and auto's own (the last 5 periods, maxima refined
-between samples, :func:`cablesys.ladder.extrapolation.statistics`), so auto is compared on its terms.
+between samples, :func:`cablesys.ladder.richardson.statistics`), so auto is compared on its terms.
 The reference's own uncertainty is the remainder estimate of the limits of the previous pair (the
 table's rk-stable run at half the coarser reference N), |L(N/2) - L(N)| / 3, as auto states its own.
 """
@@ -25,6 +25,7 @@ from _ladder_checks import cheaper_within, estimate_check
 from cablesys.errors import NumericalWarning
 from cablesys.ladder import RungCache, metrics
 from cablesys.ladder import extrapolation as X
+from cablesys.ladder import richardson as R
 
 AUTO_INTEGRATOR = "auto-extrapolated"     # auto's row: RK4 at N / 4, N / 2, N, statistics extrapolated
 
@@ -49,7 +50,7 @@ def reference_run(case: dict, n: int, period: float, cache: RungCache) -> dict:
         total = time.perf_counter() - t0
     row = {"segments": n, "success": bool(r.success), "wall_s": float(r.stats.get("wall_s", total)), "total_s": total}
     if r.success:
-        row.update(statistics=ladder_statistics(r, period, case["window_t0"]), auto_statistics=X.statistics(r, period))
+        row.update(statistics=ladder_statistics(r, period, case["window_t0"]), auto_statistics=R.statistics(r, period))
     return row
 
 
@@ -61,8 +62,8 @@ def slack_reference(case: dict, rows: list, period: float, cache: RungCache) -> 
     runs = {n: reference_run(case, n, period, cache) for n in (c, f)}
     if not all(r["success"] for r in runs.values()):
         return {"kind": "richardson", "error": f"a reference run failed (N = {c}, {f})", "runs": runs}
-    lim = X.limits(runs[c]["statistics"], runs[f]["statistics"], order=1.0, ratio=f / c)
-    lim_auto = X.limits(runs[c]["auto_statistics"], runs[f]["auto_statistics"])
+    lim = R.limits(runs[c]["statistics"], runs[f]["statistics"], order=1.0, ratio=f / c)
+    lim_auto = R.limits(runs[c]["auto_statistics"], runs[f]["auto_statistics"])
     floor = max(s.cable.tension_floor for s in case["scene"].sections)
     for d in (lim, lim_auto):           # a minimum's limit below the tension floor: the floor (as auto's)
         d.update({k: max(v, floor) for k, v in d.items() if k.endswith("_min")})
@@ -70,9 +71,9 @@ def slack_reference(case: dict, rows: list, period: float, cache: RungCache) -> 
                  and r["integrator"] == "rk-stable" and "statistics" in r), None)
     orders, unc = {}, None
     if half is not None:
-        orders = X.observed_orders(half["statistics"], runs[c]["statistics"], runs[f]["statistics"])
-        prev = X.limits(half["statistics"], runs[c]["statistics"], order=1.0)
-        unc = {k: v / (2.0**X.REMAINDER_ORDER - 1.0) for k, v in metrics.errors(prev, lim).items()}
+        orders = R.observed_orders(half["statistics"], runs[c]["statistics"], runs[f]["statistics"])
+        prev = R.limits(half["statistics"], runs[c]["statistics"], order=1.0)
+        unc = {k: v / (2.0**R.REMAINDER_ORDER - 1.0) for k, v in metrics.errors(prev, lim).items()}
     return {"kind": "richardson", "segments": [c, f], "integrator": "rk-stable"
             + (" (compiled)" if case.get("compile_reference") else ""), "order_assumed": 1.0,
             "observed_order": orders, "observed_order_from": [c // 2, c, f], "statistics": lim,
@@ -94,8 +95,8 @@ def assess_slack_auto(case: dict, res: dict, choice, choose_s: float, resolved_f
         r, info = run_auto(scene, bool(case.get("compile_reference")))
     m, lt = r.stats["model"], info["ladder_timing"]
     x = m.get("extrapolated")
-    got = x["statistics"] if x else X.statistics(r, period)
-    act, act_ts = metrics.errors(got, ref), metrics.errors(X.statistics(r, period), ref)
+    got = x["statistics"] if x else R.statistics(r, period)
+    act, act_ts = metrics.errors(got, ref), metrics.errors(R.statistics(r, period), ref)
     stated = dict(m["estimated_error"])
     tol = choice.numbers["tolerance"]
     settings, info["integrator"] = info["integrator"], AUTO_INTEGRATOR
@@ -109,7 +110,7 @@ def assess_slack_auto(case: dict, res: dict, choice, choose_s: float, resolved_f
     check["lower_rungs_within_half_tolerance"] = cheaper_within(rows, dataclasses.replace(choice, segments=m["segments"]),
                                                                 tol, ("rk-stable",))
     # the rungs within the tolerance run forced as auto runs them (none in the full run: no single run is)
-    stats_of = lambda q: X.statistics(q, period)
+    stats_of = lambda q: R.statistics(q, period)
     cands = candidates(scene, rows, ("segmented", m["segments"]), tol, stats_of, ref, bool(case.get("compile_reference")), 1)
     how = (f"a posteriori: statistics extrapolated from N = {', '.join(map(str, x['segments']))} (RK4), the "
            f"difference of the two limits x {x['remainder_factor']:.3g}" if x else "a priori")

@@ -18,6 +18,7 @@ import pytest
 import cablesys
 from cablesys.ladder import RungCache, metrics, simulate
 from cablesys.ladder import extrapolation as X
+from cablesys.ladder import richardson as R
 from cablesys.ladder.choice import choose
 from cablesys.scene import load_scene
 
@@ -33,7 +34,7 @@ def _sequence(a: dict, b: dict, ns=(8, 16, 32)) -> dict:
 
 def test_first_order_sequence_recovers_its_limit():
     a = dict(zip(KEYS, (0.0, 2.0, 9.0e4, 4.0e3, 6.0e4, 900.0)))
-    block = X.extrapolate(_sequence(a, dict.fromkeys(KEYS, 0.0)), 32)
+    block = R.extrapolate(_sequence(a, dict.fromkeys(KEYS, 0.0)), 32)
     for k in KEYS:
         assert block["statistics"][k] == pytest.approx(LIMIT[k], rel=1e-12, abs=1e-9)
         assert block["statistics_coarse"][k] == pytest.approx(LIMIT[k], rel=1e-12, abs=1e-9)
@@ -50,7 +51,7 @@ def test_remainder_estimate_is_exact_on_a_second_order_remainder():
     |L(N/2) - L(N)| / 3 is the extrapolated value's error."""
     a = dict(zip(KEYS, (0.0, 2.0, 9.0e4, -4.0e3, 6.0e4, 900.0)))
     b = dict(zip(KEYS, (0.0, -4.0, 1.8e5, 8.0e3, -1.2e5, 1.8e3)))     # 1/4 of the leading term at N = 8
-    block = X.extrapolate(_sequence(a, b), 32)
+    block = R.extrapolate(_sequence(a, b), 32)
     assert block["remainder_factor"] == pytest.approx(1.0 / 3.0)
     for k in KEYS[1:]:
         err = block["statistics"][k] - LIMIT[k]
@@ -68,7 +69,7 @@ def test_not_asymptotic_states_the_whole_difference_and_floors_tension_minima():
     below the tension floor is set to it."""
     seq = {4: dict(LIMIT), 8: dict(LIMIT, y_b_amplitude=1.45, tension_top_max=60000.0),
            16: dict(LIMIT, y_b_amplitude=1.55, tension_top_max=58000.0, tension_bottom_min=10.0)}
-    block = X.extrapolate(seq, 16, floor=0.0)
+    block = R.extrapolate(seq, 16, floor=0.0)
     assert not block["asymptotic"] and block["remainder_factor"] == 1.0
     assert block["statistics"]["tension_bottom_min"] == 0.0          # 2 x 10 - 30 = -10 < floor
     diff = metrics.errors(block["statistics_coarse"], block["statistics"])
@@ -109,11 +110,11 @@ def test_auto_extrapolates_closer_to_a_finer_reference():
     assert model["estimated_error"] == pytest.approx(block["estimated_error"])
     period = metrics.forcing_period(scene)
     fine = scene.with_numerics(output_step=X.statistics_step(scene))
-    ref_runs = {m: X.statistics(X.run(fine, m, cache), period) for m in (2 * n, 4 * n)}
-    reference = X.limits(ref_runs[2 * n], ref_runs[4 * n])
-    got, series = metrics.errors(block["statistics"], reference), metrics.errors(X.statistics(r, period), reference)
+    ref_runs = {m: R.statistics(X.run(fine, m, cache), period) for m in (2 * n, 4 * n)}
+    reference = R.limits(ref_runs[2 * n], ref_runs[4 * n])
+    got, series = metrics.errors(block["statistics"], reference), metrics.errors(R.statistics(r, period), reference)
     # the reference's own error: the remainder estimate of its pair, from the limits of (N, 2N) and (2N, 4N)
-    unc = {k: v / 3.0 for k, v in metrics.errors(X.limits(X.statistics(r, period), ref_runs[2 * n]), reference).items()}
+    unc = {k: v / 3.0 for k, v in metrics.errors(R.limits(R.statistics(r, period), ref_runs[2 * n]), reference).items()}
     tol = {"body": 0.01, "tension": 0.02}
     for k in ("body", "tension"):
         assert got[k] < 0.5 * series[k], (k, got, series)       # the extrapolated statistics are closer
@@ -153,16 +154,16 @@ def test_a_triple_far_below_the_tolerance_keeps_its_conservative_error_whatever_
     under a tolerance within 10x of it, or with differences as large as the tolerance, it doubles."""
     tiny = {4: dict(LIMIT), 8: dict(LIMIT, y_b_amplitude=1.4 * (1 + 2e-5), tension_top_max=54000.0 * (1 + 1e-5)),
             16: dict(LIMIT, y_b_amplitude=1.4 * (1 + 2.5e-5), tension_top_max=54000.0 * (1 + 1.9e-5))}
-    block = X.extrapolate(tiny, 16)
+    block = R.extrapolate(tiny, 16)
     assert not block["asymptotic"] and block["remainder_factor"] == 1.0
-    assert block["leading_orders"]["tension_top_max"] < X.ORDER_RANGE[0]          # log2(1 / 0.9) = 0.15
+    assert block["leading_orders"]["tension_top_max"] < R.ORDER_RANGE[0]          # log2(1 / 0.9) = 0.15
     e = block["estimated_error"]
     assert 1e-6 < e["body"] < 1e-4 and 1e-6 < e["tension"] < 1e-4
-    assert not X.needs_doubling(block, (0.01, 0.02)) and block["settled_in_noise"]
-    assert X.needs_doubling(block, (5 * e["body"], 5 * e["tension"])) and not block["settled_in_noise"]
+    assert not R.needs_doubling(block, (0.01, 0.02)) and block["settled_in_noise"]
+    assert R.needs_doubling(block, (5 * e["body"], 5 * e["tension"])) and not block["settled_in_noise"]
     large = {4: dict(LIMIT), 8: dict(LIMIT, y_b_amplitude=1.45, tension_top_max=60000.0),
              16: dict(LIMIT, y_b_amplitude=1.55, tension_top_max=58000.0)}
-    assert X.needs_doubling(X.extrapolate(large, 16), (0.01, 0.02))
+    assert R.needs_doubling(R.extrapolate(large, 16), (0.01, 0.02))
 
 
 def test_a_triple_converging_faster_than_first_order_keeps_its_conservative_error():
@@ -175,12 +176,12 @@ def test_a_triple_converging_faster_than_first_order_keeps_its_conservative_erro
         return {4: dict(LIMIT, y_b_amplitude=amp * (1 - 0.0016), tension_top_max=top * (1 - 0.008)),
                 8: dict(LIMIT, y_b_amplitude=amp * (1 - d8), tension_top_max=top * (1 - 0.004)),
                 16: dict(LIMIT, y_b_amplitude=amp * (1 - d16), tension_top_max=top * (1 - 0.002))}
-    block = X.extrapolate(seq(0.0001, 0.00000625), 16)
+    block = R.extrapolate(seq(0.0001, 0.00000625), 16)
     assert block["leading_orders"]["y_b_amplitude"] == pytest.approx(4.0, rel=0.01) and not block["asymptotic"]
     assert block["converging"]
     e, actual = block["estimated_error"], metrics.errors(block["statistics"], LIMIT)
     assert e["body"] >= actual["body"] and e["tension"] >= actual["tension"] and e["body"] < 0.01
-    assert not X.needs_doubling(block, (0.01, 0.02)) and block["kept_converging"]
+    assert not R.needs_doubling(block, (0.01, 0.02)) and block["kept_converging"]
     # f(8) above f(16) above f(4) at the same distances: the differences change sign
-    block = X.extrapolate(seq(0.0001, 0.0001 + 0.0015 / 16), 16)
-    assert not block["converging"] and X.needs_doubling(block, (0.01, 0.02))
+    block = R.extrapolate(seq(0.0001, 0.0001 + 0.0015 / 16), 16)
+    assert not block["converging"] and R.needs_doubling(block, (0.01, 0.02))
