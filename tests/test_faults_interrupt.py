@@ -210,6 +210,9 @@ def test_signal_blind_loops_get_chunks_sized_to_their_measured_cost(dale20):
     assert sim._next_chunk(256, 256, 256 * 3e-3, None) == 64           # 3 ms an interval: 64 in 0.19 s
     cv = Simulator(model, scene.output_times, IntegratorSettings(method="cvodes"))
     assert not cv._blind and cv._chunk == Simulator.CHUNKS[0]          # CVODES sees signals inside a call
+    # its chunks grow on a fixed schedule: a slow (loaded) call must not move the restarts, and with them the result
+    assert [cv._next_chunk(c, c, wall, None) for c, wall in ((256, 10.0), (1024, 1e-3), (4096, 60.0))] == \
+        [1024, 4096, 4096]
 
 
 def test_a_signal_blind_loop_on_an_uneven_grid_runs_in_chunks_with_the_same_answer(dale20):

@@ -75,7 +75,6 @@ def test_chunks_do_not_change_the_answer_and_blocks_stream_the_whole_series(dale
 
     class Small(Simulator):
         CHUNKS = (7, 19)
-        CHUNK_GROW_S = 1e9        # 7, then 19 at a time, then a remainder
     blocks = []
     r = Small(model, scene.output_times, settings).run(p, x0, on_block=lambda t, d: blocks.append((t, d)))
     assert r.success and (scene.output_times.size - 1 - 7) % 19 != 0
