@@ -4,7 +4,9 @@ values, and interrupts held back while a file is half written.
 The pieces :class:`~cablesys.outputs.OutputDir` builds on; usable alone (a study writing one
 file, a stream of a long run). A killed process never leaves a torn file under the final name,
 a full disk never leaves a torn row in a stream, and a write that fails raises
-:class:`OutputWriteError` naming the file and the reason.
+:class:`OutputWriteError` naming the file and the reason. Only ``kill -9`` can cut a stream's last
+row: Linux ends a write at a page boundary when a fatal signal is pending, and no process can hold
+that signal back; :func:`read_streamed_csv` reads the whole rows before such a cut.
 
 Interrupts (SIGINT, and SIGTERM under the ``cablesys`` command) are noted in :data:`INTERRUPTS`
 by :func:`interrupt_handler`, the handler the ``cablesys`` command installs for both and a
@@ -33,7 +35,7 @@ from .errors import CablesysError
 from .results import unit_of
 
 __all__ = ["INTERRUPTS", "CsvStream", "OutputWriteError", "atomic_path", "atomic_write_text",
-           "interrupt_handler", "interrupts_deferred", "json_dumps"]
+           "interrupt_handler", "interrupts_deferred", "json_dumps", "read_streamed_csv"]
 
 
 class OutputWriteError(CablesysError, OSError):
@@ -269,14 +271,46 @@ def atomic_path(path):
             tmp.unlink()
 
 
+def read_streamed_csv(path) -> tuple[list[str], np.ndarray, bool]:
+    """The whole rows of a streamed (or finished) time-series CSV: its header, its rows, and whether
+    a cut last line (a row without its newline, left by ``kill -9`` during a write) was dropped.
+
+    Parameters
+    ----------
+    path : str or Path
+        A file written by :class:`CsvStream` (``<name>.partial.csv`` or the final name).
+
+    Returns
+    -------
+    header : list of str
+        Column names with units, ``time [s]`` first.
+    rows : ndarray, shape (n, len(header))
+        The whole rows, in SI or the stream's units.
+    cut : bool
+        True when a cut last line was dropped.
+    """
+    text = Path(path).read_bytes().decode("utf-8", errors="replace")
+    whole, _, tail = text.rpartition("\n")
+    lines = whole.split("\n") if whole else []
+    if not lines:
+        raise ValueError(f"{path}: no header line")
+    header = lines[0].split(",")
+    body = [ln for ln in lines[1:] if ln]
+    rows = (np.array([[float(v) for v in ln.split(",")] for ln in body]) if body
+            else np.zeros((0, len(header))))
+    return header, rows.reshape(-1, len(header)), bool(tail)
+
+
 class CsvStream:
     """Time series appended block by block to ``<name>.partial.csv``; :meth:`close` renames it.
 
     The header is ``time [s],label [unit],...`` (the format of
     :meth:`~cablesys.results.TimeResult.to_csv`); every block is written whole with interrupts held
     back (:func:`interrupts_deferred`), and a block the disk cannot take is cut off again, so the
-    file is a readable prefix of whole rows at any time. ``rows``, ``t_first`` and ``t_last`` (s)
-    describe what is on disk.
+    file is a readable prefix of whole rows at any time, except after ``kill -9`` in the middle of a
+    block: the kernel may stop that write at a page boundary, leaving a last line without its
+    newline (every line that ends is a whole row; :func:`read_streamed_csv` drops the cut one).
+    ``rows``, ``t_first`` and ``t_last`` (s) describe what is on disk.
     """
 
     def __init__(self, path, table=None):

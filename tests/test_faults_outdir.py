@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cablesys.atomic import CsvStream, OutputWriteError
+from cablesys.atomic import CsvStream, OutputWriteError, read_streamed_csv
 from cablesys.cli import main
 from cablesys.errors import CablesysError, ParameterError
 from cablesys.outputs import LOCK, MANIFEST, OutputDir, folder_state
@@ -181,6 +181,27 @@ def test_a_full_disk_mid_block_leaves_whole_rows_and_a_named_error(tmp_path):
     s._fh = s._fh.fh                                         # space again: the stream goes on
     s.append(np.array([0.2]), {"x_b": np.array([3.0])})
     np.testing.assert_array_equal(np.loadtxt(s.close(), delimiter=",", skiprows=1)[:, 1], [1, 2, 3])
+
+
+def test_a_stream_cut_anywhere_reads_as_its_whole_rows(tmp_path):
+    """kill -9 can stop a write at any byte: whatever is left reads as the rows before the cut."""
+    s = CsvStream(tmp_path / "timeseries.csv")
+    t = np.arange(6) * 0.25
+    s.append(t[:2], {"x_b": -t[:2], "tension_top": 1e5 + t[:2]})
+    s.append(t[2:], {"x_b": -t[2:], "tension_top": 1e5 + t[2:]})
+    full = s.partial.read_bytes()
+    lines = full.decode().splitlines(keepends=True)
+    header_end = len(lines[0])
+    ends = np.cumsum([len(ln) for ln in lines])             # byte offset after each whole line
+    cut = tmp_path / "cut.partial.csv"
+    for size in range(header_end, len(full) + 1):
+        cut.write_bytes(full[:size])
+        header, rows, dropped = read_streamed_csv(cut)
+        n_whole = int(np.searchsorted(ends, size, side="right")) - 1      # data rows that ended
+        assert header == ["time [s]", "x_b [m]", "tension_top [N]"]
+        assert rows.shape == (n_whole, 3) and dropped == (size not in ends)
+        np.testing.assert_array_equal(rows[:, 0], t[:n_whole])
+        np.testing.assert_array_equal(rows[:, 1], -t[:n_whole])
 
 
 def test_a_stream_says_whether_it_holds_a_record_whole(tmp_path):
