@@ -50,6 +50,7 @@ class Scene:
         self._check_initial_lengths()
         self._check_ends()
         self._check_dimensions()
+        self._check_rigid_bodies()
         self._check_track()
         sea = self.top_motion.spectrum
         if sea is not None and sea.waves_at_cable:   # the same sea at the cable (Wang 1971 eq. 26-28; scene/sea.py)
@@ -86,6 +87,21 @@ class Scene:
                                  self.sections[-1].cable.length,
                                  f"makes the line {length:.6g} m long (all sections, at their reference tension), "
                                  f"shorter than the {chord:.6g} m from the top's mean position to the anchor")
+    def _check_rigid_bodies(self) -> None:
+        """A rigid (pitching) body is built by the segmented cable's planar equations only, so far: it needs a
+        section with ``cable.segments`` > 1, a planar scene, no seabed, and not to sit at an anchor."""
+        for i, s in enumerate(self.sections):
+            if not s.body.is_rigid:
+                continue
+            name = f"{section_prefix(self, i)}body.pitch_inertia"
+            why = ("a 3-D scene" if self.three_d else
+                   "a scene of Wang's 2-DOF sections (set cable.segments > 1)" if all(c.cable.segments == 1 for c in self.sections)
+                   else "a scene with a [seabed]" if self.seabed is not None
+                   else "the body at the [anchor]" if self.anchor is not None and i == len(self.sections) - 1 else None)
+            if why is not None:
+                raise ParameterError(name, s.body.pitch_inertia, f"must be unset for {why}: a rigid, pitching body is "
+                                     "built by the planar segmented cable without seabed so far")
+
     def three_d_fields(self) -> tuple:
         """The 3-D fields this scene sets (``top_motion.z``, a current or wave heading, ``body.mass_z``)."""
         env, out = self.environment, []
