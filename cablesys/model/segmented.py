@@ -41,6 +41,14 @@ planar equations (2 x 2 blocks); both have the mapped kernel (:mod:`.segmented_k
 model has no seabed yet. Outputs add Wang's 3-D
 ``phi_z``, ``phi_z_rate``, ``z_b``, ``z_b_rate`` per section and the profile ``node_z[j]``.
 
+A rigid body (``body.pitch_inertia`` set; Wang 1971 p. 32, body rotation "where the body is fairly large
+and the cable is not attached to the center of mass") pitches in the plane: its node is the cable's
+attachment point and its pitch ``theta_b`` one more coordinate (q labels after the nodes, ``theta_b`` or
+``theta_b_<i>``), node and pitch sharing one 3 x 3 mass block; its kinetic and potential energy and
+generalized forces are in :mod:`.rigid_body`. Outputs add ``theta_b``, ``theta_b_rate``, ``x_cg``,
+``x_cg_rate``, ``y_cg``, ``y_cg_rate`` per rigid body (``x_b``, ``y_b`` stay the attachment point). Such scenes
+evaluate the element-by-element ``ode`` (no mapped kernel).
+
 The element's terms are in :mod:`.segmented_element` (shared with the mapped kernel of
 :mod:`.segmented_kernel`). The inertia terms come from the Lagrangian by AD, element by element
 (:func:`.segmented_element.element_inertia`), gravity from eq. 15; tension and drag are

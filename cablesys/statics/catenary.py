@@ -414,7 +414,8 @@ def segmented_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
     ``u`` unset give the equilibrium shape; set, every section is straight at angle phi with
     stretch u (Wang 1971 eq. 10), its elements equally long. The shape moves with the top: it is
     translated by the top position at t0 and every node starts with the top's velocity plus
-    the rates ``phi_rate``/``u_rate`` (the analogue of phi' = u' = 0 relative to the top).
+    the rates ``phi_rate``/``u_rate`` (the analogue of phi' = u' = 0 relative to the top). A rigid body's
+    pitch starts at rest, at its static attitude (``phi``, ``u`` unset) or level (theta_b = 0).
 
     Parameters
     ----------
