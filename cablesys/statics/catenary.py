@@ -303,7 +303,10 @@ def segmented_equilibrium(model, p, *, guess=None):
     if not r < tol:
         raise SolverError(f"segmented cable equilibrium not found (best scaled residual {r:.3g}): KINSOL failed from "
                           f"the hanging cable and along the flow-speed continuation{_flags(kinsol)}; a very strong "
-                          "current or tow streams the cable horizontally: check weights and speeds, or give a guess")
+                          "current or tow streams the cable horizontally: check weights and speeds, or give a guess"
+                          + ("; a rigid body attached at its centre of gravity with its buoyancy centre there too has "
+                             "no static pitch moment (a neutral pitch): give it an attachment or buoyancy-centre offset"
+                             if _rotations(model) else ""))
     return q, r
 
 
