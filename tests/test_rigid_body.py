@@ -9,6 +9,7 @@ import pytest
 import scipy.linalg
 
 from cablesys.errors import ParameterError
+from cablesys.ladder.auto import decide
 from cablesys.linear import linearize, modes
 from cablesys.model import build_model
 from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMotion
@@ -188,3 +189,15 @@ def test_rigid_body_toml_round_trip():
     data["body"]["pitch_inertai"] = 1.0
     with pytest.raises(ParameterError, match="pitch_inertai"):
         scene_from_dict(data)
+
+
+def test_ladder_runs_the_node_model_alone():
+    """A rigid body's pitch is a coordinate of the node model only: the ladder chooses it alone, with its own N,
+    and refuses a straight-cable rung by name (before any work)."""
+    body = Body(weight=1000.0, mass_x=200.0, mass_y=200.0, pitch_inertia=50.0, attachment_y=-0.5)
+    scene = _scene(body)
+    choice, _, _ = decide(scene, "auto", None, None)
+    assert choice.name == "segmented" and choice.segments >= 2 and "pitch" in choice.reason
+    for name in ("wang", "quasi-static"):
+        with pytest.raises(ParameterError, match="pitching body"):
+            decide(scene, name, None, None)

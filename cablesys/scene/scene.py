@@ -95,9 +95,8 @@ class Scene:
                 continue
             name = f"{section_prefix(self, i)}body.pitch_inertia"
             why = ("a 3-D scene" if self.three_d else
-                   "Wang's 2-DOF straight cable (every cable.segments = 1; the model ladder builds it to assess "
-                   "any scene, so `cablesys run` cannot take a rigid body yet: use the Python API, build_model and "
-                   "simulate(scene, model=...))" if all(c.cable.segments == 1 for c in self.sections)
+                   "Wang's 2-DOF straight cable (every cable.segments = 1; the model ladder runs such a scene "
+                   "with the node model)" if all(c.cable.segments == 1 for c in self.sections)
                    else "a scene with a [seabed]" if self.seabed is not None
                    else "the body at the [anchor]" if self.anchor is not None and i == len(self.sections) - 1 else None)
             if why is not None:

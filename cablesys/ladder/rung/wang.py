@@ -6,7 +6,7 @@ from __future__ import annotations
 from ...model import CableModel, build_model
 from ...scene import Scene
 from .. import estimate as est
-from .base import NO_NODES, TURNING, BuiltinRung, has_ends, turning
+from .base import NO_NODES, ROTATES, TURNING, BuiltinRung, has_ends, rigid, turning
 
 
 class Wang(BuiltinRung):
@@ -17,10 +17,12 @@ class Wang(BuiltinRung):
     straight_cost = 1.0        # the unit of the rungs' costs
 
     def valid(self, scene: Scene) -> str:
-        """"" unless the scene has an anchor or a seabed (the straight cable has no nodes) or a turning track (its
-        steady turn is the node model's)."""
+        """"" unless the scene has an anchor or a seabed (the straight cable has no nodes), a rigid, pitching body or a
+        turning track (its steady turn is the node model's)."""
         if has_ends(scene):
             return NO_NODES
+        if rigid(scene):
+            return ROTATES
         return TURNING if turning(scene) else ""
 
     def build(self, scene: Scene, segments: int = 1, cache=None) -> CableModel:
