@@ -35,32 +35,36 @@ def _scene(body, cable=None, *, current=0.0, top=None, numerics=None, rho=1025.0
 
 
 def test_point_body_limit():
-    """Zero offsets, no buoyancy, no pitch damping: the rigid body's node accelerations and energies are
-    the point body's (Wang 1971 eq. 16, 32-35) to 1e-10 at random states, with cable drag, a current, waves-free
-    top heave and unequal virtual masses; its pitch is decoupled (theta'' = 0). Sphere drag does not depend on
-    the pitch, so any theta; the cylinder's axis turns with the body, so theta = 0 there."""
+    """Zero offsets, no buoyancy, no pitch damping: the rigid body's node accelerations and energies are the point
+    body's (Wang 1971 eq. 16, 32-35) to 1e-10 at random states, with cable drag, a current and top motion; its
+    pitch is decoupled (theta'' = 0) for equal virtual masses at any attitude (sphere drag does not depend on it).
+    With M_bvx != M_bvy (and a cylinder's axis, which turns with the body) they agree at theta = 0, where the
+    pitch feels the Munk moment alone: (I + I_a) theta'' = (M_bvx - M_bvy) v_x v_y (Newman 1977, sec. 4.13)."""
     top = TopMotion(x=(Sinusoid(amplitude=0.5, frequency=0.7),), y=(Sinusoid(amplitude=0.3, frequency=1.1),))
     cable = _cable(4, m=2.0, w=15.0, ae=2e6, cd=1.2, gamma=1.0)
     rng = np.random.default_rng(3)
-    for drag in (dict(drag_area_normal=0.4, drag_area_tangential=0.4),
-                 dict(drag_area_normal=0.6, drag_area_tangential=0.1, axis_angle_deg=20.0)):
-        point = Body(weight=800.0, mass_x=150.0, mass_y=230.0, **drag)
-        rigid = Body(weight=800.0, mass_x=150.0, mass_y=230.0, pitch_inertia=40.0, pitch_added_inertia=5.0, **drag)
+    J = 45.0
+    for masses, drag in (((180.0, 180.0), dict(drag_area_normal=0.4, drag_area_tangential=0.4)),
+                         ((150.0, 230.0), dict(drag_area_normal=0.6, drag_area_tangential=0.1, axis_angle_deg=20.0))):
+        point = Body(weight=800.0, mass_x=masses[0], mass_y=masses[1], **drag)
+        rigid = Body(weight=800.0, mass_x=masses[0], mass_y=masses[1], pitch_inertia=J - 5.0, pitch_added_inertia=5.0,
+                     **drag)
         sp, sr = _scene(point, cable, current=0.6, top=top), _scene(rigid, cable, current=0.6, top=top)
         mp, mr = build_model(sp), build_model(sr)
         pp, pr = mp.parameters(sp), mr.parameters(sr)
         assert mr.q_labels == mp.q_labels + ("theta_b",) and mr.nq == mp.nq + 1
         nq = mp.nq
-        sphere = point.is_sphere
+        free = point.is_sphere and masses[0] == masses[1]
         for _ in range(5):
             q = np.column_stack([rng.normal(0, 1, 4), 2.5 * np.arange(1, 5) + rng.normal(0, 0.1, 4)]).ravel()
             qd = rng.normal(0, 0.5, nq)
-            th, thd = (rng.normal(0, 0.5), rng.normal(0, 0.5)) if sphere else (0.0, rng.normal(0, 0.5))
+            th, thd = (rng.normal(0, 0.5), rng.normal(0, 0.5)) if free else (0.0, 0.0)
             t = rng.uniform(0, 10)
             ap = np.array(mp.ode(np.concatenate([q, qd]), t, pp)).ravel()
             ar = np.array(mr.ode(np.concatenate([q, [th], qd, [thd]]), t, pr)).ravel()
             np.testing.assert_allclose(ar[nq + 1:2 * nq + 1], ap[nq:], rtol=1e-10, atol=1e-10 * np.max(np.abs(ap)))
-            assert abs(ar[-1]) < 1e-12
+            munk = (masses[0] - masses[1]) * qd[-2] * qd[-1] / J
+            assert ar[-1] == pytest.approx(munk, rel=1e-10, abs=1e-12)
             e = np.array(mp.top(t, pp)).ravel()
             Kp, Vp = (float(v) for v in mp.energy(np.concatenate([q, qd]), e, pp))
             Kr, Vr = (float(v) for v in mr.energy(np.concatenate([q, [th], qd, [0.0]]), e, pr))

@@ -8,18 +8,20 @@ rotation [[cos, -sin], [sin, cos]], c the attachment point and b the centre of b
 of gravity (CG) in body axes (``body.attachment_x/y``, ``body.buoyancy_x/y``):
 
 - r_cg = r_a - R(theta) c,  r_cb = r_cg + R(theta) b;
-- kinetic energy T = 1/2 (M_bvx v_cg,x^2 + M_bvy v_cg,y^2) + 1/2 (I + I_a) theta'^2, the virtual masses of
-  Wang eq. 16 along the scene's x and y (as for the point body), I the body's moment of inertia about its
-  CG and I_a the added moment of inertia (rigid-body kinetic energy about the CG, Goldstein, Classical
-  Mechanics, 3rd ed., sec. 5.1);
+- kinetic energy T = 1/2 (M_bvx w_x^2 + M_bvy w_y^2) + 1/2 (I + I_a) theta'^2 with w = R(theta)^T v_cg the
+  CG's velocity in body axes: Wang's virtual masses (eq. 16, mass plus added mass) along the body's axes,
+  which are the scene's x and y at theta = 0 (the added-mass tensor is fixed in the body: Newman, Marine
+  Hydrodynamics, 1977, sec. 4.13; its Munk moment (M_bvx - M_bvy) w_x w_y follows); I the body's moment of
+  inertia about its CG and I_a the added moment of inertia (rigid-body kinetic energy about the CG,
+  Goldstein, Classical Mechanics, 3rd ed., sec. 5.1);
 - potential energy V = -(W_b + B) y_cg + B y_cb (y down): the weight W_b + B at the CG, the buoyancy B
   at the centre of buoyancy, so the weight in water is Wang's W_b (eq. 15);
 - generalized forces by virtual work (Wang eq. 37): the body drag of eq. 32-35 at the CG with the CG's
   velocity and the body axis at phi_b + theta, and the pitch moment -c theta' - d |theta'| theta'.
 
 Lagrange's equations come by CasADi AD of T and V (:func:`planar_rigid_body`), as for the cable
-elements (:func:`.segmented_element.element_inertia`). With c = b = 0 the translation is the point body's
-exactly and theta decouples. SI throughout (m, N, kg, kg m^2, rad).
+elements (:func:`.segmented_element.element_inertia`). With c = b = 0 and M_bvx = M_bvy the translation
+is the point body's exactly and theta decouples; with M_bvx != M_bvy they agree at theta = 0. SI throughout (m, N, kg, kg m^2, rad).
 """
 
 from __future__ import annotations
@@ -72,7 +74,8 @@ def planar_rigid_body(P: SectionParameters, R: RigidParameters, p, rho, t, env, 
     r_cg = r - _rotate(th, ca.vertcat(*R.c))
     v_cg = ca.jtimes(r_cg, q, qd)
     r_cb = r_cg + _rotate(th, ca.vertcat(*R.b))
-    K = 0.5 * (P.m_bx * v_cg[0] ** 2 + P.m_by * v_cg[1] ** 2) + 0.5 * (R.inertia + R.added_inertia) * thd ** 2
+    w = _rotate(-th, v_cg)                                       # the CG's velocity in body axes
+    K = 0.5 * (P.m_bx * w[0] ** 2 + P.m_by * w[1] ** 2) + 0.5 * (R.inertia + R.added_inertia) * thd ** 2
     V = -(P.w_b + R.buoyancy) * r_cg[1] + R.buoyancy * r_cb[1]
     # drag at the CG with its velocity, the body's axis turned with it (eq. 32-35); virtual work (eq. 37)
     D = body_drag(dataclasses.replace(P, phi_b=P.phi_b + th), rho, (r_cg[0], r_cg[1]), (v_cg[0], v_cg[1]),

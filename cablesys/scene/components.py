@@ -109,7 +109,9 @@ RIGID_FIELDS = ("pitch_inertia", "pitch_added_inertia", "attachment_x", "attachm
 class Body:
     """The body at the lower end of a cable section: a point (Wang 1971 eq. 16, 32-35) or, with ``pitch_inertia``
     set, a rigid body that pitches in the x-y plane on an attachment point off its centre of gravity
-    (Wang 1971 p. 32, "Extensions"; equations in :mod:`cablesys.model.rigid_body`)."""
+    (Wang 1971 p. 32, "Extensions"; equations in :mod:`cablesys.model.rigid_body`). A rigid body's virtual masses
+    ``mass_x``, ``mass_y`` and its drag axis ``axis_angle_deg`` are along its body axes, which are the scene's x and y
+    at zero pitch; its drag acts at the centre of gravity."""
 
     weight: float = spec("force", "weight in water W_b (negative: buoyant)")
     mass_x: float = spec("mass", "virtual mass (mass plus added mass) for motion in x, M_bvx")
