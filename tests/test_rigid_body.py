@@ -12,7 +12,7 @@ from cablesys.errors import ParameterError
 from cablesys.ladder.auto import decide
 from cablesys.linear import linearize, modes
 from cablesys.model import build_model
-from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMotion
+from cablesys.scene import Body, Cable, Environment, Numerics, Scene, Section, Sinusoid, TopMotion
 from cablesys.scene.scene import single_section_scene
 from cablesys.scene.toml_io import dump_scene, scene_from_dict
 from cablesys.statics import steady_state
@@ -205,3 +205,20 @@ def test_ladder_runs_the_node_model_alone():
     for name in ("wang", "quasi-static"):
         with pytest.raises(ParameterError, match="pitching body"):
             decide(scene, name, None, None)
+
+
+def test_two_rigid_bodies_in_a_chain():
+    """An intermediate and a lower rigid body: both cables pull at the upper body's attachment point, so each
+    body's static pitch is its own moment balance, tan(theta_i) = (W_b c_x + B b_x) / (W_b c_y + B b_y), whatever
+    hangs below (labels theta_b_1, theta_b_2 after the nodes)."""
+    specs = [(1500.0, (0.2, -0.6), (0.1, -0.3), 400.0), (700.0, (-0.1, -0.4), (0.0, 0.0), 0.0)]
+    secs = tuple(Section(cable=_cable(3, length=8.0, m=1.5, w=8.0), body=Body(
+        weight=wb, mass_x=150.0, mass_y=170.0, pitch_inertia=20.0, attachment_x=c[0], attachment_y=c[1],
+        buoyancy=B, buoyancy_x=b[0], buoyancy_y=b[1])) for wb, c, b, B in specs)
+    scene = Scene(sections=secs, environment=Environment(gravity=G))
+    model = build_model(scene)
+    assert model.q_labels[-2:] == ("theta_b_1", "theta_b_2")
+    y = steady_state(model, model.parameters(scene)).outputs
+    for i, (wb, c, b, B) in enumerate(specs):
+        assert y[f"theta_b_{i + 1}"] == pytest.approx(math.atan((wb * c[0] + B * b[0]) / (wb * c[1] + B * b[1])),
+                                                      abs=1e-10)
