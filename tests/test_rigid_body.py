@@ -69,6 +69,10 @@ def test_point_body_limit():
             Kp, Vp = (float(v) for v in mp.energy(np.concatenate([q, qd]), e, pp))
             Kr, Vr = (float(v) for v in mr.energy(np.concatenate([q, [th], qd, [0.0]]), e, pr))
             assert Kr == pytest.approx(Kp, rel=1e-12) and Vr == pytest.approx(Vp, rel=1e-12)
+        # the statics: the same node positions; the neutral pitch stays at its guess (level)
+        qs_p, qs_r = steady_state(mp, pp).q, steady_state(mr, pr).q
+        np.testing.assert_allclose(qs_r[:nq], qs_p, rtol=1e-10, atol=1e-10)
+        assert qs_r[-1] == 0.0
 
 
 def _pendulum(a, inertia, m_c=1.0, body_m=150.0, body_w=1000.0, length=10.0, ae=1e9):

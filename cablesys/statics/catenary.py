@@ -197,16 +197,29 @@ def polar_map(model):
 
 
 def _rootfinders(model):
+    """KINSOL in polar and in node coordinates on the static residual. With rigid bodies their parameter vector is
+    (p, theta_ref, w): a pitch row gets w (theta_ref - theta) added, w = 1 for a neutral pitch (its row identically
+    zero, :func:`_neutral_pitch`), which then stays at theta_ref, and w = 0 otherwise."""
     def build():
+        n_rot = _rotations(model)
         resid = static_residual(model)
         to_q = polar_map(model)
-        v = ca.SX.sym("v", _dim(model) * model.n_elements + _rotations(model))
-        p = ca.SX.sym("p", len(model.layout))
-        G = ca.Function("polar_residual", [v, p], [resid(to_q(v), p)])
+        v = ca.SX.sym("v", _dim(model) * model.n_elements + n_rot)
+        q = ca.SX.sym("q", model.nq)
+        p = ca.SX.sym("p", len(model.layout) + 2 * n_rot)
+        pv = p[:len(model.layout)]
+
+        def pinned(qq):
+            r = resid(qq, pv)
+            if not n_rot:
+                return r
+            ref, w = p[len(model.layout):-n_rot], p[-n_rot:]
+            return ca.vertcat(r[:model.nq - n_rot], r[model.nq - n_rot:] + w * (ref - qq[model.nq - n_rot:]))
+        G = ca.Function("polar_residual", [v, p], [pinned(to_q(v))])
         opts = {"strategy": "linesearch", "abstol": 1e-13, "error_on_fail": False, "print_level": 0,
                 "disable_internal_warnings": True, "max_iter": 200}
         polar = ca.rootfinder("catenary_polar", "kinsol", G, opts)
-        nodes = ca.rootfinder("catenary_nodes", "kinsol", resid,
+        nodes = ca.rootfinder("catenary_nodes", "kinsol", ca.Function("node_residual", [q, p], [pinned(q)]),
                               dict(opts, linear_solver_type="user_defined", linear_solver="csparse"))
         return polar, nodes
     return model.derive("catenary_rootfinders", build)
@@ -268,6 +281,11 @@ def segmented_equilibrium(model, p, *, guess=None):
     g0 = hanging_guess(model, p) if guess is None else np.asarray(guess, float)
 
     tol = static_tolerance(model, p)
+    # a neutral pitch (any angle an equilibrium) is held at its guess: the rootfinders' pitch rows get theta_ref - theta
+    n_rot = _rotations(model)
+    pins = (np.concatenate([g0[len(g0) - n_rot:], _neutral_pitch(model, g0, p).astype(float)]) if n_rot
+            else np.zeros(0))
+    pinned = lambda pp: np.concatenate([pp, pins])
 
     def residual(q, pp):
         return _max_residual(resid, q, pp)
@@ -277,9 +295,9 @@ def segmented_equilibrium(model, p, *, guess=None):
         r0 = residual(q0, pp)
         if r0 < tol:
             return q0, r0
-        v = np.array(polar(to_polar(q0, _dim(model), _rotations(model)), pp)).ravel()
+        v = np.array(polar(to_polar(q0, _dim(model), _rotations(model)), pinned(pp))).ravel()
         q = np.array(to_q(v)).ravel() if np.all(np.isfinite(v)) else q0
-        q_pol = np.array(nodes(q, pp)).ravel()
+        q_pol = np.array(nodes(q, pinned(pp))).ravel()
         return min(((q, residual(q, pp)), (q_pol, residual(q_pol, pp))), key=lambda a: a[1])
 
     # KINSOL's stalls on a guess are expected (the next guess or continuation step is tried): collected,
@@ -303,11 +321,26 @@ def segmented_equilibrium(model, p, *, guess=None):
     if not r < tol:
         raise SolverError(f"segmented cable equilibrium not found (best scaled residual {r:.3g}): KINSOL failed from "
                           f"the hanging cable and along the flow-speed continuation{_flags(kinsol)}; a very strong "
-                          "current or tow streams the cable horizontally: check weights and speeds, or give a guess"
-                          + ("; a rigid body attached at its centre of gravity with its buoyancy centre there too has "
-                             "no static pitch moment (a neutral pitch): give it an attachment or buoyancy-centre offset"
-                             if _rotations(model) else ""))
+                          "current or tow streams the cable horizontally: check weights and speeds, or give a guess")
     return q, r
+
+
+def _neutral_pitch(model, q, p) -> np.ndarray:
+    """Which rigid bodies have a neutral pitch at q (their static moment and its every derivative zero: attached at
+    the CG with the buoyancy centre there too, model/rigid_body.py): any pitch is then an equilibrium."""
+    n_rot = _rotations(model)
+    if not n_rot:
+        return np.zeros(0, bool)
+    r, J = model.derive("static_residual_jacobian", lambda: _residual_jacobian(model))(q, p)
+    r, J = np.array(r).ravel()[-n_rot:], np.array(J)[-n_rot:]
+    return (r == 0.0) & np.all(J == 0.0, axis=1)
+
+
+def _residual_jacobian(model):
+    resid = static_residual(model)
+    q, p = ca.SX.sym("q", model.nq), ca.SX.sym("p", len(model.layout))
+    r = resid(q, p)
+    return ca.Function("static_residual_jacobian", [q, p], [r, ca.jacobian(r, q)])
 
 
 def _flags(blocks) -> str:
