@@ -4,6 +4,7 @@ the compound pendulum's linear modes, energy conservation, the static moment bal
 import math
 import tomllib
 
+import casadi as ca
 import numpy as np
 import pytest
 import scipy.linalg
@@ -226,3 +227,51 @@ def test_two_rigid_bodies_in_a_chain():
     for i, (wb, c, b, B) in enumerate(specs):
         assert y[f"theta_b_{i + 1}"] == pytest.approx(math.atan((wb * c[0] + B * b[0]) / (wb * c[1] + B * b[1])),
                                                       abs=1e-10)
+
+
+def _quadratic_eigenvalues(M, C, K):
+    """The eigenvalues s of (s^2 M + s C + K) x = 0 (first-order companion form)."""
+    n = M.shape[0]
+    A = np.block([[np.zeros((n, n)), np.eye(n)], [-np.linalg.solve(M, K), -np.linalg.solve(M, C)]])
+    return np.linalg.eigvals(A)
+
+
+def test_pitch_damping_in_the_linear_modes():
+    """Linear pitch damping c in the compound pendulum of test_compound_pendulum_modes: the swing eigenvalues of the
+    linearized model (M, C, K of cablesys.linear) equal those of the hand-written chain with C = diag(0, 0, c) in
+    (phi_1, phi_2, theta) (the damping moment -c theta' does virtual work on theta alone)."""
+    L, ae, W, M, m_c, a, J, c = 10.0, 1e9, 1000.0, 150.0, 1.0, 0.8, 40.0, 30.0
+    scene = _scene(Body(weight=W, mass_x=M, mass_y=M, pitch_inertia=J, attachment_y=-a, pitch_damping=c),
+                   _cable(2, length=L, m=m_c, ae=ae))
+    model = build_model(scene)
+    lin = linearize(model, model.parameters(scene))
+    s_model = _quadratic_eigenvalues(lin.M, lin.C, lin.K)
+    s_model = np.sort_complex(s_model[np.abs(s_model) < 100.0])          # the swing modes (axial ones ~ 1e4 rad/s)
+    h = L / 2
+    ln = h + W * h / ae
+    A = np.array([[ln, 0, 0], [ln, ln, 0], [ln, ln, -a]])
+    Mm = m_c * h * np.outer(A[0], A[0]) + m_c * h / 2 * np.outer(A[1], A[1]) + M * np.outer(A[2], A[2]) + np.diag([0, 0, J])
+    exact = np.sort_complex(_quadratic_eigenvalues(Mm, np.diag([0.0, 0.0, c]), W * np.diag([ln, ln, a])))
+    assert s_model.size == 6 and np.all(exact.real < 0)
+    np.testing.assert_allclose(s_model, exact, rtol=1e-7)
+
+
+def test_pitch_damping_power():
+    """Without drag, cable damping or top motion, the model's energy changes only by the pitch moments' power:
+    dE/dt = -c theta'^2 - d |theta'|^3, at random states (the chain rule of the energy along the ode, by AD)."""
+    c, d = 12.0, 7.0
+    body = Body(weight=900.0, mass_x=140.0, mass_y=190.0, pitch_inertia=35.0, attachment_x=0.2, attachment_y=-0.6,
+                buoyancy=300.0, buoyancy_x=0.1, buoyancy_y=-0.2, pitch_damping=c, pitch_drag=d)
+    scene = _scene(body, _cable(3, length=6.0, m=2.0, w=10.0, ae=1e6), rho=1e-3)
+    model = build_model(scene)
+    p = model.parameters(scene)
+    x = ca.SX.sym("x", 2 * model.nq)
+    e0 = np.array(model.top(0.0, p)).ravel()
+    E = ca.sum1(ca.vertcat(*model.energy(x, e0, p)))
+    power = ca.Function("power", [x], [ca.jtimes(E, x, model.ode(x, 0.0, p))])
+    rng = np.random.default_rng(5)
+    q0 = steady_state(model, p).q
+    for _ in range(5):
+        xv = np.concatenate([q0 + rng.normal(0, 0.05, model.nq), rng.normal(0, 0.5, model.nq)])
+        thd = xv[-1]
+        assert float(power(xv)) == pytest.approx(-c * thd**2 - d * abs(thd) ** 3, rel=1e-9)
