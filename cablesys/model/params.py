@@ -98,7 +98,7 @@ def parameter_items(scene: Scene) -> list[tuple[str, float]]:
         if scene.three_d:
             items.append((f"{pre}body.mass_z", float(s.body.virtual_mass_z)))
         if s.body.is_rigid:              # a pitching body's inertia, offsets, buoyancy, damping (model/rigid_body.py)
-            items += [(f"{pre}body.{name}", float(getattr(s.body, name))) for name in RIGID_FIELDS]
+            items += [(f"{pre}body.{name}", s.body.rigid(name)) for name in RIGID_FIELDS]
         items.append((f"{pre}slack", 0.0))          # 1 while the section is slack (set by the simulator)
     env = scene.environment
     items += [(f"environment.{k}", float(getattr(env, k))) for k in _ENV]

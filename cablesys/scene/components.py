@@ -127,16 +127,16 @@ class Body:
     pitch_inertia: float | None = spec("inertia", "moment of inertia I of the body's mass about its centre of gravity for "
                                        "rotation in the x-y plane (pitch); set: the body is rigid and pitches (one more "
                                        "coordinate theta_b, segmented cable only); unset: a point body", None)
-    pitch_added_inertia: float = spec("inertia", "added moment of inertia I_a of the fluid for pitch (rigid body)", 0.0)
-    attachment_x: float = spec("length", "x of the cable's attachment point from the centre of gravity, body axes (rigid body)", 0.0)
-    attachment_y: float = spec("length", "y (down) of the cable's attachment point from the centre of gravity, body axes; "
-                               "negative: above the CG (rigid body)", 0.0)
-    buoyancy: float = spec("force", "buoyant force B acting up at the centre of buoyancy (rigid body); the weight "
-                           "W_b + B acts down at the CG, so the weight in water stays W_b", 0.0)
-    buoyancy_x: float = spec("length", "x of the centre of buoyancy from the centre of gravity, body axes (rigid body)", 0.0)
-    buoyancy_y: float = spec("length", "y (down) of the centre of buoyancy from the centre of gravity, body axes (rigid body)", 0.0)
-    pitch_damping: float = spec("moment_time", "linear pitch damping c: moment -c theta_b' (rigid body)", 0.0)
-    pitch_drag: float = spec("moment_time2", "quadratic pitch drag d: moment -d |theta_b'| theta_b' (rigid body)", 0.0)
+    pitch_added_inertia: float | None = spec("inertia", "added moment of inertia I_a of the fluid for pitch (rigid body; unset: 0)", None)
+    attachment_x: float | None = spec("length", "x of the cable's attachment point from the centre of gravity, body axes (rigid body; unset: 0)", None)
+    attachment_y: float | None = spec("length", "y (down) of the cable's attachment point from the centre of gravity, body "
+                                      "axes; negative: above the CG (rigid body; unset: 0)", None)
+    buoyancy: float | None = spec("force", "buoyant force B acting up at the centre of buoyancy (rigid body; unset: 0); the "
+                                  "weight W_b + B acts down at the CG, so the weight in water stays W_b", None)
+    buoyancy_x: float | None = spec("length", "x of the centre of buoyancy from the centre of gravity, body axes (rigid body; unset: 0)", None)
+    buoyancy_y: float | None = spec("length", "y (down) of the centre of buoyancy from the centre of gravity, body axes (rigid body; unset: 0)", None)
+    pitch_damping: float | None = spec("moment_time", "linear pitch damping c: moment -c theta_b' (rigid body; unset: 0)", None)
+    pitch_drag: float | None = spec("moment_time2", "quadratic pitch drag d: moment -d |theta_b'| theta_b' (rigid body; unset: 0)", None)
 
     def __post_init__(self):
         _check_all_finite(self, "body")
@@ -154,18 +154,23 @@ class Body:
 
     def _check_rigid(self) -> None:
         """A rigid body's fields: non-negative inertias, damping and buoyancy; on a point body every rigid field
-        must keep its default (an offset or inertia given without ``pitch_inertia`` would be dropped)."""
+        must be unset or 0 (an offset or inertia given without ``pitch_inertia`` would be dropped)."""
         if self.pitch_inertia is None:
             for name in RIGID_FIELDS[1:]:
-                if getattr(self, name) != 0.0:
+                if getattr(self, name) not in (None, 0.0):
                     raise ParameterError(f"body.{name}", getattr(self, name), "needs body.pitch_inertia (a rigid body); "
                                          "a point body has no attachment offset, buoyancy centre or pitch")
             return
         for name in ("pitch_inertia", "pitch_added_inertia", "buoyancy", "pitch_damping", "pitch_drag"):
-            require_nonnegative(f"body.{name}", getattr(self, name))
-        if not self.pitch_inertia + self.pitch_added_inertia > 0.0:
+            require_nonnegative(f"body.{name}", self.rigid(name))
+        if not self.pitch_inertia + self.rigid("pitch_added_inertia") > 0.0:
             raise ParameterError("body.pitch_inertia", self.pitch_inertia, "must make pitch_inertia + pitch_added_inertia "
                                  "> 0 kg m^2 (a rigid body without rotary inertia has no pitch equation)")
+
+    def rigid(self, name: str) -> float:
+        """The rigid-body field ``name`` (one of :data:`RIGID_FIELDS`) in SI, 0 when unset."""
+        v = getattr(self, name)
+        return 0.0 if v is None else float(v)
 
     @property
     def is_rigid(self) -> bool:
