@@ -84,6 +84,35 @@ def test_slow_payout_hangs_as_the_elastic_cable_of_each_length():
     assert errs[1, 1] < errs[0, 1] / 3 and errs[1, 1] < 1e-4, errs
 
 
+def _accelerating_error(ae):
+    """Largest error (N) of the top tension against the rigid cable's W_b + w L - (M_b + m_r L) alpha over a
+    smoothstep payout to 2 m/s and back (ramps of 4 s, alpha up to 0.75 m/s^2) of a heavy cable (m_r = 10 kg/m),
+    and the largest inertia term (M_b + m_r L) |alpha| (N)."""
+    m_r = 10.0
+    cable = Cable(length=L0, ae=ae, diameter=0.02, mass_per_length=m_r, weight_per_length=W_R, added_mass_factor=0.0,
+                  cd_normal=0.0, ct_tangential=0.0, internal_damping=0.05 * ae, segments=4)
+    body = Body(weight=W_B, mass_x=M_B, mass_y=M_B, drag_area_normal=0.0, drag_area_tangential=0.0)
+    sc = single_section_scene(cable=cable, body=body, environment=Environment(gravity=G),
+                              numerics=Numerics(duration=12.0, output_step=0.25),
+                              winch=Winch(speed=2.0, start=0.0, duration=12.0, ramp=4.0, max_length=100.0))
+    run = simulate(sc)
+    t, L, a = np.asarray(run.time), run["winch_length"], run["winch_acceleration"]
+    inertia = (M_B + m_r * L) * a
+    sel = (t > 1.0) & (t < 11.0)
+    return np.max(np.abs(run["tension_top"] - (W_B + W_R * L - inertia))[sel]), np.max(np.abs(inertia))
+
+
+def test_accelerating_payout_carries_the_inertia_of_cable_and_body():
+    """While the winch accelerates, the whole line (body and the cable in the water) accelerates with it along the
+    vertical: the top tension is W_b + w L - (M_b + m_r L) alpha for a rigid cable (Newton on the line); the
+    model's difference is its elastic response, falling as 1 / AE. Checks the prescribed-L inertia terms of
+    Lagrange's equations and the sheave's half element (its material acceleration, not the node's)."""
+    soft, inertia = _accelerating_error(1e7)
+    stiff, _ = _accelerating_error(1e8)
+    assert inertia > 500.0
+    assert soft < 5e-3 * inertia and stiff < soft / 5, (soft, stiff, inertia)
+
+
 def test_mass_in_water_is_m_r_L():
     """The free nodes carry the body's mass and the cable's m_r L(t) less the half element lumped at the sheave:
     M_b + m_r L (1 - 1 / (2 N)) summed over the x blocks of the mass matrix (no added mass), at every L(t)."""

@@ -285,7 +285,9 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
         first, last = els[0], els[-1]
         # force of the cable on its top point and on its body: the end element's tension plus the
         # half element lumped at that node (weight, drag share, minus its inertia)
-        lt = lump_force(first, "a", acc_nodes[s["top"]])
+        acc_top = acc_nodes[s["top"]] if s["pay"] is None else s["pay"].top_acceleration(    # the material's, at the sheave
+            len(els), rt, vt_, acc_nodes[s["top"]], node_r[s["top"] + 1], node_v[s["top"] + 1])
+        lt = lump_force(first, "a", acc_top)
         top_force = tuple(first["tension"] * first["et"][c] + lt[c] for c in range(dim))
         lb = lump_force(last, "b", acc_nodes[s["body"]])
         bottom_force = tuple(-last["tension"] * last["et"][c] + lb[c] for c in range(dim))

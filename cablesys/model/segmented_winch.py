@@ -28,6 +28,13 @@ can drive L later):
   velocities, so f gains -(d2K_e/dv dL) w - (d2K_e/dv dw) alpha: the inertia of the cable accelerated along
   itself by the winch (alpha), of its growing mass and of the convection (w). The mass matrix is the fixed
   model's (the convection is linear in w and does not enter d2K/dv2).
+- The top tension (the cable's pull on the sheave) lumps the sheave's half element with its material
+  acceleration (:meth:`Payout.top_acceleration`): accelerating the payout at alpha loads the sheave with
+  W_b + w L - (M_b + m_r L) alpha for a rigid line (tests/test_segmented_winch.py).
+- The element's stretch is uniform, so the material strain rate it sees lacks the convection of the strain
+  along the cable (-sigma' d(lambda)/d(sigma), the material moving into a more stretched element): in a steady
+  payout the Voigt force of an element is off by at most C_I w w_r / AE (N; 0.4 N for C_I / AE = 0.05 s,
+  w = 1 m/s, w_r = 8 N/m), first order in w.
 - Neglected, as in :mod:`.winch`: the momentum carried in or out with the paid-out cable at the sheave (a mass
   flux m_r w at the material velocity there, forces of order m_r w (w + |v_top|): for a 30 mm wire, m_r = 3.6
   kg/m, at w = 1 m/s and a 1 m/s heave a few N against 10^4 N of tension) and Lagrange's variable-mass
@@ -83,6 +90,15 @@ class Payout:
     def velocities(self, k: int, n_el: int, ra, va, rb, vb) -> tuple:
         """Material velocities at the ends of element k (0 at the sheave) of the N = ``n_el`` elements."""
         return material_velocities((n_el - k) / n_el, (n_el - k - 1) / n_el, self.w, self.L, n_el, ra, va, rb, vb)
+
+    def top_acceleration(self, n_el: int, r0, v0, a0, r1, v1) -> tuple:
+        """The acceleration of the cable at the sheave, the rate of its material velocity v_0 + g (r_1 - r_0) there
+        (g = w N / L, module docstring) with the node at the sheave: a_0 + g' (r_1 - r_0) + g (v_1 - v_0),
+        g' = N (alpha / L - w^2 / L^2). Its half element's inertia loads the sheave (the top tension), not a_0's;
+        the change of the material point at the sheave (the mass flux) is neglected as in the module docstring."""
+        g = self.w * n_el / self.L
+        gd = n_el * (self.alpha / self.L - self.w ** 2 / self.L ** 2)
+        return tuple(a0[j] + gd * (r1[j] - r0[j]) + g * (v1[j] - v0[j]) for j in range(len(r0)))
 
     def inertia(self, P: SectionParameters, n_el: int, p, rho, t, env, depth0, n_points, dim: int = 2) -> ca.Function:
         """``(r_a, r_b, v_a, v_b, p, z) -> (M_a, M_b, f_a, f_b)`` with z = (L, w, alpha, c_a, c_b): Lagrange's
