@@ -15,7 +15,7 @@ from cablesys.errors import ParameterError
 from cablesys.model import build_model
 from cablesys.model.segmented import build_segmented_model
 from cablesys.model.winch import build_winch_model, rest_state
-from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMotion, Winch, dump_scene, scene_from_dict
+from cablesys.scene import Body, Cable, Environment, Numerics, Seabed, Sinusoid, TopMotion, Winch, dump_scene, scene_from_dict
 from cablesys.scene.scene import single_section_scene
 from cablesys.time_domain import simulate
 
@@ -111,6 +111,35 @@ def test_accelerating_payout_carries_the_inertia_of_cable_and_body():
     stiff, _ = _accelerating_error(1e8)
     assert inertia > 500.0
     assert soft < 5e-3 * inertia and stiff < soft / 5, (soft, stiff, inertia)
+
+
+def test_lowering_a_package_onto_the_seabed_is_one_run():
+    """A body lowered at 0.5 m/s through still water onto a [seabed] 40 m down, the winch stopping with as much cable
+    out as the depth: while hanging, top tension W_b + w L(t) - (M_b + m_r L) alpha (the ramps' inertia); landed, the body rests at the bed pressed in by the
+    contact law, delta = F / (k d_0 h / 2) with F = W_b + w h / 2 its node's load (MoorDyn's kBot on the node's
+    contact area, model/segmented_seabed.py), and the top carries the hanging cable, w (L - h / 2): the continuum's w L
+    less the half element lumped on the landed body (h = L / N)."""
+    n, depth, l0, speed, ramp, k_bed, d = 4, 40.0, 32.0, 0.5, 2.0, 3e6, 0.02
+    cable = Cable(length=l0, ae=AE, diameter=d, mass_per_length=M_R, weight_per_length=W_R, cd_normal=1.2,
+                  ct_tangential=0.0, internal_damping=0.05 * AE, segments=n)
+    body = Body(weight=W_B, mass_x=M_B, mass_y=M_B, drag_area_normal=0.0, drag_area_tangential=0.0)
+    dur = (depth - l0) / speed + ramp
+    sc = single_section_scene(cable=cable, body=body, environment=Environment(gravity=G),
+                              seabed=Seabed(depth=depth, stiffness=k_bed),
+                              numerics=Numerics(duration=dur + 8.0, output_step=0.5),
+                              winch=Winch(speed=speed, duration=dur, ramp=ramp, max_length=60.0))
+    run = simulate(sc)
+    t, L, T, y = np.asarray(run.time), run["winch_length"], run["tension_top"], run["y_b"]
+    assert L[-1] == pytest.approx(depth, rel=1e-12)
+    hanging = y + 0.01 < depth
+    assert np.any(hanging[t > dur / 2])
+    rigid = W_B + W_R * L - (M_B + M_R * L) * run["winch_acceleration"]      # and the ramps' inertia
+    np.testing.assert_allclose(T[hanging], rigid[hanging], rtol=2e-3)
+    landed = t > dur + 2.0
+    h = depth / n
+    np.testing.assert_allclose(y[landed], depth + (W_B + W_R * h / 2) / (k_bed * d * h / 2), rtol=1e-7)
+    np.testing.assert_allclose(T[landed], W_R * (depth - h / 2), rtol=1e-6)
+    assert np.max(np.abs(run["y_b_rate"][landed])) < 1e-6
 
 
 def test_mass_in_water_is_m_r_L():
