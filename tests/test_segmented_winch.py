@@ -15,6 +15,7 @@ from cablesys.errors import ParameterError
 from cablesys.model import build_model
 from cablesys.model.segmented import build_segmented_model
 from cablesys.model.winch import build_winch_model, rest_state
+from cablesys.result_protocol import unit_of
 from cablesys.scene import Body, Cable, Environment, Numerics, Seabed, Sinusoid, TopMotion, Winch, dump_scene, scene_from_dict
 from cablesys.scene.scene import single_section_scene
 from cablesys.time_domain import simulate
@@ -199,7 +200,7 @@ def test_winch_run_door_says_which_model_and_why():
     run = cablesys.simulate(sc, segments=4)
     assert run.stats["model"]["name"] == "segmented" and "winch" in run.stats["model"]["reason"]
     assert run["winch_length"][-1] == pytest.approx(L0 + 1.5, rel=1e-12)
-    assert np.all(np.isfinite(run["winch_power"]))
+    assert np.all(np.isfinite(run["winch_power"])) and unit_of("winch_power") == "W"
     for name in ("wang", "quasi-static", "frequency"):
         with pytest.raises(ParameterError, match="numerics.model.*winch"):
             cablesys.simulate(dataclasses.replace(sc, numerics=dataclasses.replace(sc.numerics, model=name)))

@@ -50,6 +50,8 @@ class Segmented(BuiltinRung):
                "on the bed" if has_ends(scene) else "a winch ([winch]): the node model with N = {n}, the only rung whose "
                "cable length can change in time" if winched(scene) else "towing in a circle (top_motion.track): the "
                "node model with N = {n}, the only rung whose steady turn the statics find")
+        if has_ends(scene) and winched(scene):
+            why += " and whose cable length can change in time (the [winch])"
         return n, why.format(n=n) + "; N checked a posteriori on every quantity", requested == "auto"
 
 
