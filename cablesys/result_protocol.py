@@ -50,6 +50,11 @@ QUANTITIES = {
     "phi_z": ("rad", "cable angle out of the x-y plane"), "phi_z_rate": ("rad/s", "out-of-plane angular rate"),
     "z_b": ("m", "body sway position"), "z_b_rate": ("m/s", "body sway velocity"),
     "z_s": ("m", "top (ship) sway motion"),
+    # the winch at the top of the first section (model/segmented_winch.py)
+    "winch_length": ("m", "zero-tension length of the first section (paid out by the winch)"),
+    "winch_speed": ("m/s", "winch payout speed (+ pays out)"),
+    "winch_acceleration": ("m/s^2", "winch payout acceleration"),
+    "winch_power": ("W", "winch power, top tension times payout speed (+ while paying out under tension)"),
 }
 UNITS = {k: v[0] for k, v in QUANTITIES.items()}
 
