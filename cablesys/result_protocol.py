@@ -55,6 +55,11 @@ QUANTITIES = {
     "theta_b_rate": ("rad/s", "body pitch rate"),
     "x_cg": ("m", "body centre of gravity, horizontal position"), "x_cg_rate": ("m/s", "body centre of gravity, horizontal velocity"),
     "y_cg": ("m", "body centre of gravity, vertical position"), "y_cg_rate": ("m/s", "body centre of gravity, vertical velocity"),
+    # the winch at the top of the first section (model/segmented_winch.py)
+    "winch_length": ("m", "zero-tension length of the first section (paid out by the winch)"),
+    "winch_speed": ("m/s", "winch payout speed (+ pays out)"),
+    "winch_acceleration": ("m/s^2", "winch payout acceleration"),
+    "winch_power": ("W", "winch power, top tension times payout speed (+ while paying out under tension)"),
 }
 UNITS = {k: v[0] for k, v in QUANTITIES.items()}
 

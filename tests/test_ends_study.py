@@ -13,6 +13,17 @@ def test_ends_checks_quick(run_study):
     assert res["sloped_seabed_max_rel_err"] < 1e-9
     assert res["resting_chain_drift_m"] < 1e-6
     assert res["contact_energy_drift_rel"] < 1e-4 and res["bounce_contacts"] >= 6
-    for key in ("lowering_tension_rel_err", "payout_mass_rel_err", "span_decay_vs_modes_max_rel_err",
-                "slack_table1_max_rel_err", "slack_table3_modes_inside_band"):
+    # Table 1 from the shared cable: the five in-plane modes within 0.25 % of Triantafyllou's printed values
+    # (printed to three figures, 0.09-0.23 %: the first three inside that rounding, the fourth and fifth ~2x it)
+    assert res["slack_table1_max_rel_err"] < 2.5e-3
+    assert all(abs(e) < r for e, r in zip(res["slack_table1_rel_err"][:3], res["slack_table1_print_rounding"][:3]))
+    # Table 3 (held out): nine modes in the printed order of mode types, out-of-plane first
+    t3 = res["slack_table3_frequencies_rad_s"]
+    assert [r["mode_type"] for r in t3] == list("OAOSOAOSO")
+    assert all(a["omega_rad_s"] < b["omega_rad_s"] for a, b in zip(t3, t3[1:]))
+    assert res["slack_table3_modes_inside_band"] is None and "slack_table3_modes_inside_band" in res["held_out"]
+    # lowering at constant speed: weight less body and cable drag (a 20-25 % share), the 0.5 %
+    assert res["lowering_tension_rel_err"] < 5e-4 and res["lowering"]["drag_share"] > 0.15
+    assert res["payout_mass_rel_err"] < 1e-9
+    for key in ("span_decay_vs_modes_max_rel_err",):
         assert res[key] is None and key in res["not_built"]

@@ -20,7 +20,11 @@ def test_three_d_checks_study(run_study):
     node = r["details"]["node_model"]
     assert node["planar_equivalence"]["run_max_abs"] < 1e-10 and node["rotation_invariance"]["run_position_max_abs_m"] < 1e-10
     assert node["energy"]["drift_rel"] < 1e-7 and node["energy"]["z_b_amplitude_m"] > 1.0
-    assert set(r["not_built"]) == {"span_out_of_plane_vs_irvine_rel_err", "rigid_body_momentum_drift_rel"}
+    assert set(r["not_built"]) == {"rigid_body_momentum_drift_rel"}
+    # a span's sway modes on the node model: Irvine's string frequencies (sag 2.6 % of the span), second order in N
+    span = r["details"]["span_out_of_plane"]
+    assert r["span_out_of_plane_vs_irvine_rel_err"] < 1e-3 and span["sag_to_span"] > 0.02
+    assert all(abs(p - 2.0) < 0.05 for p in span["observed_order"])
     # towing in a circle: a run started at rest under the tow point reaches the steady turn (35 m off at the start)
     turn = r["details"]["turning_tow"]
     assert turn["start_distance_m"] > 30.0 and r["turning_tow_steady_vs_time_domain_rel_err"] < 1e-4

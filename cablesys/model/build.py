@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import casadi as ca
 
+from ..errors import ParameterError
 from ..scene import Scene
 from .cable_model import CableModel
 from .lagrange import lagrange_equations, virtual_work
@@ -118,6 +119,10 @@ def _build(scene: Scene) -> CableModel:
     """The symbolic build of :func:`build_model`."""
     if any(s.cable.segments > 1 for s in scene.sections):   # N straight elements per section
         return build_segmented_model(scene)
+    if getattr(scene, "winch", None) is not None:
+        raise ParameterError("cable.segments", 1, "must be >= 2 with [winch]: the winch acts on the node model "
+                             "(segmented); Wang's straight cable here has a fixed length (model/winch.py is its "
+                             "2-DOF winch, for the control door)")
     layout = ParameterLayout.from_scene(scene)
     p = layout.symbol
     n = len(scene.sections)

@@ -27,7 +27,9 @@ seabed, ``static_force`` is the statics' own right-hand side at rest: elements e
 (a line laid unstretched on the bed has zero tension, not an undetermined slack length) and the
 laid-down line's friction (:func:`.segmented_seabed.seabed_forces`); without one it is None and the
 statics use ``dynamics``. Scenes with an anchor or a seabed evaluate the element-by-element
-``ode`` (no mapped kernel).
+``ode`` (no mapped kernel). A ``[winch]`` changes the first section's zero-tension length in time, its
+elements sharing L(t) uniformly (:mod:`.segmented_winch`: material velocities for the element terms, L a
+prescribed coordinate in Lagrange's equations; element-by-element ``ode`` too).
 
 In three dimensions (``scene.three_d``: Wang 1971 p. 32, "allow the cable to swing out of the vertical
 plane") the same elements and bodies are built with node positions r_j = (x_j, y_j, z_j), z the sway
@@ -71,6 +73,7 @@ from .section import SectionParameters
 from .segmented_element import block_solve, body_drag, dot, element_inertia, element_terms, lump_force, lump_kinetic, norm
 from .segmented_kernel import kernel_ode
 from .segmented_seabed import seabed_forces
+from .segmented_winch import WINCH_OUTPUTS, payout
 from .signals import CHORD_NAMES, EXO_LABELS, OUTPUT_NAMES
 from .top_motion import EXO_LABELS_3D, symbolic_type, top_motion_function
 
@@ -212,15 +215,18 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
         P = SectionParameters.from_layout(layout, section_prefix(n_sec, i), sec.body.is_sphere, dim == 3)
         n_el = segs[i]
         els = []
-        inertia = element_inertia(P, n_el, p, rho, t, env, depth0, drag_points(scene, n_el), dim)
+        pay = payout(scene, layout, P, t) if i == 0 else None     # a [winch]: L(t) (segmented_winch.py)
+        inertia = (pay.inertia if pay else element_inertia)(P, n_el, p, rho, t, env, depth0, drag_points(scene, n_el), dim)
+        P = pay.section(P) if pay else P
         for k in range(n_el):
             a, b = j0 + k, j0 + k + 1
-            el = element_terms(P, n_el, node_r[a], node_v[a], node_r[b], node_v[b], rho=rho, t=t, env=env,
+            va, vb = pay.velocities(k, n_el, node_r[a], node_v[a], node_r[b], node_v[b]) if pay else (node_v[a], node_v[b])
+            el = element_terms(P, n_el, node_r[a], va, node_r[b], vb, rho=rho, t=t, env=env,
                                depth0=depth0, n_points=drag_points(scene, n_el))
             el.update(a=a, b=b)
-            K += lump_kinetic(el, node_v[a], node_v[b])
+            K += lump_kinetic(el, va, vb)
             Ma, Mb, fa, fb = inertia(ca.vertcat(*node_r[a]), ca.vertcat(*node_r[b]), ca.vertcat(*node_v[a]),
-                                     ca.vertcat(*node_v[b]), p)
+                                     ca.vertcat(*node_v[b]), p, *((pay.z(k, n_el),) if pay else ()))
             M_nodes[a], M_nodes[b] = M_nodes[a] + Ma, M_nodes[b] + Mb
             F_inertia[a], F_inertia[b] = F_inertia[a] + fa, F_inertia[b] + fb
             weights[a] += 0.5 * el["weight"]
@@ -237,7 +243,7 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
             els.append(el)
         jb = j0 + n_el                                         # the body's node
         rb, vb = node_r[jb], node_v[jb]
-        sec_d = dict(P=P, top=j0, body=jb, elements=els)
+        sec_d = dict(P=P, top=j0, body=jb, elements=els, pay=pay)
         if i in rigid:                                         # a pitching body (rigid_body.py)
             k = dim * n_free + rigid.index(i)
             Mb, fb, Kb, Vb, r_cg, v_cg = planar_rigid_body(P, RigidParameters.from_layout(
@@ -321,7 +327,9 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
         first, last = els[0], els[-1]
         # force of the cable on its top point and on its body: the end element's tension plus the
         # half element lumped at that node (weight, drag share, minus its inertia)
-        lt = lump_force(first, "a", acc_nodes[s["top"]])
+        acc_top = acc_nodes[s["top"]] if s["pay"] is None else s["pay"].top_acceleration(    # the material's, at the sheave
+            len(els), rt, vt_, acc_nodes[s["top"]], node_r[s["top"] + 1], node_v[s["top"] + 1])
+        lt = lump_force(first, "a", acc_top)
         top_force = tuple(first["tension"] * first["et"][c] + lt[c] for c in range(dim))
         lb = lump_force(last, "b", acc_nodes[s["body"]])
         bottom_force = tuple(-last["tension"] * last["et"][c] + lb[c] for c in range(dim))
@@ -339,6 +347,10 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
             (th, thd), (r_cg, v_cg) = s["theta"], s["cg"]
             out += [th, thd, r_cg[0], v_cg[0], r_cg[1], v_cg[1]]
             labels += [f"{name}{sfx(i)}" for name in RIGID_OUTPUTS]
+    if sections[0].get("pay") is not None:     # the winch: L, w, alpha and the power T_top w (segmented_winch.py)
+        pay = sections[0]["pay"]
+        out += [pay.L, pay.w, pay.alpha, out[OUTPUT_NAMES.index("tension_top")] * pay.w]
+        labels += list(WINCH_OUTPUTS)
     # profiles (element k top to bottom over all sections; node j = 0 the top) and their arc lengths
     T = ca.vertcat(*[el["tension"] for el in elements])
     T_rate = ca.jtimes(T, x, xdot) + ca.jacobian(T, e) @ ca.vertcat(1.0, zd, zdd, ca.DM.zeros(dim))
@@ -377,9 +389,9 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
     static = (ca.Function("static_force", [q, qd, e, p], [f_static], ["q", "qd", "e", "p"], ["f"])
               if scene.seabed is not None else None)
     # a sampled series is an MX node inside the SX physics: no kernel form of that model; the kernel
-    # has no anchor and no seabed (such scenes evaluate the element-by-element ode)
+    # has no anchor, no seabed and no winch (such scenes evaluate the element-by-element ode)
     kernel = (kernel_ode(scene, lambda n_el: drag_points(scene, n_el))
-              if S is ca.SX and not anchored and scene.seabed is None and not n_rot else None)
+              if S is ca.SX and not anchored and scene.seabed is None and scene.winch is None and not n_rot else None)
     return SegmentedModel(layout=layout, n_sections=n_sec, angles=scene.angles, q_labels=q_labels,
                           output_labels=tuple(labels), dynamics=dynamics, ode=ode, top=top, outputs=outputs,
                           energy=energy, cable_force=cable_force, slack_index=(), symbolic=S,

@@ -7,7 +7,7 @@ import dataclasses
 import numpy as np
 
 from ..errors import ParameterError
-from .components import Anchor, Body, Cable, Environment, Initial, Numerics, Seabed, Section, TopMotion
+from .components import Anchor, Body, Cable, Environment, Initial, Numerics, Seabed, Section, TopMotion, Winch
 from .labels import section_prefix
 from .limits import Limits
 from .sea import append_once, sea_waves, user_count
@@ -35,6 +35,7 @@ class Scene:
     design: dict | None = dataclasses.field(default=None, compare=False)   # the [design] table, read by cablesys.isolation
     anchor: Anchor | None = None      # the last section's lower end fixed (segmented cable only)
     seabed: Seabed | None = None      # a seabed acting on the nodes (segmented cable only)
+    winch: Winch | None = None        # the first section's length changes in time (segmented cable only)
 
     def __post_init__(self):
         secs = tuple(self.sections)
@@ -52,6 +53,7 @@ class Scene:
         self._check_dimensions()
         self._check_rigid_bodies()
         self._check_track()
+        self._check_winch()
         sea = self.top_motion.spectrum
         if sea is not None and sea.waves_at_cable:   # the same sea at the cable (Wang 1971 eq. 26-28; scene/sea.py)
             env = self.environment
@@ -98,10 +100,36 @@ class Scene:
                    "Wang's 2-DOF straight cable (every cable.segments = 1; the model ladder runs such a scene "
                    "with the node model)" if all(c.cable.segments == 1 for c in self.sections)
                    else "a scene with a [seabed]" if self.seabed is not None
+                   else "a scene with a [winch]" if getattr(self, "winch", None) is not None
                    else "the body at the [anchor]" if self.anchor is not None and i == len(self.sections) - 1 else None)
             if why is not None:
                 raise ParameterError(name, s.body.pitch_inertia, f"must be unset for {why}: a rigid, pitching body is "
                                      "built by the planar segmented cable without seabed so far")
+
+    def _check_winch(self) -> None:
+        """The winch keeps the first section's zero-tension length L(t) = l_0 + Delta L(t) in (0, max_length]
+        (Delta L monotone, so its extremes are at t = 0 and at the end of the profile: l_0 and
+        l_0 + speed (duration - ramp)); it acts on the planar node model (no anchor, no track, no 3-D so far)."""
+        w = self.winch
+        if w is None:
+            return
+        for name, bad in (("anchor", self.anchor is not None), ("top_motion.track", self.top_motion.track is not None)):
+            if bad:
+                raise ParameterError(name, "set", "must be unset with [winch]: the node model with a winch has a free "
+                                     "body at the bottom and starts from rest under a still top so far")
+        if self.three_d:
+            raise ParameterError("winch", "set", "must be unset in a 3-D scene: the node model's winch is planar so far")
+        c = self.sections[0].cable
+        l0 = c.length * (1.0 - c.tension_ref / c.ae)            # Wang 1971 eq. 1
+        pre = section_prefix(self, 0)
+        if l0 > w.max_length:
+            raise ParameterError("winch.max_length", w.max_length, f"must be >= the {l0:.6g} m of zero-tension cable "
+                                 f"in the water at the start ({pre}cable.length at its tension_ref)")
+        end = l0 + w.paid_out
+        if not 0.0 < end <= w.max_length:
+            raise ParameterError("winch.speed", w.speed, f"takes the first section's zero-tension length from "
+                                 f"{l0:.6g} m to {end:.6g} m over the run (speed (duration - ramp) = {w.paid_out:.6g} m): "
+                                 f"it must stay in (0, max_length = {w.max_length:.6g} m]")
 
     def three_d_fields(self) -> tuple:
         """The 3-D fields this scene sets (``top_motion.z``, a current or wave heading, ``body.mass_z``)."""

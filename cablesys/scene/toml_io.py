@@ -5,7 +5,8 @@ A scene file has top-level ``name``, ``units`` ("SI" or "fps": ft, lbf, slug, s)
 ``cable``/``body`` sub-tables for a chain; ``[environment]`` (with ``[[environment.waves]]``),
 ``[[top_motion.x]]``, ``[[top_motion.y]]``, ``[top_motion.series]``, ``[initial]``, ``[numerics]``,
 and optionally ``[anchor]`` (x, y) and ``[seabed]`` (depth, slope_deg, stiffness, damping, friction_axial,
-friction_lateral, friction_speed).
+friction_lateral, friction_speed) and ``[winch]`` (speed, start, duration, ramp, max_length: the
+first section's payout, :class:`~cablesys.scene.components.Winch`).
 Unknown keys are errors.
 """
 
@@ -206,7 +207,7 @@ def dump_scene(scene: Scene, *, units: str = "SI", annotate: bool = False) -> st
             out += _table_lines(s.body, "[sections.body]", units, annotate)
     for key in ("environment", "top_motion", "initial", "numerics"):
         out += _table_lines(getattr(scene, key), f"[{key}]", units, annotate)
-    for key in ("anchor", "seabed"):   # the fixed lower end and the bed (segmented cable)
+    for key in ("anchor", "seabed", "winch"):   # the fixed lower end, the bed, the winch (segmented cable)
         if getattr(scene, key) is not None:
             out += _table_lines(getattr(scene, key), f"[{key}]", units, annotate)
     if scene.limits is not None:      # what the verdict checks: written so that nothing asked for is dropped
