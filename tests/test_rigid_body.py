@@ -13,7 +13,7 @@ from cablesys.errors import ParameterError
 from cablesys.ladder.auto import decide
 from cablesys.linear import linearize, modes
 from cablesys.model import build_model
-from cablesys.scene import Body, Cable, Environment, Numerics, Scene, Section, Sinusoid, TopMotion
+from cablesys.scene import Body, Cable, Environment, Numerics, Scene, Section, Sinusoid, TopMotion, Winch
 from cablesys.scene.scene import single_section_scene
 from cablesys.scene.toml_io import dump_scene, scene_from_dict
 from cablesys.statics import steady_state
@@ -182,6 +182,9 @@ def test_bad_rigid_input():
         _scene(rigid, _cable(1))                                               # Wang's 2-DOF model has no pitch
     with pytest.raises(ParameterError, match="body.pitch_inertia.*3-D"):
         _scene(rigid, top=TopMotion(z=(Sinusoid(amplitude=0.1, frequency=1.0),)))
+    with pytest.raises(ParameterError, match="body.pitch_inertia.*winch"):
+        single_section_scene(cable=_cable(), body=rigid, environment=Environment(),
+                             winch=Winch(speed=0.5, start=0.0, duration=3.0, ramp=1.0, max_length=20.0))
 
 
 def test_rigid_body_toml_round_trip():
