@@ -278,3 +278,34 @@ def test_pitch_damping_power():
         xv = np.concatenate([q0 + rng.normal(0, 0.05, model.nq), rng.normal(0, 0.5, model.nq)])
         thd = xv[-1]
         assert float(power(xv)) == pytest.approx(-c * thd**2 - d * abs(thd) ** 3, rel=1e-9)
+
+
+@pytest.mark.parametrize("e", [(-0.8, 0.0), (-0.5, 0.4)])
+def test_weathervane_in_a_current(e):
+    """A body attached at its CG whose drag acts at a centre of pressure e off the CG is at rest in a current U when
+    that point lies in line with the flow through the CG (the drag's moment about the attachment vanishes):
+    R(theta) e along +x (downstream: stable) or -x (upstream: unstable), theta = -atan2(e_y, e_x) mod pi. The
+    statics find an equilibrium near their guess (level, or the one given); the linearized model (cablesys.linear)
+    is stable downstream and has a growing mode upstream. The cable leans at atan(D / W_b)."""
+    Wb, cda, U, rho = 800.0, 0.5, 1.0, 1025.0
+    body = Body(weight=Wb, mass_x=200.0, mass_y=200.0, drag_area_normal=cda, drag_area_tangential=cda,
+                pitch_inertia=50.0, drag_centre_x=e[0], drag_centre_y=e[1])
+    scene = _scene(body, current=U, rho=rho)
+    model = build_model(scene)
+    p = model.parameters(scene)
+    down = -math.atan2(e[1], e[0])
+    st = steady_state(model, p)
+    assert math.remainder(st.outputs["theta_b"] - down, math.pi) == pytest.approx(0.0, abs=1e-9)
+    guess = st.q.copy()
+    guess[-1] = down + 0.3
+    st_down = steady_state(model, p, guess=guess)
+    assert st_down.outputs["theta_b"] == pytest.approx(down, abs=1e-9)
+    assert st_down.outputs["x_b"] / st_down.outputs["y_b"] == pytest.approx(0.5 * rho * cda * U**2 / Wb, rel=1e-9)
+    guess[-1] = down + math.pi + 0.3
+    st_up = steady_state(model, p, guess=guess)
+    assert st_up.outputs["theta_b"] == pytest.approx(down + math.pi, abs=1e-9)
+    growth = {}
+    for name, state in (("down", st_down), ("up", st_up)):
+        lin = linearize(model, p, steady=state)
+        growth[name] = np.max(_quadratic_eigenvalues(lin.M, lin.C, lin.K).real)
+    assert growth["down"] < 0.0 < growth["up"]

@@ -16,8 +16,9 @@ of gravity (CG) in body axes (``body.attachment_x/y``, ``body.buoyancy_x/y``):
   Goldstein, Classical Mechanics, 3rd ed., sec. 5.1);
 - potential energy V = -(W_b + B) y_cg + B y_cb (y down): the weight W_b + B at the CG, the buoyancy B
   at the centre of buoyancy, so the weight in water is Wang's W_b (eq. 15);
-- generalized forces by virtual work (Wang eq. 37): the body drag of eq. 32-35 at the CG with the CG's
-  velocity and the body axis at phi_b + theta, and the pitch moment -c theta' - d |theta'| theta'.
+- generalized forces by virtual work (Wang eq. 37): the body drag of eq. 32-35 at the centre of pressure
+  r_cp = r_cg + R(theta) e (``body.drag_centre_x/y``; e = 0: the CG) with that point's velocity and the body
+  axis at phi_b + theta, and the pitch moment -c theta' - d |theta'| theta'.
 
 Lagrange's equations come by CasADi AD of T and V (:func:`planar_rigid_body`), as for the cable
 elements (:func:`.segmented_element.element_inertia`). With c = b = 0 and M_bvx = M_bvy the translation
@@ -44,6 +45,7 @@ class RigidParameters:
     added_inertia: ca.SX    # I_a (kg m^2)
     c: tuple                # attachment point from the CG, body axes (m)
     b: tuple                # centre of buoyancy from the CG, body axes (m)
+    e: tuple                # centre of pressure (where the drag acts) from the CG, body axes (m)
     buoyancy: ca.SX         # B (N)
     damping: ca.SX          # c (N m s)
     drag: ca.SX             # d (N m s^2)
@@ -53,6 +55,7 @@ class RigidParameters:
         b = lambda n: layout.sym(f"{prefix}body.{n}")
         return cls(inertia=b("pitch_inertia"), added_inertia=b("pitch_added_inertia"),
                    c=(b("attachment_x"), b("attachment_y")), b=(b("buoyancy_x"), b("buoyancy_y")),
+                   e=(b("drag_centre_x"), b("drag_centre_y")),
                    buoyancy=b("buoyancy"), damping=b("pitch_damping"), drag=b("pitch_drag"))
 
 
@@ -77,10 +80,13 @@ def planar_rigid_body(P: SectionParameters, R: RigidParameters, p, rho, t, env, 
     w = _rotate(-th, v_cg)                                       # the CG's velocity in body axes
     K = 0.5 * (P.m_bx * w[0] ** 2 + P.m_by * w[1] ** 2) + 0.5 * (R.inertia + R.added_inertia) * thd ** 2
     V = -(P.w_b + R.buoyancy) * r_cg[1] + R.buoyancy * r_cb[1]
-    # drag at the CG with its velocity, the body's axis turned with it (eq. 32-35); virtual work (eq. 37)
-    D = body_drag(dataclasses.replace(P, phi_b=P.phi_b + th), rho, (r_cg[0], r_cg[1]), (v_cg[0], v_cg[1]),
+    # drag at the centre of pressure with its velocity, the body's axis turned with it (eq. 32-35); virtual
+    # work (eq. 37)
+    r_cp = r_cg + _rotate(th, ca.vertcat(*R.e))
+    v_cp = ca.jtimes(r_cp, q, qd)
+    D = body_drag(dataclasses.replace(P, phi_b=P.phi_b + th), rho, (r_cp[0], r_cp[1]), (v_cp[0], v_cp[1]),
                   t, env, depth0)
-    Q = ca.mtimes(ca.jacobian(v_cg, qd).T, ca.vertcat(D[0], D[1]))
+    Q = ca.mtimes(ca.jacobian(v_cp, qd).T, ca.vertcat(D[0], D[1]))
     Q = Q + ca.vertcat(0.0, 0.0, -R.damping * thd - R.drag * ca.fabs(thd) * thd)
     mom = ca.gradient(K, qd)
     M = ca.jacobian(mom, qd)

@@ -102,7 +102,7 @@ class Cable:
 
 #: The rigid body's fields of :class:`Body` (all at their defaults: Wang's point body).
 RIGID_FIELDS = ("pitch_inertia", "pitch_added_inertia", "attachment_x", "attachment_y", "buoyancy", "buoyancy_x",
-                "buoyancy_y", "pitch_damping", "pitch_drag")
+                "buoyancy_y", "pitch_damping", "pitch_drag", "drag_centre_x", "drag_centre_y")
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -111,7 +111,7 @@ class Body:
     set, a rigid body that pitches in the x-y plane on an attachment point off its centre of gravity
     (Wang 1971 p. 32, "Extensions"; equations in :mod:`cablesys.model.rigid_body`). A rigid body's virtual masses
     ``mass_x``, ``mass_y`` and its drag axis ``axis_angle_deg`` are along its body axes, which are the scene's x and y
-    at zero pitch; its drag acts at the centre of gravity."""
+    at zero pitch; its drag acts at its centre of pressure (``drag_centre_x/y``; unset: the centre of gravity)."""
 
     weight: float = spec("force", "weight in water W_b (negative: buoyant)")
     mass_x: float = spec("mass", "virtual mass (mass plus added mass) for motion in x, M_bvx")
@@ -137,6 +137,10 @@ class Body:
     buoyancy_y: float | None = spec("length", "y (down) of the centre of buoyancy from the centre of gravity, body axes (rigid body; unset: 0)", None)
     pitch_damping: float | None = spec("moment_time", "linear pitch damping c: moment -c theta_b' (rigid body; unset: 0)", None)
     pitch_drag: float | None = spec("moment_time2", "quadratic pitch drag d: moment -d |theta_b'| theta_b' (rigid body; unset: 0)", None)
+    drag_centre_x: float | None = spec("length", "x of the point where the body's drag acts (centre of pressure) from the "
+                                       "centre of gravity, body axes (rigid body; unset: 0, at the CG)", None)
+    drag_centre_y: float | None = spec("length", "y (down) of the body's centre of pressure from the centre of gravity, "
+                                       "body axes (rigid body; unset: 0)", None)
 
     def __post_init__(self):
         _check_all_finite(self, "body")
