@@ -22,7 +22,8 @@ of gravity (CG) in body axes (``body.attachment_x/y``, ``body.buoyancy_x/y``):
 
 Lagrange's equations come by CasADi AD of T and V (:func:`planar_rigid_body`), as for the cable
 elements (:func:`.segmented_element.element_inertia`). With c = b = 0 and M_bvx = M_bvy the translation
-is the point body's exactly and theta decouples; with M_bvx != M_bvy they agree at theta = 0. SI throughout (m, N, kg, kg m^2, rad).
+is the point body's exactly and theta decouples; with M_bvx != M_bvy they agree at theta = 0. SI throughout
+(m, N, kg, kg m^2, rad).
 """
 
 from __future__ import annotations

@@ -127,16 +127,22 @@ class Body:
     pitch_inertia: float | None = spec("inertia", "moment of inertia I of the body's mass about its centre of gravity for "
                                        "rotation in the x-y plane (pitch); set: the body is rigid and pitches (one more "
                                        "coordinate theta_b, segmented cable only); unset: a point body", None)
-    pitch_added_inertia: float | None = spec("inertia", "added moment of inertia I_a of the fluid for pitch (rigid body; unset: 0)", None)
-    attachment_x: float | None = spec("length", "x of the cable's attachment point from the centre of gravity, body axes (rigid body; unset: 0)", None)
+    pitch_added_inertia: float | None = spec("inertia", "added moment of inertia I_a of the fluid for pitch "
+                                             "(rigid body; unset: 0)", None)
+    attachment_x: float | None = spec("length", "x of the cable's attachment point from the centre of gravity, body "
+                                      "axes (rigid body; unset: 0)", None)
     attachment_y: float | None = spec("length", "y (down) of the cable's attachment point from the centre of gravity, body "
                                       "axes; negative: above the CG (rigid body; unset: 0)", None)
     buoyancy: float | None = spec("force", "buoyant force B acting up at the centre of buoyancy (rigid body; unset: 0); the "
                                   "weight W_b + B acts down at the CG, so the weight in water stays W_b", None)
-    buoyancy_x: float | None = spec("length", "x of the centre of buoyancy from the centre of gravity, body axes (rigid body; unset: 0)", None)
-    buoyancy_y: float | None = spec("length", "y (down) of the centre of buoyancy from the centre of gravity, body axes (rigid body; unset: 0)", None)
-    pitch_damping: float | None = spec("moment_time", "linear pitch damping c: moment -c theta_b' (rigid body; unset: 0)", None)
-    pitch_drag: float | None = spec("moment_time2", "quadratic pitch drag d: moment -d |theta_b'| theta_b' (rigid body; unset: 0)", None)
+    buoyancy_x: float | None = spec("length", "x of the centre of buoyancy from the centre of gravity, body axes "
+                                    "(rigid body; unset: 0)", None)
+    buoyancy_y: float | None = spec("length", "y (down) of the centre of buoyancy from the centre of gravity, body axes "
+                                    "(rigid body; unset: 0)", None)
+    pitch_damping: float | None = spec("moment_time", "linear pitch damping c: moment -c theta_b' (rigid body; unset: 0)",
+                                       None)
+    pitch_drag: float | None = spec("moment_time2", "quadratic pitch drag d: moment -d |theta_b'| theta_b' (rigid body; "
+                                    "unset: 0)", None)
     drag_centre_x: float | None = spec("length", "x of the point where the body's drag acts (centre of pressure) from the "
                                        "centre of gravity, body axes (rigid body; unset: 0, at the CG)", None)
     drag_centre_y: float | None = spec("length", "y (down) of the body's centre of pressure from the centre of gravity, "
