@@ -125,3 +125,15 @@ def test_fit_frequency_reads_a_known_sinusoid():
     t = np.linspace(0, 5 * 2 * math.pi / w, 201)
     y = 0.3 + np.cos(w * t + 0.4) + 0.05 * np.sin(2 * w * t)
     assert SD.fit_frequency(t, y, 1.01 * w) == pytest.approx(w, rel=1e-9)
+
+
+def test_starting_guesses_of_a_span_are_its_node_positions():
+    """The periodic solve's first start on a node model (statics.steady.starting_guesses): the anchored line's
+    guess, one position per free node, running from the top towards the anchor in the plane."""
+    from cablesys.slack import shared
+    from cablesys.statics.steady import starting_guesses
+    model, q, p = shared.equilibrium(SD.span_scene(SD.SLACKS[1], 10)).node_state
+    (g,) = list(starting_guesses(model, p))
+    r = g.reshape(-1, 3)
+    assert g.shape == q.shape and np.all(np.isfinite(g)) and np.all(r[:, 2] == 0.0)
+    assert np.all(np.diff(r[:, 0]) > 0) and 0.0 < r[0, 0] and r[-1, 0] < SD.SPAN
