@@ -25,5 +25,5 @@ def test_ends_checks_quick(run_study):
     # lowering at constant speed: weight less body and cable drag (a 20-25 % share), the issue's 0.5 %
     assert res["lowering_tension_rel_err"] < 5e-4 and res["lowering"]["drag_share"] > 0.15
     assert res["payout_mass_rel_err"] < 1e-9
-    for key in ("span_decay_vs_modes_max_rel_err",):
-        assert res[key] is None and key in res["not_built"]
+    # a span's free decay in water: the time series' frequencies are the linear modes' (the issue: 1 %)
+    assert res["span_decay_vs_modes_max_rel_err"] < 1e-3
