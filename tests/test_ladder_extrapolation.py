@@ -84,6 +84,26 @@ def test_per_quantity_statement_is_exact_on_a_second_order_remainder():
                                            rel=1e-9)
 
 
+def test_a_number_outside_the_order_range_states_its_whole_difference():
+    """Leading numbers first order (asymptotic), one tension minimum not (f(N/4) > f(N/2) < f(N): observed order
+    below the range): its own statement is the whole difference of the two limits, at least the correction, not the
+    remainder estimate the leading numbers earn."""
+    a = dict(zip(KEYS, (0.0, 2.0, 9.0e4, 0.0, 6.0e4, 900.0)))
+    seq = _sequence(a, dict.fromkeys(KEYS, 0.0))
+    for n, v in zip((8, 16, 32), (1400.0, 1200.0, 1670.0)):
+        seq[n]["tension_top_min"] = v
+    block = R.extrapolate(seq, 32)
+    assert block["asymptotic"] and block["observed_order"]["tension_top_min"] < R.ORDER_RANGE[0]
+    fine, coarse = block["statistics"], block["statistics_coarse"]
+    assert fine["tension_top_min"] == pytest.approx(2 * 1670.0 - 1200.0)
+    floor = metrics.TENSION_FLOOR_FRACTION * fine["tension_top_max"]
+    whole = abs(coarse["tension_top_min"] - fine["tension_top_min"]) / max(fine["tension_top_min"], floor)
+    corr = abs(1670.0 - fine["tension_top_min"]) / max(fine["tension_top_min"], floor)
+    assert block["estimated_error_per_quantity"]["tension_top_min"] == pytest.approx(max(whole, corr))
+    # the leading numbers keep the remainder estimate (their differences are exactly first order: their limit's)
+    assert block["estimated_error_per_quantity"]["tension_top_max"] == est.RESOLUTION
+
+
 def test_not_asymptotic_states_the_whole_difference_and_floors_tension_minima():
     """Differences growing from N/4 to N (observed order below 0.5): not in the asymptotic range, the stated
     error is the whole difference of the two limits, at least the extrapolation's own correction; a limit
