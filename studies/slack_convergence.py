@@ -1,6 +1,6 @@
 """The slack path's stated error against its actual one, per quantity, on slack scenes (issue 28, issue 22's checks).
 
-    python studies/slack_convergence.py --out DIR [--quick] [--only NAMES]
+    python studies/slack_convergence.py --out DIR [--quick] [--only NAMES] [--reuse-reference JSON ...]
 
 On a slack scene auto (``cablesys.simulate(scene)``, as a user runs it, compiled in full mode) runs the segmented cable
 at N / 4, N / 2, N and reports statistics extrapolated in N (Richardson 1911, first order: the snap front is carried
@@ -17,10 +17,10 @@ runs:
   pieces started from the last state of the piece before at the same step, so that N = 128 on the fine grid fits the
   memory limit of one run (:func:`reference_run`; pieces of 11 or 2 give the same statistics to 5e-10 at N = 16);
 - the reference statistics are the first-order Richardson limit of its last two N (the order auto assumes, checked:
-  ``observed_order`` of the three reference N); its own uncertainty is the difference of the limits of its two pairs
-  / (2^2 - 1) (``uncertainty``, the remainder estimate auto states for its own) and its raw convergence the difference
-  of its last two N (``convergence_last_two``); its time step is checked at the smallest reference N against half
-  that step (``time_step_check``);
+  ``observed_order`` of the three reference N); its own uncertainty per quantity follows auto's rules for its own
+  statement (:func:`score_reference`: the remainder estimate where the order is in range, the whole difference where
+  not) and its raw convergence is the difference of its last two N (``convergence_last_two``); its time step is
+  checked at the smallest reference N against half that step (``time_step_check``);
 - actual error per quantity: :func:`cablesys.ladder.metrics.quantity_errors` of auto's extrapolated statistics
   against the reference (each relative to its own value, floors 1 cm and 1 % of the top tension); per group:
   :func:`cablesys.ladder.metrics.errors` (the normalisation of auto's stated body/tension numbers).
@@ -210,36 +210,78 @@ def reference_run(scene, n: int, cache: RungCache, refine: int = REFINE) -> dict
 
 
 def reference(scene, ns: tuple, cache: RungCache) -> dict:
-    """The reference runs at ``ns`` (:func:`reference_run`); with three N the first-order Richardson limit of the
-    last two (``statistics``), its observed order and its own uncertainty (module docstring); with two N the finer
-    run's statistics as they are (quick mode). ``time_step_check``: the smallest N again at half the step."""
+    """The reference runs at ``ns`` (:func:`reference_run`), scored by :func:`score_reference`; ``time_step_check``:
+    the smallest N again at half the step, the change of each quantity (:func:`cablesys.ladder.metrics.quantity_errors`)."""
     runs = [reference_run(scene, n, cache) for n in ns]
     out = {"segments": list(ns), "refine": REFINE, "runs": runs}
     if not all(r["success"] for r in runs):
         return dict(out, error="a reference run failed: " + "; ".join(r.get("message", "") for r in runs
                                                                       if not r["success"]))
-    st = [r["statistics"] for r in runs]
-    floor = max(s.cable.tension_floor for s in scene.sections)
-    out["convergence_last_two"] = metrics.quantity_errors(st[-2], st[-1])
-    out["convergence_last_two_group"] = metrics.errors(st[-2], st[-1])
-    if len(ns) >= 3:
-        lim = R.limits(st[-2], st[-1], ratio=ns[-1] / ns[-2])
-        prev = R.limits(st[-3], st[-2], ratio=ns[-2] / ns[-3])
-        for d in (lim, prev):            # a minimum's limit below the tension floor: the floor (as auto's)
-            d.update({k: max(v, floor) for k, v in d.items() if k.endswith("_min")})
-        q = 2.0 ** R.REMAINDER_ORDER - 1.0
-        out.update(kind="richardson", statistics=lim, observed_order=R.observed_orders(*st[-3:]),
-                   uncertainty={k: v / q for k, v in metrics.quantity_errors(prev, lim).items()},
-                   uncertainty_group={k: v / q for k, v in metrics.errors(prev, lim).items()})
-    else:
-        out.update(kind="finest run", statistics=st[-1], uncertainty=out["convergence_last_two"],
-                   uncertainty_group=out["convergence_last_two_group"], observed_order=None)
+    score_reference(out, _floor(scene))
     half = reference_run(scene, ns[0], cache, refine=TIMESTEP_CHECK_REFINE)
     if half["success"]:
+        change = metrics.quantity_errors(runs[0]["statistics"], half["statistics"])
         out["time_step_check"] = {"segments": ns[0], "refine": [REFINE, TIMESTEP_CHECK_REFINE],
-                                  "wall_s": half["wall_s"],
-                                  "largest": max(metrics.quantity_errors(st[0], half["statistics"]).values())}
+                                  "wall_s": half["wall_s"], "largest": max(change.values()), "per_quantity": change}
     return out
+
+
+def _floor(scene) -> float:
+    return max(s.cable.tension_floor for s in scene.sections)
+
+
+def score_reference(ref: dict, floor: float) -> dict:
+    """The reference statistics and their uncertainty from its runs (``ref["runs"]``, coarsest first), in place.
+
+    Three N or more: the first-order Richardson limit L of the last two (minima at least the tension ``floor``, N),
+    per quantity its observed order p over the last three (:func:`cablesys.ladder.richardson.observed_orders`) and
+    its uncertainty by auto's own rules (:mod:`cablesys.ladder.richardson`): p within ORDER_RANGE, the remainder
+    estimate |L_prev - L| / (2^2 - 1); p above it with differences of one sign (converging faster than first order),
+    the last correction |L - f_finest|; otherwise (not asymptotic) the larger of the whole |L_prev - L| and that
+    correction (``uncertainty_rule``). Two N: the finer run as it is, uncertainty its difference to the coarser one."""
+    st = [r["statistics"] for r in ref["runs"]]
+    ns = [r["segments"] for r in ref["runs"]]
+    ref["convergence_last_two"] = metrics.quantity_errors(st[-2], st[-1])
+    ref["convergence_last_two_group"] = metrics.errors(st[-2], st[-1])
+    if len(st) < 3:
+        ref.update(kind="finest run", statistics=st[-1], uncertainty=ref["convergence_last_two"],
+                   uncertainty_group=ref["convergence_last_two_group"], observed_order=None)
+        return ref
+    lim = R.limits(st[-2], st[-1], ratio=ns[-1] / ns[-2])
+    prev = R.limits(st[-3], st[-2], ratio=ns[-2] / ns[-3])
+    for d in (lim, prev):            # a minimum's limit below the tension floor: the floor (as auto's)
+        d.update({k: max(v, floor) for k, v in d.items() if k.endswith("_min")})
+    orders = R.observed_orders(*st[-3:])
+    d_lim, corr = metrics.quantity_errors(prev, lim), metrics.quantity_errors(st[-1], lim)
+    q = 2.0 ** R.REMAINDER_ORDER - 1.0
+    unc, rule = {}, {}
+    for k in d_lim:
+        p = orders.get(k)
+        one_sign = (st[-3][k] - st[-2][k]) * (st[-2][k] - st[-1][k]) > 0
+        if p is not None and R.ORDER_RANGE[0] <= p <= R.ORDER_RANGE[1]:
+            unc[k], rule[k] = d_lim[k] / q, "remainder"
+        elif p is not None and p > R.ORDER_RANGE[1] and one_sign:
+            unc[k], rule[k] = corr[k], "faster than first order: the last correction"
+        else:
+            unc[k], rule[k] = max(d_lim[k], corr[k]), "not asymptotic: the whole difference, at least the correction"
+    g_lim, g_corr = metrics.errors(prev, lim), metrics.errors(st[-1], lim)
+    ref.update(kind="richardson", statistics=lim, observed_order=orders, uncertainty=unc, uncertainty_rule=rule,
+               uncertainty_group={k: max(g_lim[k], g_corr[k]) for k in g_lim})
+    return ref
+
+
+def score(c: dict, floor: float) -> dict:
+    """Rows, groups and verdicts of case ``c`` from its auto row and its reference runs (in place)."""
+    score_reference(c["reference"], floor)
+    c["rows"] = rows_for(c["auto"], c["reference"])
+    c["groups"] = group_rows(c["auto"], c["reference"])
+    rows = c["rows"]
+    c.update(all_within_tolerance=all(r["within_tolerance"] for r in rows),
+             all_stated_at_least_half=all(r["stated_at_least_half"] is True for r in rows),
+             all_stated_honest=all(r["stated_honest"] is True for r in rows),
+             resolved_stated_at_least_half=all(r["stated_at_least_half"] is True for r in rows
+                                               if r["reference_resolved"]))
+    return c
 
 
 def auto_run(scene, compiled: bool, tolerance=None) -> tuple:
@@ -312,8 +354,20 @@ def own_pair(scene, auto: dict, cache: RungCache) -> dict:
             "covered": {k: bool(stated.get(k, -1.0) >= 0.5 * v) for k, v in diff.items()}}
 
 
-def case(name: str, scene, description: str, quick: bool) -> dict:
-    """Auto and its reference on one scene (module docstring)."""
+def _reusable(old: dict | None, scene, quick: bool) -> dict | None:
+    """The reference of a case of an earlier JSON (``--reuse-reference``) for ``scene``: the same scene name,
+    duration, reference N and refinement, its runs all successful; else None."""
+    if not old or old.get("scene") != scene.name or old.get("duration_s") != scene.numerics.duration:
+        return None
+    ref = old.get("reference") or {}
+    ok = (ref.get("segments") == list(REFERENCE_N["quick" if quick else "full"]) and ref.get("refine") == REFINE
+          and "error" not in ref and all(r.get("success") for r in ref.get("runs", [])))
+    return ref if ok else None
+
+
+def case(name: str, scene, description: str, quick: bool, reuse: dict | None = None) -> dict:
+    """Auto and its reference on one scene (module docstring); ``reuse``: the same case of an earlier JSON whose
+    reference runs are taken as they are when they match (:func:`_reusable`; auto runs again)."""
     compiled = not quick
     with smallest_extrapolation(QUICK_MIN_SEGMENTS if quick else None):
         _, auto = auto_run(scene, compiled, QUICK_TOLERANCE if quick else None)
@@ -323,18 +377,17 @@ def case(name: str, scene, description: str, quick: bool) -> dict:
         return dict(out, error="auto did not extrapolate (not a slack plan, or a run failed)", rows=[])
     cache = RungCache()
     _compile(compiled)
-    ref = reference(scene, REFERENCE_N["quick" if quick else "full"], cache)
+    ref = _reusable(reuse, scene, quick)
+    if ref is not None:
+        out["reference_reused"] = "the reference runs of an earlier run of the study (--reuse-reference)"
+    else:
+        ref = reference(scene, REFERENCE_N["quick" if quick else "full"], cache)
     out["reference"] = ref
     if "error" in ref:
         return dict(out, rows=[])
-    out["rows"] = rows_for(auto, ref)
-    out["groups"] = group_rows(auto, ref)
+    score(out, _floor(scene))
     if quick:
         out["own_pair"] = own_pair(scene, auto, cache)
-    rows = out["rows"]
-    out.update(all_within_tolerance=all(r["within_tolerance"] for r in rows),
-               all_stated_at_least_half=all(r["stated_at_least_half"] is True for r in rows),
-               all_stated_honest=all(r["stated_honest"] is True for r in rows))
     return out
 
 
@@ -387,6 +440,9 @@ def plot(cases: list, path: Path) -> None:
 
 def _options(ap) -> None:
     ap.add_argument("--only", default=None, help=f"comma-separated scenes among {', '.join(ALL)} (full mode)")
+    ap.add_argument("--reuse-reference", action="append", default=[], type=Path, metavar="JSON",
+                    help="an earlier slack_convergence.json whose reference runs are reused for the same scenes "
+                         "(same name, duration, N, refinement): auto runs again, the reference does not (repeatable)")
 
 
 def main(argv=None) -> int:
@@ -396,10 +452,12 @@ def main(argv=None) -> int:
         only = [w.strip() for w in args.only.split(",") if w.strip()]
         if not only or set(only) - set(ALL):
             raise ParameterError("--only", args.only, f"names among {list(ALL)}")
+    import json
+    earlier = {c["case"]: c for p in args.reuse_reference for c in json.loads(Path(p).read_text())["cases"]}
     t0, load0 = time.perf_counter(), os.getloadavg()
     cases = []
     for name, scene, description in scenes(args.quick, only):
-        c = case(name, scene, description, args.quick)
+        c = case(name, scene, description, args.quick, earlier.get(name))
         cases.append(c)
         a = c["auto"]
         print(f"{name}: auto N = {a['extrapolated_segments']} ({a['wall_s']:.1f} s), stated {a['stated_group']}; "
