@@ -411,17 +411,22 @@ def plot(cases: list, path: Path) -> None:
     colours = ["tab:blue", "tab:orange", "tab:green", "tab:purple"]
     for c, col in zip(cases, colours):
         for grp, mk in (("body", "o"), ("tension", "s")):
-            pts = [(r["actual"], r["stated"]) for r in c.get("rows", []) if metrics.group(r["quantity"]) == grp
-                   and r["stated"] is not None]
+            pts = [(r["actual"], r["stated"], r["reference_uncertainty"]) for r in c.get("rows", [])
+                   if metrics.group(r["quantity"]) == grp and r["stated"] is not None]
             if pts:
-                a, s = np.clip(np.array(pts), lo, hi).T
+                a, s, u = np.array(pts).T
+                a, s = np.clip(a, lo, hi), np.clip(s, lo, hi)
+                left = np.clip(a - 2 * u, lo, hi)          # the reference's own uncertainty x 2 (resolution)
+                ax.hlines(s, left, np.clip(a + 2 * u, lo, hi), color=col, lw=0.8, alpha=0.6)
                 ax.loglog(a, s, mk, color=col, mfc=col if grp == "body" else "none", ms=7, alpha=0.8,
-                          label=f"{c['case']} (N = {c['auto']['segments']}): {grp} ({len(pts)})")
+                          label=f"{c['case']} (N = {', '.join(map(str, c['auto']['extrapolated_segments']))}): "
+                                f"{grp} ({len(pts)})")
         for r in c.get("rows", []):
             if r["stated"] is not None and max(r["actual"], r["stated"]) > 2e-3:
                 ax.annotate(r["quantity"].replace("tension_", "T_").replace("_amplitude", " amp"),
                             (np.clip(r["actual"], lo, hi), np.clip(r["stated"], lo, hi)), fontsize=6.5,
-                            xytext=(4, -3), textcoords="offset points", color=col)
+                            xytext=(5, 4 if r["quantity"].endswith("_max") else -9), textcoords="offset points",
+                            color=col)
     x = np.array([lo, hi])
     ax.plot(x, x, "k-", lw=0.9, label="stated = actual")
     ax.fill_between(x, x / 2, x * 2, color="grey", alpha=0.15, label="within a factor 2")
@@ -429,8 +434,9 @@ def plot(cases: list, path: Path) -> None:
     for grp, ls in (("body", ":"), ("tension", "-.")):
         ax.axvline(QUANTITY_TOL[grp], color="tab:red", lw=0.9, ls=ls, label=f"{grp} tolerance {100 * QUANTITY_TOL[grp]:g} %")
     ns = cases[0].get("reference", {}).get("segments", "?") if cases else "?"
-    ax.set(xlim=(lo, hi), ylim=(lo, hi), xlabel=f"actual relative error against the reference (segmented, Richardson "
-           f"limit of N = {ns}; clipped to [{lo:g}, 1])", ylabel="stated relative error of auto's extrapolated statistics",
+    ax.set(xlim=(lo, hi), ylim=(lo, hi), xlabel=f"actual relative error against the reference (segmented, Richardson limit of N = {ns})\n"
+           f"bars: +-2x the reference's own uncertainty; values clipped to [{lo:g}, 1]",
+           ylabel="stated relative error of auto's extrapolated statistics (per quantity)",
            title="Slack scenes: auto's stated error vs the actual one, per quantity")
     ax.grid(True, which="both", alpha=0.25)
     ax.legend(fontsize=7, loc="upper left", framealpha=0.9)
