@@ -1,6 +1,7 @@
 """The slack path's stated error against its actual one, per quantity, on slack scenes (issue 28, issue 22's checks).
 
     python studies/slack_convergence.py --out DIR [--quick] [--only NAMES] [--reuse-reference JSON ...]
+    python studies/slack_convergence.py --out DIR --assemble JSON ...     (runs per scene group in one JSON and figure)
 
 On a slack scene auto (``cablesys.simulate(scene)``, as a user runs it, compiled in full mode) runs the segmented cable
 at N / 4, N / 2, N and reports statistics extrapolated in N (Richardson 1911, first order: the snap front is carried
@@ -444,11 +445,35 @@ def plot(cases: list, path: Path) -> None:
     save_figure(fig, path)
 
 
+def assemble(paths: list, out: Path) -> int:
+    """The cases of several JSON files of the study (``--only`` runs per scene group) in one JSON and figure, each
+    scored again from its stored runs (:func:`score`)."""
+    import json
+    docs = [json.loads(Path(p).read_text()) for p in paths]
+    floors = {n: _floor(sc) for n, sc, _ in scenes(False)}
+    cases = [c for d in docs for c in d["cases"]]
+    for c in cases:
+        if c.get("reference") and "error" not in c["reference"] and c["case"] in floors:
+            score(c, floors[c["case"]])
+    doc = dict(docs[0], cases=cases, totals=totals(cases), wall_s=[d["wall_s"] for d in docs],
+               load_1min_start=[d["load_1min_start"] for d in docs], load_1min_end=[d["load_1min_end"] for d in docs],
+               assembled_from=[str(p) for p in paths])
+    write_json(out / "slack_convergence.json", doc)
+    plot(cases, out / "slack_convergence.png")
+    t = doc["totals"]
+    print(f"{t['quantities']} quantities on {t['scenes']} scenes: {t['within_tolerance']} within tolerance, "
+          f"{t['stated_at_least_half']} stated >= actual/2, {t['stated_honest']} honest")
+    return 0
+
+
 def _options(ap) -> None:
     ap.add_argument("--only", default=None, help=f"comma-separated scenes among {', '.join(ALL)} (full mode)")
     ap.add_argument("--reuse-reference", action="append", default=[], type=Path, metavar="JSON",
                     help="an earlier slack_convergence.json whose reference runs are reused for the same scenes "
                          "(same name, duration, N, refinement): auto runs again, the reference does not (repeatable)")
+    ap.add_argument("--assemble", nargs="+", type=Path, default=None, metavar="JSON",
+                    help="no runs: the cases of these slack_convergence.json files (runs per scene group) scored again "
+                         "and written together, with the figure")
 
 
 def main(argv=None) -> int:
@@ -459,6 +484,8 @@ def main(argv=None) -> int:
         if not only or set(only) - set(ALL):
             raise ParameterError("--only", args.only, f"names among {list(ALL)}")
     import json
+    if args.assemble:
+        return assemble(args.assemble, args.out)
     earlier = {c["case"]: c for p in args.reuse_reference for c in json.loads(Path(p).read_text())["cases"]}
     t0, load0 = time.perf_counter(), os.getloadavg()
     cases = []
