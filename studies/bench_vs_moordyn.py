@@ -199,6 +199,18 @@ NOTES = {
                  "(RK4 at its stable step, the extrapolation's settings) 5.4 s wall, 1.9 s CPU: speedup 2.3 wall, "
                  "1.5 CPU. Below the issue's targets (auto_speedup >= 1, speedup >= 3): the taut path's choice of N "
                  "and integrator is not what this change touched.",
+    "harsh_sea_after": "Run of 2026-12-02 06:55-06:58 UTC, 200 s, load 3.6-3.9 on 2 cores (another benchmark on one core), "
+                       "after the -O1 rule and with the probe search (MoorDyn's step searched on the first 63 s, one "
+                       "bisection round: 3.97 ms at N = 40 instead of the halving's 2.8 ms, search 14.6 s): MoorDyn N = 40 "
+                       "50.4k steps 4.97 s wall, 1.73 s CPU; auto at the default tolerance N = 56 (stated body 1.0e-4, "
+                       "tension 1.0e-4), 9 runs, 29.4 s wall, 12.3 s CPU: auto_speedup 0.17 wall, 0.14 CPU; its runs (N, "
+                       "rtol, steps, CPU, CPU per step): 5 1e-6 21.7k 0.09 s 4.4 us, 2 1e-7 34.4k 0.11 s, 7 1e-6 24.0k 0.12 s, "
+                       "3 1e-7 41.3k 0.15 s, 28 1e-6 42.3k 1.23 s 29 us, 14 1e-7 73.8k 0.49 s, 56 1e-6 49.6k 2.60 s 53 us, "
+                       "28 1e-7 91.3k 2.43 s 27 us, 56 1e-7 109.6k 4.85 s 44 us (kept). The segmented cable at N = 40 (the "
+                       "extrapolation's RK4 at its stable step) 54.4k steps 2.76 s wall, 1.41 s CPU (26 us per step): "
+                       "speedup 1.8 wall, 1.2 CPU. Both below the targets: what is left is the scene's rtol 1e-6 with "
+                       "checks at 1e-7 (3.4x against auto's own settings, harsh_sea_profile), N = 56 for x_b_mean, and "
+                       "each checked N run twice (rtol and rtol / 10).",
     "harsh_sea_profile": "Profile of 2026-12-02 06:05-06:20 UTC, --plan-duration 200, compiled, load 2.5-6 (shared "
                          "machine). Auto at the default tolerance, second call on one cache: 9 runs, 22.9 s CPU (29-47 s "
                          "wall): the packaged ROV lift's [numerics] names cvodes, rtol 1e-6, atol 1e-8, which the ladder "
