@@ -378,6 +378,11 @@ def bench_slack_case(name, scene, period, ns, *, timed_run, prepared, compiled_c
 # -- the plan cases (issue 28): light_lift and harsh_sea, irregular seas, auto's whole plan timed --------------------
 
 PLAN_NS = (20, 40)               # MoorDyn's own convergence: N = 20 against N = 40
+# MoorDyn's step search on a probe: the smooth start and four peak periods of the sea after it (the snaps of the light
+# lift begin there), each trial step against its half on the probe's statistics (errors_md), then one geometric
+# bisection round between the accepted step and the rejected one above it; the whole run at the step found (halved
+# while that run is not stable). A probe over the whole 600 s at the light lift's ~1e-4 s steps did not finish in 40 min.
+PROBE_AFTER_RAMP_S, PROBE_REFINE = 36.0, 1
 HARSH_SEA = {"hs": 6.0, "tp": 9.0}   # the ROV lift in a harsh sea: Hs 6 m, Tp 9 s (DNV-RP-C205 Table 3-1: rough-very rough)
 
 
@@ -403,11 +408,19 @@ def plan_scene(name: str, duration: float | None = None):
 
 
 def _plan_runs(result) -> list:
-    """Each run of auto's plan (``model.extrapolated.plan.runs``): N, method, steps, wall and per-step cost."""
+    """Each run of auto's plan: N, method, steps, wall and per-step cost; on a slack scene the extrapolation's
+    (``model.extrapolated.plan.runs``), on a taut one the candidate and check runs of ``ladder_timing.runs``
+    (:func:`cablesys.ladder.auto.log_run`, with the rung and rtol)."""
     block = (result.stats.get("model") or {}).get("extrapolated") or {}
     keys = ("segments", "candidate", "method", "stages", "steps", "step_us", "predicted_s", "wall_s", "cpu_s",
             "wall_per_step_us", "status")
-    return [{k: r.get(k) for k in keys} for r in (block.get("plan") or {}).get("runs", [])]
+    runs = [{k: r.get(k) for k in keys} for r in (block.get("plan") or {}).get("runs", [])]
+    if runs:
+        return runs
+    taut = ("rung", "segments", "candidate", "method", "rtol", "steps", "wall_s", "cpu_s", "wall_per_step_us",
+            "cpu_per_step_us")
+    return [{**{k: r.get(k) for k in taut}, "status": "success" if r.get("success") else "failed"}
+            for r in (result.stats.get("ladder_timing") or {}).get("runs", [])]
 
 
 def _auto_timed(scene, tolerance: float | None, period) -> dict:
@@ -466,7 +479,7 @@ def reported_statistics(result, period) -> dict:
 
 
 def bench_plan_case(name: str, scene, *, quick: bool = False, ns=PLAN_NS, moordyn: bool = True) -> dict:
-    """One plan case: MoorDyn at ``ns`` (its largest stable step each, probed over the whole run) and its own
+    """One plan case: MoorDyn at ``ns`` (its largest stable step each, searched on a probe: PROBE_AFTER_RAMP_S) and its own
     convergence (its statistics at the smaller N against the larger, :func:`cablesys.ladder.metrics.errors`); cablesys
     auto at its default tolerance and at the peer's convergence (body; tension twice it, as the ladder's tolerance
     reads); ``auto_speedup`` = MoorDyn's wall at the larger N / auto's (default tolerance), ``auto_speedup_matched`` the
@@ -482,13 +495,24 @@ def bench_plan_case(name: str, scene, *, quick: bool = False, ns=PLAN_NS, moordy
     if moordyn:
         for n in ns:
             sc = scene.replace_section(0, cable={"segments": n})
-            dt = largest_stable_dt(sc, n, agree=lambda a, b: errors_md(a, b, period, ramp))
-            load, c0 = os.getloadavg()[0], time.process_time()
-            r = run_moordyn(sc, n, dt)
+            trials, t0 = [], time.perf_counter()
+            probe = min(dur, ramp + PROBE_AFTER_RAMP_S)
+            dt = largest_stable_dt(sc, n, probe_s=probe, agree=lambda a, b: errors_md(a, b, period, ramp),
+                                   refine=PROBE_REFINE, trials=trials)
+            search_s = time.perf_counter() - t0
+            while True:        # the probe's step over the whole run; halved if the whole run is not stable
+                load, c0 = os.getloadavg()[0], time.process_time()
+                r = run_moordyn(sc, n, dt)
+                if r["stable"] or dt / 2 < 1e-7:
+                    break
+                trials.append({"dt_s": dt, "stable": False, "agrees": None, "probe_s": dur, "wall_s": r["wall_s"]})
+                dt /= 2
             md[n] = {"dt_s": dt, "wall_s": r["wall_s"], "cpu_s": time.process_time() - c0, "s_per_s": r["wall_s"] / dur,
                      "load_1min": load,
                      "stable": r["stable"], "steps": int(round(dur / dt)),
-                     "wall_per_step_us": 1e6 * r["wall_s"] / max(1, round(dur / dt)), "stats": _md_stats(r, period, ramp)}
+                     "wall_per_step_us": 1e6 * r["wall_s"] / max(1, round(dur / dt)), "stats": _md_stats(r, period, ramp),
+                     "step_search": {"probe_s": probe, "refine_rounds": PROBE_REFINE, "wall_s": search_s,
+                                     "trials": trials}}
         lo, hi = ns
         conv = M.errors(md[lo]["stats"], md[hi]["stats"])
         row["moordyn"] = {str(n): v for n, v in md.items()}

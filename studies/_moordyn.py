@@ -232,26 +232,53 @@ def _agree(a: dict, b: dict, scene, tol: float) -> bool:
 
 def largest_stable_dt(scene, n_segments: int, *, probe_s: float | None = None, scheme: str = "RK4",
                       start: float | None = None, floor: float = 1e-7, tol: float = 0.02, agree=None,
-                      runs: dict | None = None) -> float:
+                      runs: dict | None = None, refine: int = 0, trials: list | None = None) -> float:
     """MoorDyn's largest usable step: halving from ``start`` (default 4x the axial estimate), the
     first step whose run over ``probe_s`` (default the scene's duration) stays finite and bounded
     and agrees with the run at half that step within ``tol`` (body motion, top tension). Just
     above RK4's limit on the undamped axial mode MoorDyn stays bounded but its tension is
     chaotic (it goes slack at rest), so boundedness alone is not stability here.
 
+    ``refine`` rounds of geometric bisection then search between the accepted step and the rejected
+    one above it (each round the same test at sqrt(lo hi)): the step found is within
+    2^(1 / 2^refine) of the largest accepted one instead of within 2x.
+
     ``agree(a, b) -> bool`` replaces the sample-by-sample test (a slack-and-snap run's transient
     amplifies differences by 1e5 before it settles: compare its settled statistics instead). A
-    slack scene must be probed over its whole run: a probe inside the smooth start sees no snap.
-    ``runs``, if given, receives the runs made, by step (the caller can reuse the chosen one)."""
+    slack scene must be probed past its smooth start: a probe inside it sees no snap.
+    ``runs``, if given, receives the runs made, by step (the caller can reuse the chosen one);
+    ``trials``, if given, receives one entry per tested step: {dt_s, stable, agrees, wall_s} (the wall of
+    the step's probe run and its half-step run)."""
     dt = start or min(4 * axial_step_estimate(scene, n_segments), 0.05)
     agree = agree or (lambda a, b: _agree(a, b, scene, tol))
     runs = {} if runs is None else runs
     run = lambda h: runs[h] if h in runs else runs.setdefault(h, run_moordyn(scene, n_segments, h, duration=probe_s, scheme=scheme))
+
+    def ok(h) -> bool:
+        t0 = time.perf_counter()
+        a = run(h)
+        good = bool(a["stable"])
+        agrees = None
+        if good:
+            b = run(h / 2)
+            agrees = bool(b["stable"] and agree(a, b))
+            good = agrees
+        if trials is not None:
+            trials.append({"dt_s": h, "stable": bool(a["stable"]), "agrees": agrees,
+                           "probe_s": probe_s, "wall_s": time.perf_counter() - t0})
+        return good
+
+    rejected = None
     while dt >= floor:
-        a = run(dt)
-        if a["stable"]:
-            b = run(dt / 2)
-            if b["stable"] and agree(a, b):
-                return dt
-        dt /= 2
-    raise RuntimeError(f"MoorDyn found no stable step above {floor} s")
+        if ok(dt):
+            break
+        rejected, dt = dt, dt / 2
+    else:
+        raise RuntimeError(f"MoorDyn found no stable step above {floor} s")
+    if rejected is not None:
+        lo, hi = dt, rejected
+        for _ in range(refine):
+            mid = math.sqrt(lo * hi)
+            lo, hi = (mid, hi) if ok(mid) else (lo, mid)
+        dt = lo
+    return dt

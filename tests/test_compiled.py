@@ -362,6 +362,22 @@ def test_large_segmented_models_compile_their_element_kernel_by_default(cache):
     assert small.success and small.stats["compiled"] is True
 
 
+def test_the_kernel_dae_compiles_at_least_at_O1_up_to_its_cap(monkeypatch):
+    """The element-kernel DAE's C grows with N past the size rule's -O1 limit (2.05 MB at N = 56 planar), where -O0
+    made each step 2-3x dearer: it gets -O1 there, up to KERNEL_O1_MAX_BYTES; elsewhere the size rule's flag."""
+    from cablesys.compiled import SIZE_FLAGS, compiler_command
+    from cablesys.time_domain.integrators import KERNEL_O1_MAX_BYTES, kernel_dae_optimization
+    monkeypatch.delenv("CABLESYS_CFLAGS", raising=False)      # the user's flags win over both rules
+    o1_limit = next(limit for limit, flag in SIZE_FLAGS if flag == "-O1")
+    for size in (1_000, o1_limit - 1):           # -O2 / -O1 by size: never lowered
+        assert kernel_dae_optimization(size) is None
+    for size in (o1_limit, 2_050_000, KERNEL_O1_MAX_BYTES):
+        assert kernel_dae_optimization(size) == "-O1"
+        assert "-O1" in compiler_command(size, kernel_dae_optimization(size))
+    assert kernel_dae_optimization(KERNEL_O1_MAX_BYTES + 1) is None      # the compiler's memory: the size rule
+    assert "-O0" in compiler_command(KERNEL_O1_MAX_BYTES + 1, kernel_dae_optimization(KERNEL_O1_MAX_BYTES + 1))
+
+
 def test_the_rk_loop_of_a_large_segmented_model_compiles_its_kernel_alone(cache):
     """Past COMPILE_MAX_ELEMENTS the fixed-step RK4 loop still compiles: it steps the mapped element
     kernel, whose C does not grow with N; the output functions, which do, stay in the VM. The compiled

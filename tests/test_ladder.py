@@ -184,6 +184,22 @@ def test_rung_cache_builds_each_model_once_and_the_timing_adds_up():
     assert second["y_b"][-1] != first["y_b"][-1]       # the cached model ran the new numbers
 
 
+def test_ladder_timing_lists_every_run_of_the_plan():
+    """``ladder_timing["runs"]``: each time-domain run of the plan, in order, inside the timed call; the kept run is a
+    candidate whose step count is the result's, and a checked N has its N / 2 run among the check runs."""
+    scene = _stiff_pendulum().with_numerics(duration=16.0)
+    r = simulate(scene)
+    t, m = r.stats["ladder_timing"], r.stats["model"]
+    runs = t["runs"]
+    assert runs and all(q["steps"] > 0 and q["wall_s"] > 0 and q["success"] for q in runs)
+    assert sum(q["wall_s"] for q in runs) <= t["run_s"] + t["check_s"]
+    kept = [q for q in runs if q["candidate"] and q["segments"] == m["segments"]]
+    assert kept and kept[-1]["steps"] == r.stats["nsteps"]
+    assert all(q["wall_per_step_us"] == pytest.approx(1e6 * q["wall_s"] / q["steps"]) for q in runs)
+    if m["segments"] >= 4:                       # checked a posteriori against N / 2
+        assert any(not q["candidate"] and q["segments"] == m["segments"] // 2 for q in runs)
+
+
 def test_auto_integrator_settings_follow_the_tolerance_unless_someone_chose():
     """BDF of order <= 2 at rtol = body tolerance / 100 (at most 1e-4), atol = rtol / 10 of each state's
     natural scale (scaled states, cablesys.model.scales); the scene's

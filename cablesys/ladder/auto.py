@@ -125,7 +125,26 @@ def _run(scene: Scene, choice: Choice, tol, cache: RungCache, kw: dict, candidat
         opts["x0"] = x0
     times = kw.get("times")
     sim = cache.simulator(model, sc.output_times if times is None else times, settings)
-    return simulate(sc, model=model, simulator=sim, **opts)
+    t0, c0 = time.perf_counter(), time.process_time()
+    result = simulate(sc, model=model, simulator=sim, **opts)
+    log_run(kw, choice, candidate, settings, result, time.perf_counter() - t0, time.process_time() - c0)
+    return result
+
+
+def log_run(kw: dict, choice: Choice, candidate: bool, settings, result, wall_s: float, cpu_s: float) -> None:
+    """One entry in ``kw["run_log"]`` (when the caller keeps one, :func:`simulate` does) for a run of the plan: the
+    rung and N, candidate or check, integrator (method, rtol, atol), steps taken (the integrator's count), wall and
+    process CPU time (s) of the run with its outputs, and both per step (us)."""
+    runs = kw.get("run_log")
+    if runs is None:
+        return
+    steps = int((getattr(result, "stats", None) or {}).get("nsteps") or 0)
+    runs.append({"rung": choice.name, "segments": choice.segments, "candidate": bool(candidate),
+                 "method": str(settings.method), "rtol": float(settings.rtol), "atol": float(settings.atol),
+                 "compiled": bool(settings.compiled), "steps": steps, "success": bool(getattr(result, "success", False)),
+                 "wall_s": wall_s, "cpu_s": cpu_s,
+                 "wall_per_step_us": 1e6 * wall_s / steps if steps else None,
+                 "cpu_per_step_us": 1e6 * cpu_s / steps if steps else None})
 
 
 def _periodic_run(scene: Scene, cache: RungCache):
@@ -307,7 +326,8 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
         relative to its own value with an absolute floor: :func:`.metrics.quantity_errors`);
         ``stats["ladder_timing"]``: wall seconds ``choose_s`` (steady state, linearization, describing function,
         estimates), ``build_s`` (models and simulators, incl. loading compiled code), ``run_s`` (the chosen run),
-        ``check_s`` (a posteriori runs), ``total_s``. A rung named outside its validity warns
+        ``check_s`` (a posteriori runs), ``total_s``, and ``runs``: each time-domain run of the plan but the
+        extrapolation's (which ``model.extrapolated.plan`` lists), in order (:func:`log_run`). A rung named outside its validity warns
         (:class:`~cablesys.errors.NumericalWarning`) with the reason.
     """
     kw = {k: v for k, v in dict(method=method, rtol=rtol, atol=atol, max_num_steps=max_num_steps, jit=jit, times=times,
@@ -317,6 +337,7 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
             (model or getattr(scene.numerics, "model", "auto")) == AS_BUILT:
         return _as_built(scene, model if isinstance(model, CableModel) else None, simulator, kw, cache)
     cache = cache if cache is not None else RungCache()
+    kw["run_log"] = []          # every run of the taut path's plan (log_run); the extrapolation keeps its own plan
     t0, b0 = time.perf_counter(), cache.build_s
     choice, tol, auto = decide(scene, model, tolerance, segments, cache)
     choice = explicit_or_node(scene, choice, tol, cache, kw)
@@ -342,7 +363,7 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
     if prediction is not None:            # the candidate run's prediction, made before its build
         info["prediction"] = prediction.as_dict()
     timing = {"choose_s": (t1 - t0) - (b1 - b0), "build_s": b3 - b0, "run_s": (t2 - t1) - (b2 - b1),
-              "check_s": (t3 - t2) - (b3 - b2), "total_s": t3 - t0}
+              "check_s": (t3 - t2) - (b3 - b2), "total_s": t3 - t0, "runs": kw["run_log"]}
     log.info("model %s (N = %d): %s", choice.name, choice.segments, choice.reason)
     return windowed(scene, dataclasses.replace(result, model_info=info,
                                                 stats={**result.stats, "model": info, "ladder_timing": timing}))

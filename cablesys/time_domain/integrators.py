@@ -54,7 +54,7 @@ import dataclasses
 import casadi as ca
 import numpy as np
 
-from ..compiled import Compiled, compilation_enabled, compile_functions, compiles, generate
+from ..compiled import SIZE_FLAGS, Compiled, compilation_enabled, compile_functions, compiles, generate
 from ..integration import METHODS, IntegratorMethod, resolve
 from ..model import CableModel
 from ..model.scales import state_scales
@@ -181,8 +181,27 @@ def dae_function(model: CableModel, implicit: bool, compiled: bool = True, scale
         # parameter count); never use this library for parameter sensitivities
         f = relative_time_dae(model, implicit, scaled, kernel=kernel)
         size = len(generate([f], jacobians=("x", "z"))) if kernel else None   # MX serializes shorter than its C
-        return compile_functions([f], jacobians=("x", "z"), enabled=compiled, size=size)
+        return compile_functions([f], jacobians=("x", "z"), enabled=compiled, size=size,
+                                 optimization=kernel_dae_optimization(size) if kernel else None)
     return model.derive(key, build)
+
+
+# The element-kernel DAE (kernel_dae) is loops over the elements plus its Jacobian's nonzero copies: its C grows
+# with N (harsh_sea ROV lift, planar: N = 28 1.49 MB, N = 56 2.05 MB) past compiled.SIZE_FLAGS's -O1 limit, and at
+# -O0 every right-hand side and Jacobian costs 2-3x more (N = 56, CVODES BDF2, rtol 1e-5, 200 s: 105-115 us per step
+# at -O0, 45 us at -O1; right-hand side 29-52 vs 8.8 us, Jacobian 1.0-1.8 ms vs 0.43 ms; studies/bench_vs_moordyn.py
+# notes "harsh_sea_profile"), for a compile of 11.8 s instead of 4.8 s (once per structure, cached). Up to
+# KERNEL_O1_MAX_BYTES of C it is compiled at least at -O1 (compiled.COMPILE_S_PER_MB: ~4.5 s per MB); past it the size
+# rule holds (the compiler's memory).
+KERNEL_O1_MAX_BYTES = 6_000_000
+
+
+def kernel_dae_optimization(c_bytes: int) -> str | None:
+    """The optimization flag of the element-kernel DAE's ``c_bytes`` of C: -O1 where the size rule
+    (:data:`cablesys.compiled.SIZE_FLAGS`) would pick -O0 and the C is at most :data:`KERNEL_O1_MAX_BYTES`,
+    else None (the size rule's own flag)."""
+    default = next(flag for limit, flag in SIZE_FLAGS if c_bytes < limit)
+    return "-O1" if default == "-O0" and c_bytes <= KERNEL_O1_MAX_BYTES else None
 
 
 def kernel_dae(model: CableModel, implicit: bool, compiled: bool = True) -> bool:
