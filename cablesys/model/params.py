@@ -59,7 +59,7 @@ def structure_of(scene: Scene) -> tuple:
 
 
 _ANCHOR = ("x", "y")
-_WINCH = ("speed", "start", "duration", "ramp")     # the payout profile (scene.components.payout_profile)
+_WINCH = ("speed", "start", "duration", "ramp")     # the payout profile (scene.ends.payout_profile)
 _SEABED = ("depth", "slope_deg", "stiffness", "damping", "friction_axial", "friction_lateral", "friction_speed")
 
 

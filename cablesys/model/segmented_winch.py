@@ -1,7 +1,7 @@
 """The winch in the segmented cable: the first section's unstretched length L(t) changes in time.
 
-A ``[winch]`` (:class:`cablesys.scene.components.Winch`) pays the first section out at its top (node 0, the
-sheave) at the prescribed rate w(t) = L'(t) (:func:`cablesys.scene.components.payout_profile`, L(0) = l_0 of
+A ``[winch]`` (:class:`cablesys.scene.ends.Winch`) pays the first section out at its top (node 0, the
+sheave) at the prescribed rate w(t) = L'(t) (:func:`cablesys.scene.ends.payout_profile`, L(0) = l_0 of
 Wang 1971 eq. 1). The formulation (no remeshing, differentiable in every parameter, so that an optimal control
 can drive L later):
 
@@ -52,7 +52,7 @@ import dataclasses
 
 import casadi as ca
 
-from ..scene.components import payout_profile
+from ..scene.ends import payout_profile
 from .section import SectionParameters
 from .segmented_element import element_terms, lump_kinetic
 
@@ -132,7 +132,7 @@ class Payout:
 
 
 def payout(scene, layout, P0: SectionParameters, t) -> Payout | None:
-    """The first section's L(t) = l_0 + Delta L(t), w(t), alpha(t) (:func:`cablesys.scene.components.payout_profile`
+    """The first section's L(t) = l_0 + Delta L(t), w(t), alpha(t) (:func:`cablesys.scene.ends.payout_profile`
     on the ``winch.*`` entries of p, t the model's time symbol); None without a ``[winch]``."""
     if getattr(scene, "winch", None) is None:
         return None

@@ -1,6 +1,7 @@
 """Scene description: immutable, validated parameter objects in SI, TOML in and out."""
 
-from .components import INTEGRATORS, Anchor, Body, Cable, Environment, Initial, Numerics, Seabed, Section, TimeSeries, TopMotion, Winch
+from .components import INTEGRATORS, Body, Cable, Environment, Initial, Numerics, Section, TimeSeries, TopMotion
+from .ends import Anchor, Seabed, Winch
 from .harmonics import Sinusoid, Wave
 from .dale import OMEGA_N_MEASURED, dale_scene, default_scene
 from .heavy_wire import heavy_wire_scene

@@ -7,7 +7,8 @@ import dataclasses
 import numpy as np
 
 from ..errors import ParameterError
-from .components import Anchor, Body, Cable, Environment, Initial, Numerics, Seabed, Section, TopMotion, Winch
+from .components import Body, Cable, Environment, Initial, Numerics, Section, TopMotion
+from .ends import Anchor, Seabed, Winch
 from .labels import section_prefix
 from .limits import Limits
 from .sea import append_once, sea_waves, user_count
