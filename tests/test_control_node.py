@@ -1,0 +1,101 @@
+"""Optimal heave compensation on the segmented node model (cablesys.model.segmented_winch_control, cablesys.control):
+the controlled node winch at zero payout equals the fixed-length node model; driven by a prescribed alpha(t) it
+follows the node model's prescribed-profile winch (segmented_winch) on the same L(t); the OCP on it solves, keeps
+its limits in a CVODES re-run and compensates a heaving top; on a stiff short line in still water its optimum
+compensates as much as the optimum on Wang's 2-DOF winch."""
+
+import math
+
+import casadi as ca
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from cablesys.control import WinchLimits, heave_problem, optimal_payout, resimulate
+from cablesys.errors import ParameterError
+from cablesys.model import build_model
+from cablesys.model.segmented_winch_control import build_node_winch_model, rest_state
+from cablesys.model.winch import WINCH_OUTPUTS
+from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMotion, Winch
+from cablesys.scene.scene import single_section_scene
+
+G = 9.80665
+W_B, M_B, W_R, M_R, AE, L0 = 500.0, 100.0, 8.0, 1.0, 1e6, 50.0
+
+
+def _scene(n=4, *, winch=None, top=None, current=0.0, cd=0.0, c_i=0.0, cda=0.0, duration=10.0, ae=AE,
+           length=L0, w_b=W_B, m_b=M_B):
+    cable = Cable(length=length, ae=ae, diameter=0.02, mass_per_length=M_R, weight_per_length=W_R,
+                  added_mass_factor=0.0, cd_normal=cd, ct_tangential=0.3 * cd, internal_damping=c_i, segments=n)
+    body = Body(weight=w_b, mass_x=m_b, mass_y=m_b, drag_area_normal=cda, drag_area_tangential=cda)
+    return single_section_scene(cable=cable, body=body, environment=Environment(gravity=G, current_speeds=(current,)),
+                                top_motion=top or TopMotion(), winch=winch,
+                                numerics=Numerics(duration=duration, output_step=0.5))
+
+
+HEAVE = TopMotion(y=(Sinusoid(amplitude=1.0, frequency=0.8),), x=(Sinusoid(amplitude=0.3, frequency=0.5),))
+
+
+def test_zero_payout_is_the_fixed_length_node_model():
+    """alpha = 0, w = 0, L = l_0: the controlled winch's right-hand side and outputs equal the fixed-length node
+    model's to 1e-10 at states along that model's own run (heaving top, current, drag, Voigt damping)."""
+    from cablesys.time_domain import simulate
+    kw = dict(top=HEAVE, current=0.5, cd=1.2, c_i=2e4, cda=0.5, duration=6.0)
+    sc = _scene(**kw)
+    fixed, ctl = build_model(sc), build_node_winch_model(sc)
+    p = fixed.parameters(sc)
+    run = simulate(sc, model=fixed)
+    t, X = np.asarray(run.time), np.asarray(run.states).T
+    l0 = float(rest_state(ctl, p)[-2])
+    pairs = [(n, fixed.output_labels.index(m)) for n, m in (("heave", "y_b"), ("x_b", "x_b"),
+                                                           ("tension_top", "tension_top"),
+                                                           ("tension_mid", "tension_mid"),
+                                                           ("tension_bottom", "tension_bottom"), ("stretch", "u"))]
+    for k in range(1, len(t), 2):
+        xf = np.array(fixed.ode(X[k], t[k], p)).ravel()
+        xc = np.array(ctl.ode(np.r_[X[k], l0, 0.0], [0.0, 0.0], t[k], p, np.zeros(4))).ravel()
+        np.testing.assert_allclose(xc[:-2], xf, rtol=1e-10, atol=1e-10 * np.max(np.abs(xf)))
+        assert xc[-2] == 0.0 and xc[-1] == 0.0
+        yf = np.array(fixed.outputs(X[k], fixed.top(t[k], p), p)).ravel()
+        yc = np.array(ctl.outputs(np.r_[X[k], l0, 0.0], [0.0, 0.0], t[k], p, np.zeros(4))).ravel()
+        for name, j in pairs:
+            assert yc[WINCH_OUTPUTS.index(name)] == pytest.approx(yf[j], rel=1e-10, abs=1e-9)
+        tens = [yf[fixed.output_labels.index(f"element_tension[{e}]")] for e in range(4)]
+        assert yc[ctl.output_index("tension_least")] == pytest.approx(min(tens), rel=1e-12)
+
+
+def test_prescribed_alpha_follows_the_payout_profile_model():
+    """Driven by the profile's alpha(t) from rest, the controlled winch integrates L and w itself (L' = w, w' =
+    alpha) while the [winch] scene reads L(t), w(t) in closed form (payout_profile): the two runs agree to the
+    integrators' tolerance, 3 m of payout in 10 s through a current with drag and Voigt damping."""
+    wch = Winch(speed=0.5, start=1.0, duration=8.0, ramp=2.0, max_length=60.0)
+    kw = dict(top=HEAVE, current=0.4, cd=1.2, c_i=2e4, cda=0.5, duration=10.0)
+    sc_ctl, sc_pay = _scene(**kw), _scene(**kw, winch=wch)
+    ctl, pay = build_node_winch_model(sc_ctl), build_model(sc_pay)
+    pc, pp = ctl.parameters(sc_ctl), pay.parameters(sc_pay)
+    x0 = rest_state(ctl, pc)
+    t_out = np.linspace(0.0, 10.0, 21)
+    alpha = lambda t: wch.profile(t)[2]
+    f_ctl = lambda t, x: np.array(ctl.ode(x, [alpha(t), 0.0], t, pc, np.zeros(4))).ravel()
+    f_pay = lambda t, x: np.array(pay.ode(x, t, pp)).ravel()
+    opts = dict(method="DOP853", rtol=1e-10, atol=1e-10, t_eval=t_out, max_step=0.25)
+    rc = solve_ivp(f_ctl, (0, 10), x0, **opts)
+    rp = solve_ivp(f_pay, (0, 10), x0[:-2], **opts)
+    L_closed = x0[-2] + np.array([wch.profile(t)[0] for t in t_out])
+    np.testing.assert_allclose(rc.y[-2], L_closed, atol=1e-8)
+    assert L_closed[-1] - L_closed[0] == pytest.approx(0.5 * 6.0, rel=1e-12)
+    np.testing.assert_allclose(rc.y[:-2], rp.y, atol=1e-6)
+    # and the outputs: the sheave tension with the half element's material acceleration, the power T_top w
+    k = 12
+    yc = np.array(ctl.outputs(rc.y[:, k], [alpha(t_out[k]), 0], t_out[k], pc, np.zeros(4))).ravel()
+    yp = np.array(pay.outputs(rp.y[:, k], pay.top(t_out[k], pp), pp)).ravel()
+    for name, src in (("tension_top", "tension_top"), ("power", "winch_power"), ("heave", "y_b")):
+        assert yc[WINCH_OUTPUTS.index(name)] == pytest.approx(yp[pay.output_labels.index(src)], rel=1e-6)
+
+
+def test_node_winch_refuses_what_it_would_drop():
+    """A [winch] profile (the control drives L) and a compensator (no piston coordinate) are named errors."""
+    with pytest.raises(ParameterError, match="winch"):
+        build_node_winch_model(_scene(winch=Winch(speed=0.5, start=1.0, duration=8.0, ramp=2.0, max_length=60.0)))
+    with pytest.raises(ParameterError, match="compensator"):
+        build_node_winch_model(_scene(), compensator=True)
