@@ -32,14 +32,65 @@ from ..compiled import compile_functions, compiles
 from ..derivatives import state_derivatives
 from ..disk_cache import digest
 from ..errors import ParameterError, require_positive
+from ..model.segmented_winch_control import NodeWinchModel, build_node_winch_model
+from ..model.segmented_winch_control import rest_state as node_rest_state
 from ..model.winch import COMPENSATOR_PARAMETERS, WINCH_OUTPUTS, WinchModel, build_winch_model, rest_state
 from .. import statistics as st
 from ..results import ResultBase, timed
 from .limits import WinchLimits
 from .shooting import PathConstraint, ShootingNLP
 
-# rows of the stage function's path outputs g
-G_ROWS = ("power", "tension_mid", "tension_top")
+# rows of the stage function's path outputs g: the power, the tension the no-slack floor bounds (the model's
+# ``floor_output``: Wang's F_bc "tension_mid", the node model's least element tension), the top tension
+G_ROWS = ("power", "tension_floor", "tension_top")
+# the control's models (heave_problem's ``model``): Wang's 2-DOF winch, the segmented node model's winch
+MODELS = ("wang", "segmented")
+
+
+def output_labels(model) -> tuple:
+    """The rows of ``model.outputs``: :data:`WINCH_OUTPUTS` (the node model adds ``tension_least``)."""
+    return getattr(model, "output_labels", WINCH_OUTPUTS)
+
+
+def floor_output(model) -> str:
+    """The output the no-slack floor bounds: the 2-DOF model's spring force F_bc (``tension_mid``, Wang 1971 eq.
+    54), the node model's least element tension (``tension_least``)."""
+    return getattr(model, "floor_output", "tension_mid")
+
+
+def model_rest_state(model, p, c=None) -> np.ndarray:
+    """The rest state of either control model (:func:`cablesys.model.winch.rest_state`,
+    :func:`cablesys.model.segmented_winch_control.rest_state`)."""
+    return (node_rest_state if isinstance(model, NodeWinchModel) else rest_state)(model, p, c)
+
+
+def describe_model(model) -> str:
+    """One line naming the control model."""
+    if isinstance(model, NodeWinchModel):
+        return model.describe()
+    return "wang 2-DOF with winch (cablesys.model.winch)" + (", compensator" if model.compensator else "")
+
+
+def control_model(scene, model="wang", segments: int | None = None, *, compensator: bool = False):
+    """(scene, model) for a control model name: "wang" (the scene's first section as one straight element,
+    ``segments`` must be None or 1) or "segmented" (N = ``segments`` elements, default the scene's
+    ``cable.segments`` when above 1); the scene is returned with that N."""
+    if model not in MODELS:
+        raise ParameterError("model", model, f"allowed: {', '.join(MODELS)} (or a built winch model)")
+    if segments is not None and not (isinstance(segments, (int, np.integer)) and segments >= 1):
+        raise ParameterError("segments", segments, "must be an integer >= 1")
+    n_scene = scene.sections[0].cable.segments if len(scene.sections) == 1 else None
+    if model == "wang":
+        if segments not in (None, 1):
+            raise ParameterError("segments", segments, "Wang's 2-DOF winch is one straight element: 1 or unset")
+        sc = scene if n_scene in (None, 1) else scene.replace_section(cable={"segments": 1})
+        return sc, build_winch_model(sc, compensator=compensator)
+    n = segments if segments is not None else n_scene
+    if n is None or n < 2:
+        raise ParameterError("segments", segments, "the segmented model needs N >= 2 elements (segments, or the "
+                                                   "scene's cable.segments)")
+    sc = scene if n == n_scene else scene.replace_section(cable={"segments": int(n)})
+    return sc, build_node_winch_model(sc, compensator=compensator)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -72,8 +123,18 @@ class HeaveProblem:
         series = self.scene.top_motion.series
         return float(series.times[-1]) if series is not None else float(self.scene.numerics.duration)
 
+    @property
+    def output_labels(self) -> tuple:
+        """The rows of :meth:`outputs` (:func:`output_labels`)."""
+        return output_labels(self.model)
+
+    @property
+    def floor_output(self) -> str:
+        """The output the no-slack floor bounds (:func:`floor_output`)."""
+        return floor_output(self.model)
+
     def outputs(self, X: np.ndarray, U: np.ndarray, t: np.ndarray) -> np.ndarray:
-        """Winch-model outputs (:data:`WINCH_OUTPUTS`) at states X (n, nx), controls U (n,), times t."""
+        """Winch-model outputs (:attr:`output_labels`) at states X (n, nx), controls U (n,), times t."""
         v = np.vstack([np.ravel(U), np.zeros(len(t))])
         f = self.model.outputs.map(len(t))
         return np.array(f(X.T, v, np.asarray(t, float)[None, :], self.p, self.c)).T
@@ -131,15 +192,31 @@ class HeaveProblem:
         return step, stage, True
 
     def scales(self):
-        """State scales (phi and its rate 0.05, lengths and speeds 1) for IPOPT."""
+        """State scales for IPOPT: Wang's phi and its rate 0.05, lengths and speeds 1 (the node model's positions,
+        rates, L and w: 1)."""
         nq = self.model.nq
-        q = np.array([0.05] + [1.0] * (nq - 1))
+        q = np.ones(nq) if isinstance(self.model, NodeWinchModel) else np.array([0.05] + [1.0] * (nq - 1))
         return np.concatenate([q, q, [1.0, 1.0]])
 
 
-def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25, substeps: int = 2,
+# |h lambda| of classical RK4 steps: the stability region's boundary crosses the imaginary axis at 2.83 and the
+# real axis at -2.79 (Hairer & Wanner, Solving ODEs II, sec. IV.2, Fig. 2.1); the chosen steps keep the stiffest
+# mode of the linearization at rest within RK4_STEP_LAMBDA, an explicit count past RK4_STABILITY is refused
+RK4_STEP_LAMBDA = 2.4
+RK4_STABILITY = 2.78
+
+
+def fastest_mode(model, x_rest, p, c) -> float:
+    """max |lambda| (1/s) of the model's Jacobian d x'/d x at rest (alpha = 0): its stiffest mode, the axial
+    waves of the node model's elements (omega ~ 2 N sqrt(AE / m) / L), the spring of Wang's 2-DOF model."""
+    x = ca.SX.sym("x", model.nx)
+    J = ca.Function("J", [x], [ca.jacobian(model.ode(x, ca.DM.zeros(2), 0.0, p, c), x)])
+    return float(np.max(np.abs(np.linalg.eigvals(np.array(J(x_rest))))))
+
+
+def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25, substeps: int | None = None,
                   tension_weight: float = 0.0, control_weight: float = 1e-3,
-                  compensator: dict | None = None, model: WinchModel | None = None) -> HeaveProblem:
+                  compensator: dict | None = None, model="wang", segments: int | None = None) -> HeaveProblem:
     """Set up the heave-compensation problem of ``scene`` (module docstring).
 
     Parameters
@@ -150,8 +227,9 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
         Winch and tension limits (default: unbounded winch, the scene's tension band).
     dt : float
         Control interval (s): alpha is constant on each.
-    substeps : int
-        RK4 steps per interval.
+    substeps : int, optional
+        RK4 steps per interval; default the least n >= 2 with (dt / n) max |lambda| <= 2.4 (:func:`fastest_mode`:
+        the node model's stiff axial modes need many); a count past RK4's stability limit is refused.
     tension_weight : float
         c_T, weight of the relative tension fluctuation (m^2 per unit of ((T - T_0)/T_0)^2).
     control_weight : float
@@ -159,8 +237,12 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
     compensator : dict, optional
         ``mass``, ``stiffness``, ``damping`` of a passive compensator under the sheave (the
         precharge is set to hold the static load at zero stroke).
-    model : WinchModel, optional
-        A model built before for this scene's structure.
+    model : str or WinchModel or NodeWinchModel
+        "wang" (Wang's 2-DOF winch, :mod:`cablesys.model.winch`), "segmented" (the node model's winch on
+        ``segments`` elements, :mod:`cablesys.model.segmented_winch_control`), or a model built before for this
+        scene's structure.
+    segments : int, optional
+        N of the segmented model (default the scene's ``cable.segments``).
 
     Returns
     -------
@@ -168,12 +250,15 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
     """
     limits = WinchLimits() if limits is None else limits
     require_positive("dt", dt, "s")
-    if not (isinstance(substeps, int) and substeps >= 1):
+    if substeps is not None and not (isinstance(substeps, int) and substeps >= 1):
         raise ParameterError("substeps", substeps, "must be an integer >= 1")
     for name, v in (("tension_weight", tension_weight), ("control_weight", control_weight)):
         if not (v >= 0 and math.isfinite(v)):
             raise ParameterError(name, v, "must be a finite number >= 0")
-    model = model or build_winch_model(scene, compensator=compensator is not None)
+    if isinstance(model, str):
+        scene, model = control_model(scene, model, segments, compensator=compensator is not None)
+    elif model is None:
+        scene, model = control_model(scene, "wang", None, compensator=compensator is not None)
     p = model.parameters(scene)
     c = np.zeros(len(COMPENSATOR_PARAMETERS))
     if compensator is not None:
@@ -187,8 +272,15 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
         t_top = dict(zip(WINCH_OUTPUTS, np.array(plain.outputs(x_plain, [0, 0], 0.0, p, c)).ravel()))["tension_top"]
         # y down: the precharge pushes the sheave up against the cable's vertical pull and its own weight
         c[3] = -t_top * math.cos(x_plain[0]) - c[0] * p[model.layout.index("environment.gravity")]
-    x_rest = rest_state(model, p, c)
-    y_rest = dict(zip(WINCH_OUTPUTS, np.array(model.outputs(x_rest, [0, 0], 0.0, p, c)).ravel()))
+    x_rest = model_rest_state(model, p, c)
+    y_rest = dict(zip(output_labels(model), np.array(model.outputs(x_rest, [0, 0], 0.0, p, c)).ravel()))
+    lam = fastest_mode(model, x_rest, p, c)
+    if substeps is None:
+        substeps = max(2, math.ceil(dt * lam / RK4_STEP_LAMBDA))
+    elif dt / substeps * lam > RK4_STABILITY:
+        raise ParameterError("substeps", substeps, f"RK4 steps of {dt / substeps:.3g} s are unstable for the model's "
+                                                   f"fastest mode |lambda| = {lam:.4g} 1/s: at least "
+                                                   f"{math.ceil(dt * lam / RK4_STABILITY)}")
     floor, wl = limits.band(scene, y_rest["tension_top"])
     T0 = y_rest["tension_top"]
     step, stage, interval = _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, control_weight)
@@ -228,10 +320,10 @@ def _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, contr
         k4 = f(x + h * k3, 2 * i + 2)
         x = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
     y = model.outputs_e(xs[:nq], xs[nq:2 * nq], e_at(0), winch(xs), ps, cs)
-    oi = WINCH_OUTPUTS.index
+    oi = output_labels(model).index
     cost = ws[4] * ((y[oi("heave")] - ws[0]) ** 2 + ws[2] * ((y[oi("tension_top")] - ws[1]) / ws[1]) ** 2
                     + ws[3] * uk ** 2)
-    g = ca.vertcat(*(y[oi(name)] for name in G_ROWS))
+    g = ca.vertcat(*(y[oi(floor_output(model) if name == "tension_floor" else name)] for name in G_ROWS))
     interval = ca.Function("interval", [xs, uk, Es, ps, cs, ws], [x, cost, g],
                            ["x", "u", "E", "p", "c", "w"], ["xn", "cost", "g"])
     w = ca.DM([y_rest["heave"], y_rest["tension_top"], tension_weight, control_weight, dt])
@@ -366,16 +458,16 @@ def payout_result(problem: HeaveProblem, X, U, *, status: str, violated: str = "
     X0 = problem.rollout(problem.x_rest, np.zeros(N))
     Y0 = problem.outputs(X0, np.zeros(N + 1), t)
     mask = statistics_window(t, stats_start, problem.scene.top_motion)
-    oi = WINCH_OUTPUTS.index
+    oi = problem.output_labels.index
     h, h0 = Y[:, oi("heave")] - problem.heave_rest, Y0[:, oi("heave")] - problem.heave_rest
     return PayoutResult(times=t, states=np.asarray(X), acceleration=np.ravel(U), outputs=Y, uncompensated=Y0,
-                        state_labels=problem.model.state_labels, output_labels=WINCH_OUTPUTS, status=status,
+                        state_labels=problem.model.state_labels, output_labels=problem.output_labels, status=status,
                         violated=violated, violations=dict(violations or {}), objective=float(objective),
                         heave_rms_m=float(np.sqrt(np.mean(h[mask] ** 2))),
                         uncompensated_heave_rms_m=float(np.sqrt(np.mean(h0[mask] ** 2))),
                         heave_reduction_db=heave_reduction_db(h, h0, mask),
                         tension_max_n=float(np.max(Y[:, oi("tension_top")])),
-                        tension_min_n=float(np.min(Y[:, oi("tension_mid")])),
+                        tension_min_n=float(np.min(Y[:, oi(problem.floor_output)])),
                         speed_max_m_s=float(np.max(np.abs(Y[:, oi("speed")]))),
                         power_max_w=float(np.max(np.abs(Y[:, oi("power")]))),
                         success=success, message=message, stats=dict(stats or {}))
