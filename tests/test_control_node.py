@@ -159,3 +159,40 @@ def test_control_model_names_are_checked():
         heave_problem(_soft_scene(1), LIMITS, model="segmented")
     with pytest.raises(ParameterError, match="substeps"):
         heave_problem(_soft_scene(4), LIMITS, dt=0.5, model="segmented", substeps=1)
+
+
+def test_state_map_puts_the_node_rest_on_wangs():
+    """Still water: the node model's rest line (N = 4) seen as Wang's chord (phi, l) is Wang's rest state, the
+    elastic hanging line's L + (W_b L + w L^2 / 2) / AE for both (weight linear along the line, so the lumped
+    element stretches sum to the continuous one), phi = 0; and a node controller of N = 2 reads the plant's
+    node 2 and node 4 (the material fractions 1/2 and 1)."""
+    from cablesys.control.mpc import state_map
+    sc = _soft_scene(4)
+    pn = heave_problem(sc, LIMITS, dt=0.5, model="segmented")
+    pw = heave_problem(sc, LIMITS, dt=0.5, model="wang")
+    p2 = heave_problem(sc, LIMITS, dt=0.5, model="segmented", segments=2)
+    xw = state_map(pn, pw)(pn.x_rest, 0.0)
+    L = pw.x_rest[-2]
+    elastic = L + (1000.0 * L + 0.5 * 17.0 * L ** 2) / SOFT["ae"]
+    assert xw[1] == pytest.approx(elastic, rel=1e-9) and pw.x_rest[1] == pytest.approx(elastic, rel=1e-9)
+    np.testing.assert_allclose(xw, pw.x_rest, atol=1e-7)
+    x2 = state_map(pn, p2)(pn.x_rest, 0.0)
+    np.testing.assert_allclose(x2[:4], pn.x_rest[[2, 3, 6, 7]], rtol=1e-12)
+    np.testing.assert_allclose(x2, p2.x_rest, atol=1e-6 * elastic)
+    with pytest.raises(ParameterError, match="controller"):
+        state_map(pw, pn)
+
+
+def test_mpc_with_a_coarser_controller_than_the_plant():
+    """The closed loop of the issue's model mismatch: the plant the node model (N = 4, CVODES), the MPC's
+    controller Wang's 2-DOF winch (RK4): the MPC and the open-loop optimum both cut the heave against the winch
+    held still, and the record says which model ran where."""
+    from cablesys.control.mpc import compare_compensation
+    sc = _soft_scene(4).with_numerics(duration=30.0)
+    res = compare_compensation(sc, LIMITS, duration=16.0, horizon=6.0, dt=0.5, strategies=("none", "mpc"),
+                               plant_model="segmented", controller_model="wang")
+    m = res.metrics
+    assert res.success, res.message
+    assert "segmented node model" in res.stats["plant_model"] and "wang" in res.stats["controller_model"]
+    assert m["mpc"]["heave_reduction_db"] < -3.0, m["mpc"]
+    assert m["mpc"]["speed_max_m_s"] <= LIMITS.speed * (1 + 1e-6)

@@ -1,8 +1,12 @@
 """Closed-loop heave compensation against the nonlinear plant: MPC and the strategies it replaces.
 
-The plant is the winch model of the scene with ``plant_segments`` drag segments on the cable
-(Wang 1971 eq. 38-45), integrated by CVODES (:class:`.plant.Plant`); the controller's
-model has ``controller_segments`` (coarser: a model mismatch) and its own RK4 transcription.
+The plant is a winch model of the scene (``plant_model``: Wang's 2-DOF winch or the node model's winch on
+``plant_elements`` elements) with ``plant_segments`` drag segments on the cable (Wang 1971 eq. 38-45),
+integrated by CVODES (:class:`.plant.Plant`); the controller's model (``controller_model``, not finer:
+Wang's 2-DOF or a node model of fewer elements, with ``controller_segments`` drag segments) has its own RK4
+transcription, and sees the plant's state in its coordinates (:func:`state_map`): the model mismatch. The
+passive compensator is a coordinate of Wang's model only: with a node-model plant it runs on Wang's plant
+and its dB are against that plant's own uncompensated run (``metrics["passive"]["plant"]`` says so).
 Strategies, each run from rest over the same sea:
 
 - ``none``: winch still (alpha = 0);

@@ -1,7 +1,9 @@
 """Optimal heave compensation by the winch: the open-loop optimal payout for a known top motion.
 
-The problem (on the winch model of :mod:`cablesys.model.winch`, Wang's 2-DOF cable with the
-unstretched length L driven by the payout rate w, w' = alpha the control):
+The problem (on a winch model with the unstretched length L driven by the payout rate w, w' = alpha the
+control: Wang's 2-DOF cable, :mod:`cablesys.model.winch`, or the segmented node model's winch,
+:mod:`cablesys.model.segmented_winch_control`, whose no-slack floor bounds the least element tension in place
+of the 2-DOF model's F_bc):
 
     minimize   int_0^T [ (y_b - y_b0)^2 + c_T ((T_top - T_0) / T_0)^2 + c_a alpha^2 ] dt
     subject to |w| <= w_max, |alpha| <= a_max, |T_top w| <= P_max,
