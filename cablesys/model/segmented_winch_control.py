@@ -34,7 +34,7 @@ from ..errors import ParameterError
 from ..scene import Scene
 from .params import ParameterLayout
 from .segmented import build_segmented_model
-from .winch import WINCH_OUTPUTS
+from .winch import WINCH_OUTPUTS, WinchModel
 
 NODE_WINCH_OUTPUTS = WINCH_OUTPUTS + ("tension_least",)
 # the node model's output for each WINCH_OUTPUTS row (None: zero, the stroke of an absent compensator)
@@ -45,8 +45,9 @@ _FROM_NODE_MODEL = {"heave": "y_b", "heave_rate": "y_b_rate", "x_b": "x_b", "ten
 
 
 @dataclasses.dataclass(frozen=True)
-class NodeWinchModel:
-    """CasADi functions of the controlled node-model winch of one scene structure (SX, SI units; module docstring).
+class NodeWinchModel(WinchModel):
+    """CasADi functions of the controlled node-model winch of one scene structure (SX, SI units; module docstring):
+    :class:`.winch.WinchModel`'s functions and state layout on the node model.
 
     ``ode(x, v, t, p, c) -> x'``; ``outputs(x, v, t, p, c) -> y`` (labels :data:`NODE_WINCH_OUTPUTS`);
     ``accel(q, qd, e, winch, p, c) -> q''`` with e the top's exogenous vector (:data:`.signals.EXO_LABELS`) and
@@ -55,30 +56,10 @@ class NodeWinchModel:
     ``segments`` is N, the first section's elements.
     """
 
-    layout: ParameterLayout
-    q_labels: tuple
-    ode: ca.Function
-    outputs: ca.Function
-    accel: ca.Function
-    top: ca.Function
-    outputs_e: ca.Function
-    segments: int
-    compensator: bool = False
+    segments: int = 1
     output_labels: tuple = NODE_WINCH_OUTPUTS
     floor_output: str = "tension_least"
     name: str = "segmented"
-
-    @property
-    def nq(self) -> int:
-        return len(self.q_labels)
-
-    @property
-    def nx(self) -> int:
-        return 2 * self.nq + 2
-
-    @property
-    def state_labels(self) -> tuple:
-        return self.q_labels + tuple(f"{q}_rate" for q in self.q_labels) + ("length", "speed")
 
     def parameters(self, scene: Scene) -> np.ndarray:
         """The scene's parameter vector (the node model's tension law max(TENS, ...) needs no switch)."""
@@ -137,7 +118,7 @@ def build_node_winch_model(scene: Scene, *, compensator: bool = False) -> NodeWi
     ode = ca.Function("node_winch_ode", [xs, vs, ts, p, c], [xdot], ["x", "v", "t", "p", "c"], ["xdot"])
     outputs = ca.Function("node_winch_outputs", [xs, vs, ts, p, c], [out_e(xs[:nq], xs[nq:2 * nq], ex, wx, p, c)],
                           ["x", "v", "t", "p", "c"], ["y"])
-    return NodeWinchModel(layout=seg.layout, q_labels=seg.q_labels, ode=ode, outputs=outputs, accel=accel, top=top,
+    return NodeWinchModel(layout=seg.layout, compensator=False, q_labels=seg.q_labels, ode=ode, outputs=outputs, accel=accel, top=top,
                           outputs_e=out_e, segments=int(seg.segments[0]))
 
 
