@@ -196,3 +196,28 @@ def test_mpc_with_a_coarser_controller_than_the_plant():
     assert "segmented node model" in res.stats["plant_model"] and "wang" in res.stats["controller_model"]
     assert m["mpc"]["heave_reduction_db"] < -3.0, m["mpc"]
     assert m["mpc"]["speed_max_m_s"] <= LIMITS.speed * (1 + 1e-6)
+
+
+def test_control_command_names_the_models_it_ran(tmp_path):
+    """``cablesys control --model segmented --segments 4``: control.json's ``models`` name the node-model plant,
+    the Wang controller and the passive compensator's Wang plant (it has no coordinate in the node model), and the
+    passive run's dB are against that plant's own uncompensated run, not the node plant's."""
+    import argparse
+    import json
+    from cablesys.control.cli import register
+    from cablesys.scene import dump_scene
+    path = tmp_path / "soft.toml"
+    path.write_text(dump_scene(_soft_scene(4).with_numerics(duration=20.0)))
+    parser = argparse.ArgumentParser()
+    register(parser.add_subparsers(dest="command"))
+    args = parser.parse_args(["control", str(path), "--out", str(tmp_path / "out"), "--duration", "10", "--horizon",
+                              "4", "--speed", "0.2", "--model", "segmented", "--segments", "4",
+                              "--strategies", "none,passive,mpc"])
+    assert args.func(args) == 0
+    doc = json.loads((tmp_path / "out" / "control.json").read_text())
+    models = doc["models"]
+    assert "segmented node model with winch, N = 4" in models["plant"] and "as asked" in models["plant"]
+    assert models["controller"].startswith("wang 2-DOF")
+    assert models["passive_plant"].startswith("wang 2-DOF") and "compensator" in models["passive_plant"]
+    assert "NOT the model run here" in models["ladder"]          # the ladder keeps Wang for this still-water line
+    assert doc["metrics"]["passive"]["plant"].startswith("wang 2-DOF")

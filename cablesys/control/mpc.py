@@ -35,9 +35,10 @@ Strategies, each run from rest over the same sea:
   open-loop on the plant (the physical limit for these winch limits, up to the mismatch).
 
 Reported per strategy: residual body heave (rms over the statistics window, m, and in dB
-against ``none``), peak top tension and least spring force (N), time with F_bc below the
-cable's tension floor (s: slack by Wang's rule, eq. 54; the plant keeps the spring law there,
-so a slack run's later response is not that of a slack cable), largest |winch power| (W), and
+against ``none``), peak top tension and the least tension the no-slack floor bounds (N: Wang's spring force
+F_bc, the node model's least element tension), time with it below the cable's tension floor (s: slack by
+Wang's rule, eq. 54; Wang's plant keeps the spring law there, so a slack run's later response is not that of
+a slack cable; the node model's elements go slack by max(TENS, ...)), largest |winch power| (W), and
 the controller's compute time per step (s).
 """
 

@@ -382,7 +382,9 @@ class PayoutResult(ResultBase):
     ``output_labels`` (:data:`cablesys.model.winch.WINCH_OUTPUTS`) and the same for the run
     without compensation (``uncompensated``, alpha = 0). ``status`` is IPOPT's return status,
     ``violated`` the constraint that could not be met ("" when all hold), ``violations`` the
-    largest violation of each, relative to its scale (the static tension for forces).
+    largest violation of each, relative to its scale (the static tension for forces). ``tension_min_n`` is the
+    least of the tension the no-slack floor bounds (:attr:`HeaveProblem.floor_output`: Wang's F_bc, the node
+    model's least element tension), ``tension_max_n`` the largest top tension.
     """
 
     times: np.ndarray

@@ -142,7 +142,7 @@ def rest_state(model: NodeWinchModel, p, c=None, length: float | None = None) ->
     res = model.accel(qs, ca.DM.zeros(model.nq), ca.DM.zeros(7), wz, p, c)
     # Newton with a line search (KINSOL): a current bows the line far from the vertical guess
     solve = ca.rootfinder("node_rest", "kinsol", ca.Function("r", [qs], [res]),
-                          {"abstol": 1e-10, "strategy": "linesearch", "error_on_fail": False})
+                          {"abstol": 1e-8, "strategy": "linesearch", "error_on_fail": False})   # m/s^2: 1e-9 g
     qr = np.array(solve(guess)).ravel()
     if not np.all(np.isfinite(qr)) or np.max(np.abs(np.array(model.accel(qr, np.zeros(model.nq), np.zeros(7), wz,
                                                                           p, c)))) > 1e-6:
