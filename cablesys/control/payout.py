@@ -118,6 +118,10 @@ class HeaveProblem:
     # (x, alpha, E_k, p, c, w) -> (x_{k+1}, cost, g) with the parameters symbolic (sensitivities);
     # E_k = exogenous(t_k), the top motion at the interval's RK4 stage times
     interval: ca.Function = dataclasses.field(repr=False, default=None)
+    # (x, alpha, E_j, p, c, h) -> x after one RK4 step of h s, E_j = e at the step's 3 stage times; and
+    # (x, alpha, e, p, c, w) -> (cost, g) at the interval start: the kernels of a model with many substeps
+    substep: ca.Function = dataclasses.field(repr=False, default=None)
+    start: ca.Function = dataclasses.field(repr=False, default=None)
 
     @property
     def record_s(self) -> float:
@@ -181,6 +185,8 @@ class HeaveProblem:
         library per model structure serves every scene value, and the NLP's derivatives are the kernels'
         compiled forward, adjoint and forward-over-adjoint derivatives with respect to (x, alpha) only.
         In CasADi's virtual machine: ``step`` and ``stage`` (the numbers inlined, SX)."""
+        if self.substeps > SUBSTEP_KERNELS_FROM:
+            return self._substep_nlp_functions()
         kernels = interval_kernels(self.interval)
         if kernels is None or not kernels.compiled:
             return self.step, self.stage, False
@@ -191,6 +197,25 @@ class HeaveProblem:
         args = (x, u, e, ca.DM(self.p), ca.DM(self.c), w)
         step = ca.Function("step", [x, u, e], [f["ocp_step"](*args)])
         stage = ca.Function("stage", [x, u, e], f["ocp_stage"](*args))
+        return step, stage, True
+
+    def _substep_nlp_functions(self):
+        """:meth:`nlp_functions` from one compiled RK4 step called ``substeps`` times (:func:`substep_kernels`):
+        the C of a whole interval of the node model's stiff steps is too large to compile (54 MB at N = 4 with
+        11 steps), one step's is a substeps-th of it."""
+        kernels = substep_kernels(self.substep, self.start)
+        if kernels is None or not kernels.compiled:
+            return self.step, self.stage, False
+        f = kernels.functions
+        nx, ne = self.model.nx, self.step.size1_in(2)
+        x, u, e = ca.MX.sym("x", nx), ca.MX.sym("u"), ca.MX.sym("E", ne)
+        p, c, h = ca.DM(self.p), ca.DM(self.c), self.dt / self.substeps
+        w = ca.DM([self.heave_rest, self.static_tension, self.tension_weight, self.control_weight, self.dt])
+        xn = x
+        for i in range(self.substeps):
+            xn = f["ocp_rk4"](xn, u, e[7 * 2 * i: 7 * (2 * i + 3)], p, c, h)
+        step = ca.Function("step", [x, u, e], [xn])
+        stage = ca.Function("stage", [x, u, e], f["ocp_start"](x, u, e[:7], p, c, w))
         return step, stage, True
 
     def scales(self):
@@ -285,47 +310,35 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
                                                    f"{math.ceil(dt * lam / RK4_STABILITY)}")
     floor, wl = limits.band(scene, y_rest["tension_top"])
     T0 = y_rest["tension_top"]
-    step, stage, interval = _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, control_weight)
+    step, stage, interval, substep, start = _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight,
+                                                                control_weight)
     return HeaveProblem(scene=scene, model=model, p=p, c=c, x_rest=x_rest, limits=limits, floor=floor,
                         working_load=wl, static_tension=T0, heave_rest=y_rest["heave"], dt=float(dt),
                         substeps=substeps, tension_weight=float(tension_weight),
                         control_weight=float(control_weight), step=step, stage=stage,
-                        interval=interval)
+                        interval=interval, substep=substep, start=start)
 
 
 
 def _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, control_weight):
-    """(step, stage, interval) of one control interval; step and stage are SX functions of (x, alpha, E_k)
-    with the numbers inlined.
+    """(step, stage, interval, substep, start) of one control interval; step and stage are SX functions of
+    (x, alpha, E_k) with the numbers inlined; substep and start those of :func:`_substep_functions`.
 
     ``interval(x, u, E, p, c, w) -> (x_next, cost, g)``: ``substeps`` classical RK4 steps of the
     winch ODE with alpha = u constant and the top motion read from E (:meth:`HeaveProblem.exogenous`:
     e at the 2 substeps + 1 stage times), the stage cost at the interval start and the path outputs
     (:data:`G_ROWS`); w = (heave at rest, T_0, c_T, c_a, dt).
     """
-    nq, ne = model.nq, 7
+    ne = 7
+    substep, start = _substep_functions(model, len(p), len(c))
     xs, uk = ca.SX.sym("x", model.nx), ca.SX.sym("u")
     Es = ca.SX.sym("E", ne * (2 * substeps + 1))
     ps, cs, ws = ca.SX.sym("p", len(p)), ca.SX.sym("c", len(c)), ca.SX.sym("w", 5)
-    e_at = lambda j: Es[ne * j: ne * (j + 1)]
-    winch = lambda x: ca.vertcat(x[2 * nq], x[2 * nq + 1], uk, 0.0)      # (L, w, alpha, F_a)
-
-    def f(x, j):                                    # the winch ODE (model.ode) at stage time j
-        qdd = model.accel(x[:nq], x[nq:2 * nq], e_at(j), winch(x), ps, cs)
-        return ca.vertcat(x[nq:2 * nq], qdd, x[2 * nq + 1], uk)
     h = ws[4] / substeps
     x = xs
-    for i in range(substeps):                       # classical RK4
-        k1 = f(x, 2 * i)
-        k2 = f(x + h / 2 * k1, 2 * i + 1)
-        k3 = f(x + h / 2 * k2, 2 * i + 1)
-        k4 = f(x + h * k3, 2 * i + 2)
-        x = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-    y = model.outputs_e(xs[:nq], xs[nq:2 * nq], e_at(0), winch(xs), ps, cs)
-    oi = output_labels(model).index
-    cost = ws[4] * ((y[oi("heave")] - ws[0]) ** 2 + ws[2] * ((y[oi("tension_top")] - ws[1]) / ws[1]) ** 2
-                    + ws[3] * uk ** 2)
-    g = ca.vertcat(*(y[oi(floor_output(model) if name == "tension_floor" else name)] for name in G_ROWS))
+    for i in range(substeps):                       # classical RK4, the top at its stage times 2i, 2i+1, 2i+2
+        x = substep(x, uk, Es[ne * 2 * i: ne * (2 * i + 3)], ps, cs, h)
+    cost, g = start(xs, uk, Es[:ne], ps, cs, ws)
     interval = ca.Function("interval", [xs, uk, Es, ps, cs, ws], [x, cost, g],
                            ["x", "u", "E", "p", "c", "w"], ["xn", "cost", "g"])
     w = ca.DM([y_rest["heave"], y_rest["tension_top"], tension_weight, control_weight, dt])
@@ -333,7 +346,60 @@ def _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, contr
     xn, cost, g = interval(xa, ua, ra, ca.DM(p), ca.DM(c), w)
     step = ca.Function("step", [xa, ua, ra], [xn])
     stage = ca.Function("stage", [xa, ua, ra], [cost, g])
-    return step, stage, interval
+    return step, stage, interval, substep, start
+
+
+def _substep_functions(model, n_p: int, n_c: int):
+    """(substep, start): one classical RK4 step ``(x, u, E_j, p, c, h) -> x_next`` of the winch ODE with alpha
+    = u and the top at the step's 3 stage times (E_j, 21 rows), and the stage cost and path outputs at the
+    interval start ``(x, u, e, p, c, w) -> (cost, g)``, as in :func:`_interval_functions`."""
+    nq, ne = model.nq, 7
+    x, u, E = ca.SX.sym("x", model.nx), ca.SX.sym("u"), ca.SX.sym("E", 3 * ne)
+    p, c, h, w = ca.SX.sym("p", n_p), ca.SX.sym("c", n_c), ca.SX.sym("h"), ca.SX.sym("w", 5)
+
+    def f(xx, j):
+        qdd = model.accel(xx[:nq], xx[nq:2 * nq], E[ne * j: ne * (j + 1)],
+                          ca.vertcat(xx[2 * nq], xx[2 * nq + 1], u, 0.0), p, c)
+        return ca.vertcat(xx[nq:2 * nq], qdd, xx[2 * nq + 1], u)
+    k1 = f(x, 0)
+    k2 = f(x + h / 2 * k1, 1)
+    k3 = f(x + h / 2 * k2, 1)
+    k4 = f(x + h * k3, 2)
+    names = ["x", "u", "E", "p", "c"]
+    substep = ca.Function("ocp_rk4", [x, u, E, p, c, h], [x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)], names + ["h"], ["xn"])
+    e0 = ca.SX.sym("e", ne)
+    y = model.outputs_e(x[:nq], x[nq:2 * nq], e0, ca.vertcat(x[2 * nq], x[2 * nq + 1], u, 0.0), p, c)
+    oi = output_labels(model).index
+    cost = w[4] * ((y[oi("heave")] - w[0]) ** 2 + w[2] * ((y[oi("tension_top")] - w[1]) / w[1]) ** 2 + w[3] * u ** 2)
+    g = ca.vertcat(*(y[oi(floor_output(model) if name == "tension_floor" else name)] for name in G_ROWS))
+    start = ca.Function("ocp_start", [x, u, e0, p, c, w], [cost, g], ["x", "u", "e", "p", "c", "w"], ["cost", "g"])
+    return substep, start
+
+
+# more RK4 steps per interval than this: the NLP calls one compiled step kernel per step (HeaveProblem.
+# _substep_nlp_functions) instead of one kernel of the whole interval, whose C grows with the steps
+SUBSTEP_KERNELS_FROM = 4
+
+
+def substep_kernels(substep: ca.Function, start: ca.Function):
+    """The compiled ``ocp_rk4`` and ``ocp_start`` of :func:`_substep_functions`, each with its forward, adjoint
+    and forward-over-adjoint derivatives with respect to (x, u), as :func:`interval_kernels`; None when nothing
+    is compiled."""
+    if not compiles():
+        return None
+    key = digest(substep.serialize() + start.serialize())
+    return _KERNELS.get(key) or _compiled_kernels(
+        key, state_derivatives(substep, ("x", "u")) + state_derivatives(start, ("x", "u")))
+
+
+def _compiled_kernels(key, functions):
+    """``functions`` compiled (:data:`KERNEL_OPTIMIZATION`) and kept under ``key`` in the KERNELS_KEPT cache."""
+    kernels = compile_functions(functions, jacobians=False, optimization=KERNEL_OPTIMIZATION)
+    if kernels.compiled:
+        while len(_KERNELS) >= KERNELS_KEPT:
+            _KERNELS.pop(next(iter(_KERNELS)))       # the oldest first (dicts keep insertion order)
+        _KERNELS[key] = kernels
+    return kernels
 
 
 # optimization flag of the kernels (see interval_kernels)
@@ -365,11 +431,7 @@ def interval_kernels(interval: ca.Function):
         stage = ca.Function("ocp_stage", [x, u, e, p, c, w], [cost, g], names, ["cost", "g"])
         functions = state_derivatives(step, ("x", "u")) + state_derivatives(stage, ("x", "u"))
         # -O1: Hessians as fast as at -O2 for a fraction of its compile; -O0 compiles sooner with slower Hessians
-        kernels = compile_functions(functions, jacobians=False, optimization=KERNEL_OPTIMIZATION)
-        if kernels.compiled:
-            while len(_KERNELS) >= KERNELS_KEPT:
-                _KERNELS.pop(next(iter(_KERNELS)))       # the oldest first (dicts keep insertion order)
-            _KERNELS[key] = kernels
+        kernels = _compiled_kernels(key, functions)
     return kernels
 
 
