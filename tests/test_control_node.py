@@ -219,7 +219,7 @@ def test_control_command_names_the_models_it_ran(tmp_path):
     assert "segmented node model with winch, N = 4" in models["plant"] and "as asked" in models["plant"]
     assert models["controller"].startswith("wang 2-DOF")
     assert models["passive_plant"].startswith("wang 2-DOF") and "compensator" in models["passive_plant"]
-    assert "NOT the model run here" in models["ladder"]          # the ladder keeps Wang for this still-water line
+    assert "NOT the control's model" in models["ladder"]          # the ladder keeps Wang for this still-water line
     assert doc["metrics"]["passive"]["plant"].startswith("wang 2-DOF")
 
 

@@ -157,13 +157,14 @@ def plant_choice(scene, model: str, segments):
 
 
 def _ladder(scene, plant: str = "wang") -> dict:
-    """What the model ladder would run for the uncompensated scene, and why, against the control's plant."""
+    """What the model ladder would run for the uncompensated scene, and why, against the control's model (the
+    plant's in ``cablesys control``, the design's with ``--design``)."""
     out = {}
     choice = _ladder_choice(scene)
     seg = f", N = {choice.segments}" if choice.segments > 1 else ""
     agree = (choice.name == "wang") == plant.startswith("wang")
     out["ladder"] = (f"{choice.name}{seg} for the uncompensated scene"
-                     + (": the model run here" if agree else ": NOT the model run here, whose results then carry "
+                     + (": the control's model" if agree else ": NOT the control's model, whose results then carry "
                         "that model's error") + f" ({choice.reason.split('; ')[0]})")
     out["ladder_choice"] = choice.as_dict()
     return out
