@@ -50,6 +50,11 @@ QUANTITIES = {
     "phi_z": ("rad", "cable angle out of the x-y plane"), "phi_z_rate": ("rad/s", "out-of-plane angular rate"),
     "z_b": ("m", "body sway position"), "z_b_rate": ("m/s", "body sway velocity"),
     "z_s": ("m", "top (ship) sway motion"),
+    # a rigid, pitching body (model/rigid_body.py): x_b, y_b are its attachment point
+    "theta_b": ("rad", "body pitch (x towards y) from its body axes along x, y"),
+    "theta_b_rate": ("rad/s", "body pitch rate"),
+    "x_cg": ("m", "body centre of gravity, horizontal position"), "x_cg_rate": ("m/s", "body centre of gravity, horizontal velocity"),
+    "y_cg": ("m", "body centre of gravity, vertical position"), "y_cg_rate": ("m/s", "body centre of gravity, vertical velocity"),
     # the winch at the top of the first section (model/segmented_winch.py)
     "winch_length": ("m", "zero-tension length of the first section (paid out by the winch)"),
     "winch_speed": ("m/s", "winch payout speed (+ pays out)"),

@@ -156,3 +156,17 @@ y = {v}
     assert st.outputs["tension_top"] == pytest.approx(w * a * math.cosh(x0 / a), rel=2e-3)
     low = max(st.q.reshape(-1, 3 if sway else 2)[:, 1])                      # the sag below the top (y down)
     assert low == pytest.approx(a * (math.cosh(x0 / a) - 1.0), rel=2e-3)
+
+
+def test_a_moored_run_names_the_anchor_end_as_the_anchor(tmp_path, capsys):
+    """The last section's lower end is the anchor: the run's console line and figure call its tension the anchor's,
+    not the body's (the 'body' of that section only loads the anchor)."""
+    from cablesys.cli import main
+    scene = E.mooring_scene(8, 250.0, duration=4.0, output_step=0.5)
+    f = tmp_path / "moor.toml"
+    f.write_text(dump_scene(scene))
+    assert main(["run", str(f), "--out", str(tmp_path / "out")]) == 0
+    printed = capsys.readouterr().out
+    assert "tension at the anchor min/max" in printed and "tension at the body" not in printed
+    import json
+    assert json.loads((tmp_path / "out" / "summary.json").read_text())["tension_bottom_at"] == "at the anchor"

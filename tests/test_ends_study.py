@@ -22,5 +22,8 @@ def test_ends_checks_quick(run_study):
     assert [r["mode_type"] for r in t3] == list("OAOSOAOSO")
     assert all(a["omega_rad_s"] < b["omega_rad_s"] for a, b in zip(t3, t3[1:]))
     assert res["slack_table3_modes_inside_band"] is None and "slack_table3_modes_inside_band" in res["held_out"]
-    for key in ("lowering_tension_rel_err", "payout_mass_rel_err", "span_decay_vs_modes_max_rel_err"):
-        assert res[key] is None and key in res["not_built"]
+    # lowering at constant speed: weight less body and cable drag (a 20-25 % share), the issue's 0.5 %
+    assert res["lowering_tension_rel_err"] < 5e-4 and res["lowering"]["drag_share"] > 0.15
+    assert res["payout_mass_rel_err"] < 1e-9
+    # a span's free decay in water: the time series' frequencies are the linear modes' (the issue: 1 %)
+    assert res["span_decay_vs_modes_max_rel_err"] < 1e-3

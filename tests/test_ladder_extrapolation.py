@@ -17,6 +17,7 @@ import pytest
 
 import cablesys
 from cablesys.ladder import RungCache, metrics, simulate
+from cablesys.ladder import estimate as est
 from cablesys.ladder import extrapolation as X
 from cablesys.ladder import richardson as R
 from cablesys.ladder.choice import choose
@@ -61,6 +62,46 @@ def test_remainder_estimate_is_exact_on_a_second_order_remainder():
     actual = metrics.errors(block["statistics"], LIMIT)
     for k in ("body", "tension"):
         assert block["estimated_error"][k] == pytest.approx(actual[k], rel=0.01)
+
+
+def test_per_quantity_statement_is_exact_on_a_second_order_remainder():
+    """The same closed form per number (means included): each extrapolated number's stated error, relative to its
+    own value (metrics.quantity_errors' floors), is its actual error; an exact limit states the resolution floor."""
+    keys = KEYS + ("x_b_mean", "y_b_mean")
+    lim = dict(LIMIT, x_b_mean=12.0, y_b_mean=58.0)
+    a = dict(zip(keys, (0.0, 2.0, 9.0e4, -4.0e3, 6.0e4, 900.0, 8.0, -3.0)))
+    b = dict(zip(keys, (0.0, -4.0, 1.8e5, 8.0e3, -1.2e5, 1.8e3, -16.0, 6.0)))
+    seq = {n: {k: lim[k] + a[k] / n + b[k] / n**2 for k in keys} for n in (8, 16, 32)}
+    block = R.extrapolate(seq, 32)
+    per, actual = block["estimated_error_per_quantity"], metrics.quantity_errors(block["statistics"], lim)
+    assert set(per) == set(keys)
+    for k in keys[1:]:
+        assert actual[k] > 1e-4 and per[k] == pytest.approx(actual[k], rel=0.01), k     # relative to L(N), not f*
+    assert per["x_b_amplitude"] == est.RESOLUTION and actual["x_b_amplitude"] < 1e-12
+    # the N run's own per number: |f(N) - L(N)| relative, the first-order estimate of its error
+    ts = block["time_series_error_per_quantity"]
+    assert ts["x_b_mean"] == pytest.approx(abs(seq[32]["x_b_mean"] - seq[16]["x_b_mean"]) / block["statistics"]["x_b_mean"],
+                                           rel=1e-9)
+
+
+def test_a_number_outside_the_order_range_states_its_whole_difference():
+    """Leading numbers first order (asymptotic), one tension minimum not (f(N/4) > f(N/2) < f(N): observed order
+    below the range): its own statement is the whole difference of the two limits, at least the correction, not the
+    remainder estimate the leading numbers earn."""
+    a = dict(zip(KEYS, (0.0, 2.0, 9.0e4, 0.0, 6.0e4, 900.0)))
+    seq = _sequence(a, dict.fromkeys(KEYS, 0.0))
+    for n, v in zip((8, 16, 32), (1400.0, 1200.0, 1670.0)):
+        seq[n]["tension_top_min"] = v
+    block = R.extrapolate(seq, 32)
+    assert block["asymptotic"] and block["observed_order"]["tension_top_min"] < R.ORDER_RANGE[0]
+    fine, coarse = block["statistics"], block["statistics_coarse"]
+    assert fine["tension_top_min"] == pytest.approx(2 * 1670.0 - 1200.0)
+    floor = metrics.TENSION_FLOOR_FRACTION * fine["tension_top_max"]
+    whole = abs(coarse["tension_top_min"] - fine["tension_top_min"]) / max(fine["tension_top_min"], floor)
+    corr = abs(1670.0 - fine["tension_top_min"]) / max(fine["tension_top_min"], floor)
+    assert block["estimated_error_per_quantity"]["tension_top_min"] == pytest.approx(max(whole, corr))
+    # the leading numbers keep the remainder estimate (their differences are exactly first order: their limit's)
+    assert block["estimated_error_per_quantity"]["tension_top_max"] == est.RESOLUTION
 
 
 def test_not_asymptotic_states_the_whole_difference_and_floors_tension_minima():

@@ -283,6 +283,8 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
         result = dataclasses.replace(result, window_s=(float(start), float(result.time[-1])))
     summary = result.summary()
     summary.pop("status", None)
+    # where the last section's tension_bottom acts: its body, or the anchor that holds its lower end
+    summary["tension_bottom_at"] = "at the anchor" if scene.anchor is not None else "at the body"
     st = result.stats
     summary["timing"] = {k: float(st.get(k, 0.0)) for k in ("build_s", "load_s", "run_s")}
     if "ladder_timing" in st and "run_s" not in st:     # the frequency rung: no time-domain run, the ladder's times
@@ -308,7 +310,7 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
     if plot and result.time.size > 1:
         from ..plots.time_domain import plot_time_series
         with out.writing("timeseries.png") as tmp:
-            plot_time_series(result, tmp, units=units, limits=scene.limits,
+            plot_time_series(result, tmp, units=units, limits=scene.limits, anchored=scene.anchor is not None,
                              window_start=summary["statistics"]["window_s"][0])
     return summary
 
@@ -328,7 +330,8 @@ def _print_summary(summary: dict, units: str = "SI") -> None:
         for k, v in summary.get(f"amplitudes_{unit}", {}).items():
             print(f"  amplitude {k:14s} {v * f:.6g} {name}")
     fn, name_n = output_unit("N", units)
-    for end, what in (("top", "at the top"), ("bottom", "at the body")):   # the same meaning for every model
+    bottom = summary.get("tension_bottom_at", "at the body")
+    for end, what in (("top", "at the top"), ("bottom", bottom)):   # the same meaning for every model
         lo, hi = summary.get(f"tension_{end}_min_N"), summary.get(f"tension_{end}_max_N")
         if lo is not None and hi is not None:
             print(f"  tension {what} min/max {lo * fn:.4g} / {hi * fn:.4g} {name_n} (over the run)")

@@ -542,7 +542,8 @@ def describe(choice_dict: dict, fmt, seg: str) -> str:
 
 def model_dict(choice) -> dict:
     """``choice.as_dict()`` with, after an extrapolation, ``extrapolated`` (the block of :func:`extrapolate`),
-    ``estimated_error_time_series`` (the N run's own estimated error) and ``estimated_error_refers_to``."""
+    ``estimated_error_time_series`` (the N run's own estimated error), ``estimated_error_per_quantity`` (each
+    extrapolated number's) and ``estimated_error_refers_to``."""
     d = choice.as_dict()
     per = choice.numbers.get("per_quantity")
     d["checked"] = ("a posteriori: N = {0} against N = {1}".format(choice.numbers["checked_n"], choice.numbers["checked_n"] // 2)
@@ -561,6 +562,8 @@ def model_dict(choice) -> dict:
     if block is not None:
         d.update(estimated_error_refers_to="the extrapolated statistics (model.extrapolated.statistics)",
                  estimated_error_time_series=dict(block["time_series_error"]), extrapolated=block)
+        if "estimated_error_per_quantity" in block:     # each extrapolated number's own (richardson.extrapolate)
+            d["estimated_error_per_quantity"] = {k: float(v) for k, v in block["estimated_error_per_quantity"].items()}
     return d
 
 

@@ -18,6 +18,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..scene import Scene
 from ..scene.labels import section_prefix, section_suffix  # noqa: F401 (re-exported for the model modules)
+from ..scene.components import RIGID_FIELDS
 
 _CABLE = ("length", "tension_ref", "ae", "diameter", "mass_per_length", "weight_per_length",
           "thinning_ratio", "added_mass_factor", "cd_normal", "ct_tangential", "internal_damping",
@@ -51,7 +52,10 @@ def structure_of(scene: Scene) -> tuple:
             tuple(s.cable.segments for s in scene.sections)) + _ends_structure(scene) + (
             # Wang's cable in 3-D (stretch and two angles): one more entry, only then, so that a
             # planar scene keeps its structure key
-            (("3d", len(top.z)),) if scene.three_d else ())
+            (("3d", len(top.z)),) if scene.three_d else ()) + (
+            # rigid (pitching) bodies add a coordinate each: only then an entry (model/rigid_body.py)
+            (("rigid", tuple(s.body.is_rigid for s in scene.sections)),)
+            if any(s.body.is_rigid for s in scene.sections) else ())
 
 
 _ANCHOR = ("x", "y")
@@ -95,6 +99,8 @@ def parameter_items(scene: Scene) -> list[tuple[str, float]]:
             items.append((f"{pre}body.{name}", float(v)))
         if scene.three_d:
             items.append((f"{pre}body.mass_z", float(s.body.virtual_mass_z)))
+        if s.body.is_rigid:              # a pitching body's inertia, offsets, buoyancy, damping (model/rigid_body.py)
+            items += [(f"{pre}body.{name}", s.body.rigid(name)) for name in RIGID_FIELDS]
         items.append((f"{pre}slack", 0.0))          # 1 while the section is slack (set by the simulator)
     env = scene.environment
     items += [(f"environment.{k}", float(getattr(env, k))) for k in _ENV]

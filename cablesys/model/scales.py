@@ -15,7 +15,8 @@ compiled DAE serves every parameter value of a structure. Per model kind (``mode
   highest forcing frequency (the top's sinusoids; without any, the pendulum frequency sqrt(g / L)).
 - ``quasi-static``: the angles of the same (the stretch is not a state).
 - ``segmented``: the node positions by one element's static stretch T h / AE, the rates by the
-  top's speed or the element's own axial speed, whichever is larger.
+  top's speed or the element's own axial speed, whichever is larger; a rigid body's pitch by
+  ANGLE_SCALE_MIN, its rate by that times the last section's speed / stretch.
 
 T_i is the section's ``tension_ref`` when set, else W_b + w L / 2 (its body and half its cable).
 """
@@ -111,8 +112,11 @@ def _segmented_scales(model) -> ca.SX:
         omega_e = ca.sqrt(p[lay.section_index(i, "cable.ae")] / (p[lay.section_index(i, "cable.mass_per_length")] * h**2))
         pos += [delta] * (getattr(model, "dim", 2) * n_el)  # x[j], y[j] (z[j] in 3-D) of the section's nodes
         speed = ca.fmax(speed, delta * omega_e)
-    pos = pos[: model.nq]                                    # an anchored line's fixed last node is no state
-    return ca.vertcat(*pos, ca.repmat(speed, len(pos), 1))
+    pos = pos[: model.nq - getattr(model, "n_rotations", 0)]   # an anchored line's fixed last node is no state
+    rates = [speed] * len(pos)
+    # a rigid body's pitch (rad) by ANGLE_SCALE_MIN, its rate by that times the element's frequency speed / delta
+    n_rot = getattr(model, "n_rotations", 0)
+    return ca.vertcat(*pos, *([ANGLE_SCALE_MIN] * n_rot), *rates, *([ANGLE_SCALE_MIN * speed / delta] * n_rot))
 
 
 # the scale provider of each model kind (``model.kind``): model -> SX (2 nq,) in p

@@ -43,6 +43,14 @@ planar equations (2 x 2 blocks); both have the mapped kernel (:mod:`.segmented_k
 model has no seabed yet. Outputs add Wang's 3-D
 ``phi_z``, ``phi_z_rate``, ``z_b``, ``z_b_rate`` per section and the profile ``node_z[j]``.
 
+A rigid body (``body.pitch_inertia`` set; Wang 1971 p. 32, body rotation "where the body is fairly large
+and the cable is not attached to the center of mass") pitches in the plane: its node is the cable's
+attachment point and its pitch ``theta_b`` one more coordinate (q labels after the nodes, ``theta_b`` or
+``theta_b_<i>``), node and pitch sharing one 3 x 3 mass block; its kinetic and potential energy and
+generalized forces are in :mod:`.rigid_body`. Outputs add ``theta_b``, ``theta_b_rate``, ``x_cg``,
+``x_cg_rate``, ``y_cg``, ``y_cg_rate`` per rigid body (``x_b``, ``y_b`` stay the attachment point). Such scenes
+evaluate the element-by-element ``ode`` (no mapped kernel).
+
 The element's terms are in :mod:`.segmented_element` (shared with the mapped kernel of
 :mod:`.segmented_kernel`). The inertia terms come from the Lagrangian by AD, element by element
 (:func:`.segmented_element.element_inertia`), gravity from eq. 15; tension and drag are
@@ -60,6 +68,7 @@ from ..errors import ParameterError
 from ..scene import Scene
 from .cable_model import CableModel
 from .params import ParameterLayout, environment_symbols, section_prefix
+from .rigid_body import RigidParameters, planar_rigid_body
 from .section import SectionParameters
 from .segmented_element import block_solve, body_drag, dot, element_inertia, element_terms, lump_force, lump_kinetic, norm
 from .segmented_kernel import kernel_ode
@@ -73,6 +82,8 @@ NODE_PROFILES = ("node_x", "node_y")
 # a section's outputs in 3-D besides the planar ones: the chord's angle out of the x-y plane (rad) and its
 # rate, the body's sway z_b (m, from the top's mean position) and its rate (the names of Wang's 3-D model)
 OUTPUTS_3D = ("phi_z", "phi_z_rate", "z_b", "z_b_rate")
+# a rigid body's outputs (model/rigid_body.py): pitch theta_b (rad) and its rate, the CG's x, y (m) and rates
+RIGID_OUTPUTS = ("theta_b", "theta_b_rate", "x_cg", "x_cg_rate", "y_cg", "y_cg_rate")
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -97,6 +108,7 @@ class SegmentedModel(CableModel):
     name: str = "segmented"
     kind: str = "segmented"                  # the model-ladder rung (integrators cap BDF at order 2 for it)
     dim: int = 2                              # coordinates per node: 2 (x, y) in the plane, 3 (x, y, z) in space
+    n_rotations: int = 0                      # pitch angles theta_b of rigid bodies, after the node coordinates in q
 
     @property
     def n_elements(self) -> int:
@@ -177,8 +189,12 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     if dim == 3 and scene.seabed is not None:
         raise ParameterError("seabed", "set", "must be unset in a 3-D scene: the node model's seabed is planar so far")
     axes = ("x", "y", "z")[:dim]
-    q_labels = tuple(f"{c}[{j}]" for j in range(1, n_free + 1) for c in axes)
-    q, qd = ca.SX.sym("q", dim * n_free), ca.SX.sym("qd", dim * n_free)
+    sfx = (lambda i: "") if n_sec == 1 else (lambda i: f"_{i + 1}")
+    # a rigid body's pitch theta_b (model/rigid_body.py) is one more coordinate, after the nodes
+    rigid = [i for i, s in enumerate(scene.sections) if s.body.is_rigid]
+    n_rot = len(rigid)
+    q_labels = tuple(f"{c}[{j}]" for j in range(1, n_free + 1) for c in axes) + tuple(f"theta_b{sfx(i)}" for i in rigid)
+    q, qd = ca.SX.sym("q", dim * n_free + n_rot), ca.SX.sym("qd", dim * n_free + n_rot)
     e = ca.SX.sym("e", len(EXO_LABELS_3D if dim == 3 else EXO_LABELS))
     t, z, zd, zdd = e[0], e[1:1 + dim], e[1 + dim:1 + 2 * dim], e[1 + 2 * dim:1 + 3 * dim]
     env = environment_symbols(layout, scene)          # Wang 1971 eq. 26-28 inputs
@@ -198,6 +214,7 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     F_inertia = [ca.SX.zeros(dim, 1) for _ in range(n_nodes + 1)]   # inertial forces of the added mass
     weights = [0.0] * (n_nodes + 1)
     sections, elements = [], []
+    V_rigid, rigid_terms = 0.0, {}       # rigid bodies: energy; node -> (3 x 3 M, f, index of theta in q)
     j0 = 0
     for i, sec in enumerate(scene.sections):
         P = SectionParameters.from_layout(layout, section_prefix(n_sec, i), sec.body.is_sphere, dim == 3)
@@ -233,14 +250,23 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
             els.append(el)
         jb = j0 + n_el                                         # the body's node
         rb, vb = node_r[jb], node_v[jb]
-        masses = (P.m_bx, P.m_by) + ((P.m_bz,) if dim == 3 else ())   # eq. 16; M_bvz in space
-        K += 0.5 * sum((masses[c] * vb[c] ** 2 for c in range(2, dim)), P.m_bx * vb[0] ** 2 + P.m_by * vb[1] ** 2)
-        M_nodes[jb] = M_nodes[jb] + ca.diag(ca.vertcat(*masses))
-        weights[jb] += P.w_b
-        D_b = body_drag(P, rho, rb, vb, t, env, depth0)        # eq. 32-35
-        for c in range(dim):
-            Q[jb][c] += D_b[c]
-        sections.append(dict(P=P, top=j0, body=jb, elements=els, body_drag=D_b, pay=pay))
+        sec_d = dict(P=P, top=j0, body=jb, elements=els, pay=pay)
+        if i in rigid:                                         # a pitching body (rigid_body.py)
+            k = dim * n_free + rigid.index(i)
+            Mb, fb, Kb, Vb, r_cg, v_cg = planar_rigid_body(P, RigidParameters.from_layout(
+                layout, section_prefix(n_sec, i)), p, rho, t, env, depth0)(ca.vertcat(*rb), ca.vertcat(*vb), q[k], qd[k], p, t)
+            K, V_rigid = K + Kb, V_rigid + Vb
+            rigid_terms[jb] = (Mb, fb, k)
+            sec_d.update(theta=(q[k], qd[k]), cg=(r_cg, v_cg))
+        else:
+            masses = (P.m_bx, P.m_by) + ((P.m_bz,) if dim == 3 else ())   # eq. 16; M_bvz in space
+            K += 0.5 * sum((masses[c] * vb[c] ** 2 for c in range(2, dim)), P.m_bx * vb[0] ** 2 + P.m_by * vb[1] ** 2)
+            M_nodes[jb] = M_nodes[jb] + ca.diag(ca.vertcat(*masses))
+            weights[jb] += P.w_b
+            D_b = body_drag(P, rho, rb, vb, t, env, depth0)        # eq. 32-35
+            for c in range(dim):
+                Q[jb][c] += D_b[c]
+        sections.append(sec_d)
         elements += els
         j0 = jb
     V_grav = -sum(w * r[1] for w, r in zip(weights, node_r))   # eq. 15 with y down
@@ -259,22 +285,38 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     f_static = ca.vertcat(*[F_inertia[j] + ca.vertcat(Q_static[j][0], Q_static[j][1] + weights[j], *Q_static[j][2:])
                             for j in range(1, n_free + 1)])
     M, f = ca.diagcat(*blocks), ca.vertcat(*f_nodes)
+    if n_rot:       # a rigid body's node and its theta share one 3 x 3 block (rigid_body.py)
+        M = ca.diagcat(M, ca.SX.zeros(n_rot, n_rot))
+        f = ca.vertcat(f, ca.SX.zeros(n_rot))
+        f_static = ca.vertcat(f_static, ca.SX.zeros(n_rot))
+        for jb, (Mb, fb, k) in rigid_terms.items():
+            rows = [dim * (jb - 1), dim * (jb - 1) + 1, k]
+            for a in range(3):
+                f[rows[a]] += fb[a]
+                f_static[rows[a]] += fb[a]
+                for b in range(3):
+                    M[rows[a], rows[b]] += Mb[a, b]
 
-    # q'' node by node: M is block diagonal (dim x dim per node); solve each block in closed form
+    # q'' node by node: M is block diagonal (dim x dim per node; 3 x 3 for a rigid body's node and theta):
+    # solve each block in closed form
     acc_nodes = [tuple(zdd[c] for c in range(dim))]
-    acc = []
+    acc, acc_rot = [], [0.0] * n_rot
     for j in range(n_free):
-        a_j = block_solve(blocks[j], f_nodes[j])
+        if j + 1 in rigid_terms:
+            Mb, fb, k = rigid_terms[j + 1]
+            a3 = block_solve(ca.diagcat(blocks[j], ca.SX.zeros(1, 1)) + Mb, ca.vertcat(f_nodes[j], 0.0) + fb)
+            a_j, acc_rot[k - dim * n_free] = a3[:2], a3[2]
+        else:
+            a_j = block_solve(blocks[j], f_nodes[j])
         acc += list(a_j)
         acc_nodes.append(a_j)
-    acc = ca.vertcat(*acc)
+    acc = ca.vertcat(*acc, *acc_rot)
     if anchored:
         acc_nodes.append((0.0,) * dim)
 
     x = ca.vertcat(q, qd)
     xdot = ca.vertcat(qd, acc)
     out, labels = [], []
-    sfx = (lambda i: "") if n_sec == 1 else (lambda i: f"_{i + 1}")
     for i, s in enumerate(sections):
         P, els = s["P"], s["elements"]
         rt, vt_, rb, vb = node_r[s["top"]], node_v[s["top"]], node_r[s["body"]], node_v[s["body"]]
@@ -308,6 +350,10 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
             lpd = (chord[0] * chord_v[0] + chord[1] * chord_v[1]) / lp
             out += [ca.atan2(chord[2], lp), (lp * chord_v[2] - chord[2] * lpd) / lc**2, rb[2], vb[2]]
             labels += [f"{name}{sfx(i)}" for name in OUTPUTS_3D]
+        if "theta" in s:      # the rigid body's pitch (rad, +x towards +y) and rate, its CG (m) and CG velocity
+            (th, thd), (r_cg, v_cg) = s["theta"], s["cg"]
+            out += [th, thd, r_cg[0], v_cg[0], r_cg[1], v_cg[1]]
+            labels += [f"{name}{sfx(i)}" for name in RIGID_OUTPUTS]
     if sections[0].get("pay") is not None:     # the winch: L, w, alpha and the power T_top w (segmented_winch.py)
         pay = sections[0]["pay"]
         out += [pay.L, pay.w, pay.alpha, out[OUTPUT_NAMES.index("tension_top")] * pay.w]
@@ -344,23 +390,24 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     accel = ca.Function("accel", [q, qd, e, p, *zi], [acc], ["q", "qd", "e", "p", *zn], ["qdd"])
     top = top_motion_function(scene, layout)
     S = symbolic_type(scene)
-    nq = dim * n_free
+    nq = dim * n_free + n_rot
     xs, ts, ps = S.sym("x", 2 * nq), S.sym("t"), S.sym("p", p.shape[0])
     zs = [S.sym("winch", 3)] if winch_input is not None else []
     ode = ca.Function("ode", [xs, ts, ps, *zs], [ca.vertcat(xs[nq:], accel(xs[:nq], xs[nq:], top(ts, ps), ps, *zs))],
                       ["x", "t", "p", *zn], ["xdot"])
     outputs = ca.Function("outputs", [x, e, p, *zi], [ca.vertcat(*out)], ["x", "e", "p", *zn], ["y"])
-    energy = ca.Function("energy", [x, e, p, *zi], [K, V_grav + V_strain + V_contact], ["x", "e", "p", *zn], ["K", "V"])
+    energy = ca.Function("energy", [x, e, p, *zi], [K, V_grav + V_strain + V_contact + V_rigid], ["x", "e", "p", *zn],
+                         ["K", "V"])
     cable_force = ca.Function("cable_force", [x, p], [ca.SX(0, 1)], ["x", "p"], ["gap"])
     static = (ca.Function("static_force", [q, qd, e, p, *zi], [f_static], ["q", "qd", "e", "p", *zn], ["f"])
               if scene.seabed is not None else None)
     # a sampled series is an MX node inside the SX physics: no kernel form of that model; the kernel
     # has no anchor, no seabed and no winch (such scenes evaluate the element-by-element ode)
     kernel = (kernel_ode(scene, lambda n_el: drag_points(scene, n_el))
-              if S is ca.SX and not anchored and scene.seabed is None and scene.winch is None and winch_input is None
-              else None)
+              if S is ca.SX and not anchored and scene.seabed is None and scene.winch is None and not n_rot
+              and winch_input is None else None)
     return SegmentedModel(layout=layout, n_sections=n_sec, angles=scene.angles, q_labels=q_labels,
                           output_labels=tuple(labels), dynamics=dynamics, ode=ode, top=top, outputs=outputs,
                           energy=energy, cable_force=cable_force, slack_index=(), symbolic=S,
                           segments=segs, accel=accel, kernel_ode=kernel, anchored=anchored,
-                          static_force=static, dim=dim)
+                          static_force=static, dim=dim, n_rotations=n_rot)

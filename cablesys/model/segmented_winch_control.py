@@ -87,6 +87,9 @@ def build_node_winch_model(scene: Scene, *, compensator: bool = False) -> NodeWi
         raise ParameterError("three_d", True, "the controlled node-model winch is planar")
     if scene.anchor is not None:
         raise ParameterError("anchor", "set", "a winch-lowered line hangs free: no [anchor]")
+    if scene.sections[0].body.is_rigid:
+        raise ParameterError("body.pitch_inertia", scene.sections[0].body.pitch_inertia,
+                             "must be unset: the controlled winch's body is a point (no pitch coordinate yet)")
     if getattr(scene, "winch", None) is not None:
         raise ParameterError("winch", "set", "must be unset: the control drives the payout (a [winch] profile "
                                              "would be ignored)")

@@ -65,7 +65,7 @@ def _shape_panel(ax, result, units: str) -> None:
 
 
 def plot_time_series(result, path, *, title: str | None = None, units: str = "SI", limits=None,
-                     window_start: float | None = None) -> Path:
+                     window_start: float | None = None, anchored: bool = False) -> Path:
     """Panels of a run: cable shape (segmented runs), body path x_b-y_b (y down), phi(t), u(t) and tensions(t).
 
     The tension axis is scaled to the traces and the snap loads (from zero when they come within
@@ -89,6 +89,8 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
         mean from ``window_start``, the verdict's DNV-RP-H103 slack check) on the tension panel.
     window_start : float, optional
         Start of the statistics window (s), shaded before it.
+    anchored : bool, optional
+        The last section ends at an ``[anchor]``: its lower end and ``tension_bottom`` are named the anchor's.
 
     Returns
     -------
@@ -121,6 +123,9 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
     still = []
     for k, s in enumerate(sfx):
         name = f"section {s[1:]}" if s else "lower body"
+        last = k == len(sfx) - 1
+        if anchored and last:              # the last section's lower end is the anchor, its "body" sits there
+            name = "anchor" if not s else f"section {s[1:]} (anchor)"
         phi = result[f"phi{s}"] if f"phi{s}" in data else result["phi"]
         xb, yb = result[f"x_b{s}"], result[f"y_b{s}"]
         if is_steady(xb, ATOL_LENGTH) and is_steady(yb, ATOL_LENGTH):
@@ -131,7 +136,7 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
             a_path.plot((xb - xb.mean()) * fl, (yb - yb.mean()) * fl, lw=0.8, label=name)
         phis.append((name, np.degrees(phi), f"C{k}"))
         us.append((name, result[f"u{s}"] * fu, f"C{k}"))
-        ends = [(f"tension_top{s}", "top"), (f"tension_bottom{s}", "at the body")]
+        ends = [(f"tension_top{s}", "top"), (f"tension_bottom{s}", "at the anchor" if anchored and last else "at the body")]
         ends = [(lbl, where) for lbl, where in ends if lbl in data] or [(f"tension_mid{s}", "at mid-length")]
         for j, (lbl, where) in enumerate(ends):
             traces.append((" ".join(x for x in (name if len(sfx) > 1 else "", where) if x) or name,

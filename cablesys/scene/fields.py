@@ -19,6 +19,7 @@ SI_UNIT = {
     "angle_deg": "deg", "frequency": "rad/s", "time": "s", "none": "-",
     "stiffness_per_area": "Pa/m", "damping_per_area": "Pa s/m",     # seabed contact (scene Seabed)
     "angle_deg_per_length": "deg/m",                                   # a vessel's rotation RAO (scene/vessel.py)
+    "inertia": "kg m^2", "moment_time": "N m s", "moment_time2": "N m s^2",   # a rigid body's pitch (scene Body)
 }
 
 # factor from the report's foot-pound-second (slug) system to SI, per dimension
@@ -29,6 +30,7 @@ FPS_TO_SI = {
     "angle_deg": 1.0, "frequency": 1.0, "time": 1.0, "none": 1.0,
     "stiffness_per_area": U.LBF / U.FT**3, "damping_per_area": U.LBF / U.FT**3,
     "angle_deg_per_length": 1.0 / U.FT,
+    "inertia": U.SLUG * U.FT**2, "moment_time": U.LBF * U.FT, "moment_time2": U.LBF * U.FT,
 }
 
 UNIT_SYSTEMS = ("SI", "fps")

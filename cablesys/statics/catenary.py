@@ -67,12 +67,17 @@ def hanging_guess(model, p) -> np.ndarray:
             y += h_0 + max(tension, 0.0) * h_r / ae                 # l = h_0 + T h_r / AE (eq. 1 per element)
             ys.append(y)
     cols = [np.zeros(len(ys)), ys] + [np.zeros(len(ys))] * (_dim(model) - 2)
-    return np.column_stack(cols).ravel()
+    return np.concatenate([np.column_stack(cols).ravel(), np.zeros(_rotations(model))])   # rigid bodies level
 
 
 def _dim(model) -> int:
     """Coordinates per node of a segmented model: 2 in the plane, 3 in space."""
     return getattr(model, "dim", 2)
+
+
+def _rotations(model) -> int:
+    """Rigid bodies' pitch angles at the end of a segmented model's q (model/rigid_body.py)."""
+    return getattr(model, "n_rotations", 0)
 
 
 def anchored_guess(model, p) -> np.ndarray:
@@ -178,29 +183,43 @@ def polar_map(model):
     coordinates (sparse). In space v = (theta_1.., psi_1.., l_1..) with Wang's 3-D tangent
     e_t = (-sin theta cos psi, cos theta cos psi, sin psi) (:func:`cablesys.model.section._frame`)."""
     def build():
-        n, dim = model.n_elements, _dim(model)
-        v = ca.SX.sym("v", dim * n)
-        th, ln = v[:n], v[(dim - 1) * n:]
+        n, dim, n_rot = model.n_elements, _dim(model), _rotations(model)
+        v = ca.SX.sym("v", dim * n + n_rot)          # the rigid bodies' angles pass through
+        th, ln = v[:n], v[(dim - 1) * n:dim * n]
         if dim == 2:
             q = ca.vec(ca.horzcat(ca.cumsum(-ln * ca.sin(th)), ca.cumsum(ln * ca.cos(th))).T)
         else:
             ps = v[n:2 * n]
             q = ca.vec(ca.horzcat(ca.cumsum(-ln * ca.sin(th) * ca.cos(ps)), ca.cumsum(ln * ca.cos(th) * ca.cos(ps)),
                                   ca.cumsum(ln * ca.sin(ps))).T)
-        return ca.Function("polar_to_nodes", [v], [q])
+        return ca.Function("polar_to_nodes", [v], [ca.vertcat(q, v[dim * n:])])
     return model.derive("catenary_polar", build)
 
 
 def _rootfinders(model):
+    """KINSOL in polar and in node coordinates on the static residual. With rigid bodies their parameter vector is
+    (p, theta_ref, w): a pitch row gets w (theta_ref - theta) added, w = 1 for a neutral pitch (its row identically
+    zero, :func:`_neutral_pitch`), which then stays at theta_ref, and w = 0 otherwise."""
     def build():
+        n_rot = _rotations(model)
         resid = static_residual(model)
         to_q = polar_map(model)
-        v, p = ca.SX.sym("v", _dim(model) * model.n_elements), ca.SX.sym("p", len(model.layout))
-        G = ca.Function("polar_residual", [v, p], [resid(to_q(v), p)])
+        v = ca.SX.sym("v", _dim(model) * model.n_elements + n_rot)
+        q = ca.SX.sym("q", model.nq)
+        p = ca.SX.sym("p", len(model.layout) + 2 * n_rot)
+        pv = p[:len(model.layout)]
+
+        def pinned(qq):
+            r = resid(qq, pv)
+            if not n_rot:
+                return r
+            ref, w = p[len(model.layout):-n_rot], p[-n_rot:]
+            return ca.vertcat(r[:model.nq - n_rot], r[model.nq - n_rot:] + w * (ref - qq[model.nq - n_rot:]))
+        G = ca.Function("polar_residual", [v, p], [pinned(to_q(v))])
         opts = {"strategy": "linesearch", "abstol": 1e-13, "error_on_fail": False, "print_level": 0,
                 "disable_internal_warnings": True, "max_iter": 200}
         polar = ca.rootfinder("catenary_polar", "kinsol", G, opts)
-        nodes = ca.rootfinder("catenary_nodes", "kinsol", resid,
+        nodes = ca.rootfinder("catenary_nodes", "kinsol", ca.Function("node_residual", [q, p], [pinned(q)]),
                               dict(opts, linear_solver_type="user_defined", linear_solver="csparse"))
         return polar, nodes
     return model.derive("catenary_rootfinders", build)
@@ -222,13 +241,15 @@ def static_tolerance(model, p) -> float:
     return max(TOLERANCE, 1e3 * np.finfo(float).eps * k_max * total_l / weight)
 
 
-def to_polar(q, dim: int = 2):
-    """The inverse of :func:`polar_map`: element angles and lengths of node positions q."""
-    d = np.diff(np.concatenate([np.zeros(dim), q]).reshape(-1, dim), axis=0)
+def to_polar(q, dim: int = 2, rotations: int = 0):
+    """The inverse of :func:`polar_map`: element angles and lengths of node positions q (the last
+    ``rotations`` entries of q, rigid bodies' angles, pass through)."""
+    q, rot = np.asarray(q, float), np.asarray(q, float)[len(q) - rotations:]
+    d = np.diff(np.concatenate([np.zeros(dim), q[:len(q) - rotations]]).reshape(-1, dim), axis=0)
     theta, flat = np.arctan2(-d[:, 0], d[:, 1]), np.hypot(d[:, 0], d[:, 1])
     if dim == 2:
-        return np.concatenate([theta, flat])
-    return np.concatenate([theta, np.arctan2(d[:, 2], flat), np.linalg.norm(d, axis=1)])
+        return np.concatenate([theta, flat, rot])
+    return np.concatenate([theta, np.arctan2(d[:, 2], flat), np.linalg.norm(d, axis=1), rot])
 
 
 def segmented_equilibrium(model, p, *, guess=None):
@@ -260,6 +281,11 @@ def segmented_equilibrium(model, p, *, guess=None):
     g0 = hanging_guess(model, p) if guess is None else np.asarray(guess, float)
 
     tol = static_tolerance(model, p)
+    # a neutral pitch (any angle an equilibrium) is held at its guess: the rootfinders' pitch rows get theta_ref - theta
+    n_rot = _rotations(model)
+    pins = (np.concatenate([g0[len(g0) - n_rot:], _neutral_pitch(model, g0, p).astype(float)]) if n_rot
+            else np.zeros(0))
+    pinned = lambda pp: np.concatenate([pp, pins])
 
     def residual(q, pp):
         return _max_residual(resid, q, pp)
@@ -269,9 +295,9 @@ def segmented_equilibrium(model, p, *, guess=None):
         r0 = residual(q0, pp)
         if r0 < tol:
             return q0, r0
-        v = np.array(polar(to_polar(q0, _dim(model)), pp)).ravel()
+        v = np.array(polar(to_polar(q0, _dim(model), _rotations(model)), pinned(pp))).ravel()
         q = np.array(to_q(v)).ravel() if np.all(np.isfinite(v)) else q0
-        q_pol = np.array(nodes(q, pp)).ravel()
+        q_pol = np.array(nodes(q, pinned(pp))).ravel()
         return min(((q, residual(q, pp)), (q_pol, residual(q_pol, pp))), key=lambda a: a[1])
 
     # KINSOL's stalls on a guess are expected (the next guess or continuation step is tried): collected,
@@ -297,6 +323,24 @@ def segmented_equilibrium(model, p, *, guess=None):
                           f"the hanging cable and along the flow-speed continuation{_flags(kinsol)}; a very strong "
                           "current or tow streams the cable horizontally: check weights and speeds, or give a guess")
     return q, r
+
+
+def _neutral_pitch(model, q, p) -> np.ndarray:
+    """Which rigid bodies have a neutral pitch at q (their static moment and its every derivative zero: attached at
+    the CG with the buoyancy centre there too, model/rigid_body.py): any pitch is then an equilibrium."""
+    n_rot = _rotations(model)
+    if not n_rot:
+        return np.zeros(0, bool)
+    r, J = model.derive("static_residual_jacobian", lambda: _residual_jacobian(model))(q, p)
+    r, J = np.array(r).ravel()[-n_rot:], np.array(J)[-n_rot:]
+    return (r == 0.0) & np.all(J == 0.0, axis=1)
+
+
+def _residual_jacobian(model):
+    resid = static_residual(model)
+    q, p = ca.SX.sym("q", model.nq), ca.SX.sym("p", len(model.layout))
+    r = resid(q, p)
+    return ca.Function("static_residual_jacobian", [q, p], [r, ca.jacobian(r, q)])
 
 
 def _flags(blocks) -> str:
@@ -406,7 +450,8 @@ def segmented_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
     ``u`` unset give the equilibrium shape; set, every section is straight at angle phi with
     stretch u (Wang 1971 eq. 10), its elements equally long. The shape moves with the top: it is
     translated by the top position at t0 and every node starts with the top's velocity plus
-    the rates ``phi_rate``/``u_rate`` (the analogue of phi' = u' = 0 relative to the top).
+    the rates ``phi_rate``/``u_rate`` (the analogue of phi' = u' = 0 relative to the top). A rigid body's
+    pitch starts at rest, at its static attitude (``phi``, ``u`` unset) or level (theta_b = 0).
 
     Parameters
     ----------
@@ -425,8 +470,11 @@ def segmented_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
     e = np.array(model.top(t0, p)).ravel()
     dim = _dim(model)                       # a 3-D scene starts from its equilibrium (initial.phi, u unset)
     z, zd = e[1:1 + dim], e[1 + dim:1 + 2 * dim]
+    n_rot = _rotations(model)                # rigid bodies' angles: their static pitch, at rest
+    rot = np.zeros(n_rot)
     if ini.phi is None and ini.u is None:
-        q = segmented_steady(model, p).q.reshape(-1, dim)
+        q_all = segmented_steady(model, p).q
+        q, rot = q_all[:q_all.size - n_rot].reshape(-1, dim), q_all[q_all.size - n_rot:]
         v = np.zeros_like(q)
     else:
         if ini.phi is None or ini.u is None:
@@ -446,7 +494,7 @@ def segmented_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
                 vel.append(v0 + s * (ini.u_rate * et + length * ini.phi_rate * en))
             r0, v0 = pos[-1], vel[-1]
         q, v = np.array(pos), np.array(vel)
-    return np.concatenate([(q + z).ravel(), (v + zd).ravel()])
+    return np.concatenate([(q + z).ravel(), rot, (v + zd).ravel(), np.zeros(n_rot)])
 
 
 def anchored_line_forces(model, state: SteadyState, p) -> dict:

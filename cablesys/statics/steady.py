@@ -15,7 +15,7 @@ import numpy as np
 from ..errors import SolverError
 from ..messages import casadi_warnings_captured, kinsol_flags
 from ..model import CableModel
-from .catenary import segmented_steady
+from .catenary import anchored_guess, hanging_guess, segmented_steady
 from .problem import SteadyState, at_rest, static_parameters, static_residual
 
 
@@ -29,14 +29,18 @@ def _rootfinder(model: CableModel) -> ca.Function:
 
 
 def starting_guesses(model: CableModel, p):
-    """Starting guesses for the statics and the periodic solution: every section's hanging stretch
+    """Starting guesses for the statics and the periodic solution. A 2-DOF model: every section's hanging stretch
     u = (weight below + W_c / 2) / k (dV/du = 0 of Wang 1971 eq. 15 at phi = 0) with several
     angles, the hanging one (all angles 0) first.
+
+    A segmented model (node coordinates) yields its own first guess instead: the anchored line's
+    (:func:`.catenary.anchored_guess`: a span between the top and an ``[anchor]``) or the straight
+    hanging cable's (:func:`.catenary.hanging_guess`).
 
     Parameters
     ----------
     model : CableModel
-        A 2-DOF (Wang) model.
+        A 2-DOF (Wang) model, or a segmented one.
     p : array_like
         Parameter vector (``model.layout``).
 
@@ -45,6 +49,9 @@ def starting_guesses(model: CableModel, p):
     numpy.ndarray
         Generalized coordinates q in ``model.q_labels`` order.
     """
+    if getattr(model, "segments", None):
+        yield np.asarray(anchored_guess(model, p) if getattr(model, "anchored", False) else hanging_guess(model, p), float)
+        return
     lay = model.layout
     n = model.n_sections
     pre = (lambda i: "") if n == 1 else (lambda i: f"sections[{i}].")

@@ -1,11 +1,13 @@
 """What the built-in rungs share: the scene a rung runs, the scene kinds that limit which rungs can run a scene,
 and the base of every built-in rung (:class:`BuiltinRung`).
 
-A rung's validity (:meth:`BuiltinRung.valid`) is "" when it can run a scene, else the sentence saying why not. Four
+A rung's validity (:meth:`BuiltinRung.valid`) is "" when it can run a scene, else the sentence saying why not. Five
 kinds of scene limit the rungs so far: a 3-D scene (Wang's straight cable and the node model have three-dimensional equations,
 Wang 1971 p. 32; the frequency and quasi-static rungs are planar), a massless cable (Wang's CBMAS < 0, Wang 1971 program notes: an idealization of his straight
 cable; the element rungs' nodes would have no mass), an anchored line or a seabed (they act on the nodes of the
 segmented cable, which the straight cable has none of) and a winch (a varying length, carried by the node model only).
+A rigid, pitching body (``body.pitch_inertia``) limits them too: its pitch is a coordinate of the node model alone
+(:mod:`cablesys.model.rigid_body`).
 """
 
 from __future__ import annotations
@@ -40,6 +42,11 @@ def has_ends(scene: Scene) -> bool:
     return getattr(scene, "anchor", None) is not None or getattr(scene, "seabed", None) is not None
 
 
+def rigid(scene: Scene) -> bool:
+    """True when a section's body is rigid and pitches (``body.pitch_inertia`` set): the node model's coordinate."""
+    return any(getattr(sec.body, "is_rigid", False) for sec in scene.sections)
+
+
 def winched(scene: Scene) -> bool:
     """True when the scene has a ``[winch]``: the first section's length changes in time, which only the node model
     carries (:mod:`cablesys.model.segmented_winch`)."""
@@ -57,6 +64,7 @@ PLANAR = ("a 3-D scene: the frequency and quasi-static rungs are planar; Wang's 
 WITH_MASS = ("a massless cable (cable.cable_mass_switch < 0, Wang 1971's CBMAS) belongs to Wang's straight cable: the "
              "element rungs' nodes would have no mass, and the ladder has no estimate of the other rungs against it")
 NO_NODES = ("an anchored line or a seabed: only the node model (segmented) has nodes to anchor and to lay on the bed")
+ROTATES = ("a rigid, pitching body (body.pitch_inertia): its pitch is a coordinate of the node model (segmented) only")
 WINCHED = ("a winch ([winch]): only the node model (segmented) carries a varying cable length; the other rungs "
            "have a fixed one and would ignore the payout")
 TURNING = ("towing in a circle (top_motion.track): the run starts on the steady turn, which the statics find for the "
@@ -70,6 +78,8 @@ def straight_validity(scene: Scene) -> str:
         return PLANAR
     if massless(scene):
         return WITH_MASS
+    if rigid(scene):
+        return ROTATES
     if winched(scene):
         return WINCHED
     return NO_NODES if has_ends(scene) else ""

@@ -6,7 +6,7 @@ from __future__ import annotations
 from ...model import CableModel, build_model
 from ...scene import Scene
 from .. import estimate as est
-from .base import NO_NODES, TURNING, WINCHED, BuiltinRung, has_ends, turning, winched
+from .base import NO_NODES, ROTATES, TURNING, WINCHED, BuiltinRung, has_ends, rigid, turning, winched
 
 
 class Wang(BuiltinRung):
@@ -18,12 +18,14 @@ class Wang(BuiltinRung):
 
     def valid(self, scene: Scene) -> str:
         """"" unless the scene has an anchor or a seabed (the straight cable has no nodes), a winch (its length is fixed
-        here; :mod:`cablesys.model.winch` is the control door's) or a turning track (its
+        here; :mod:`cablesys.model.winch` is the control door's), a rigid, pitching body or a turning track (its
         steady turn is the node model's)."""
         if has_ends(scene):
             return NO_NODES
         if winched(scene):
             return WINCHED
+        if rigid(scene):
+            return ROTATES
         return TURNING if turning(scene) else ""
 
     def build(self, scene: Scene, segments: int = 1, cache=None) -> CableModel:
