@@ -212,12 +212,14 @@ def run(args) -> int:
     w(f"controller: {models['controller']}\nplant: {models['plant']}\nladder: {models['ladder']}\n")
     if "passive_plant" in models:
         w(f"passive: {models['passive_plant']}\n")
+    # F min: the least tension the no-slack floor bounds (Wang's F_bc, the node model's least element tension)
     w(f"{'strategy':<14s} {'rms heave':>10s} {'dB':>7s} {'T max':>9s} {'F min':>9s} {'slack':>6s} "
       f"{'|P| max':>9s} {'step':>9s}\n")
     for name, m in res.metrics.items():
         step = m.get("compute_per_step_s")
         w(f"{name:<14s} {m['heave_rms_m']:9.3f}m {m['heave_reduction_db']:7.1f} {m['tension_max_n'] / 1e3:8.1f}k "
           f"{m['tension_min_n'] / 1e3:8.1f}k {m['slack_time_s']:5.1f}s {m['power_max_w'] / 1e3:8.1f}k "
-          f"{'' if step is None else f'{step * 1e3:7.1f}ms'}\n")
+          f"{'' if step is None else f'{step * 1e3:7.1f}ms'}"
+          f"{'  (on ' + m['plant'].split(' (')[0] + ': dB against its own uncompensated run, F min its spring force F_bc)' if 'plant' in m else ''}\n")
     w(f"wrote {outdir.path / 'control.json'}, control_heave_tension.png, control_winch.png\n")
     return 0 if res.success else 1
