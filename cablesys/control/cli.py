@@ -170,6 +170,13 @@ def _ladder(scene, plant: str = "wang") -> dict:
     return out
 
 
+def _other_plant(metrics: dict) -> str:
+    """A note for a strategy that ran on another plant than the table's (the passive compensator on Wang's)."""
+    if "plant" not in metrics:
+        return ""
+    return f"  (on {metrics['plant'].split(' (')[0]}: dB against its own uncompensated run, F min its spring force F_bc)"
+
+
 def run(args) -> int:
     if args.design:
         return run_design(args)
@@ -220,6 +227,6 @@ def run(args) -> int:
         w(f"{name:<14s} {m['heave_rms_m']:9.3f}m {m['heave_reduction_db']:7.1f} {m['tension_max_n'] / 1e3:8.1f}k "
           f"{m['tension_min_n'] / 1e3:8.1f}k {m['slack_time_s']:5.1f}s {m['power_max_w'] / 1e3:8.1f}k "
           f"{'' if step is None else f'{step * 1e3:7.1f}ms'}"
-          f"{'  (on ' + m['plant'].split(' (')[0] + ': dB against its own uncompensated run, F min its spring force F_bc)' if 'plant' in m else ''}\n")
+          f"{_other_plant(m)}\n")
     w(f"wrote {outdir.path / 'control.json'}, control_heave_tension.png, control_winch.png\n")
     return 0 if res.success else 1
