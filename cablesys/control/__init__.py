@@ -1,11 +1,13 @@
 """Optimal heave compensation by the winch: open-loop optimum, MPC, and the strategies it replaces.
 
-``heave_problem(scene, WinchLimits(...))`` sets the problem up on the winch model
-(:mod:`cablesys.model.winch`: Wang's 2-DOF cable with the unstretched length driven by the
-payout rate); ``optimal_payout(problem, horizon)`` solves it by direct multiple shooting with
+``heave_problem(scene, WinchLimits(...), model=...)`` sets the problem up on a winch model: Wang's 2-DOF
+cable with the unstretched length driven by the payout rate (:mod:`cablesys.model.winch`, ``model="wang"``)
+or the segmented node model's winch (:mod:`cablesys.model.segmented_winch_control`, ``model="segmented"``,
+``segments=N``); ``optimal_payout(problem, horizon)`` solves it by direct multiple shooting with
 IPOPT and exact AD derivatives; ``resimulate`` checks an optimum with CVODES between the grid
 points; ``compare_compensation`` runs no compensation, a passive compensator, a PI/feed-forward
-AHC, MPC with preview and the open-loop optimum in closed loop on a finer plant.
+AHC, MPC with preview and the open-loop optimum in closed loop on a plant finer than the controller's model
+(a node-model plant with a Wang or coarser node controller: the model mismatch).
 """
 
 from .limits import WinchLimits

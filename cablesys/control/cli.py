@@ -13,7 +13,9 @@ def register(sub) -> None:
     p = sub.add_parser("control", help="optimal and MPC heave compensation by the winch (IPOPT)",
                        description="Compare no compensation, a passive compensator, a PI/feed-forward AHC, MPC "
                                    "with a wave preview and the open-loop optimal payout on the scene's nonlinear "
-                                   "winch model (Wang's 2-DOF cable with a variable length), under winch speed, "
+                                   "winch model (the plant: the model ladder's choice, Wang's 2-DOF cable or the "
+                                   "segmented node model with a variable length; the controller: Wang's or a "
+                                   "coarser node model), under winch speed, "
                                    "acceleration and power limits and the tension band. Writes control.json, "
                                    "control_heave_tension.png and control_winch.png. With --design instead: the "
                                    "time-domain design of the line's AE and C_I (bounds from the scene's [design] "
@@ -32,6 +34,16 @@ def register(sub) -> None:
     p.add_argument("--power", type=float, default=math.inf, help="winch power limit [W] (default: none)")
     p.add_argument("--plant-segments", type=int, default=None,
                    help="drag segments of the plant's cable (default: the scene's numerics.drag_segments)")
+    p.add_argument("--model", default="auto", choices=("auto", "wang", "segmented"),
+                   help="the closed loops' plant: Wang's 2-DOF winch, the segmented node model's winch "
+                        "(--segments N), or auto (default): the model ladder's choice for the uncompensated scene")
+    p.add_argument("--segments", type=int, default=None,
+                   help="elements N of a segmented plant (default: the ladder's N, else the scene's cable.segments)")
+    p.add_argument("--controller-model", default="wang", choices=("wang", "segmented"),
+                   help="the MPC's and the open-loop optimum's model, not finer than the plant (default wang: the "
+                        "model mismatch against a node-model plant)")
+    p.add_argument("--controller-segments", type=int, default=None,
+                   help="elements N of a segmented controller (at most the plant's)")
     p.add_argument("--strategies", default="none,passive,pi,mpc,mpc_no_preview,optimal",
                    help="comma-separated subset of none,passive,pi,mpc,mpc_no_preview,optimal "
                         "(mpc_no_preview: the top motion over the horizon predicted from its measured past)")
@@ -113,30 +125,56 @@ def run_design(args) -> int:
     return 0 if res.success else 1
 
 
-def _models(scene, res) -> dict:
-    """Which models ran, and what the model ladder would run for the uncompensated scene (and why): the control's
-    models are Wang's 2-DOF cable with the winch's unstretched length as a state (:mod:`cablesys.model.winch`);
-    where the ladder needs another model for this scene, it says so."""
+def _models(scene, res, why: str) -> dict:
+    """Which models ran and why, and what the model ladder would run for the uncompensated scene: the plant
+    (Wang's 2-DOF winch, :mod:`cablesys.model.winch`, or the node model's, :mod:`cablesys.model.segmented_winch_control`),
+    the controller (the MPC's and the open-loop optimum's model), the passive compensator's plant."""
     st = res.stats
-    out = {"controller": f"wang 2-DOF with winch (cablesys.model.winch), {st.get('controller_segments', 1)} drag "
-                         "segment(s): the optimal control's and the MPC's model",
-           "plant": f"wang 2-DOF with winch, {st.get('plant_segments')} drag segments (the closed loops' nonlinear "
-                    "plant: a model finer than the controller's)"}
-    return {**out, **_ladder(scene)}
+    out = {"controller": f"{st['controller_model']}, {st.get('controller_segments', 1)} drag segment(s), RK4 "
+                         f"{st['controller_substeps']} steps per interval: the open-loop optimum's and the MPC's model",
+           "plant": f"{st['plant_model']}, {st.get('plant_segments')} drag segments, CVODES: the closed loops' "
+                    f"nonlinear plant ({why})"}
+    if "passive" in res.metrics:
+        out["passive_plant"] = res.metrics["passive"]["plant"] + " (the compensator is a coordinate of that model only)"
+    return {**out, **_ladder(scene, st["plant_model"])}
 
 
-def _ladder(scene) -> dict:
-    """What the model ladder would run for the uncompensated scene, and why, against the control's Wang model."""
+def _ladder_choice(scene):
     from ..ladder.auto import decide
+    return decide(scene, "auto", None, None)[0]
+
+
+def plant_choice(scene, model: str, segments):
+    """(model, N, why) of the closed loops' plant: ``model`` "auto" takes the ladder's choice for the
+    uncompensated scene (Wang's rung: the 2-DOF winch; any rung with N elements: the node model's winch at N)."""
+    if model != "auto":
+        return model, segments, "as asked (--model)"
+    choice = _ladder_choice(scene)
+    if choice.name == "wang":
+        return "wang", None, f"the ladder's choice: {choice.reason.split('; ')[0]}"
+    n = segments or max(choice.segments, 2)
+    return "segmented", n, f"the ladder's choice is {choice.name}, N = {choice.segments}: {choice.reason.split('; ')[0]}"
+
+
+def _ladder(scene, plant: str = "wang") -> dict:
+    """What the model ladder would run for the uncompensated scene, and why, against the control's model (the
+    plant's in ``cablesys control``, the design's with ``--design``)."""
     out = {}
-    choice = decide(scene, "auto", None, None)[0]
+    choice = _ladder_choice(scene)
     seg = f", N = {choice.segments}" if choice.segments > 1 else ""
-    agree = choice.name == "wang"
+    agree = (choice.name == "wang") == plant.startswith("wang")
     out["ladder"] = (f"{choice.name}{seg} for the uncompensated scene"
                      + (": the control's model" if agree else ": NOT the control's model, whose results then carry "
                         "that model's error") + f" ({choice.reason.split('; ')[0]})")
     out["ladder_choice"] = choice.as_dict()
     return out
+
+
+def _other_plant(metrics: dict) -> str:
+    """A note for a strategy that ran on another plant than the table's (the passive compensator on Wang's)."""
+    if "plant" not in metrics:
+        return ""
+    return f"  (on {metrics['plant'].split(' (')[0]}: dB against its own uncompensated run, F min its spring force F_bc)"
 
 
 def run(args) -> int:
@@ -156,14 +194,19 @@ def run(args) -> int:
     limits = WinchLimits(speed=args.speed, acceleration=args.acceleration, power=args.power)
     settings = {"duration": args.duration, "horizon": args.horizon, "dt": args.dt, "speed": args.speed,
                 "acceleration": args.acceleration, "power": args.power, "strategies": strategies,
-                "plant_segments": args.plant_segments, "mpc_scheme": args.mpc_scheme}
+                "plant_segments": args.plant_segments, "mpc_scheme": args.mpc_scheme, "model": args.model,
+                "segments": args.segments, "controller_model": args.controller_model,
+                "controller_segments": args.controller_segments}
+    plant_model, plant_n, why = plant_choice(scene, args.model, args.segments)
     outdir = OutputDir(args.out, "control", {"scene": scene, "control": settings},
                        overwrite=args.overwrite, owned=("control.json",))
     with outdir.start(scene=scene.name):
         res = compare_compensation(scene, limits, duration=args.duration, horizon=args.horizon, dt=args.dt,
                                    plant_segments=args.plant_segments, strategies=strategies,
-                                   mpc_scheme=args.mpc_scheme)
-        models = _models(scene, res)
+                                   mpc_scheme=args.mpc_scheme, plant_model=plant_model, plant_elements=plant_n,
+                                   controller_model=args.controller_model,
+                                   controller_elements=args.controller_segments)
+        models = _models(scene, res, why)
         outdir.write_json("control.json", {"scene": scene.name, "settings": settings, "models": models,
                                            **res.summary()})
         title = f"{scene.name}: heave compensation, |w| <= {args.speed:g} m/s, |w'| <= {args.acceleration:g} m/s^2"
@@ -174,12 +217,16 @@ def run(args) -> int:
     w = sys.stdout.write
     w(f"{scene.name}\n{'' if res.success else 'WARNING: ' + res.message + chr(10)}")
     w(f"controller: {models['controller']}\nplant: {models['plant']}\nladder: {models['ladder']}\n")
+    if "passive_plant" in models:
+        w(f"passive: {models['passive_plant']}\n")
+    # F min: the least tension the no-slack floor bounds (Wang's F_bc, the node model's least element tension)
     w(f"{'strategy':<14s} {'rms heave':>10s} {'dB':>7s} {'T max':>9s} {'F min':>9s} {'slack':>6s} "
       f"{'|P| max':>9s} {'step':>9s}\n")
     for name, m in res.metrics.items():
         step = m.get("compute_per_step_s")
         w(f"{name:<14s} {m['heave_rms_m']:9.3f}m {m['heave_reduction_db']:7.1f} {m['tension_max_n'] / 1e3:8.1f}k "
           f"{m['tension_min_n'] / 1e3:8.1f}k {m['slack_time_s']:5.1f}s {m['power_max_w'] / 1e3:8.1f}k "
-          f"{'' if step is None else f'{step * 1e3:7.1f}ms'}\n")
+          f"{'' if step is None else f'{step * 1e3:7.1f}ms'}"
+          f"{_other_plant(m)}\n")
     w(f"wrote {outdir.path / 'control.json'}, control_heave_tension.png, control_winch.png\n")
     return 0 if res.success else 1

@@ -1,8 +1,12 @@
 """Closed-loop heave compensation against the nonlinear plant: MPC and the strategies it replaces.
 
-The plant is the winch model of the scene with ``plant_segments`` drag segments on the cable
-(Wang 1971 eq. 38-45), integrated by CVODES (:class:`.plant.Plant`); the controller's
-model has ``controller_segments`` (coarser: a model mismatch) and its own RK4 transcription.
+The plant is a winch model of the scene (``plant_model``: Wang's 2-DOF winch or the node model's winch on
+``plant_elements`` elements) with ``plant_segments`` drag segments on the cable (Wang 1971 eq. 38-45),
+integrated by CVODES (:class:`.plant.Plant`); the controller's model (``controller_model``, not finer:
+Wang's 2-DOF or a node model of fewer elements, with ``controller_segments`` drag segments) has its own RK4
+transcription, and sees the plant's state in its coordinates (:func:`state_map`): the model mismatch. The
+passive compensator is a coordinate of Wang's model only: with a node-model plant it runs on Wang's plant
+and its dB are against that plant's own uncompensated run (``metrics["passive"]["plant"]`` says so).
 Strategies, each run from rest over the same sea:
 
 - ``none``: winch still (alpha = 0);
@@ -31,9 +35,10 @@ Strategies, each run from rest over the same sea:
   open-loop on the plant (the physical limit for these winch limits, up to the mismatch).
 
 Reported per strategy: residual body heave (rms over the statistics window, m, and in dB
-against ``none``), peak top tension and least spring force (N), time with F_bc below the
-cable's tension floor (s: slack by Wang's rule, eq. 54; the plant keeps the spring law there,
-so a slack run's later response is not that of a slack cable), largest |winch power| (W), and
+against ``none``), peak top tension and the least tension the no-slack floor bounds (N: Wang's spring force
+F_bc, the node model's least element tension), time with it below the cable's tension floor (s: slack by
+Wang's rule, eq. 54; Wang's plant keeps the spring law there, so a slack run's later response is not that of
+a slack cable; the node model's elements go slack by max(TENS, ...)), largest |winch power| (W), and
 the controller's compute time per step (s).
 """
 
@@ -47,10 +52,11 @@ from typing import ClassVar
 import numpy as np
 
 from ..errors import ParameterError, require_positive
+from ..model.segmented_winch_control import NodeWinchModel
 from ..model.winch import WINCH_OUTPUTS
 from ..results import ResultBase, timed
 from .limits import WinchLimits
-from .payout import check_window, heave_problem, heave_reduction_db, payout_nlp, statistics_window
+from .payout import check_window, describe_model, heave_problem, heave_reduction_db, payout_nlp, statistics_window
 from .plant import Plant
 from .prediction import ARPredictor
 from .rti import GaussNewtonMPC
@@ -99,14 +105,14 @@ class Comparison(ResultBase):
 
 
 def _metrics(problem, T, Y, heave0, mask, tens_floor):
-    oi = WINCH_OUTPUTS.index
+    oi = problem.output_labels.index
     h = Y[:, oi("heave")] - problem.heave_rest
     dt = np.diff(T, prepend=T[0])
     return {"heave_rms_m": float(np.sqrt(np.mean(h[mask] ** 2))),
             "heave_reduction_db": heave_reduction_db(h, heave0, mask),
             "tension_max_n": float(np.max(Y[:, oi("tension_top")])),
-            "tension_min_n": float(np.min(Y[:, oi("tension_mid")])),
-            "slack_time_s": float(np.sum(dt[Y[:, oi("tension_mid")] < tens_floor])),
+            "tension_min_n": float(np.min(Y[:, oi(problem.floor_output)])),
+            "slack_time_s": float(np.sum(dt[Y[:, oi(problem.floor_output)] < tens_floor])),
             "power_max_w": float(np.max(np.abs(Y[:, oi("power")]))),
             "speed_max_m_s": float(np.max(np.abs(Y[:, oi("speed")])))}
 
@@ -151,7 +157,9 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
                          tension_weight: float = 0.0, control_weight: float = 1e-3,
                          passive_ratio: float = 3.0, pi_gains=(0.5, 0.05), servo_tau: float | None = None,
                          strategies=STRATEGIES, stats_start: float | None = None, max_iter: int = 100,
-                         mpc_scheme: str = "gauss-newton", mpc_iterations: int = 1, ar_order: int = 24) -> Comparison:
+                         mpc_scheme: str = "gauss-newton", mpc_iterations: int = 1, ar_order: int = 24,
+                         plant_model: str = "wang", plant_elements: int | None = None,
+                         controller_model: str = "wang", controller_elements: int | None = None) -> Comparison:
     """Run the strategies of the module docstring on the plant and compare them.
 
     Parameters
@@ -187,6 +195,14 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
         Gauss-Newton QPs per MPC step (1: the real-time iteration; "gauss-newton" only).
     ar_order : int
         Order of the autoregressive top-motion predictor of ``mpc_no_preview`` (:class:`ARPredictor`).
+    plant_model, controller_model : str
+        "wang" (Wang's 2-DOF winch) or "segmented" (the node model's winch,
+        :mod:`cablesys.model.segmented_winch_control`) of the plant and of the controller (the MPC's and the
+        open-loop optimum's model); the controller's model is not finer than the plant's (a node plant with a
+        Wang or a coarser node controller is the model mismatch). The controller sees the plant's state
+        mapped to its coordinates (:func:`state_map`).
+    plant_elements, controller_elements : int, optional
+        N of a segmented plant / controller (default the scene's ``cable.segments``).
 
     Returns
     -------
@@ -209,8 +225,9 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
     plant_scene = scene if plant_segments is None else scene.with_numerics(drag_segments=plant_segments)
     ctrl_scene = scene.with_numerics(drag_segments=controller_segments)
     kw = dict(dt=dt, tension_weight=tension_weight, control_weight=control_weight)
-    prob_p = heave_problem(plant_scene, limits, **kw)
-    prob_c = heave_problem(ctrl_scene, limits, **kw)
+    prob_p = heave_problem(plant_scene, limits, model=plant_model, segments=plant_elements, **kw)
+    prob_c = heave_problem(ctrl_scene, limits, model=controller_model, segments=controller_elements, **kw)
+    observe = state_map(prob_p, prob_c)
     N = check_window(prob_c, 0.0, duration)
     mpcs = [s for s in ("mpc", "mpc_no_preview") if s in strategies]
     if "mpc" in strategies:           # the preview reads the record up to duration + horizon
@@ -239,12 +256,14 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
         U = sol.U.ravel()
         runs["optimal"] = _run(plant, prob_p, lambda k, x: U[k], N, prob_p.x_rest)
         step_s["optimal"] = np.array([sol.solve_s])
-    offset = prob_p.x_rest - prob_c.x_rest         # the models' rest states differ (drag in the current)
+    # the models' rest states differ (drag in the current, the node model's bowed line)
+    offset = observe(prob_p.x_rest, 0.0) - prob_c.x_rest
+    measure = lambda k, x: observe(x, k * dt) - offset
     for name in ("mpc", "mpc_no_preview"):
         if name not in strategies:
             continue
         predictor = ARPredictor(prob_c, ar_order) if name == "mpc_no_preview" else None
-        ctl, memo = _mpc_controller(prob_c, N, n_h, offset, mpc_scheme, mpc_iterations, max_iter, predictor)
+        ctl, memo = _mpc_controller(prob_c, N, n_h, measure, mpc_scheme, mpc_iterations, max_iter, predictor)
         runs[name] = _run(plant, prob_p, ctl, N, prob_p.x_rest)
         step_s[name] = runs[name][3]
         mpc_stats[name] = {"scheme": mpc_scheme, "failed_steps": memo["fail"],
@@ -252,8 +271,9 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
         if memo["fail"]:
             messages.append(f"{name}: {memo['fail']} of {N} steps did not converge (the previous plan, shifted, "
                             "was applied)")
-    if "passive" in strategies:
+    if "passive" in strategies:     # a compensator is a coordinate of Wang's 2-DOF winch only
         runs["passive"] = _passive_run(scene, plant_scene, limits, kw, passive_ratio, N)
+        passive_plant = describe_model(runs["passive"][4].model)
 
     T = dt * np.arange(N + 1)
     mask = statistics_window(T, stats_start, prob_c.scene.top_motion)
@@ -268,10 +288,17 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
         Y = prob.outputs(X, A, T)
         for k in out:
             out[k][name] = Y[:, oi(k)] - (prob.heave_rest if k == "heave" else 0.0)
-        metrics[name] = _metrics(prob, T, Y, h0, mask, floor)
+        ref = h0
+        if name == "passive" and isinstance(prob_p.model, NodeWinchModel):   # against its own plant uncompensated
+            plain = heave_problem(plant_scene, limits, **kw)
+            _, Xn, An, _ = _run(Plant(plain.model, plain.p, plain.c, dt), plain, lambda k, x: 0.0, N, plain.x_rest)
+            ref = plain.outputs(Xn, An, T)[:, oi("heave")] - plain.heave_rest
+        metrics[name] = _metrics(prob, T, Y, ref, mask, floor)
         if name in step_s:
             metrics[name]["compute_per_step_s"] = float(np.mean(step_s[name]))
             metrics[name]["compute_max_step_s"] = float(np.max(step_s[name]))
+    if "passive" in metrics:       # its dB against that plant's own uncompensated run
+        metrics["passive"]["plant"] = passive_plant
     for name in mpc_stats:
         metrics[name]["realtime_factor"] = dt / metrics[name]["compute_per_step_s"]
         metrics[name].update(mpc_stats[name])
@@ -282,10 +309,12 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
                       stats={"steps": N, "horizon_intervals": n_h, "dt_s": dt,
                              "plant_segments": plant_scene.numerics.drag_segments,
                              "controller_segments": controller_segments, "mpc_scheme": mpc_scheme,
+                             "plant_model": describe_model(prob_p.model), "controller_model": describe_model(prob_c.model),
+                             "controller_substeps": prob_c.substeps,
                              "mpc_iterations": mpc_iterations, "ar_order": ar_order}, **out)
 
 
-def _mpc_controller(prob_c, N, n_h, offset, scheme, iterations, max_iter, predictor=None):
+def _mpc_controller(prob_c, N, n_h, measure, scheme, iterations, max_iter, predictor=None):
     """The MPC of the module docstring over N steps as ``controller(k, x) -> alpha`` and its record (failed
     steps, iterations per step): the top motion over the horizon previewed (the scene's record, tabulated
     once at the intervals' stage times before the run: the preview is data the controller receives), or
@@ -300,7 +329,7 @@ def _mpc_controller(prob_c, N, n_h, offset, scheme, iterations, max_iter, predic
     memo = {"U": np.zeros(n_h), "fail": 0, "iterations": []}
 
     def mpc(k, x):
-        x = x - offset                                  # the measured state about the controller's rest
+        x = measure(k, x)                               # the measured state in the controller's coordinates
         U = np.append(memo["U"][1:], memo["U"][-1])       # warm start: shifted by one interval
         if predictor is None:
             E = preview[k: k + n_h + 1]
@@ -319,6 +348,51 @@ def _mpc_controller(prob_c, N, n_h, offset, scheme, iterations, max_iter, predic
         memo["U"] = Unew if ok else U      # a failed step keeps the previous plan
         return memo["U"][0]
     return mpc, memo
+
+
+def state_map(prob_p, prob_c):
+    """``observe(x, t) -> x_c``: the plant's state in the controller's coordinates (L and w as they are).
+
+    Same model: x itself. Node plant, Wang controller: the chord from the top (x_s, y_s)(t) (the measured tip) to
+    the body node gives Wang's phi = atan2(-c_x, c_y) and l = |c| (Wang 1971 eq. 10: the body at top + l e_t,
+    e_t = (-sin phi, cos phi)), their rates from the body node's velocity. Node plant of N_p elements, node
+    controller of N_c: the controller's node j at the fraction j / N_c of the line from the top, linearly
+    interpolated between the plant's nodes (node 0 the tip) in positions and velocities. A controller finer than
+    its plant is refused."""
+    mp, mc = prob_p.model, prob_c.model
+    node_p, node_c = isinstance(mp, NodeWinchModel), isinstance(mc, NodeWinchModel)
+    if not node_p:
+        if node_c:
+            raise ParameterError("controller_model", "segmented", "must not be finer than the plant's (Wang's 2-DOF)")
+        if mp.nx != mc.nx:
+            raise ParameterError("controller_model", describe_model(mc), f"has no state map from the plant "
+                                                                         f"({describe_model(mp)})")
+        return lambda x, t: np.asarray(x, float)
+    if node_c and mc.segments > mp.segments:
+        raise ParameterError("controller_elements", mc.segments, f"must be at most the plant's {mp.segments}")
+    n_p = mp.segments
+    top, pp = mp.top, prob_p.p
+
+    def nodes(x, t):
+        e = np.array(top(t, pp)).ravel()
+        q, qd = np.asarray(x[:mp.nq], float).reshape(n_p, 2), np.asarray(x[mp.nq:2 * mp.nq], float).reshape(n_p, 2)
+        return np.vstack([e[1:3], q]), np.vstack([e[3:5], qd])
+
+    if not node_c:
+        def observe(x, t):
+            r, v = nodes(x, t)
+            c, cv = r[-1] - r[0], v[-1] - v[0]
+            l2 = c @ c
+            phi, l = math.atan2(-c[0], c[1]), math.sqrt(l2)
+            return np.array([phi, l, (c[0] * cv[1] - c[1] * cv[0]) / l2, c @ cv / l, x[-2], x[-1]])
+        return observe
+    f_p, f_c = np.arange(n_p + 1) / n_p, np.arange(1, mc.segments + 1) / mc.segments
+
+    def observe(x, t):
+        r, v = nodes(x, t)
+        at = lambda a: np.column_stack([np.interp(f_c, f_p, a[:, i]) for i in range(2)]).ravel()
+        return np.concatenate([at(r), at(v), [x[-2], x[-1]]])
+    return observe
 
 
 def _passive_run(scene, plant_scene, limits, kw, ratio, N):

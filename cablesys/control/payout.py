@@ -1,7 +1,9 @@
 """Optimal heave compensation by the winch: the open-loop optimal payout for a known top motion.
 
-The problem (on the winch model of :mod:`cablesys.model.winch`, Wang's 2-DOF cable with the
-unstretched length L driven by the payout rate w, w' = alpha the control):
+The problem (on a winch model with the unstretched length L driven by the payout rate w, w' = alpha the
+control: Wang's 2-DOF cable, :mod:`cablesys.model.winch`, or the segmented node model's winch,
+:mod:`cablesys.model.segmented_winch_control`, whose no-slack floor bounds the least element tension in place
+of the 2-DOF model's F_bc):
 
     minimize   int_0^T [ (y_b - y_b0)^2 + c_T ((T_top - T_0) / T_0)^2 + c_a alpha^2 ] dt
     subject to |w| <= w_max, |alpha| <= a_max, |T_top w| <= P_max,
@@ -32,14 +34,65 @@ from ..compiled import compile_functions, compiles
 from ..derivatives import state_derivatives
 from ..disk_cache import digest
 from ..errors import ParameterError, require_positive
+from ..model.segmented_winch_control import NodeWinchModel, build_node_winch_model
+from ..model.segmented_winch_control import rest_state as node_rest_state
 from ..model.winch import COMPENSATOR_PARAMETERS, WINCH_OUTPUTS, WinchModel, build_winch_model, rest_state
 from .. import statistics as st
 from ..results import ResultBase, timed
 from .limits import WinchLimits
 from .shooting import PathConstraint, ShootingNLP
 
-# rows of the stage function's path outputs g
-G_ROWS = ("power", "tension_mid", "tension_top")
+# rows of the stage function's path outputs g: the power, the tension the no-slack floor bounds (the model's
+# ``floor_output``: Wang's F_bc "tension_mid", the node model's least element tension), the top tension
+G_ROWS = ("power", "tension_floor", "tension_top")
+# the control's models (heave_problem's ``model``): Wang's 2-DOF winch, the segmented node model's winch
+MODELS = ("wang", "segmented")
+
+
+def output_labels(model) -> tuple:
+    """The rows of ``model.outputs``: :data:`WINCH_OUTPUTS` (the node model adds ``tension_least``)."""
+    return getattr(model, "output_labels", WINCH_OUTPUTS)
+
+
+def floor_output(model) -> str:
+    """The output the no-slack floor bounds: the 2-DOF model's spring force F_bc (``tension_mid``, Wang 1971 eq.
+    54), the node model's least element tension (``tension_least``)."""
+    return getattr(model, "floor_output", "tension_mid")
+
+
+def model_rest_state(model, p, c=None) -> np.ndarray:
+    """The rest state of either control model (:func:`cablesys.model.winch.rest_state`,
+    :func:`cablesys.model.segmented_winch_control.rest_state`)."""
+    return (node_rest_state if isinstance(model, NodeWinchModel) else rest_state)(model, p, c)
+
+
+def describe_model(model) -> str:
+    """One line naming the control model."""
+    if isinstance(model, NodeWinchModel):
+        return model.describe()
+    return "wang 2-DOF with winch (cablesys.model.winch)" + (", compensator" if model.compensator else "")
+
+
+def control_model(scene, model="wang", segments: int | None = None, *, compensator: bool = False):
+    """(scene, model) for a control model name: "wang" (the scene's first section as one straight element,
+    ``segments`` must be None or 1) or "segmented" (N = ``segments`` elements, default the scene's
+    ``cable.segments`` when above 1); the scene is returned with that N."""
+    if model not in MODELS:
+        raise ParameterError("model", model, f"allowed: {', '.join(MODELS)} (or a built winch model)")
+    if segments is not None and not (isinstance(segments, (int, np.integer)) and segments >= 1):
+        raise ParameterError("segments", segments, "must be an integer >= 1")
+    n_scene = scene.sections[0].cable.segments if len(scene.sections) == 1 else None
+    if model == "wang":
+        if segments not in (None, 1):
+            raise ParameterError("segments", segments, "Wang's 2-DOF winch is one straight element: 1 or unset")
+        sc = scene if n_scene in (None, 1) else scene.replace_section(cable={"segments": 1})
+        return sc, build_winch_model(sc, compensator=compensator)
+    n = segments if segments is not None else n_scene
+    if n is None or n < 2:
+        raise ParameterError("segments", segments, "the segmented model needs N >= 2 elements (segments, or the "
+                                                   "scene's cable.segments)")
+    sc = scene if n == n_scene else scene.replace_section(cable={"segments": int(n)})
+    return sc, build_node_winch_model(sc, compensator=compensator)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -65,6 +118,10 @@ class HeaveProblem:
     # (x, alpha, E_k, p, c, w) -> (x_{k+1}, cost, g) with the parameters symbolic (sensitivities);
     # E_k = exogenous(t_k), the top motion at the interval's RK4 stage times
     interval: ca.Function = dataclasses.field(repr=False, default=None)
+    # (x, alpha, E_j, p, c, h) -> x after one RK4 step of h s, E_j = e at the step's 3 stage times; and
+    # (x, alpha, e, p, c, w) -> (cost, g) at the interval start: the kernels of a model with many substeps
+    substep: ca.Function = dataclasses.field(repr=False, default=None)
+    start: ca.Function = dataclasses.field(repr=False, default=None)
 
     @property
     def record_s(self) -> float:
@@ -72,8 +129,18 @@ class HeaveProblem:
         series = self.scene.top_motion.series
         return float(series.times[-1]) if series is not None else float(self.scene.numerics.duration)
 
+    @property
+    def output_labels(self) -> tuple:
+        """The rows of :meth:`outputs` (:func:`output_labels`)."""
+        return output_labels(self.model)
+
+    @property
+    def floor_output(self) -> str:
+        """The output the no-slack floor bounds (:func:`floor_output`)."""
+        return floor_output(self.model)
+
     def outputs(self, X: np.ndarray, U: np.ndarray, t: np.ndarray) -> np.ndarray:
-        """Winch-model outputs (:data:`WINCH_OUTPUTS`) at states X (n, nx), controls U (n,), times t."""
+        """Winch-model outputs (:attr:`output_labels`) at states X (n, nx), controls U (n,), times t."""
         v = np.vstack([np.ravel(U), np.zeros(len(t))])
         f = self.model.outputs.map(len(t))
         return np.array(f(X.T, v, np.asarray(t, float)[None, :], self.p, self.c)).T
@@ -118,6 +185,8 @@ class HeaveProblem:
         library per model structure serves every scene value, and the NLP's derivatives are the kernels'
         compiled forward, adjoint and forward-over-adjoint derivatives with respect to (x, alpha) only.
         In CasADi's virtual machine: ``step`` and ``stage`` (the numbers inlined, SX)."""
+        if self.substeps > SUBSTEP_KERNELS_FROM:
+            return self._substep_nlp_functions()
         kernels = interval_kernels(self.interval)
         if kernels is None or not kernels.compiled:
             return self.step, self.stage, False
@@ -130,16 +199,51 @@ class HeaveProblem:
         stage = ca.Function("stage", [x, u, e], f["ocp_stage"](*args))
         return step, stage, True
 
+    def _substep_nlp_functions(self):
+        """:meth:`nlp_functions` from one compiled RK4 step called ``substeps`` times (:func:`substep_kernels`):
+        the C of a whole interval of the node model's stiff steps is too large to compile (54 MB at N = 4 with
+        11 steps), one step's is a substeps-th of it."""
+        kernels = substep_kernels(self.substep, self.start)
+        if kernels is None or not kernels.compiled:
+            return self.step, self.stage, False
+        f = kernels.functions
+        nx, ne = self.model.nx, self.step.size1_in(2)
+        x, u, e = ca.MX.sym("x", nx), ca.MX.sym("u"), ca.MX.sym("E", ne)
+        p, c, h = ca.DM(self.p), ca.DM(self.c), self.dt / self.substeps
+        w = ca.DM([self.heave_rest, self.static_tension, self.tension_weight, self.control_weight, self.dt])
+        xn = x
+        for i in range(self.substeps):
+            xn = f["ocp_rk4"](xn, u, e[7 * 2 * i: 7 * (2 * i + 3)], p, c, h)
+        step = ca.Function("step", [x, u, e], [xn])
+        stage = ca.Function("stage", [x, u, e], f["ocp_start"](x, u, e[:7], p, c, w))
+        return step, stage, True
+
     def scales(self):
-        """State scales (phi and its rate 0.05, lengths and speeds 1) for IPOPT."""
+        """State scales for IPOPT: Wang's phi and its rate 0.05, lengths and speeds 1 (the node model's positions,
+        rates, L and w: 1)."""
         nq = self.model.nq
-        q = np.array([0.05] + [1.0] * (nq - 1))
+        q = np.ones(nq) if isinstance(self.model, NodeWinchModel) else np.array([0.05] + [1.0] * (nq - 1))
         return np.concatenate([q, q, [1.0, 1.0]])
 
 
-def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25, substeps: int = 2,
+# |h lambda| of classical RK4 steps: the stability region's boundary crosses the imaginary axis at 2.83 and the
+# real axis at -2.79 (Hairer & Wanner, Solving ODEs II, sec. IV.2, Fig. 2.1); the chosen steps keep the stiffest
+# mode of the linearization at rest within RK4_STEP_LAMBDA, an explicit count past RK4_STABILITY is refused
+RK4_STEP_LAMBDA = 2.4
+RK4_STABILITY = 2.78
+
+
+def fastest_mode(model, x_rest, p, c) -> float:
+    """max |lambda| (1/s) of the model's Jacobian d x'/d x at rest (alpha = 0): its stiffest mode, the axial
+    waves of the node model's elements (omega ~ 2 N sqrt(AE / m) / L), the spring of Wang's 2-DOF model."""
+    x = ca.SX.sym("x", model.nx)
+    J = ca.Function("J", [x], [ca.jacobian(model.ode(x, ca.DM.zeros(2), 0.0, p, c), x)])
+    return float(np.max(np.abs(np.linalg.eigvals(np.array(J(x_rest))))))
+
+
+def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25, substeps: int | None = None,
                   tension_weight: float = 0.0, control_weight: float = 1e-3,
-                  compensator: dict | None = None, model: WinchModel | None = None) -> HeaveProblem:
+                  compensator: dict | None = None, model="wang", segments: int | None = None) -> HeaveProblem:
     """Set up the heave-compensation problem of ``scene`` (module docstring).
 
     Parameters
@@ -150,8 +254,9 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
         Winch and tension limits (default: unbounded winch, the scene's tension band).
     dt : float
         Control interval (s): alpha is constant on each.
-    substeps : int
-        RK4 steps per interval.
+    substeps : int, optional
+        RK4 steps per interval; default the least n >= 2 with (dt / n) max |lambda| <= 2.4 (:func:`fastest_mode`:
+        the node model's stiff axial modes need many); a count past RK4's stability limit is refused.
     tension_weight : float
         c_T, weight of the relative tension fluctuation (m^2 per unit of ((T - T_0)/T_0)^2).
     control_weight : float
@@ -159,8 +264,12 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
     compensator : dict, optional
         ``mass``, ``stiffness``, ``damping`` of a passive compensator under the sheave (the
         precharge is set to hold the static load at zero stroke).
-    model : WinchModel, optional
-        A model built before for this scene's structure.
+    model : str or WinchModel or NodeWinchModel
+        "wang" (Wang's 2-DOF winch, :mod:`cablesys.model.winch`), "segmented" (the node model's winch on
+        ``segments`` elements, :mod:`cablesys.model.segmented_winch_control`), or a model built before for this
+        scene's structure.
+    segments : int, optional
+        N of the segmented model (default the scene's ``cable.segments``).
 
     Returns
     -------
@@ -168,12 +277,15 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
     """
     limits = WinchLimits() if limits is None else limits
     require_positive("dt", dt, "s")
-    if not (isinstance(substeps, int) and substeps >= 1):
+    if substeps is not None and not (isinstance(substeps, int) and substeps >= 1):
         raise ParameterError("substeps", substeps, "must be an integer >= 1")
     for name, v in (("tension_weight", tension_weight), ("control_weight", control_weight)):
         if not (v >= 0 and math.isfinite(v)):
             raise ParameterError(name, v, "must be a finite number >= 0")
-    model = model or build_winch_model(scene, compensator=compensator is not None)
+    if isinstance(model, str):
+        scene, model = control_model(scene, model, segments, compensator=compensator is not None)
+    elif model is None:
+        scene, model = control_model(scene, "wang", None, compensator=compensator is not None)
     p = model.parameters(scene)
     c = np.zeros(len(COMPENSATOR_PARAMETERS))
     if compensator is not None:
@@ -187,51 +299,46 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
         t_top = dict(zip(WINCH_OUTPUTS, np.array(plain.outputs(x_plain, [0, 0], 0.0, p, c)).ravel()))["tension_top"]
         # y down: the precharge pushes the sheave up against the cable's vertical pull and its own weight
         c[3] = -t_top * math.cos(x_plain[0]) - c[0] * p[model.layout.index("environment.gravity")]
-    x_rest = rest_state(model, p, c)
-    y_rest = dict(zip(WINCH_OUTPUTS, np.array(model.outputs(x_rest, [0, 0], 0.0, p, c)).ravel()))
+    x_rest = model_rest_state(model, p, c)
+    y_rest = dict(zip(output_labels(model), np.array(model.outputs(x_rest, [0, 0], 0.0, p, c)).ravel()))
+    lam = fastest_mode(model, x_rest, p, c)
+    if substeps is None:
+        substeps = max(2, math.ceil(dt * lam / RK4_STEP_LAMBDA))
+    elif dt / substeps * lam > RK4_STABILITY:
+        raise ParameterError("substeps", substeps, f"RK4 steps of {dt / substeps:.3g} s are unstable for the model's "
+                                                   f"fastest mode |lambda| = {lam:.4g} 1/s: at least "
+                                                   f"{math.ceil(dt * lam / RK4_STABILITY)}")
     floor, wl = limits.band(scene, y_rest["tension_top"])
     T0 = y_rest["tension_top"]
-    step, stage, interval = _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, control_weight)
+    step, stage, interval, substep, start = _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight,
+                                                                control_weight)
     return HeaveProblem(scene=scene, model=model, p=p, c=c, x_rest=x_rest, limits=limits, floor=floor,
                         working_load=wl, static_tension=T0, heave_rest=y_rest["heave"], dt=float(dt),
                         substeps=substeps, tension_weight=float(tension_weight),
                         control_weight=float(control_weight), step=step, stage=stage,
-                        interval=interval)
+                        interval=interval, substep=substep, start=start)
 
 
 
 def _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, control_weight):
-    """(step, stage, interval) of one control interval; step and stage are SX functions of (x, alpha, E_k)
-    with the numbers inlined.
+    """(step, stage, interval, substep, start) of one control interval; step and stage are SX functions of
+    (x, alpha, E_k) with the numbers inlined; substep and start those of :func:`_substep_functions`.
 
     ``interval(x, u, E, p, c, w) -> (x_next, cost, g)``: ``substeps`` classical RK4 steps of the
     winch ODE with alpha = u constant and the top motion read from E (:meth:`HeaveProblem.exogenous`:
     e at the 2 substeps + 1 stage times), the stage cost at the interval start and the path outputs
     (:data:`G_ROWS`); w = (heave at rest, T_0, c_T, c_a, dt).
     """
-    nq, ne = model.nq, 7
+    ne = 7
+    substep, start = _substep_functions(model, len(p), len(c))
     xs, uk = ca.SX.sym("x", model.nx), ca.SX.sym("u")
     Es = ca.SX.sym("E", ne * (2 * substeps + 1))
     ps, cs, ws = ca.SX.sym("p", len(p)), ca.SX.sym("c", len(c)), ca.SX.sym("w", 5)
-    e_at = lambda j: Es[ne * j: ne * (j + 1)]
-    winch = lambda x: ca.vertcat(x[2 * nq], x[2 * nq + 1], uk, 0.0)      # (L, w, alpha, F_a)
-
-    def f(x, j):                                    # the winch ODE (model.ode) at stage time j
-        qdd = model.accel(x[:nq], x[nq:2 * nq], e_at(j), winch(x), ps, cs)
-        return ca.vertcat(x[nq:2 * nq], qdd, x[2 * nq + 1], uk)
     h = ws[4] / substeps
     x = xs
-    for i in range(substeps):                       # classical RK4
-        k1 = f(x, 2 * i)
-        k2 = f(x + h / 2 * k1, 2 * i + 1)
-        k3 = f(x + h / 2 * k2, 2 * i + 1)
-        k4 = f(x + h * k3, 2 * i + 2)
-        x = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-    y = model.outputs_e(xs[:nq], xs[nq:2 * nq], e_at(0), winch(xs), ps, cs)
-    oi = WINCH_OUTPUTS.index
-    cost = ws[4] * ((y[oi("heave")] - ws[0]) ** 2 + ws[2] * ((y[oi("tension_top")] - ws[1]) / ws[1]) ** 2
-                    + ws[3] * uk ** 2)
-    g = ca.vertcat(*(y[oi(name)] for name in G_ROWS))
+    for i in range(substeps):                       # classical RK4, the top at its stage times 2i, 2i+1, 2i+2
+        x = substep(x, uk, Es[ne * 2 * i: ne * (2 * i + 3)], ps, cs, h)
+    cost, g = start(xs, uk, Es[:ne], ps, cs, ws)
     interval = ca.Function("interval", [xs, uk, Es, ps, cs, ws], [x, cost, g],
                            ["x", "u", "E", "p", "c", "w"], ["xn", "cost", "g"])
     w = ca.DM([y_rest["heave"], y_rest["tension_top"], tension_weight, control_weight, dt])
@@ -239,7 +346,60 @@ def _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, contr
     xn, cost, g = interval(xa, ua, ra, ca.DM(p), ca.DM(c), w)
     step = ca.Function("step", [xa, ua, ra], [xn])
     stage = ca.Function("stage", [xa, ua, ra], [cost, g])
-    return step, stage, interval
+    return step, stage, interval, substep, start
+
+
+def _substep_functions(model, n_p: int, n_c: int):
+    """(substep, start): one classical RK4 step ``(x, u, E_j, p, c, h) -> x_next`` of the winch ODE with alpha
+    = u and the top at the step's 3 stage times (E_j, 21 rows), and the stage cost and path outputs at the
+    interval start ``(x, u, e, p, c, w) -> (cost, g)``, as in :func:`_interval_functions`."""
+    nq, ne = model.nq, 7
+    x, u, E = ca.SX.sym("x", model.nx), ca.SX.sym("u"), ca.SX.sym("E", 3 * ne)
+    p, c, h, w = ca.SX.sym("p", n_p), ca.SX.sym("c", n_c), ca.SX.sym("h"), ca.SX.sym("w", 5)
+
+    def f(xx, j):
+        qdd = model.accel(xx[:nq], xx[nq:2 * nq], E[ne * j: ne * (j + 1)],
+                          ca.vertcat(xx[2 * nq], xx[2 * nq + 1], u, 0.0), p, c)
+        return ca.vertcat(xx[nq:2 * nq], qdd, xx[2 * nq + 1], u)
+    k1 = f(x, 0)
+    k2 = f(x + h / 2 * k1, 1)
+    k3 = f(x + h / 2 * k2, 1)
+    k4 = f(x + h * k3, 2)
+    names = ["x", "u", "E", "p", "c"]
+    substep = ca.Function("ocp_rk4", [x, u, E, p, c, h], [x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)], names + ["h"], ["xn"])
+    e0 = ca.SX.sym("e", ne)
+    y = model.outputs_e(x[:nq], x[nq:2 * nq], e0, ca.vertcat(x[2 * nq], x[2 * nq + 1], u, 0.0), p, c)
+    oi = output_labels(model).index
+    cost = w[4] * ((y[oi("heave")] - w[0]) ** 2 + w[2] * ((y[oi("tension_top")] - w[1]) / w[1]) ** 2 + w[3] * u ** 2)
+    g = ca.vertcat(*(y[oi(floor_output(model) if name == "tension_floor" else name)] for name in G_ROWS))
+    start = ca.Function("ocp_start", [x, u, e0, p, c, w], [cost, g], ["x", "u", "e", "p", "c", "w"], ["cost", "g"])
+    return substep, start
+
+
+# more RK4 steps per interval than this: the NLP calls one compiled step kernel per step (HeaveProblem.
+# _substep_nlp_functions) instead of one kernel of the whole interval, whose C grows with the steps
+SUBSTEP_KERNELS_FROM = 4
+
+
+def substep_kernels(substep: ca.Function, start: ca.Function):
+    """The compiled ``ocp_rk4`` and ``ocp_start`` of :func:`_substep_functions`, each with its forward, adjoint
+    and forward-over-adjoint derivatives with respect to (x, u), as :func:`interval_kernels`; None when nothing
+    is compiled."""
+    if not compiles():
+        return None
+    key = digest(substep.serialize() + start.serialize())
+    return _KERNELS.get(key) or _compiled_kernels(
+        key, state_derivatives(substep, ("x", "u")) + state_derivatives(start, ("x", "u")))
+
+
+def _compiled_kernels(key, functions):
+    """``functions`` compiled (:data:`KERNEL_OPTIMIZATION`) and kept under ``key`` in the KERNELS_KEPT cache."""
+    kernels = compile_functions(functions, jacobians=False, optimization=KERNEL_OPTIMIZATION)
+    if kernels.compiled:
+        while len(_KERNELS) >= KERNELS_KEPT:
+            _KERNELS.pop(next(iter(_KERNELS)))       # the oldest first (dicts keep insertion order)
+        _KERNELS[key] = kernels
+    return kernels
 
 
 # optimization flag of the kernels (see interval_kernels)
@@ -271,11 +431,7 @@ def interval_kernels(interval: ca.Function):
         stage = ca.Function("ocp_stage", [x, u, e, p, c, w], [cost, g], names, ["cost", "g"])
         functions = state_derivatives(step, ("x", "u")) + state_derivatives(stage, ("x", "u"))
         # -O1: Hessians as fast as at -O2 for a fraction of its compile; -O0 compiles sooner with slower Hessians
-        kernels = compile_functions(functions, jacobians=False, optimization=KERNEL_OPTIMIZATION)
-        if kernels.compiled:
-            while len(_KERNELS) >= KERNELS_KEPT:
-                _KERNELS.pop(next(iter(_KERNELS)))       # the oldest first (dicts keep insertion order)
-            _KERNELS[key] = kernels
+        kernels = _compiled_kernels(key, functions)
     return kernels
 
 
@@ -288,7 +444,9 @@ class PayoutResult(ResultBase):
     ``output_labels`` (:data:`cablesys.model.winch.WINCH_OUTPUTS`) and the same for the run
     without compensation (``uncompensated``, alpha = 0). ``status`` is IPOPT's return status,
     ``violated`` the constraint that could not be met ("" when all hold), ``violations`` the
-    largest violation of each, relative to its scale (the static tension for forces).
+    largest violation of each, relative to its scale (the static tension for forces). ``tension_min_n`` is the
+    least of the tension the no-slack floor bounds (:attr:`HeaveProblem.floor_output`: Wang's F_bc, the node
+    model's least element tension), ``tension_max_n`` the largest top tension.
     """
 
     times: np.ndarray
@@ -366,16 +524,16 @@ def payout_result(problem: HeaveProblem, X, U, *, status: str, violated: str = "
     X0 = problem.rollout(problem.x_rest, np.zeros(N))
     Y0 = problem.outputs(X0, np.zeros(N + 1), t)
     mask = statistics_window(t, stats_start, problem.scene.top_motion)
-    oi = WINCH_OUTPUTS.index
+    oi = problem.output_labels.index
     h, h0 = Y[:, oi("heave")] - problem.heave_rest, Y0[:, oi("heave")] - problem.heave_rest
     return PayoutResult(times=t, states=np.asarray(X), acceleration=np.ravel(U), outputs=Y, uncompensated=Y0,
-                        state_labels=problem.model.state_labels, output_labels=WINCH_OUTPUTS, status=status,
+                        state_labels=problem.model.state_labels, output_labels=problem.output_labels, status=status,
                         violated=violated, violations=dict(violations or {}), objective=float(objective),
                         heave_rms_m=float(np.sqrt(np.mean(h[mask] ** 2))),
                         uncompensated_heave_rms_m=float(np.sqrt(np.mean(h0[mask] ** 2))),
                         heave_reduction_db=heave_reduction_db(h, h0, mask),
                         tension_max_n=float(np.max(Y[:, oi("tension_top")])),
-                        tension_min_n=float(np.min(Y[:, oi("tension_mid")])),
+                        tension_min_n=float(np.min(Y[:, oi(problem.floor_output)])),
                         speed_max_m_s=float(np.max(np.abs(Y[:, oi("speed")]))),
                         power_max_w=float(np.max(np.abs(Y[:, oi("power")]))),
                         success=success, message=message, stats=dict(stats or {}))

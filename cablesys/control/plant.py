@@ -11,7 +11,6 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
-from ..model.winch import WINCH_OUTPUTS
 
 
 class Plant:
@@ -56,13 +55,13 @@ def resimulate(problem, result, *, per_interval: int = 4) -> dict:
         |x_cvodes - x_grid| at the grid points, in the problem's state scales).
     """
     T, X, Y = simulate_payout(problem, result.acceleration, per_interval=per_interval)
-    oi = WINCH_OUTPUTS.index
+    oi = problem.output_labels.index
     lim = problem.limits
     rel = lambda excess, scale: float(max(np.max(excess), 0.0) / scale)
     viol = {"speed": rel(np.abs(Y[:, oi("speed")]) - lim.speed, lim.speed) if np.isfinite(lim.speed) else 0.0,
             "power": rel(np.abs(Y[:, oi("power")]) - lim.power, lim.power) if np.isfinite(lim.power) else 0.0,
             "working load": rel(Y[:, oi("tension_top")] - problem.working_load, problem.working_load),
-            "tension floor (no slack)": rel(problem.floor - Y[:, oi("tension_mid")], problem.static_tension)}
+            "tension floor (no slack)": rel(problem.floor - Y[:, oi(problem.floor_output)], problem.static_tension)}
     start = result.times[-1] * 0.2
     h = Y[:, oi("heave")] - problem.heave_rest
     dev = np.max(np.abs(X[::per_interval] - result.states) / problem.scales())

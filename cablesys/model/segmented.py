@@ -73,7 +73,7 @@ from .section import SectionParameters
 from .segmented_element import block_solve, body_drag, dot, element_inertia, element_terms, lump_force, lump_kinetic, norm
 from .segmented_kernel import kernel_ode
 from .segmented_seabed import seabed_forces
-from .segmented_winch import WINCH_OUTPUTS, payout
+from .segmented_winch import WINCH_OUTPUTS, Payout, payout
 from .signals import CHORD_NAMES, EXO_LABELS, OUTPUT_NAMES
 from .top_motion import EXO_LABELS_3D, symbolic_type, top_motion_function
 
@@ -154,13 +154,18 @@ def mid_tension(els):
     return 0.5 * (els[n // 2 - 1]["tension"] + els[n // 2]["tension"])
 
 
-def build_segmented_model(scene: Scene) -> SegmentedModel:
+def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> SegmentedModel:
     """Build the segmented-cable functions for ``scene`` (elements per section: ``cable.segments``).
 
     Parameters
     ----------
     scene : Scene
         Any scene; every value enters through the parameter vector ``p`` as for the 2-DOF model.
+    winch_input : casadi.SX, optional
+        A 3-vector of symbols (L, w, alpha): the first section's zero-tension length (m), payout speed (m/s)
+        and acceleration (m/s^2) as inputs instead of the ``[winch]`` profile (:mod:`.segmented_winch`, the
+        same terms), for a controlled winch (:mod:`.segmented_winch_control`). ``dynamics``, ``accel``,
+        ``ode``, ``outputs`` and ``energy`` then take it as their last input ``winch``; no kernel.
 
     Returns
     -------
@@ -216,6 +221,8 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
         n_el = segs[i]
         els = []
         pay = payout(scene, layout, P, t) if i == 0 else None     # a [winch]: L(t) (segmented_winch.py)
+        if i == 0 and winch_input is not None:                    # L, w, alpha as inputs (a control)
+            pay = Payout(L=winch_input[0], w=winch_input[1], alpha=winch_input[2])
         inertia = (pay.inertia if pay else element_inertia)(P, n_el, p, rho, t, env, depth0, drag_points(scene, n_el), dim)
         P = pay.section(P) if pay else P
         for k in range(n_el):
@@ -354,6 +361,8 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
     # profiles (element k top to bottom over all sections; node j = 0 the top) and their arc lengths
     T = ca.vertcat(*[el["tension"] for el in elements])
     T_rate = ca.jtimes(T, x, xdot) + ca.jacobian(T, e) @ ca.vertcat(1.0, zd, zdd, ca.DM.zeros(dim))
+    if winch_input is not None:      # L' = w, w' = alpha (alpha' not known to the model: held)
+        T_rate += ca.jacobian(T, winch_input) @ ca.vertcat(winch_input[1], winch_input[2], 0.0)
     prof = {"element_tension": T, "element_tension_rate": T_rate,
             "element_strain": ca.vertcat(*[el["strain"] for el in elements]),
             "element_slack": ca.vertcat(*[el["slack"] for el in elements]),
@@ -375,23 +384,28 @@ def build_segmented_model(scene: Scene) -> SegmentedModel:
         out += [v[k] for k in range(v.shape[0])]
         labels += [f"{name}[{k}]" for k in range(v.shape[0])]
 
-    dynamics = ca.Function("dynamics", [q, qd, e, p], [M, f], ["q", "qd", "e", "p"], ["M", "f"])
-    accel = ca.Function("accel", [q, qd, e, p], [acc], ["q", "qd", "e", "p"], ["qdd"])
+    # a controlled winch: (L, w, alpha) the last input of every function (winch_input)
+    zi, zn = ([winch_input], ["winch"]) if winch_input is not None else ([], [])
+    dynamics = ca.Function("dynamics", [q, qd, e, p, *zi], [M, f], ["q", "qd", "e", "p", *zn], ["M", "f"])
+    accel = ca.Function("accel", [q, qd, e, p, *zi], [acc], ["q", "qd", "e", "p", *zn], ["qdd"])
     top = top_motion_function(scene, layout)
     S = symbolic_type(scene)
     nq = dim * n_free + n_rot
     xs, ts, ps = S.sym("x", 2 * nq), S.sym("t"), S.sym("p", p.shape[0])
-    ode = ca.Function("ode", [xs, ts, ps], [ca.vertcat(xs[nq:], accel(xs[:nq], xs[nq:], top(ts, ps), ps))],
-                      ["x", "t", "p"], ["xdot"])
-    outputs = ca.Function("outputs", [x, e, p], [ca.vertcat(*out)], ["x", "e", "p"], ["y"])
-    energy = ca.Function("energy", [x, e, p], [K, V_grav + V_strain + V_contact + V_rigid], ["x", "e", "p"], ["K", "V"])
+    zs = [S.sym("winch", 3)] if winch_input is not None else []
+    ode = ca.Function("ode", [xs, ts, ps, *zs], [ca.vertcat(xs[nq:], accel(xs[:nq], xs[nq:], top(ts, ps), ps, *zs))],
+                      ["x", "t", "p", *zn], ["xdot"])
+    outputs = ca.Function("outputs", [x, e, p, *zi], [ca.vertcat(*out)], ["x", "e", "p", *zn], ["y"])
+    energy = ca.Function("energy", [x, e, p, *zi], [K, V_grav + V_strain + V_contact + V_rigid], ["x", "e", "p", *zn],
+                         ["K", "V"])
     cable_force = ca.Function("cable_force", [x, p], [ca.SX(0, 1)], ["x", "p"], ["gap"])
-    static = (ca.Function("static_force", [q, qd, e, p], [f_static], ["q", "qd", "e", "p"], ["f"])
+    static = (ca.Function("static_force", [q, qd, e, p, *zi], [f_static], ["q", "qd", "e", "p", *zn], ["f"])
               if scene.seabed is not None else None)
     # a sampled series is an MX node inside the SX physics: no kernel form of that model; the kernel
     # has no anchor, no seabed and no winch (such scenes evaluate the element-by-element ode)
     kernel = (kernel_ode(scene, lambda n_el: drag_points(scene, n_el))
-              if S is ca.SX and not anchored and scene.seabed is None and scene.winch is None and not n_rot else None)
+              if S is ca.SX and not anchored and scene.seabed is None and scene.winch is None and not n_rot
+              and winch_input is None else None)
     return SegmentedModel(layout=layout, n_sections=n_sec, angles=scene.angles, q_labels=q_labels,
                           output_labels=tuple(labels), dynamics=dynamics, ode=ode, top=top, outputs=outputs,
                           energy=energy, cable_force=cable_force, slack_index=(), symbolic=S,

@@ -1,0 +1,153 @@
+"""The winch of the segmented node model driven by a control: L and w states, alpha the input.
+
+The node model's winch (:mod:`.segmented_winch`: the first section's N elements share the zero-tension length
+L uniformly, material velocities for drag and Voigt damping, L a prescribed coordinate in Lagrange's equations
+with z = L, z' = w, z'' = alpha, Wang 1971 eq. 8-9, and the top tension with the sheave's half element) with
+(L, w, alpha) as inputs of the functions instead of the scene's payout profile
+(:func:`.segmented.build_segmented_model` with ``winch_input``: the same terms, no copy). Here L and w join the
+state, L' = w, w' = alpha, as in Wang's 2-DOF winch (:mod:`.winch`), and the functions have that model's
+interface (:class:`.winch.WinchModel`), so the optimal control and the MPC (:mod:`cablesys.control`) run on
+either:
+
+State x = (x[1], y[1], ..., x[N], y[N], their rates, L, w): node positions (m, y down from the top's mean
+depth; node N the body), L (m), w (m/s, + pays out); control v = (alpha, F_a): alpha (m/s^2); F_a (N) is the
+2-DOF model's compensator force, which this model has no coordinate for (``compensator`` False: F_a is not an
+input here, a compensator is refused when the model is built).
+
+``outputs`` rows: :data:`.winch.WINCH_OUTPUTS` (heave = y_b, the body's depth below the top's mean depth; its
+rate; x_b; ``tension_mid`` the section's tension at mid-length, :func:`.segmented.mid_tension`; ``tension_top``
+the cable's pull on the sheave with its half element's material acceleration; ``tension_bottom``; ``stretch``
+the sum of the element elongations minus L; ``length`` L, ``speed`` w, ``acceleration`` alpha, ``power``
+T_top w (W); ``stroke`` 0, no compensator) and then ``tension_least``, the least element tension (N): in the
+node model slack starts at the element of least tension, usually the lowest, so the no-slack limit of the
+control bounds that row (``floor_output``), where the 2-DOF model, with one uniform stretch, bounds its F_bc.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import casadi as ca
+import numpy as np
+
+from ..errors import ParameterError
+from ..scene import Scene
+from .params import ParameterLayout
+from .segmented import build_segmented_model
+from .winch import WINCH_OUTPUTS, WinchModel
+
+NODE_WINCH_OUTPUTS = WINCH_OUTPUTS + ("tension_least",)
+# the node model's output for each WINCH_OUTPUTS row (None: zero, the stroke of an absent compensator)
+_FROM_NODE_MODEL = {"heave": "y_b", "heave_rate": "y_b_rate", "x_b": "x_b", "tension_mid": "tension_mid",
+                    "tension_top": "tension_top", "tension_bottom": "tension_bottom", "stretch": "u",
+                    "length": "winch_length", "speed": "winch_speed", "acceleration": "winch_acceleration",
+                    "power": "winch_power", "stroke": None}
+
+
+@dataclasses.dataclass(frozen=True)
+class NodeWinchModel(WinchModel):
+    """CasADi functions of the controlled node-model winch of one scene structure (SX, SI units; module docstring):
+    :class:`.winch.WinchModel`'s functions and state layout on the node model.
+
+    ``ode(x, v, t, p, c) -> x'``; ``outputs(x, v, t, p, c) -> y`` (labels :data:`NODE_WINCH_OUTPUTS`);
+    ``accel(q, qd, e, winch, p, c) -> q''`` with e the top's exogenous vector (:data:`.signals.EXO_LABELS`) and
+    winch = (L, w, alpha, F_a) (F_a unused); ``outputs_e(q, qd, e, winch, p, c) -> y``. ``c`` (the 2-DOF model's
+    compensator parameters) is accepted and unused, so the control code calls both models alike.
+    ``segments`` is N, the first section's elements.
+    """
+
+    segments: int = 1
+    output_labels: tuple = NODE_WINCH_OUTPUTS
+    floor_output: str = "tension_least"
+    name: str = "segmented"
+
+    def parameters(self, scene: Scene) -> np.ndarray:
+        """The scene's parameter vector (the node model's tension law max(TENS, ...) needs no switch)."""
+        return self.layout.values(scene)
+
+    def output_index(self, name: str) -> int:
+        return self.output_labels.index(name)
+
+    def describe(self) -> str:
+        return f"segmented node model with winch, N = {self.segments} (cablesys.model.segmented_winch_control)"
+
+
+def build_node_winch_model(scene: Scene, *, compensator: bool = False) -> NodeWinchModel:
+    """Build the controlled winch on the node model of a one-section planar ``scene`` (N = ``cable.segments``).
+
+    Raises
+    ------
+    ParameterError
+        More than one section, a 3-D scene, an anchor, a ``[winch]`` profile (the control drives L: the scene's
+        prescribed payout would be dropped), or ``compensator`` (no piston coordinate in this model).
+    """
+    if len(scene.sections) != 1:
+        raise ParameterError("sections", len(scene.sections), "the controlled winch has one section")
+    if scene.three_d:
+        raise ParameterError("three_d", True, "the controlled node-model winch is planar")
+    if scene.anchor is not None:
+        raise ParameterError("anchor", "set", "a winch-lowered line hangs free: no [anchor]")
+    if scene.sections[0].body.is_rigid:
+        raise ParameterError("body.pitch_inertia", scene.sections[0].body.pitch_inertia,
+                             "must be unset: the controlled winch's body is a point (no pitch coordinate yet)")
+    if getattr(scene, "winch", None) is not None:
+        raise ParameterError("winch", "set", "must be unset: the control drives the payout (a [winch] profile "
+                                             "would be ignored)")
+    if compensator:
+        raise ParameterError("compensator", True, "the node model has no compensator coordinate (use Wang's 2-DOF "
+                                                  "winch, cablesys.model.winch)")
+    z = ca.SX.sym("winch", 3)
+    seg = build_segmented_model(scene, winch_input=z)
+    nq = len(seg.q_labels)
+    labels = seg.output_labels
+    q, qd, e = ca.SX.sym("q", nq), ca.SX.sym("qd", nq), ca.SX.sym("e", 7)
+    winch = ca.SX.sym("winch", 4)                       # L, w, alpha, F_a
+    p = seg.layout.symbol
+    c = ca.SX.sym("c", 4)
+    zc = winch[:3]
+    qdd = seg.accel(q, qd, e, p, zc)
+    y = seg.outputs(ca.vertcat(q, qd), e, p, zc)
+    rows = [y[labels.index(src)] if src else ca.SX(0.0) for src in (_FROM_NODE_MODEL[n] for n in WINCH_OUTPUTS)]
+    tens = [y[labels.index(f"element_tension[{k}]")] for k in range(seg.n_elements)]
+    rows.append(ca.mmin(ca.vertcat(*tens)))
+    names = ["q", "qd", "e", "winch", "p", "c"]
+    accel = ca.Function("accel", [q, qd, e, winch, p, c], [qdd], names, ["qdd"])
+    out_e = ca.Function("node_winch_outputs_e", [q, qd, e, winch, p, c], [ca.vertcat(*rows)], names, ["y"])
+    top = seg.top
+    xs, vs, ts = ca.SX.sym("x", 2 * nq + 2), ca.SX.sym("v", 2), ca.SX.sym("t")
+    ex = top(ts, p)
+    wx = ca.vertcat(xs[2 * nq], xs[2 * nq + 1], vs[0], vs[1])
+    xdot = ca.vertcat(xs[nq:2 * nq], accel(xs[:nq], xs[nq:2 * nq], ex, wx, p, c), xs[2 * nq + 1], vs[0])
+    ode = ca.Function("node_winch_ode", [xs, vs, ts, p, c], [xdot], ["x", "v", "t", "p", "c"], ["xdot"])
+    outputs = ca.Function("node_winch_outputs", [xs, vs, ts, p, c], [out_e(xs[:nq], xs[nq:2 * nq], ex, wx, p, c)],
+                          ["x", "v", "t", "p", "c"], ["y"])
+    return NodeWinchModel(layout=seg.layout, compensator=False, q_labels=seg.q_labels, ode=ode, outputs=outputs, accel=accel, top=top,
+                          outputs_e=out_e, segments=int(seg.segments[0]))
+
+
+def rest_state(model: NodeWinchModel, p, c=None, length: float | None = None) -> np.ndarray:
+    """The state at rest: top still (e = 0), w = 0, zero-tension length ``length`` (default l_0 of Wang 1971
+    eq. 1), the node positions solving q'' = 0 by Newton's method with a line search (CasADi ``rootfinder``,
+    KINSOL) from the straight
+    vertical line stretched by the hanging weight (eq. 1, 12)."""
+    p = np.asarray(p, float)
+    c = np.zeros(4) if c is None else np.asarray(c, float)
+    lay = model.layout
+    l_r, t_r, ae = (p[lay.index(f"cable.{n}")] for n in ("length", "tension_ref", "ae"))
+    w_r, w_b = p[lay.index("cable.weight_per_length")], p[lay.index("body.weight")]
+    L = l_r - t_r * l_r / ae if length is None else float(length)
+    n = model.segments
+    s = L * (n - np.arange(1, n + 1)) / n                  # node j's unstretched arc from the body
+    y = np.array([L - sj + (w_b * (L - sj) + w_r * (L * L - sj * sj) / 2) / ae for sj in s])   # y_j below the top
+    guess = np.ravel(np.column_stack([np.zeros(n), y]))
+    qs = ca.SX.sym("q", model.nq)
+    wz = ca.DM([L, 0, 0, 0])
+    res = model.accel(qs, ca.DM.zeros(model.nq), ca.DM.zeros(7), wz, p, c)
+    # Newton with a line search (KINSOL): a current bows the line far from the vertical guess
+    solve = ca.rootfinder("node_rest", "kinsol", ca.Function("r", [qs], [res]),
+                          {"abstol": 1e-8, "strategy": "linesearch", "error_on_fail": False})   # m/s^2: 1e-9 g
+    qr = np.array(solve(guess)).ravel()
+    if not np.all(np.isfinite(qr)) or np.max(np.abs(np.array(model.accel(qr, np.zeros(model.nq), np.zeros(7), wz,
+                                                                          p, c)))) > 1e-6:
+        raise ParameterError("scene", "rest state", "the node-model winch found no static equilibrium")
+    return np.concatenate([qr, np.zeros(model.nq), [L, 0.0]])
