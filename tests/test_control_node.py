@@ -16,7 +16,7 @@ from cablesys.model import build_model
 from cablesys.model.segmented_winch_control import build_node_winch_model, rest_state
 from cablesys.model.winch import WINCH_OUTPUTS
 from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMotion, Winch
-from cablesys.scene.components import payout_profile
+from cablesys.scene.ends import payout_profile
 from cablesys.scene.scene import single_section_scene
 
 G = 9.80665
