@@ -41,25 +41,32 @@ def _snap_marks(result) -> tuple[list, str]:
     return marks, "snap load (element tension, first peak after re-tensioning)"
 
 
-def _shape_panel(ax, result, units: str) -> None:
+def _shape_panel(ax, result, units: str, anchored: bool = False) -> None:
     """The cable's node positions (segmented runs): the mean shape, the extreme shapes of the body's
-    depth, the body's depth and layback from the top, in lengths of ``units``."""
+    depth, the body's depth and layback from the top, in lengths of ``units``. With ``anchored`` the
+    line's last node is the anchor (it does not move), so the extreme shapes and the title name the
+    anchor's depth and its horizontal distance from the top instead of a body's."""
     nx, ny = result.profiles["node_x"], result.profiles["node_y"]
     fl, ul = _length_scale(max(np.ptp(nx), np.ptp(ny)), units)
     xm, ym = nx.mean(axis=0), ny.mean(axis=0)
     moving = not all(is_steady(p[:, j], ATOL_LENGTH) for p in (nx, ny) for j in range(p.shape[1]))
+    end = "anchor" if anchored else "body"
     if moving:
-        for k, (i, name) in enumerate(((int(np.argmin(ny[:, -1])), "shallowest"), (int(np.argmax(ny[:, -1])), "deepest"))):
+        # the extremes of the moving end: the top for an anchored line, the body otherwise
+        jx = 0 if anchored else -1
+        picks = ((int(np.argmin(ny[:, jx])), "shallowest"), (int(np.argmax(ny[:, jx])), "deepest"))
+        for k, (i, name) in enumerate(picks):
             ax.plot(nx[i] * fl, ny[i] * fl, color="0.55", ls=("--", ":")[k], lw=0.9,
-                    label=f"{name} body, t = {result.time[i]:.4g} s")
+                    label=f"{name} {'top' if anchored else 'body'}, t = {result.time[i]:.4g} s")
     ax.plot(xm * fl, ym * fl, "k.-", lw=1.2, ms=4, label="mean shape (nodes)" if moving else "shape (steady, nodes)")
     ax.plot(xm[0] * fl, ym[0] * fl, "ks", ms=6, label="top")
-    ax.plot(xm[-1] * fl, ym[-1] * fl, "o", color="C0", ms=8, label="body")
+    ax.plot(xm[-1] * fl, ym[-1] * fl, "^" if anchored else "o", color="C0", ms=8, label=end)
     depth, layback = (clean(v, ATOL_LENGTH) * fl for v in (ym[-1] - ym[0], xm[-1] - xm[0]))
     ax.invert_yaxis()
     ax.set_aspect("equal", adjustable="datalim")
     ax.set(xlabel=f"x ({ul}, + right)", ylabel=f"depth y ({ul}, + down)")
-    ax.set_title(f"cable shape: body depth {depth:.4g} {ul},\nlayback {layback:+.4g} {ul} from the top", fontsize=10)
+    ax.set_title(f"cable shape: {end} depth {depth:.4g} {ul},\n{'distance' if anchored else 'layback'} "
+                 f"{layback:+.4g} {ul} from the top", fontsize=10)
     plain_axis(ax)
     ax.legend(fontsize=7, loc="best")
 
@@ -115,7 +122,7 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
     if shape:
         a_shape, a_path, a_phi = (fig.add_subplot(gs[0, 2 * k:2 * k + 2]) for k in range(3))
         a_u, a_t = fig.add_subplot(gs[1, :2]), fig.add_subplot(gs[1, 2:])
-        _shape_panel(a_shape, result, units)
+        _shape_panel(a_shape, result, units, anchored)
     else:
         a_path, a_phi = fig.add_subplot(gs[0, :3]), fig.add_subplot(gs[0, 3:])
         a_u, a_t = fig.add_subplot(gs[1, :3]), fig.add_subplot(gs[1, 3:])
