@@ -268,6 +268,7 @@ class Winch:
             v = self.legs[k][0]
             what = "hauls in" if v < 0 else "pays out"
             leg = f" in leg {k}" if self.leg else ""
+            t_w, dL_w = (min if L <= 0.0 else max)(points, key=lambda p: p[1])      # the extreme over the run
             raise ParameterError(self._field(k), v, f"{what} the first section's zero-tension length from {l0:.6g} m "
-                                 f"to {bound:.6g} m at t = {t_x:.6g} s{leg} (and on to {L:.6g} m at t = {t:.6g} s): "
-                                 f"it must stay in (0, max_length = {self.max_length:.6g} m]")
+                                 f"to {bound:.6g} m at t = {t_x:.6g} s{leg} (and to {l0 + dL_w:.6g} m at t = "
+                                 f"{t_w:.6g} s): it must stay in (0, max_length = {self.max_length:.6g} m]")
