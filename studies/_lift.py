@@ -117,7 +117,9 @@ def round_trip_figure(path: Path, run: dict) -> None:
              label="weight in water W_b + w L (no drag)")
     axt.set_xlabel("time t (s)")
     axt.set_ylabel("top tension (kN)")
-    axt.legend(fontsize=8, loc="lower center")
+    lo, hi = np.min(T) / 1e3, np.max(T) / 1e3
+    axt.set_ylim(lo - 0.1 * (hi - lo), hi + 0.45 * (hi - lo))           # room for the legend above the curves
+    axt.legend(fontsize=8, loc="upper left")
     axt.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(path, dpi=130)
