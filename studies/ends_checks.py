@@ -1,8 +1,9 @@
-"""Checks of the anchored line on a seabed (segmented node model): statics against the closed-form
-mooring-line catenary with seabed friction, a line lying on a sloped bed, a resting chain and the
-energy of a bouncing line.
+"""Checks of the line's other ends (segmented node model): statics against the closed-form
+mooring-line catenary with seabed friction, a line lying on a sloped bed, a resting chain, the
+energy of a bouncing line, a package lowered and hauled back in by the winch (``_lift.py``), a span's
+free decay and the slack-cable tables.
 
-Writes ``ends_checks.json`` and ``mooring_static_shape.png`` into ``--out``:
+Writes ``ends_checks.json``, ``mooring_static_shape.png`` and ``payout_haulin.png`` into ``--out``:
 
 - ``catenary_seabed_max_rel_err``: the largest relative error of the fairlead forces (H, V_F), the
   anchor force H_A (V_A for the line that does not touch) and the length on the bed L_B over
@@ -23,7 +24,15 @@ Writes ``ends_checks.json`` and ``mooring_static_shape.png`` into ``--out``:
   constant-speed part against the closed form W_b + w L - 1/2 rho (C_D A + C_t d L) v^2 (weight in water
   less the drag of the body and of the paid-out cable sliding down through the water, Wang 1971 eq. 32, 44);
   ``payout_mass_rel_err``: the mass the free nodes carry against M_b + m_r L (1 - 1 / (2 N)) (the body and
-  the cable in the water less the half element lumped at the sheave) at six lengths while hauling in;
+  the cable in the water less the half element lumped at the sheave) at nine times while paying out, holding and
+  hauling back in, and the whole mass matrix after the round trip against the fixed-length model's;
+- ``payout_haulin_return_max_abs`` (m): the same package lowered 30 m at 1 m/s, held 5 s and hauled back in at 1 m/s
+  (``[[winch.leg]]``, one run, rtol 1e-8): the largest node-position difference from the initial (static) state
+  1 s after the winch stops (``payout_haulin`` has the velocities, the top tension and the difference at the
+  stop; ``payout_haulin_rtol_sweep`` the same at other rtol: what is left 1 s after the stop is the integrator's
+  error and shrinks with rtol); ``haulin_tension_rel_err``: the top tension over the constant-speed haul-in
+  against W_b + w L + 1/2 rho (C_D A + C_t d L) v^2, the drag now pulling down with the weight (figure
+  ``payout_haulin.png``);
 - ``span_decay_vs_modes_max_rel_err``: a span between two supports in water (lambda^2 about 81, node model
   N = 10, drag on) released from its equilibrium plus 1 % of the sag along its first symmetric and
   antisymmetric mode: the frequency read from the time series against the linear mode's
@@ -50,10 +59,11 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
 import slack_tables  # noqa: E402
+from _lift import lowering, payout_haulin, payout_mass, round_trip_figure  # noqa: E402
 import span_dynamics  # noqa: E402
 
 from cablesys.model import build_model  # noqa: E402
-from cablesys.scene import Anchor, Body, Cable, Numerics, Seabed, Winch, single_section_scene  # noqa: E402
+from cablesys.scene import Anchor, Body, Cable, Numerics, Seabed, single_section_scene  # noqa: E402
 from cablesys.scene.components import Environment  # noqa: E402
 from cablesys.statics.catenary import anchored_line_forces, segmented_steady  # noqa: E402
 from cablesys.statics.closed_forms import seabed_catenary, seabed_catenary_span  # noqa: E402
@@ -241,47 +251,6 @@ def figure(path: Path, n: int) -> None:
     plt.close(fig)
 
 
-def lowering(n: int = 8, speed: float = 1.0, ramp: float = 3.0) -> dict:
-    """The lowering check (module docstring): relative error of the top tension over the constant-speed part."""
-    rho, l0, out = 1025.0, 20.0, 30.0
-    cable = Cable(length=l0, ae=2e7, diameter=0.03, mass_per_length=3.0, weight_per_length=25.0, cd_normal=1.5,
-                  ct_tangential=0.3, internal_damping=1e6, segments=n)
-    body = Body(weight=2000.0, mass_x=400.0, mass_y=400.0, drag_area_normal=1.0, drag_area_tangential=1.0)
-    duration = out / speed + ramp
-    sc = single_section_scene(cable=cable, body=body, environment=Environment(density=rho),
-                              numerics=Numerics(duration=duration, output_step=0.25, model="as-built", rtol=1e-8),
-                              winch=Winch(speed=speed, duration=duration, ramp=ramp, max_length=l0 + out + 5.0))
-    rec = simulate(sc)
-    t, L, T = np.asarray(rec.time), rec["winch_length"], rec["tension_top"]
-    steady = (t > ramp + 1.0) & (t < duration - ramp)
-    closed = (body.weight + cable.weight_per_length * L
-              - 0.5 * rho * (body.drag_area_normal + cable.ct_tangential * cable.diameter * L) * speed ** 2)
-    return {"max_rel_err": float(np.max(np.abs(T[steady] / closed[steady] - 1))),
-            "drag_share": float(np.max(1 - closed[steady] / (body.weight + cable.weight_per_length * L[steady]))),
-            "N": n, "speed_m_s": speed, "length_m": [float(L[0]), float(L[-1])]}
-
-
-def payout_mass(n: int = 5) -> float:
-    """Largest relative error of the free nodes' mass against M_b + m_r L (1 - 1 / (2 N)) while hauling in."""
-    cable = Cable(length=50.0, ae=1e6, diameter=0.02, mass_per_length=1.0, weight_per_length=8.0, added_mass_factor=0.0,
-                  segments=n)
-    body = Body(weight=500.0, mass_x=100.0, mass_y=100.0)
-    sc = single_section_scene(cable=cable, body=body, numerics=Numerics(duration=20.0, output_step=0.5),
-                              winch=Winch(speed=-2.0, start=1.0, duration=12.0, ramp=2.0, max_length=60.0))
-    model = build_model(sc)
-    p = model.parameters(sc)
-    q = np.concatenate([[0.0, (j + 1) * 50.0 / n] for j in range(n)])
-    errs = []
-    for t in (0.0, 2.0, 5.0, 9.0, 13.0, 20.0):
-        e = np.zeros(7)
-        e[0] = t
-        M = np.array(model.dynamics(q, np.zeros_like(q), e, p)[0])
-        L = 50.0 + sc.winch.profile(t)[0]
-        expected = 100.0 + 1.0 * L * (1 - 1 / (2 * n))
-        errs.append(abs(np.trace(M[0::2, 0::2]) / expected - 1))
-    return float(max(errs))
-
-
 def slack_table1(levels) -> dict:
     """Table 1 of Griffin & Rosenthal (1985) from the shared cable against Triantafyllou's printed values."""
     printed = slack_tables.read_reference()[1]["Triantafyllou_1984b"]
@@ -307,6 +276,8 @@ def main(argv=None) -> dict:
     bounce = bouncing(6.0 if quick else 80.0)
     table1 = slack_table1((30, 60, 120) if quick else (60, 120, 240))
     lower = lowering()
+    trip = payout_haulin(1e-8, series=True)
+    sweep = [payout_haulin(r) for r in ((1e-6, 1e-8) if quick else (1e-5, 1e-6, 1e-7, 1e-8, 1e-9))]
     decays = [span_dynamics.free_decay(span_dynamics.SLACKS[1], 10, mode, span_dynamics.WATER_AMPLITUDE,
                                        span_dynamics.QUICK_PERIODS, span_dynamics.SWEEP_RTOL, medium="water")
               for mode in "SA"]
@@ -327,6 +298,10 @@ def main(argv=None) -> dict:
         "lowering_tension_rel_err": lower["max_rel_err"],
         "lowering": lower,
         "payout_mass_rel_err": payout_mass(),
+        "payout_haulin_return_max_abs": trip["return_max_abs_m"],
+        "haulin_tension_rel_err": trip["haulin_tension_rel_err"],
+        "payout_haulin": trip,
+        "payout_haulin_rtol_sweep": sweep,
         "span_decay_vs_modes_max_rel_err": max(abs(r["td_vs_linear"]) for r in decays),
         "slack_table1_max_rel_err": table1["max_rel_err"],
         "slack_table1_rel_err": table1["rel_err"],
@@ -334,11 +309,11 @@ def main(argv=None) -> dict:
         "slack_table3_frequencies_rad_s": slack_table3((24, 48, 96) if quick else (48, 96, 192)),
         **dict.fromkeys(HELD_OUT),
         "held_out": HELD_OUT,
-        "not_built": ["winch payout then haul-in in one run (one constant-speed profile per scene)",
-                                  "3-D seabed (lateral friction)",
+        "not_built": ["3-D seabed (lateral friction)",
                                   "bench_vs_moordyn mooring and lowering cases"],
     }
     figure(args.out / "mooring_static_shape.png", 40)
+    round_trip_figure(args.out / "payout_haulin.png", trip)
     write_json(args.out / "ends_checks.json", out)
     return out
 

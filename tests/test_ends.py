@@ -60,6 +60,18 @@ def test_bad_ends_are_named_errors_before_any_work(make, field):
     assert err.value.field == field and str(err.value).startswith(field)
 
 
+def test_a_chain_of_sections_shorter_than_its_anchor_chord_is_named():
+    """Chain-wire-chain: the line's length is every section's (3 x 130 m = 390 m < the 412 m to the anchor at (400, 100)),
+    named at the last section's cable.length; 3 x 140 m reaches."""
+    from cablesys.scene import Scene, Section
+    line = lambda length: tuple(Section(cable=E.chain(4, length), body=BODY) for _ in range(3))
+    with pytest.raises(ParameterError) as err:
+        Scene(sections=line(130.0), anchor=Anchor(x=400.0, y=100.0))
+    assert err.value.field == "sections[2].cable.length" and "390 m long" in str(err.value)
+    assert "412.311 m" in str(err.value)
+    Scene(sections=line(140.0), anchor=Anchor(x=400.0, y=100.0))
+
+
 def test_ends_need_the_node_model():
     with pytest.raises(ParameterError, match="cable.segments"):
         single_section_scene(cable=E.chain(1), body=BODY, anchor=Anchor(x=250.0, y=100.0))

@@ -25,5 +25,13 @@ def test_ends_checks_quick(run_study):
     # lowering at constant speed: weight less body and cable drag (a 20-25 % share), the issue's 0.5 %
     assert res["lowering_tension_rel_err"] < 5e-4 and res["lowering"]["drag_share"] > 0.15
     assert res["payout_mass_rel_err"] < 1e-9
+    # payout then haul-in by the same 30 m: back at the initial state 1 s after the stop (the physical lag at the stop,
+    # ~1e-5 m, decayed; what is left is the integrator's, smaller at rtol 1e-8 than at 1e-6), and the haul-in's
+    # tension is weight plus drag within the issue's 0.5 %
+    assert (out / "payout_haulin.png").stat().st_size > 20_000
+    assert res["payout_haulin_return_max_abs"] < 1e-10 and res["payout_haulin"]["at_stop_max_abs_m"] > 1e-6
+    coarse, fine = res["payout_haulin_rtol_sweep"]
+    assert (coarse["rtol"], fine["rtol"]) == (1e-6, 1e-8) and fine["return_max_abs_m"] < coarse["return_max_abs_m"] / 30
+    assert res["haulin_tension_rel_err"] < 5e-4 and res["payout_haulin"]["haulin_drag_share"] > 0.15
     # a span's free decay in water: the time series' frequencies are the linear modes' (the issue: 1 %)
     assert res["span_decay_vs_modes_max_rel_err"] < 1e-3

@@ -16,7 +16,8 @@ from cablesys.model import build_model
 from cablesys.model.segmented import build_segmented_model
 from cablesys.model.winch import build_winch_model, rest_state
 from cablesys.result_protocol import unit_of
-from cablesys.scene import Body, Cable, Environment, Numerics, Seabed, Sinusoid, TopMotion, Winch, dump_scene, scene_from_dict
+from cablesys.scene import (Body, Cable, Environment, Leg, Numerics, Seabed, Sinusoid, TopMotion, Winch, dump_scene,
+                            scene_from_dict)
 from cablesys.scene.scene import single_section_scene
 from cablesys.time_domain import simulate
 
@@ -239,3 +240,175 @@ def test_length_leaving_its_range_is_named_before_any_work():
     data["winch"] = {"speed": 1.0, "duration": 6.0, "max_length": 60.0, "pace": 2.0}
     with pytest.raises(ParameterError, match="pace"):
         scene_from_dict(data)
+
+
+# ---------------------------------------------------------------- a profile of legs: payout, hold, haul-in
+def _legs(*pairs, **kw):
+    return Winch(leg=tuple(Leg(speed=v, duration=d) for v, d in pairs), **{"ramp": 2.0, "max_length": 60.0, **kw})
+
+
+def test_legs_profile_is_smooth_and_pays_out_speed_times_duration():
+    """L(t), w(t), alpha(t) of payout - hold - haul-in - payout legs: w and alpha are L's derivatives (CasADi's AD of
+    the closed-form Delta L against the closed-form w, alpha), continuous (no jump between samples 1 ms apart
+    beyond |alpha| or |jerk| x 1 ms), |alpha| <= 1.5 |Delta v| / ramp, and the integral of w (SciPy's quad)
+    equals Delta L; at the end each leg has paid out speed x duration."""
+    w = _legs((1.5, 6.0), (0.0, 3.0), (-2.0, 4.0), (0.5, 2.0), start=1.0)
+    assert w.paid_out == pytest.approx(1.5 * 6 - 2.0 * 4 + 0.5 * 2) and w.end == pytest.approx(1.0 + 15.0 + 2.0)
+    t = ca.SX.sym("t")
+    dL, ws, al = w.profile_at(t, fmin=ca.fmin, fmax=ca.fmax)
+    f = ca.Function("f", [t], [ca.jacobian(dL, t), ws, ca.jacobian(ws, t), al])
+    ts = np.linspace(0.0, w.end + 2.0, 4001)
+    for ti in ts:
+        dLdt, wi, dwdt, ai = (float(v) for v in f(ti))
+        assert abs(dLdt - wi) < 1e-12 and abs(dwdt - ai) < 1e-12, ti
+    P = np.array([w.profile(ti) for ti in np.arange(0.0, w.end + 2.0, 1e-3)])
+    assert np.max(np.abs(np.diff(P[:, 1]))) <= 1e-3 * np.max(np.abs(P[:, 2])) * (1 + 1e-9)
+    assert np.max(np.abs(np.diff(P[:, 2]))) < 1e-3 * 6.0 * 2.5 / 2.0 ** 2       # |jerk| <= 6 |Delta v| / ramp^2
+    assert np.max(np.abs(P[:, 2])) == pytest.approx(1.5 * 2.5 / 2.0, rel=1e-6)   # the ramp from -2 to 0.5 m/s
+    from scipy.integrate import quad
+    for ti in (2.0, 7.9, 12.5, 16.3, w.end, w.end + 2.0):
+        integral = quad(lambda s: w.profile(s)[1], 0.0, ti, points=[1, 3, 7, 9, 10, 12, 14, 16, 18], limit=200)[0]
+        assert integral == pytest.approx(w.profile(ti)[0], abs=1e-10)
+    assert w.profile(w.end) == pytest.approx((w.paid_out, 0.0, 0.0), abs=1e-12)
+
+
+def test_single_speed_form_is_one_leg():
+    """The old [winch] (speed for duration, ramps included) is one leg of duration - ramp: the same L(t), w, alpha."""
+    old = Winch(speed=1.5, start=0.5, duration=6.0, ramp=1.5, max_length=80.0)
+    one = Winch(leg=(Leg(speed=1.5, duration=4.5),), start=0.5, ramp=1.5, max_length=80.0)
+    for t in np.linspace(0.0, 8.0, 81):
+        assert old.profile(t) == pytest.approx(one.profile(t), abs=1e-14)
+    assert old.paid_out == one.paid_out == pytest.approx(6.75) and old.end == one.end == 6.5
+
+
+def test_legs_in_toml_round_trip_and_their_errors():
+    """``[[winch.leg]]`` reads and writes back (SI and fps); a leg shorter than the ramp, a speed given beside the legs,
+    no profile at all, each named; hauling in past L = 0 or paying out past max_length names the leg's speed,
+    the leg and the time L leaves its range (each ramp acts as a change of speed ramp / 2 = 1 s after the leg
+    starts, so L is piecewise linear in the closed forms of the cases' comments)."""
+    good = _scene(winch=_legs((1.0, 8.0), (0.0, 4.0), (-1.0, 8.0)))
+    for units in ("SI", "fps"):
+        text = dump_scene(good, units=units)
+        assert text.count("[[winch.leg]]") == 3 and "\nspeed =" in text
+        back = scene_from_dict(tomllib.loads(text)).winch
+        assert [x for g in back.leg for x in (g.speed, g.duration)] == pytest.approx([1.0, 8.0, 0.0, 4.0, -1.0, 8.0])
+        assert back.speed is None and back.duration is None
+    data = tomllib.loads(dump_scene(good))
+    data["winch"]["leg"][1]["duration"] = 1.0
+    with pytest.raises(ParameterError, match=r"^winch\.leg\[1\]\.duration = 1\.0: must be >= winch\.ramp"):
+        scene_from_dict(data)
+    data["winch"]["leg"][1]["duration"] = -4.0
+    with pytest.raises(ParameterError, match=r"^winch\.leg\[1\]\.duration"):
+        scene_from_dict(data)
+    data["winch"]["leg"][1]["duration"] = 4.0
+    data["winch"]["speed"] = 1.0
+    with pytest.raises(ParameterError, match=r"^winch\.speed = 1\.0: must be unset with \[\[winch\.leg\]\]"):
+        scene_from_dict(data)
+    with pytest.raises(ParameterError, match=r"^winch\.speed = 'missing': is required"):
+        scene_from_dict({**data, "winch": {"max_length": 60.0}})
+    # l_0 = 50 m: +8 m, hold, then 3 m/s in: L = 58 - 3 (t - 13) reaches 0 at t = 13 + 58 / 3 (ramps: delays of 1 s)
+    with pytest.raises(ParameterError, match=r"^winch\.leg\[2\]\.speed = -3\.0: hauls in .* to 0 m at t = 32\.3333 s "
+                                             r"in leg 2"):
+        _scene(winch=_legs((1.0, 8.0), (0.0, 4.0), (-3.0, 30.0)))
+    # paying out 8 m, hauling in 2 m, paying out 6 m: L = 56 + (t - 11) from t = 11 s reaches 60 m at t = 15 s, 62 m
+    # when the winch stops (t = 18 s)
+    with pytest.raises(ParameterError, match=r"^winch\.leg\[2\]\.speed = 1\.0: pays out .* to 60 m at t = 15 s in leg 2 "
+                                             r"\(and to 62 m at t = 18 s\)"):
+        _scene(winch=_legs((1.0, 8.0), (-1.0, 2.0), (1.0, 6.0)))
+    # a haul-in that takes L to exactly 0 is refused as well: L must stay > 0
+    with pytest.raises(ParameterError, match=r"winch\.leg\[1\]\.speed"):
+        _scene(winch=_legs((0.0, 2.0), (-1.0, 50.0)))
+    _scene(winch=_legs((0.0, 2.0), (-1.0, 49.5)))        # 0.5 m left in the water: allowed
+
+
+def _lift():
+    import sys
+    from pathlib import Path
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "studies"))
+    import _lift
+    return _lift
+
+
+def test_payout_then_haulin_returns_the_initial_state():
+    """30 m paid out at 1 m/s, held, hauled back in (studies/_lift.py): L returns to l_0 exactly, and 1 s after the winch
+    stops the node positions are within 1e-10 m of the initial static state (velocities 1e-8 m/s, top tension 1e-8
+    relative). At the stop itself they differ by ~1e-5 m (the Voigt lag of the elements' strain, physical, the same at
+    every rtol); it decays with the axial damping, so what is left 1 s later is the integrator's: it shrinks by more
+    than 30x from rtol 1e-6 to 1e-8."""
+    L = _lift()
+    coarse, fine = L.payout_haulin(1e-6), L.payout_haulin(1e-8)
+    for r in (coarse, fine):
+        assert r["success"] and r["length_m"] == pytest.approx([20.0, 50.0, 20.0], abs=1e-12)
+        assert r["at_stop_max_abs_m"] > 1e-6
+    assert coarse["at_stop_max_abs_m"] == pytest.approx(fine["at_stop_max_abs_m"], rel=0.05)
+    assert coarse["return_max_abs_m"] < 1e-10 and coarse["return_velocity_max_abs_m_s"] < 1e-8
+    assert coarse["return_tension_rel"] < 1e-8
+    for key in ("return_max_abs_m", "return_velocity_max_abs_m_s", "return_tension_rel"):
+        assert fine[key] < coarse[key] / 30, key
+
+
+def test_haulin_tension_is_weight_plus_drag():
+    """Hauling in at a constant 1 m/s: top tension W_b + w L + 1/2 rho (C_D A + C_t d L) v^2 (the drag of body and cable
+    pulls down with the weight, the sign reversed from lowering) within 0.05 %, the drag a > 15 % share, while the
+    payout leg of the same run matches W_b + w L - 1/2 rho (...) v^2 as the single-speed lowering does."""
+    r = _lift().payout_haulin(1e-8)
+    assert r["haulin_tension_rel_err"] < 5e-4 and r["haulin_drag_share"] > 0.15
+    assert r["payout_tension_rel_err"] < 5e-4
+
+
+def test_mass_in_water_follows_L_both_ways():
+    """The free nodes carry M_b + m_r L (1 - 1 / (2 N)) while paying out, holding and hauling back in, and after the
+    round trip the mass matrix is the fixed-length model's, to rounding."""
+    assert _lift().payout_mass() < 1e-12
+
+
+LOWER_AND_RECOVER = """
+name = "lower a package 30 m and recover it"
+[cable]
+length = 20.0
+ae = 2e7
+diameter = 0.03
+mass_per_length = 3.0
+weight_per_length = 25.0
+cd_normal = 1.5
+ct_tangential = 0.3
+internal_damping = 1e6
+segments = 4
+[body]
+weight = 2000.0
+mass_x = 400.0
+mass_y = 400.0
+drag_area_normal = 1.0
+drag_area_tangential = 1.0
+[numerics]
+duration = 50.0
+output_step = 0.5
+[winch]
+ramp = 3.0
+max_length = 60.0
+[[winch.leg]]      # lower
+speed = 1.5
+duration = 20.0
+[[winch.leg]]      # hold at depth
+speed = 0.0
+duration = 5.0
+[[winch.leg]]      # recover
+speed = -1.5
+duration = 20.0
+"""
+
+
+def test_lowering_and_recovery_runs_from_the_cli(tmp_path):
+    """``cablesys run`` of a TOML lowering-and-recovery scene (``[[winch.leg]]``, the model ladder's choice, the VM):
+    L goes from 20 m to 20 + 1.5 x 20 = 50 m and back, and 2 s after the winch stops the top tension is back at its
+    static value W_b + w l_0 (the sheave's pull carries the whole line) to 1e-6."""
+    import json
+    from cablesys.cli import main
+    f = tmp_path / "lift.toml"
+    f.write_text(LOWER_AND_RECOVER)
+    assert main(["run", str(f), "--out", str(tmp_path / "out")]) == 0
+    d = np.genfromtxt(tmp_path / "out" / "timeseries.csv", delimiter=",", names=True)
+    L, T = d["winch_length_m"], d["tension_top_N"]
+    assert L[0] == L[-1] == pytest.approx(20.0, abs=1e-9) and L.max() == pytest.approx(50.0, abs=1e-9)
+    assert T[0] == pytest.approx(2000.0 + 25.0 * 20.0, rel=1e-9) and T[-1] == pytest.approx(T[0], rel=1e-6)
+    assert json.loads((tmp_path / "out" / "summary.json").read_text())["model"]["name"] == "segmented"

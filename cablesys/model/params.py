@@ -59,14 +59,13 @@ def structure_of(scene: Scene) -> tuple:
 
 
 _ANCHOR = ("x", "y")
-_WINCH = ("speed", "start", "duration", "ramp")     # the payout profile (scene.ends.payout_profile)
 _SEABED = ("depth", "slope_deg", "stiffness", "damping", "friction_axial", "friction_lateral", "friction_speed")
 
 
 def _ends_structure(scene: Scene) -> tuple:
     """An anchor and a seabed change the model's coordinates and forces: part of the structure when
     present (a scene without them keeps today's key)."""
-    winch = (("winch",),) if getattr(scene, "winch", None) is not None else ()   # a varying first section
+    winch = (scene.winch.structure(),) if getattr(scene, "winch", None) is not None else ()   # a varying first section
     if scene.anchor is None and scene.seabed is None:
         return winch
     return (("ends", scene.anchor is not None, scene.seabed is not None),) + winch
@@ -125,7 +124,7 @@ def parameter_items(scene: Scene) -> list[tuple[str, float]]:
     if scene.seabed is not None:
         items += [(f"seabed.{a}", float(getattr(scene.seabed, a))) for a in _SEABED]
     if getattr(scene, "winch", None) is not None:    # the first section's payout (model/segmented_winch.py)
-        items += [(f"winch.{a}", float(getattr(scene.winch, a))) for a in _WINCH]
+        items += scene.winch.parameter_items()     # its profile's numbers (scene.ends.Winch)
     return items
 
 

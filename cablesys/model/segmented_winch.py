@@ -1,7 +1,7 @@
 """The winch in the segmented cable: the first section's unstretched length L(t) changes in time.
 
 A ``[winch]`` (:class:`cablesys.scene.ends.Winch`) pays the first section out at its top (node 0, the
-sheave) at the prescribed rate w(t) = L'(t) (:func:`cablesys.scene.ends.payout_profile`, L(0) = l_0 of
+sheave) at the prescribed rate w(t) = L'(t) (:func:`cablesys.scene.ends.legs_profile`: payout, hold, haul-in legs, L(0) = l_0 of
 Wang 1971 eq. 1). The formulation (no remeshing, differentiable in every parameter, so that an optimal control
 can drive L later):
 
@@ -52,7 +52,6 @@ import dataclasses
 
 import casadi as ca
 
-from ..scene.ends import payout_profile
 from .section import SectionParameters
 from .segmented_element import element_terms, lump_kinetic
 
@@ -132,10 +131,10 @@ class Payout:
 
 
 def payout(scene, layout, P0: SectionParameters, t) -> Payout | None:
-    """The first section's L(t) = l_0 + Delta L(t), w(t), alpha(t) (:func:`cablesys.scene.ends.payout_profile`
-    on the ``winch.*`` entries of p, t the model's time symbol); None without a ``[winch]``."""
+    """The first section's L(t) = l_0 + Delta L(t), w(t), alpha(t) (:meth:`cablesys.scene.ends.Winch.profile_at`:
+    :func:`~cablesys.scene.ends.legs_profile` on the ``winch.*`` entries of p, t the model's time symbol); None
+    without a ``[winch]``."""
     if getattr(scene, "winch", None) is None:
         return None
-    s = lambda name: layout.sym(f"winch.{name}")
-    dL, w, alpha = payout_profile(t, s("speed"), s("start"), s("duration"), s("ramp"), fmin=ca.fmin, fmax=ca.fmax)
+    dL, w, alpha = scene.winch.profile_at(t, layout.sym, fmin=ca.fmin, fmax=ca.fmax)
     return Payout(L=P0.l_0 + dL, w=w, alpha=alpha)

@@ -109,8 +109,8 @@ class Scene:
 
     def _check_winch(self) -> None:
         """The winch keeps the first section's zero-tension length L(t) = l_0 + Delta L(t) in (0, max_length]
-        (Delta L monotone, so its extremes are at t = 0 and at the end of the profile: l_0 and
-        l_0 + speed (duration - ramp)); it acts on the planar node model (no anchor, no track, no 3-D so far)."""
+        (:meth:`.ends.Winch.check_length`, l_0 of Wang 1971 eq. 1); it acts on the planar node model (no anchor,
+        no track, no 3-D so far)."""
         w = self.winch
         if w is None:
             return
@@ -121,16 +121,7 @@ class Scene:
         if self.three_d:
             raise ParameterError("winch", "set", "must be unset in a 3-D scene: the node model's winch is planar so far")
         c = self.sections[0].cable
-        l0 = c.length * (1.0 - c.tension_ref / c.ae)            # Wang 1971 eq. 1
-        pre = section_prefix(self, 0)
-        if l0 > w.max_length:
-            raise ParameterError("winch.max_length", w.max_length, f"must be >= the {l0:.6g} m of zero-tension cable "
-                                 f"in the water at the start ({pre}cable.length at its tension_ref)")
-        end = l0 + w.paid_out
-        if not 0.0 < end <= w.max_length:
-            raise ParameterError("winch.speed", w.speed, f"takes the first section's zero-tension length from "
-                                 f"{l0:.6g} m to {end:.6g} m over the run (speed (duration - ramp) = {w.paid_out:.6g} m): "
-                                 f"it must stay in (0, max_length = {w.max_length:.6g} m]")
+        w.check_length(c.length * (1.0 - c.tension_ref / c.ae), f"{section_prefix(self, 0)}cable.length")
 
     def three_d_fields(self) -> tuple:
         """The 3-D fields this scene sets (``top_motion.z``, a current or wave heading, ``body.mass_z``)."""

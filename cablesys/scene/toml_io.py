@@ -6,7 +6,8 @@ A scene file has top-level ``name``, ``units`` ("SI" or "fps": ft, lbf, slug, s)
 ``[[top_motion.x]]``, ``[[top_motion.y]]``, ``[top_motion.series]``, ``[initial]``, ``[numerics]``,
 and optionally ``[anchor]`` (x, y) and ``[seabed]`` (depth, slope_deg, stiffness, damping, friction_axial,
 friction_lateral, friction_speed) and ``[winch]`` (speed, start, duration, ramp, max_length: the
-first section's payout, :class:`~cablesys.scene.ends.Winch`).
+first section's payout, :class:`~cablesys.scene.ends.Winch`; or start, ramp, max_length and ``[[winch.leg]]``
+tables of speed and duration: payout, hold, haul-in).
 Unknown keys are errors.
 """
 
