@@ -401,7 +401,8 @@ duration = 20.0
 def test_lowering_and_recovery_runs_from_the_cli(tmp_path):
     """``cablesys run`` of a TOML lowering-and-recovery scene (``[[winch.leg]]``, the model ladder's choice, the VM):
     L goes from 20 m to 20 + 1.5 x 20 = 50 m and back, and 2 s after the winch stops the top tension is back at its
-    static value W_b + w l_0 (the sheave's pull carries the whole line) to 1e-6."""
+    static value W_b + w l_0 (the sheave's pull carries the whole line) to 1e-6. The length changes by design, so the
+    ladder does not call the run unsettled (its halves differ because the system does)."""
     import json
     from cablesys.cli import main
     f = tmp_path / "lift.toml"
@@ -411,4 +412,5 @@ def test_lowering_and_recovery_runs_from_the_cli(tmp_path):
     L, T = d["winch_length_m"], d["tension_top_N"]
     assert L[0] == L[-1] == pytest.approx(20.0, abs=1e-9) and L.max() == pytest.approx(50.0, abs=1e-9)
     assert T[0] == pytest.approx(2000.0 + 25.0 * 20.0, rel=1e-9) and T[-1] == pytest.approx(T[0], rel=1e-6)
-    assert json.loads((tmp_path / "out" / "summary.json").read_text())["model"]["name"] == "segmented"
+    model = json.loads((tmp_path / "out" / "summary.json").read_text())["model"]
+    assert model["name"] == "segmented" and "not settled" not in model["reason"]

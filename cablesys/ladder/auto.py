@@ -424,11 +424,14 @@ def settled_check(scene: Scene, choice: Choice, result) -> Choice:
     The estimates speak of the settled response; a build-up (a cable forced at its first string mode over 7
     periods: 11 %, the segmented estimates 2x short of the window's errors, within 1.2x over 25 periods) or a
     front still arriving is the run's, not the model's (extrapolated runs: :mod:`.extrapolation` has its own). Not for
-    an irregular sea or a recorded motion, whose halves differ by sampling."""
+    an irregular sea or a recorded motion, whose halves differ by sampling, nor for a winch scene, whose cable length
+    changes by design (a lowering or a recovery has no settled response to approach)."""
     if not getattr(result, "success", False) or "extrapolated" in choice.numbers or choice.name == "frequency":
         return choice
     if scene.top_motion.spectrum is not None or scene.top_motion.series is not None:
         return choice      # an irregular sea: half the peak-to-peak of each half is a sample, not a build-up
+    if scene.winch is not None:
+        return choice      # the length L(t) is prescribed: the halves differ because the system does
     change = metrics.window_change(result, metrics.forcing_period(scene), scene.top_motion.effective_ramp_s)
     stated = choice.estimated_error.get("body", math.inf)
     if not (change > max(stated, est.RESOLUTION)):
