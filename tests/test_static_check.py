@@ -53,3 +53,22 @@ def test_the_run_reports_the_static_shape_error(rov):
     block = run.stats["model"]["static_shape_error"]
     assert block["segments"] == run.stats["model"]["segments"] and block["reference_segments"] >= 64
     assert block["static_x_b"] <= 0.01 and "static shape in the current" in run.stats["model"]["reason"]
+
+
+def test_a_cost_chosen_quasi_static_plan_grown_past_its_cost_cap_runs_the_node_model(rov):
+    # the rk23-stepped quasi-static segmented cable is chosen for its cost only up to EXPLICIT_COST_MAX_ELEMENTS
+    # (choice.element_plan); the current's static shape raises rov_lift's N = 4 to 14, where the node model runs
+    from ladder_pricing import priced
+
+    from cablesys.ladder.choice import EXPLICIT_COST_MAX_ELEMENTS
+    cache = RungCache()
+    tol = tolerances(rov)
+    with priced(True):               # the choice as compiled code prices it (users'); no C is built here
+        first = choose(rov, cache=cache)
+    assert first.numbers["plan"]["explicit_only"]
+    assert first.name == "quasi-static" and first.segments <= EXPLICIT_COST_MAX_ELEMENTS
+    checked = sc.check(rov, first, tol, cache)
+    assert checked.segments > EXPLICIT_COST_MAX_ELEMENTS
+    assert checked.name == "segmented" and checked.numbers["plan"]["name"] == "segmented"
+    assert not checked.numbers["plan"]["explicit_only"]
+    assert f"only up to N = {EXPLICIT_COST_MAX_ELEMENTS}" in checked.reason

@@ -340,9 +340,9 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
     kw["run_log"] = []          # every run of the taut path's plan (log_run); the extrapolation keeps its own plan
     t0, b0 = time.perf_counter(), cache.build_s
     choice, tol, auto = decide(scene, model, tolerance, segments, cache)
-    choice = explicit_or_node(scene, choice, tol, cache, kw)
     if auto:                                     # the mean shape in the current, from the statics, before any run
         choice = static_check.check(scene, choice, tol, cache)
+    choice = explicit_or_node(scene, choice, tol, cache, kw)     # the stiffness guard at the N that will run
     t1, b1 = time.perf_counter(), cache.build_s
     if extrapolation.applies(choice, auto):      # first order in N: RK4 runs at N, N / 2, N / 4 (extrapolation)
         choice, kw = extrapolation.plan(scene, choice, cache, kw)      # every run checked before the first starts

@@ -27,7 +27,7 @@ from ..statics.catenary import segmented_steady
 from ..statics.steady import steady_state
 from . import estimate as est
 from . import metrics
-from .choice import MAX_SEGMENTS, Choice, checkable, quasistatic_max_segments
+from .choice import EXPLICIT_COST_MAX_ELEMENTS, MAX_SEGMENTS, Choice, checkable, quasistatic_max_segments
 from .rungs import RungCache, rung_scene
 
 REFERENCE_SEGMENTS = 64      # the converged statics (ROV lift: 0.08 % from N = 32 on the body's offset)
@@ -89,8 +89,10 @@ def _candidates(scene: Scene, n: int, top: int):
 def check(scene: Scene, choice: Choice, tol, cache: RungCache) -> Choice:
     """``choice`` with its static errors (``numbers["static_errors"]``, in summary.json's model block), or,
     when they miss the tolerance ``tol`` (body, tension), the least N that meets it: of the same element rung (the
-    quasi-static segmented cable up to its size cap, :func:`~.choice.quasistatic_max_segments`), else of the node
-    model, at most MAX_SEGMENTS. A statics solve that fails leaves ``choice`` as it is, with a note."""
+    quasi-static segmented cable up to its size cap, :func:`~.choice.quasistatic_max_segments`, and when the plan took it
+    for its cost with the explicit pair, ``explicit_only``, up to EXPLICIT_COST_MAX_ELEMENTS, as
+    :func:`~.choice.element_plan` does), else of the node model, at most MAX_SEGMENTS. A statics solve that fails
+    leaves ``choice`` as it is, with a note."""
     if not applies(scene, choice):
         return choice
     try:
@@ -105,9 +107,15 @@ def check(scene: Scene, choice: Choice, tol, cache: RungCache) -> Choice:
     if worst["body"] <= tol[0] and worst["tension"] <= tol[1]:
         return _stated(choice, errs, note, ref_n)
     # the element rungs share the node model's statics: one search over N; past the quasi-static segmented cable's
-    # size cap the node model (whose size grows linearly) runs instead
+    # size cap, or past the N up to which it was chosen for its cost (explicit_only: the plan's own cap), the node
+    # model runs instead
     name = choice.name if choice.segments > 1 else "segmented"
-    top = min(MAX_SEGMENTS, quasistatic_max_segments(scene)) if name == "quasi-static" else MAX_SEGMENTS
+    top, cap_why = MAX_SEGMENTS, ""
+    if name == "quasi-static":
+        top, cap_why = min(MAX_SEGMENTS, quasistatic_max_segments(scene)), "capped by its size"
+        if choice.numbers.get("plan", {}).get("explicit_only", False) and top > EXPLICIT_COST_MAX_ELEMENTS:
+            top, cap_why = EXPLICIT_COST_MAX_ELEMENTS, (f"cheaper than the node model only up to N = "
+                                                        f"{EXPLICIT_COST_MAX_ELEMENTS}, stepped by the explicit pair")
     first = () if choice.segments > 1 else (2,)
     for n in (*first, *_candidates(scene, max(choice.segments, 2), MAX_SEGMENTS)):
         try:
@@ -117,7 +125,7 @@ def check(scene: Scene, choice: Choice, tol, cache: RungCache) -> Choice:
         w = _worst(e)
         if w["body"] <= tol[0] and w["tension"] <= tol[1]:
             rung = name if n <= top else "segmented"
-            why = "" if rung == name else " (the node model: the quasi-static segmented cable is capped by its size)"
+            why = "" if rung == name else f" (the node model: the quasi-static segmented cable is {cap_why})"
             return _raised(choice, rung, n, e, f"{note} at N = {choice.segments}, within the tolerance from N = {n}{why}",
                            ref_n)
     return _stated(choice, errs, f"{note}: outside the tolerance, and no N up to {MAX_SEGMENTS} meets it", ref_n)
@@ -135,6 +143,8 @@ def _raised(choice: Choice, name: str, n: int, errs: dict, note: str, ref_n: int
     """The element rung ``name`` at N = ``n`` in place of ``choice``, its estimate at that N, the static errors."""
     e = est.rung_error(choice.numbers["estimates"], name, n)
     plan = dict(choice.numbers.get("plan", {}), name=name, segments=n, checked=True)
+    if name != "quasi-static":
+        plan["explicit_only"] = False
     raised = Choice(name, n, f"{choice.reason}; {note}: {name} with N = {n}",
                     {"body": e["body"], "tension": e["tension"]}, dict(choice.numbers, plan=plan))
     return _stated(raised, errs, "", ref_n)
