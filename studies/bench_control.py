@@ -46,7 +46,7 @@ from cablesys.control import WinchLimits, heave_problem, optimal_payout, resimul
 from cablesys.control.mpc import compare_compensation
 from cablesys.control.prediction import ARPredictor
 from cablesys.control.rti import GaussNewtonMPC
-from cablesys.control.payout import interval_kernels
+from cablesys.control.kernels import interval_kernels
 from cablesys.control.shooting import solve_shooting
 from cablesys.examples import example_path
 from cablesys.scene import load_scene
@@ -230,7 +230,7 @@ def main(argv=None) -> int:
                kernels_build_s=None if kernels is None else kernels.build_s,
                kernels_setup_s=time.perf_counter() - t0,
                kernels_note="per-interval step/stage kernels and their (x, u) derivatives, one library per "
-                            "structure (cablesys.control.payout.interval_kernels); build_s is the code generation and "
+                            "structure (cablesys.control.kernels.interval_kernels); build_s is the code generation and "
                             "compile time when not cached")
     ocp = optimal_payout(problem, record, max_iter=300)
     if doc["kernels_compiled"]:     # the same NLP in CasADi's virtual machine (inlined SX, full AD): an independent route
