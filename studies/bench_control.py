@@ -16,6 +16,11 @@ Measured in one run:
   iteration: heave in dB against the uncompensated plant run, mean time per MPC step and the
   real-time factor dt / step time; and the preview MPC by IPOPT on the full NLP per step (heave,
   step time, iterations per step: the reference the real-time iteration is measured against);
+- the open-loop optimum on the segmented node model (N = 4 elements of the ROV lift's line, compiled per-RK4-step
+  kernels, dt = 0.5 s) over a 60 s record (``--quick``: 4 s), its RK4 steps per interval (set by the stiffest
+  axial mode at rest, :func:`cablesys.control.payout.fastest_mode`), and Wang's 2-DOF optimum on the same record
+  in the same run: wall and IPOPT CPU times and their ratio, iterations, status, heave in dB, IPOPT's time split
+  (the Lagrangian Hessian's share); ``--only node`` runs this row alone;
 - the LQ check: the multiple-shooting optimum of a spring-mass plant against the discrete
   Riccati law (relative error);
 - a time-domain design gradient: d(mean square heave of the uncompensated 2-DOF run)/d(AE, C_I)
@@ -23,7 +28,7 @@ Measured in one run:
   error per parameter at the best of three steps, the largest of the two), and its cost over
   one roll-out.
 
-Writes bench_control.json. Usage: python studies/bench_control.py --out DIR [--quick]
+Writes bench_control.json. Usage: python studies/bench_control.py --out DIR [--quick] [--only node]
 """
 
 from __future__ import annotations
@@ -46,7 +51,8 @@ from cablesys.control import WinchLimits, heave_problem, optimal_payout, resimul
 from cablesys.control.mpc import compare_compensation
 from cablesys.control.prediction import ARPredictor
 from cablesys.control.rti import GaussNewtonMPC
-from cablesys.control.payout import interval_kernels
+from cablesys.control.kernels import interval_kernels
+from cablesys.control.payout import fastest_mode
 from cablesys.control.shooting import solve_shooting
 from cablesys.examples import example_path
 from cablesys.scene import load_scene
@@ -212,11 +218,57 @@ def closed_loop_mpc(scene, limits, quick: bool) -> dict:
           "(run after the others; load averages before and after the Gauss-Newton runs in mpc_load_average_1min)")
 
 
+def node_ocp(scene, limits, horizon: float, segments: int = 4) -> dict:
+    """The open-loop optimum over ``horizon`` s on the segmented node model (``segments`` elements, dt = 0.5 s,
+    the RK4 steps per interval from the stiffest mode at rest) and on Wang's 2-DOF winch over the same record,
+    in this order in one run: solve wall time (IPOPT with its derivative set-up), IPOPT's own CPU and wall
+    times and their split, iterations, status, heave reduction against each model's uncompensated run (dB),
+    the kernels' set-up (a cold cache: code generation and compile) and the load averages around the runs."""
+    sc = scene.with_numerics(drag_segments=1, duration=horizon)
+    load0 = os.getloadavg()[0]
+    out = {}
+    for name, kw in (("node", dict(model="segmented", segments=segments)), ("wang", dict(model="wang"))):
+        pr = heave_problem(sc, limits, dt=0.5, **kw)
+        t0 = time.perf_counter()
+        compiled = pr.nlp_functions()[2]             # builds (or loads) the kernels of this structure
+        setup_s = time.perf_counter() - t0
+        res = optimal_payout(pr, horizon, max_iter=300)
+        timing = res.stats["ipopt_timing_s"]
+        out[name] = dict(wall_s=res.stats["solve_s"], iterations=res.stats["iterations"], status=res.status,
+                         heave_reduction_db=res.heave_reduction_db, rk4_steps_per_interval=pr.substeps,
+                         fastest_mode_rad_s=fastest_mode(pr.model, pr.x_rest, pr.p, pr.c), nx=pr.model.nx,
+                         ipopt_proc_s=timing.get("t_proc_total"), ipopt_wall_s=timing.get("t_wall_total"),
+                         hessian_share_proc=timing.get("t_proc_nlp_hess_l", 0.0) / timing["t_proc_total"],
+                         ipopt_timing_s=timing, kernels_compiled=compiled, kernels_setup_s=setup_s)
+    n, w = out["node"], out["wang"]
+    return dict(node_ocp_wall_s=n["wall_s"], node_ocp_iterations=n["iterations"], node_ocp_status=n["status"],
+                node_ocp_heave_reduction_db=n["heave_reduction_db"],
+                node_ocp_rk4_steps_per_interval=n["rk4_steps_per_interval"],
+                node_ocp_wang_wall_s=w["wall_s"], node_ocp_wang_heave_reduction_db=w["heave_reduction_db"],
+                node_ocp_wall_ratio_vs_wang=n["wall_s"] / w["wall_s"],
+                node_ocp_ipopt_proc_ratio_vs_wang=n["ipopt_proc_s"] / w["ipopt_proc_s"],
+                node_ocp_heave_db_vs_wang=n["heave_reduction_db"] - w["heave_reduction_db"],
+                node_ocp_horizon_s=horizon, node_ocp_segments=segments,
+                node_ocp_load_average_1min=[load0, os.getloadavg()[0]], node_ocp=out,
+                node_ocp_note="node: the segmented node model's winch (cablesys.model.segmented_winch_control), "
+                              "wang: Wang's 2-DOF winch, the same scene, limits, dt = 0.5 s and record; wall_s: "
+                              "optimal_payout's solve (IPOPT and its derivative set-up), ipopt_*: IPOPT's own "
+                              "timer; ratios node over wang in this run")
+
+
 def main(argv=None) -> int:
-    args = parse_args(__doc__.splitlines()[0], argv)
+    args = parse_args(__doc__.splitlines()[0], argv, extra=lambda ap: ap.add_argument(
+        "--only", choices=("node",), help="run one row alone: node, the node-model OCP and its Wang reference"))
     quick = args.quick
     scene = load_scene(example_path("rov-lift"))
     limits = WinchLimits(speed=1.0, acceleration=1.0)
+    node_horizon = 4.0 if quick else 60.0
+    if args.only == "node":
+        doc = {"quick": quick, "scene": scene.name, **node_ocp(scene, limits, node_horizon),
+               "cpu_count": os.cpu_count()}
+        write_json(args.out / "bench_control.json", doc)
+        print({k: v for k, v in doc.items() if k.startswith("node_ocp_") and k != "node_ocp_note"})
+        return 0
     record = 60.0 if quick else 600.0
     ctrl = scene.with_numerics(drag_segments=1, duration=record)
     doc: dict = {"quick": quick, "scene": scene.name, "record_s": record, "limits": {"speed_m_s": 1.0,
@@ -230,7 +282,7 @@ def main(argv=None) -> int:
                kernels_build_s=None if kernels is None else kernels.build_s,
                kernels_setup_s=time.perf_counter() - t0,
                kernels_note="per-interval step/stage kernels and their (x, u) derivatives, one library per "
-                            "structure (cablesys.control.payout.interval_kernels); build_s is the code generation and "
+                            "structure (cablesys.control.kernels.interval_kernels); build_s is the code generation and "
                             "compile time when not cached")
     ocp = optimal_payout(problem, record, max_iter=300)
     if doc["kernels_compiled"]:     # the same NLP in CasADi's virtual machine (inlined SX, full AD): an independent route
@@ -263,13 +315,16 @@ def main(argv=None) -> int:
                                     "parameters (AE, C_I) at AE = 2e5 N; objective mean square body heave; the largest "
                                     "error and cost ratio of the 2-DOF and the segmented (4 elements) model "
                                     "(cablesys.control.gradient); the design built on it: cablesys.control.design")
+    doc.update(node_ocp(scene, limits, node_horizon))
     doc["lq_rel_err"] = lq_error()
     write_json(args.out / "bench_control.json", doc)
     print({k: doc[k] for k in ("ocp_wall_s", "ocp_iterations", "ocp_status", "ocp_heave_reduction_db",
                                "mpc_heave_reduction_db", "pi_heave_reduction_db", "mpc_step_ms", "mpc_realtime_factor",
                                "mpc_no_preview_heave_reduction_db", "mpc_ipopt_heave_reduction_db", "mpc_speedup_vs_ipopt",
                                "design_gradient_cost_ratio", "lq_rel_err", "gradient_fd_rel_err",
-                               "resimulated_constraint_violation_rel")})
+                               "resimulated_constraint_violation_rel", "node_ocp_wall_s", "node_ocp_iterations",
+                               "node_ocp_status", "node_ocp_heave_reduction_db", "node_ocp_rk4_steps_per_interval",
+                               "node_ocp_wall_ratio_vs_wang")})
     return 0
 
 

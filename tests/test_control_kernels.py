@@ -1,13 +1,14 @@
-"""The compiled per-interval kernels of the heave-compensation NLP (cablesys.control.payout.interval_kernels):
+"""The compiled per-interval kernels of the heave-compensation NLP (cablesys.control.kernels.interval_kernels):
 their restricted derivatives against CasADi's own AD, and the compiled NLP's optimum against the virtual machine's."""
 
 import numpy as np
 import casadi as ca
 import pytest
+from control_checks import assert_compiled_optimum_equals_vm
 
 from cablesys.derivatives import state_derivatives
-from cablesys.control import WinchLimits, heave_problem, optimal_payout
-from cablesys.control.payout import interval_kernels
+from cablesys.control import WinchLimits, heave_problem
+from cablesys.control.kernels import interval_kernels
 from cablesys.examples import example_path
 from cablesys.scene import load_scene
 
@@ -52,14 +53,6 @@ def test_restricted_derivatives_equal_casadi_ad():
         np.testing.assert_allclose(np.array(a), np.array(b), rtol=1e-12, atol=1e-13)
 
 
-@pytest.fixture(scope="module")
-def quick_compile(compiling):
-    """Compilation on at -O0 (the same C as the default -O1, compiled in half the time)."""
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setenv("CABLESYS_CFLAGS", "-O0")
-        yield
-
-
 def test_compiled_kernels_find_the_same_optimum(quick_compile):
     """The 30 s ROV-lift optimum (1 m/s, 1 m/s^2 winch, JONSWAP sea) through the compiled kernels and
     their restricted derivatives equals the virtual machine's (inlined SX, CasADi's full AD) to 1e-8 in
@@ -69,15 +62,6 @@ def test_compiled_kernels_find_the_same_optimum(quick_compile):
     pr = heave_problem(scene, WinchLimits(speed=1.0, acceleration=1.0), dt=0.5)
     kernels = interval_kernels(pr.interval)
     assert kernels is not None and kernels.compiled, kernels and kernels.note
-    assert pr.nlp_functions()[2]
-    fast = optimal_payout(pr, 30.0)
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setenv("CABLESYS_COMPILE", "0")
-        assert not pr.nlp_functions()[2]
-        slow = optimal_payout(pr, 30.0)
-    assert fast.success and slow.success, (fast.message, slow.message)
-    assert fast.objective == pytest.approx(slow.objective, rel=1e-8)
-    assert fast.stats["iterations"] == slow.stats["iterations"]
-    np.testing.assert_allclose(fast.acceleration, slow.acceleration, atol=1e-6)
+    assert_compiled_optimum_equals_vm(pr, 30.0, atol=1e-6)
     other = heave_problem(scene, WinchLimits(speed=0.8, acceleration=1.0), dt=0.5, tension_weight=0.1)
     assert interval_kernels(other.interval).library == kernels.library

@@ -89,19 +89,11 @@ def test_bad_mpc_options_are_refused_before_any_work():
             compare_compensation(sc, WinchLimits(), duration=10.0, horizon=5.0, strategies=("mpc",), **kw)
 
 
-@pytest.fixture(scope="module")
-def quick_compile(compiling):
-    """Compilation on at -O0 (the same C as the default -O1, compiled in half the time)."""
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setenv("CABLESYS_CFLAGS", "-O0")
-        yield
-
-
 def test_compiled_gauss_newton_kernel_equals_the_virtual_machine(quick_compile):
     """The compiled linearization kernel gives the condensed QP of the SX function in CasADi's virtual
     machine (the same expressions: to rounding, 1e-9 relative), and a problem with other numbers (another
     speed limit and tension weight) loads the same compiled kernel: the cache is keyed by structure."""
-    from cablesys.control.payout import gauss_newton_kernel
+    from cablesys.control.kernels import gauss_newton_kernel
     sc = load_scene(example_path("rov-lift")).with_numerics(drag_segments=1, duration=30.0)
     prob = heave_problem(sc, WinchLimits(speed=1.0, acceleration=1.0), dt=0.5)
     N = 12

@@ -9,6 +9,7 @@ import math
 import casadi as ca
 import numpy as np
 import pytest
+from control_checks import assert_compiled_optimum_equals_vm
 
 from cablesys.control import WinchLimits, heave_problem, optimal_payout, resimulate
 from cablesys.errors import ParameterError
@@ -223,29 +224,12 @@ def test_control_command_names_the_models_it_ran(tmp_path):
     assert doc["metrics"]["passive"]["plant"].startswith("wang 2-DOF")
 
 
-@pytest.fixture(scope="module")
-def quick_compile(compiling):
-    """Compilation on at -O0 (the same C as the default -O1, compiled in half the time)."""
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setenv("CABLESYS_CFLAGS", "-O0")
-        yield
-
-
 def test_compiled_step_kernels_find_the_virtual_machines_optimum(quick_compile):
     """More RK4 steps per interval than SUBSTEP_KERNELS_FROM (the node model's stiff axial modes): the NLP calls
     one compiled RK4 step kernel per step, whose C is a substeps-th of the interval's; its optimum equals the
     virtual machine's inlined interval to 1e-8 in the objective, in the same IPOPT iterations (Wang's model with
     one drag segment: the smallest kernel that takes this path)."""
-    from cablesys.control.payout import SUBSTEP_KERNELS_FROM
+    from cablesys.control.kernels import SUBSTEP_KERNELS_FROM
     sc = _soft_scene(1).with_numerics(drag_segments=1)
     pr = heave_problem(sc, LIMITS, dt=0.5, model="wang", substeps=SUBSTEP_KERNELS_FROM + 1)
-    assert pr.nlp_functions()[2]
-    fast = optimal_payout(pr, 8.0)
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setenv("CABLESYS_COMPILE", "0")
-        assert not pr.nlp_functions()[2]
-        slow = optimal_payout(pr, 8.0)
-    assert fast.success and slow.success, (fast.message, slow.message)
-    assert fast.objective == pytest.approx(slow.objective, rel=1e-8)
-    assert fast.stats["iterations"] == slow.stats["iterations"]
-    np.testing.assert_allclose(fast.acceleration, slow.acceleration, atol=1e-8)
+    assert_compiled_optimum_equals_vm(pr, 8.0, atol=1e-8)

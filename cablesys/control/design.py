@@ -223,7 +223,7 @@ def _step_functions(problem: TimeDesignProblem):
     dy_k = y_x S_k + y_theta (the variational equation of the discrete map; Hairer, Norsett & Wanner,
     *Solving ODEs I*, sec. I.14), both columns as forward directional derivatives of the step. The
     scene's numbers are inputs (p0 the parameters with AE and C_I zeroed, p = p0 + B theta, B from the
-    layout; c the compensator's; w of :func:`cablesys.control.payout._interval_functions`): the functions
+    layout; c the compensator's; w of :func:`cablesys.control.kernels.interval_functions`): the functions
     depend on the model's structure only."""
     hp = problem.heave
     model = hp.model

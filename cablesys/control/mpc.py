@@ -56,7 +56,8 @@ from ..model.segmented_winch_control import NodeWinchModel
 from ..model.winch import WINCH_OUTPUTS
 from ..results import ResultBase, timed
 from .limits import WinchLimits
-from .payout import check_window, describe_model, heave_problem, heave_reduction_db, payout_nlp, statistics_window
+from .payout import check_window, describe_model, heave_problem, payout_nlp
+from .payout_result import heave_reduction_db, statistics_window
 from .plant import Plant
 from .prediction import ARPredictor
 from .rti import GaussNewtonMPC

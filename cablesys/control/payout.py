@@ -18,46 +18,38 @@ The top motion depends on time only, so it is tabulated outside the NLP: each in
 parameters are the exogenous vector e (:data:`cablesys.model.signals.EXO_LABELS`) at the
 2 ``substeps`` + 1 times its RK4 stages read (:meth:`HeaveProblem.exogenous`); the NLP's
 functions and their derivatives then contain the cable and body dynamics only (the 60 sinusoids of
-a JONSWAP sea, their rates and accelerations were two thirds of the right-hand side).
+a JONSWAP sea, their rates and accelerations were two thirds of the right-hand side). The per-interval
+functions and their compiled kernels are in :mod:`.kernels`, the result of a payout in :mod:`.payout_result`.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
-from typing import ClassVar
 
 import casadi as ca
 import numpy as np
 
-from ..compiled import compile_functions, compiles
-from ..derivatives import state_derivatives
-from ..disk_cache import digest
 from ..errors import ParameterError, require_positive
 from ..model.segmented_winch_control import NodeWinchModel, build_node_winch_model
 from ..model.segmented_winch_control import rest_state as node_rest_state
 from ..model.winch import COMPENSATOR_PARAMETERS, WINCH_OUTPUTS, WinchModel, build_winch_model, rest_state
-from .. import statistics as st
-from ..results import ResultBase, timed
+from ..results import timed
+from .kernels import (G_ROWS, SUBSTEP_KERNELS_FROM, floor_output, gauss_newton_function, gauss_newton_kernel,
+                      interval_functions, interval_kernels, nlp_functions, output_labels, substep_kernels)
 from .limits import WinchLimits
+from .payout_result import PayoutResult, heave_reduction_db, payout_result, statistics_window
 from .shooting import PathConstraint, ShootingNLP
 
-# rows of the stage function's path outputs g: the power, the tension the no-slack floor bounds (the model's
-# ``floor_output``: Wang's F_bc "tension_mid", the node model's least element tension), the top tension
-G_ROWS = ("power", "tension_floor", "tension_top")
+# names of the problem's pieces that live in .kernels and .payout_result, importable from here too
+__all__ = ["G_ROWS", "MODELS", "SUBSTEP_KERNELS_FROM", "HeaveProblem", "PayoutResult", "check_window", "control_model",
+           "describe_model", "fastest_mode", "floor_output", "gauss_newton_function", "gauss_newton_kernel",
+           "heave_problem", "heave_reduction_db", "interval_kernels", "model_rest_state", "optimal_payout",
+           "output_labels", "payout_nlp", "payout_result", "solution_message", "statistics_window",
+           "substep_kernels"]
+
 # the control's models (heave_problem's ``model``): Wang's 2-DOF winch, the segmented node model's winch
 MODELS = ("wang", "segmented")
-
-
-def output_labels(model) -> tuple:
-    """The rows of ``model.outputs``: :data:`WINCH_OUTPUTS` (the node model adds ``tension_least``)."""
-    return getattr(model, "output_labels", WINCH_OUTPUTS)
-
-
-def floor_output(model) -> str:
-    """The output the no-slack floor bounds: the 2-DOF model's spring force F_bc (``tension_mid``, Wang 1971 eq.
-    54), the node model's least element tension (``tension_least``)."""
-    return getattr(model, "floor_output", "tension_mid")
 
 
 def model_rest_state(model, p, c=None) -> np.ndarray:
@@ -178,45 +170,10 @@ class HeaveProblem:
         return ([-a], [a]), (lo, hi)
 
     def nlp_functions(self):
-        """(step, stage, compiled): the NLP's (x, alpha, E_k) -> x_{k+1} and -> (cost, g).
-
-        Compiled (:func:`interval_kernels`): MX functions that call the compiled per-interval kernels with
-        this problem's numbers (p, c and w = (heave at rest, T_0, c_T, c_a, dt)) as inputs, so one
-        library per model structure serves every scene value, and the NLP's derivatives are the kernels'
-        compiled forward, adjoint and forward-over-adjoint derivatives with respect to (x, alpha) only.
-        In CasADi's virtual machine: ``step`` and ``stage`` (the numbers inlined, SX)."""
-        if self.substeps > SUBSTEP_KERNELS_FROM:
-            return self._substep_nlp_functions()
-        kernels = interval_kernels(self.interval)
-        if kernels is None or not kernels.compiled:
-            return self.step, self.stage, False
-        f = kernels.functions
-        nx, ne = self.model.nx, self.step.size1_in(2)
-        x, u, e = ca.MX.sym("x", nx), ca.MX.sym("u"), ca.MX.sym("E", ne)
-        w = ca.DM([self.heave_rest, self.static_tension, self.tension_weight, self.control_weight, self.dt])
-        args = (x, u, e, ca.DM(self.p), ca.DM(self.c), w)
-        step = ca.Function("step", [x, u, e], [f["ocp_step"](*args)])
-        stage = ca.Function("stage", [x, u, e], f["ocp_stage"](*args))
-        return step, stage, True
-
-    def _substep_nlp_functions(self):
-        """:meth:`nlp_functions` from one compiled RK4 step called ``substeps`` times (:func:`substep_kernels`):
-        the C of a whole interval of the node model's stiff steps is too large to compile (54 MB at N = 4 with
-        11 steps), one step's is a substeps-th of it."""
-        kernels = substep_kernels(self.substep, self.start)
-        if kernels is None or not kernels.compiled:
-            return self.step, self.stage, False
-        f = kernels.functions
-        nx, ne = self.model.nx, self.step.size1_in(2)
-        x, u, e = ca.MX.sym("x", nx), ca.MX.sym("u"), ca.MX.sym("E", ne)
-        p, c, h = ca.DM(self.p), ca.DM(self.c), self.dt / self.substeps
-        w = ca.DM([self.heave_rest, self.static_tension, self.tension_weight, self.control_weight, self.dt])
-        xn = x
-        for i in range(self.substeps):
-            xn = f["ocp_rk4"](xn, u, e[7 * 2 * i: 7 * (2 * i + 3)], p, c, h)
-        step = ca.Function("step", [x, u, e], [xn])
-        stage = ca.Function("stage", [x, u, e], f["ocp_start"](x, u, e[:7], p, c, w))
-        return step, stage, True
+        """(step, stage, compiled): the NLP's (x, alpha, E_k) -> x_{k+1} and -> (cost, g), calling the compiled
+        kernels with this problem's numbers, or ``step`` and ``stage`` in CasADi's virtual machine
+        (:func:`.kernels.nlp_functions`)."""
+        return nlp_functions(self)
 
     def scales(self):
         """State scales for IPOPT: Wang's phi and its rate 0.05, lengths and speeds 1 (the node model's positions,
@@ -239,7 +196,6 @@ def fastest_mode(model, x_rest, p, c) -> float:
     x = ca.SX.sym("x", model.nx)
     J = ca.Function("J", [x], [ca.jacobian(model.ode(x, ca.DM.zeros(2), 0.0, p, c), x)])
     return float(np.max(np.abs(np.linalg.eigvals(np.array(J(x_rest))))))
-
 
 def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25, substeps: int | None = None,
                   tension_weight: float = 0.0, control_weight: float = 1e-3,
@@ -310,233 +266,14 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
                                                    f"{math.ceil(dt * lam / RK4_STABILITY)}")
     floor, wl = limits.band(scene, y_rest["tension_top"])
     T0 = y_rest["tension_top"]
-    step, stage, interval, substep, start = _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight,
-                                                                control_weight)
+    step, stage, interval, substep, start = interval_functions(model, dt, substeps, p, c, y_rest, tension_weight,
+                                                               control_weight)
     return HeaveProblem(scene=scene, model=model, p=p, c=c, x_rest=x_rest, limits=limits, floor=floor,
                         working_load=wl, static_tension=T0, heave_rest=y_rest["heave"], dt=float(dt),
                         substeps=substeps, tension_weight=float(tension_weight),
                         control_weight=float(control_weight), step=step, stage=stage,
                         interval=interval, substep=substep, start=start)
 
-
-
-def _interval_functions(model, dt, substeps, p, c, y_rest, tension_weight, control_weight):
-    """(step, stage, interval, substep, start) of one control interval; step and stage are SX functions of
-    (x, alpha, E_k) with the numbers inlined; substep and start those of :func:`_substep_functions`.
-
-    ``interval(x, u, E, p, c, w) -> (x_next, cost, g)``: ``substeps`` classical RK4 steps of the
-    winch ODE with alpha = u constant and the top motion read from E (:meth:`HeaveProblem.exogenous`:
-    e at the 2 substeps + 1 stage times), the stage cost at the interval start and the path outputs
-    (:data:`G_ROWS`); w = (heave at rest, T_0, c_T, c_a, dt).
-    """
-    ne = 7
-    substep, start = _substep_functions(model, len(p), len(c))
-    xs, uk = ca.SX.sym("x", model.nx), ca.SX.sym("u")
-    Es = ca.SX.sym("E", ne * (2 * substeps + 1))
-    ps, cs, ws = ca.SX.sym("p", len(p)), ca.SX.sym("c", len(c)), ca.SX.sym("w", 5)
-    h = ws[4] / substeps
-    x = xs
-    for i in range(substeps):                       # classical RK4, the top at its stage times 2i, 2i+1, 2i+2
-        x = substep(x, uk, Es[ne * 2 * i: ne * (2 * i + 3)], ps, cs, h)
-    cost, g = start(xs, uk, Es[:ne], ps, cs, ws)
-    interval = ca.Function("interval", [xs, uk, Es, ps, cs, ws], [x, cost, g],
-                           ["x", "u", "E", "p", "c", "w"], ["xn", "cost", "g"])
-    w = ca.DM([y_rest["heave"], y_rest["tension_top"], tension_weight, control_weight, dt])
-    xa, ua, ra = ca.SX.sym("x", model.nx), ca.SX.sym("u"), ca.SX.sym("E", Es.numel())
-    xn, cost, g = interval(xa, ua, ra, ca.DM(p), ca.DM(c), w)
-    step = ca.Function("step", [xa, ua, ra], [xn])
-    stage = ca.Function("stage", [xa, ua, ra], [cost, g])
-    return step, stage, interval, substep, start
-
-
-def _substep_functions(model, n_p: int, n_c: int):
-    """(substep, start): one classical RK4 step ``(x, u, E_j, p, c, h) -> x_next`` of the winch ODE with alpha
-    = u and the top at the step's 3 stage times (E_j, 21 rows), and the stage cost and path outputs at the
-    interval start ``(x, u, e, p, c, w) -> (cost, g)``, as in :func:`_interval_functions`."""
-    nq, ne = model.nq, 7
-    x, u, E = ca.SX.sym("x", model.nx), ca.SX.sym("u"), ca.SX.sym("E", 3 * ne)
-    p, c, h, w = ca.SX.sym("p", n_p), ca.SX.sym("c", n_c), ca.SX.sym("h"), ca.SX.sym("w", 5)
-
-    def f(xx, j):
-        qdd = model.accel(xx[:nq], xx[nq:2 * nq], E[ne * j: ne * (j + 1)],
-                          ca.vertcat(xx[2 * nq], xx[2 * nq + 1], u, 0.0), p, c)
-        return ca.vertcat(xx[nq:2 * nq], qdd, xx[2 * nq + 1], u)
-    k1 = f(x, 0)
-    k2 = f(x + h / 2 * k1, 1)
-    k3 = f(x + h / 2 * k2, 1)
-    k4 = f(x + h * k3, 2)
-    names = ["x", "u", "E", "p", "c"]
-    substep = ca.Function("ocp_rk4", [x, u, E, p, c, h], [x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)], names + ["h"], ["xn"])
-    e0 = ca.SX.sym("e", ne)
-    y = model.outputs_e(x[:nq], x[nq:2 * nq], e0, ca.vertcat(x[2 * nq], x[2 * nq + 1], u, 0.0), p, c)
-    oi = output_labels(model).index
-    cost = w[4] * ((y[oi("heave")] - w[0]) ** 2 + w[2] * ((y[oi("tension_top")] - w[1]) / w[1]) ** 2 + w[3] * u ** 2)
-    g = ca.vertcat(*(y[oi(floor_output(model) if name == "tension_floor" else name)] for name in G_ROWS))
-    start = ca.Function("ocp_start", [x, u, e0, p, c, w], [cost, g], ["x", "u", "e", "p", "c", "w"], ["cost", "g"])
-    return substep, start
-
-
-# more RK4 steps per interval than this: the NLP calls one compiled step kernel per step (HeaveProblem.
-# _substep_nlp_functions) instead of one kernel of the whole interval, whose C grows with the steps
-SUBSTEP_KERNELS_FROM = 4
-
-
-def substep_kernels(substep: ca.Function, start: ca.Function):
-    """The compiled ``ocp_rk4`` and ``ocp_start`` of :func:`_substep_functions`, each with its forward, adjoint
-    and forward-over-adjoint derivatives with respect to (x, u), as :func:`interval_kernels`; None when nothing
-    is compiled."""
-    if not compiles():
-        return None
-    key = digest(substep.serialize() + start.serialize())
-    return _KERNELS.get(key) or _compiled_kernels(
-        key, state_derivatives(substep, ("x", "u")) + state_derivatives(start, ("x", "u")))
-
-
-def _compiled_kernels(key, functions):
-    """``functions`` compiled (:data:`KERNEL_OPTIMIZATION`) and kept under ``key`` in the KERNELS_KEPT cache."""
-    kernels = compile_functions(functions, jacobians=False, optimization=KERNEL_OPTIMIZATION)
-    if kernels.compiled:
-        while len(_KERNELS) >= KERNELS_KEPT:
-            _KERNELS.pop(next(iter(_KERNELS)))       # the oldest first (dicts keep insertion order)
-        _KERNELS[key] = kernels
-    return kernels
-
-
-# optimization flag of the kernels (see interval_kernels)
-KERNEL_OPTIMIZATION = "-O1"
-# compiled kernels by the serialized interval function (its structure: the scene numbers are its inputs),
-# the KERNELS_KEPT most recent (a loaded library is not checked and opened again on every MPC step)
-_KERNELS: dict = {}
-KERNELS_KEPT = 8
-
-
-def interval_kernels(interval: ca.Function):
-    """The compiled per-interval kernels of ``interval`` (:func:`_interval_functions`), a
-    :class:`cablesys.compiled.Compiled` with ``ocp_step`` (x, u, E, p, c, w) -> x_{k+1} and ``ocp_stage``
-    -> (cost, g), each with its forward, adjoint and forward-over-adjoint derivatives with respect to
-    (x, u) (:func:`cablesys.derivatives.state_derivatives`) in the same library, where ``casadi.external``
-    finds them. The NLP maps them over its intervals (``Function.map`` in :class:`.shooting.ShootingNLP`),
-    so one small kernel serves every interval. None when nothing is compiled (``CABLESYS_COMPILE=0``, no
-    compiler), and a ``Compiled`` with ``compiled`` False when compilation failed: the callers then keep
-    the inlined SX functions."""
-    if not compiles():
-        return None
-    key = digest(interval.serialize())
-    kernels = _KERNELS.get(key)
-    if kernels is None:
-        x, u, e, p, c, w = (ca.SX.sym(n, interval.sparsity_in(i)) for i, n in enumerate(interval.name_in()))
-        xn, cost, g = interval(x, u, e, p, c, w)
-        names = ["x", "u", "E", "p", "c", "w"]
-        step = ca.Function("ocp_step", [x, u, e, p, c, w], [xn], names, ["xn"])
-        stage = ca.Function("ocp_stage", [x, u, e, p, c, w], [cost, g], names, ["cost", "g"])
-        functions = state_derivatives(step, ("x", "u")) + state_derivatives(stage, ("x", "u"))
-        # -O1: Hessians as fast as at -O2 for a fraction of its compile; -O0 compiles sooner with slower Hessians
-        kernels = _compiled_kernels(key, functions)
-    return kernels
-
-
-@dataclasses.dataclass(frozen=True)
-class PayoutResult(ResultBase):
-    """An open-loop optimal payout (or any payout evaluated on the problem's grid) and its response.
-
-    ``times`` (N+1,) s; ``states`` (N+1, nx) with labels ``state_labels``; ``acceleration`` (N,)
-    m/s^2, the control alpha on each interval; ``outputs`` (N+1, n_out) with labels
-    ``output_labels`` (:data:`cablesys.model.winch.WINCH_OUTPUTS`) and the same for the run
-    without compensation (``uncompensated``, alpha = 0). ``status`` is IPOPT's return status,
-    ``violated`` the constraint that could not be met ("" when all hold), ``violations`` the
-    largest violation of each, relative to its scale (the static tension for forces). ``tension_min_n`` is the
-    least of the tension the no-slack floor bounds (:attr:`HeaveProblem.floor_output`: Wang's F_bc, the node
-    model's least element tension), ``tension_max_n`` the largest top tension.
-    """
-
-    times: np.ndarray
-    states: np.ndarray
-    acceleration: np.ndarray
-    outputs: np.ndarray
-    uncompensated: np.ndarray
-    state_labels: tuple
-    output_labels: tuple
-    status: str
-    violated: str
-    violations: dict
-    objective: float
-    heave_rms_m: float
-    uncompensated_heave_rms_m: float
-    heave_reduction_db: float
-    tension_max_n: float
-    tension_min_n: float
-    speed_max_m_s: float
-    power_max_w: float
-    success: bool = True
-    message: str = ""
-    stats: dict = dataclasses.field(default_factory=dict)
-
-    VARIABLES: ClassVar[dict] = {
-        "heave": ("m", "body heave from rest, earth-fixed (down +)"),
-        "heave_uncompensated": ("m", "body heave from rest without compensation"),
-        "tension_top": ("N", "cable tension at the sheave"),
-        "tension_top_uncompensated": ("N", "cable tension at the sheave without compensation"),
-        "tension_mid": ("N", "tension at mid-length: the spring force F_bc of the cable (Wang 1971 eq. 54)"),
-        "length": ("m", "unstretched length in the water"), "speed": ("m/s", "payout rate w"),
-        "acceleration": ("m/s^2", "payout acceleration (the control)"), "power": ("W", "winch power T_top w")}
-
-    def output(self, name: str, compensated: bool = True) -> np.ndarray:
-        """One output's time series (``heave`` is taken from rest)."""
-        Y = self.outputs if compensated else self.uncompensated
-        y = Y[:, self.output_labels.index(name)]
-        return y - Y[0, self.output_labels.index(name)] if name == "heave" else y
-
-    def to_xarray(self):
-        """The trajectories on dimension ``time`` (the control on the interval starts)."""
-        import xarray as xr
-        data = {name: ("time", self.output(name)) for name in ("heave", "tension_mid", "tension_top", "length",
-                                                               "speed", "power")}
-        data["heave_uncompensated"] = ("time", self.output("heave", False))
-        data["tension_top_uncompensated"] = ("time", self.output("tension_top", False))
-        data["acceleration"] = ("time", np.append(self.acceleration, np.nan))
-        return xr.Dataset(data, coords={"time": self.times})
-
-
-def statistics_window(times: np.ndarray, start: float | None, top_motion=None) -> np.ndarray:
-    """Mask of the samples in the statistics window: from ``start`` (s), by default the window of every run's
-    summary (:func:`cablesys.statistics.window` with the top motion's forcing period and smooth start)."""
-    if start is None:
-        period = None if top_motion is None else top_motion.window_period_s
-        ramp = 0.0 if top_motion is None else top_motion.effective_ramp_s
-        start = st.window(times, period, ramp)[0]
-    return times >= start
-
-
-def heave_reduction_db(heave, reference, mask) -> float:
-    """20 log10(rms(heave) / rms(reference)) over ``mask`` (dB; negative: reduced)."""
-    a, b = np.sqrt(np.mean(np.square(heave[mask]))), np.sqrt(np.mean(np.square(reference[mask])))
-    return float(20 * np.log10(max(a, 1e-300) / b)) if b > 0 else float("nan")
-
-
-def payout_result(problem: HeaveProblem, X, U, *, status: str, violated: str = "", violations=None,
-                  objective: float = float("nan"), success: bool = True, message: str = "",
-                  stats=None, stats_start: float | None = None) -> PayoutResult:
-    """A :class:`PayoutResult` of node states ``X`` and controls ``U`` on the problem's grid."""
-    N = len(U)
-    t = problem.dt * np.arange(N + 1)
-    Uext = np.append(np.ravel(U), 0.0)
-    Y = problem.outputs(X, Uext, t)
-    X0 = problem.rollout(problem.x_rest, np.zeros(N))
-    Y0 = problem.outputs(X0, np.zeros(N + 1), t)
-    mask = statistics_window(t, stats_start, problem.scene.top_motion)
-    oi = problem.output_labels.index
-    h, h0 = Y[:, oi("heave")] - problem.heave_rest, Y0[:, oi("heave")] - problem.heave_rest
-    return PayoutResult(times=t, states=np.asarray(X), acceleration=np.ravel(U), outputs=Y, uncompensated=Y0,
-                        state_labels=problem.model.state_labels, output_labels=problem.output_labels, status=status,
-                        violated=violated, violations=dict(violations or {}), objective=float(objective),
-                        heave_rms_m=float(np.sqrt(np.mean(h[mask] ** 2))),
-                        uncompensated_heave_rms_m=float(np.sqrt(np.mean(h0[mask] ** 2))),
-                        heave_reduction_db=heave_reduction_db(h, h0, mask),
-                        tension_max_n=float(np.max(Y[:, oi("tension_top")])),
-                        tension_min_n=float(np.min(Y[:, oi(problem.floor_output)])),
-                        speed_max_m_s=float(np.max(np.abs(Y[:, oi("speed")]))),
-                        power_max_w=float(np.max(np.abs(Y[:, oi("power")]))),
-                        success=success, message=message, stats=dict(stats or {}))
 
 
 def payout_nlp(problem: HeaveProblem, N: int, *, max_iter: int = 300, tol: float = 1e-8,
@@ -614,50 +351,3 @@ def optimal_payout(problem: HeaveProblem, horizon: float, *, warm_start: PayoutR
                                 "ipopt_timing_s": sol.timing},
                          stats_start=stats_start)
 
-
-# the Gauss-Newton linearization kernels by the serialized kernel (structure only; see gauss_newton_kernel)
-_GN_KERNELS: dict = {}
-
-
-def gauss_newton_function(problem: HeaveProblem) -> ca.Function:
-    """The interval's linearization for a Gauss-Newton method, an SX function of (x, u, E, p, c, w):
-
-    ``(xn, A, B, r, Rx, Ru, g, Gx, Gu)`` with xn the interval's end state (the RK4 steps of
-    :func:`_interval_functions`), A = dxn/dx, B = dxn/du; r the stage cost's residuals at the interval start,
-    cost = r^T r with r = sqrt(dt) (y_b - y_b0, sqrt(c_T) (T_top - T_0) / T_0, sqrt(c_a) alpha) (the
-    objective of the module docstring is a sum of squares), Rx, Ru their Jacobians; g the path outputs
-    (:data:`G_ROWS`) and Gx, Gu theirs. w = (heave at rest, T_0, c_T, c_a, dt) as for ``interval``. The
-    Gauss-Newton Hessian of the objective is J_r^T J_r (Bock 1983, "Recent advances in parameter
-    identification techniques for ODE", in Numerical Treatment of Inverse Problems, Birkhaeuser, p. 95-121):
-    no second derivatives of the dynamics."""
-    model, interval = problem.model, problem.interval
-    x, u, e, p, c, w = (ca.SX.sym(n, interval.sparsity_in(i)) for i, n in enumerate(interval.name_in()))
-    xn, _, g = interval(x, u, e, p, c, w)
-    nq = model.nq
-    y = model.outputs_e(x[:nq], x[nq:2 * nq], e[:7], ca.vertcat(x[2 * nq], x[2 * nq + 1], u, 0.0), p, c)
-    oi = WINCH_OUTPUTS.index
-    r = ca.sqrt(w[4]) * ca.vertcat(y[oi("heave")] - w[0], ca.sqrt(w[2]) * (y[oi("tension_top")] - w[1]) / w[1],
-                                   ca.sqrt(w[3]) * u)
-    jac = lambda f, v: ca.jacobian(f, v)
-    return ca.Function("gn_interval", [x, u, e, p, c, w],
-                       [xn, jac(xn, x), jac(xn, u), r, jac(r, x), jac(r, u), g, jac(g, x), jac(g, u)],
-                       ["x", "u", "E", "p", "c", "w"], ["xn", "A", "B", "r", "Rx", "Ru", "g", "Gx", "Gu"])
-
-
-def gauss_newton_kernel(problem: HeaveProblem) -> ca.Function:
-    """:func:`gauss_newton_function` compiled (one library per model structure: the scene's numbers are its
-    inputs p, c, w; the cache is keyed by the function's serialization), or the SX function itself in
-    CasADi's virtual machine (``CABLESYS_COMPILE=0``, no compiler, a failed build)."""
-    f = gauss_newton_function(problem)
-    if not compiles():
-        return f
-    key = digest(f.serialize())
-    kernel = _GN_KERNELS.get(key)
-    if kernel is None:
-        built = compile_functions([f], jacobians=False, optimization=KERNEL_OPTIMIZATION)
-        kernel = built.functions["gn_interval"]
-        if built.compiled:
-            while len(_GN_KERNELS) >= KERNELS_KEPT:
-                _GN_KERNELS.pop(next(iter(_GN_KERNELS)))
-            _GN_KERNELS[key] = kernel
-    return kernel

@@ -1,5 +1,5 @@
 """The MPC's real-time iteration: one Gauss-Newton quadratic program per sample on the winch problem's horizon
-(:func:`.payout.payout_nlp`), its kernels compiled once per structure (:func:`.payout.gauss_newton_kernel`)."""
+(:func:`.payout.payout_nlp`), its kernels compiled once per structure (:func:`.kernels.gauss_newton_kernel`)."""
 
 from __future__ import annotations
 
@@ -9,7 +9,8 @@ import casadi as ca
 import numpy as np
 
 from ..errors import ParameterError
-from .payout import gauss_newton_kernel, payout_nlp
+from .kernels import gauss_newton_kernel
+from .payout import payout_nlp
 
 
 class GaussNewtonMPC:
@@ -24,12 +25,12 @@ class GaussNewtonMPC:
     node states x_k(U), so the condensed problem has the N controls alone as variables; the
     sensitivities S_k = dx_k/dU follow S_{k+1} = A_k S_k + B_k e_k^T from the kernel's A, B),
     takes the objective's Gauss-Newton model 1/2 dU^T J^T J dU + (J^T r)^T dU (the objective is
-    r^T r, :func:`.payout.gauss_newton_function`; Bock 1983) and the linearized path
+    r^T r, :func:`.kernels.gauss_newton_function`; Bock 1983) and the linearized path
     constraints (winch power, no slack, working load at nodes 1..N-1), the speed bound at nodes
     1..N and |alpha| <= a_max, and solves that dense QP with DAQP (a dual active-set method: Arnstroem,
     Bemporad & Axehill 2022, IEEE Trans. Autom. Control 67(8), 4362-4369; ``qpsol``: any CasADi ``conic``
     plugin that takes dense matrices, e.g. "qpoases"). The per-interval linearization is
-    one compiled kernel (:func:`.payout.gauss_newton_kernel`) mapped over the horizon; the QP has
+    one compiled kernel (:func:`.kernels.gauss_newton_kernel`) mapped over the horizon; the QP has
     a fixed structure (N, the model's size, which limits are finite), built once. The scheme's
     preparation phase (the linearization) and feedback phase (the QP) both run after the measurement
     here, so a step's time is the whole iteration, not the feedback delay alone.
