@@ -363,8 +363,8 @@ NOTES = {
                     "the step test here (_agree) also holds the bottom tension to 2 % of itself; with one geometric "
                     "bisection round it accepts 8.84 ms, where the anchor segment is 80.1-80.5 kN (1.3 % below its "
                     "small-step level, noisy: the bottom-left panel of the figure). A user who needs the anchor "
-                    "tension within 1 % runs MoorDyn at <= 6.25 ms (0.76 s for the 80 s run against 0.47 s at 8.84 ms "
-                    "in a run under load 4).",
+                    "tension within 1 % runs MoorDyn at <= 6.25 ms (0.76 s for the 80 s run against 0.43 s at 12.5 ms "
+                    "in a separate run under load 4: about 1.4 x the wall of the accepted step).",
     "mooring_agreement": "Converged case (N = 20, both codes converged in time; cablesys from the frictionless statics, "
                          "as MoorDyn's stationary solver starts): fairlead, the same quantity (cablesys's top element "
                          "against MoorDyn's top segment) max 0.10 %, min -0.05 %; as the forces on the fairlead 4.7 % / "
@@ -388,14 +388,15 @@ NOTES = {
                                 "chain creep back towards the frictionless state, ends_checks' laid_line_creep_m). "
                                 "The benchmark's cablesys runs start as MoorDyn's; auto runs as a user runs it (laid "
                                 "down), and its reference (N = 40, rtol 1e-7) starts the same way.",
-    "mooring_speed": "Run of 2026-12-02 15:55-15:58 UTC, load 4.0-4.3 on 2 cores (other studies running): MoorDyn N = 20 "
-                     "at 8.84 ms, 9050 steps, 0.466 s wall, 0.266 s CPU (the whole call, its stationary solver "
-                     "included); cablesys segmented N = 20, BDF(<= 2) rtol 1e-3 (tension 0.11 % from its own tight "
-                     "run), 1194 steps, 0.060 s wall, 0.028 s CPU: speedup 7.75 wall, 9.4 CPU (target >= 5: met). "
-                     "Auto (N = 20 from the scene's cable, checked a posteriori against N = 10 and rtol 1e-5; the "
-                     "node model is the only rung for an anchored line): choose 0.06 ms + run 0.031 s + checks "
-                     "0.078 s = 0.109 s: auto_speedup 4.3 (15 run only; target >= 20: missed; the checks are 72 % of "
-                     "the wait and there is no cheaper rung to choose), error vs the reference 0.30 % (stated 0.24 %).",
+    "mooring_speed": "Run of 2026-12-02 16:04-16:07 UTC (this JSON), load 3.9-4.3 on 2 cores (other studies running): "
+                     "MoorDyn N = 20 at 8.84 ms, 9051 steps, 0.424 s wall, 0.237 s CPU (the whole call, its stationary "
+                     "solver included); cablesys segmented N = 20, BDF(<= 2) rtol 1e-3 (tension 0.11 % from its own "
+                     "tight run), 1194 steps, 0.066 s wall, 0.032 s CPU: speedup 6.4 wall, 7.5 CPU (target >= 5: met; "
+                     "the run of 15:55 under the same load: 7.75 / 9.4). Auto (N = 20 from the scene's cable, checked a "
+                     "posteriori against N = 10 and against rtol 1e-5; the node model is the only rung for an anchored "
+                     "line): choose 0.06 ms + run 0.080 s + checks 0.174 s = 0.254 s: auto_speedup 1.7 (5.3 run only; "
+                     "15:55: 4.3, 15; target >= 20: missed: the a posteriori checks are 2 / 3 of the wait and no cheaper "
+                     "rung exists for this scene); its error against the reference 0.30 % (stated 0.24 %).",
     "lowering_law": "MoorDyn pays out as cablesys does (nodes at fixed fractions of L, mass, weight and buoyancy from "
                     "L). Left out on both sides because MoorDyn lacks them: the material strain rate (its Voigt damping "
                     "sees the rate of stretch of a segment, BA w / L of compression damping in a steady payout: C_I "
@@ -407,11 +408,12 @@ NOTES = {
                     "at the ramp's peak deceleration 1.5 w / ramp = 0.5 m/s^2, 3 kg/m x 80 m x 0.5 m/s^2 / 2 = 60 N, "
                     "1.4 % of the 4.15 kN maximum (1.2 % seen). Both within 0.09 % of the closed form "
                     "W_b + w L - 1/2 rho C_D A v^2 (drag 25 % of the load) over the constant-speed part.",
-    "lowering_speed": "Same run: MoorDyn N = 20 at 0.43 ms (the 1 m elements of the 20 m start set RK4's axial limit), "
-                      "146k steps, 5.80 s wall, 3.26 s CPU; cablesys segmented N = 20, BDF(<= 2) rtol 1e-4 (tension "
-                      "0.55 % from its tight run), 478 steps, 0.032 s wall, 0.020 s CPU: speedup 180 wall, 162 CPU "
-                      "(target >= 5: met); auto N = 20 checked against 10 and rtol 1e-5, 0.188 s: auto_speedup 31 "
-                      "(95 run only; target >= 20: met), error 0.17 % (stated 0.20 %).",
+    "lowering_speed": "Same run: MoorDyn N = 20 at 0.427 ms (the 1 m elements of the 20 m start set RK4's axial "
+                      "limit), 147k steps, 5.59 s wall, 2.94 s CPU; cablesys segmented N = 20, BDF(<= 2) rtol 1e-4 "
+                      "(tension 0.55 % from its tight run), 478 steps, 0.040 s wall, 0.020 s CPU: speedup 139 wall, "
+                      "146 CPU (15:55: 180 / 162; target >= 5: met); auto N = 20 checked against 10 and rtol 1e-5, "
+                      "0.122 s: auto_speedup 46 (140 run only; 15:55: 31; target >= 20: met), error 0.17 % (stated "
+                      "0.20 %).",
     "moordyn_wheel": "The moordyn 2.7.2 wheel's SetLineUnstretchedLength and SetLineUnstretchedLengthVel drop a reference "
                      "to None per call (CPython aborts with 'deallocating None' after ~6000 calls); _moordyn.winch_hook "
                      "gives the references back (ctypes Py_IncRef).",
