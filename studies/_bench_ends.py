@@ -29,7 +29,9 @@ T = W_b + w L - 1/2 rho C_D A v^2 (the weight in water of package and paid-out w
 coupled point, for MoorDyn's top segment.
 
 Per case and N (both cases N = 20; ``--quick`` N = 10 and 6, short runs, no reference and no auto): MoorDyn at its
-largest stable step (RK4, halving from 4x the axial estimate: ``_moordyn.largest_stable_dt``), cablesys's segmented
+largest stable step (RK4, halving from 4x the axial estimate, then one geometric bisection round:
+``_moordyn.largest_stable_dt``; a step is accepted when its run agrees with the half step's on the body and on *both*
+end tensions, :func:`_agree`), cablesys's segmented
 model at matched accuracy (the loosest CVODES BDF(<= 2) rtol whose body amplitudes are within 0.5 % and tension
 extremes within 1 % of its own tight run, rtol 1e-7: ``bench_vs_moordyn._matched``), both timed in the same run as
 wall and process CPU time of the second run of a simulator built once (MoorDyn: its steps and outputs; its CPU is
