@@ -149,7 +149,7 @@ def run_moordyn(scene, n_segments: int, dt: float, *, duration: float | None = N
     l_seg = _unstretched_length(scene) / n_segments
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "lines.txt"
-        path.write_text(moordyn_input(scene, n_segments, dt))
+        path.write_text(scene_input(scene, n_segments, dt))     # a line with other ends: ends_input
         with _quiet():
             s = moordyn.Create(str(path))
             moordyn.SetDt(s, dt)
@@ -157,6 +157,7 @@ def run_moordyn(scene, n_segments: int, dt: float, *, duration: float | None = N
             x, _ = _top(scene, 0.0)
             moordyn.Init(s, x, [0.0, 0.0, 0.0])     # equilibrium with the top at rest (a moving top would be extrapolated)
         line, body = moordyn.GetLine(s, 1), moordyn.GetPoint(s, 2)
+        pay = winch_hook(scene, line)           # a [winch]: MoorDyn's length rate, set before each call
         T = np.zeros(n_out + 1)
         XB, YB, TT, TB = (np.zeros(n_out + 1) for _ in range(4))
         strain = np.zeros((n_out + 1, n_segments))
@@ -179,6 +180,8 @@ def run_moordyn(scene, n_segments: int, dt: float, *, duration: float | None = N
                         for j in range(1, m + 1):
                             x_prev = x
                             x, _ = _top(scene, t - h + j * h_c)
+                            if pay:
+                                pay(moordyn, t - h + (j - 1) * h_c, h_c)
                             moordyn.Step(s, x, [(b - a) / h_c for a, b in zip(x_prev, x)], t - h + (j - 1) * h_c, h_c)
                     except RuntimeError:          # MoorDyn's own NaN check: the step is unstable
                         ok = False
@@ -282,3 +285,101 @@ def largest_stable_dt(scene, n_segments: int, *, probe_s: float | None = None, s
             lo, hi = (mid, hi) if ok(mid) else (lo, mid)
         dt = lo
     return dt
+
+
+# -- other ends (issue 25, studies/_bench_ends.py): an anchor on a seabed, a winch -------------------------------------
+
+def scene_input(scene, n_segments: int, dt: float) -> str:
+    """The MoorDyn input of ``scene``: :func:`ends_input` for an anchored line, else :func:`moordyn_input`."""
+    return ends_input(scene, n_segments, dt) if scene.anchor is not None else moordyn_input(scene, n_segments, dt)
+
+
+def volume_diameter(text: str) -> float:
+    """MoorDyn's volume-equivalent diameter d_v (m) in an input text of :func:`moordyn_input` (its line type row)."""
+    return float(next(line for line in text.splitlines() if line.startswith("cable ")).split()[1])
+
+
+def seabed_options(scene, n_segments: int, d_v: float) -> dict:
+    """MoorDyn v2's seabed options for the scene's flat :class:`cablesys.scene.Seabed` (MoorDyn v2 documentation,
+    moordyn.readthedocs.io, Input Files / Options; the law in MoorDyn-C's ``Line::getStateDeriv``).
+
+    MoorDyn's bed pushes a node below ``WtrDpth`` by B_z = (kBot delta - cBot delta') d_v l (d_v its volume-equivalent
+    diameter, l half of each adjacent segment's unstretched length), ours by (k delta + c delta') d_0 l
+    (:mod:`cablesys.model.segmented_seabed`): kBot = k d_0 / d_v and cBot = c d_0 / d_v give the same force. MoorDyn's
+    friction is a saturated linear damping of the node's horizontal speed v, F = mu min(FricDamp |v|, |B_z|)
+    (StatDynFricScale = 1: the static and dynamic coefficients equal), ours mu F_n tanh(v / v_s): FricDamp = w l / v_s
+    gives the same slope at rest for a node lying on the bed under its own weight in water w l, and both saturate
+    at mu times the normal force. Where the laws differ: MoorDyn's normal force is not clipped at zero (its damping
+    can pull a rising node into the bed), the friction's knee is sharp (ours reaches 76 % of mu F_n at v = v_s, 96 %
+    at 2 v_s), and FricDamp is one number for every node (our slope follows each node's normal force)."""
+    bed, sec, c = scene.seabed, scene.sections[0], scene.sections[0].cable
+    if bed.slope_deg != 0.0:
+        raise ValueError("the MoorDyn peer maps a flat seabed only (WtrDpth); a sloped one needs its bathymetry file")
+    d_0 = c.diameter
+    return {"WtrDpth": bed.depth, "kBot": bed.stiffness * d_0 / d_v, "cBot": bed.damping * d_0 / d_v,
+            "FrictionCoefficient": bed.friction_axial,
+            "FricDamp": c.weight_per_length * c.length / n_segments / bed.friction_speed, "StatDynFricScale": 1.0}
+
+
+def ends_input(scene, n_segments: int, dt: float) -> str:
+    """The MoorDyn v2 input of an anchored one-section line on a flat seabed: :func:`moordyn_input`'s line (the same
+    mapping of the cable's numbers) with its point 2 fixed at the anchor instead of a free body, and the seabed's
+    options (:func:`seabed_options`) in place of the far-away bed."""
+    text = moordyn_input(scene, n_segments, dt)
+    a, depth0 = scene.anchor, scene.environment.top_depth
+    opts = seabed_options(scene, n_segments, volume_diameter(text)) if scene.seabed is not None else {}
+    out = []
+    for line in text.splitlines():
+        if line.startswith("2     Free"):
+            line = f"2     Fixed     {a.x:.10g}   0   {-(depth0 + a.y):.10g}   0   0   0   0"
+        elif line.split()[-1:] == ["WtrDpth"] and opts:
+            line = "\n".join(f"{v:.10g}   {k}" for k, v in opts.items())
+        out.append(line)
+    return "\n".join(out) + "\n"
+
+
+def winch_hook(scene, line):
+    """None without a ``[winch]``; else ``pay(moordyn, t0, h)``: before a coupling call from t0 over h, the line's
+    unstretched length L(t0) = l_0 + Delta L(t0) (:meth:`cablesys.scene.ends.Winch.profile`) and its rate over the
+    call, the secant (L(t0 + h) - L(t0)) / h (MoorDyn v2 ``SetLineUnstretchedLength`` / ``...Vel``: within a call
+    L = L(t0) + t_local rate, every segment L / N, mass, weight and buoyancy from it: the same uniform share as
+    :mod:`cablesys.model.segmented_winch`)."""
+    if scene.winch is None:
+        return None
+    l_0, w = _unstretched_length(scene), scene.winch
+
+    def pay(moordyn, t0, h):
+        a, b = l_0 + w.profile(t0)[0], l_0 + w.profile(t0 + h)[0]
+        moordyn.SetLineUnstretchedLength(line, a)
+        moordyn.SetLineUnstretchedLengthVel(line, (b - a) / h)
+        _give_back_none(2)
+    return pay
+
+
+def _give_back_none(k: int) -> None:
+    """The moordyn 2.7.2 wheel's SetLineUnstretchedLength and SetLineUnstretchedLengthVel return None without taking
+    a reference to it (each call lowers None's reference count by one: CPython 3.11 aborts with "deallocating None"
+    after a few thousand calls); give back ``k`` lost references for good (a kept list would drop them at exit)."""
+    import ctypes
+    for _ in range(k):
+        ctypes.pythonapi.Py_IncRef(ctypes.py_object(None))
+
+
+def moordyn_static(scene, n_segments: int, dt: float = 1e-3) -> dict:
+    """MoorDyn's initial equilibrium of ``scene`` (its stationary solver, the top at rest): ``top_force`` the
+    magnitude of the force of the line on the top point (N; its end node's weight and drag included, MoorDyn's
+    ``GetPointForce`` of the coupled point) and ``top_segment_tension`` the end segment's (N)."""
+    import moordyn
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "lines.txt"
+        path.write_text(scene_input(scene, n_segments, dt))
+        with _quiet():
+            s = moordyn.Create(str(path))
+            x, _ = _top(scene, 0.0)
+            moordyn.Init(s, x, [0.0, 0.0, 0.0])
+        line = moordyn.GetLine(s, 1)
+        out = {"top_force": float(np.linalg.norm(moordyn.GetPointForce(moordyn.GetPoint(s, 1)))),
+               "top_segment_tension": float(np.linalg.norm(moordyn.GetLineNodeTen(line, n_segments)))}
+        with _quiet():
+            moordyn.Close(s)
+    return out

@@ -54,6 +54,13 @@ average with every wall. ``--plan-duration`` shortens them; ``--no-moordyn`` lea
 
     python studies/bench_vs_moordyn.py --out DIR [--quick] [--case heave_T6 [--slack-flags=-O1,-O2,-O3]]
     python studies/bench_vs_moordyn.py --out DIR --case light_lift --case harsh_sea [--plan-duration 200]
+    python studies/bench_vs_moordyn.py --out DIR --case mooring --case lowering [--quick]
+
+Other ends (issue 25, ``_bench_ends``): ``mooring`` (an anchored chain, half of it on the seabed with friction, the
+fairlead moved on a regular surge-heave ellipse) and ``lowering`` (a package paid out by a winch through the water
+column at constant speed), each with ``speedup`` at equal N, ``auto_speedup``, the agreement on the top and bottom
+tension extremes and MoorDyn's largest stable step, written to ``bench_vs_moordyn_ends.json`` and ``.png``; run when
+named with ``--case`` or in a full run without ``--case``.
 """
 
 from __future__ import annotations
@@ -71,6 +78,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _bench_auto import auto_row, wang_row  # noqa: E402
 from _bench_slack import PLAN_NS, bench_plan_case, bench_slack_case, plan_scene  # noqa: E402
+import _bench_ends  # noqa: E402
 from _common import setup_matplotlib, write_json  # noqa: E402
 from _moordyn import largest_stable_dt, run_moordyn  # noqa: E402
 
@@ -536,7 +544,8 @@ def main(argv=None):
     ap.add_argument("--out", required=True, type=Path, help="output directory (created if missing)")
     ap.add_argument("--quick", action="store_true", help="Dale, 10 elements, 20 s (for tests)")
     ap.add_argument("--case", action="append", default=None,
-                    help="run only these cases (dale, heave_T10, heave_T6, light_lift, harsh_sea); repeatable")
+                    help="run only these cases (dale, heave_T10, heave_T6, light_lift, harsh_sea, mooring, lowering); "
+                         "repeatable")
     ap.add_argument("--slack-duration", type=float, default=SLACK_DURATION,
                     help="length of the slack case's run (s); its statistics are the cycle means of the second half")
     ap.add_argument("--slack-n", type=int, nargs="+", default=[20, 80], help="element counts of the slack case")
@@ -562,6 +571,22 @@ def main(argv=None):
         rows.append(bench_plan_case(name, plan_scene(name, dur), quick=args.quick, ns=PLAN_NS,
                                     moordyn=not args.no_moordyn))
         write_json(args.out / "bench_vs_moordyn.json", {"cases": rows, "quick": args.quick, "notes": NOTES})
+    ends = []
+    for name in _bench_ends.ENDS_CASES:
+        if args.case and name not in args.case or not args.case and args.quick:
+            continue
+        ends.append(_bench_ends.bench_ends_case(name, args.quick, matched=_matched, stats=_stats, diff=_diff,
+                                                segment_stats=_segment_stats, moordyn_stats=_moordyn_stats,
+                                                compiled_ctx=_compiled, auto_row=auto_row))
+        write_json(args.out / "bench_vs_moordyn_ends.json", {"cases": ends, "quick": args.quick, "notes": _bench_ends.NOTES})
+    if ends:
+        _bench_ends.plot(ends, args.out / "bench_vs_moordyn_ends.png")
+        for r in ends:
+            for e in r["by_n"]:
+                print(f"{r['case']:10s} N={e['segments']:3d}  MoorDyn {e['moordyn_s_per_s']:.4g} s/s (dt {e['moordyn_dt_s']:.3g})  "
+                      f"cablesys {e['cablesys_s_per_s'] or float('nan'):.4g} s/s  speedup {e['speedup'] or float('nan'):.3g}  "
+                      f"vs MoorDyn {e['cablesys_vs_moordyn_segments']}")
+            print(f"{r['case']:10s} auto speedup {r.get('auto_speedup')}, auto error {r.get('auto_error')}")
     for r in rows:
         if "by_n" not in r:
             runs = "; ".join(f"N = {q['segments']} {q['steps']} steps {q['wall_s'] or float('nan'):.3g} s"
