@@ -194,8 +194,10 @@ def free_body(scene, section: int = 0) -> dict:
 
     Returns a dict of CasADi functions of the state x = (r_a, a, v_a, a') (m, -, m/s, 1/s; a the quaternion) and the
     scene's parameter vector p (``ParameterLayout.from_scene(scene)``): ``ode(x, t, p) -> x'``, ``state(x, p) ->
-    (r_cg, v_cg, omega, R)`` (m, m/s, rad/s in body axes, the 3 x 3 rotation body -> scene) and ``energy(x, p) ->
-    (K, V)`` (J), and ``p`` the numeric parameter vector; ``scene`` must be a 3-D scene with a rigid body there."""
+    (r_cg, v_cg, omega, R)`` (m, m/s, rad/s in body axes, the 3 x 3 rotation body -> scene), ``energy(x, p) ->
+    (K, V)`` (J), ``impulse(x, p) -> (P, L)`` Kirchhoff's linear (N s) and angular (N m s, about the origin) impulse
+    of body and fluid (Lamb 1932 sec. 119; a closed form, not the Lagrangian's momenta), and ``p`` the numeric
+    parameter vector; ``scene`` must be a 3-D scene with a rigid body there."""
     from .params import ParameterLayout, environment_symbols, section_prefix
 
     layout = ParameterLayout.from_scene(scene)
@@ -210,8 +212,16 @@ def free_body(scene, section: int = 0) -> dict:
     r, a, v, ad = x[0:3], x[3:7], x[7:10], x[10:14]
     M, f, K, V, r_cg, v_cg, om = body(r, v, a, ad, p, t)
     xdot = ca.vertcat(v, ad, ca.solve(M, f))
+    # Kirchhoff's impulses of the body and the fluid it carries (Lamb 1932 sec. 119), about the scene's origin:
+    # P = R M_bv w, L = r_cg x P + R (I + I_a) omega; both constant in free motion
+    Rm = rotation(a)
+    Rp = RigidParameters.from_layout(layout, pre, 3)
+    w = ca.mtimes(Rm.T, v_cg)
+    P_lin = ca.mtimes(Rm, ca.vertcat(P.m_bx * w[0], P.m_by * w[1], P.m_bz * w[2]))
+    L_ang = ca.cross(r_cg, P_lin) + ca.mtimes(Rm, ca.mtimes(Rp.inertia + ca.diag(Rp.added_inertia), om))
     return {"ode": ca.Function("free_body", [x, t, p], [xdot], ["x", "t", "p"], ["xdot"]),
             "state": ca.Function("free_body_state", [x, p], [r_cg, v_cg, om, rotation(a)], ["x", "p"],
                                  ["r_cg", "v_cg", "omega", "R"]),
             "energy": ca.Function("free_body_energy", [x, p], [K, V], ["x", "p"], ["K", "V"]),
+            "impulse": ca.Function("free_body_impulse", [x, p], [P_lin, L_ang], ["x", "p"], ["P", "L"]),
             "p": np.asarray(layout.values(scene), float)}
