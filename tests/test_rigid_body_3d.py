@@ -5,24 +5,27 @@ hand-derived eigenproblems, the named angles' sequence, energy conservation on a
 
 import dataclasses
 import math
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
 import scipy.linalg
 import scipy.spatial.transform
 
-from cablesys.errors import ParameterError
-from cablesys.linear import linearize, modes
-from cablesys.model import build_model
-from cablesys.model.rigid_body import BAUMGARTE_RATE
-from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMotion
-from cablesys.scene.scene import single_section_scene
-from cablesys.statics import steady_state
-from cablesys.time_domain import simulate
-from cablesys.time_domain.integrators import IntegratorSettings
-from cablesys.time_domain.run import Simulator
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "studies"))
+from _three_d_rigid import cases, tumble  # noqa: E402
 
-from studies._three_d_rigid import cases, tumble
+from cablesys.errors import ParameterError  # noqa: E402
+from cablesys.linear import linearize, modes  # noqa: E402
+from cablesys.model import build_model  # noqa: E402
+from cablesys.model.rigid_body import BAUMGARTE_RATE  # noqa: E402
+from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMotion  # noqa: E402
+from cablesys.scene.scene import single_section_scene  # noqa: E402
+from cablesys.statics import steady_state  # noqa: E402
+from cablesys.time_domain import simulate  # noqa: E402
+from cablesys.time_domain.integrators import IntegratorSettings  # noqa: E402
+from cablesys.time_domain.run import Simulator  # noqa: E402
 
 G = 9.80665
 
@@ -220,7 +223,7 @@ def test_compound_pendulum_in_two_planes():
             + np.diag([0, 0, J])
         exact += list(np.sqrt(scipy.linalg.eigh(W * np.diag([ln, ln, a]), Mm, eigvals_only=True)))
     exact = np.sort(exact)
-    swing = w[(w > 1e-3) & (w < 0.9 * BAUMGARTE_RATE)]
+    swing = w[(w > 1e-3) & (w < 100.0) & (np.abs(w - BAUMGARTE_RATE) > 1e-6 * BAUMGARTE_RATE)]   # axial: > 800 rad/s
     assert swing.size == 6
     np.testing.assert_allclose(swing, exact, rtol=1e-8)
     assert np.min(np.abs(w)) < 1e-4                                           # yaw

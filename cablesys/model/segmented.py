@@ -44,12 +44,17 @@ model has no seabed yet. Outputs add Wang's 3-D
 ``phi_z``, ``phi_z_rate``, ``z_b``, ``z_b_rate`` per section and the profile ``node_z[j]``.
 
 A rigid body (``body.pitch_inertia`` set; Wang 1971 p. 32, body rotation "where the body is fairly large
-and the cable is not attached to the center of mass") pitches in the plane: its node is the cable's
-attachment point and its pitch ``theta_b`` one more coordinate (q labels after the nodes, ``theta_b`` or
-``theta_b_<i>``), node and pitch sharing one 3 x 3 mass block; its kinetic and potential energy and
-generalized forces are in :mod:`.rigid_body`. Outputs add ``theta_b``, ``theta_b_rate``, ``x_cg``,
-``x_cg_rate``, ``y_cg``, ``y_cg_rate`` per rigid body (``x_b``, ``y_b`` stay the attachment point). Such scenes
-evaluate the element-by-element ``ode`` (no mapped kernel).
+and the cable is not attached to the center of mass") pitches in the plane and turns freely in space: its node
+is the cable's attachment point and its orientation more coordinates after the nodes, the pitch ``theta_b`` in
+the plane, a quaternion ``quat_w_b``, ``quat_x_b``, ``quat_y_b``, ``quat_z_b`` in space (``_<i>`` appended in a
+chain), node and orientation sharing one mass block (3 x 3 in the plane, 7 x 7 in space); its kinetic and
+potential energy, generalized forces and the quaternion's norm constraint are in :mod:`.rigid_body` (one
+formulation: a planar scene run in space is the pitching body with the quaternion about z). Outputs add
+``theta_b``, ``theta_b_rate``, ``x_cg``, ``x_cg_rate``, ``y_cg``, ``y_cg_rate`` per rigid body (``x_b``, ``y_b`` stay
+the attachment point), in space also the roll and yaw (``theta_b`` then the pitch of the sequence of
+:func:`.rigid_body.attitude`) and their rates, ``z_cg``, ``z_cg_rate``, the body-axis rates ``omega_x_b``,
+``omega_y_b``, ``omega_z_b`` and the unit quaternion. Such scenes evaluate the element-by-element ``ode`` (no
+mapped kernel).
 
 The element's terms are in :mod:`.segmented_element` (shared with the mapped kernel of
 :mod:`.segmented_kernel`). The inertia terms come from the Lagrangian by AD, element by element
