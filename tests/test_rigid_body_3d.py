@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 import scipy.linalg
 import scipy.spatial.transform
+import tomllib
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "studies"))
 from _three_d_rigid import cases, tumble  # noqa: E402
@@ -21,7 +22,9 @@ from cablesys.linear import linearize, modes  # noqa: E402
 from cablesys.model import build_model  # noqa: E402
 from cablesys.model.rigid_body import BAUMGARTE_RATE  # noqa: E402
 from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMotion  # noqa: E402
+from cablesys.scene.body import RIGID_FIELDS_3D  # noqa: E402
 from cablesys.scene.scene import single_section_scene  # noqa: E402
+from cablesys.scene.toml_io import dump_scene, scene_from_dict  # noqa: E402
 from cablesys.statics import steady_state  # noqa: E402
 from cablesys.time_domain import simulate  # noqa: E402
 from cablesys.time_domain.integrators import IntegratorSettings  # noqa: E402
@@ -65,7 +68,7 @@ def _planar_body(**kw):
     return Body(weight=900.0, mass_x=150.0, mass_y=210.0, drag_area_normal=0.5, drag_area_tangential=0.2,
                 axis_angle_deg=20.0, pitch_inertia=35.0, pitch_added_inertia=5.0, attachment_x=0.2, attachment_y=-0.6,
                 buoyancy=300.0, buoyancy_x=0.1, buoyancy_y=-0.2, drag_centre_x=-0.3, drag_centre_y=0.1,
-                pitch_damping=4.0, pitch_drag=2.0, **kw)
+                pitch_damping=4.0, pitch_drag=2.0, drag_area_x=0.3, drag_area_y=0.1, **kw)
 
 
 def _to_3d(m2, m3, x2):
@@ -163,6 +166,37 @@ def test_bridle_static_attitude(c, b, B):
     # the named angles reconstruct the attitude: R = R_y(yaw) R_z(pitch) R_x(roll)
     Rn = scipy.spatial.transform.Rotation.from_euler("YZX", [y["yaw_b"], y["theta_b"], y["roll_b"]]).as_matrix()
     np.testing.assert_allclose(Rn, _R(a), atol=1e-12)
+
+
+def test_per_axis_drag_in_a_current_at_a_heading():
+    """A body attached at its CG with only the per-axis drag 1/2 rho (C_D A)_i |u_i| u_i, in a current U at 30 degrees
+    from +x towards +z, on a weightless drag-free cable: its orientation is neutral (no moment about the attachment:
+    the statics keep it level), the drag is (C_x (U cos h)^2, 0, C_z (U sin h)^2) rho / 2, not along the flow, and the
+    cable leans along W_b e_y + D: x_b / y_b = D_x / W_b, z_b / y_b = D_z / W_b."""
+    Wb, U, h, rho, cx, cz = 800.0, 1.2, math.radians(30.0), 1025.0, 0.9, 0.3
+    body = Body(weight=Wb, mass_x=200.0, mass_y=200.0, pitch_inertia=50.0, drag_area_x=cx, drag_area_y=0.5,
+                drag_area_z=cz)
+    scene = single_section_scene(cable=_cable(), body=body, environment=Environment(
+        density=rho, gravity=G, current_speeds=(U,), current_headings_deg=(30.0,)))
+    assert scene.three_d
+    model = build_model(scene)
+    y = steady_state(model, model.parameters(scene)).outputs
+    assert abs(y["theta_b"]) < 1e-12 and abs(y["roll_b"]) < 1e-12 and abs(y["yaw_b"]) < 1e-12
+    assert y["x_b"] / y["y_b"] == pytest.approx(0.5 * rho * cx * (U * math.cos(h)) ** 2 / Wb, rel=1e-9)
+    assert y["z_b"] / y["y_b"] == pytest.approx(0.5 * rho * cz * (U * math.sin(h)) ** 2 / Wb, rel=1e-9)
+
+
+def test_3d_rigid_fields_round_trip():
+    """The 3-D rigid fields are written and read back (SI and fps)."""
+    body = Body(weight=500.0, mass_x=100.0, mass_y=120.0, mass_z=110.0, pitch_inertia=30.0, inertia_xx=20.0,
+                inertia_yy=25.0, inertia_xy=1.5, inertia_xz=-0.5, inertia_yz=0.25, added_inertia_x=2.0,
+                added_inertia_y=3.0, attachment_z=0.1, buoyancy=50.0, buoyancy_z=-0.2, drag_centre_z=0.3,
+                drag_area_x=0.4, drag_area_y=0.2, drag_area_z=0.1)
+    scene = _scene(body)
+    for units in ("SI", "fps"):
+        back = scene_from_dict(tomllib.loads(dump_scene(scene, units=units)))
+        for name in RIGID_FIELDS_3D + ("drag_area_x", "drag_area_y"):
+            assert getattr(back.sections[0].body, name) == pytest.approx(getattr(body, name), rel=1e-12), (units, name)
 
 
 def test_euler_angle_sequence_and_rates():

@@ -28,7 +28,8 @@ r_cg = r_a - R c, r_cb = r_cg + R b, r_cp = r_cg + R e, and
   centre of buoyancy, so that the weight in water is Wang's W_b (eq. 15);
 - generalized forces by virtual work (Wang eq. 37): the body drag at r_cp with that point's velocity, Wang's
   eq. 32-35 in body axes (the cylinder's axis at phi_b in the body's x-y plane turns with the body; the sphere's
-  drag is along the relative flow in any axes), and the rotational damping moment -c omega_i - d |omega_i| omega_i
+  drag is along the relative flow in any axes) plus a quadratic drag per body axis (``drag_area_x/y/z``), and the
+  rotational damping moment -c omega_i - d |omega_i| omega_i
   per body axis (in the plane -c theta' - d |theta'| theta').
 
 Lagrange's equations M q'' = f in (r_a, theta) or (r_a, a) come by CasADi AD of T and V (:func:`rigid_body`), as
@@ -79,6 +80,7 @@ class RigidParameters:
     buoyancy: ca.SX         # B (N)
     damping: ca.SX          # c (N m s)
     drag: ca.SX             # d (N m s^2)
+    axis_drag: tuple = ()   # (C_D A)_i per body axis (m^2): x, y in the plane, x, y, z in space
 
     @classmethod
     def from_layout(cls, layout, prefix: str, dim: int = 2) -> "RigidParameters":
@@ -87,7 +89,8 @@ class RigidParameters:
             return cls(inertia=b("pitch_inertia"), added_inertia=b("pitch_added_inertia"),
                        c=(b("attachment_x"), b("attachment_y")), b=(b("buoyancy_x"), b("buoyancy_y")),
                        e=(b("drag_centre_x"), b("drag_centre_y")),
-                       buoyancy=b("buoyancy"), damping=b("pitch_damping"), drag=b("pitch_drag"))
+                       buoyancy=b("buoyancy"), damping=b("pitch_damping"), drag=b("pitch_drag"),
+                       axis_drag=(b("drag_area_x"), b("drag_area_y")))
         ixx, iyy, izz = b("inertia_xx"), b("inertia_yy"), b("pitch_inertia")
         ixy, ixz, iyz = b("inertia_xy"), b("inertia_xz"), b("inertia_yz")
         tensor = ca.vertcat(ca.horzcat(ixx, ixy, ixz), ca.horzcat(ixy, iyy, iyz), ca.horzcat(ixz, iyz, izz))
@@ -95,7 +98,8 @@ class RigidParameters:
                    added_inertia=ca.vertcat(b("added_inertia_x"), b("added_inertia_y"), b("pitch_added_inertia")),
                    c=tuple(b(f"attachment_{k}") for k in "xyz"), b=tuple(b(f"buoyancy_{k}") for k in "xyz"),
                    e=tuple(b(f"drag_centre_{k}") for k in "xyz"),
-                   buoyancy=b("buoyancy"), damping=b("pitch_damping"), drag=b("pitch_drag"))
+                   buoyancy=b("buoyancy"), damping=b("pitch_damping"), drag=b("pitch_drag"),
+                   axis_drag=tuple(b(f"drag_area_{k}") for k in "xyz"))
 
 
 def rotation(a):
@@ -132,17 +136,20 @@ def attitude(a):
             "yaw_b": ca.atan2(-R[2, 0], R[0, 0])}
 
 
-def _drag(P: SectionParameters, rho, R, r_cp, v_cp, t, env, depth0):
-    """The body's drag at its centre of pressure (Wang 1971 eq. 32-35): the sphere's along the relative flow, the
-    cylinder's with its axis at phi_b in body axes (the relative flow turned into body axes and the force back)."""
+def _drag(P: SectionParameters, R: RigidParameters, rho, Rm, r_cp, v_cp, t, env, depth0):
+    """The body's drag at its centre of pressure: Wang's (1971 eq. 32-35), the sphere's along the relative flow or
+    the cylinder's with its axis at phi_b in body axes, plus the quadratic drag per body axis 1/2 rho (C_D A)_i
+    |u_i| u_i of the relative flow's body-axis components u_i (eq. 33a's law on each axis; Fossen 2011 sec. 6.4,
+    the diagonal quadratic damping); the relative flow turned into body axes, the force back."""
     dim = v_cp.numel()
     u = flow_at(tuple(r_cp[k] for k in range(dim)), t, env, depth0)
     vr = ca.vertcat(*[u[k] - v_cp[k] for k in range(dim)])
+    vb = ca.mtimes(Rm.T, vr)
+    axes = ca.vertcat(*[fluid.quadratic_drag(rho, R.axis_drag[k], vb[k]) for k in range(dim)])
     if P.sphere:
-        return ca.vertcat(*fluid.sphere_drag(rho, P.cda_n, *[vr[k] for k in range(dim)]))
+        return ca.vertcat(*fluid.sphere_drag(rho, P.cda_n, *[vr[k] for k in range(dim)])) + ca.mtimes(Rm, axes)
     law = fluid.axial_body_drag if dim == 2 else fluid.axial_body_drag_3d
-    vb = ca.mtimes(R.T, vr)
-    return ca.mtimes(R, ca.vertcat(*law(rho, P.cda_n, P.cda_t, P.phi_b, *[vb[k] for k in range(dim)])))
+    return ca.mtimes(Rm, ca.vertcat(*law(rho, P.cda_n, P.cda_t, P.phi_b, *[vb[k] for k in range(dim)])) + axes)
 
 
 def rigid_body(P: SectionParameters, R: RigidParameters, p, rho, t, env, depth0, dim: int = 2) -> ca.Function:
@@ -169,7 +176,7 @@ def rigid_body(P: SectionParameters, R: RigidParameters, p, rho, t, env, depth0,
     # drag at the centre of pressure with its velocity (eq. 32-35); virtual work (eq. 37); the damping moment
     r_cp = r_cg + ca.mtimes(Rm, ca.vertcat(*R.e))
     v_cp = ca.jtimes(r_cp, q, qd)
-    D = _drag(P, rho, Rm, r_cp, v_cp, t, env, depth0)
+    D = _drag(P, R, rho, Rm, r_cp, v_cp, t, env, depth0)
     Q = ca.mtimes(ca.jacobian(v_cp, qd).T, D)
     Q = Q + ca.mtimes(ca.jacobian(om, qd).T, -R.damping * om - R.drag * ca.fabs(om) * om)
     mom = ca.gradient(K, qd)

@@ -19,10 +19,11 @@ from .fields import check_all_finite, spec
 
 #: The rigid body's fields of :class:`Body` (all at their defaults: Wang's point body).
 RIGID_FIELDS = ("pitch_inertia", "pitch_added_inertia", "attachment_x", "attachment_y", "buoyancy", "buoyancy_x",
-                "buoyancy_y", "pitch_damping", "pitch_drag", "drag_centre_x", "drag_centre_y")
+                "buoyancy_y", "pitch_damping", "pitch_drag", "drag_centre_x", "drag_centre_y", "drag_area_x",
+                "drag_area_y")
 #: The rigid body's fields that only the 3-D equations take (any of them set makes the scene 3-D).
 RIGID_FIELDS_3D = ("inertia_xx", "inertia_yy", "inertia_xy", "inertia_xz", "inertia_yz", "added_inertia_x",
-                   "added_inertia_y", "attachment_z", "buoyancy_z", "drag_centre_z")
+                   "added_inertia_y", "attachment_z", "buoyancy_z", "drag_centre_z", "drag_area_z")
 # unset, a 3-D field takes the planar one (a body symmetric about its pitch axis), else 0
 _DEFAULT_3D = {"inertia_xx": "pitch_inertia", "inertia_yy": "pitch_inertia", "added_inertia_x": "pitch_added_inertia",
                "added_inertia_y": "pitch_added_inertia"}
@@ -73,6 +74,11 @@ class Body:
                                        "centre of gravity, body axes (rigid body; unset: 0, at the CG)", None)
     drag_centre_y: float | None = spec("length", "y (down) of the body's centre of pressure from the centre of gravity, "
                                        "body axes (rigid body; unset: 0)", None)
+    # drag per body axis at the centre of pressure (added to Wang's law of drag_area_normal/tangential)
+    drag_area_x: float | None = spec("area", "(C_D A)_x: quadratic drag 1/2 rho (C_D A)_x |u_x| u_x along the body's x "
+                                     "axis at the centre of pressure, u the relative flow in body axes (rigid body; "
+                                     "unset: 0; added to the drag of drag_area_normal/tangential)", None)
+    drag_area_y: float | None = spec("area", "(C_D A)_y: the same along the body's y axis (rigid body; unset: 0)", None)
     # a rigid body in space (3-D equations only; model/rigid_body.py): the inertia tensor about the CG in body axes,
     # the added inertia per body axis and the offsets' z
     inertia_xx: float | None = spec("inertia", "inertia tensor entry I_xx (roll, about the body's x) about the centre of "
@@ -95,6 +101,8 @@ class Body:
                                     "body, 3-D; unset: 0)", None)
     drag_centre_z: float | None = spec("length", "z of the body's centre of pressure from the centre of gravity, body "
                                        "axes (rigid body, 3-D; unset: 0)", None)
+    drag_area_z: float | None = spec("area", "(C_D A)_z: the per-axis drag along the body's z axis (rigid body, 3-D; "
+                                     "unset: 0)", None)
 
     def __post_init__(self):
         check_all_finite(self, "body")
@@ -124,7 +132,8 @@ class Body:
         if not self.pitch_inertia + self.rigid("pitch_added_inertia") > 0.0:
             raise ParameterError("body.pitch_inertia", self.pitch_inertia, "must make pitch_inertia + pitch_added_inertia "
                                  "> 0 kg m^2 (a rigid body without rotary inertia has no pitch equation)")
-        for name in ("inertia_xx", "inertia_yy", "added_inertia_x", "added_inertia_y"):
+        for name in ("inertia_xx", "inertia_yy", "added_inertia_x", "added_inertia_y", "drag_area_x", "drag_area_y",
+                     "drag_area_z"):
             require_nonnegative(f"body.{name}", self.rigid(name))
         self._check_inertia_tensor()
 
