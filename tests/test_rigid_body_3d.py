@@ -21,7 +21,7 @@ from cablesys.errors import ParameterError  # noqa: E402
 from cablesys.linear import linearize, modes  # noqa: E402
 from cablesys.model import build_model  # noqa: E402
 from cablesys.model.rigid_body import BAUMGARTE_RATE  # noqa: E402
-from cablesys.scene import Body, Cable, Environment, Numerics, Sinusoid, TopMotion  # noqa: E402
+from cablesys.scene import Body, Cable, Environment, Numerics, Scene, Section, Sinusoid, TopMotion  # noqa: E402
 from cablesys.scene.body import RIGID_FIELDS_3D  # noqa: E402
 from cablesys.scene.scene import single_section_scene  # noqa: E402
 from cablesys.scene.toml_io import dump_scene, scene_from_dict  # noqa: E402
@@ -197,6 +197,26 @@ def test_3d_rigid_fields_round_trip():
         back = scene_from_dict(tomllib.loads(dump_scene(scene, units=units)))
         for name in RIGID_FIELDS_3D + ("drag_area_x", "drag_area_y"):
             assert getattr(back.sections[0].body, name) == pytest.approx(getattr(body, name), rel=1e-12), (units, name)
+
+
+def test_two_rigid_bodies_in_a_chain_in_space():
+    """An intermediate and a lower rigid body in 3-D: both cables pull at the upper body's attachment point along the
+    vertical, so each body's static attitude is its own moment balance, R_i (W_b c + B b)_i = -|W_b c + B b|_i e_y,
+    whatever hangs below (quaternion labels with the section's suffix after the nodes)."""
+    specs = [(1500.0, (0.2, -0.6, 0.1), (0.1, -0.3, -0.2), 400.0), (700.0, (-0.1, -0.4, 0.25), (0.0, 0.0, 0.0), 0.0)]
+    secs = tuple(Section(cable=_cable(3, length=8.0, m=1.5, w=8.0), body=Body(
+        weight=wb, mass_x=150.0, mass_y=170.0, pitch_inertia=20.0, inertia_xx=15.0, attachment_x=c[0],
+        attachment_y=c[1], attachment_z=c[2], buoyancy=B, buoyancy_x=b[0], buoyancy_y=b[1], buoyancy_z=b[2]))
+        for wb, c, b, B in specs)
+    scene = Scene(sections=secs, environment=Environment(gravity=G))
+    model = build_model(scene)
+    assert model.q_labels[-8:] == tuple(f"quat_{k}_b_{i}" for i in (1, 2) for k in "wxyz")
+    st = steady_state(model, model.parameters(scene))
+    for i, (wb, c, b, B) in enumerate(specs):
+        a = st.q[model.q_labels.index(f"quat_w_b_{i + 1}"):][:4]
+        m = wb * np.array(c) + B * np.array(b)
+        np.testing.assert_allclose(_R(a) @ m, [0.0, -np.linalg.norm(m), 0.0], atol=1e-9 * np.linalg.norm(m))
+        assert f"roll_b_{i + 1}" in model.output_labels
 
 
 def test_euler_angle_sequence_and_rates():

@@ -42,7 +42,11 @@ beta^2 C = 0 for C = |a|^2 - 1 (critically damped at the rate beta = :data:`BAUM
 n's direction are replaced by that one, M + J_r n n^T and P f + J_r s n (P = I - n n^T, s = n . q'' from the
 constraint, J_r a reference inertia that keeps M's scale). Renormalization is not used: the stiff and adaptive
 integrators (CVODES/IDAS) do not let the state be projected between steps, and the constraint row also makes the
-statics square (|a| = 1 at rest). With c = b = e = 0 and M_bvx = M_bvy (= M_bvz) the translation is the point
+statics square (|a| = 1 at rest). The physics never sees |a| (R and omega are those of a / |a|), so the term only
+keeps the coordinates bounded; beta = 10/s is well below the cable's axial frequencies (no new stiffness for the
+integrators) and above a body's swing. A linearized model (``cablesys.linear``) therefore has one more, non-physical
+mode per body in space: undamped frequency beta, damping ratio 1 (the norm), besides the neutral yaw of a body
+hanging still (frequency 0). With c = b = e = 0 and M_bvx = M_bvy (= M_bvz) the translation is the point
 body's exactly. SI throughout (m, N, kg, kg m^2, rad).
 """
 
@@ -60,7 +64,8 @@ from .segmented_element import flow_at
 __all__ = ["BAUMGARTE_RATE", "RigidParameters", "attitude", "rigid_body", "rotation", "body_rate",
            "ORIENTATION_REST"]
 
-#: beta of the quaternion's norm stabilization (1/s): C = |a|^2 - 1 decays as (1 + beta t) e^(-beta t).
+#: beta of the quaternion's norm stabilization (1/s): C = |a|^2 - 1 decays as (1 + beta t) e^(-beta t) (module
+#: docstring: below the cable's axial frequencies, above a body's swing).
 BAUMGARTE_RATE = 10.0
 #: The level attitude's orientation coordinates: theta_b = 0 in the plane, the unit quaternion in space.
 ORIENTATION_REST = {2: (0.0,), 3: (1.0, 0.0, 0.0, 0.0)}

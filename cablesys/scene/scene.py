@@ -132,7 +132,8 @@ class Scene:
                                  f"it must stay in (0, max_length = {w.max_length:.6g} m]")
 
     def three_d_fields(self) -> tuple:
-        """The 3-D fields this scene sets (``top_motion.z``, a current or wave heading, ``body.mass_z``)."""
+        """The 3-D fields this scene sets (``top_motion.z``, a current or wave heading, ``body.mass_z``, a rigid body's
+        3-D fields: its inertia tensor's other entries, added inertias about x and y, offsets' z, drag along z)."""
         env, out = self.environment, []
         if self.top_motion.z:
             own = user_count(self.top_motion, "z")
