@@ -61,8 +61,8 @@ from . import fluid
 from .section import SectionParameters
 from .segmented_element import flow_at
 
-__all__ = ["BAUMGARTE_RATE", "RigidParameters", "attitude", "rigid_body", "rotation", "body_rate",
-           "ORIENTATION_REST"]
+__all__ = ["BAUMGARTE_RATE", "ORIENTATION_REST", "RigidParameters", "attitude", "body_rate", "free_body", "rigid_body",
+           "rotation"]
 
 #: beta of the quaternion's norm stabilization (1/s): C = |a|^2 - 1 decays as (1 + beta t) e^(-beta t) (module
 #: docstring: below the cable's axial frequencies, above a body's swing).

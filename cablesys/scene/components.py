@@ -14,7 +14,7 @@ from ..errors import (ParameterError, require_finite, require_nonnegative,
                       require_positive, require_range)
 from ..integration import METHODS as INTEGRATION_METHODS
 from .body import RIGID_FIELDS, Body  # noqa: F401  (re-exported: the scene's components)
-from .fields import MAX_MAGNITUDE, check_all_finite, quantity, spec  # noqa: F401  (re-exported)
+from .fields import check_all_finite, quantity, spec  # noqa: F401  (check_all_finite re-exported)
 from .harmonics import MAX_AMPLITUDE_M, MAX_FREQUENCY_RAD_S, Sinusoid, Wave
 from .sea import MotionRAO, SeaSpectrum, append_once, sea_sinusoids
 from .track import Track
