@@ -55,6 +55,15 @@ QUANTITIES = {
     "theta_b_rate": ("rad/s", "body pitch rate"),
     "x_cg": ("m", "body centre of gravity, horizontal position"), "x_cg_rate": ("m/s", "body centre of gravity, horizontal velocity"),
     "y_cg": ("m", "body centre of gravity, vertical position"), "y_cg_rate": ("m/s", "body centre of gravity, vertical velocity"),
+    # a rigid body in space: R = R_y(yaw) R_z(pitch) R_x(roll) (model/rigid_body.attitude), theta_b its pitch
+    "roll_b": ("rad", "body roll about its x axis"), "roll_b_rate": ("rad/s", "body roll rate"),
+    "yaw_b": ("rad", "body yaw about the vertical"), "yaw_b_rate": ("rad/s", "body yaw rate"),
+    "z_cg": ("m", "body centre of gravity, sway position"), "z_cg_rate": ("m/s", "body centre of gravity, sway velocity"),
+    "omega_x_b": ("rad/s", "body angular velocity about its x axis"),
+    "omega_y_b": ("rad/s", "body angular velocity about its y axis"),
+    "omega_z_b": ("rad/s", "body angular velocity about its z axis"),
+    "quat_w_b": ("1", "body orientation quaternion, scalar part"), "quat_x_b": ("1", "body orientation quaternion, x"),
+    "quat_y_b": ("1", "body orientation quaternion, y"), "quat_z_b": ("1", "body orientation quaternion, z"),
     # the winch at the top of the first section (model/segmented_winch.py)
     "winch_length": ("m", "zero-tension length of the first section (paid out by the winch)"),
     "winch_speed": ("m/s", "winch payout speed (+ pays out)"),

@@ -180,8 +180,6 @@ def test_bad_rigid_input():
     rigid = Body(weight=1.0, mass_x=1.0, mass_y=1.0, pitch_inertia=1.0)
     with pytest.raises(ParameterError, match="body.pitch_inertia.*2-DOF"):
         _scene(rigid, _cable(1))                                               # Wang's 2-DOF model has no pitch
-    with pytest.raises(ParameterError, match="body.pitch_inertia.*3-D"):
-        _scene(rigid, top=TopMotion(z=(Sinusoid(amplitude=0.1, frequency=1.0),)))
     with pytest.raises(ParameterError, match="body.pitch_inertia.*winch"):
         single_section_scene(cable=_cable(), body=rigid, environment=Environment(),
                              winch=Winch(speed=0.5, start=0.0, duration=3.0, ramp=1.0, max_length=20.0))

@@ -18,7 +18,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..scene import Scene
 from ..scene.labels import section_prefix, section_suffix  # noqa: F401 (re-exported for the model modules)
-from ..scene.components import RIGID_FIELDS
+from ..scene.body import RIGID_FIELDS, RIGID_FIELDS_3D
 
 _CABLE = ("length", "tension_ref", "ae", "diameter", "mass_per_length", "weight_per_length",
           "thinning_ratio", "added_mass_factor", "cd_normal", "ct_tangential", "internal_damping",
@@ -100,6 +100,8 @@ def parameter_items(scene: Scene) -> list[tuple[str, float]]:
             items.append((f"{pre}body.mass_z", float(s.body.virtual_mass_z)))
         if s.body.is_rigid:              # a pitching body's inertia, offsets, buoyancy, damping (model/rigid_body.py)
             items += [(f"{pre}body.{name}", s.body.rigid(name)) for name in RIGID_FIELDS]
+            if scene.three_d:            # its inertia tensor, added inertias per axis and offsets' z in space
+                items += [(f"{pre}body.{name}", s.body.rigid(name)) for name in RIGID_FIELDS_3D]
         items.append((f"{pre}slack", 0.0))          # 1 while the section is slack (set by the simulator)
     env = scene.environment
     items += [(f"environment.{k}", float(getattr(env, k))) for k in _ENV]

@@ -44,12 +44,17 @@ model has no seabed yet. Outputs add Wang's 3-D
 ``phi_z``, ``phi_z_rate``, ``z_b``, ``z_b_rate`` per section and the profile ``node_z[j]``.
 
 A rigid body (``body.pitch_inertia`` set; Wang 1971 p. 32, body rotation "where the body is fairly large
-and the cable is not attached to the center of mass") pitches in the plane: its node is the cable's
-attachment point and its pitch ``theta_b`` one more coordinate (q labels after the nodes, ``theta_b`` or
-``theta_b_<i>``), node and pitch sharing one 3 x 3 mass block; its kinetic and potential energy and
-generalized forces are in :mod:`.rigid_body`. Outputs add ``theta_b``, ``theta_b_rate``, ``x_cg``,
-``x_cg_rate``, ``y_cg``, ``y_cg_rate`` per rigid body (``x_b``, ``y_b`` stay the attachment point). Such scenes
-evaluate the element-by-element ``ode`` (no mapped kernel).
+and the cable is not attached to the center of mass") pitches in the plane and turns freely in space: its node
+is the cable's attachment point and its orientation more coordinates after the nodes, the pitch ``theta_b`` in
+the plane, a quaternion ``quat_w_b``, ``quat_x_b``, ``quat_y_b``, ``quat_z_b`` in space (``_<i>`` appended in a
+chain), node and orientation sharing one mass block (3 x 3 in the plane, 7 x 7 in space); its kinetic and
+potential energy, generalized forces and the quaternion's norm constraint are in :mod:`.rigid_body` (one
+formulation: a planar scene run in space is the pitching body with the quaternion about z). Outputs add
+``theta_b``, ``theta_b_rate``, ``x_cg``, ``x_cg_rate``, ``y_cg``, ``y_cg_rate`` per rigid body (``x_b``, ``y_b`` stay
+the attachment point), in space also the roll and yaw (``theta_b`` then the pitch of the sequence of
+:func:`.rigid_body.attitude`) and their rates, ``z_cg``, ``z_cg_rate``, the body-axis rates ``omega_x_b``,
+``omega_y_b``, ``omega_z_b`` and the unit quaternion. Such scenes evaluate the element-by-element ``ode`` (no
+mapped kernel).
 
 The element's terms are in :mod:`.segmented_element` (shared with the mapped kernel of
 :mod:`.segmented_kernel`). The inertia terms come from the Lagrangian by AD, element by element
@@ -68,7 +73,7 @@ from ..errors import ParameterError
 from ..scene import Scene
 from .cable_model import CableModel
 from .params import ParameterLayout, environment_symbols, section_prefix
-from .rigid_body import RigidParameters, planar_rigid_body
+from .rigid_body import ORIENTATION_REST, RigidParameters, attitude, rigid_body
 from .section import SectionParameters
 from .segmented_element import block_solve, body_drag, dot, element_inertia, element_terms, lump_force, lump_kinetic, norm
 from .segmented_kernel import kernel_ode
@@ -84,6 +89,10 @@ NODE_PROFILES = ("node_x", "node_y")
 OUTPUTS_3D = ("phi_z", "phi_z_rate", "z_b", "z_b_rate")
 # a rigid body's outputs (model/rigid_body.py): pitch theta_b (rad) and its rate, the CG's x, y (m) and rates
 RIGID_OUTPUTS = ("theta_b", "theta_b_rate", "x_cg", "x_cg_rate", "y_cg", "y_cg_rate")
+# and in space: roll and yaw (rad, sequence in rigid_body.attitude) and rates, the CG's z (m) and rate, the body-axis
+# angular velocity (rad/s) and the unit quaternion (scalar first)
+RIGID_OUTPUTS_3D = ("roll_b", "roll_b_rate", "yaw_b", "yaw_b_rate", "z_cg", "z_cg_rate", "omega_x_b", "omega_y_b",
+                    "omega_z_b", "quat_w_b", "quat_x_b", "quat_y_b", "quat_z_b")
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -108,7 +117,8 @@ class SegmentedModel(CableModel):
     name: str = "segmented"
     kind: str = "segmented"                  # the model-ladder rung (integrators cap BDF at order 2 for it)
     dim: int = 2                              # coordinates per node: 2 (x, y) in the plane, 3 (x, y, z) in space
-    n_rotations: int = 0                      # pitch angles theta_b of rigid bodies, after the node coordinates in q
+    n_rotations: int = 0                      # rigid bodies' orientation coordinates, after the node coordinates in q
+    rotation_rest: tuple = ()                 # those coordinates at the level attitude (theta_b = 0; quaternion 1)
 
     @property
     def n_elements(self) -> int:
@@ -190,10 +200,14 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
         raise ParameterError("seabed", "set", "must be unset in a 3-D scene: the node model's seabed is planar so far")
     axes = ("x", "y", "z")[:dim]
     sfx = (lambda i: "") if n_sec == 1 else (lambda i: f"_{i + 1}")
-    # a rigid body's pitch theta_b (model/rigid_body.py) is one more coordinate, after the nodes
+    # a rigid body's orientation (model/rigid_body.py) after the nodes: its pitch theta_b in the plane, a quaternion
+    # (quat_w_b, quat_x_b, quat_y_b, quat_z_b) in space
     rigid = [i for i, s in enumerate(scene.sections) if s.body.is_rigid]
-    n_rot = len(rigid)
-    q_labels = tuple(f"{c}[{j}]" for j in range(1, n_free + 1) for c in axes) + tuple(f"theta_b{sfx(i)}" for i in rigid)
+    rest = ORIENTATION_REST[dim]
+    rot_names = ("theta_b",) if dim == 2 else tuple(f"quat_{c}_b" for c in "wxyz")
+    n_rot = len(rigid) * len(rest)
+    q_labels = tuple(f"{c}[{j}]" for j in range(1, n_free + 1) for c in axes) + tuple(
+        f"{name}{sfx(i)}" for i in rigid for name in rot_names)
     q, qd = ca.SX.sym("q", dim * n_free + n_rot), ca.SX.sym("qd", dim * n_free + n_rot)
     e = ca.SX.sym("e", len(EXO_LABELS_3D if dim == 3 else EXO_LABELS))
     t, z, zd, zdd = e[0], e[1:1 + dim], e[1 + dim:1 + 2 * dim], e[1 + 2 * dim:1 + 3 * dim]
@@ -214,7 +228,7 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     F_inertia = [ca.SX.zeros(dim, 1) for _ in range(n_nodes + 1)]   # inertial forces of the added mass
     weights = [0.0] * (n_nodes + 1)
     sections, elements = [], []
-    V_rigid, rigid_terms = 0.0, {}       # rigid bodies: energy; node -> (3 x 3 M, f, index of theta in q)
+    V_rigid, rigid_terms = 0.0, {}       # rigid bodies: energy; node -> (M, f, indices of its orientation in q)
     j0 = 0
     for i, sec in enumerate(scene.sections):
         P = SectionParameters.from_layout(layout, section_prefix(n_sec, i), sec.body.is_sphere, dim == 3)
@@ -251,13 +265,14 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
         jb = j0 + n_el                                         # the body's node
         rb, vb = node_r[jb], node_v[jb]
         sec_d = dict(P=P, top=j0, body=jb, elements=els, pay=pay)
-        if i in rigid:                                         # a pitching body (rigid_body.py)
-            k = dim * n_free + rigid.index(i)
-            Mb, fb, Kb, Vb, r_cg, v_cg = planar_rigid_body(P, RigidParameters.from_layout(
-                layout, section_prefix(n_sec, i)), p, rho, t, env, depth0)(ca.vertcat(*rb), ca.vertcat(*vb), q[k], qd[k], p, t)
+        if i in rigid:                                         # a rigid body (rigid_body.py)
+            k = list(range(dim * n_free + len(rest) * rigid.index(i), dim * n_free + len(rest) * (rigid.index(i) + 1)))
+            Mb, fb, Kb, Vb, r_cg, v_cg, om = rigid_body(P, RigidParameters.from_layout(
+                layout, section_prefix(n_sec, i), dim), p, rho, t, env, depth0, dim)(
+                ca.vertcat(*rb), ca.vertcat(*vb), q[k], qd[k], p, t)
             K, V_rigid = K + Kb, V_rigid + Vb
             rigid_terms[jb] = (Mb, fb, k)
-            sec_d.update(theta=(q[k], qd[k]), cg=(r_cg, v_cg))
+            sec_d.update(theta=(q[k], qd[k]), cg=(r_cg, v_cg), omega=om)
         else:
             masses = (P.m_bx, P.m_by) + ((P.m_bz,) if dim == 3 else ())   # eq. 16; M_bvz in space
             K += 0.5 * sum((masses[c] * vb[c] ** 2 for c in range(2, dim)), P.m_bx * vb[0] ** 2 + P.m_by * vb[1] ** 2)
@@ -285,27 +300,30 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     f_static = ca.vertcat(*[F_inertia[j] + ca.vertcat(Q_static[j][0], Q_static[j][1] + weights[j], *Q_static[j][2:])
                             for j in range(1, n_free + 1)])
     M, f = ca.diagcat(*blocks), ca.vertcat(*f_nodes)
-    if n_rot:       # a rigid body's node and its theta share one 3 x 3 block (rigid_body.py)
+    if n_rot:       # a rigid body's node and its orientation share one block (3 x 3 in the plane, 7 x 7 in space)
         M = ca.diagcat(M, ca.SX.zeros(n_rot, n_rot))
         f = ca.vertcat(f, ca.SX.zeros(n_rot))
         f_static = ca.vertcat(f_static, ca.SX.zeros(n_rot))
         for jb, (Mb, fb, k) in rigid_terms.items():
-            rows = [dim * (jb - 1), dim * (jb - 1) + 1, k]
-            for a in range(3):
+            rows = [dim * (jb - 1) + c for c in range(dim)] + k
+            for a in range(len(rows)):
                 f[rows[a]] += fb[a]
                 f_static[rows[a]] += fb[a]
-                for b in range(3):
+                for b in range(len(rows)):
                     M[rows[a], rows[b]] += Mb[a, b]
 
-    # q'' node by node: M is block diagonal (dim x dim per node; 3 x 3 for a rigid body's node and theta):
-    # solve each block in closed form
+    # q'' node by node: M is block diagonal (dim x dim per node; a rigid body's node and orientation one block):
+    # solve each node's block in closed form, a body's block by CasADi's QR (7 x 7 in space)
     acc_nodes = [tuple(zdd[c] for c in range(dim))]
     acc, acc_rot = [], [0.0] * n_rot
     for j in range(n_free):
         if j + 1 in rigid_terms:
             Mb, fb, k = rigid_terms[j + 1]
-            a3 = block_solve(ca.diagcat(blocks[j], ca.SX.zeros(1, 1)) + Mb, ca.vertcat(f_nodes[j], 0.0) + fb)
-            a_j, acc_rot[k - dim * n_free] = a3[:2], a3[2]
+            Mj, fj = ca.diagcat(blocks[j], ca.SX.zeros(len(k), len(k))) + Mb, ca.vertcat(f_nodes[j], ca.SX.zeros(len(k))) + fb
+            ab = block_solve(Mj, fj) if dim == 2 else ca.solve(Mj, fj)
+            a_j = tuple(ab[c] for c in range(dim))
+            for n_k, kk in enumerate(k):
+                acc_rot[kk - dim * n_free] = ab[dim + n_k]
         else:
             a_j = block_solve(blocks[j], f_nodes[j])
         acc += list(a_j)
@@ -351,9 +369,14 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
             out += [ca.atan2(chord[2], lp), (lp * chord_v[2] - chord[2] * lpd) / lc**2, rb[2], vb[2]]
             labels += [f"{name}{sfx(i)}" for name in OUTPUTS_3D]
         if "theta" in s:      # the rigid body's pitch (rad, +x towards +y) and rate, its CG (m) and CG velocity
-            (th, thd), (r_cg, v_cg) = s["theta"], s["cg"]
-            out += [th, thd, r_cg[0], v_cg[0], r_cg[1], v_cg[1]]
+            (a, ad), (r_cg, v_cg), om = s["theta"], s["cg"], s["omega"]
+            ang = {name: (value, ca.jtimes(value, a, ad)) for name, value in attitude(a).items()}
+            out += [*ang["theta_b"], r_cg[0], v_cg[0], r_cg[1], v_cg[1]]
             labels += [f"{name}{sfx(i)}" for name in RIGID_OUTPUTS]
+            if dim == 3:      # roll, yaw (rigid_body.attitude), the CG's z, omega in body axes, the unit quaternion
+                out += [*ang["roll_b"], *ang["yaw_b"], r_cg[2], v_cg[2], *[om[c] for c in range(3)],
+                        *[a[c] / ca.norm_2(a) for c in range(4)]]
+                labels += [f"{name}{sfx(i)}" for name in RIGID_OUTPUTS_3D]
     if sections[0].get("pay") is not None:     # the winch: L, w, alpha and the power T_top w (segmented_winch.py)
         pay = sections[0]["pay"]
         out += [pay.L, pay.w, pay.alpha, out[OUTPUT_NAMES.index("tension_top")] * pay.w]
@@ -410,4 +433,4 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
                           output_labels=tuple(labels), dynamics=dynamics, ode=ode, top=top, outputs=outputs,
                           energy=energy, cable_force=cable_force, slack_index=(), symbolic=S,
                           segments=segs, accel=accel, kernel_ode=kernel, anchored=anchored,
-                          static_force=static, dim=dim, n_rotations=n_rot)
+                          static_force=static, dim=dim, n_rotations=n_rot, rotation_rest=rest * len(rigid))

@@ -13,28 +13,14 @@ import math
 from ..errors import (ParameterError, require_finite, require_nonnegative,
                       require_positive, require_range)
 from ..integration import METHODS as INTEGRATION_METHODS
-from .fields import quantity, spec
+from .body import RIGID_FIELDS, Body  # noqa: F401  (re-exported: the scene's components)
+from .fields import check_all_finite, quantity, spec  # noqa: F401  (check_all_finite re-exported)
 from .harmonics import MAX_AMPLITUDE_M, MAX_FREQUENCY_RAD_S, Sinusoid, Wave
 from .sea import MotionRAO, SeaSpectrum, append_once, sea_sinusoids
 from .track import Track
 from .vessel import VesselRAO
 
 
-def check_all_finite(obj, prefix: str) -> None:
-    for f in dataclasses.fields(obj):
-        v = getattr(obj, f.name)
-        if isinstance(v, (int, float)) and not isinstance(v, bool):
-            if f.name == "tension_floor" and v == -math.inf:
-                continue  # -inf: the cable never goes slack (a rod)
-            require_finite(f"{prefix}.{f.name}", v)
-            if abs(v) > MAX_MAGNITUDE:
-                raise ParameterError(f"{prefix}.{f.name}", v, f"must be within +-{MAX_MAGNITUDE:g} (SI units); larger "
-                                     "values overflow the squares and products of the equations of motion")
-
-
-# no cable or body number in SI comes near this (AE of the largest steel ropes ~1e10 N); a cable
-# 1e300 m long passed the range checks and overflowed the steady-state solve (found by fuzzing)
-MAX_MAGNITUDE = 1e15
 MAX_SEGMENTS = 2000       # elements per section (the model's size grows linearly with it)
 
 
@@ -98,104 +84,6 @@ class Cable:
     def total_weight(self) -> float:
         """W_c, the cable weight in water (Wang 1971 eq. 12)."""
         return self.weight_per_length * self.length
-
-
-#: The rigid body's fields of :class:`Body` (all at their defaults: Wang's point body).
-RIGID_FIELDS = ("pitch_inertia", "pitch_added_inertia", "attachment_x", "attachment_y", "buoyancy", "buoyancy_x",
-                "buoyancy_y", "pitch_damping", "pitch_drag", "drag_centre_x", "drag_centre_y")
-
-
-@dataclasses.dataclass(frozen=True, kw_only=True)
-class Body:
-    """The body at the lower end of a cable section: a point (Wang 1971 eq. 16, 32-35) or, with ``pitch_inertia``
-    set, a rigid body that pitches in the x-y plane on an attachment point off its centre of gravity
-    (Wang 1971 p. 32, "Extensions"; equations in :mod:`cablesys.model.rigid_body`). A rigid body's virtual masses
-    ``mass_x``, ``mass_y`` and its drag axis ``axis_angle_deg`` are along its body axes, which are the scene's x and y
-    at zero pitch; its drag acts at its centre of pressure (``drag_centre_x/y``; unset: the centre of gravity)."""
-
-    weight: float = spec("force", "weight in water W_b (negative: buoyant)")
-    mass_x: float = spec("mass", "virtual mass (mass plus added mass) for motion in x, M_bvx")
-    mass_y: float = spec("mass", "virtual mass (mass plus added mass) for motion in y, M_bvy")
-    drag_area_normal: float = spec("area", "CDABN: (C_D A_b)_n, or C_D A_b of a sphere (eq. 32-33)", 0.0)
-    drag_area_tangential: float = spec("area", "CDABT: (C_D A_b)_t; equal to CDABN for a sphere (eq. 33b)", 0.0)
-    axis_angle_deg: float = spec("angle_deg", "PHIBD: angle phi_b of the body's tangential axis with the vertical in degrees; |PHIBD| > 180 selects sphere drag (eq. 32)", 999.0)
-    mass_z: float | None = spec("mass", "virtual mass for motion in z (out of the x-y plane), M_bvz; used by the 3-D "
-                                "equations only; unset: mass_x (a body symmetric about the vertical)", None)
-    # a rigid body that pitches in the x-y plane (Wang 1971 p. 32, "Extensions": "where the body is fairly large
-    # and the cable is not attached to the center of mass"); body axes coincide with the scene's x, y (y down)
-    # at theta_b = 0, theta_b turning +x towards +y (about +z); unset pitch_inertia: Wang's point body
-    pitch_inertia: float | None = spec("inertia", "moment of inertia I of the body's mass about its centre of gravity for "
-                                       "rotation in the x-y plane (pitch); set: the body is rigid and pitches (one more "
-                                       "coordinate theta_b, segmented cable only); unset: a point body", None)
-    pitch_added_inertia: float | None = spec("inertia", "added moment of inertia I_a of the fluid for pitch "
-                                             "(rigid body; unset: 0)", None)
-    attachment_x: float | None = spec("length", "x of the cable's attachment point from the centre of gravity, body "
-                                      "axes (rigid body; unset: 0)", None)
-    attachment_y: float | None = spec("length", "y (down) of the cable's attachment point from the centre of gravity, body "
-                                      "axes; negative: above the CG (rigid body; unset: 0)", None)
-    buoyancy: float | None = spec("force", "buoyant force B acting up at the centre of buoyancy (rigid body; unset: 0); the "
-                                  "weight W_b + B acts down at the CG, so the weight in water stays W_b", None)
-    buoyancy_x: float | None = spec("length", "x of the centre of buoyancy from the centre of gravity, body axes "
-                                    "(rigid body; unset: 0)", None)
-    buoyancy_y: float | None = spec("length", "y (down) of the centre of buoyancy from the centre of gravity, body axes "
-                                    "(rigid body; unset: 0)", None)
-    pitch_damping: float | None = spec("moment_time", "linear pitch damping c: moment -c theta_b' (rigid body; unset: 0)",
-                                       None)
-    pitch_drag: float | None = spec("moment_time2", "quadratic pitch drag d: moment -d |theta_b'| theta_b' (rigid body; "
-                                    "unset: 0)", None)
-    drag_centre_x: float | None = spec("length", "x of the point where the body's drag acts (centre of pressure) from the "
-                                       "centre of gravity, body axes (rigid body; unset: 0, at the CG)", None)
-    drag_centre_y: float | None = spec("length", "y (down) of the body's centre of pressure from the centre of gravity, "
-                                       "body axes (rigid body; unset: 0)", None)
-
-    def __post_init__(self):
-        check_all_finite(self, "body")
-        require_positive("body.mass_x", self.mass_x, "kg")
-        require_positive("body.mass_y", self.mass_y, "kg")
-        if self.mass_z is not None:
-            require_positive("body.mass_z", self.mass_z, "kg")
-        self._check_rigid()
-        require_nonnegative("body.drag_area_normal", self.drag_area_normal, "m^2")
-        require_nonnegative("body.drag_area_tangential", self.drag_area_tangential, "m^2")
-        if self.is_sphere and not math.isclose(self.drag_area_normal, self.drag_area_tangential, rel_tol=1e-12, abs_tol=0.0):
-            raise ParameterError("body.drag_area_tangential", self.drag_area_tangential,
-                                 f"must equal body.drag_area_normal = {self.drag_area_normal} for sphere drag "
-                                 "(|axis_angle_deg| > 180, the report's PHIBD rule)")
-
-    def _check_rigid(self) -> None:
-        """A rigid body's fields: non-negative inertias, damping and buoyancy; on a point body every rigid field
-        must be unset or 0 (an offset or inertia given without ``pitch_inertia`` would be dropped)."""
-        if self.pitch_inertia is None:
-            for name in RIGID_FIELDS[1:]:
-                if getattr(self, name) not in (None, 0.0):
-                    raise ParameterError(f"body.{name}", getattr(self, name), "needs body.pitch_inertia (a rigid body); "
-                                         "a point body has no attachment offset, buoyancy centre or pitch")
-            return
-        for name in ("pitch_inertia", "pitch_added_inertia", "buoyancy", "pitch_damping", "pitch_drag"):
-            require_nonnegative(f"body.{name}", self.rigid(name))
-        if not self.pitch_inertia + self.rigid("pitch_added_inertia") > 0.0:
-            raise ParameterError("body.pitch_inertia", self.pitch_inertia, "must make pitch_inertia + pitch_added_inertia "
-                                 "> 0 kg m^2 (a rigid body without rotary inertia has no pitch equation)")
-
-    def rigid(self, name: str) -> float:
-        """The rigid-body field ``name`` (one of :data:`RIGID_FIELDS`) in SI, 0 when unset."""
-        v = getattr(self, name)
-        return 0.0 if v is None else float(v)
-
-    @property
-    def is_rigid(self) -> bool:
-        """A body that pitches (``pitch_inertia`` set): one more coordinate theta_b in the segmented cable."""
-        return self.pitch_inertia is not None
-
-    @property
-    def virtual_mass_z(self) -> float:
-        """M_bvz (kg): ``mass_z``, or ``mass_x`` when unset."""
-        return self.mass_x if self.mass_z is None else self.mass_z
-
-    @property
-    def is_sphere(self) -> bool:
-        """The report's PHIBD rule: |PHIBD| > 180 means sphere drag, eq. 32."""
-        return abs(self.axis_angle_deg) > 180.0
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

@@ -8,8 +8,10 @@ ft-lb-slug) and documents every field in ``cablesys scene --example``.
 from __future__ import annotations
 
 import dataclasses
+import math
 
 from .. import units as U
+from ..errors import ParameterError, require_finite
 
 # SI unit shown to users, per physical dimension
 SI_UNIT = {
@@ -125,3 +127,20 @@ def from_si(value, dim: str, system: str):
     if isinstance(value, (list, tuple)):
         return [float(v) / f for v in value]
     return float(value) / f
+
+
+def check_all_finite(obj, prefix: str) -> None:
+    for f in dataclasses.fields(obj):
+        v = getattr(obj, f.name)
+        if isinstance(v, (int, float)) and not isinstance(v, bool):
+            if f.name == "tension_floor" and v == -math.inf:
+                continue  # -inf: the cable never goes slack (a rod)
+            require_finite(f"{prefix}.{f.name}", v)
+            if abs(v) > MAX_MAGNITUDE:
+                raise ParameterError(f"{prefix}.{f.name}", v, f"must be within +-{MAX_MAGNITUDE:g} (SI units); larger "
+                                     "values overflow the squares and products of the equations of motion")
+
+
+# no cable or body number in SI comes near this (AE of the largest steel ropes ~1e10 N); a cable
+# 1e300 m long passed the range checks and overflowed the steady-state solve (found by fuzzing)
+MAX_MAGNITUDE = 1e15

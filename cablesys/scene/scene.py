@@ -91,21 +91,20 @@ class Scene:
                                  f"makes the line {length:.6g} m long (all sections, at their reference tension), "
                                  f"shorter than the {chord:.6g} m from the top's mean position to the anchor")
     def _check_rigid_bodies(self) -> None:
-        """A rigid (pitching) body is built by the segmented cable's planar equations only, so far: it needs a
-        section with ``cable.segments`` > 1, a planar scene, no seabed, and not to sit at an anchor."""
+        """A rigid body is built by the segmented cable (model/rigid_body.py: pitch in the plane, three rotations in
+        space): it needs a section with ``cable.segments`` > 1, no seabed, no winch, and not to sit at an anchor."""
         for i, s in enumerate(self.sections):
             if not s.body.is_rigid:
                 continue
             name = f"{section_prefix(self, i)}body.pitch_inertia"
-            why = ("a 3-D scene" if self.three_d else
-                   "Wang's 2-DOF straight cable (every cable.segments = 1; the model ladder runs such a scene "
+            why = ("Wang's 2-DOF straight cable (every cable.segments = 1; the model ladder runs such a scene "
                    "with the node model)" if all(c.cable.segments == 1 for c in self.sections)
                    else "a scene with a [seabed]" if self.seabed is not None
                    else "a scene with a [winch]" if getattr(self, "winch", None) is not None
                    else "the body at the [anchor]" if self.anchor is not None and i == len(self.sections) - 1 else None)
             if why is not None:
                 raise ParameterError(name, s.body.pitch_inertia, f"must be unset for {why}: a rigid, pitching body is "
-                                     "built by the planar segmented cable without seabed so far")
+                                     "built by the segmented cable without seabed so far")
 
     def _check_winch(self) -> None:
         """The winch keeps the first section's zero-tension length L(t) = l_0 + Delta L(t) in (0, max_length]
@@ -124,7 +123,8 @@ class Scene:
         w.check_length(c.length * (1.0 - c.tension_ref / c.ae), f"{section_prefix(self, 0)}cable.length")
 
     def three_d_fields(self) -> tuple:
-        """The 3-D fields this scene sets (``top_motion.z``, a current or wave heading, ``body.mass_z``)."""
+        """The 3-D fields this scene sets (``top_motion.z``, a current or wave heading, ``body.mass_z``, a rigid body's
+        3-D fields: its inertia tensor's other entries, added inertias about x and y, offsets' z, drag along z)."""
         env, out = self.environment, []
         if self.top_motion.z:
             own = user_count(self.top_motion, "z")
@@ -133,6 +133,7 @@ class Scene:
             out.append("environment.current_headings_deg")
         out += [f"environment.waves[{k}].heading_deg" for k, w in enumerate(env.waves) if w.heading_deg is not None]
         out += [f"{section_prefix(self, i)}body.mass_z" for i, s in enumerate(self.sections) if s.body.mass_z is not None]
+        out += [f"{section_prefix(self, i)}body.{name}" for i, s in enumerate(self.sections) for name in s.body.three_d_fields()]
         return tuple(out)
 
     @property

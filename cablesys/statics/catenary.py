@@ -67,7 +67,7 @@ def hanging_guess(model, p) -> np.ndarray:
             y += h_0 + max(tension, 0.0) * h_r / ae                 # l = h_0 + T h_r / AE (eq. 1 per element)
             ys.append(y)
     cols = [np.zeros(len(ys)), ys] + [np.zeros(len(ys))] * (_dim(model) - 2)
-    return np.concatenate([np.column_stack(cols).ravel(), np.zeros(_rotations(model))])   # rigid bodies level
+    return np.concatenate([np.column_stack(cols).ravel(), _level(model)])   # rigid bodies level
 
 
 def _dim(model) -> int:
@@ -76,8 +76,13 @@ def _dim(model) -> int:
 
 
 def _rotations(model) -> int:
-    """Rigid bodies' pitch angles at the end of a segmented model's q (model/rigid_body.py)."""
+    """Rigid bodies' orientation coordinates at the end of a segmented model's q (model/rigid_body.py)."""
     return getattr(model, "n_rotations", 0)
+
+
+def _level(model) -> np.ndarray:
+    """Those coordinates at the level attitude: pitch theta_b = 0 in the plane, the unit quaternion in space."""
+    return np.array(getattr(model, "rotation_rest", ()) or np.zeros(_rotations(model)), float)
 
 
 def anchored_guess(model, p) -> np.ndarray:
@@ -471,7 +476,7 @@ def segmented_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
     dim = _dim(model)                       # a 3-D scene starts from its equilibrium (initial.phi, u unset)
     z, zd = e[1:1 + dim], e[1 + dim:1 + 2 * dim]
     n_rot = _rotations(model)                # rigid bodies' angles: their static pitch, at rest
-    rot = np.zeros(n_rot)
+    rot = _level(model)
     if ini.phi is None and ini.u is None:
         q_all = segmented_steady(model, p).q
         q, rot = q_all[:q_all.size - n_rot].reshape(-1, dim), q_all[q_all.size - n_rot:]
