@@ -209,7 +209,7 @@ def test_ladder_runs_the_node_model_alone():
     choice, _, _ = decide(scene, "auto", None, None)
     assert choice.name == "segmented" and choice.segments >= 2 and "pitch" in choice.reason
     for name in ("wang", "quasi-static"):
-        with pytest.raises(ParameterError, match="pitching body"):
+        with pytest.raises(ParameterError, match="rigid body"):
             decide(scene, name, None, None)
 
 

@@ -6,7 +6,8 @@ kinds of scene limit the rungs so far: a 3-D scene (Wang's straight cable and th
 Wang 1971 p. 32; the frequency and quasi-static rungs are planar), a massless cable (Wang's CBMAS < 0, Wang 1971 program notes: an idealization of his straight
 cable; the element rungs' nodes would have no mass), an anchored line or a seabed (they act on the nodes of the
 segmented cable, which the straight cable has none of) and a winch (a varying length, carried by the node model only).
-A rigid, pitching body (``body.pitch_inertia``) limits them too: its pitch is a coordinate of the node model alone
+A rigid body (``body.pitch_inertia``) limits them too: its orientation (the pitch in the plane, a quaternion in
+3-D) is a coordinate of the node model alone
 (:mod:`cablesys.model.rigid_body`).
 """
 
@@ -64,7 +65,8 @@ PLANAR = ("a 3-D scene: the frequency and quasi-static rungs are planar; Wang's 
 WITH_MASS = ("a massless cable (cable.cable_mass_switch < 0, Wang 1971's CBMAS) belongs to Wang's straight cable: the "
              "element rungs' nodes would have no mass, and the ladder has no estimate of the other rungs against it")
 NO_NODES = ("an anchored line or a seabed: only the node model (segmented) has nodes to anchor and to lay on the bed")
-ROTATES = ("a rigid, pitching body (body.pitch_inertia): its pitch is a coordinate of the node model (segmented) only")
+ROTATES = ("a rigid body (body.pitch_inertia): its orientation (pitch in the plane, a quaternion in 3-D) is a "
+           "coordinate of the node model (segmented) only")
 WINCHED = ("a winch ([winch]): only the node model (segmented) carries a varying cable length; the other rungs "
            "have a fixed one and would ignore the payout")
 TURNING = ("towing in a circle (top_motion.track): the run starts on the steady turn, which the statics find for the "

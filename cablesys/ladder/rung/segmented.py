@@ -41,15 +41,15 @@ class Segmented(BuiltinRung):
         return est.segmented_error(assessment.estimates, self.segments(segments))
 
     def alone(self, scene: Scene, requested: str, segments) -> tuple:
-        """An anchored line or a seabed, a winch, a rigid, pitching body, or towing in a circle: the node model with the caller's N, else the scene's
+        """An anchored line or a seabed, a winch, a rigid body, or towing in a circle: the node model with the caller's N, else the scene's
         (named segmented rung), else at least ENDS_SEGMENTS, checked a posteriori on every quantity when the ladder
         chose it."""
         scene_n = max(s.cable.segments for s in scene.sections)
         n = int(segments or (scene_n if requested == self.name and scene_n > 1 else max(scene_n, ENDS_SEGMENTS)))
         why = ("an anchored line or a seabed: the node model with N = {n}, the only rung with nodes to anchor and to lay "
                "on the bed" if has_ends(scene) else "a winch ([winch]): the node model with N = {n}, the only rung whose "
-               "cable length can change in time" if winched(scene) else "a rigid, pitching body: the node model with "
-               "N = {n}, the only rung whose coordinates include its pitch" if rigid(scene) else "towing in a circle "
+               "cable length can change in time" if winched(scene) else "a rigid body: the node model with "
+               "N = {n}, the only rung whose coordinates include its orientation (pitch in the plane, a quaternion in 3-D)" if rigid(scene) else "towing in a circle "
                "(top_motion.track): the node model with N = {n}, the only rung whose steady turn the statics find")
         if has_ends(scene) and winched(scene):
             why += " and whose cable length can change in time (the [winch])"

@@ -18,7 +18,7 @@ class Wang(BuiltinRung):
 
     def valid(self, scene: Scene) -> str:
         """"" unless the scene has an anchor or a seabed (the straight cable has no nodes), a winch (its length is fixed
-        here; :mod:`cablesys.model.winch` is the control door's), a rigid, pitching body or a turning track (its
+        here; :mod:`cablesys.model.winch` is the control door's), a rigid body or a turning track (its
         steady turn is the node model's)."""
         if has_ends(scene):
             return NO_NODES
