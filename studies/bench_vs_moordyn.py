@@ -69,6 +69,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _bench_3d import CASES_3D, CHECKS, agreement, cases_3d, planar_ratio  # noqa: E402
 from _bench_auto import auto_row, wang_row  # noqa: E402
 from _bench_slack import PLAN_NS, bench_plan_case, bench_slack_case, plan_scene  # noqa: E402
 from _common import setup_matplotlib, write_json  # noqa: E402
@@ -536,7 +537,8 @@ def main(argv=None):
     ap.add_argument("--out", required=True, type=Path, help="output directory (created if missing)")
     ap.add_argument("--quick", action="store_true", help="Dale, 10 elements, 20 s (for tests)")
     ap.add_argument("--case", action="append", default=None,
-                    help="run only these cases (dale, heave_T10, heave_T6, light_lift, harsh_sea); repeatable")
+                    help="run only these cases (dale, heave_T10, heave_T6, light_lift, harsh_sea; the 3-D cases "
+                         "turn, crane_rao, current45 run only when named); repeatable")
     ap.add_argument("--slack-duration", type=float, default=SLACK_DURATION,
                     help="length of the slack case's run (s); its statistics are the cycle means of the second half")
     ap.add_argument("--slack-n", type=int, nargs="+", default=[20, 80], help="element counts of the slack case")
@@ -549,10 +551,18 @@ def main(argv=None):
     args = ap.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
     rows = []
-    for c in cases(args.quick, args.slack_duration, args.slack_n):
+    three_d = [c for c in cases_3d(args.quick) if args.case and c[0] in args.case]     # on request only
+    for c in cases(args.quick, args.slack_duration, args.slack_n) + three_d:
         if args.case and c[0] not in args.case:
             continue
         rows.append(bench_case(*c, args.quick, keep=args.out / "moordyn_steps.json", flags=args.slack_flags))
+        if c[0] in CASES_3D:      # issue 24: closed-form checks, agreement, planar_ratio (_bench_3d)
+            rows[-1]["checks"] = CHECKS[c[0]](c[1], rows[-1])
+            rows[-1]["differs_from_moordyn_by_more_than_2pc"] = agreement(rows[-1])
+            if "planar" not in locals():
+                planar = planar_ratio(_prepared, repeats=1 if args.quick else 3, duration=20.0 if args.quick else 60.0)
+            rows[-1]["planar_ratio"] = planar["planar_ratio"]
+            rows[-1]["planar"] = planar
         # written after every case: a long benchmark that is stopped keeps what it measured
         write_json(args.out / "bench_vs_moordyn.json", {"cases": rows, "quick": args.quick, "notes": NOTES})
     for name in PLAN_CASES:
