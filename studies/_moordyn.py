@@ -17,6 +17,9 @@ Wang's at the reference tension, eq. 1-7):
 - internal damping BA = C_I l_0 / l_r (force = BA * strain rate; Wang eq. 46: (C_I/l_r) du/dt);
 - the body is a free point with volume V, mass m and added-mass coefficient 1/2 chosen so that
   its weight in water is W_b and its virtual mass M_bv; drag 1/2 rho CdA |v| v (eq. 32).
+
+In three dimensions the top moves in x, y and z (MoorDyn's X, -Z and Y: :func:`moordyn_axes`) and a
+current profile with headings becomes MoorDyn-C's ``Currents = 1`` steady profile (:func:`current_option`).
 """
 
 from __future__ import annotations
@@ -48,7 +51,7 @@ def _quiet():
 
 
 def moordyn_input(scene, n_segments: int, dt: float) -> str:
-    """The MoorDyn v2 input text for a one-section ``scene`` (sphere body, no current)."""
+    """The MoorDyn v2 input text for a one-section ``scene`` (sphere body; its current: :func:`current_option`)."""
     if len(scene.sections) != 1:
         raise ValueError("the MoorDyn peer handles one cable section")
     sec = scene.sections[0]
@@ -69,7 +72,7 @@ def moordyn_input(scene, n_segments: int, dt: float) -> str:
     ba = c.internal_damping * l_0 / l_r
     vol = (b.mass_x - b.weight / g) / (1.5 * rho)
     m_b = b.weight / g + rho * vol
-    (x0, _, z_top), _ = _top(scene, 0.0)
+    (x0, y0, z_top), _ = _top(scene, 0.0)
     return f"""--------------------- MoorDyn Input File (written by cablesys studies/_moordyn.py) -----
 {scene.name}
 ---------------------- LINE TYPES --------------------------------------------------
@@ -79,8 +82,8 @@ cable     {d_v:.10g}   {mass:.10g}   {ea:.10g}   {ba:.10g}   0   {cdn:.10g}   {c
 ---------------------- POINTS --------------------------------------------------------
 ID    Attachment     X       Y     Z      Mass    Volume   CdA     Ca
 (#)   (word/ID)      (m)     (m)   (m)    (kg)    (m^3)    (m^2)  (-)
-1     Coupled   {x0:.10g}   0   {z_top:.10g}   0   0   0   0
-2     Free      {x0:.10g}   0   {z_top - l_r:.10g}   {m_b:.10g}   {vol:.10g}   {b.drag_area_normal:.10g}   0.5
+1     Coupled   {x0:.10g}   {y0:.10g}   {z_top:.10g}   0   0   0   0
+2     Free      {x0:.10g}   {y0:.10g}   {z_top - l_r:.10g}   {m_b:.10g}   {vol:.10g}   {b.drag_area_normal:.10g}   0.5
 ---------------------- LINES ----------------------------------------------
 ID    LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
 (#)   (name)     (#)      (#)      (m)       (-)      (-)
@@ -94,7 +97,7 @@ ID    LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
 {max(30.0, 20 * math.sqrt(l_r / g)):.6g}       TmaxIC
 0.0001    threshIC
 0        writeLog
-------------------------- need this line --------------------------------------
+{current_option(scene)}------------------------- need this line --------------------------------------
 """
 
 
@@ -114,7 +117,8 @@ def _top(scene, t):
         return r * pos, r * vel + dr * pos
     xs, vx = axis(scene.top_motion.x)
     ys, vy = axis(scene.top_motion.y)
-    return [xs, 0.0, -(scene.environment.top_depth + ys)], [vx, 0.0, -vy]
+    zs, vz = axis(scene.top_motion.z)          # sway: MoorDyn's Y (see moordyn_axes)
+    return [xs, zs, -(scene.environment.top_depth + ys)], [vx, vz, -vy]
 
 
 def _segment_state(moordyn, line, n_segments: int):
@@ -150,6 +154,7 @@ def run_moordyn(scene, n_segments: int, dt: float, *, duration: float | None = N
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "lines.txt"
         path.write_text(scene_input(scene, n_segments, dt))     # a line with other ends: ends_input
+        write_current_profile(scene, tmp)
         with _quiet():
             s = moordyn.Create(str(path))
             moordyn.SetDt(s, dt)
@@ -158,8 +163,10 @@ def run_moordyn(scene, n_segments: int, dt: float, *, duration: float | None = N
             moordyn.Init(s, x, [0.0, 0.0, 0.0])     # equilibrium with the top at rest (a moving top would be extrapolated)
         line, body = moordyn.GetLine(s, 1), moordyn.GetPoint(s, 2)
         pay = winch_hook(scene, line)           # a [winch]: MoorDyn's length rate, set before each call
+        settled = settle_in_current(moordyn, s, body, x, scene, dt)
         T = np.zeros(n_out + 1)
-        XB, YB, TT, TB = (np.zeros(n_out + 1) for _ in range(4))
+        XB, YB, ZB, TT, TB = (np.zeros(n_out + 1) for _ in range(5))
+        TOP = np.zeros((n_out + 1, 3))                        # the coupled (top) node, MoorDyn axes
         strain = np.zeros((n_out + 1, n_segments))
         ok = True
         m = max(1, math.ceil(h / max(dt, 1e-3) - 1e-9))      # coupling calls per output step
@@ -194,7 +201,8 @@ def run_moordyn(scene, n_segments: int, dt: float, *, duration: float | None = N
                 except RuntimeError:              # MoorDyn refuses to report a state that went NaN
                     ok = False
                     break
-                T[k], XB[k], YB[k] = t, pos[0], -pos[2] - scene.environment.top_depth
+                T[k], XB[k], YB[k], ZB[k] = t, pos[0], -pos[2] - scene.environment.top_depth, pos[1]
+                TOP[k] = moordyn.GetLineNodePos(line, n_segments)
                 strain[k] = length / l_seg - 1.0
                 if not (np.all(np.isfinite(pos)) and abs(pos[2]) < 10 * scene.sections[0].cable.length + 100):
                     ok = False
@@ -202,9 +210,10 @@ def run_moordyn(scene, n_segments: int, dt: float, *, duration: float | None = N
             wall = time.perf_counter() - wall
             moordyn.Close(s)
     n = k + 1
-    return {"time": T[:n], "x_b": XB[:n], "y_b": YB[:n], "tension_top": TT[:n], "tension_bottom": TB[:n],
+    return {"time": T[:n], "x_b": XB[:n], "y_b": YB[:n], **({"z_b": ZB[:n]} if scene.three_d else {}),
+            "top_moordyn_axes": TOP[:n], "tension_top": TT[:n], "tension_bottom": TB[:n],
             "element_strain": strain[:n], "slack_fraction_per_segment": np.mean(strain[:n] <= 0.0, axis=0),
-            "wall_s": wall, "step_wall_s": step_wall, "stable": ok and n == n_out + 1, "dt": dt, "scheme": scheme, "n_segments": n_segments}
+            "settle_s": settled, "wall_s": wall, "step_wall_s": step_wall, "stable": ok and n == n_out + 1, "dt": dt, "scheme": scheme, "n_segments": n_segments}
 
 
 def _unstretched_length(scene) -> float:
@@ -383,3 +392,77 @@ def moordyn_static(scene, n_segments: int, dt: float = 1e-3) -> dict:
         with _quiet():
             moordyn.Close(s)
     return out
+
+
+# -- three dimensions (the 3-D cases of bench_vs_moordyn, studies/_bench_3d.py) ------------------------------
+
+
+def moordyn_axes(r) -> np.ndarray:
+    """cablesys (x, y down from the top's mean depth, z) to MoorDyn's (X, Y, Z up from the still surface):
+    X = x, Y = z, Z = -(top_depth + y) for ``top_depth`` = 0; both right-handed (e_x x e_y = e_z in
+    cablesys, e_y = -E_Z, so e_z = E_Y). The top-depth shift is the caller's (``_top`` adds it)."""
+    r = np.asarray(r, float)
+    return np.stack([r[..., 0], r[..., 2], -r[..., 1]], axis=-1)
+
+
+def _has_current(scene) -> bool:
+    return any(s != 0.0 for s in scene.environment.current_speeds)
+
+
+def current_option(scene) -> str:
+    """MoorDyn-C's ``Currents`` option line: 1 (a steady current profile read from ``current_profile.txt`` in
+    the input file's folder, linear in depth between its points and constant beyond them, as cablesys'
+    profile) when the scene has a current, else nothing (MoorDyn's default: still water)."""
+    return "1        Currents\n" if _has_current(scene) else ""
+
+
+def current_profile_text(scene) -> str:
+    """MoorDyn's ``current_profile.txt`` for the scene's current: three header lines, then one line per
+    profile point ``z ux uy uz`` (z up from the still surface, ascending) with cablesys' speeds c_k along
+    their headings h_k (deg from +x towards +z: MoorDyn's ux = c cos h, uy = c sin h; :func:`moordyn_axes`).
+    cablesys' current depths are depths below the surface (the element's ``top_depth + y``)."""
+    env = scene.environment
+    rows = [(-d, c * math.cos(math.radians(h)), c * math.sin(math.radians(h)))
+            for d, c, h in zip(env.current_depths, env.current_speeds, env.headings_per_depth_deg)]
+    if len(rows) == 1:                       # one point: the same current at every depth
+        rows = [(-10 * scene.sections[0].cable.length - 100, *rows[0][1:]), rows[0]]
+    body = "\n".join(f"{z:.10g} {ux:.10g} {uy:.10g} 0.0" for z, ux, uy in sorted(rows))
+    return ("--------------------- MoorDyn steady currents File (written by cablesys studies/_moordyn.py) -----\n"
+            "Tabulated file with the water currents components\nz (m), ux (m/s), uy (m/s), uz (m/s)\n" + body + "\n")
+
+
+def write_current_profile(scene, folder) -> None:
+    """Write ``current_profile.txt`` next to the input file when the scene has a current."""
+    if _has_current(scene):
+        (Path(folder) / "current_profile.txt").write_text(current_profile_text(scene))
+
+
+SETTLE_CHUNK_S, SETTLE_MAX_S = 10.0, 5000.0
+
+
+def settle_in_current(moordyn, system, body, x_top, scene, dt: float, *, rate: float = 1e-5) -> float:
+    """Bring MoorDyn to its equilibrium in the scene's current before the run (untimed): its initial equilibrium
+    (``Init``) is found in still water (the body starts straight under the top whatever the current; checked: 0.0 m
+    offset at t = 0 with ``Currents = 1``), and the line drifts into the current over ~10 time constants of ~130 s
+    (300 m wire in 0.5 m/s), where cablesys starts from its statics in the current. The top is held at its t = 0
+    position and MoorDyn steps in chunks of ``SETTLE_CHUNK_S`` (times before 0: the steady profile does not depend
+    on time) until the body moves less than ``rate`` m/s over a chunk (at most ``SETTLE_MAX_S``). Returns the
+    settling time (s; 0 without current, NaN when MoorDyn failed at this step: the run then reports it unstable)."""
+    if not _has_current(scene):
+        return 0.0
+    n = max(1, math.ceil(SETTLE_CHUNK_S / dt - 1e-9))
+    h = SETTLE_CHUNK_S / n
+    t, before = -SETTLE_MAX_S, np.array(moordyn.GetPointPos(body))
+    with _quiet():
+        while t < 0.0:
+            try:
+                for _ in range(n):
+                    moordyn.Step(system, x_top, [0.0, 0.0, 0.0], t, h)
+                    t += h
+                now = np.array(moordyn.GetPointPos(body))
+            except RuntimeError:          # an unstable step: the run that follows reports it (not finite)
+                return math.nan
+            if not np.all(np.isfinite(now)) or np.linalg.norm(now - before) < rate * SETTLE_CHUNK_S:
+                break
+            before = now
+    return t + SETTLE_MAX_S
