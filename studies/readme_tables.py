@@ -2,10 +2,13 @@
 
     python studies/readme_tables.py --bench studies/results [--readme README.md] [--check]
 
-Reads ``bench_vs_moordyn.json`` (``studies/bench_vs_moordyn.py --out DIR``) from ``--bench`` and rewrites the block
-between ``<!-- bench:begin -->`` and ``<!-- bench:end -->`` of the README: per case, auto's model and its wall
-time per simulated second against MoorDyn's at the case's smallest N at its largest stable step, the speed-up
-measured in that one run, and auto's error against the converged reference. ``--check`` fails (exit 1) when the
+Reads ``bench_vs_moordyn.json`` (``studies/bench_vs_moordyn.py --out DIR``) from ``--bench``, and beside it the
+other ends' and the 3-D cases' files when present (``bench_vs_moordyn_ends.json``: ``--case mooring --case lowering``;
+``bench_vs_moordyn_3d.json``: ``--case turn --case crane_rao --case current45``), and rewrites the block between
+``<!-- bench:begin -->`` and ``<!-- bench:end -->`` of the README: per case, auto's model and its wall time per
+simulated second against MoorDyn's at the case's smallest N at its largest stable step, the speed-up measured in
+that one run, the segmented cable's speed-up at equal N (matched accuracy), and auto's error against the
+converged reference. Each file is one run; the note under the table names them. ``--check`` fails (exit 1) when the
 README's block differs from what the JSON gives, so that a test can hold the two together.
 """
 
@@ -17,6 +20,7 @@ import sys
 from pathlib import Path
 
 BEGIN, END = "<!-- bench:begin -->", "<!-- bench:end -->"
+FILES = ("bench_vs_moordyn.json", "bench_vs_moordyn_ends.json", "bench_vs_moordyn_3d.json")   # main, other ends, 3-D
 
 
 def _pct(v) -> str:
@@ -27,11 +31,20 @@ def _x(v) -> str:
     return "n/a" if v is None else f"{v:.3g}x"
 
 
-def table(bench: dict, source: str) -> str:
-    """The Markdown block for ``bench`` (the content of ``bench_vs_moordyn.json``)."""
-    rows = ["| case | auto's model | auto, s per simulated s | MoorDyn (N, s/s) | auto speed-up | auto error body / tension |",
-            "|---|---|---|---|---|---|"]
-    for r in bench.get("cases", []):
+def _equal_n(r: dict) -> str:
+    """The segmented cable's speed-up over MoorDyn at each N of the case (matched accuracy), "n/a" without one."""
+    got = [f"N = {e['segments']}: {_x(e['speedup'])}" for e in r.get("by_n") or [] if e.get("speedup") is not None]
+    return ", ".join(got) or "n/a"
+
+
+def table(bench: dict | list, source: str | list) -> str:
+    """The Markdown block for ``bench`` (the content of ``bench_vs_moordyn.json``), or for a list of such contents
+    with a list of their sources (one run each)."""
+    benches, sources = (bench, source) if isinstance(bench, list) else ([bench], [source])
+    rows = ["| case | auto's model | auto, s per simulated s | MoorDyn (N, s/s) | auto speed-up | segmented at equal N "
+            "| auto error body / tension |",
+            "|---|---|---|---|---|---|---|"]
+    for r in (r for b in benches for r in b.get("cases", []) if "by_n" in r):
         auto = r.get("auto", {})
         md = (r.get("by_n") or [{}])[0]
         err = r.get("auto_error") or {}
@@ -40,9 +53,10 @@ def table(bench: dict, source: str) -> str:
         md_s = md.get("moordyn_s_per_s")
         rows.append(f"| {r.get('case')} | {name} | {auto.get('s_per_s', float('nan')):.3g} | "
                     f"N = {md.get('segments', '?')}, {md_s if md_s is None else f'{md_s:.3g}'} | "
-                    f"{_x(r.get('auto_speedup'))} | {_pct(err.get('body'))} / {_pct(err.get('tension'))} |")
-    note = (f"Measured in one run of `studies/bench_vs_moordyn.py` ({source}{', quick mode' if bench.get('quick') else ''});"
-            " regenerate with `python studies/readme_tables.py --bench DIR`.")
+                    f"{_x(r.get('auto_speedup'))} | {_equal_n(r)} | {_pct(err.get('body'))} / {_pct(err.get('tension'))} |")
+    runs = "; ".join(f"{src}{', quick mode' if b.get('quick') else ''}" for b, src in zip(benches, sources))
+    note = (f"Measured in {'one run' if len(benches) == 1 else 'runs'} of `studies/bench_vs_moordyn.py` ({runs}; each "
+            "file one run, its ratios measured in that run); regenerate with `python studies/readme_tables.py --bench DIR`.")
     return "\n".join([BEGIN, *rows, "", note, END])
 
 
@@ -60,14 +74,17 @@ def main(argv=None) -> int:
     ap.add_argument("--readme", type=Path, default=Path(__file__).resolve().parents[1] / "README.md")
     ap.add_argument("--check", action="store_true", help="only compare; exit 1 when the README differs")
     args = ap.parse_args(argv)
-    path = args.bench / "bench_vs_moordyn.json"
-    bench = json.loads(path.read_text())
-    try:
-        src = str(path.resolve().relative_to(args.readme.resolve().parent))
-    except ValueError:
-        src = str(path)
+    path = args.bench / FILES[0]
+    paths = [path] + [args.bench / f for f in FILES[1:] if (args.bench / f).exists()]
+    benches, srcs = [], []
+    for p in paths:
+        benches.append(json.loads(p.read_text()))
+        try:
+            srcs.append(str(p.resolve().relative_to(args.readme.resolve().parent)))
+        except ValueError:
+            srcs.append(str(p))
     text = args.readme.read_text()
-    new = rewrite(text, table(bench, src))
+    new = rewrite(text, table(benches, srcs))
     if args.check:
         if new != text:
             print(f"{args.readme}: the performance table differs from {path}: run studies/readme_tables.py", file=sys.stderr)

@@ -25,3 +25,19 @@ def test_the_table_states_each_cases_measured_ratio(tmp_path):
     readme.write_text("a\n<!-- bench:begin -->\nold\n<!-- bench:end -->\nb\n")
     new = readme_tables.rewrite(readme.read_text(), block)
     assert new.startswith("a\n") and new.endswith("\nb\n") and "old" not in new
+
+
+def test_the_table_holds_the_other_ends_and_3d_runs_with_their_equal_n_ratios():
+    """The mooring/lowering and 3-D runs (their own files, one run each) are rows of the same table, each with the
+    segmented cable's equal-N speed-up of its own JSON, and the note names every file."""
+    sys.path.insert(0, str(ROOT / "studies"))
+    import readme_tables
+    res = ROOT / "studies" / "results"
+    files = [f for f in readme_tables.FILES if (res / f).exists()]
+    benches = [json.loads((res / f).read_text()) for f in files]
+    block = readme_tables.table(benches, files)
+    for f, bench in zip(files, benches):
+        assert f in block
+        for case in bench["cases"]:
+            row = next(line for line in block.splitlines() if line.startswith(f"| {case['case']} |"))
+            assert f"N = {case['by_n'][0]['segments']}: {case['by_n'][0]['speedup']:.3g}x" in row
