@@ -301,7 +301,7 @@ def plot(rows, path):
     """Per case (a column) the top tension (upper row) and the bottom-end tension (lower: the anchor or the package)
     of both codes against time (cablesys: the force on the end point and the end element's tension; MoorDyn: its end
     segment's), and the speed bars (s per simulated s, log) on the right."""
-    from _common import setup_matplotlib
+    from _common import setup_matplotlib, speed_bars
 
     from cablesys.plots import save_figure
     plt = setup_matplotlib()
@@ -326,30 +326,9 @@ def plot(rows, path):
             ax.legend(fontsize=7)
             if row == 1:
                 ax.set_xlabel("time (s)")
-    ax = fig.add_subplot(grid[:, -1])
-    labels, md, cs, ratio = [], [], [], []
-    for r in rows:
-        for e in r["by_n"]:
-            labels.append(f"{r['case']}\nN = {e['segments']}")
-            md.append(e["moordyn_s_per_s"])
-            cs.append(e["cablesys_s_per_s"] or np.nan)
-            ratio.append(e.get("speedup"))
-        if "s_per_s" in r.get("auto", {}):
-            labels.append(f"{r['case']}\nauto")
-            md.append(np.nan)
-            cs.append(r["auto"]["s_per_s"])
-            ratio.append(r.get("auto_speedup"))
-    x = np.arange(len(labels))
-    ax.bar(x - 0.2, md, 0.4, label="MoorDyn v2 (largest stable RK4 step)")
-    ax.bar(x + 0.2, cs, 0.4, label="cablesys (segmented: matched accuracy;\nauto: as a user runs it)")
-    for xi, c, q in zip(x, cs, ratio):
-        if q:
-            ax.annotate(f"{q:.3g}x", (xi + 0.2, c), textcoords="offset points", xytext=(0, 3), ha="center", fontsize=8)
-    ax.set_yscale("log")
-    ax.set_xticks(x, labels, fontsize=8)
-    ax.set_ylabel("wall time per simulated second (s/s)")
-    ax.set_title("speed, both codes in the same run (speedup over the bars)", fontsize=10)
-    ax.legend(fontsize=7)
+    speed_bars(fig.add_subplot(grid[:, -1]), rows, ("auto",), fontsize=7,
+               cablesys_label="cablesys (segmented: matched accuracy;\nauto: as a user runs it)",
+               title="speed, both codes in the same run (speedup over the bars)")
     save_figure(fig, path)
 
 

@@ -176,3 +176,35 @@ class WangNumpy:
         f1, f2 = q_phi - r_phi, q_u - r_u
         det = a1 * a3 - a2 * a2
         return np.array([phid, ud, (a3 * f1 - a2 * f2) / det, (a1 * f2 - a2 * f1) / det])
+
+
+def speed_bars(ax, rows, extras=("wang", "auto"), *, cablesys_label: str, title: str, fontsize: int = 8) -> None:
+    """Bars of wall time per simulated second, MoorDyn's and cablesys's side by side, per case and N of the
+    benchmark rows (``by_n`` entries: ``moordyn_s_per_s``, ``cablesys_s_per_s``, ``speedup``), then per model of
+    ``extras`` present in a row (``row[k]["s_per_s"]``, ``row[f"{k}_speedup"]`` against MoorDyn at the row's first
+    N), the measured speed-up written over each cablesys bar; a log axis."""
+    labels, md, cs, ratio = [], [], [], []
+    for r in rows:
+        for e in r["by_n"]:
+            labels.append(f"{r['case']}\nN = {e['segments']}")
+            md.append(e["moordyn_s_per_s"])
+            cs.append(e["cablesys_s_per_s"] or np.nan)
+            ratio.append(e.get("speedup"))
+        for k in extras:
+            if "s_per_s" in r.get(k, {}):
+                n0 = r["by_n"][0]["segments"] if r["by_n"] else "?"      # its speedup is against this MoorDyn run
+                labels.append(f"{r['case']}\n{k}\nvs N = {n0}")
+                md.append(np.nan)
+                cs.append(r[k]["s_per_s"])
+                ratio.append(r.get(f"{k}_speedup"))
+    x = np.arange(len(labels))
+    ax.bar(x - 0.2, md, 0.4, label="MoorDyn v2 (largest stable RK4 step)")
+    ax.bar(x + 0.2, cs, 0.4, label=cablesys_label)
+    for xi, c, q in zip(x, cs, ratio):
+        if q:
+            ax.annotate(f"{q:.3g}x", (xi + 0.2, c), textcoords="offset points", xytext=(0, 3), ha="center", fontsize=8)
+    ax.set_yscale("log")
+    ax.set_xticks(x, labels, fontsize=8)
+    ax.set_ylabel("wall time per simulated second (s/s)")
+    ax.set_title(title, fontsize=10)
+    ax.legend(fontsize=fontsize)

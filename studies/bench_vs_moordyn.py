@@ -89,7 +89,7 @@ from _bench_3d import CASES_3D, CHECKS, agreement, cases_3d, planar_ratio  # noq
 from _bench_auto import auto_row, wang_row  # noqa: E402
 from _bench_slack import PLAN_NS, bench_plan_case, bench_slack_case, plan_scene  # noqa: E402
 import _bench_ends  # noqa: E402
-from _common import setup_matplotlib, write_json  # noqa: E402
+from _common import setup_matplotlib, speed_bars, write_json  # noqa: E402
 from _moordyn import largest_stable_dt, run_moordyn  # noqa: E402
 
 import cablesys  # noqa: E402
@@ -537,31 +537,8 @@ def plot(rows, path):
     plt = setup_matplotlib()
     n_bars = sum(len(r["by_n"]) + 2 for r in rows)
     fig, ax = plt.subplots(figsize=(max(8.0, 0.95 * n_bars), 4.8))     # room for every case's labels
-    labels, md, cs, ratio = [], [], [], []
-    for r in rows:
-        for e in r["by_n"]:
-            labels.append(f"{r['case']}\nN = {e['segments']}")
-            md.append(e["moordyn_s_per_s"])
-            cs.append(e["cablesys_s_per_s"] or np.nan)
-            ratio.append(e.get("speedup"))
-        for k in ("wang", "auto"):
-            if "s_per_s" in r.get(k, {}):
-                n0 = r["by_n"][0]["segments"] if r["by_n"] else "?"      # its speedup is against this MoorDyn run
-                labels.append(f"{r['case']}\n{k}\nvs N = {n0}")
-                md.append(np.nan)
-                cs.append(r[k]["s_per_s"])
-                ratio.append(r.get(f"{k}_speedup"))
-    x = np.arange(len(labels))
-    for xi, c, q in zip(x, cs, ratio):
-        if q:
-            ax.annotate(f"{q:.3g}x", (xi + 0.2, c), textcoords="offset points", xytext=(0, 3), ha="center", fontsize=8)
-    ax.bar(x - 0.2, md, 0.4, label="MoorDyn v2 (largest stable RK4 step)")
-    ax.bar(x + 0.2, cs, 0.4, label="cablesys (matched accuracy; stepping and outputs, setup apart)")
-    ax.set_yscale("log")
-    ax.set_xticks(x, labels, fontsize=8)
-    ax.set_ylabel("wall time per simulated second (s/s)")
-    ax.set_title("cablesys vs MoorDyn, same scenes, same run")
-    ax.legend(fontsize=8)
+    speed_bars(ax, rows, cablesys_label="cablesys (matched accuracy; stepping and outputs, setup apart)",
+               title="cablesys vs MoorDyn, same scenes, same run")
     from cablesys.plots import save_figure
     save_figure(fig, path)
 
