@@ -568,6 +568,7 @@ def main(argv=None):
     args.out.mkdir(parents=True, exist_ok=True)
     rows = []
     three_d = [c for c in cases_3d(args.quick) if args.case and c[0] in args.case]     # on request only
+    planar = None
     for c in cases(args.quick, args.slack_duration, args.slack_n) + three_d:
         if args.case and c[0] not in args.case:
             continue
@@ -576,7 +577,7 @@ def main(argv=None):
         if c[0] in CASES_3D:      # issue 24: closed-form checks, agreement, planar_ratio (_bench_3d)
             rows[-1]["checks"] = CHECKS[c[0]](c[1], rows[-1])
             rows[-1]["differs_from_moordyn_by_more_than_2pc"] = agreement(rows[-1])
-            if "planar" not in locals():
+            if planar is None:      # measured once, for the first 3-D case
                 planar = planar_ratio(_prepared, repeats=1 if args.quick else 3, duration=20.0 if args.quick else 60.0)
             rows[-1]["planar_ratio"] = planar["planar_ratio"]
             rows[-1]["planar"] = planar

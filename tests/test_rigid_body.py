@@ -17,9 +17,7 @@ from cablesys.scene import Body, Cable, Environment, Numerics, Scene, Section, S
 from cablesys.scene.scene import single_section_scene
 from cablesys.scene.toml_io import dump_scene, scene_from_dict
 from cablesys.statics import steady_state
-from cablesys.time_domain import simulate
-from cablesys.time_domain.integrators import IntegratorSettings
-from cablesys.time_domain.run import Simulator
+from energy_checks import energy_history
 
 G = 9.80665
 
@@ -117,14 +115,7 @@ def test_energy_conserved_free_swing():
     x0 = np.concatenate([st.q, np.zeros(model.nq)])
     x0[model.nq:model.nq + 6:2] = 0.3 * np.arange(1, 4) / 3       # sideways node velocities
     x0[model.nq - 1] += 0.4                                        # pitched away from its static attitude
-    sim = Simulator(model, scene.output_times, IntegratorSettings(method="cvodes-adams", rtol=1e-11, atol=1e-13,
-                                                                  compiled=False))
-    r = simulate(scene, model=model, x0=x0, simulator=sim)
-    assert r.success
-    e0 = np.array(model.top(0.0, p)).ravel()
-    E = np.array([sum(float(v) for v in model.energy(x, e0, p)) for x in r.states.T])
-    E_static = sum(float(v) for v in model.energy(st.x, e0, p))
-    swing = E[0] - E_static
+    r, E, swing = energy_history(scene, model, p, x0, st.x)
     assert swing > 1.0
     assert np.max(np.abs(E - E[0])) < 1e-6 * swing
     th = r.states[model.nq - 1]

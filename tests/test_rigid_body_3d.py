@@ -29,6 +29,7 @@ from cablesys.statics import steady_state  # noqa: E402
 from cablesys.time_domain import simulate  # noqa: E402
 from cablesys.time_domain.integrators import IntegratorSettings  # noqa: E402
 from cablesys.time_domain.run import Simulator  # noqa: E402
+from energy_checks import energy_history  # noqa: E402
 
 G = 9.80665
 
@@ -303,13 +304,7 @@ def test_energy_conserved_swinging_and_rotating_in_space():
     a0 = st.q[-4:]
     om = np.array([0.6, -0.4, 0.5])
     x0[-4:] = 0.5 * np.concatenate([[-a0[1:] @ om], a0[0] * om + np.cross(a0[1:], om)])
-    sim = Simulator(model, scene.output_times, IntegratorSettings(method="cvodes-adams", rtol=1e-11, atol=1e-13,
-                                                                  compiled=False))
-    r = simulate(scene, model=model, x0=x0, simulator=sim)
-    assert r.success
-    e0 = np.array(model.top(0.0, p)).ravel()
-    E = np.array([sum(float(v) for v in model.energy(x, e0, p)) for x in r.states.T])
-    swing = E[0] - sum(float(v) for v in model.energy(st.x, e0, p))
+    r, E, swing = energy_history(scene, model, p, x0, st.x)
     assert swing > 1.0
     assert np.max(np.abs(E - E[0])) < 1e-6 * swing
     assert np.ptp(r["roll_b"]) > 0.1 and np.ptp(r["yaw_b"]) > 0.1 and np.ptp(r["z_b"]) > 0.05
