@@ -13,7 +13,7 @@ from cablesys.errors import ParameterError
 from cablesys.ladder.auto import decide
 from cablesys.linear import linearize, modes
 from cablesys.model import build_model
-from cablesys.scene import Body, Cable, Environment, Numerics, Scene, Section, Sinusoid, TopMotion, Winch
+from cablesys.scene import Anchor, Body, Cable, Environment, Numerics, Scene, Section, Sinusoid, TopMotion, Winch
 from cablesys.scene.scene import single_section_scene
 from cablesys.scene.toml_io import dump_scene, scene_from_dict
 from cablesys.statics import steady_state
@@ -154,6 +154,38 @@ def test_static_pitch_in_a_current():
     D = 0.5 * rho * cda * U**2
     assert y["theta_b"] == pytest.approx(math.atan(-D / Wb), abs=1e-9)
     assert y["x_b"] / y["y_b"] == pytest.approx(D / Wb, rel=1e-9)
+
+
+@pytest.mark.parametrize("heading", [None, 60.0])
+def test_rigid_intermediate_body_on_an_anchored_line(heading):
+    """Two sections from the top to an anchor with a rigid body between them (attachment above the CG, buoyancy
+    centre off it). Both sections pull at the attachment point, so the body's attitude balances its weight and
+    buoyancy about it alone, tan(theta) = (W_b c_x + B b_x) / (W_b c_y + B b_y) as hanging free, and the line's nodes
+    are those of a point body of net weight W_b. In space (a current heading with no flow: the 3-D equations) the
+    yaw about the vertical is neutral and the attitude is the planar pitch, a = (cos(theta/2), 0, 0, sin(theta/2))."""
+    Wb, B, c, b = 2000.0, 300.0, (0.0, -0.5), (0.1, -0.2)
+    env = Environment(gravity=G, current_speeds=(0.0,), current_headings_deg=() if heading is None else (heading,))
+    cable = _cable(4, length=150.0, m=100.0, w=800.0, ae=5e8)
+    end = Body(weight=0.0, mass_x=1.0, mass_y=1.0)
+
+    def static(**rigid):
+        mid = Body(weight=Wb, mass_x=300.0, mass_y=300.0, **rigid)
+        scene = Scene(sections=(Section(cable=cable, body=mid), Section(cable=cable, body=end)),
+                      anchor=Anchor(x=250.0, y=100.0), environment=env)
+        model = build_model(scene)
+        return model, steady_state(model, model.parameters(scene))
+
+    model, rigid = static(pitch_inertia=50.0, attachment_x=c[0], attachment_y=c[1], buoyancy=B, buoyancy_x=b[0],
+                          buoyancy_y=b[1])
+    _, point = static()
+    assert model.dim == (2 if heading is None else 3) and model.anchored
+    n_rot = model.n_rotations
+    assert np.max(np.abs(rigid.q[:-n_rot] - point.q)) < 1e-9 * 300.0
+    theta = math.atan((Wb * c[0] + B * b[0]) / (Wb * c[1] + B * b[1]))
+    assert rigid.outputs["theta_b_1"] == pytest.approx(theta, abs=1e-10)
+    if heading is not None:
+        assert rigid.q[-4:] == pytest.approx([math.cos(theta / 2), 0.0, 0.0, math.sin(theta / 2)], abs=1e-10)
+        assert rigid.outputs["yaw_b_1"] == pytest.approx(0.0, abs=1e-10)
 
 
 def test_bad_rigid_input():

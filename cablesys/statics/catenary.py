@@ -107,7 +107,7 @@ def anchored_guess(model, p) -> np.ndarray:
     -------
     numpy.ndarray
         q = (x_1, y_1, ..., x_{n-1}, y_{n-1}) in m (the anchor node is not a coordinate); z_j = 0 added
-        for a 3-D model.
+        for a 3-D model, and the rigid bodies' orientation coordinates at the level attitude after the nodes.
     """
     from scipy.optimize import brentq
 
@@ -176,8 +176,10 @@ def _taut_span(length: float, anchor, arcs, min_strain: float) -> np.ndarray:
 
 
 def _in_space(model, xy) -> np.ndarray:
-    """Planar node positions (rows (x, y)) as the model's q: z = 0 added for a 3-D model (the anchor's plane)."""
-    return np.column_stack([xy] + [np.zeros(len(xy))] * (_dim(model) - 2)).ravel()
+    """Planar node positions (rows (x, y)) as the model's q: z = 0 added for a 3-D model (the anchor's plane), and
+    the rigid bodies' orientation coordinates at the level attitude (:func:`_level`) after the nodes."""
+    nodes = np.column_stack([xy] + [np.zeros(len(xy))] * (_dim(model) - 2)).ravel()
+    return np.concatenate([nodes, _level(model)])
 
 
 def polar_map(model):
@@ -201,30 +203,71 @@ def polar_map(model):
     return model.derive("catenary_polar", build)
 
 
-def _rootfinders(model):
-    """KINSOL in polar and in node coordinates on the static residual. With rigid bodies their parameter vector is
-    (p, theta_ref, w): a pitch row gets w (theta_ref - theta) added, w = 1 for a neutral pitch (its row identically
-    zero, :func:`_neutral_pitch`), which then stays at theta_ref, and w = 0 otherwise."""
+#: A direction of the static Jacobian is neutral below this fraction of its largest singular value.
+NEUTRAL_SINGULAR = 1e-12
+
+
+def _pinned_residual(model) -> ca.Function:
+    """The static residual with the rigid bodies' neutral rotations pinned: (q, (p, a_ref, U)) -> r with
+    U (a_ref - a) added to the rotation rows (a the orientation coordinates, U an n_rot x n_rot matrix by columns,
+    :func:`_neutral_rotations`), which holds a neutral direction (any angle an equilibrium: a pitch about a body
+    attached at its CG, the yaw of a body hanging still in space) at its reference value and leaves the others
+    free (U = 0 without a neutral direction: the plain residual)."""
     def build():
         n_rot = _rotations(model)
         resid = static_residual(model)
+        q = ca.SX.sym("q", model.nq)
+        p = ca.SX.sym("p", len(model.layout) + n_rot + n_rot * n_rot)
+        r = resid(q, p[:len(model.layout)])
+        if n_rot:
+            ref = p[len(model.layout):len(model.layout) + n_rot]
+            U = ca.reshape(p[len(model.layout) + n_rot:], n_rot, n_rot)
+            r = ca.vertcat(r[:model.nq - n_rot], r[model.nq - n_rot:] + ca.mtimes(U, ref - q[model.nq - n_rot:]))
+        return ca.Function("pinned_residual", [q, p], [r])
+    return model.derive("static_pinned_residual", build)
+
+
+def _pins(model, q, p) -> np.ndarray:
+    """The pins' parameters (a_ref, U by columns) at q (:func:`_pinned_residual`): the orientation coordinates held
+    at their values in q along the neutral directions there; empty without rigid bodies."""
+    n_rot = _rotations(model)
+    if not n_rot:
+        return np.zeros(0)
+    return np.concatenate([q[len(q) - n_rot:], _neutral_rotations(model, q, p).ravel(order="F")])
+
+
+def _neutral_rotations(model, q, p) -> np.ndarray:
+    """U = sum_k u_k u_k^T over the neutral rotations at q: the combinations u of the orientation rows that feel no
+    coordinate, u^T J[a, :] = 0 (J the static Jacobian, to NEUTRAL_SINGULAR of its largest entry; SVD of the n_rot
+    rows). The orientation rows are the generalized forces conjugate to the orientation coordinates, so u is also
+    the direction that row combination leaves undetermined. Such a direction turns a body whose static moment and
+    its every derivative vanish along it: attached at the CG with the buoyancy centre there (any pitch), hanging
+    still in space (any yaw about the vertical through its attachment, model/rigid_body.py). U pins it in
+    :func:`_pinned_residual`, so that Newton's matrix is not singular; U = 0 where no rotation is neutral."""
+    n_rot = _rotations(model)
+    _, J = model.derive("static_residual_jacobian", lambda: _residual_jacobian(model))(q, p)
+    rows = np.array(J)[-n_rot:, :].T                  # nq x n_rot: its right null space are the rows' combinations u
+    _, sv, vt = np.linalg.svd(rows)
+    tol = NEUTRAL_SINGULAR * max(float(np.max(np.abs(np.array(J)))), np.finfo(float).tiny)
+    u = vt[np.concatenate([sv, np.zeros(n_rot - sv.size)]) <= tol].T
+    return u @ u.T
+
+
+def _rootfinders(model):
+    """KINSOL in polar and in node coordinates on the static residual with the rigid bodies' pins
+    (:func:`_pinned_residual`); their parameter vector is (p, a_ref, U)."""
+    def build():
+        n_rot = _rotations(model)
         to_q = polar_map(model)
+        pinned = _pinned_residual(model)
         v = ca.SX.sym("v", _dim(model) * model.n_elements + n_rot)
         q = ca.SX.sym("q", model.nq)
-        p = ca.SX.sym("p", len(model.layout) + 2 * n_rot)
-        pv = p[:len(model.layout)]
-
-        def pinned(qq):
-            r = resid(qq, pv)
-            if not n_rot:
-                return r
-            ref, w = p[len(model.layout):-n_rot], p[-n_rot:]
-            return ca.vertcat(r[:model.nq - n_rot], r[model.nq - n_rot:] + w * (ref - qq[model.nq - n_rot:]))
-        G = ca.Function("polar_residual", [v, p], [pinned(to_q(v))])
+        p = ca.SX.sym("p", len(model.layout) + n_rot + n_rot * n_rot)
+        G = ca.Function("polar_residual", [v, p], [pinned(to_q(v), p)])
         opts = {"strategy": "linesearch", "abstol": 1e-13, "error_on_fail": False, "print_level": 0,
                 "disable_internal_warnings": True, "max_iter": 200}
         polar = ca.rootfinder("catenary_polar", "kinsol", G, opts)
-        nodes = ca.rootfinder("catenary_nodes", "kinsol", ca.Function("node_residual", [q, p], [pinned(q)]),
+        nodes = ca.rootfinder("catenary_nodes", "kinsol", ca.Function("node_residual", [q, p], [pinned(q, p)]),
                               dict(opts, linear_solver_type="user_defined", linear_solver="csparse"))
         return polar, nodes
     return model.derive("catenary_rootfinders", build)
@@ -286,10 +329,8 @@ def segmented_equilibrium(model, p, *, guess=None):
     g0 = hanging_guess(model, p) if guess is None else np.asarray(guess, float)
 
     tol = static_tolerance(model, p)
-    # a neutral pitch (any angle an equilibrium) is held at its guess: the rootfinders' pitch rows get theta_ref - theta
-    n_rot = _rotations(model)
-    pins = (np.concatenate([g0[len(g0) - n_rot:], _neutral_pitch(model, g0, p).astype(float)]) if n_rot
-            else np.zeros(0))
+    # a neutral rotation (any angle an equilibrium) is held at its guess (:func:`_pinned_residual`)
+    pins = _pins(model, g0, p)
     pinned = lambda pp: np.concatenate([pp, pins])
 
     def residual(q, pp):
@@ -330,17 +371,6 @@ def segmented_equilibrium(model, p, *, guess=None):
     return q, r
 
 
-def _neutral_pitch(model, q, p) -> np.ndarray:
-    """Which rigid bodies have a neutral pitch at q (their static moment and its every derivative zero: attached at
-    the CG with the buoyancy centre there too, model/rigid_body.py): any pitch is then an equilibrium."""
-    n_rot = _rotations(model)
-    if not n_rot:
-        return np.zeros(0, bool)
-    r, J = model.derive("static_residual_jacobian", lambda: _residual_jacobian(model))(q, p)
-    r, J = np.array(r).ravel()[-n_rot:], np.array(J)[-n_rot:]
-    return (r == 0.0) & np.all(J == 0.0, axis=1)
-
-
 def _residual_jacobian(model):
     resid = static_residual(model)
     q, p = ca.SX.sym("q", model.nq), ca.SX.sym("p", len(model.layout))
@@ -363,7 +393,7 @@ def _node_rootfinder(model):
         opts = {"strategy": "linesearch", "abstol": 1e-13, "error_on_fail": False, "print_level": 0,
                 "disable_internal_warnings": True, "max_iter": 400, "linear_solver_type": "user_defined",
                 "linear_solver": "csparse"}
-        return ca.rootfinder("catenary_anchored", "kinsol", static_residual(model), opts)
+        return ca.rootfinder("catenary_anchored", "kinsol", _pinned_residual(model), opts)
     return model.derive("catenary_anchored_rootfinder", build)
 
 
@@ -387,8 +417,8 @@ def _anchored_equilibrium(model, p, guess):
     with casadi_warnings_captured() as kinsol:
         for pp in passes:
             best = np.inf
-            for _ in range(3):                        # KINSOL restarted from its own last iterate
-                q_new = np.array(nodes(q, pp)).ravel()
+            for _ in range(3):      # KINSOL restarted from its own last iterate, neutral rotations pinned there
+                q_new = np.array(nodes(q, np.concatenate([pp, _pins(model, q, pp)]))).ravel()
                 r = _max_residual(resid, q_new, pp)
                 if r < best:
                     q, best = q_new, r
