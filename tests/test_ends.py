@@ -170,6 +170,29 @@ y = {v}
     assert low == pytest.approx(a * (math.cosh(x0 / a) - 1.0), rel=2e-3)
 
 
+@pytest.mark.parametrize("stiffness", [1e7, 1e8])
+def test_a_stiff_nearly_taut_span_reaches_its_catenary(stiffness):
+    """A stiff line (AE / w L = 1e7, 1e8) nearly taut between the top and its anchor (chord 99.81 m of 100 m): the
+    statics start from the lumped line shot to the anchor (KINSOL had stalled from the geometric guess at N = 10,
+    residual 1.5e-3) and converge to the inextensible catenary's top tension w a cosh(X0 / a) (Irvine 1981 ch. 1)
+    at second order in N."""
+    from scipy.optimize import brentq
+    from cablesys.statics.catenary import segmented_steady
+    w, L, h, v = 10.0, 100.0, 30.0, 95.2
+    u = brentq(lambda u: np.sinh(u) / u - math.sqrt(L**2 - v**2) / h, 1e-9, 50.0)
+    a = h / (2 * u)
+    top = w * a * math.cosh((0.5 * h - a * math.atanh(-v / L)) / a)
+    errors = []
+    for n in (10, 20):
+        cable = Cable(length=L, ae=stiffness * w * L, diameter=0.02, mass_per_length=1.2, weight_per_length=w,
+                      segments=n)
+        sc = single_section_scene(cable=cable, body=BODY, anchor=Anchor(x=h, y=v))
+        model = build_model(sc)
+        errors.append(segmented_steady(model, model.parameters(sc)).outputs["tension_top"] / top - 1.0)
+    assert abs(errors[1]) < 2e-3
+    assert math.log2(errors[0] / errors[1]) == pytest.approx(2.0, abs=0.15)
+
+
 def test_a_moored_run_names_the_anchor_end_as_the_anchor(tmp_path, capsys):
     """The last section's lower end is the anchor: the run's console line and figure call its tension the anchor's,
     not the body's (the 'body' of that section only loads the anchor)."""

@@ -124,7 +124,9 @@ def anchored_guess(model, p) -> np.ndarray:
     w = _total_weight(model, p) / L
     if w > 0 and L > chord and abs(A[0]) > 0 and "seabed.depth" not in lab:   # a span: hangs free between its ends
         ea = min(p[model.layout.section_index(i, "cable.ae")] for i in range(model.n_sections))
-        return _in_space(model, _taut_span(L, A, np.array(arcs), min_strain=0.5 * w * L / ea))
+        taut = _taut_span(L, A, np.array(arcs), min_strain=0.5 * w * L / ea)
+        shot = _shot_span(model, p, A, taut)
+        return _in_space(model, taut if shot is None else shot)
     if w > 0 and A[1] > 0 and L > chord:            # the closed-form catenary of the mean line (flat bed)
         ea = min(p[model.layout.section_index(i, "cable.ae")] for i in range(model.n_sections))
         mu = val("seabed.friction_axial") if "seabed.friction_axial" in lab else 0.0
@@ -156,6 +158,63 @@ def anchored_guess(model, p) -> np.ndarray:
     path = lambda s: np.array([np.interp(s, cum, [c[i] for c in corners]) for i in range(2)])
     q = [path(a / L * cum[-1]) for a in arcs[:-1]]
     return _in_space(model, np.array(q))
+
+
+#: AE / (line weight) at which :func:`_shot_span`'s continuation in the stiffness starts.
+SHOOT_START_STIFFNESS = 1e3
+
+
+def _shot_span(model, p, anchor, start) -> np.ndarray | None:
+    """The free nodes of the lumped elastic catenary between the top and the anchor, by shooting on the first
+    element's tension vector F_0 (two unknowns, SciPy's hybrid Powell): each free node's weight adds to it,
+    F_{k+1} = F_k + (0, W_{k+1}) (y down; W the half elements' weights in water w h / 2 at each end and a body's
+    weight at its node, as the node model lumps them), element k lies along -F_k / |F_k| with the length
+    h_k (1 + |F_k| / (AE)_k) of the statics' elastic law (h_k the zero-tension length), and the last element must end
+    at the anchor (Irvine 1981, *Cable Structures*, ch. 1, the elastic catenary, here for the lumped line). Without
+    a current this is the node model's static state itself, so KINSOL starts on it; a stiff line (AE / w L ~ 1e7)
+    stalls from a geometric guess, whose node errors of eps L are forces of AE eps. ``start`` (free nodes, rows
+    (x, y)) gives F_0's first guess at AE / W = SHOOT_START_STIFFNESS (W the line's and bodies' weight), from where a
+    continuation raises the stiffness a decade a step to the line's own; None when the shooting does not reach the
+    anchor."""
+    from scipy.optimize import root
+
+    lay = model.layout
+    val = lambda i, name: float(p[lay.section_index(i, name)])
+    h, ae, we, body = [], [], [], []
+    for i, n_el in enumerate(model.segments):
+        h_i = val(i, "cable.length") * (1 - val(i, "cable.tension_ref") / val(i, "cable.ae")) / n_el
+        h += [h_i] * n_el
+        ae += [val(i, "cable.ae")] * n_el
+        we += [val(i, "cable.weight_per_length") * h_i] * n_el
+        body += [0.0] * (n_el - 1) + [val(i, "body.weight")]
+    h, ae, we = np.array(h), np.array(ae), np.array(we)
+    loads = 0.5 * (we[:-1] + we[1:]) + np.array(body[:-1])        # the free nodes 1 .. n-1
+
+    def nodes(F0, stiff):
+        F = np.asarray(F0, float)[None, :] + np.column_stack([np.zeros(len(h)), np.concatenate([[0.0], np.cumsum(loads)])])
+        T = np.linalg.norm(F, axis=1)
+        if not np.all(T > 0):
+            return None
+        return np.cumsum(-F / T[:, None] * (h * (1 + T / stiff))[:, None], axis=0)
+
+    def miss(F0, stiff):
+        r = nodes(F0, stiff)
+        return np.full(2, 1e300) if r is None else r[-1] - anchor
+
+    # continuation in the stiffness from AE / w L = 1e3 (a sagging line, where the geometric guess's tension
+    # is near the solution's) up to the line's own, a decade a step, each from the last F_0
+    d = np.asarray(start[0], float)
+    scale = min(1.0, SHOOT_START_STIFFNESS * max(we.sum() + sum(body), np.finfo(float).tiny) / ae.min())
+    F0 = -d / np.linalg.norm(d) * ae[0] * scale * max(np.linalg.norm(d) / h[0] - 1, 1e-9)
+    for f in np.unique(np.r_[np.geomspace(scale, 1.0, max(int(np.ceil(-np.log10(scale))), 0) + 1), 1.0]):
+        sol = root(miss, F0, args=(ae * f,), method="hybr", options={"xtol": 1e-14})
+        if not np.all(np.isfinite(sol.x)):
+            return None
+        F0 = sol.x
+    r = nodes(F0, ae)
+    if r is None or not np.all(np.isfinite(r)) or np.linalg.norm(r[-1] - anchor) > 1e-9 * h.sum():
+        return None
+    return r[:-1]
 
 
 def _taut_span(length: float, anchor, arcs, min_strain: float) -> np.ndarray:
