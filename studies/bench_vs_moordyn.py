@@ -578,7 +578,8 @@ def main(argv=None):
             rows[-1]["checks"] = CHECKS[c[0]](c[1], rows[-1])
             rows[-1]["differs_from_moordyn_by_more_than_2pc"] = agreement(rows[-1])
             if planar is None:      # measured once, for the first 3-D case
-                planar = planar_ratio(_prepared, repeats=1 if args.quick else 3, duration=20.0 if args.quick else 60.0)
+                planar = planar_ratio(_prepared, n=6 if args.quick else 20, repeats=1 if args.quick else 3,
+                                      duration=20.0 if args.quick else 60.0)
             rows[-1]["planar_ratio"] = planar["planar_ratio"]
             rows[-1]["planar"] = planar
         # written after every case: a long benchmark that is stopped keeps what it measured
