@@ -5,8 +5,8 @@
 For each scene, auto runs as a user runs it (``cablesys.simulate(scene)``) and the segmented cable at N_ref
 (at least twice auto's N) is the reference. For every quantity auto reports (each body coordinate's amplitude
 and mean, each tension extreme at every end and junction: :func:`cablesys.ladder.metrics.statistics`) the study
-writes the actual relative error (:func:`cablesys.ladder.metrics.quantity_errors`, floors of 1 cm and 1 % of
-the top tension), the stated one (``model.estimated_error_per_quantity``; ``None`` where the run was not checked
+writes the actual relative error (:func:`cablesys.ladder.metrics.quantity_errors`, floors of 1 cm or a tenth of the
+largest body amplitude, and 1 % of the top tension), the stated one (``model.estimated_error_per_quantity``; ``None`` where the run was not checked
 a posteriori) and whether the actual one is within the tolerance and the stated one within 2x of it or above
 (``stated_honest``; an actual error below RESOLVED x its tolerance counts as resolved whatever is stated).
 

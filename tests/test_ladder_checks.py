@@ -57,3 +57,49 @@ def test_the_integration_factor_is_the_tolerance_rule():
     assert checks.integration_factor("cvodes-bdf2") == pytest.approx(1 / (10 ** (2 / 3) - 1), rel=1e-12)
     assert checks.integration_factor("cvodes") == pytest.approx(1 / (np.sqrt(10) - 1), rel=1e-12)
     assert not checks.adaptive("rk") and checks.adaptive("rk23")
+
+
+def test_a_body_quantity_is_judged_on_the_motions_scale():
+    """metrics.quantity_errors' body floor, worked by hand: in a steady turn of 75 m radius the depth amplitude is zero
+    and a 4 mm integrator wobble there is 4e-3 / 7.5 of the motion (a tenth of the largest amplitude), not 40 % of a
+    centimetre; under a 1 m heave a 3 cm surge amplitude off by half of itself (1.5 cm) is judged on a decimetre and
+    is still 15 % off; with no motion at all the floor is 1 cm; tension extremes keep 1 % of the top tension."""
+    turn = {"x_b_amplitude": 75.0, "z_b_amplitude": 75.0, "y_b_amplitude": 0.0, "y_b_mean": 48.6,
+            "tension_top_max": 3725.0, "tension_top_min": 3725.0}
+    wobble = dict(turn, y_b_amplitude=0.004, tension_top_min=3725.0 - 37.25)
+    e = metrics.quantity_errors(wobble, turn)
+    assert e["y_b_amplitude"] == pytest.approx(0.004 / 7.5, rel=1e-12)
+    assert e["tension_top_min"] == pytest.approx(0.01, rel=1e-12) and e["x_b_amplitude"] == 0.0
+    heave = {"x_b_amplitude": 0.03, "y_b_amplitude": 1.0, "x_b_mean": 0.0, "tension_top_max": 1e4}
+    e = metrics.quantity_errors(dict(heave, x_b_amplitude=0.045, x_b_mean=0.002), heave)
+    assert e["x_b_amplitude"] == pytest.approx(0.15, rel=1e-12) and e["x_b_mean"] == pytest.approx(0.02, rel=1e-12)
+    still = {"x_b_amplitude": 0.0, "y_b_amplitude": 0.0, "x_b_mean": 0.5, "tension_top_max": 1e4}
+    assert metrics.quantity_errors(dict(still, y_b_amplitude=0.001), still)["y_b_amplitude"] == pytest.approx(0.1)
+    assert metrics.body_floor(still) == metrics.LENGTH_FLOOR_M
+
+
+def _seq(f, ns):
+    """Statistics of runs at N in ``ns`` for a body amplitude y(N) = f(N) beside a fixed 10 m heave and top tension."""
+    return [{"x_b_amplitude": f(n), "y_b_amplitude": 10.0, "tension_top_max": 1e4} for n in ns]
+
+
+def test_the_third_run_states_the_error_of_a_power_law_exactly():
+    """richardson_triple on y(N) = 1 + c N^-q (q = 2, 1): the observed order is q, and the estimate of the N = 16 run is
+    its exact error (c 16^-q, relative to y(16)); an oscillating sequence states the whole last difference, and in an
+    irregular sea the larger of the last difference and the one before over 2^p."""
+    from types import SimpleNamespace
+    choice = SimpleNamespace(name="segmented", numbers={})
+    for q, c in ((2.0, 3.0), (1.0, 0.4)):
+        fine, coarse, quarter = _seq(lambda n: 1.0 + c * n ** -q, (16, 8, 4))
+        e, per, orders = checks.richardson_triple(fine, coarse, quarter, choice)
+        assert orders["x_b_amplitude"] == pytest.approx(q, rel=1e-12)
+        assert per["x_b_amplitude"] == pytest.approx(c * 16 ** -q / fine["x_b_amplitude"], rel=1e-9)   # of y(16)
+        assert e["body"] == pytest.approx(c * 16 ** -q / 10.0, rel=1e-9)   # the group: over the largest amplitude
+    fine, coarse, quarter = _seq(lambda n: 1.0 + 0.05 * (-1) ** (n // 4) / n, (16, 8, 4))
+    _, per, _ = checks.richardson_triple(fine, coarse, quarter, choice)
+    assert per["x_b_amplitude"] == pytest.approx(abs(coarse["x_b_amplitude"] / fine["x_b_amplitude"] - 1.0), rel=1e-12)
+    fine, coarse, quarter = _seq(lambda n: {16: 1.0, 8: 1.001, 4: 1.2}[n], (16, 8, 4))
+    _, per, _ = checks.richardson_triple(fine, coarse, quarter, choice, irregular=True)
+    assert per["x_b_amplitude"] == pytest.approx(0.199 / 4.0, rel=1e-9)
+    _, per_pair = checks.richardson(fine, coarse, choice, irregular=True)
+    assert per_pair["x_b_amplitude"] == pytest.approx(0.001, rel=1e-9)

@@ -12,7 +12,9 @@ The choice (:func:`~cablesys.ladder.choice.choose`) is checked a posteriori:
   a second run with N/2 give the Richardson estimate |y_N - y_N/2| / (2^p - 1), N doubling while it
   exceeds the tolerance (a second run costs as much as the first: it is not spent on a sure case); with an adaptive
   integrator the N / 2 run steps at a tenth of the candidate's rtol and the N that passes runs again at it, that run
-  kept with its integration error in the stated one (:mod:`.checks`);
+  kept with its integration error in the stated one (:mod:`.checks`); from N = 8 on a third run at N / 4 tells
+  whether the pair is in the asymptotic range (each quantity's observed order), and in an irregular sea the
+  estimate is the whole difference (:func:`.checks.richardson_triple`);
 - segmented under predicted partial slack (first order in N): RK4 runs at N, N/2, N/4 and the statistics
   are extrapolated (:mod:`.extrapolation`), N doubling while the runs are not asymptotic or miss the
   tolerance; ``estimated_error`` is then the extrapolated statistics' (``extrapolated`` holds them) and
@@ -463,7 +465,11 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
     With an adaptive integrator the N / 2 run steps at the candidate's rtol / checks.TIGHTEN, and an N that passes is
     run again at that rtol: that run is kept, its stated error the tight pair's Richardson estimate plus its
     integration error from its difference with the candidate (:mod:`.checks`: the integration error of one rtol
-    does not cancel between N and N / 2)."""
+    does not cancel between N and N / 2). From N = checks.THIRD_MIN_SEGMENTS on, an N that passes is also checked
+    against N / 4 (at the tight rtol): each quantity's estimate then takes its observed order, or the whole last
+    difference where the three runs are not in the asymptotic range (:func:`~.checks.richardson_triple`), and under
+    auto an N whose estimate that lifts past CHECK_ACCEPT x the tolerance grows as a missed check does. In an
+    irregular sea or a recorded motion the estimates are the whole differences (:func:`~.checks.richardson`)."""
     period, n = metrics.forcing_period(scene), choice.segments
     sc = rung_scene(scene, choice.name, n)
     settings, _ = rung_settings(sc, tol, choice, cache.model(scene, choice.name, n), cache=cache, x0=kw.get("x0"),
@@ -477,7 +483,8 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
         return choice, False, result
     ramp = scene.top_motion.effective_ramp_s
     fine_st, coarse_st = (metrics.statistics(r, period, ramp) for r in (result, coarse))
-    e, per = checks.richardson(fine_st, coarse_st, choice)
+    rough = checks.irregular(scene)
+    e, per = checks.richardson(fine_st, coarse_st, choice, rough)
     order = choice.numbers.get("estimates", {}).get("segmented_1", {}).get("order", est.ORDER)
     limit = {"body": tol[0], "tension": tol[1]}
     asked = kw.get("quantities")
@@ -485,26 +492,49 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
     worst = max(judged, key=lambda k: judged[k] / limit[metrics.group(k)], default=None)
     cap = MAX_SEGMENTS if order >= est.ORDER else SLACK_MAX_SEGMENTS
     same_rule = "" if checkable(scene, n) else ", one drag point per element in both"
-    said = (f"a posteriori (N = {n} vs {n // 2}{same_rule}, order {order:g}): body {e['body']:.2g}, tension {e['tension']:.2g}"
+    how = "an irregular sea: the whole difference" if rough else f"order {order:g}"
+    said = (f"a posteriori (N = {n} vs {n // 2}{same_rule}, {how}): body {e['body']:.2g}, tension {e['tension']:.2g}"
             + (f", the quantity furthest from its tolerance {worst} {judged[worst]:.2g}" if worst else ""))
     ok = (e["body"] <= CHECK_ACCEPT * tol[0] and e["tension"] <= CHECK_ACCEPT * tol[1]
           and all(v <= CHECK_ACCEPT * limit[metrics.group(k)] for k, v in judged.items()))
     numbers = dict(choice.numbers, checked_n=n, per_quantity=per)
     if not auto or ok or 2 * n > cap:
-        if auto and not ok:
-            said += f"; NOT within {CHECK_ACCEPT:g} x the tolerance at the cap N = {n}"
+        kept_st, e_i, per_i = fine_st, None, None
         if adaptive:       # the same N at the check's rtol, kept: its stated error has both parts (.checks)
             tight = _run(scene, choice, tol, cache, tight_kw)
             if tight.success:
-                tight_st = metrics.statistics(tight, period, ramp)
-                e_d, per_d = checks.richardson(tight_st, coarse_st, choice)
-                e_i, per_i = checks.integration_errors(tight_st, fine_st, settings.method)
-                e, per = checks.total(e_d, e_i), checks.total(per_d, per_i)
-                said += "; " + checks.summary(per_i, tight_kw["rtol"], settings.method)
-                numbers.update(per_quantity=per, integration={
-                    "method": str(settings.method), "rtol": tight_kw["rtol"], "atol": tight_kw["atol"],
-                    "rtol_compared": settings.rtol, "error": e_i, "per_quantity": per_i})
+                kept_st = metrics.statistics(tight, period, ramp)
+                e, per = checks.richardson(kept_st, coarse_st, choice, rough)
+                e_i, per_i = checks.integration_errors(kept_st, fine_st, settings.method)
                 result = tight
+        if n >= checks.THIRD_MIN_SEGMENTS:   # N / 4 too: is N / 2 in the asymptotic range? (checks.richardson_triple)
+            quarter = _run(check_scene(scene, n, n // 4), dataclasses.replace(choice, segments=n // 4), tol, cache,
+                           checking(tight_kw), candidate=False)
+            if quarter.success:
+                e, per, observed = checks.richardson_triple(kept_st, coarse_st, metrics.statistics(quarter, period, ramp),
+                                                            choice, rough)
+                slow = sorted(k for k in per if k in judged and (observed.get(k) or 0.0) < order)
+                said += (f"; N = {n // 4} too" + ("" if rough else
+                         f" (observed order below {order:g}: {', '.join(slow)})" if slow else " (asymptotic)"))
+                numbers["observed_order"] = observed
+                judged = {k: v for k, v in per.items() if asked is None or k in asked}
+                ok_triple = (e["body"] <= CHECK_ACCEPT * tol[0] and e["tension"] <= CHECK_ACCEPT * tol[1]
+                             and all(v <= CHECK_ACCEPT * limit[metrics.group(k)] for k, v in judged.items()))
+                if auto and ok and not ok_triple and 2 * n <= cap:   # not yet asymptotic, and that matters: grow N
+                    ratio = max([e["body"] / (CHECK_ACCEPT * tol[0]), e["tension"] / (CHECK_ACCEPT * tol[1])]
+                                + [v / (CHECK_ACCEPT * limit[metrics.group(k)]) for k, v in judged.items()])
+                    n_next = next_segments(scene, n, ratio, order, cap)
+                    return dataclasses.replace(choice, segments=n_next, reason=f"{choice.reason}; {said}: N = {n_next}"), \
+                        True, result
+                ok = ok and ok_triple
+        if auto and not ok:
+            said += f"; NOT within {CHECK_ACCEPT:g} x the tolerance at the cap N = {n}"
+        if per_i is not None:
+            e, per = checks.total(e, e_i), checks.total(per, per_i)
+            said += "; " + checks.summary(per_i, tight_kw["rtol"], settings.method)
+            numbers["integration"] = {"method": str(settings.method), "rtol": tight_kw["rtol"], "atol": tight_kw["atol"],
+                                      "rtol_compared": settings.rtol, "error": e_i, "per_quantity": per_i}
+        numbers["per_quantity"] = per
         # stated: the larger of the check's and the a priori estimate at this N (a check against a coarse N / 2 can
         # understate, random heavy-4: 4 vs 2 gave 0.24 % body against an actual 0.50 %, the a priori 0.47 %); not the
         # estimate of the N the plan started from, which a grown N carries (random heavy-3: N = 5's 0.97 % stated at

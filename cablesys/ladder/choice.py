@@ -218,18 +218,20 @@ def checkable(scene: Scene, n: int) -> bool:
     return (drag_points(scene, n) > 1) == (drag_points(scene, n // 2) > 1)
 
 
-def check_scene(scene: Scene, n: int) -> Scene:
-    """The scene of the a posteriori check run at N / 2 for a run at N: ``scene`` itself when :func:`checkable`,
-    else with ``numerics.drag_segments`` = N // 2, so that the check run, like the N run, takes one drag point per
-    element (its mid-point: round((N // 2) / (N // 2)) = 1 in :func:`~cablesys.model.segmented.drag_points`).
+def check_scene(scene: Scene, n: int, m: int | None = None) -> Scene:
+    """The scene of the a posteriori check run at m = N / 2 (or the given ``m`` < N, the third run at N / 4) for a run
+    at N: ``scene`` itself when N and m lie on the same side of the drag rule's switch (:func:`checkable` for N / 2),
+    else with ``numerics.drag_segments`` = m, so that the check run, like the N run, takes one drag point per
+    element (its mid-point: round(m / m) = 1 in :func:`~cablesys.model.segmented.drag_points`).
     The two runs then belong to one discretization, the mid-point rule on every element, whose error in the
     drag resultant is O(h^2) in the element length h (the composite mid-point rule's error (b - a) h^2 f''/24:
     Davis & Rabinowitz, *Methods of Numerical Integration*, 2nd ed. 1984, ch. 2) as the chords' is, so the Richardson estimate |y_N - y_N/2| / (2^p - 1) speaks of
     the N run's error against the cable both converge to (one drag point per element, N -> infinity: every
     count of drag points per element has the same limit)."""
-    if checkable(scene, n):
+    m = n // 2 if m is None else int(m)
+    if (drag_points(scene, n) > 1) == (drag_points(scene, m) > 1):
         return scene
-    return scene.with_numerics(drag_segments=max(1, n // 2))
+    return scene.with_numerics(drag_segments=max(1, m))
 
 
 def _least_n(errs: dict, tol, name: str, fraction: float, lo: int, hi: int, ok=lambda n: True) -> int | None:

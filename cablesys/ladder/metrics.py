@@ -77,19 +77,22 @@ def window_change(result, period: float | None, ramp_s: float | None = None) -> 
     return max((st.amplitude_change(halves[0][k], halves[1][k], st.FLOORS["m"], scale) for k in halves[0]), default=0.0)
 
 
-def errors(stats: dict, reference: dict) -> dict:
-    """{"body": e, "tension": e} of ``stats`` against ``reference`` (both from :func:`statistics`)."""
+def errors(stats: dict, reference: dict, factors: dict | None = None) -> dict:
+    """{"body": e, "tension": e} of ``stats`` against ``reference`` (both from :func:`statistics`), each difference
+    times its ``factors`` entry when given (default 1)."""
     amps = [k for k in reference if k.endswith("_amplitude")]
     tops = [k for k in reference if k.endswith("_max")]
     ext = tops + [k for k in reference if k.endswith("_min")]
     a_ref = max(reference[k] for k in amps)
     t_ref = max(reference[k] for k in tops)
-    body = max(abs(stats[k] - reference[k]) for k in amps) / max(a_ref, 1e-300)
-    tension = max(abs(stats[k] - reference[k]) for k in ext) / max(t_ref, 1e-300)
+    f = factors or {}
+    body = max(abs(stats[k] - reference[k]) * f.get(k, 1.0) for k in amps) / max(a_ref, 1e-300)
+    tension = max(abs(stats[k] - reference[k]) * f.get(k, 1.0) for k in ext) / max(t_ref, 1e-300)
     return {"body": float(body), "tension": float(tension)}
 
 
 LENGTH_FLOOR_M = 0.01           # a body coordinate's error is judged on at least 1 cm
+BODY_FLOOR_FRACTION = 0.1       # ... and on at least a tenth of the largest body amplitude
 TENSION_FLOOR_FRACTION = 0.01   # a tension extreme's on at least 1 % of the largest top tension
 
 
@@ -98,19 +101,39 @@ def group(key: str) -> str:
     return "tension" if key.endswith(("_max", "_min")) else "body"
 
 
+def body_floor(reference: dict) -> float:
+    """The least length (m) a body quantity of ``reference`` (:func:`statistics`) is judged on: LENGTH_FLOOR_M, or
+    BODY_FLOOR_FRACTION x the largest body amplitude when that is more. A coordinate that barely moves beside a large
+    motion is judged on the motion's scale, as a small tension extreme is on the top tension's: in a steady turn of
+    75 m radius the depth amplitude is zero and the integrator's millimetres there (rtol 1e-4 on 75 m coordinates)
+    are 1e-5 of the motion, not 40 % of a centimetre; a surge amplitude of a few centimetres under a 1 m heave (the
+    sheared current of ``tests/test_ladder_quantities.py``) is still judged on a decimetre, so an error of half of
+    it stays visible."""
+    amps = [abs(v) for k, v in reference.items() if k.endswith("_amplitude")]
+    return max(LENGTH_FLOOR_M, BODY_FLOOR_FRACTION * max(amps, default=0.0))
+
+
 def quantity_errors(stats: dict, reference: dict) -> dict:
     """{quantity: relative error} of ``stats`` against ``reference`` (both from :func:`statistics`), each relative to
-    its own reference value with an absolute floor: LENGTH_FLOOR_M for the body's amplitudes and means (a 2 cm sway
-    is judged on centimetres, not on the heave), TENSION_FLOOR_FRACTION x the largest top tension for the tension
-    extremes (a slack minimum of 0 N is judged on that)."""
+    its own reference value with a floor: :func:`body_floor` for the body's amplitudes and means (a 2 cm sway under a
+    10 cm heave is judged on centimetres, not on the heave; a millimetre depth wobble in a 75 m turn is judged on the
+    turn), TENSION_FLOOR_FRACTION x the largest top tension for the tension extremes (a slack minimum of 0 N is judged
+    on that)."""
+    return quantity_differences(stats, reference, reference)
+
+
+def quantity_differences(a: dict, b: dict, reference: dict) -> dict:
+    """{quantity: |a - b|} relative to the scale :func:`quantity_errors` gives each quantity of ``reference`` (its own
+    value, or the floor): differences of two runs judged on a third's scales."""
     tops = [v for k, v in reference.items() if k.endswith("_max")]
     floor_n = TENSION_FLOOR_FRACTION * max(tops, default=0.0)
+    floor_m = body_floor(reference)
     out = {}
     for k, ref in reference.items():
-        if k not in stats:
+        if k not in a or k not in b:
             continue
-        floor = floor_n if group(k) == "tension" else LENGTH_FLOOR_M
-        out[k] = float(abs(stats[k] - ref) / max(abs(ref), floor, 1e-300))
+        floor = floor_n if group(k) == "tension" else floor_m
+        out[k] = float(abs(a[k] - b[k]) / max(abs(ref), floor, 1e-300))
     return out
 
 

@@ -54,7 +54,8 @@ def static_values(scene: Scene, name: str, segments: int, cache: RungCache) -> d
 
 def static_errors(values: dict, reference: dict) -> dict:
     """{key: relative error} of ``values`` against ``reference`` (:func:`static_values`), each relative to its own
-    reference value with the floors of :func:`.metrics.quantity_errors` (1 cm; 1 % of the top tension)."""
+    reference value with the floors of :func:`.metrics.quantity_errors` (1 cm: a static shape has no amplitude to scale
+    it; 1 % of the top tension)."""
     floor_n = metrics.TENSION_FLOOR_FRACTION * abs(reference["static_tension_top"])
     out = {}
     for k, ref in reference.items():
