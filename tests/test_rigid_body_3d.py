@@ -15,7 +15,7 @@ import scipy.spatial.transform
 import tomllib
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "studies"))
-from _three_d_rigid import cases, tumble  # noqa: E402
+from _three_d_rigid import cases, planar_body as _planar_body, to_3d as _to_3d, tumble  # noqa: E402
 
 from cablesys.errors import ParameterError  # noqa: E402
 from cablesys.linear import linearize, modes  # noqa: E402
@@ -63,27 +63,6 @@ def test_free_rotation_conserves_impulse_and_energy(case):
     assert r["angular_impulse_drift_rel"] < 1e-8 and r["energy_drift_rel"] < 1e-8
     assert r["linear_impulse_drift_rel"] < 1e-8
     assert r["quaternion_norm_error"] < 1e-10
-
-
-def _planar_body(**kw):
-    return Body(weight=900.0, mass_x=150.0, mass_y=210.0, drag_area_normal=0.5, drag_area_tangential=0.2,
-                axis_angle_deg=20.0, pitch_inertia=35.0, pitch_added_inertia=5.0, attachment_x=0.2, attachment_y=-0.6,
-                buoyancy=300.0, buoyancy_x=0.1, buoyancy_y=-0.2, drag_centre_x=-0.3, drag_centre_y=0.1,
-                pitch_damping=4.0, pitch_drag=2.0, drag_area_x=0.3, drag_area_y=0.1, **kw)
-
-
-def _to_3d(m2, m3, x2):
-    """The 3-D state of a planar one: z = 0, the quaternion of the pitch about z and its rate."""
-    n2, n3 = m2.nq, m3.nq
-    x3 = np.zeros(2 * n3)
-    for k, lbl in enumerate(m2.q_labels[:-1]):
-        j = m3.q_labels.index(lbl)
-        x3[j], x3[n3 + j] = x2[k], x2[n2 + k]
-    th, thd = x2[n2 - 1], x2[-1]
-    c, s = math.cos(th / 2), math.sin(th / 2)
-    x3[n3 - 4:n3] = (c, 0.0, 0.0, s)
-    x3[-4:] = 0.5 * thd * np.array([-s, 0.0, 0.0, c])
-    return x3
 
 
 def test_planar_scene_in_space_is_the_pitching_body():
