@@ -13,7 +13,6 @@ kinetic energy must stay constant; the value is the largest relative drift of th
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import casadi as ca
@@ -137,7 +136,7 @@ def planar_equivalence(quick: bool) -> dict:
     """The pitching body's planar scene against the same scene run by the 3-D equations. At random states (the pitch
     mapped to its quaternion): the node accelerations, the quaternion's a'' against d2/dt2 of (cos theta/2, 0, 0,
     sin theta/2) with the planar theta'', and the outputs (absolute: m/s^2, rad/s^2, m, N; normwise relative), the
-    motion out of the plane (z'' and roll, yaw, z_cg: 0). Over a run from the static state pitched by 0.4 rad with
+    motion out of the plane (z'' and roll, yaw, z_cg: 0), the body rate about z against theta'. Over a run from the static state pitched by 0.4 rad with
     sideways node velocities, each model at CVODES-Adams rtol 1e-12 on its own steps (the plane's theta and the
     quaternion are different coordinates: fixed RK steps are not the same discretization in both, so the run differs
     by the integration's error, not by rounding): the largest normwise difference of RUN_OUTPUTS."""
@@ -163,7 +162,8 @@ def planar_equivalence(quick: bool) -> dict:
         acc2 = np.concatenate([to_3d(m2, m3, np.concatenate([x2[:n2], f2[n2:]]))[n3:2 * n3 - 4], quat])
         y2 = np.array(m2.outputs(x2, m2.top(t, p2), p2)).ravel()
         y3 = np.array(m3.outputs(x3, m3.top(t, p3), p3)).ravel()
-        for a, b in ((acc2, f3[n3:]), (y2, y3[rows])):
+        y2 = np.append(y2, thd)                                        # the body rate about z is theta'
+        for a, b in ((acc2, f3[n3:]), (y2, np.append(y3[rows], y3[m3.output_labels.index("omega_z_b")]))):
             d_abs = max(d_abs, float(np.max(np.abs(a - b))))
             d_rel = max(d_rel, float(np.max(np.abs(a - b)) / max(float(np.max(np.abs(a))), 1.0)))
         out_of_plane = max(out_of_plane, float(np.max(np.abs(f3[z_rows]))), float(np.max(np.abs(y3[flat]))))
@@ -178,6 +178,7 @@ def planar_equivalence(quick: bool) -> dict:
     per = {lbl: float(np.max(np.abs(np.asarray(runs[2][lbl]) - np.asarray(runs[3][lbl])))
                       / max(float(np.max(np.abs(np.asarray(runs[2][lbl])))), 1.0)) for lbl in RUN_OUTPUTS}
     return {"equations_max_abs": d_abs, "equations_max_rel": d_rel, "equations_out_of_plane_max_abs": out_of_plane,
+            "three_d_orientation_labels": list(m3.q_labels[-4:]),
             "run_max_rel": max(per.values()), "run_per_output_rel": per, "run_rtol": 1e-12,
             "run_pitch_range_rad": float(np.ptp(np.asarray(runs[2]["theta_b"]))),
             "run_out_of_plane_max_abs": max(float(np.max(np.abs(np.asarray(runs[3][k])))) for k in ("roll_b", "z_b"))}

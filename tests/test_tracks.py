@@ -23,7 +23,7 @@ from cablesys.model import build_model  # noqa: E402
 from cablesys.model.track_path import path_position  # noqa: E402
 from cablesys.scene import scene_from_dict  # noqa: E402
 from cablesys.scene.toml_io import dump_scene  # noqa: E402
-from cablesys.scene.track import Track, TrackLeg  # noqa: E402
+from cablesys.scene.track import Track  # noqa: E402
 from cablesys.time_domain.initial import initial_state  # noqa: E402
 
 PATH = """[top_motion.track]
@@ -172,6 +172,10 @@ def test_the_ladder_runs_a_track_on_the_node_model_and_says_why(track):
     assert choice.name == "segmented" and "track" in choice.reason and checked
     with pytest.raises(ParameterError, match="numerics.model.*track"):
         decide(sc, "wang", None, None)
+    from cablesys.ladder import linear_model                # the linear doors work about the statics at rest
+    with pytest.raises(ParameterError) as err:
+        linear_model(sc)
+    assert err.value.field == "top_motion.track" and "system_speed" in str(err.value)
 
 
 def test_a_track_run_writes_its_plan_view(tmp_path):
@@ -247,3 +251,23 @@ def test_a_sweep_varies_a_track():
     longer, _ = apply_values(zz, {"top_motion.track.leg_length": 300.0}, "run")
     assert longer.top_motion.track.pieces()[1][1][0] == pytest.approx(300.0 - 80.0 * math.tan(math.radians(20.0)))
     assert structure_of(longer) == structure_of(zz)
+
+
+@pytest.mark.parametrize("direction", ["counter-clockwise", "clockwise"])
+def test_a_circle_started_on_another_heading_is_the_turned_steady_turn(direction):
+    """heading_deg = 30 on a circle: the tow point starts at (x, z) = +-R (sin 30, -cos 30) heading 30 deg, and the
+    steady turn the run starts on is the heading-0 one turned by 30 degrees about the circle's centre."""
+    alpha = math.radians(30.0)
+    base = f'[top_motion.track]\nradius = 40.0\nspeed = 2.0\ndirection = "{direction}"\n'
+    states = []
+    for extra in ("", "heading_deg = 30.0\n"):
+        sc = _tracks.scene(base + extra)
+        model = build_model(sc)
+        p = model.parameters(sc)
+        states.append((initial_state(sc, model, p), _top(sc)(0.0), model.nq))
+    (x0, e0, nq), (x1, e1, _) = states
+    side = 1.0 if direction == "counter-clockwise" else -1.0
+    assert e1[[1, 3]] == pytest.approx([side * 40.0 * math.sin(alpha), -side * 40.0 * math.cos(alpha)], abs=1e-12)
+    assert e1[[4, 6]] == pytest.approx([2.0 * math.cos(alpha), 2.0 * math.sin(alpha)], abs=1e-12)
+    turned = np.array([_tracks.rotate(alpha, r) for r in x0[:nq].reshape(-1, 3)])
+    assert np.max(np.abs(turned - x1[:nq].reshape(-1, 3))) < 1e-8 * _tracks.LENGTH_M
