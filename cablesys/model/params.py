@@ -65,13 +65,13 @@ _SEABED = ("depth", "slope_deg", "stiffness", "damping", "friction_axial", "fric
 def _ends_structure(scene: Scene) -> tuple:
     """An anchor and a seabed change the model's coordinates and forces, a winch the first section, a track's path
     the top motion: part of the structure when present (a scene without them keeps today's key)."""
-    winch = (scene.winch.structure(),) if getattr(scene, "winch", None) is not None else ()   # a varying first section
+    extra = (scene.winch.structure(),) if getattr(scene, "winch", None) is not None else ()   # a varying first section
     track = scene.top_motion.track
     if track is not None and track.structure() is not None:    # a path's pieces (model/track_path.py)
-        winch = winch + (track.structure(),)
+        extra = extra + (track.structure(),)
     if scene.anchor is None and scene.seabed is None:
-        return winch
-    return (("ends", scene.anchor is not None, scene.seabed is not None),) + winch
+        return extra
+    return (("ends", scene.anchor is not None, scene.seabed is not None),) + extra
 
 
 def parameter_items(scene: Scene) -> list[tuple[str, float]]:

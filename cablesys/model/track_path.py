@@ -114,8 +114,10 @@ def path_position(t, speed, heading, legs, cycle=()):
 
 def track_symbols(track, sym):
     """(speed, heading, legs, cycle) of ``track`` (:class:`cablesys.scene.track.Track`, not a circle) as entries of the
-    parameter vector, ``sym(label)`` giving the symbol (labels of ``Track.parameter_items``)."""
+    parameter vector, ``sym(label)`` giving the symbol (labels of ``Track.parameter_items``); a straight track in the
+    x-y plane has the heading 0, not a parameter."""
     legs, cycle = track.pieces()
     pieces = lambda name, ps: [(sym(f"top_motion.track.{name}[{j}].length"), sym(f"top_motion.track.{name}[{j}].curvature"))
                                for j in range(len(ps))]
-    return sym("top_motion.track.speed"), sym("top_motion.track.heading"), pieces("legs", legs), pieces("cycle", cycle)
+    heading = 0.0 if track.in_plane else sym("top_motion.track.heading")
+    return sym("top_motion.track.speed"), heading, pieces("legs", legs), pieces("cycle", cycle)

@@ -222,11 +222,13 @@ class Track:
 
     def parameter_items(self) -> list[tuple[str, float]]:
         """(label, SI value) of a path's entries of the parameter vector (cablesys.model.params): speed, initial
-        heading (rad) and every piece's length and curvature; the circle's are its sinusoids'."""
+        heading (rad; not for a straight track in the x-y plane, which has none) and every piece's length and
+        curvature; the circle's are its sinusoids'."""
         if self.is_circle:
             return []
         legs, cycle = self.pieces()
-        items = [("top_motion.track.speed", float(self.speed)), ("top_motion.track.heading", self.heading)]
+        items = [("top_motion.track.speed", float(self.speed))]
+        items += [] if self.in_plane else [("top_motion.track.heading", self.heading)]
         for name, ps in (("legs", legs), ("cycle", cycle)):
             for j, (length, kappa) in enumerate(ps):
                 items += [(f"top_motion.track.{name}[{j}].length", float(length)),

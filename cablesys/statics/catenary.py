@@ -19,6 +19,7 @@ import numpy as np
 
 from ..errors import SolverError
 from ..messages import casadi_warnings_captured, kinsol_flags
+from ..model.rigid_body import turned_orientation
 from .closed_forms import seabed_catenary, suspended_catenary
 from .problem import SteadyState, at_rest, static_parameters, static_residual
 
@@ -593,10 +594,10 @@ def segmented_initial_state(scene, model, p, t0: float = 0.0, q=None) -> np.ndar
                 vel.append(v0 + s * (ini.u_rate * et + length * ini.phi_rate * en))
             r0, v0 = pos[-1], vel[-1]
         q, v = np.array(pos), np.array(vel)
-    return np.concatenate([(q + z).ravel(), _released(scene, model, rot), (v + zd).ravel(), np.zeros(n_rot)])
+    return np.concatenate([(q + z).ravel(), _released(scene, rot), (v + zd).ravel(), np.zeros(n_rot)])
 
 
-def _released(scene, model, rot) -> np.ndarray:
+def _released(scene, rot) -> np.ndarray:
     """The rigid bodies' orientation coordinates ``rot`` with each body turned to its ``initial_*_deg`` attitude where
     set (:func:`cablesys.model.rigid_body.turned_orientation`, about its attachment point: the nodes keep their
     places), the bodies in section order as in q."""
@@ -604,7 +605,6 @@ def _released(scene, model, rot) -> np.ndarray:
     bodies = [s.body for s in scene.sections if s.body.is_rigid]
     if not bodies:
         return rot
-    from ..model.rigid_body import turned_orientation
     n = rot.size // len(bodies)
     for k, body in enumerate(bodies):
         if any(a is not None for a in body.initial_attitude_deg):
