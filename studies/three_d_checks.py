@@ -59,6 +59,29 @@ Richardson over N = 24, 48, 96): its four lowest sway modes against Irvine's str
 asymmetric body tumbling about its intermediate axis, with and without added mass (quick: with), 100 s: the
 largest relative drift of Kirchhoff's linear and angular impulse and of the kinetic energy.
 
+The pitching rigid body is a case of ``planar_equivalence_max_abs`` and ``_max_rel`` (``_three_d_rigid.
+planar_equivalence``): its planar scene against the 3-D equations at random states, the pitch mapped to its
+quaternion (node accelerations, the quaternion's a'' against the planar theta'', outputs). Its run cannot take the
+same fixed steps in both (theta and the quaternion are different coordinates, so RK4 discretizes them differently):
+each model on its own CVODES-Adams steps at rtol 1e-12, the largest normwise difference of the pitch, the CG, the
+attachment point and the tensions is ``planar_equivalence_rigid_run_max_rel``.
+
+A towing ship's manoeuvres (``studies/_tracks.py``, :mod:`cablesys.scene.track`, :mod:`cablesys.statics.tow`):
+
+- ``straight_track_vs_system_speed_max_rel``: a straight track at 2 m/s in still water against the same scene
+  towed in the ship's frame (``environment.system_speed``), both released from the steady tow at 1 m/s, a cable
+  without added mass: the body's position and velocity relative to the tow point and the tensions (the largest
+  normwise difference, the same fixed RK4 steps; Galilean invariance); with the cable's added mass the frames'
+  difference (the Munk couples) in the details (tests/test_tracks.py also runs CVODES on its own steps);
+- ``straight_track_munk_couple_rel_err``: that difference of the forces at one shape against the closed form of
+  the elements' Munk couples (Newman 1977 sec. 4.13);
+- ``turn_settles_on_steady_turn_rel_err``: a turn to port from the steady straight tow (quick 450 deg, full 720)
+  against the steady turn of the circle of the same radius and speed (:mod:`cablesys.statics.turning`): the
+  body's distance from the steady turn's place relative to the tow point, over the line's length; figure
+  ``three_d_tracks.png``;
+- a zig-zag on base courses 0 and 35 deg (the same fixed RK4 steps) is a case of ``rotation_invariance_max_abs`` and
+  ``_scalars_max_rel``.
+
 Keys of the issue's list that these steps do not compute are ``null`` and named in ``not_built``.
 
 Usage: python studies/three_d_checks.py --out DIR [--quick]
@@ -77,6 +100,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
 import _three_d_nodes as nodes  # noqa: E402
 import _three_d_rigid as rigid  # noqa: E402
+import _tracks as tracks  # noqa: E402
 import _turning as turning  # noqa: E402
 import slack_tables  # noqa: E402
 import towed_nonlinear as towed  # noqa: E402
@@ -500,13 +524,25 @@ def main(argv=None) -> dict:
     span = span_out_of_plane()
     body = rigid.free_rotation(args.quick)
     turning.figure(turn, turning.steady_shape(), args.out / "three_d_turning_tow.png")
+    r_pl = rigid.planar_equivalence(args.quick)
+    track = {"galilean": tracks.galilean(0.0), "galilean_with_added_mass": tracks.galilean(1.0), "munk": tracks.munk(),
+             "turn": tracks.turn_settles(450.0 if args.quick else 720.0),
+             "zigzag_rotation": tracks.rotation(35.0, duration=30.0 if args.quick else 120.0)}
+    tracks.figure(track["turn"], args.out / "three_d_tracks.png")
+    z_rot = track["zigzag_rotation"]
     doc = {
-        "planar_equivalence_max_abs": max(planar["run_max_abs"], n_pl["run_max_abs"]),
-        "planar_equivalence_max_rel": max(planar["max_rel"], n_pl["max_rel"]),
+        "planar_equivalence_max_abs": max(planar["run_max_abs"], n_pl["run_max_abs"], r_pl["equations_max_abs"]),
+        "planar_equivalence_max_rel": max(planar["max_rel"], n_pl["max_rel"], r_pl["equations_max_rel"]),
+        "planar_equivalence_rigid_run_max_rel": r_pl["run_max_rel"],
         "rotation_invariance_max_abs": max(rot["equations_max_abs"], rot["run_position_max_abs_m"],
-                                           n_rot["equations_max_abs"], n_rot["run_position_max_abs_m"]),
+                                           n_rot["equations_max_abs"], n_rot["run_position_max_abs_m"],
+                                           z_rot["position_max_abs_m"]),
         "rotation_invariance_scalars_max_rel": max(rot["equations_scalars_max_rel"], rot["run_tension_max_rel"],
-                                                   n_rot["equations_max_rel"], n_rot["run_tension_max_rel"]),
+                                                   n_rot["equations_max_rel"], n_rot["run_tension_max_rel"],
+                                                   z_rot["tension_max_rel"]),
+        "straight_track_vs_system_speed_max_rel": track["galilean"]["max_rel"],
+        "straight_track_munk_couple_rel_err": track["munk"]["rel_err"],
+        "turn_settles_on_steady_turn_rel_err": track["turn"]["rel_err"],
         "conical_pendulum_rel_err": cone["max_rel_err"],
         "energy_drift_rel": max(energy["drift_rel"], node["energy"]["drift_rel"]),
         "chain_out_of_plane_mode_rel_err": node["chain_modes"]["out_of_plane_vs_in_plane_max_rel"],
@@ -525,7 +561,9 @@ def main(argv=None) -> dict:
                     "energy": energy, "out_of_plane_frequency": freq, "node_model": node,
                     "towed": {"linear_vs_theory": tow_lin, "sea_trials": tow_sea}, "span_out_of_plane": span,
                     "turning_tow": {k: v for k, v in turn.items() if k not in ("time_s", "distance_m")},
-                    "rigid_body": body},
+                    "rigid_body": body, "rigid_body_planar_equivalence": r_pl,
+                    "tracks": {k: ({n: x for n, x in v.items() if not isinstance(x, list) or n.startswith("munk")}
+                                   if isinstance(v, dict) else v) for k, v in track.items()}},
         "quick": args.quick,
         "figure": fig.name,
     }

@@ -15,20 +15,17 @@ import scipy.spatial.transform
 import tomllib
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "studies"))
-from _three_d_rigid import cases, tumble  # noqa: E402
+from _three_d_rigid import cases, planar_equivalence, tumble  # noqa: E402
 
 from cablesys.errors import ParameterError  # noqa: E402
 from cablesys.linear import linearize, modes  # noqa: E402
 from cablesys.model import build_model  # noqa: E402
 from cablesys.model.rigid_body import BAUMGARTE_RATE  # noqa: E402
-from cablesys.scene import Body, Cable, Environment, Numerics, Scene, Section, Sinusoid, TopMotion  # noqa: E402
+from cablesys.scene import Body, Cable, Environment, Numerics, Scene, Section, TopMotion  # noqa: E402
 from cablesys.scene.body import RIGID_FIELDS_3D  # noqa: E402
 from cablesys.scene.scene import single_section_scene  # noqa: E402
 from cablesys.scene.toml_io import dump_scene, scene_from_dict  # noqa: E402
 from cablesys.statics import steady_state  # noqa: E402
-from cablesys.time_domain import simulate  # noqa: E402
-from cablesys.time_domain.integrators import IntegratorSettings  # noqa: E402
-from cablesys.time_domain.run import Simulator  # noqa: E402
 from energy_checks import energy_history  # noqa: E402
 
 G = 9.80665
@@ -65,79 +62,19 @@ def test_free_rotation_conserves_impulse_and_energy(case):
     assert r["quaternion_norm_error"] < 1e-10
 
 
-def _planar_body(**kw):
-    return Body(weight=900.0, mass_x=150.0, mass_y=210.0, drag_area_normal=0.5, drag_area_tangential=0.2,
-                axis_angle_deg=20.0, pitch_inertia=35.0, pitch_added_inertia=5.0, attachment_x=0.2, attachment_y=-0.6,
-                buoyancy=300.0, buoyancy_x=0.1, buoyancy_y=-0.2, drag_centre_x=-0.3, drag_centre_y=0.1,
-                pitch_damping=4.0, pitch_drag=2.0, drag_area_x=0.3, drag_area_y=0.1, **kw)
-
-
-def _to_3d(m2, m3, x2):
-    """The 3-D state of a planar one: z = 0, the quaternion of the pitch about z and its rate."""
-    n2, n3 = m2.nq, m3.nq
-    x3 = np.zeros(2 * n3)
-    for k, lbl in enumerate(m2.q_labels[:-1]):
-        j = m3.q_labels.index(lbl)
-        x3[j], x3[n3 + j] = x2[k], x2[n2 + k]
-    th, thd = x2[n2 - 1], x2[-1]
-    c, s = math.cos(th / 2), math.sin(th / 2)
-    x3[n3 - 4:n3] = (c, 0.0, 0.0, s)
-    x3[-4:] = 0.5 * thd * np.array([-s, 0.0, 0.0, c])
-    return x3
-
-
 def test_planar_scene_in_space_is_the_pitching_body():
     """A planar scene (cylinder drag at a centre of pressure, current, surge + heave of the top, pitch damping) run by
-    the 3-D equations (numerics.dimensions = 3) is the pitching body: at random states the node accelerations agree
-    and the quaternion's a'' is d2/dt2 of (cos theta/2, 0, 0, sin theta/2) with the planar theta'' (1e-10), nothing
-    moves out of the plane, the outputs agree; over a run at tight tolerance theta_b (the pitch Euler angle), the CG
-    and the tensions agree to ~1e-9."""
-    top = TopMotion(x=(Sinusoid(amplitude=0.5, frequency=0.7),), y=(Sinusoid(amplitude=0.3, frequency=1.1),))
-    cable = _cable(3, m=2.0, w=15.0, ae=2e6, cd=1.2, gamma=1.0)
-    num = Numerics(duration=6.0, output_step=0.05)
-    s2, s3 = (_scene(_planar_body(), cable, current=0.6, top=top, numerics=num, dims=d) for d in (2, 3))
-    m2, m3 = build_model(s2), build_model(s3)
-    assert m3.q_labels[-4:] == ("quat_w_b", "quat_x_b", "quat_y_b", "quat_z_b")
-    p2, p3 = m2.parameters(s2), m3.parameters(s3)
-    rng = np.random.default_rng(11)
-    st2 = steady_state(m2, p2)
-    n2, n3 = m2.nq, m3.nq
-    z_rows = [k for k, lbl in enumerate(m3.q_labels) if lbl.startswith("z[")]
-    rows = [m3.output_labels.index(lbl) for lbl in m2.output_labels]
-    for _ in range(5):
-        x2 = np.concatenate([st2.q + rng.normal(0, 0.05, n2), rng.normal(0, 0.5, n2)])
-        x2[n2 - 1] = rng.uniform(-1.2, 1.2)
-        x3 = _to_3d(m2, m3, x2)
-        t = rng.uniform(0, 10)
-        f2, f3 = (np.array(m.ode(x, t, p)).ravel() for m, x, p in ((m2, x2, p2), (m3, x3, p3)))
-        scale = np.max(np.abs(f2))
-        np.testing.assert_allclose(_to_3d(m2, m3, np.concatenate([x2[:n2], f2[n2:]]))[n3:n3 + n3 - 4],
-                                   f3[n3:2 * n3 - 4], rtol=0, atol=1e-10 * scale)          # node accelerations
-        assert np.max(np.abs(f3[[n3 + k for k in z_rows]])) < 1e-10 * scale
-        th, thd, thdd = x2[n2 - 1], x2[-1], f2[-1]
-        c, s = math.cos(th / 2), math.sin(th / 2)
-        add = 0.5 * thdd * np.array([-s, 0, 0, c]) - 0.25 * thd**2 * np.array([c, 0, 0, s])
-        np.testing.assert_allclose(f3[-4:], add, rtol=0, atol=1e-10 * max(abs(thdd), 1.0))
-        y2 = np.array(m2.outputs(x2, m2.top(t, p2), p2)).ravel()
-        y3 = np.array(m3.outputs(x3, m3.top(t, p3), p3)).ravel()
-        np.testing.assert_allclose(y3[rows], y2, rtol=1e-10, atol=1e-10 * np.max(np.abs(y2)))
-        for name in ("roll_b", "yaw_b", "z_cg", "omega_x_b", "omega_y_b"):
-            assert abs(y3[m3.output_labels.index(name)]) < 1e-12
-        assert y3[m3.output_labels.index("omega_z_b")] == pytest.approx(thd, rel=1e-12)
-    x0_2 = np.concatenate([st2.q, np.zeros(n2)])
-    x0_2[n2 - 1] += 0.4
-    x0_2[n2:n2 + 2 * (n2 // 2):2] = 0.3                               # sideways node velocities
-    runs = {}
-    for m, sc, x0 in ((m2, s2, x0_2), (m3, s3, _to_3d(m2, m3, x0_2))):
-        sim = Simulator(m, sc.output_times, IntegratorSettings(method="cvodes-adams", rtol=1e-12, atol=1e-14,
-                                                                compiled=False))
-        runs[m.dim] = simulate(sc, model=m, x0=x0, simulator=sim)
-        assert runs[m.dim].success
-    assert np.ptp(runs[2]["theta_b"]) > 0.3
-    for lbl in ("theta_b", "theta_b_rate", "x_cg", "y_cg", "x_b", "y_b", "tension_top", "tension_bottom"):
-        a, b = np.asarray(runs[2][lbl]), np.asarray(runs[3][lbl])
-        assert np.max(np.abs(a - b)) < 3e-9 * max(np.max(np.abs(a)), 1.0), lbl
-    assert np.max(np.abs(runs[3]["roll_b"])) < 1e-12 and np.max(np.abs(runs[3]["z_b"])) < 1e-12
+    the 3-D equations (numerics.dimensions = 3) is the pitching body (studies/_three_d_rigid.py planar_equivalence):
+    at random states the node accelerations agree and the quaternion's a'' is d2/dt2 of (cos theta/2, 0, 0,
+    sin theta/2) with the planar theta'' (1e-10 normwise), nothing moves out of the plane, the outputs agree and the
+    body rate about z is theta'; over a run at tight tolerance (each on its own steps) theta_b (the pitch Euler angle),
+    the CG and the tensions agree to ~1e-9."""
+    r = planar_equivalence(quick=False)
+    assert r["three_d_orientation_labels"] == ["quat_w_b", "quat_x_b", "quat_y_b", "quat_z_b"]
+    assert r["equations_max_rel"] < 1e-10 and r["equations_out_of_plane_max_abs"] < 1e-12
+    assert r["run_pitch_range_rad"] > 0.3
+    assert all(v < 3e-9 for v in r["run_per_output_rel"].values()), r["run_per_output_rel"]
+    assert r["run_out_of_plane_max_abs"] < 1e-12
 
 
 @pytest.mark.parametrize("c, b, B", [((0.3, -0.5, 0.2), (0.0, 0.0, 0.0), 0.0),       # a bridle point off the axes

@@ -40,3 +40,17 @@ def test_three_d_checks_study(run_study):
     assert (out / "three_d_towed_nonlinear.png").stat().st_size > 20000
     assert all(r[k] is None for k in r["not_built"])
     assert (out / "three_d_conical_pendulum.png").stat().st_size > 20000
+    # the pitching rigid body is a case of the planar equivalence: its equations (random states) to rounding, its
+    # run (theta against the quaternion, each on its own steps at rtol 1e-12) to the integration's error
+    r_pl = r["details"]["rigid_body_planar_equivalence"]
+    assert r_pl["equations_max_abs"] <= r["planar_equivalence_max_abs"] and r_pl["run_pitch_range_rad"] > 0.3
+    assert r["planar_equivalence_rigid_run_max_rel"] < 1e-8
+    # manoeuvres: a straight track is the ship-frame tow seen from the ground (no added mass: rounding on the same
+    # RK4 steps), the added mass's Munk couples are the frames' difference, a turn settles on the steady turn, a
+    # zig-zag turned about the vertical gives the turned answer (in rotation_invariance_*)
+    tr = r["details"]["tracks"]
+    assert r["straight_track_vs_system_speed_max_rel"] < 1e-9 and tr["galilean"]["body_swing_m"] > 10.0
+    assert r["straight_track_munk_couple_rel_err"] < 1e-12 and tr["galilean_with_added_mass"]["max_rel"] > 1e-5
+    assert r["turn_settles_on_steady_turn_rel_err"] < 1e-4 and tr["turn"]["start_distance_m"] > 10.0
+    assert tr["zigzag_rotation"]["position_max_abs_m"] <= r["rotation_invariance_max_abs"] < 1e-10
+    assert (out / "three_d_tracks.png").stat().st_size > 20000

@@ -85,7 +85,7 @@ def _scene(args) -> int:
     return 0
 
 
-RUN_FILES = ("timeseries.csv", "timeseries.nc", "timeseries.png")
+RUN_FILES = ("timeseries.csv", "timeseries.nc", "timeseries.png", "plan_view.png")
 
 
 class _Progress:
@@ -254,7 +254,7 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
         The folder. A plain path gets its own :class:`~cablesys.outputs.OutputDir` whose
         manifest ``summary.json`` is finished here; with an ``OutputDir`` the caller finishes it.
     plot : bool
-        Also draw ``timeseries.png``.
+        Also draw ``timeseries.png`` (and ``plan_view.png`` for a 3-D run or a track).
     series_on_disk : bool
         ``timeseries.csv`` was already streamed complete (do not write it again).
     units : str
@@ -311,7 +311,12 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
         from ..plots.time_domain import plot_time_series
         with out.writing("timeseries.png") as tmp:
             plot_time_series(result, tmp, units=units, limits=scene.limits, anchored=scene.anchor is not None,
-                             window_start=summary["statistics"]["window_s"][0])
+                             window_start=summary["statistics"]["window_s"][0], towed=scene.top_motion.track is not None)
+        if "z_b" in result.labels or any(lb.startswith("z_b_") for lb in result.labels) \
+                or scene.top_motion.track is not None:      # out of the plane or towed along a track: seen from above
+            from ..plots.plan import plot_plan_view
+            with out.writing("plan_view.png") as tmp:
+                plot_plan_view(result, tmp, units=units)
     return summary
 
 

@@ -633,6 +633,17 @@ def describe(choice_dict: dict, full: bool = False) -> str:
                                         *(f"  note: {c}" for c in notes)) if line)
 
 
+def require_at_rest(scene: Scene, what: str) -> None:
+    """Refuse a towing ship's track for ``what`` (a linear or periodic analysis): those linearize or expand about the
+    static state at rest (:mod:`cablesys.statics`), and a tow along a track is not at rest (its steady states are the
+    straight tow and the steady turn, :mod:`cablesys.statics.tow`, :mod:`cablesys.statics.turning`)."""
+    track = getattr(scene.top_motion, "track", None)
+    if track is not None:
+        raise ParameterError("top_motion.track", track.kind, f"must be unset for {what}: it works about the static "
+                             "state at rest, and a tow along a track is not at rest (the linear analysis of a straight "
+                             "tow is that of the ship-frame scene: environment.system_speed = the tow speed)")
+
+
 def linear_model(scene: Scene, tolerance=None, cache: RungCache | None = None):
     """The model the linear analyses (``cablesys rao``, modes, RAOs) linearize for ``scene``, and why.
 
@@ -656,7 +667,13 @@ def linear_model(scene: Scene, tolerance=None, cache: RungCache | None = None):
         The scene the model is built for, the model, and ``{name, segments, reason, estimated_error}`` (the error of
         the model's response against the converged cable, estimated by the ladder; the linearization's own error
         about the steady state is not part of it).
+
+    Raises
+    ------
+    ParameterError
+        For a scene towed along a track (:func:`require_at_rest`).
     """
+    require_at_rest(scene, "the linear analyses")
     cache = cache if cache is not None else RungCache()
     if getattr(scene.numerics, "model", "auto") == AS_BUILT:
         n = max(s.cable.segments for s in scene.sections)

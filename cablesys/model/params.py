@@ -63,12 +63,15 @@ _SEABED = ("depth", "slope_deg", "stiffness", "damping", "friction_axial", "fric
 
 
 def _ends_structure(scene: Scene) -> tuple:
-    """An anchor and a seabed change the model's coordinates and forces: part of the structure when
-    present (a scene without them keeps today's key)."""
-    winch = (scene.winch.structure(),) if getattr(scene, "winch", None) is not None else ()   # a varying first section
+    """An anchor and a seabed change the model's coordinates and forces, a winch the first section, a track's path
+    the top motion: part of the structure when present (a scene without them keeps today's key)."""
+    extra = (scene.winch.structure(),) if getattr(scene, "winch", None) is not None else ()   # a varying first section
+    track = scene.top_motion.track
+    if track is not None and track.structure() is not None:    # a path's pieces (model/track_path.py)
+        extra = extra + (track.structure(),)
     if scene.anchor is None and scene.seabed is None:
-        return winch
-    return (("ends", scene.anchor is not None, scene.seabed is not None),) + winch
+        return extra
+    return (("ends", scene.anchor is not None, scene.seabed is not None),) + extra
 
 
 def parameter_items(scene: Scene) -> list[tuple[str, float]]:
@@ -121,6 +124,8 @@ def parameter_items(scene: Scene) -> list[tuple[str, float]]:
     # a sampled series is not in p: its samples are constants of the model (structure_of,
     # model/top_motion.py): 2n dead entries cost a copy in every integrator step
     items.append(("top_motion.ramp_s", top.effective_ramp_s))  # smooth start (model/top_motion.py; unset: 3 periods)
+    if top.track is not None:              # a path's speed, heading and pieces (model/track_path.py); a circle: sinusoids
+        items += top.track.parameter_items()
     if scene.anchor is not None:           # the fixed lower end and the seabed (model/segmented.py)
         items += [(f"anchor.{a}", float(getattr(scene.anchor, a))) for a in _ANCHOR]
     if scene.seabed is not None:

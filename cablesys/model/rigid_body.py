@@ -61,8 +61,8 @@ from . import fluid
 from .section import SectionParameters
 from .segmented_element import flow_at
 
-__all__ = ["BAUMGARTE_RATE", "ORIENTATION_REST", "RigidParameters", "attitude", "body_rate", "free_body", "rigid_body",
-           "rotation"]
+__all__ = ["BAUMGARTE_RATE", "ORIENTATION_REST", "RigidParameters", "attitude", "body_rate", "euler_rotation", "free_body",
+           "rigid_body", "rotation", "turned_orientation"]
 
 #: beta of the quaternion's norm stabilization (1/s): C = |a|^2 - 1 decays as (1 + beta t) e^(-beta t) (module
 #: docstring: below the cable's axial frequencies, above a body's swing).
@@ -139,6 +139,32 @@ def attitude(a):
     R = rotation(a)
     return {"roll_b": ca.atan2(-R[1, 2], R[1, 1]), "theta_b": ca.atan2(R[1, 0], ca.sqrt(R[0, 0] ** 2 + R[2, 0] ** 2)),
             "yaw_b": ca.atan2(-R[2, 0], R[0, 0])}
+
+
+def euler_rotation(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """R = R_y(yaw) R_z(pitch) R_x(roll) (rad), the sequence of :func:`attitude`'s named angles, as a 3 x 3 array."""
+    c, s = np.cos, np.sin
+    Ry = np.array([[c(yaw), 0.0, s(yaw)], [0.0, 1.0, 0.0], [-s(yaw), 0.0, c(yaw)]])
+    Rz = np.array([[c(pitch), -s(pitch), 0.0], [s(pitch), c(pitch), 0.0], [0.0, 0.0, 1.0]])
+    Rx = np.array([[1.0, 0.0, 0.0], [0.0, c(roll), -s(roll)], [0.0, s(roll), c(roll)]])
+    return Ry @ Rz @ Rx
+
+
+def turned_orientation(coords, angles_deg) -> np.ndarray:
+    """A body's orientation coordinates (theta_b in the plane, the quaternion in space) turned to the named angles
+    ``angles_deg`` = (roll, pitch, yaw) in degrees, an entry None keeping the angle ``coords`` has (:func:`attitude`'s
+    sequence); in space the unit quaternion of R = R_y(yaw) R_z(pitch) R_x(roll) (SciPy's conversion from the matrix,
+    Shepperd's method), of the sign nearest ``coords``."""
+    from scipy.spatial.transform import Rotation
+    coords = np.asarray(coords, float)
+    given = [None if a is None else np.radians(a) for a in angles_deg]
+    if coords.size == 1:
+        return np.array([coords[0] if given[1] is None else given[1]])
+    now = {k: float(v) for k, v in attitude(ca.DM(coords)).items()}
+    roll, pitch, yaw = (now[k] if g is None else g for k, g in zip(("roll_b", "theta_b", "yaw_b"), given))
+    x, y, z, w = Rotation.from_matrix(euler_rotation(roll, pitch, yaw)).as_quat()
+    a = np.array([w, x, y, z])
+    return -a if a @ coords < 0.0 else a
 
 
 def _drag(P: SectionParameters, R: RigidParameters, rho, Rm, r_cp, v_cp, t, env, depth0):

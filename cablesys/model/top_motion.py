@@ -63,6 +63,8 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
+from .track_path import path_position, track_symbols
+
 
 # the exogenous vector of the 3-D equations: the planar EXO_LABELS with the sway z_s after each axis pair
 EXO_LABELS_3D = ("t", "x_s", "y_s", "z_s", "x_s_rate", "y_s_rate", "z_s_rate", "x_s_acc", "y_s_acc", "z_s_acc")
@@ -282,7 +284,9 @@ def top_motion_function(scene, layout) -> ca.Function:
 
     A 3-D scene (``scene.three_d``) adds the sway z_s (``top_motion.z`` sinusoids):
     ``(t, x_s, y_s, z_s, x_s', y_s', z_s', x_s'', y_s'', z_s'')`` (:data:`EXO_LABELS_3D`); the
-    sampled series moves x and y only.
+    sampled series moves x and y only. A track other than the circle (whose sinusoids are among x and z) adds its
+    path (:func:`.track_path.path_position`; in the plane only x: a straight track along +x), after the smooth start,
+    which a track has none of.
     """
     t = ca.SX.sym("t")
     p = ca.SX.sym("p", len(layout))
@@ -301,6 +305,10 @@ def top_motion_function(scene, layout) -> ca.Function:
         pos = [pos[j] + spl[j] for j in range(2)] + pos[2:]
     if "top_motion.ramp_s" in layout.labels:
         pos = [ramp(t, sym("top_motion.ramp_s")) * v for v in pos]
+    track = scene.top_motion.track
+    if track is not None and not track.is_circle:     # a path in the horizontal plane (track_path.py), not ramped
+        xz = path_position(t, *track_symbols(track, sym))
+        pos = [pos[0] + xz[0]] + pos[1:2] + ([pos[2] + xz[1]] if scene.three_d else [])
     pos = ca.vertcat(*pos)
     vel = ca.jacobian(pos, t)
     acc = ca.jacobian(vel, t)

@@ -41,12 +41,15 @@ def _snap_marks(result) -> tuple[list, str]:
     return marks, "snap load (element tension, first peak after re-tensioning)"
 
 
-def _shape_panel(ax, result, units: str, anchored: bool = False) -> None:
+def _shape_panel(ax, result, units: str, anchored: bool = False, towed: bool = False) -> None:
     """The cable's node positions (segmented runs): the mean shape, the extreme shapes of the body's
     depth, the body's depth and layback from the top, in lengths of ``units``. With ``anchored`` the
     line's last node is the anchor (it does not move), so the extreme shapes and the title name the
-    anchor's depth and its horizontal distance from the top instead of a body's."""
+    anchor's depth and its horizontal distance from the top instead of a body's. With ``towed`` (a top on a
+    track) x is measured from the top's x at each instant (x - x_s), the shape carried along with it."""
     nx, ny = result.profiles["node_x"], result.profiles["node_y"]
+    if towed:
+        nx = nx - np.asarray(result["x_s"])[:, None]
     fl, ul = _length_scale(max(np.ptp(nx), np.ptp(ny)), units)
     xm, ym = nx.mean(axis=0), ny.mean(axis=0)
     moving = not all(is_steady(p[:, j], ATOL_LENGTH) for p in (nx, ny) for j in range(p.shape[1]))
@@ -64,7 +67,7 @@ def _shape_panel(ax, result, units: str, anchored: bool = False) -> None:
     depth, layback = (clean(v, ATOL_LENGTH) * fl for v in (ym[-1] - ym[0], xm[-1] - xm[0]))
     ax.invert_yaxis()
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set(xlabel=f"x ({ul}, + right)", ylabel=f"depth y ({ul}, + down)")
+    ax.set(xlabel=f"x - x_s ({ul}, from the top)" if towed else f"x ({ul}, + right)", ylabel=f"depth y ({ul}, + down)")
     ax.set_title(f"cable shape: {end} depth {depth:.4g} {ul},\n{'distance' if anchored else 'layback'} "
                  f"{layback:+.4g} {ul} from the top", fontsize=10)
     plain_axis(ax)
@@ -72,7 +75,7 @@ def _shape_panel(ax, result, units: str, anchored: bool = False) -> None:
 
 
 def plot_time_series(result, path, *, title: str | None = None, units: str = "SI", limits=None,
-                     window_start: float | None = None, anchored: bool = False) -> Path:
+                     window_start: float | None = None, anchored: bool = False, towed: bool = False) -> Path:
     """Panels of a run: cable shape (segmented runs), body path x_b-y_b (y down), phi(t), u(t) and tensions(t).
 
     The tension axis is scaled to the traces and the snap loads (from zero when they come within
@@ -98,6 +101,9 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
         Start of the statistics window (s), shaded before it.
     anchored : bool, optional
         The last section ends at an ``[anchor]``: its lower end and ``tension_bottom`` are named the anchor's.
+    towed : bool, optional
+        The top follows a track (``top_motion.track``): the shape and the paths are drawn relative to the top's x (its
+        plan view is :func:`cablesys.plots.plan.plot_plan_view`'s).
 
     Returns
     -------
@@ -110,7 +116,9 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
     t = result.time
     data = result.data
     sfx = [""] if "u" in data else [lbl[1:] for lbl in data if lbl.startswith("u_") and lbl[2:].isdigit()]
-    spans = [np.ptp(result[f"{q}{s}"]) for s in sfx for q in ("x_b", "y_b")] + [np.ptp(result["x_s"]), np.ptp(result["y_s"])]
+    x_top = np.asarray(result["x_s"]) if towed else 0.0           # a towed run: x from the top
+    spans = [np.ptp(result[f"{q}{s}"] - (x_top if q == "x_b" else 0.0)) for s in sfx for q in ("x_b", "y_b")]
+    spans += [] if towed else [np.ptp(result["x_s"]), np.ptp(result["y_s"])]
     fl, ul = _length_scale(max(spans), units)
     fu, uu = _length_scale(max(np.ptp(result[f"u{s}"]) for s in sfx), units)
     tens = [lbl for lbl in data if lbl.startswith("tension")]
@@ -122,7 +130,7 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
     if shape:
         a_shape, a_path, a_phi = (fig.add_subplot(gs[0, 2 * k:2 * k + 2]) for k in range(3))
         a_u, a_t = fig.add_subplot(gs[1, :2]), fig.add_subplot(gs[1, 2:])
-        _shape_panel(a_shape, result, units, anchored)
+        _shape_panel(a_shape, result, units, anchored, towed)
     else:
         a_path, a_phi = fig.add_subplot(gs[0, :3]), fig.add_subplot(gs[0, 3:])
         a_u, a_t = fig.add_subplot(gs[1, :3]), fig.add_subplot(gs[1, 3:])
@@ -134,7 +142,7 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
         if anchored and last:              # the last section's lower end is the anchor, its "body" sits there
             name = "anchor" if not s else f"section {s[1:]} (anchor)"
         phi = result[f"phi{s}"] if f"phi{s}" in data else result["phi"]
-        xb, yb = result[f"x_b{s}"], result[f"y_b{s}"]
+        xb, yb = result[f"x_b{s}"] - x_top, result[f"y_b{s}"]
         if is_steady(xb, ATOL_LENGTH) and is_steady(yb, ATOL_LENGTH):
             x0, y0 = (clean(float(v.mean()), ATOL_LENGTH) for v in (xb, yb))
             fr, ur = _length_scale(max(abs(x0), abs(y0)), units)
@@ -149,7 +157,9 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
             traces.append((" ".join(x for x in (name if len(sfx) > 1 else "", where) if x) or name,
                            result[lbl] * ff, f"C{2 * k + j}"))
     xs, ys = result["x_s"], result["y_s"]
-    if is_steady(xs, ATOL_LENGTH) and is_steady(ys, ATOL_LENGTH):
+    if towed:
+        pass                                # the top is the origin of the towed paths
+    elif is_steady(xs, ATOL_LENGTH) and is_steady(ys, ATOL_LENGTH):
         still.append("top fixed")
     else:
         a_path.plot((xs - xs.mean()) * fl, (ys - ys.mean()) * fl, "k", lw=0.8, label="top (ship)")
@@ -158,8 +168,9 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
     if still:
         a_path.text(0.5, 0.5, "\n".join(still), transform=a_path.transAxes, ha="center", va="center", fontsize=8)
     a_path.invert_yaxis()
-    a_path.set(xlabel=f"x - mean ({ul}, + right)", ylabel=f"y - mean ({ul}, + down)",
-               title="paths about their mean positions")
+    a_path.set(xlabel=f"x - x_s - mean ({ul}, from the top)" if towed else f"x - mean ({ul}, + right)",
+               ylabel=f"y - mean ({ul}, + down)",
+               title="paths relative to the top, about their means" if towed else "paths about their mean positions")
     if a_path.lines:
         a_path.axis("equal")
         a_path.xaxis.set_major_locator(MaxNLocator(5))

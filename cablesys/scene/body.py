@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from ..errors import ParameterError, require_nonnegative, require_positive
+from ..errors import ParameterError, require_nonnegative, require_positive, require_range
 from .fields import check_all_finite, spec
 
 #: The rigid body's fields of :class:`Body` (all at their defaults: Wang's point body).
@@ -24,6 +24,10 @@ RIGID_FIELDS = ("pitch_inertia", "pitch_added_inertia", "attachment_x", "attachm
 #: The rigid body's fields that only the 3-D equations take (any of them set makes the scene 3-D).
 RIGID_FIELDS_3D = ("inertia_xx", "inertia_yy", "inertia_xy", "inertia_xz", "inertia_yz", "added_inertia_x",
                    "added_inertia_y", "attachment_z", "buoyancy_z", "drag_centre_z", "drag_area_z")
+#: The rigid body's attitude at the start of a run, R = R_y(yaw) R_z(pitch) R_x(roll) (the outputs' named angles,
+#: :func:`cablesys.model.rigid_body.attitude`): initial conditions, not parameters of the model; roll and yaw only in
+#: space (either set makes the scene 3-D).
+INITIAL_ATTITUDE = ("initial_roll_deg", "initial_pitch_deg", "initial_yaw_deg")
 # unset, a 3-D field takes the planar one (a body symmetric about its pitch axis), else 0
 _DEFAULT_3D = {"inertia_xx": "pitch_inertia", "inertia_yy": "pitch_inertia", "added_inertia_x": "pitch_added_inertia",
                "added_inertia_y": "pitch_added_inertia"}
@@ -103,6 +107,15 @@ class Body:
                                        "axes (rigid body, 3-D; unset: 0)", None)
     drag_area_z: float | None = spec("area", "(C_D A)_z: the per-axis drag along the body's z axis (rigid body, 3-D; "
                                      "unset: 0)", None)
+    # a rigid body's attitude at the start of a run (not a parameter of the model: the statics do not see it)
+    initial_roll_deg: float | None = spec("angle_deg", "roll of the body at the start of a run (degrees, about its x; rigid "
+                                          "body, 3-D): the run starts from the static equilibrium with the body turned "
+                                          "about its attachment point to this attitude and released at rest; unset: "
+                                          "the static roll", None)
+    initial_pitch_deg: float | None = spec("angle_deg", "pitch of the body at the start of a run (degrees, theta_b; rigid "
+                                           "body): as initial_roll_deg; unset: the static pitch", None)
+    initial_yaw_deg: float | None = spec("angle_deg", "yaw of the body at the start of a run (degrees, about the vertical "
+                                         "y; rigid body, 3-D): as initial_roll_deg; unset: the static yaw", None)
 
     def __post_init__(self):
         check_all_finite(self, "body")
@@ -122,7 +135,7 @@ class Body:
         """A rigid body's fields: non-negative inertias, damping and buoyancy; on a point body every rigid field
         must be unset or 0 (an offset or inertia given without ``pitch_inertia`` would be dropped)."""
         if self.pitch_inertia is None:
-            for name in RIGID_FIELDS[1:] + RIGID_FIELDS_3D:
+            for name in RIGID_FIELDS[1:] + RIGID_FIELDS_3D + INITIAL_ATTITUDE:
                 if getattr(self, name) not in (None, 0.0):
                     raise ParameterError(f"body.{name}", getattr(self, name), "needs body.pitch_inertia (a rigid body); "
                                          "a point body has no attachment offset, buoyancy centre or pitch")
@@ -135,6 +148,9 @@ class Body:
         for name in ("inertia_xx", "inertia_yy", "added_inertia_x", "added_inertia_y", "drag_area_x", "drag_area_y",
                      "drag_area_z"):
             require_nonnegative(f"body.{name}", self.rigid(name))
+        for name, bound in zip(INITIAL_ATTITUDE, (180.0, 90.0, 180.0)):    # the named angles' ranges
+            if getattr(self, name) is not None:
+                require_range(f"body.{name}", getattr(self, name), -bound, bound, "deg")
         self._check_inertia_tensor()
 
     def inertia_tensor(self) -> np.ndarray:
@@ -180,8 +196,14 @@ class Body:
         return 0.0 if v is None else float(v)
 
     def three_d_fields(self) -> tuple:
-        """The rigid body's 3-D fields this body sets (:data:`RIGID_FIELDS_3D`)."""
-        return tuple(name for name in RIGID_FIELDS_3D if getattr(self, name) is not None)
+        """The rigid body's 3-D fields this body sets (:data:`RIGID_FIELDS_3D`, an initial roll or yaw)."""
+        return tuple(name for name in RIGID_FIELDS_3D + ("initial_roll_deg", "initial_yaw_deg")
+                     if getattr(self, name) is not None)
+
+    @property
+    def initial_attitude_deg(self) -> tuple:
+        """(roll, pitch, yaw) of the body at the start of a run (degrees; None where unset: the static angle)."""
+        return tuple(getattr(self, name) for name in INITIAL_ATTITUDE)
 
     @property
     def is_rigid(self) -> bool:

@@ -199,8 +199,10 @@ class TopMotion:
     vessel: VesselRAO | None = spec("none", "a vessel's 6-DOF motion RAO and the lever arm of the cable's point on it (scene/vessel.py "
                                     "VesselRAO): the sea moves the top in x, y and z (sway makes the scene 3-D); instead of rao",
                                     None)
-    track: Track | None = spec("none", "the tow point's path in the horizontal plane (scene/track.py Track: towing in a "
-                               "circle), realised as sinusoids in x and z; the run starts on the steady turn", None)
+    track: Track | None = spec("none", "the tow point's path in the horizontal plane at a speed (scene/track.py Track: "
+                               "a circle, realised as sinusoids in x and z, the run starting on its steady turn; a "
+                               "straight, a turn, a zig-zag or a path of legs, the run starting on the steady straight "
+                               "tow)", None)
     ramp_s: float | None = spec("time", "smooth start: every top-motion amplitude rises from 0 to full over 0 <= t <= "
                                         "ramp_s with a cosine-rate ramp u - sin(2 pi u)/(2 pi), u = t/ramp_s (no jump in top "
                                         "velocity or acceleration); unset: 3 periods of the longest forcing period (a sea: "
@@ -231,19 +233,20 @@ class TopMotion:
         elif self.rao is not None or self.vessel is not None:
             name = "top_motion.rao" if self.rao is not None else "top_motion.vessel"
             raise ParameterError(name, "given", "needs a [top_motion.spectrum] sea to act on")
-        if self.track is not None:             # the circle as sinusoids; alone: the run starts on its steady turn
+        if self.track is not None:     # alone: the run starts on the circle's steady turn or the path's straight tow
             others = [n for n in ("spectrum", "series") if getattr(self, n) is not None]
-            sx, sz = self.track.sinusoids()
+            sx, sz = self.track.sinusoids() if self.track.is_circle else ((), ())   # the circle as sinusoids
             x, z = append_once(self.x, sx), append_once(self.z, sz)
             others += [f"{a}[0]" for a, mine, got in (("x", sx, x), ("z", sz, z)) if len(got) != len(mine)]
             others += ["y[0]"] if self.y else []
+            start = "the steady turn" if self.track.is_circle else "the steady straight tow"
             if others:
                 raise ParameterError(f"top_motion.{others[0]}", "given with top_motion.track",
-                                     "must be unset: the run starts on the steady turn, which other top motion "
+                                     f"must be unset: the run starts on {start}, which other top motion "
                                      "would not leave steady")
             if self.ramp_s not in (None, 0.0):
                 raise ParameterError("top_motion.ramp_s", self.ramp_s, "must be 0 or unset with top_motion.track: "
-                                     "the run starts on the steady turn, not from rest")
+                                     f"the run starts on {start}, not from rest")
             object.__setattr__(self, "x", x)
             object.__setattr__(self, "z", z)
             object.__setattr__(self, "_user_count", {"x": 0, "y": 0, "z": 0})
@@ -253,10 +256,10 @@ class TopMotion:
         """The smooth start's duration (s): ``ramp_s``, or when unset RAMP_PERIODS periods of the longest
         forcing period (of the user's sinusoids and a sea's T_p, not of the sea's realised components,
         whose low-frequency tail has arbitrarily long periods); 0 without sinusoids (a recorded series
-        plays as recorded) and with a track (the run starts on the steady turn)."""
+        plays as recorded) and with a track (the run starts on its steady turn or straight tow)."""
         if self.ramp_s is not None:
             return float(self.ramp_s)
-        if self.track is not None:       # the run starts on the steady turn
+        if self.track is not None:       # the run starts on the steady turn or the steady straight tow
             return 0.0
         n = getattr(self, "_user_count", {"x": len(self.x), "y": len(self.y)})
         n = {"z": len(self.z), **n}

@@ -123,12 +123,17 @@ class Scene:
         w.check_length(c.length * (1.0 - c.tension_ref / c.ae), f"{section_prefix(self, 0)}cable.length")
 
     def three_d_fields(self) -> tuple:
-        """The 3-D fields this scene sets (``top_motion.z``, a current or wave heading, ``body.mass_z``, a rigid body's
-        3-D fields: its inertia tensor's other entries, added inertias about x and y, offsets' z, drag along z)."""
+        """The 3-D fields this scene sets (``top_motion.z``, a track that leaves the x axis, a current or wave heading,
+        ``body.mass_z``, a rigid body's 3-D fields: its inertia tensor's other entries, added inertias about x and y,
+        offsets' z, drag along z, its initial roll or yaw)."""
         env, out = self.environment, []
-        if self.top_motion.z:
-            own = user_count(self.top_motion, "z")
-            out.append("top_motion.z" if own else "top_motion.vessel (the lever arm's motion has sway)")
+        track = self.top_motion.track
+        if track is not None and not track.in_plane:
+            out.append("top_motion.track")
+        if self.top_motion.z and user_count(self.top_motion, "z"):
+            out.append("top_motion.z")
+        elif self.top_motion.z and track is None:
+            out.append("top_motion.vessel (the lever arm's motion has sway)")
         if env.current_headings_deg:
             out.append("environment.current_headings_deg")
         out += [f"environment.waves[{k}].heading_deg" for k, w in enumerate(env.waves) if w.heading_deg is not None]
@@ -162,29 +167,39 @@ class Scene:
                                          "from its steady state so far (the Python API takes any state as x0)")
 
     def _check_track(self) -> None:
-        """Towing in a circle starts on the steady turn, a steady state only in still water (in the frame turning
-        with the tow point a current or a wave would turn too): no current, waves or system speed, and the initial
-        state is the steady turn's (``initial.u``, ``initial.phi`` unset)."""
-        if self.top_motion.track is None:
+        """A track starts on a steady state of still water: towing in a circle on the steady turn, every other path on
+        the steady straight tow (in the frame turning or moving with the tow point a current or a wave would not be
+        steady, or is not modelled so far): no current, waves or system speed, no anchor, and the initial state is
+        the steady one (``initial.u``, ``initial.phi`` unset)."""
+        track = self.top_motion.track
+        if track is None:
             return
+        start = "steady turn" if track.is_circle else "steady straight tow"
         if self.anchor is not None:
-            raise ParameterError("anchor", "set", "must be unset with top_motion.track: an anchored line cannot turn "
-                                 "rigidly with the tow point")
+            raise ParameterError("anchor", "set", "must be unset with top_motion.track: an anchored line cannot be towed "
+                                 "along with the tow point")
         env = self.environment
         for i, v in enumerate(env.current_speeds):
             if v != 0.0:
-                raise ParameterError(f"environment.current_speeds[{i}]", v, "must be 0 with top_motion.track: the "
-                                     "steady turn the run starts on is an equilibrium only in still water")
+                raise ParameterError(f"environment.current_speeds[{i}]", v, f"must be 0 with top_motion.track: the "
+                                     f"{start} the run starts on is found in still water")
         if env.waves:
             raise ParameterError("environment.waves", f"{len(env.waves)} waves", "must be empty with top_motion.track "
-                                 "(the steady turn is an equilibrium only in still water)")
+                                 f"(the {start} the run starts on is an equilibrium only in still water)")
         if env.system_speed != 0.0:
             raise ParameterError("environment.system_speed", env.system_speed, "must be 0 with top_motion.track: the "
-                                 "track is the tow point's motion over the ground")
+                                 "track is the tow point's motion over the ground (a straight track at the speed U is "
+                                 "the tow of system_speed = U seen from the ground)")
         for name in ("u", "phi"):
             if getattr(self.initial, name) is not None:
                 raise ParameterError(f"initial.{name}", getattr(self.initial, name), "must be unset with "
-                                     "top_motion.track: the run starts on the steady turn")
+                                     f"top_motion.track: the run starts on the {start}")
+        if track.is_circle:
+            for i, s in enumerate(self.sections):
+                if s.body.is_rigid:
+                    raise ParameterError(f"{section_prefix(self, i)}body.pitch_inertia", s.body.pitch_inertia,
+                                         "must be unset with a circular top_motion.track: the steady turn's statics "
+                                         "hold the nodes alone so far (a path's straight tow takes a rigid body)")
 
     def _check_initial_lengths(self) -> None:
         """An initial stretch u must leave every section a positive length l_0 + u (Wang 1971 eq. 10)."""

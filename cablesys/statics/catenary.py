@@ -19,6 +19,7 @@ import numpy as np
 
 from ..errors import SolverError
 from ..messages import casadi_warnings_captured, kinsol_flags
+from ..model.rigid_body import turned_orientation
 from .closed_forms import seabed_catenary, suspended_catenary
 from .problem import SteadyState, at_rest, static_parameters, static_residual
 
@@ -537,7 +538,7 @@ def segmented_steady(model, p, *, guess=None) -> SteadyState:
     return at_rest(model, q, p, r)
 
 
-def segmented_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
+def segmented_initial_state(scene, model, p, t0: float = 0.0, q=None) -> np.ndarray:
     """x0 = (node positions, node velocities) of a segmented model at time ``t0``.
 
     As for the 2-DOF model (whose coordinates are relative to the top): ``scene.initial.phi`` and
@@ -545,7 +546,9 @@ def segmented_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
     stretch u (Wang 1971 eq. 10), its elements equally long. The shape moves with the top: it is
     translated by the top position at t0 and every node starts with the top's velocity plus
     the rates ``phi_rate``/``u_rate`` (the analogue of phi' = u' = 0 relative to the top). A rigid body's
-    pitch starts at rest, at its static attitude (``phi``, ``u`` unset) or level (theta_b = 0).
+    orientation starts at rest, at its static attitude (``phi``, ``u`` unset) or level (theta_b = 0), turned about
+    its attachment point to the ``body.initial_roll_deg``/``pitch``/``yaw`` it sets (a release from that attitude:
+    the nodes keep their places).
 
     Parameters
     ----------
@@ -554,6 +557,9 @@ def segmented_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
     p : array
     t0 : float
         Start time (s).
+    q : array, optional
+        The shape (node positions relative to the top, then orientation coordinates) to start from instead of the
+        equilibrium, with ``phi``, ``u`` unset (a tow's steady shape, :func:`.tow.straight_tow`).
 
     Returns
     -------
@@ -567,7 +573,7 @@ def segmented_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
     n_rot = _rotations(model)                # rigid bodies' angles: their static pitch, at rest
     rot = _level(model)
     if ini.phi is None and ini.u is None:
-        q_all = segmented_steady(model, p).q
+        q_all = segmented_steady(model, p).q if q is None else np.asarray(q, float)
         q, rot = q_all[:q_all.size - n_rot].reshape(-1, dim), q_all[q_all.size - n_rot:]
         v = np.zeros_like(q)
     else:
@@ -588,7 +594,22 @@ def segmented_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
                 vel.append(v0 + s * (ini.u_rate * et + length * ini.phi_rate * en))
             r0, v0 = pos[-1], vel[-1]
         q, v = np.array(pos), np.array(vel)
-    return np.concatenate([(q + z).ravel(), rot, (v + zd).ravel(), np.zeros(n_rot)])
+    return np.concatenate([(q + z).ravel(), _released(scene, rot), (v + zd).ravel(), np.zeros(n_rot)])
+
+
+def _released(scene, rot) -> np.ndarray:
+    """The rigid bodies' orientation coordinates ``rot`` with each body turned to its ``initial_*_deg`` attitude where
+    set (:func:`cablesys.model.rigid_body.turned_orientation`, about its attachment point: the nodes keep their
+    places), the bodies in section order as in q."""
+    rot = np.array(rot, float)
+    bodies = [s.body for s in scene.sections if s.body.is_rigid]
+    if not bodies:
+        return rot
+    n = rot.size // len(bodies)
+    for k, body in enumerate(bodies):
+        if any(a is not None for a in body.initial_attitude_deg):
+            rot[k * n:(k + 1) * n] = turned_orientation(rot[k * n:(k + 1) * n], body.initial_attitude_deg)
+    return rot
 
 
 def anchored_line_forces(model, state: SteadyState, p) -> dict:

@@ -124,8 +124,10 @@ def rao(scene, options, cache):
 def rao_summary(scene, lin, options):
     """(summary, success, message) of one linear model: natural frequencies, RAO peaks on a grid
     (options ``omega_min``, ``omega_max``, ``n_omega``) and |RAO| and amplitudes at the forcing frequency."""
+    from ..ladder.auto import require_at_rest
     from ..linear import modes
     from ..linear.periodic import scene_input_amplitude
+    require_at_rest(scene, "the rao analysis")
     md = modes(lin)
     s = {"omega_n": {f"{k}_rad_s": float(w) for k, w in enumerate(md.omega_undamped)},
          "damping_ratio": {str(k): float(z) for k, z in enumerate(md.damping_ratio)},
@@ -163,7 +165,9 @@ def rao_summary(scene, lin, options):
 
 def periodic(scene, options, cache):
     """Nonlinear periodic steady state (harmonic balance) at the top motion's one frequency."""
+    from ..ladder.auto import require_at_rest
     from ..linear.periodic import periodic_steady_state, scene_input_amplitude
+    require_at_rest(scene, "the periodic analysis")
     model = cache.model(scene)
     w, Z = scene_input_amplitude(scene)
     sol = periodic_steady_state(model, model.parameters(scene), w, input_amplitude=Z,
@@ -181,7 +185,9 @@ def stochastic(scene, options, cache):
     ``omega_min``/``omega_max``/``n_omega`` and the top's ``direction`` per unit sea amplitude, default the
     surface orbit of :mod:`cablesys.linear.stochastic`)."""
     from ..linear.spectra import jonswap
+    from ..ladder.auto import require_at_rest
     from ..linear.stochastic import stochastic_response
+    require_at_rest(scene, "the stochastic analysis")
     model = cache.model(scene)
     hs, tp = float(options.get("hs", 2.0)), float(options.get("tp", 8.0))
     omega = np.linspace(float(options.get("omega_min", 0.25)), float(options.get("omega_max", 3.0)),
@@ -203,6 +209,8 @@ def design(scene, options, cache):
     """The isolation design NLP (Wang 1971 p. 33) with ``options['settings']`` (fields variable as ``design.<field>``)."""
     from ..isolation import DesignSettings
     from ..isolation import design as solve
+    from ..ladder.auto import require_at_rest
+    require_at_rest(scene, "the design analysis")
     settings = options.get("settings")
     if not isinstance(settings, DesignSettings):
         raise ParameterError("options['settings']", settings, "a design sweep needs a DesignSettings")

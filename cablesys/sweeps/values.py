@@ -90,15 +90,15 @@ def _set(obj, tokens, value, label):
                                                 f"{len(child) if isinstance(child, tuple) else 0} entries)")
         item = _convert(child[idx], value, label) if len(tokens) == 1 else _set(child[idx], tokens[1:], value, label)
         new = child[:idx] + (item,) + child[idx + 1:]
-    if name in ("spectrum", "rao") and hasattr(obj, "series"):
-        return dataclasses.replace(obj, **_user_sinusoids(obj), **{name: new})   # the new sea replaces the old
+    if name in ("spectrum", "rao", "vessel", "track") and hasattr(obj, "series"):
+        return dataclasses.replace(obj, **_user_sinusoids(obj), **{name: new})   # the new sea or circle replaces the old
     return dataclasses.replace(obj, **{name: new})
 
 
 def _user_sinusoids(top) -> dict:
-    """The user's own sinusoids of a TopMotion (a realised sea is appended again on replace)."""
+    """The user's own sinusoids of a TopMotion (a realised sea, or a circle's track, is appended again on replace)."""
     from ..scene.sea import user_count
-    return {"x": top.x[:user_count(top, "x")], "y": top.y[:user_count(top, "y")]}
+    return {axis: getattr(top, axis)[:user_count(top, axis)] for axis in ("x", "y", "z")}
 
 
 def apply_values(scene, values: dict, analysis: str):

@@ -5,7 +5,8 @@ A rung's validity (:meth:`BuiltinRung.valid`) is "" when it can run a scene, els
 kinds of scene limit the rungs so far: a 3-D scene (Wang's straight cable and the node model have three-dimensional equations,
 Wang 1971 p. 32; the frequency and quasi-static rungs are planar), a massless cable (Wang's CBMAS < 0, Wang 1971 program notes: an idealization of his straight
 cable; the element rungs' nodes would have no mass), an anchored line or a seabed (they act on the nodes of the
-segmented cable, which the straight cable has none of) and a winch (a varying length, carried by the node model only).
+segmented cable, which the straight cable has none of), a winch (a varying length, carried by the node model only) and
+a towing ship's track (its steady start found for the node model only).
 A rigid body (``body.pitch_inertia``) limits them too: its orientation (the pitch in the plane, a quaternion in
 3-D) is a coordinate of the node model alone
 (:mod:`cablesys.model.rigid_body`).
@@ -55,8 +56,9 @@ def winched(scene: Scene) -> bool:
 
 
 def turning(scene: Scene) -> bool:
-    """True when the tow point runs on a circle (``top_motion.track``): the run starts on the steady turn, which
-    the statics find for the node model (:mod:`cablesys.statics.turning`)."""
+    """True when the tow point follows a track (``top_motion.track``: a circle, a straight, a turn, a zig-zag or a
+    path): the run starts on the steady turn or the steady straight tow, which the statics find for the node model
+    (:mod:`cablesys.statics.turning`, :mod:`cablesys.statics.tow`)."""
     return getattr(getattr(scene, "top_motion", None), "track", None) is not None
 
 
@@ -69,8 +71,8 @@ ROTATES = ("a rigid body (body.pitch_inertia): its orientation (pitch in the pla
            "coordinate of the node model (segmented) only")
 WINCHED = ("a winch ([winch]): only the node model (segmented) carries a varying cable length; the other rungs "
            "have a fixed one and would ignore the payout")
-TURNING = ("towing in a circle (top_motion.track): the run starts on the steady turn, which the statics find for the "
-           "node model (segmented) only")
+TURNING = ("a towing ship's track (top_motion.track: a circle, a straight, a turn, a zig-zag or a path): the run starts "
+           "on the steady turn or the steady straight tow, which the statics find for the node model (segmented) only")
 
 
 def straight_validity(scene: Scene) -> str:
@@ -84,6 +86,8 @@ def straight_validity(scene: Scene) -> str:
         return ROTATES
     if winched(scene):
         return WINCHED
+    if turning(scene):           # a straight track along x is planar: its straight tow is the node model's
+        return TURNING
     return NO_NODES if has_ends(scene) else ""
 
 

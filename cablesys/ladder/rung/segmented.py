@@ -41,7 +41,7 @@ class Segmented(BuiltinRung):
         return est.segmented_error(assessment.estimates, self.segments(segments))
 
     def alone(self, scene: Scene, requested: str, segments) -> tuple:
-        """An anchored line or a seabed, a winch, a rigid body, or towing in a circle: the node model with the caller's N, else the scene's
+        """An anchored line or a seabed, a winch, a rigid body, or a towing ship's track: the node model with the caller's N, else the scene's
         (named segmented rung), else at least ENDS_SEGMENTS, checked a posteriori on every quantity when the ladder
         chose it."""
         scene_n = max(s.cable.segments for s in scene.sections)
@@ -49,8 +49,9 @@ class Segmented(BuiltinRung):
         why = ("an anchored line or a seabed: the node model with N = {n}, the only rung with nodes to anchor and to lay "
                "on the bed" if has_ends(scene) else "a winch ([winch]): the node model with N = {n}, the only rung whose "
                "cable length can change in time" if winched(scene) else "a rigid body: the node model with "
-               "N = {n}, the only rung whose coordinates include its orientation (pitch in the plane, a quaternion in 3-D)" if rigid(scene) else "towing in a circle "
-               "(top_motion.track): the node model with N = {n}, the only rung whose steady turn the statics find")
+               "N = {n}, the only rung whose coordinates include its orientation (pitch in the plane, a quaternion in 3-D)" if rigid(scene) else "a towing ship's track "
+               "(top_motion.track): the node model with N = {n}, the only rung whose steady turn or straight tow the "
+               "statics find")
         if has_ends(scene) and winched(scene):
             why += " and whose cable length can change in time (the [winch])"
         if rigid(scene) and (has_ends(scene) or winched(scene)):
