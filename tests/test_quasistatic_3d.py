@@ -225,3 +225,21 @@ def test_the_3d_price_of_the_quasi_static_segmented_cable_follows_its_operations
             predicted = model_operations(sc, "quasi-static", n)
             assert qs[45.0] / 2 < predicted < 2 * qs[45.0]
     assert 1.0 < ratio[4] < SPACE_COST_FACTOR < ratio[8]
+
+
+def test_the_stiffness_guard_sees_the_same_modes_out_of_the_plane():
+    """The explicit pair's guard (:func:`cablesys.ladder.stiffness.explicit_fit`) on the quasi-static segmented cable
+    of a symmetric scene (a sphere, no current: every mode in the plane has its twin across it) run by the planar and
+    by the 3-D equations: the same largest eigenvalue and stability step (to 1e-6), so the same verdict."""
+    from cablesys.ladder.stiffness import explicit_fit
+    base = dataclasses.replace(_inclined(2, current=0.0), top_motion=TopMotion(
+        x=(Sinusoid(amplitude=0.5, frequency=1.0),), y=(Sinusoid(amplitude=0.5, frequency=1.0),)))
+    base = base.replace_section(0, body={"mass_z": None})
+    fits = []
+    for sc in (base, base.with_numerics(dimensions=3)):
+        m = build_quasistatic(sc)
+        p = m.parameters(sc)
+        fits.append(explicit_fit(m, p, initial_state(sc, m, p), 1e-4))
+    assert fits[1].lambda_max == pytest.approx(fits[0].lambda_max, rel=1e-6) and fits[0].lambda_max > 1.0
+    assert fits[1].stability_step == pytest.approx(fits[0].stability_step, rel=1e-6)
+    assert fits[1].accepted == fits[0].accepted
