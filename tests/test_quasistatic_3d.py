@@ -18,6 +18,7 @@ from test_quasistatic import heave_tension_amplitudes
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "studies"))
 import _three_d_nodes as nodes  # noqa: E402
+import _three_d_quasistatic as qs3d  # noqa: E402
 import three_d_checks as checks  # noqa: E402
 
 from cablesys.model import build_model  # noqa: E402
@@ -33,75 +34,37 @@ def _series(result, labels):
     return {lb: np.asarray(result[lb]) for lb in labels}
 
 
-@pytest.mark.parametrize("n", [1, 3])
-def test_a_planar_scene_forced_through_the_3d_equations_runs_the_planar_answer(n):
-    """The plane is phi_z = 0: the same fixed RK4 steps of the planar and the 3-D quasi-static equations (a sheared
-    current, a wave, surge and heave) give the same outputs to 1e-10 (normwise) and no motion out of the plane; a
-    planar scene builds the planar equations (the dispatch of ``numerics.dimensions``)."""
-    base = nodes.divided(checks.planar_scenes()[0], n)
-    run = base.with_numerics(duration=1.5, steps_per_output=20)
-    m2, m3 = build_quasistatic(run), build_quasistatic(run.with_numerics(dimensions=3))
-    assert m2.top.size1_out(0) == 7 and not any(lb.startswith("phi_z") for lb in m2.q_labels)
-    assert m3.q_labels[:2] == (("phi", "phi_z") if n == 1 else ("phi[0]", "phi_z[0]"))
-    x0 = initial_state(run, m2, m2.parameters(run))
-    x0[m2.nq:] += 0.1                             # started swinging (0.1 rad/s each angle): the body moves at once
-    x3 = np.zeros(2 * m3.nq)
-    for k, lb in enumerate(m3.q_labels):          # the planar start, phi_z = 0 and at rest out of the plane
-        if lb in m2.q_labels:
-            j = m2.q_labels.index(lb)
-            x3[k], x3[m3.nq + k] = x0[j], x0[m2.nq + j]
-    r2 = simulate(run, model=m2, method="rk", x0=x0)
-    r3 = simulate(run.with_numerics(dimensions=3), model=m3, method="rk", x0=x3)
-    assert r2.success and r3.success
-    labels = [lb for lb in m2.output_labels if lb in r2.data and "tension_rate" not in lb]
-    a, b = _series(r2, labels), _series(r3, labels)
-    moved = max(float(np.ptp(a["x_b"])), float(np.ptp(a["y_b"])))
-    assert moved > 0.05                                      # it does move
-    for lb in labels:
-        assert np.max(np.abs(a[lb] - b[lb])) <= 1e-10 * max(float(np.max(np.abs(a[lb]))), 1.0), lb
-    assert np.max(np.abs(r3["z_b"])) == 0.0 and np.max(np.abs(r3["phi_z"])) == 0.0
+def test_a_planar_scene_forced_through_the_3d_equations_runs_the_planar_answer():
+    """The plane is phi_z = 0: the same fixed RK4 steps of the planar and the 3-D quasi-static equations (Wang's cable,
+    N = 1, and the segmented cable, N = 3; a sheared current, a wave, surge and heave, started swinging) give the same
+    states to 1e-10 (rad, rad/s) and outputs to 1e-10 (normwise) and no motion out of the plane; a planar scene builds
+    the planar equations (the dispatch of ``numerics.dimensions``)."""
+    r = qs3d.planar_equivalence(quick=True)
+    assert r["run_max_abs"] < 1e-10 and r["max_rel"] < 1e-10
+    for n, case in r["cases"].items():
+        assert case["run_out_of_plane_max_abs"] == 0.0 and case["body_excursion_m"] > 0.05       # it does move
+        assert case["planar_exogenous"] == 7 and not any(lb.startswith("phi_z") for lb in case["planar_q_labels"])
+        assert case["three_d_q_labels"][:2] == (["phi", "phi_z"] if n == "N=1" else ["phi[0]", "phi_z[0]"])
 
 
 def test_a_scene_turned_about_the_vertical_gives_the_turned_answer():
     """A sheared current turning with depth, a wave at 20 deg, surge + sway + heave, and the same scene turned by
-    50 deg: the quasi-static segmented cable's body path turns (1e-10 m) and its tensions are equal (1e-10, relative)
-    over the same fixed steps."""
-    alpha = math.radians(50.0)
-    sc = nodes.divided(checks.rotation_scene(), 2).with_numerics(duration=2.0, steps_per_output=20)
-    sr = checks.rotated_scene(sc, alpha)
-    m, mr = build_quasistatic(sc), build_quasistatic(sr)
-    r = simulate(sc, model=m, method="rk")
-    rr = simulate(sr, model=mr, method="rk")
-    pos = np.vstack([np.asarray(r[k]) for k in ("x_b", "y_b", "z_b")])
-    pos_r = np.vstack([np.asarray(rr[k]) for k in ("x_b", "y_b", "z_b")])
-    assert float(np.max(np.ptp(pos, axis=1))) > 0.1 and float(np.ptp(pos[2])) > 0.01      # it moves, out of plane too
-    turned = np.array([checks.rotate(alpha, c) for c in pos.T]).T
-    assert np.max(np.abs(turned - pos_r)) < 1e-10
-    for k in ("tension_top", "tension_bottom", "u"):
-        assert np.max(np.abs(np.asarray(r[k]) - np.asarray(rr[k]))) <= 1e-10 * np.max(np.abs(np.asarray(r[k])))
+    50 deg: the quasi-static segmented cable's body path turns (1e-10 m) and its tensions and stretch are equal (1e-10,
+    relative) over the same fixed steps."""
+    r = qs3d.rotation_invariance(quick=True)
+    assert r["body_excursion_m"] > 0.1 and r["sway_excursion_m"] > 0.01          # it moves, out of the plane too
+    assert r["run_position_max_abs_m"] < 1e-10 and r["run_scalars_max_rel"] < 1e-10
 
 
 def test_conical_pendulum_on_the_quasi_static_straight_cable():
     """A sphere on a massless stiff cable started on the cone of half-angle 30 deg with omega^2 = g / (L cos theta):
     the quasi-static straight cable (Wang's 3-D cable, its stretch following the tension W / cos theta) keeps it on
-    the cone, and the measured rate, length and cone angle meet the closed form to 1e-8."""
-    alpha = math.radians(30.0)
-    sc = checks.pendulum_scene(numerics=Numerics(duration=1.0, output_step=0.02, model="as-built", dimensions=3))
-    qs = build_quasistatic(sc)
-    assert qs.q_labels == ("phi", "phi_z")
-    x_full, omega, _ = checks.conical_initial_state(build_model(sc), sc, alpha)
-    x0 = np.array([alpha, 0.0, 0.0, x_full[-2]])                  # (phi, phi_z, phi', phi_z')
-    period = 2 * math.pi / omega
-    r = simulate(sc.with_numerics(duration=3 * period), model=qs, x0=x0, rtol=1e-11, atol=1e-11)
-    x, y, z = (np.asarray(r[k]) for k in ("x_b", "y_b", "z_b"))
-    rad, length = np.hypot(x, z), np.sqrt(x**2 + y**2 + z**2)
-    cone = np.arctan2(rad, y)
-    rate = np.polyfit(np.asarray(r.time), np.unwrap(np.arctan2(z, x)), 1)[0]
-    g = sc.body.weight / sc.body.mass_x
-    assert abs(rate**2 * np.mean(length) * math.cos(np.mean(cone)) / g - 1.0) < 1e-8
-    assert np.ptp(rad) / np.mean(rad) < 1e-8 and abs(np.mean(cone) - alpha) < 1e-8
-    # the stretch follows the cone's tension: the body-end tension is W / cos(theta)
-    assert np.max(np.abs(np.asarray(r["tension_bottom"]) * math.cos(alpha) / sc.body.weight - 1.0)) < 1e-8
+    the cone, and the measured rate, length and cone angle meet the closed form to 1e-8, the body-end tension
+    W / cos theta too."""
+    r = qs3d.conical_pendulum()
+    assert r["q_labels"] == ["phi", "phi_z"]
+    assert r["rel_err_omega2"] < 1e-8 and r["radius_rel_wander"] < 1e-8 and r["cone_angle_err_rad"] < 1e-8
+    assert r["tension_rel_err"] < 1e-8
 
 
 def test_the_element_coordinates_carry_the_3d_node_models_physics():
