@@ -29,16 +29,6 @@ from cablesys.time_domain.initial import initial_state
 from cablesys.time_domain.run import simulate
 
 
-def _lift(m2, m3, x2):
-    """The 3-D state of a planar one: every phi_z and its rate 0."""
-    x3 = np.zeros(2 * m3.nq)
-    for k, lb in enumerate(m3.q_labels):
-        if lb in m2.q_labels:
-            j = m2.q_labels.index(lb)
-            x3[k], x3[m3.nq + k] = x2[j], x2[m2.nq + j]
-    return x3
-
-
 def planar_equivalence(quick: bool, elements=(1, 3)) -> dict:
     """Largest differences between the planar quasi-static equations and the 3-D ones forced on a planar scene (a
     cylinder in a sheared current and a wave, surge and heave), started swinging (0.1 rad/s per angle)."""
@@ -50,7 +40,7 @@ def planar_equivalence(quick: bool, elements=(1, 3)) -> dict:
         x0 = initial_state(run, m2, m2.parameters(run))
         x0[m2.nq:] += 0.1
         r2 = simulate(run, model=m2, method="rk", x0=x0)
-        r3 = simulate(run.with_numerics(dimensions=3), model=m3, method="rk", x0=_lift(m2, m3, x0))
+        r3 = simulate(run.with_numerics(dimensions=3), model=m3, method="rk", x0=checks._as_3d(m2, m3, x0))
         # the states (angles rad, rates rad/s) absolute; every output normwise, max|a - b| / max(max|a|, 1): a tension
         # is the stretch's constraint force, the states' rounding (1e-14 rad) times the element stiffness
         labels = [lb for lb in m2.output_labels if lb in r2.data and "tension_rate" not in lb]
