@@ -25,6 +25,10 @@ Writes ``DIR/three_d_checks.json`` (each value the largest error over its cases)
   model; ``out_of_plane_rao_rel_err``: the RAO of z_b to the top's sway z_s against the planar
   model's x_b to x_s at five frequencies off resonance.
 
+The quasi-static rungs (Wang's 3-D cable and the segmented cable in element coordinates, the stretches following the
+tension: ``studies/_three_d_quasistatic.py``, numbers under ``details.quasi_static``) add their planar equivalence (states
+absolute, outputs normwise), rotation invariance and conical pendulum to the first three keys.
+
 The node model (segmented cable, N elements, nodes (x, y, z): ``studies/_three_d_nodes.py``) adds its
 cases to the first keys, each the largest over Wang's and the node model's cases (the node model's numbers
 are under ``details.node_model``): planar equivalence (its states absolute, its outputs normwise),
@@ -99,6 +103,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
 import _three_d_nodes as nodes  # noqa: E402
+import _three_d_quasistatic as quasistatic  # noqa: E402
 import _three_d_rigid as rigid  # noqa: E402
 import _tracks as tracks  # noqa: E402
 import _turning as turning  # noqa: E402
@@ -516,6 +521,9 @@ def main(argv=None) -> dict:
             "rotation_invariance": nodes.rotation_invariance(rotation_scene(), rotated_scene, rotate, args.quick),
             "energy": nodes.energy_drift(args.quick), "chain_modes": nodes.chain_modes(args.quick)}
     n_pl, n_rot = node["planar_equivalence"], node["rotation_invariance"]
+    qs = {"planar_equivalence": quasistatic.planar_equivalence(args.quick),
+          "rotation_invariance": quasistatic.rotation_invariance(args.quick), "conical_pendulum": quasistatic.conical_pendulum()}
+    q_pl, q_rot = qs["planar_equivalence"], qs["rotation_invariance"]
     tow_lin, tow_sea = towed.linear_vs_theory(args.quick), towed.sea_trials(args.quick)
     tow_sea.pop("_profiles")
     fig = figure(cone.pop("_runs"), cone["cases"], args.out / "three_d_conical_pendulum.png")
@@ -531,19 +539,21 @@ def main(argv=None) -> dict:
     tracks.figure(track["turn"], args.out / "three_d_tracks.png")
     z_rot = track["zigzag_rotation"]
     doc = {
-        "planar_equivalence_max_abs": max(planar["run_max_abs"], n_pl["run_max_abs"], r_pl["equations_max_abs"]),
-        "planar_equivalence_max_rel": max(planar["max_rel"], n_pl["max_rel"], r_pl["equations_max_rel"]),
+        "planar_equivalence_max_abs": max(planar["run_max_abs"], n_pl["run_max_abs"], q_pl["run_max_abs"],
+                                          r_pl["equations_max_abs"]),
+        "planar_equivalence_max_rel": max(planar["max_rel"], n_pl["max_rel"], q_pl["max_rel"], r_pl["equations_max_rel"]),
         "planar_equivalence_rigid_run_max_rel": r_pl["run_max_rel"],
         "rotation_invariance_max_abs": max(rot["equations_max_abs"], rot["run_position_max_abs_m"],
                                            n_rot["equations_max_abs"], n_rot["run_position_max_abs_m"],
-                                           z_rot["position_max_abs_m"]),
+                                           q_rot["run_position_max_abs_m"], z_rot["position_max_abs_m"]),
         "rotation_invariance_scalars_max_rel": max(rot["equations_scalars_max_rel"], rot["run_tension_max_rel"],
                                                    n_rot["equations_max_rel"], n_rot["run_tension_max_rel"],
-                                                   z_rot["tension_max_rel"]),
+                                                   q_rot["run_scalars_max_rel"], z_rot["tension_max_rel"]),
         "straight_track_vs_system_speed_max_rel": track["galilean"]["max_rel"],
         "straight_track_munk_couple_rel_err": track["munk"]["rel_err"],
         "turn_settles_on_steady_turn_rel_err": track["turn"]["rel_err"],
-        "conical_pendulum_rel_err": cone["max_rel_err"],
+        "conical_pendulum_rel_err": max(cone["max_rel_err"], qs["conical_pendulum"]["rel_err_omega2"],
+                                        qs["conical_pendulum"]["radius_rel_wander"]),
         "energy_drift_rel": max(energy["drift_rel"], node["energy"]["drift_rel"]),
         "chain_out_of_plane_mode_rel_err": node["chain_modes"]["out_of_plane_vs_in_plane_max_rel"],
         "chain_out_of_plane_vs_bessel_rel_err": node["chain_modes"]["vs_bessel_rel_err_finest"],
@@ -558,7 +568,7 @@ def main(argv=None) -> dict:
         **{k: None for k in NOT_BUILT},
         "not_built": list(NOT_BUILT),
         "details": {"planar_equivalence": planar, "rotation_invariance": rot, "conical_pendulum": cone,
-                    "energy": energy, "out_of_plane_frequency": freq, "node_model": node,
+                    "energy": energy, "out_of_plane_frequency": freq, "node_model": node, "quasi_static": qs,
                     "towed": {"linear_vs_theory": tow_lin, "sea_trials": tow_sea}, "span_out_of_plane": span,
                     "turning_tow": {k: v for k, v in turn.items() if k not in ("time_s", "distance_m")},
                     "rigid_body": body, "rigid_body_planar_equivalence": r_pl,

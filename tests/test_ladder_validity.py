@@ -1,5 +1,6 @@
 """The rungs' validity, in CasADi's virtual machine: each built-in rung says which scenes it can run (a massless
-cable only Wang's straight cable, a 3-D scene Wang's and the node model, an anchored line only the node model), the ladder never chooses or runs a
+cable only Wang's straight cable, a 3-D scene every rung but the frequency rung's planar orbit, an anchored line only the
+node model), the ladder never chooses or runs a
 rung for a scene it says it cannot run, and a newcomer's rung that is valid and cheaper is chosen."""
 
 import dataclasses
@@ -53,8 +54,8 @@ def test_each_rung_says_which_scenes_it_can_run():
     dale = dale_scene(omega_ratio=0.5, duration=10.0)
     assert _valid_rungs(dale) == list(RUNGS)                         # a planar taut cable with mass: every rung
     three_d = dale.with_numerics(dimensions=3)
-    assert _valid_rungs(three_d) == ["wang", "segmented"]                # the node model in 3-D too
-    assert "planar" in BUILTIN[1].valid(three_d) and "planar" in BUILTIN[0].valid(three_d)
+    assert _valid_rungs(three_d) == ["quasi-static", "wang", "segmented"]   # the quasi-static rungs in 3-D too
+    assert "planar" in BUILTIN[0].valid(three_d)
     massless = dataclasses.replace(dale, sections=tuple(dataclasses.replace(
         s, cable=dataclasses.replace(s.cable, cable_mass_switch=-1.0)) for s in dale.sections))
     assert _valid_rungs(massless) == ["wang"] and "CBMAS" in BUILTIN[3].valid(massless)
@@ -64,8 +65,8 @@ def test_each_rung_says_which_scenes_it_can_run():
     # the scene one rung alone can run gets it, before any estimate; naming another is an error saying why
     choice, _, checked = decide(anchored, "auto", None, None)
     assert (choice.name, choice.segments, checked) == ("segmented", 16, True) and "N = 16" in choice.reason
-    with pytest.raises(cablesys.ParameterError, match="numerics.model = 'quasi-static'.*planar"):
-        decide(three_d, "quasi-static", None, None)
+    with pytest.raises(cablesys.ParameterError, match="numerics.model = 'frequency'.*planar"):
+        decide(three_d, "frequency", None, None)
     with pytest.raises(cablesys.ParameterError, match="auto, as-built or segmented.*nodes to anchor"):
         decide(anchored, "quasi-static", None, None)
 

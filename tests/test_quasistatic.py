@@ -32,17 +32,17 @@ def _pendulum(ae=1e9, cd=0.0, cda=0.0, heave=None, duration=20.0):
 
 
 
-def heave_tension_amplitudes(models, p, omega):
+def heave_tension_amplitudes(models, p, omega, inp="y_s"):
     """{model.kind: |tension / y_s|} of each model's linearization at the heave frequency ``omega``
     (the tension of the body's element per metre of top heave, N/m: the lowest ``element_tension[k]`` of a
-    segmented cable, Wang's spring force ``tension_mid`` of his one-element cable)."""
+    segmented cable, Wang's spring force ``tension_mid`` of his one-element cable); per metre of ``inp``."""
     amp = {}
     for m in models:
         lin = linearize(m, p)
         _, Y = lin.transfer([omega])
         els = [o for o in lin.output_labels if o.startswith("element_tension[")]
         out = max(els, key=lambda o: int(o[len("element_tension["):-1])) if els else "tension_mid"
-        amp[m.kind] = abs(Y[0, lin.output_labels.index(out), lin.input_labels.index("y_s")])
+        amp[m.kind] = abs(Y[0, lin.output_labels.index(out), lin.input_labels.index(inp)])
     return amp
 
 def test_rigid_compound_pendulum_frequency():

@@ -64,7 +64,7 @@ def test_3d_node_model_refuses_a_seabed_before_building():
     assert build_model(anchored).anchored and build_model(anchored).dim == 3
 
 
-def test_cablesys_run_of_a_3d_scene_says_the_node_model_ran(tmp_path):
+def test_cablesys_run_of_a_3d_scene_says_which_element_model_ran(tmp_path):
     import json
 
     from cablesys.cli import main
@@ -74,9 +74,11 @@ def test_cablesys_run_of_a_3d_scene_says_the_node_model_ran(tmp_path):
     f.write_text(dump_scene(sc))
     assert main(["run", str(f), "--out", str(tmp_path / "out")]) == 0
     model = json.loads((tmp_path / "out" / "summary.json").read_text())["model"]
-    # the straight cable misses the 1 % tolerance on this current turning with depth: the node model in 3-D,
-    # with its estimated error as for the plane
-    assert model["name"] == "segmented" and model["segments"] >= 2 and "segmented with N" in model["reason"]
+    # the straight cable misses the 1 % tolerance on this current turning with depth: N elements in 3-D, with the
+    # estimated error as for the plane; the stiff wire (omega / omega_ax < 1/30) makes it the quasi-static segmented
+    # cable, its element stretches following the tension
+    assert model["name"] == "quasi-static" and model["segments"] >= 2
+    assert "quasi-static segmented with N" in model["reason"] and "<= 1/30" in model["reason"]
     assert 0 < model["estimated_error"]["body"] < 0.01
 
 
@@ -104,7 +106,13 @@ def test_3d_kernel_ode_equals_the_element_by_element_ode():
             assert np.max(np.abs(b - a)) <= 1e-12 * np.max(np.abs(a))
 
 
-def test_the_planar_element_coordinates_refuse_a_3d_scene():
+def test_the_element_coordinates_take_a_3d_scene_and_refuse_an_anchored_line():
+    """(phi_k, phi_z_k, u_k) in 3-D (tests/test_quasistatic_3d.py checks their physics); an anchored line's fixed last
+    node is no element coordinate: refused by name."""
     from cablesys.model.element_coordinates import build_element_model
-    with pytest.raises(ParameterError, match="numerics.dimensions = 3.*planar"):
-        build_element_model(nodes.divided(checks.rotation_scene(), 3))
+    sc = nodes.divided(checks.rotation_scene(), 3)
+    assert build_element_model(sc).q_labels[:3] == ("phi[0]", "phi_z[0]", "u[0]")
+    anchored = type(sc)(sections=sc.sections, environment=sc.environment, top_motion=sc.top_motion,
+                        numerics=sc.numerics, anchor=Anchor(x=5.0, y=55.0))
+    with pytest.raises(ParameterError, match="anchor.*element coordinates"):
+        build_element_model(anchored)

@@ -30,7 +30,13 @@ from . import estimate as est
 from . import metrics
 from .indicators import scene_numbers
 from .rung.base import with_segments
-from .rung.quasistatic import EXPLICIT_COST, EXPLICIT_COST_MAX_ELEMENTS, STIFF_QS_COST  # noqa: F401 - the plans' weights
+from .rung.base import three_d
+from .rung.quasistatic import (  # noqa: F401 - the plans' weights
+    EXPLICIT_COST,
+    EXPLICIT_COST_MAX_ELEMENTS,
+    SPACE_COST_FACTOR,
+    STIFF_QS_COST,
+)
 from .rung.segmented import CHECK_ACCEPT, CHECK_COST  # noqa: F401 - re-exported with the plans' other numbers
 from .rungs import BUILTIN, Assessment, RungCache, get_rung, registered_rungs, rung_scene, validity
 from .stiffness import EXPLICIT_MAX_ELEMENTS
@@ -124,9 +130,11 @@ def extrapolated_error(errors: dict, n: int) -> dict:
 
 
 def quasistatic_segments_available(scene: Scene) -> bool:
-    """True when the quasi-static rung takes elements (:func:`~.rungs.rung_scene` keeps ``segments`` for it:
-    the segmented cable with its stretches following the tension, :mod:`cablesys.model.quasistatic`)."""
-    return all(s.cable.segments == 2 for s in rung_scene(scene, "quasi-static", 2).sections)
+    """True when the quasi-static rung can run ``scene`` (:func:`~.rungs.validity`) and takes elements
+    (:func:`~.rungs.rung_scene` keeps ``segments`` for it: the segmented cable with its stretches following the
+    tension, :mod:`cablesys.model.quasistatic`)."""
+    return (not validity(get_rung("quasi-static"), scene)
+            and all(s.cable.segments == 2 for s in rung_scene(scene, "quasi-static", 2).sections))
 
 
 # The cost of N elements, relative to the node model's N stepped by BDF2 (compiled, the same run), are the element
@@ -134,8 +142,9 @@ def quasistatic_segments_available(scene: Scene) -> bool:
 # (:mod:`.rung.quasistatic`), CHECK_COST and CHECK_ACCEPT of a run checked a posteriori against N / 2
 # (:mod:`.rung.segmented`); ratios of wall times measured by studies/model_ladder.py on the Dale scene and the
 # 1000 m wire (cablesys.heavy_wire_scene).
-# The quasi-static segmented cable's functions grow as about N^2.75 per section (the chord solve's rows for every
-# element stretch, each through the dense eliminated mass matrix), the node model's linearly: operation counts of
+# The quasi-static segmented cable's functions grow as about A^2.75 per section in its A angles (A = N in the plane,
+# 2 N in 3-D: the chord solve's rows for every element stretch, each through the dense eliminated mass matrix of the
+# angles), the node model's linearly: operation counts of
 # the ODE plus the outputs measured on the Dale scene (CasADi SX, cse on): quasi-static 0.07 M / 0.2 M / 0.42 M /
 # 1.27 M at N = 16 / 24 / 32 / 48 (0.7 GB to build at 48, before any compile); node model 0.01 M / 0.02 M /
 # 0.03 M at N = 16 / 32 / 48. An N past MAX_MODEL_OPERATIONS is not built: the quasi-static segmented cable at
@@ -149,12 +158,15 @@ CHECK_MIN_SEGMENTS = 4   # the check runs N / 2 >= 2 elements
 
 def model_operations(scene: Scene, name: str, segments: int) -> float:
     """Predicted operation count of a rung's generated functions (the ODE plus the outputs, CasADi SX operations)
-    before it is built: the quasi-static segmented cable QS_OPERATIONS_PER_SECTION x N^QS_OPERATIONS_EXPONENT per
-    section, the node model NODE_OPERATIONS_PER_ELEMENT x N per section (fits to the counts above); the straight
-    rungs (N = 1) a node model's element."""
+    before it is built: the quasi-static segmented cable QS_OPERATIONS_PER_SECTION x A^QS_OPERATIONS_EXPONENT per
+    section in its A angles (N in the plane, 2 N in 3-D: the heave line of studies/_bench_3d.py with its current at
+    45 deg has 25 k / 98 k / 571 k operations at N = 4 / 8 / 16, along x 10 k / 26 k / 103 k), the node model
+    NODE_OPERATIONS_PER_ELEMENT x N per section (fits to the counts above); the straight rungs (N = 1) a node model's
+    element."""
     sections = len(scene.sections)
     if name == "quasi-static" and segments > 1:
-        return sections * QS_OPERATIONS_PER_SECTION * float(segments) ** QS_OPERATIONS_EXPONENT
+        angles = float(segments) * (2 if three_d(scene) else 1)
+        return sections * QS_OPERATIONS_PER_SECTION * angles ** QS_OPERATIONS_EXPONENT
     return sections * NODE_OPERATIONS_PER_ELEMENT * max(int(segments), 1)
 
 
@@ -252,7 +264,8 @@ def element_plan(scene: Scene, numbers, errs: dict, tol, compiled: bool | None =
     stretches follow the tension (:func:`quasistatic_segments_available`; its estimate adds the stretch part,
     infinite under partial slack). The latter replaces the node model where the stretch is stiff
     (omega/omega_ax <= 1/STIFF_RATIO), and competes with it by cost where it is not, compiled and up to
-    EXPLICIT_COST_MAX_ELEMENTS (it is cheaper only stepped by the rk23 pair: ``explicit_only``). For each, two
+    EXPLICIT_COST_MAX_ELEMENTS (it is cheaper only stepped by the rk23 pair: ``explicit_only``; in a 3-D scene its
+    weights are SPACE_COST_FACTOR x the plane's, and stepped by the pair it is no cheaper there). For each, two
     N: the least within SAFETY x the tolerance (sure, the estimates being good to a factor of 2), and the least
     N >= CHECK_MIN_SEGMENTS within the tolerance that :func:`checkable` allows, checked a posteriori against N / 2
     (CHECK_COST x its cost;
@@ -261,10 +274,12 @@ def element_plan(scene: Scene, numbers, errs: dict, tol, compiled: bool | None =
     compiled: the node model sure at N = 9, cost 9, and checked at N = 6, cost 9; the quasi-static segmented
     checked at N = 6, cost 6.3, sure at none up to 8: it runs N = 6 and checks it against N = 3)."""
     families = [("segmented", 1.0, MAX_SEGMENTS, False)]
+    space = SPACE_COST_FACTOR if three_d(scene) else 1.0      # 3-D: two angles per element
     if quasistatic_segments_available(scene):
         if numbers.axial_ratio <= 1.0 / STIFF_RATIO:
-            families.append(("quasi-static", STIFF_QS_COST, min(MAX_SEGMENTS, quasistatic_max_segments(scene)), False))
-        elif (compiles() if compiled is None else compiled):
+            families.append(("quasi-static", STIFF_QS_COST * space, min(MAX_SEGMENTS, quasistatic_max_segments(scene)),
+                             False))
+        elif (compiles() if compiled is None else compiled) and EXPLICIT_COST * space < 1.0:
             families.append(("quasi-static", EXPLICIT_COST, min(EXPLICIT_COST_MAX_ELEMENTS, EXPLICIT_MAX_ELEMENTS), True))
     options = []
     for name, weight, top, explicit in families:

@@ -12,7 +12,11 @@ ch. 3-4; Wang 1971 eq. 17-25 for the straight cable's two directions):
   friction.
 
 Each is driven at the top by the part of the top motion along (or normal to) the static cable and
-carries the body (virtual mass, drag) at its lower end. With w(s) e^{i omega t}, k^2 = (m omega^2 -
+carries the body (virtual mass, drag) at its lower end. In a 3-D scene the static cable lies in the vertical
+plane of the flow (:func:`~.indicators.relative_flow`, heading beta; the plane x-y without a flow): the top's
+surge and sway are turned into that plane and across it, and the motion across it drives a second string, the
+same string with the drag slope about the flow across the flow, half of that along it (the cross-flow drag
+|v_n| v_n about v_n = U e_1 has the slopes 2 |U| along e_1 and |U| along e_2). With w(s) e^{i omega t}, k^2 = (m omega^2 -
 i omega c) / S (S = T or AE), the continuous member's end forces are exact (the dynamic stiffness
 of a string/rod; e.g. Clough & Penzien, "Dynamics of Structures", ch. 19):
 
@@ -44,6 +48,7 @@ import numpy as np
 from scipy.linalg.lapack import zgtsv
 
 from ..scene import Scene
+from .indicators import relative_flow, top_phasors
 
 K_HARMONIC = 8.0 / (3.0 * math.pi)   # describing function of |v| v for v = V sin(theta)
 FIXED_POINT_ITERATIONS = 12
@@ -286,7 +291,7 @@ def members(scene: Scene, omega: float, angle: float) -> list[tuple[Member, Memb
     is the end mass (a bound: the lower sections move with it)."""
     env = scene.environment
     rho = env.density
-    u_rel = max(abs(s - env.system_speed) for s in env.current_speeds)
+    u_rel = abs(relative_flow(scene)[0])
     st, ct = math.sin(angle), math.cos(angle)
     out = []
     secs = list(scene.sections)
@@ -309,23 +314,24 @@ def members(scene: Scene, omega: float, angle: float) -> list[tuple[Member, Memb
     return out
 
 
-def top_components(scene: Scene) -> list[tuple[float, complex, complex]]:
-    """(omega, X_s, Y_s) per forcing frequency: the complex top amplitudes, a sin(wt + ph) = Re(-i a e^{i ph} e^{iwt})."""
-    comps: dict = {}
-    for axis in ("x", "y"):
-        for s in getattr(scene.top_motion, axis):
-            if s.amplitude == 0.0:
-                continue
-            z = comps.setdefault(round(s.frequency, 12), [s.frequency, 0j, 0j])
-            z[1 if axis == "x" else 2] += -1j * s.amplitude * cmath.exp(1j * s.phase)
-    return [tuple(v) for v in comps.values()]
+def top_components(scene: Scene) -> list[tuple[float, complex, complex, complex]]:
+    """(omega, X_s, Y_s, Z_s) per forcing frequency: the complex top amplitudes, a sin(wt + ph) = Re(-i a e^{i ph}
+    e^{iwt}), with surge and sway turned into the flow's vertical plane (X_s along the heading beta of
+    :func:`~.indicators.relative_flow`, Z_s across it: :func:`~.indicators.top_phasors`); Z_s = 0 in the plane."""
+    return top_phasors(scene, relative_flow(scene)[1])
 
 
 def forcing_members(scene: Scene, angle: float, forcing=None) -> list:
-    """[(omega, X_s, Y_s, :func:`members`)] per forcing component: what :func:`response` needs of the scene,
+    """[(omega, X_s, Y_s, Z_s, :func:`members`)] per forcing component: what :func:`response` needs of the scene,
     built once for the many responses of one estimate (``parts``)."""
-    comps = top_components(scene) or [(w, a + 0j, a + 0j) for w, a in (forcing or [])]
-    return [(omega, xs, ys, members(scene, omega, angle)) for omega, xs, ys in comps]
+    comps = top_components(scene) or [(w, a + 0j, a + 0j, 0j) for w, a in (forcing or [])]
+    return [(omega, xs, ys, zs, members(scene, omega, angle)) for omega, xs, ys, zs in comps]
+
+
+def across(string: Member) -> Member:
+    """The string of the motion across the flow's plane (3-D): the same string, its drag slope about the flow half
+    of that along it (module docstring)."""
+    return dataclasses.replace(string, current=0.5 * string.current)
 
 
 def response(scene: Scene, angle: float, model: str, n: int = 1, forcing=None, parts=None) -> dict:
@@ -349,13 +355,15 @@ def response(scene: Scene, angle: float, model: str, n: int = 1, forcing=None, p
     Returns
     -------
     dict
-        ``x_b``, ``y_b`` (m), ``force_body``, ``force_top`` (N, the largest over sections, axial).
+        ``x_b``, ``y_b`` (m), ``force_body``, ``force_top`` (N, the largest over sections, axial); in 3-D
+        (sway, or a flow off the x axis) also ``z_b``, the body amplitudes then along the flow's plane and across
+        it (:func:`top_components`).
     """
     from ..model.segmented import drag_points
     st, ct = math.sin(angle), math.cos(angle)
     points = 0 if model == "exact" else drag_points(scene, n)       # the models' own drag quadrature
     out = {"x_b": 0.0, "y_b": 0.0, "force_body": 0.0, "force_top": 0.0}
-    for omega, xs, ys, pairs in (parts if parts is not None else forcing_members(scene, angle, forcing)):
+    for omega, xs, ys, zs, pairs in (parts if parts is not None else forcing_members(scene, angle, forcing)):
         top_t, top_n = xs * st + ys * ct, xs * ct - ys * st      # along and normal to the static line
         for string, rod in pairs:
             wb, _, _ = respond(string, omega, top_n, model, n, points)
@@ -364,6 +372,8 @@ def response(scene: Scene, angle: float, model: str, n: int = 1, forcing=None, p
             out["y_b"] = max(out["y_b"], abs(ub * ct - wb * st))
             out["force_body"] = max(out["force_body"], abs(fb))
             out["force_top"] = max(out["force_top"], abs(ft))
+            if zs != 0:                     # across the flow's plane: the string alone (no tension to first order)
+                out["z_b"] = max(out.get("z_b", 0.0), abs(respond(across(string), omega, zs, model, n, points)[0]))
     return out
 
 
@@ -371,8 +381,9 @@ def relative_errors(got: dict, ref: dict, largest_tension: float) -> dict:
     """{"body", "tension"} of ``got`` against ``ref`` as :mod:`.metrics` measures them: amplitude
     differences relative to the larger reference amplitude, force differences relative to the
     largest tension."""
-    a_ref = max(ref["x_b"], ref["y_b"], 1e-300)
-    body = max(abs(got[k] - ref[k]) for k in ("x_b", "y_b")) / a_ref
+    keys = [k for k in ("x_b", "y_b", "z_b") if k in ref]
+    a_ref = max(max(ref[k] for k in keys), 1e-300)
+    body = max(abs(got.get(k, 0.0) - ref[k]) for k in keys) / a_ref
     tension = max(abs(got[k] - ref[k]) for k in ("force_body", "force_top")) / max(largest_tension, 1e-300)
     return {"body": float(body), "tension": float(tension)}
 

@@ -86,7 +86,7 @@ from ..model import build_model
 from ..scene import Scene
 from ..scene.labels import section_suffix
 from . import continuum, local_drag
-from .indicators import SceneNumbers, scene_numbers, static_angle
+from .indicators import SceneNumbers, other_components, scene_numbers, static_angle, top_phasors
 from .rung.base import with_segments
 
 ORDER = 2.0         # convergence order of the segmented cable in N (taut; Dale study: 2-3)
@@ -149,7 +149,8 @@ def linear_response(scene: Scene, numbers: SceneNumbers, model=None) -> LinearRe
     # sections labels them tension_mid_2, x_b_2, ... (cablesys.scene.labels.section_suffix)
     sfx = [section_suffix(scene, i) for i in range(len(scene.sections))]
     keys = tuple(k + x for x in sfx for k in ("tension_top", "tension_bottom", "tension_mid"))
-    bodies = tuple(k + x for x in sfx for k in ("x_b", "y_b"))
+    # the body's coordinates: x_b, y_b and in 3-D the sway z_b (the 3-D model's outputs)
+    bodies = tuple(k + x for x in sfx for k in ("x_b", "y_b", "z_b") if k + x in model.output_labels)
     stretches = tuple("u" + x for x in sfx)
     if numbers.single_frequency and not scene.environment.waves:
         omega, Z = scene_input_amplitude(sc)
@@ -167,11 +168,23 @@ def linear_response(scene: Scene, numbers: SceneNumbers, model=None) -> LinearRe
                                   stretch_amplitude=max(amp(k) for k in stretches), method="harmonic (describing function)")
     st = steady_state(model, p)
     lin = linearize(model, p, steady=st)
-    omegas = np.array([w for w, _ in numbers.forcing]) if numbers.forcing else np.array([1e-6])
-    amps = np.array([a for _, a in numbers.forcing]) if numbers.forcing else np.zeros(1)
-    _, Y = lin.transfer(omegas)
     lab = list(lin.output_labels)
-    gain = lambda k: float(np.sum(np.max(np.abs(Y[:, lab.index(k), :2]), axis=1) * amps))
+    if "z_s" in lin.input_labels:
+        # 3-D: each top frequency's response to its complex top amplitudes (x_s, y_s, z_s) (which turn with the scene),
+        # the waves and a series as in the plane (the largest of the top's three columns per metre)
+        phasors = top_phasors(scene)
+        others = other_components(scene)
+        w_top = np.array([c[0] for c in phasors] + [w for w, _ in others] or [1e-6])
+        _, Y = lin.transfer(w_top)
+        Z = np.array([c[1:] for c in phasors], complex).reshape(-1, 3)
+        amps = np.array([a for _, a in others])
+        gain = lambda k: float(np.sum(np.abs(np.sum(Y[:len(phasors), lab.index(k), :3] * Z, axis=1)))
+                               + np.sum(np.max(np.abs(Y[len(phasors):, lab.index(k), :3]), axis=1) * amps))
+    else:
+        omegas = np.array([w for w, _ in numbers.forcing]) if numbers.forcing else np.array([1e-6])
+        amps = np.array([a for _, a in numbers.forcing]) if numbers.forcing else np.zeros(1)
+        _, Y = lin.transfer(omegas)
+        gain = lambda k: float(np.sum(np.max(np.abs(Y[:, lab.index(k), :2]), axis=1) * amps))
     return LinearResponse(omega=numbers.omega_forcing, body_amplitude=max(gain(k) for k in bodies),
                           tension_mean={k: float(st.outputs[k]) for k in keys},
                           tension_amplitude={k: gain(k) for k in keys}, stretch_amplitude=max(gain(k) for k in stretches),
@@ -282,8 +295,9 @@ def continuum_errors(scene: Scene, numbers: SceneNumbers, largest_tension: float
         from ..model.segmented import drag_points
         ref_l, table = local_drag.body_responses(scene, angle, [k for k in counts if k <= LOCAL_MAX_N],
                                                  lambda n: drag_points(scene, n), forcing=kw["forcing"])
-        a_ref = max(ref_l["x_b"], ref_l["y_b"], 1e-300)
-        out["local"] = {n: {"body": max(abs(got[k] - ref_l[k]) for k in ("x_b", "y_b")) / a_ref, "tension": 0.0}
+        keys = [k for k in ("x_b", "y_b", "z_b") if k in ref_l]           # z_b: the sway across the flow (3-D)
+        a_ref = max(max(ref_l[k] for k in keys), 1e-300)
+        out["local"] = {n: {"body": max(abs(got[k] - ref_l[k]) for k in keys) / a_ref, "tension": 0.0}
                         for n, got in table.items()}
     return out
 

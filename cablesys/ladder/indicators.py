@@ -9,6 +9,7 @@ sag q L^2 / (8 T)).
 
 from __future__ import annotations
 
+import cmath
 import dataclasses
 import math
 
@@ -45,12 +46,19 @@ class SceneNumbers:
 
 
 def forcing_components(scene: Scene) -> list[tuple[float, float]]:
-    """(omega, amplitude) of every sinusoid of the top motion, every wave (sigma = sqrt(2 pi g / lambda),
-    Wang 1971 eq. 26) and the sampled series (its spectrum's components above 1 % of the largest)."""
+    """(omega, amplitude) of every sinusoid of the top motion (surge, heave and, in 3-D, sway), then every wave and
+    the sampled series (:func:`other_components`)."""
     top = scene.top_motion
-    comps = [(s.frequency, abs(s.amplitude)) for s in top.x + top.y if s.amplitude != 0.0]
+    comps = [(s.frequency, abs(s.amplitude)) for s in top.x + top.y + top.z if s.amplitude != 0.0]
+    return comps + other_components(scene)
+
+
+def other_components(scene: Scene) -> list[tuple[float, float]]:
+    """(omega, amplitude) of every wave (sigma = sqrt(2 pi g / lambda), Wang 1971 eq. 26) and of the sampled series
+    (its spectrum's components above 1 % of the largest): the forcing that is not a sinusoid of the top."""
+    top = scene.top_motion
     g = scene.environment.gravity
-    comps += [(math.sqrt(2 * math.pi * g / w.length), w.amplitude) for w in scene.environment.waves if w.amplitude > 0]
+    comps = [(math.sqrt(2 * math.pi * g / w.length), w.amplitude) for w in scene.environment.waves if w.amplitude > 0]
     if top.series is not None:
         t = np.asarray(top.series.times)
         dt = float(np.min(np.diff(t)))
@@ -65,11 +73,60 @@ def forcing_components(scene: Scene) -> list[tuple[float, float]]:
     return comps
 
 
-def static_angle(scene: Scene) -> float:
-    """Angle of the top section from the vertical in a current (rad): drag of the body and half the
-    cable's against the weights below the cable's middle (the straight-cable balance, eq. 47-48)."""
+def relative_flow(scene: Scene) -> tuple[float, float]:
+    """(u, beta): the steady relative flow (the current minus the system speed along +x, Wang 1971 eq. 26-28) of
+    largest size over the current's depths, m/s, and the heading beta of the vertical plane it lies in (rad from +x
+    towards +z, the current headings' convention). In the plane beta = 0 and u is signed along +x, as the planar
+    equations take it; in a 3-D scene the flow is the vector (U cos h - V_s, U sin h) per depth, u its size (the
+    static cable lies in the plane of the flow: the estimates of :mod:`.continuum` turn the top motion into it)."""
     env = scene.environment
-    u = max((s - env.system_speed for s in env.current_speeds), key=abs)
+    if not getattr(scene, "three_d", False):
+        return max((s - env.system_speed for s in env.current_speeds), key=abs), 0.0
+    flows = [(s * math.cos(math.radians(h)) - env.system_speed, s * math.sin(math.radians(h)))
+             for s, h in zip(env.current_speeds, env.headings_per_depth_deg)]
+    vx, vz = max(flows, key=lambda v: math.hypot(*v))
+    size = math.hypot(vx, vz)
+    return size, (math.atan2(vz, vx) if size > 0.0 else 0.0)
+
+
+def top_phasors(scene: Scene, beta: float = 0.0) -> list[tuple[float, complex, complex, complex]]:
+    """(omega, X, Y, Z) per forcing frequency of the top's sinusoids: the complex amplitudes, a sin(wt + ph) =
+    Re(-i a e^{i ph} e^{iwt}), summed per axis, with surge and sway turned by ``beta`` about the vertical into the
+    axes along and across a heading (X cos beta + Z sin beta, -X sin beta + Z cos beta); Z = 0 in the plane."""
+    comps: dict = {}
+    axes = ("x", "y", "z")
+    for axis in axes:
+        for s in getattr(scene.top_motion, axis):
+            if s.amplitude == 0.0:
+                continue
+            z = comps.setdefault(round(s.frequency, 12), [s.frequency, 0j, 0j, 0j])
+            z[1 + axes.index(axis)] += -1j * s.amplitude * cmath.exp(1j * s.phase)
+    if beta != 0.0:
+        c, s_ = math.cos(beta), math.sin(beta)
+        for z in comps.values():
+            z[1], z[3] = z[1] * c + z[3] * s_, -z[1] * s_ + z[3] * c
+    return [tuple(v) for v in comps.values()]
+
+
+def top_amplitudes(scene: Scene) -> tuple[float, float, float]:
+    """(a_parallel, a_y, a_perpendicular): the top's motion amplitudes (m) along the flow's heading beta
+    (:func:`relative_flow`), vertical, and across it (horizontal). In the plane the sums of the sinusoids' amplitudes
+    per axis (a bound over frequencies), (a_x, a_y, 0); in a 3-D scene the sums over the forcing frequencies of the
+    sizes of the complex amplitudes turned into the flow's axes (:func:`top_phasors`), so that a scene turned about
+    the vertical has the same amplitudes."""
+    top = scene.top_motion
+    if not getattr(scene, "three_d", False):
+        return (sum(abs(s.amplitude) for s in top.x), sum(abs(s.amplitude) for s in top.y), 0.0)
+    comps = top_phasors(scene, relative_flow(scene)[1])
+    return tuple(float(sum(abs(c[k]) for c in comps)) for k in (1, 2, 3))
+
+
+def static_angle(scene: Scene) -> float:
+    """Angle of the top section from the vertical in a current (rad), in the vertical plane of the flow
+    (:func:`relative_flow`): drag of the body and half the cable's against the weights below the cable's middle
+    (the straight-cable balance, eq. 47-48)."""
+    env = scene.environment
+    u = relative_flow(scene)[0]
     drag, weight = 0.0, 0.0
     for k, sec in enumerate(scene.sections):
         c, b = sec.cable, sec.body
@@ -98,15 +155,16 @@ def scene_numbers(scene: Scene) -> SceneNumbers:
     rho = env.density
     w_ax = min(axial_frequencies(scene))
     w_str, mass_r, weight_r, bow_s, bow_d, w_sw = math.inf, 0.0, 0.0, 0.0, 0.0, 0.0
-    a_x = sum(abs(s.amplitude) for s in scene.top_motion.x)
-    a_y = sum(abs(s.amplitude) for s in scene.top_motion.y)
-    a_top = math.hypot(a_x, a_y)
+    a_x, a_y, a_z = top_amplitudes(scene)          # along the flow's plane, vertical, across it (3-D)
+    a_top = math.hypot(math.hypot(a_x, a_y), a_z)
     phi0 = static_angle(scene)
-    # the top motion normal to the cable, e_n = (-cos phi, -sin phi) (Wang 1971 eq. 17): only it bows
-    # the cable and excites its string modes; motion along the cable stretches it
-    a_normal = math.hypot(a_x * math.cos(phi0), a_y * math.sin(phi0))
+    # the top motion normal to the cable, e_n = (-cos phi, -sin phi) (Wang 1971 eq. 17), and in 3-D the sway
+    # across the flow's plane (normal to the static cable): only it bows the cable and excites its string
+    # modes; motion along the cable stretches it
+    a_normal = math.hypot(math.hypot(a_x * math.cos(phi0), a_y * math.sin(phi0)), a_z)
     below = 0.0
     t_static = None
+    u_rel = abs(relative_flow(scene)[0])
     for sec in reversed(scene.sections):
         c, b = sec.cable, sec.body
         t_mean = below + b.weight + 0.5 * c.total_weight
@@ -119,7 +177,6 @@ def scene_numbers(scene: Scene) -> SceneNumbers:
         # compound pendulum, omega^2 = (W_b + W_c/2) / (L (M_bvx + M_cv/3)) (Wang 1971 eq. 22-25)
         w_sw = math.sqrt(max(t_mean, 0.0) / (c.length * (b.mass_x + below_mass(scene, sec) + m_v * c.length / 3)))
         weight_r = max(weight_r, c.total_weight / max(abs(b.weight), 1e-300))
-        u_rel = max(abs(s - env.system_speed) for s in env.current_speeds)
         q_s = 0.5 * rho * c.cd_normal * c.diameter * u_rel**2
         q_d = 0.5 * rho * c.cd_normal * c.diameter * (w_f * a_normal) ** 2
         if t_mean > 0:

@@ -34,6 +34,7 @@ from ..scene import Scene
 from .continuum import (
     K_HARMONIC,
     Member,
+    across,
     drag_shares,
     members,
     respond,
@@ -129,21 +130,27 @@ def body_responses(scene: Scene, angle: float, counts, points, forcing=None) -> 
     string's, {n: those of n elements with ``points(n)`` drag points each} for n in ``counts``); the rods as
     :func:`~.continuum.respond` (exact, or n lumped elements). Each element chain starts from the continuous
     string's node amplitudes."""
-    comps = top_components(scene) or [(w, a + 0j, a + 0j) for w, a in (forcing or [])]
+    comps = top_components(scene) or [(w, a + 0j, a + 0j, 0j) for w, a in (forcing or [])]
     st, ct = math.sin(angle), math.cos(angle)
     ref = {"x_b": 0.0, "y_b": 0.0}
     out = {n: {"x_b": 0.0, "y_b": 0.0} for n in counts}
 
-    def add(d, ub, wb):
+    def add(d, ub, wb, wz=None):
         d["x_b"] = max(d["x_b"], abs(ub * st + wb * ct))
         d["y_b"] = max(d["y_b"], abs(ub * ct - wb * st))
+        if wz is not None:
+            d["z_b"] = max(d.get("z_b", 0.0), abs(wz))
 
-    for omega, xs, ys in comps:
+    for omega, xs, ys, zs in comps:
         top_t, top_n = xs * st + ys * ct, xs * ct - ys * st
         for string, rod in members(scene, omega, angle):
             wb, amp = reference(string, omega, top_n)
-            add(ref, respond(rod, omega, top_t, "exact")[0], wb)
+            # 3-D: the motion across the flow's plane drives the same string, its drag slope across the flow
+            side = across(string) if zs != 0 else None
+            wz, amp_z = reference(side, omega, zs) if side is not None else (None, None)
+            add(ref, respond(rod, omega, top_t, "exact")[0], wb, wz)
             for n in counts:
                 p = points(n)
-                add(out[n], respond(rod, omega, top_t, "segmented", n, p)[0], chain(string, omega, top_n, n, p, start=amp))
+                add(out[n], respond(rod, omega, top_t, "segmented", n, p)[0], chain(string, omega, top_n, n, p, start=amp),
+                    chain(side, omega, zs, n, p, start=amp_z) if side is not None else None)
     return ref, out

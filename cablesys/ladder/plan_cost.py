@@ -226,8 +226,11 @@ def compile_guess(operations: float, name: str, method: str, segments: int) -> f
 
 
 def state_count(scene_run: Scene, name: str, segments: int) -> int:
-    """2 nq of a rung's model before it is built (the module docstring)."""
-    per = {"segmented": 2 * segments, "quasi-static": segments}.get(name, 2)
+    """2 nq of a rung's model before it is built (the module docstring): per section the node model's dim N node
+    coordinates, the quasi-static segmented cable's (dim - 1) N angles, a straight cable's dim (angles and stretch;
+    dim = 3 in a 3-D scene, else 2)."""
+    dim = 3 if getattr(scene_run, "three_d", False) else 2
+    per = {"segmented": dim * segments, "quasi-static": (dim - 1) * segments}.get(name, dim)
     return 2 * per * len(scene_run.sections)
 
 

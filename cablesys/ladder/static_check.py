@@ -31,7 +31,7 @@ from .choice import EXPLICIT_COST_MAX_ELEMENTS, MAX_SEGMENTS, Choice, checkable,
 from .rungs import RungCache, rung_scene
 
 REFERENCE_SEGMENTS = 64      # the converged statics (ROV lift: 0.08 % from N = 32 on the body's offset)
-STATIC_KEYS = ("static_x_b", "static_y_b", "static_tension_top", "static_tension_bottom")
+STATIC_KEYS = ("static_x_b", "static_y_b", "static_z_b", "static_tension_top", "static_tension_bottom")
 
 
 def _group(key: str) -> str:
@@ -40,7 +40,8 @@ def _group(key: str) -> str:
 
 def static_values(scene: Scene, name: str, segments: int, cache: RungCache) -> dict:
     """{STATIC_KEYS: value} of the equilibrium of rung ``name`` with ``segments`` elements (m, N): Wang's straight
-    cable for N = 1, else the node model at N (the quasi-static segmented cable's statics are the node model's)."""
+    cable for N = 1, else the node model at N (the quasi-static segmented cable's statics are the node model's);
+    ``static_z_b`` is NaN in the plane (no sway: :func:`static_errors` skips it)."""
     n = int(segments)
     model = cache.model(scene, "wang" if n <= 1 else "segmented", n)
     sc = rung_scene(scene, "wang" if n <= 1 else "segmented", n)
@@ -48,8 +49,8 @@ def static_values(scene: Scene, name: str, segments: int, cache: RungCache) -> d
     state = steady_state(model, p) if n <= 1 else segmented_steady(model, p)
     out = state.outputs
     get = lambda k: float(out[k]) if k in out else math.nan
-    return {"static_x_b": get("x_b"), "static_y_b": get("y_b"), "static_tension_top": get("tension_top"),
-            "static_tension_bottom": get("tension_bottom")}
+    return {"static_x_b": get("x_b"), "static_y_b": get("y_b"), "static_z_b": get("z_b"),
+            "static_tension_top": get("tension_top"), "static_tension_bottom": get("tension_bottom")}
 
 
 def static_errors(values: dict, reference: dict) -> dict:

@@ -22,8 +22,9 @@ def register(sub) -> None:
     """Add ``rao SCENE.toml [--out DIR] [--omega-max W] [--n N]`` to the cablesys parser."""
     p = sub.add_parser("rao", help="linearize about the steady state: natural frequencies and RAOs (CSV + plots)",
                        description="Steady state, exact linearization, natural modes and RAOs of x_b, y_b, phi, u "
-                                   "and tension per unit top motion in x and y. With a one-frequency top motion in "
-                                   "the scene, also the describing-function RAO at that motion's amplitude.")
+                                   "and tension per unit top motion in x and y (and of z_b per unit sway z in a 3-D "
+                                   "scene). With a one-frequency top motion in the scene, also the describing-function "
+                                   "RAO at that motion's amplitude, per direction of the top motion.")
     p.add_argument("scene", help="scene TOML file")
     p.add_argument("--out", default="rao_out", help="output directory (default: rao_out)")
     p.add_argument("--omega-max", type=float, default=None,
@@ -57,7 +58,7 @@ def _analyse(args, scene, outdir) -> int:
     from ..ladder import linear_model
     from ..units import output_unit
     from .band import RELEVANT_FACTOR, default_band, forcing_frequencies, relevant_modes
-    from .equivalent import HB_TOLERANCE, harmonic_response
+    from .equivalent import HB_TOLERANCE, harmonic_model, harmonic_response
     from .frequency_response import rao
     from .linearization import linearize
     from .modal import modes as modes_of
@@ -88,19 +89,25 @@ def _analyse(args, scene, outdir) -> int:
     except ParameterError:      # no one-frequency top motion: the describing-function RAO does not apply
         Z = None
     failures, describing = [], {}
-    for k, inp in enumerate(("x_s", "y_s") if Z is not None else ()):
+    # one describing function per direction of the top's motion (surge, heave, and sway in 3-D: the inputs of the
+    # linearization, in the order of scene_input_amplitude), each at the scene's amplitude in that direction alone
+    tops = [i for i in ("x_s", "y_s", "z_s") if i in lin.input_labels]
+    # the node model's balance in its element coordinates (the same physics and outputs; equivalent.harmonic_model)
+    df_model = harmonic_model(scene, model) if Z is not None and np.any(np.abs(Z[:len(tops)]) > 0) else model
+    for k, inp in enumerate(tops if Z is not None else ()):
         if abs(Z[k]) > 0:
             Zk = np.zeros_like(Z)
             Zk[k] = abs(Z[k])
             # the describing function holds the scene's amplitude: it means something near the scene's forcing,
             # up to the band where that forcing excites modes (linear.band.RELEVANT_FACTOR), not far above it
             band = omega[omega <= RELEVANT_FACTOR * w_s]
-            h = harmonic_response(model, p, band, Zk, n_theta=DF_PHASES, slack_stop=SLACK_STOP, linear_models=False)
+            h = harmonic_response(df_model, p, band, Zk, n_theta=DF_PHASES, slack_stop=SLACK_STOP, linear_models=False)
             valid = h.solved & ~h.slack & (h.residual < HB_TOLERANCE)
             bad = h.solved & ~h.slack & ~(h.residual < HB_TOLERANCE)
             if np.any(bad):
                 failures.append(f"describing function for {inp}: {h.message}")
             describing[inp] = _describing_record(h, valid, abs(Z[k]), raos["exact linearization"], inp)
+            describing[inp]["coordinates"] = ", ".join(df_model.q_labels[:3]) + (" ..." if df_model.nq > 3 else "")
             if np.any(valid):
                 r = h.rao(label=inp)
                 slack = band[h.solved & h.slack]
@@ -113,7 +120,6 @@ def _analyse(args, scene, outdir) -> int:
     natural = {f"omega_{d}" if unique else f"mode {k + 1} ({d})": float(w)
                for k, (d, w) in enumerate(zip(md.dominant, md.omega_undamped)) if omega[0] <= w <= w_max}
     written = []
-    tops = [i for i in ("x_s", "y_s", "z_s") if i in lin.input_labels]     # z_s: the top's sway in 3-D
     for name, r in raos.items():
         tag = "exact" if name.startswith("exact") else "describing"
         for inp in [i for i in r.input_labels if i in tops]:
@@ -200,7 +206,7 @@ def _describing_record(h, valid, amplitude: float, exact, inp: str) -> dict:
     if ok.size:
         # |exact - DF| / |DF| per unit input of the body's motion and the top tension: the drag's effect, which the
         # exact linearization leaves out (where it is small the exact RAO alone would do)
-        body = "y_b" if inp == "y_s" else "x_b"
+        body = {"x_s": "x_b", "y_s": "y_b", "z_s": "z_b"}[inp]
         d["exact_vs_describing_max_rel"] = {}
         for out in (body, "tension_top"):
             if out in h.output_labels and out in exact.output_labels:

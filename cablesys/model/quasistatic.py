@@ -17,9 +17,15 @@ is the swing. The tension is the constraint force k u that holds the stretch equ
 error of the reduction is O((omega / omega_ax)^2): a spring with mass driven at omega
 responds by 1 / (1 - (omega / omega_ax)^2) more than its quasi-static tension.
 
+In three dimensions (Wang 1971 p. 32, "allow the cable to swing out of the vertical plane") the slow
+coordinates are both angles of Wang's 3-D cable, (phi, phi_z), and the fast one its stretch u: the same
+code, the split by the coordinates' labels (a planar scene builds the planar model; ``numerics.dimensions
+= 3`` forces the 3-D one, whose answer on a planar scene is the planar one).
+
 A scene with ``cable.segments = N > 1`` gets the same reduction of the segmented cable
 (:mod:`.element_coordinates`: the node model of :mod:`.segmented` in the coordinates (phi_k, u_k)
-of its elements, Wang's p. 33 "each segment has two degrees of freedom"). Its fast modes are the
+of its elements, Wang's p. 33 "each segment has two degrees of freedom", and (phi_k, phi_z_k, u_k) in
+3-D: slow both angles of every element, fast its stretch). Its fast modes are the
 N axial modes of the elements, the lowest near Wang's omega_ax and the others higher, all
 undamped unless C_I > 0 (eq. 46): with eps = omega / omega_ax the system is
 singularly perturbed (the stretch rows are M_uu u'' + ... = -k_e u + ..., k_e ~ 1/eps^2), and
@@ -138,9 +144,11 @@ def _stretch_solution(full: CableModel, slow, fast, s, sd, e, p, iterations: int
     sdd = ca.solve(M_ss, f[slow])
     r = f[fast] - ca.mtimes(M_us, sdd)                      # stretch rows with u'' = 0
     # u' along the motion comes from dr/dt at fixed u (the implicit-function theorem: dr/du u' = -dr/dt),
-    # one forward AD sweep (shared by CSE) instead of AD through the unrolled iterations
-    zd, zdd = e[3:5], e[5:7]
-    r_t = ca.jtimes(r, ca.vertcat(s, sd, e), ca.vertcat(sd, sdd, 0.0, zd, zdd, 0.0, 0.0))
+    # one forward AD sweep (shared by CSE) instead of AD through the unrolled iterations; e = (t, z, z', z'')
+    # with z of 2 entries in the plane, 3 in space (top_motion.EXO_LABELS_3D)
+    dim = (e.numel() - 1) // 3
+    zd, zdd = e[1 + dim:1 + 2 * dim], e[1 + 2 * dim:1 + 3 * dim]
+    r_t = ca.jtimes(r, ca.vertcat(s, sd, e), ca.vertcat(sd, sdd, 0.0, zd, zdd, ca.DM.zeros(dim)))
     if stiffness is not None:
         rows = ca.Function("rows", [u_sym, s, sd, e, p], [r, sdd, M_ss, f[slow]])
         u = start
@@ -181,7 +189,8 @@ def build_quasistatic(scene: Scene, *, full: CableModel | None = None,
     Returns
     -------
     CableModel
-        ``q_labels`` are the angles only (``phi[k]`` per element for N > 1); ``outputs`` has the
+        ``q_labels`` are the angles only (``phi[k]`` per element for N > 1; with ``phi_z``, ``phi_z[k]`` in 3-D);
+        ``outputs`` has the
         labels of the model reduced (2-DOF, or the segmented profiles ``element_tension[k]``...; the
         stretch rate is the quasi-static one, du/dt along the motion without the top jerk); ``kind``
         is ``"quasi-static"``; for N > 1 an ``ElementModel`` with ``elements`` and ``n_elements``.
@@ -203,7 +212,7 @@ def _build_quasistatic(scene: Scene, full: CableModel | None, iterations: int) -
     n = full.nq
     q_labels = tuple(full.q_labels[i] for i in slow)
     s, sd = ca.SX.sym("q", ns), ca.SX.sym("qd", ns)
-    e = ca.SX.sym("e", 7)
+    e = ca.SX.sym("e", full.dynamics.size1_in(2))      # (t, z, z', z''): 7 entries in the plane, 10 in space
     p = ca.SX.sym("p", len(full.layout))
     # Wang's model starts Newton at the zero-tension length (its rows are smooth there); the elements'
     # tension law max(TENS, ...) (eq. 54) is flat below the floor, so they start from the hanging stretch

@@ -98,6 +98,8 @@ def steady_state(model: CableModel, p, *, guess=None, solver: ca.Function | None
     """
     if getattr(model, "segments", None):
         return segmented_steady(model, p, guess=guess)
+    if getattr(model, "kind", None) == "element-coordinates":
+        return _element_steady(model, p, guess)
     p = static_parameters(model, p)
     rf = solver or _rootfinder(model)
     resid_fn = static_residual(model)
@@ -126,3 +128,16 @@ def steady_state(model: CableModel, p, *, guess=None, solver: ca.Function | None
                           "and a very strong current or tow speed streams the cable horizontally: check weights and "
                           f"speeds, or give an initial guess{' (KINSOL: ' + ', '.join(sorted(flags)) + ')' if flags else ''}")
     return at_rest(model, best[0], p, best[1])
+
+
+def _element_steady(model: CableModel, p, guess=None) -> SteadyState:
+    """The equilibrium of the segmented cable in element coordinates (:mod:`cablesys.model.element_coordinates`): the
+    node model's elastic catenary (:func:`.catenary.segmented_steady`) mapped by ``from_nodes`` (the same physics in
+    other coordinates), its residual that of the element model's own static equations there."""
+    rest = np.zeros(model.top.size1_out(0))
+    if guess is not None:               # the guess in element coordinates, as node positions
+        guess = np.array(model.to_nodes(np.concatenate([guess, np.zeros_like(guess)]), rest, p)).ravel()[:model.node_model.nq]
+    st = steady_state(model.node_model, p, guess=guess)
+    q = np.array(model.from_nodes(np.concatenate([st.q, np.zeros_like(st.q)]), rest, p)).ravel()[:model.nq]
+    p = static_parameters(model, p)
+    return at_rest(model, q, p, float(np.max(np.abs(np.array(static_residual(model)(q, p))))))

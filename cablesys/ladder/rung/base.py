@@ -1,14 +1,14 @@
 """What the built-in rungs share: the scene a rung runs, the scene kinds that limit which rungs can run a scene,
 and the base of every built-in rung (:class:`BuiltinRung`).
 
-A rung's validity (:meth:`BuiltinRung.valid`) is "" when it can run a scene, else the sentence saying why not. Five
-kinds of scene limit the rungs so far: a 3-D scene (Wang's straight cable and the node model have three-dimensional equations,
-Wang 1971 p. 32; the frequency and quasi-static rungs are planar), a massless cable (Wang's CBMAS < 0, Wang 1971 program notes: an idealization of his straight
-cable; the element rungs' nodes would have no mass), an anchored line or a seabed (they act on the nodes of the
-segmented cable, which the straight cable has none of), a winch (a varying length, carried by the node model only) and
-a towing ship's track (its steady start found for the node model only).
-A rigid body (``body.pitch_inertia``) limits them too: its orientation (the pitch in the plane, a quaternion in
-3-D) is a coordinate of the node model alone
+A rung's validity (:meth:`BuiltinRung.valid`) is "" when it can run a scene, else the sentence saying why not. These
+kinds of scene limit the rungs so far: a 3-D scene (Wang's straight cable, the node model and the quasi-static rungs
+have three-dimensional equations, Wang 1971 p. 32; the frequency rung is planar), a massless cable (Wang's CBMAS < 0,
+Wang 1971 program notes: an idealization of his straight cable; the element rungs' nodes would have no mass), an
+anchored line or a seabed (they act on the nodes of the segmented cable, which the straight cable has none of), a
+winch (a varying length, carried by the node model only) and a towing ship's track (its steady start, the turn or
+the straight tow, is found for the node model only). A rigid body (``body.pitch_inertia``) limits them too: its
+orientation (the pitch in the plane, a quaternion in 3-D) is a coordinate of the node model alone
 (:mod:`cablesys.model.rigid_body`).
 """
 
@@ -62,7 +62,7 @@ def turning(scene: Scene) -> bool:
     return getattr(getattr(scene, "top_motion", None), "track", None) is not None
 
 
-PLANAR = ("a 3-D scene: the frequency and quasi-static rungs are planar; Wang's straight cable and the node model "
+PLANAR = ("a 3-D scene: the frequency rung is planar; Wang's straight cable, the quasi-static rungs and the node model "
           "(segmented) have three-dimensional equations")
 WITH_MASS = ("a massless cable (cable.cable_mass_switch < 0, Wang 1971's CBMAS) belongs to Wang's straight cable: the "
              "element rungs' nodes would have no mass, and the ladder has no estimate of the other rungs against it")
@@ -75,11 +75,9 @@ TURNING = ("a towing ship's track (top_motion.track: a circle, a straight, a tur
            "on the steady turn or the steady straight tow, which the statics find for the node model (segmented) only")
 
 
-def straight_validity(scene: Scene) -> str:
-    """The validity of a rung built on Wang's planar straight cable with mass (frequency, quasi-static): "" or
-    why not (see the module docstring)."""
-    if three_d(scene):
-        return PLANAR
+def reduced_validity(scene: Scene) -> str:
+    """The validity of a rung built on Wang's straight cable with mass, in the plane or in space, that the node model
+    does not carry (the quasi-static rungs): "" or why not (see the module docstring)."""
     if massless(scene):
         return WITH_MASS
     if rigid(scene):
@@ -89,6 +87,12 @@ def straight_validity(scene: Scene) -> str:
     if turning(scene):           # a straight track along x is planar: its straight tow is the node model's
         return TURNING
     return NO_NODES if has_ends(scene) else ""
+
+
+def straight_validity(scene: Scene) -> str:
+    """The validity of a rung built on Wang's planar straight cable with mass (the frequency rung's periodic orbit):
+    "" or why not (see the module docstring)."""
+    return PLANAR if three_d(scene) else reduced_validity(scene)
 
 
 NOT_ESTIMATED = {"body": math.nan, "tension": math.nan}

@@ -1,6 +1,6 @@
 """The quasi-static rung: the swing with the stretch following the tension (:mod:`cablesys.model.quasistatic`),
 Wang's straight cable (``segments = 1``) or N elements whose stretches follow their tensions (``segments = N``:
-the quasi-static segmented cable)."""
+the quasi-static segmented cable), in the plane or in 3-D (both angles slow, the stretches fast)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from ...model import CableModel
 from ...model.quasistatic import build_quasistatic, default_iterations
 from ...scene import Scene
 from .. import estimate as est
-from .base import BuiltinRung, three_d
+from .base import BuiltinRung, reduced_validity
 
 STIFF_QS_COST = 0.25
 """Cost per element of the quasi-static segmented cable where its stretch is stiff (omega/omega_ax <= 1/STIFF_RATIO), relative to the node model's element stepped by BDF2, compiled, at one rtol (a wall-time ratio: studies/bench_rung_costs.py, its
@@ -18,6 +18,14 @@ EXPLICIT_COST = 0.7
 studies/results/rung_costs.json)."""
 EXPLICIT_COST_MAX_ELEMENTS = 7
 """Most elements per section at which EXPLICIT_COST holds: past ~1.5 MB of functions the compiler runs at -O0 (cablesys.compiled.SIZE_FLAGS) and the 1000 m wire's N = 8 runs as slowly as the node model (studies/results/rung_costs.json)."""
+SPACE_COST_FACTOR = 2.0
+"""The quasi-static segmented cable's weights (STIFF_QS_COST, EXPLICIT_COST) in a 3-D scene over the plane's, both against
+the node model of the scene's dimension: each element has two angles, and the functions grow with the angles as the
+plane's grow with the elements (:func:`cablesys.ladder.choice.model_operations`; the eliminated mass matrix is twice as
+wide), to 2.5 / 3.8 x the plane's operations at N = 4 / 8, where the node model's grow 1.7 x (3 x 3 node blocks): 1.5 x
+to 2.2 x the plane's weight (tests/test_quasistatic_3d.py counts them). At it the explicit pair's run is no cheaper than
+the node model's in 3-D (EXPLICIT_COST x 2 > 1): there only a stiff stretch makes the quasi-static segmented cable the
+cheaper rung."""
 
 
 class QuasiStatic(BuiltinRung):
@@ -34,10 +42,11 @@ class QuasiStatic(BuiltinRung):
         full = cache.model(scene, "wang") if cache is not None and self.segments(segments) == 1 else None
         return build_quasistatic(self.scene(scene, segments), full=full)
 
-    def scene(self, scene: Scene, segments: int = 1) -> Scene:
-        """The scene this rung runs; a 3-D scene keeps one element per section: the quasi-static reduction is planar
-        (outside its validity, :func:`.base.straight_validity`), so it offers the ladder no elements there."""
-        return super().scene(scene, 1 if three_d(scene) else segments)
+    def valid(self, scene: Scene) -> str:
+        """"" for any scene with a cable with mass and no anchor, seabed, winch, rigid body or turning track, in the
+        plane or in 3-D (Wang's 3-D cable and the node model in element coordinates (phi_k, phi_z_k, u_k),
+        :mod:`cablesys.model.element_coordinates`), else why not."""
+        return reduced_validity(scene)
 
     def structure(self, scene_run: Scene) -> tuple:
         """What besides the scene's structure sets the model: the stretch solve's Newton iterations."""
