@@ -54,12 +54,12 @@ def _nodes(rec, dim: int) -> np.ndarray:
     return X[:dim * n].reshape(n, dim, -1)
 
 
-def planar_equivalence(n: int = 10, duration: float = 30.0) -> dict:
+def planar_equivalence(n: int = 10, duration: float = 30.0, rtol: float = 1e-10) -> dict:
     """The planar mooring (friction 0.3 axial, 0.6 lateral, fairlead in surge and heave) against the same scene forced
     through the 3-D equations (``numerics.dimensions = 3``): the 3-D right-hand side at the planar run's states (z = 0)
     against the planar one (largest relative difference of the accelerations over the run, and the largest sway
-    acceleration), and the two runs at rtol 1e-10 (node positions, m; element tensions relative to the largest)."""
-    sc2, sc3 = mooring(n, dimensions=None, duration=duration), mooring(n, duration=duration)
+    acceleration), and the two runs at ``rtol`` (node positions, m; element tensions relative to the largest)."""
+    sc2, sc3 = mooring(n, dimensions=None, duration=duration, rtol=rtol), mooring(n, duration=duration, rtol=rtol)
     m2, m3 = build_model(sc2), build_model(sc3)
     p2, p3 = m2.parameters(sc2), m3.parameters(sc3)
     r2, r3 = simulate(sc2, model=m2), simulate(sc3, model=m3)
@@ -84,7 +84,8 @@ def planar_equivalence(n: int = 10, duration: float = 30.0) -> dict:
             "N": n, "duration_s": duration, "success": bool(r2.success and r3.success)}
 
 
-def rotated(bearing_deg: float = 35.0, n: int = 10, duration: float = 30.0, slope_deg: float = 3.0) -> dict:
+def rotated(bearing_deg: float = 35.0, n: int = 10, duration: float = 30.0, slope_deg: float = 3.0,
+            rtol: float = 1e-10) -> dict:
     """The mooring on a bed sloping 3 degrees along the line, in the plane (3-D equations, bearing 0) and turned by
     ``bearing_deg`` about the vertical (anchor, fairlead motion and the slope's heading turned): its static state and
     run are the turned ones. Largest node-position difference after turning back (m), of the static state and of the
@@ -93,7 +94,7 @@ def rotated(bearing_deg: float = 35.0, n: int = 10, duration: float = 30.0, slop
     turn = np.array([[np.cos(g), 0.0, -np.sin(g)], [0.0, 1.0, 0.0], [np.sin(g), 0.0, np.cos(g)]])
     runs, statics = [], []
     for b in (0.0, bearing_deg):
-        sc = mooring(n, bearing_deg=b, slope_deg=slope_deg, duration=duration)
+        sc = mooring(n, bearing_deg=b, slope_deg=slope_deg, duration=duration, rtol=rtol)
         model = build_model(sc)
         statics.append(segmented_steady(model, model.parameters(sc)).q.reshape(-1, 3))
         runs.append(simulate(sc, model=model))
