@@ -94,7 +94,7 @@ class Scene:
                                  f"shorter than the {chord:.6g} m from the top's mean position to the anchor")
     def _check_rigid_bodies(self) -> None:
         """A rigid body is built by the segmented cable (model/rigid_body.py: pitch in the plane, three rotations in
-        space): it needs a section with ``cable.segments`` > 1, no seabed, no winch, and not to sit at an anchor."""
+        space): it needs a section with ``cable.segments`` > 1, no seabed, and not to sit at an anchor."""
         for i, s in enumerate(self.sections):
             if not s.body.is_rigid:
                 continue
@@ -102,7 +102,6 @@ class Scene:
             why = ("Wang's 2-DOF straight cable (every cable.segments = 1; the model ladder runs such a scene "
                    "with the node model)" if all(c.cable.segments == 1 for c in self.sections)
                    else "a scene with a [seabed]" if self.seabed is not None
-                   else "a scene with a [winch]" if getattr(self, "winch", None) is not None
                    else "the body at the [anchor]" if self.anchor is not None and i == len(self.sections) - 1 else None)
             if why is not None:
                 raise ParameterError(name, s.body.pitch_inertia, f"must be unset for {why}: a rigid, pitching body is "
