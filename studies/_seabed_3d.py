@@ -141,14 +141,15 @@ def slide_speed(t, *, slope_deg: float, mu: float) -> np.ndarray:
                                                                               rtol=1e-14) for ti in t])
 
 
-def lateral_slide(mu: float, slope_deg: float = 20.0, duration: float = 4.0) -> dict:
+def lateral_slide(mu: float, slope_deg: float = 20.0, duration: float = 4.0, series: bool = False) -> dict:
     """A line of ``SLIDE_L`` m of the chain laid straight along x (zero tension) on a bed sloping ``slope_deg`` down
     towards +z (heading 90 degrees), its ends held (the top and an anchor on the bed), dropped from its nodes'
     static penetration with no drag: the middle node's down-slope speed against :func:`slide_speed`, the closed form of
     one node (the inner nodes slide together without stretching their elements, so the two end elements' tension
     reaches the middle only later). Returns the largest error of the speed (m/s) and of the displacement (m) against
     the closed form over the run, the last speed and displacement, the creep speed v_s atanh(tan a / mu) (m/s; NaN
-    when the line slides) and the acceleration (A - B) / m_e (m/s^2; NaN when it holds)."""
+    when the line slides) and the acceleration (A - B) / m_e (m/s^2; NaN when it holds); ``series``: also the run's
+    (t, v) and the closed form's v."""
     from scipy.integrate import cumulative_trapezoid
     a = np.radians(slope_deg)
     scene = single_section_scene(
@@ -176,7 +177,8 @@ def lateral_slide(mu: float, slope_deg: float = 20.0, duration: float = 4.0) -> 
                                 np.linspace(0, duration, 4001), initial=0.0)
     A, B = np.sin(a), mu * np.cos(a)
     m_e = MASS + SLIDE_RHO * np.pi * DIAMETER ** 2 / 4
-    return {"speed_max_abs_err_m_s": float(np.max(np.abs(v - v_cf))),
+    out = {"series": (t, v, v_cf)} if series else {}
+    return out | {"speed_max_abs_err_m_s": float(np.max(np.abs(v - v_cf))),
             "displacement_max_abs_err_m": float(np.max(np.abs(s - np.interp(t, np.linspace(0, duration, 4001), s_cf)))),
             "speed_end_m_s": float(v[-1]), "displacement_end_m": float(s[-1]),
             "creep_speed_m_s": float(SLIDE_VS * np.arctanh(A / B)) if B > A else float("nan"),

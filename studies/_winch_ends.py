@@ -52,7 +52,7 @@ def static_tension(n: int, L: float, friction: float = 0.0) -> float:
 
 
 def haulin(n: int = 10, speed: float = 0.1, haul: float = 10.0, ramp: float = 10.0, friction: float = 0.0,
-           points: int = 6) -> dict:
+           points: int = 6, series: bool = False) -> dict:
     """Haul ``haul`` m of the mooring line in at its fairlead at ``speed`` m/s (ramps of ``ramp`` s) and compare the
     fairlead tension at ``points`` lengths L from l_0 to l_0 - haul with the catenary of that length: the closed form
     (:func:`closed_form_tension`; rigid flat bed, the continuum) and the node model's own statics at that L and N
@@ -61,7 +61,8 @@ def haulin(n: int = 10, speed: float = 0.1, haul: float = 10.0, ramp: float = 10
     laid part's friction during the haul (``seabed_friction`` on the bed's nodes, + towards the anchor at +x: the
     cable's material is pulled towards the fairlead, while the nodes, which are not material points under a winch,
     slide towards the anchor) and the statics of the friction-free and of the laid-down line of that length, between
-    which the fairlead's tension must lie (the friction of the haul builds from the laid-down state's)."""
+    which the fairlead's tension must lie (the friction of the haul builds from the laid-down state's). ``series``: also
+    the run's (L, T) and the lengths with the statics' and the closed form's tensions."""
     dur = haul / speed + ramp
     sc = mooring(n, winch=Winch(speed=-speed, duration=dur, ramp=ramp, max_length=LENGTH + 1.0), friction=friction,
                  duration=dur + 5.0)
@@ -76,6 +77,8 @@ def haulin(n: int = 10, speed: float = 0.1, haul: float = 10.0, ramp: float = 10
            "vs_statics_max_rel": float(np.max(np.abs(run / st - 1))),
            "statics_vs_closed_form_max_rel": float(np.max(np.abs(st / cf - 1))),
            "length_end_m": float(L[-1])}
+    if series:
+        out["series"] = (L, T, Ls, st, cf)
     if friction > 0:
         laid = np.array([static_tension(n, x, friction) for x in Ls])
         lo, hi = np.minimum(st, laid), np.maximum(st, laid)

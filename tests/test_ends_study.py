@@ -35,3 +35,15 @@ def test_ends_checks_quick(run_study):
     assert res["haulin_tension_rel_err"] < 5e-4 and res["payout_haulin"]["haulin_drag_share"] > 0.15
     # a span's free decay in water: the time series' frequencies are the linear modes' (the issue: 1 %)
     assert res["span_decay_vs_modes_max_rel_err"] < 1e-3
+    # the seabed in space: the planar law as its special case, turned moorings, the lateral friction's closed forms,
+    # a chain at rest, contact energy; the winch with an anchor and in space
+    assert res["not_built"] == [] and (out / "seabed_3d_winch.png").stat().st_size > 20_000
+    assert res["seabed_3d_planar_rhs_max_rel"] < 1e-10 and res["seabed_3d_planar_run_max_abs_m"] < 2e-6
+    assert res["seabed_3d_rotation_max_abs_m"] < 2e-6 and res["seabed_3d_rotation"]["static_max_abs_m"] < 1e-12
+    assert res["lateral_friction_hold_speed_err_m_s"] < 1e-8 and res["lateral_friction_slide_speed_err_m_s"] < 1e-6
+    assert res["lateral_friction_hold"]["speed_end_m_s"] < 0.01 < res["lateral_friction_slide"]["speed_end_m_s"]
+    assert res["resting_chain_3d_drift_m"] < 1e-9
+    assert res["contact_energy_drift_rel_3d"] < 1e-4 and res["bounce_3d_contacts"] >= 4
+    assert res["haulin_mooring_vs_statics_max_rel"] < 1e-3 and res["haulin_mooring_vs_closed_form_max_rel"] < 5e-3
+    assert res["haulin_mooring_friction_outside_band_rel"] < 1e-3 and res["anchored_payout_mass_rel_err"] < 1e-12
+    assert res["winch_3d_rhs_max_rel"] < 1e-12 and res["winch_3d_turned_max_abs_m"] < 1e-6
