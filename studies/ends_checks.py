@@ -64,7 +64,14 @@ Writes ``ends_checks.json``, ``mooring_static_shape.png``, ``payout_haulin.png``
   with axial friction 0.5 (N = 10), how far the fairlead tension leaves the band between the friction-free and the
   laid-down statics; ``anchored_payout_mass_rel_err``: an anchored line's mass in the water against m_r L (1 - 1 / N);
   ``winch_3d_rhs_max_rel``, ``winch_3d_turned_max_abs_m``: the lift lowered and recovered in a current, forced through
-  the 3-D equations and turned by 40 degrees, against the planar run (figure ``seabed_3d_winch.png``).
+  the 3-D equations and turned by 40 degrees, against the planar run (figure ``seabed_3d_winch.png``);
+- a package lowered onto the bed (``_landing.py``): ``landed_top_tension_N`` per N with the package's footprint
+  (``body.bed_area`` 1 m^2: w (L - h / 2), first order) and without (``landed_top_tension_point_body_N``: the line
+  takes more of the package as N grows, a landed state that does not converge); ``landing_auto_segments``, the N auto
+  runs (it had doubled to its cap of 128), and ``landing_stated_vs_actual_max_ratio``, the largest ratio of a quantity's
+  actual error (against runs at N = 64 and 128, quick 16 and 32: the first-order limit of the landed tensions) to the
+  error auto states for it (honest: <= 1); ``landing_taut_rule_understatement``, the same ratio of the taut check's
+  |f(N) - f(N / 2)| / 3 for the line's pull on the landed package (what auto stated before).
 
 The parts of the issue not built here are present with ``null`` and named in ``not_built``.
 Run: ``python studies/ends_checks.py --out DIR [--quick]``.
@@ -81,6 +88,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
 import slack_tables  # noqa: E402
 from _lift import lowering, payout_haulin, payout_mass, round_trip_figure  # noqa: E402
+import _landing  # noqa: E402
 import _seabed_3d  # noqa: E402
 import _winch_ends  # noqa: E402
 import span_dynamics  # noqa: E402
@@ -324,6 +332,26 @@ def ends_3d(quick: bool) -> dict:
         "winch_3d_rhs_max_rel": w3["rhs_max_rel"],
         "winch_3d_turned_max_abs_m": w3["turned_max_abs_m"],
         "winch_3d": w3,
+        **landing(quick),
+    }
+
+
+def landing(quick: bool) -> dict:
+    """The keys of the package lowered onto the bed (module docstring)."""
+    ns = (8, 16) if quick else (8, 16, 32, 64)
+    foot = [_landing.landed_state(n, 1.0) for n in ns]
+    point = [_landing.landed_state(n, None) for n in ns]
+    hon = _landing.honesty(32 if quick else 128)
+    taut = hon["taut_rule"]
+    return {
+        "landed_N": list(ns),
+        "landed_top_tension_N": [r["tension_top_N"] for r in foot],
+        "landed_top_tension_point_body_N": [r["tension_top_N"] for r in point],
+        "landed_closed_form_top_tension_N": _landing.W_R * _landing.DEPTH,
+        "landing_auto_segments": hon["N"],
+        "landing_stated_vs_actual_max_ratio": max(hon["ratio"].values()),
+        "landing_taut_rule_understatement": taut["actual"]["tension_bottom_min"] / taut["stated"]["tension_bottom_min"],
+        "landing": hon,
     }
 
 

@@ -1,7 +1,8 @@
-"""The seabed in space (cablesys.model.segmented_seabed on the 3-D node model): its scene fields and errors, the planar
-seabed as its special case, a mooring turned about the vertical, the lateral friction holding or sliding a line laid
-across a slope (closed form of the regularised law), a line resting on a bed sloping across it, and the energy of a
-line bouncing on the bed (studies/_seabed_3d.py, keys of studies/ends_checks.py)."""
+"""The seabed in space (cablesys.model.segmented_seabed on the 3-D node model): its scene fields and errors, the 3-D
+statics of a turned mooring against the closed form, the lateral friction holding or sliding a line laid across a slope
+(closed form of the regularised law), a line resting on a bed sloping across it, and the energy of a line bouncing on
+the bed (studies/_seabed_3d.py). The planar seabed forced through the 3-D equations and the turned mooring's run are
+checked by studies/ends_checks.py's quick run (tests/test_ends_study.py)."""
 
 import math
 import sys
@@ -59,25 +60,6 @@ def test_3d_ends_round_trip_and_bad_input_is_named_before_any_work():
     assert err.value.field == "cable.length" and "335.41 m" in str(err.value)
     with pytest.raises(ParameterError, match=r"^seabed\.heading_deg"):
         Seabed(depth=100.0, heading_deg=math.nan)
-
-
-def test_a_planar_seabed_forced_through_the_3d_equations_is_the_planar_run():
-    """A mooring with axial and lateral friction, its fairlead in surge and heave, run in the plane and with
-    numerics.dimensions = 3: the 3-D right-hand side at the planar run's states equals the planar one to 1e-10
-    (relative), with no sway; the two runs agree to the integrator's tolerance (rtol 1e-9 on a 300 m line)."""
-    r = S.planar_equivalence(duration=15.0, rtol=1e-9)
-    assert r["success"] and r["friction_max_N"] > 1e3            # the friction acts
-    assert r["rhs_max_rel"] < 1e-10 and r["sway_acceleration_max_rel"] == 0.0
-    assert r["run_positions_max_abs_m"] < 2e-6 and r["run_sway_max_abs_m"] < 1e-15
-    assert r["run_tension_max_rel"] < 5e-5
-
-
-def test_a_mooring_turned_about_the_vertical_gives_the_turned_answer():
-    """The mooring on a bed sloping along the line, turned by 35 degrees (anchor, fairlead motion, the slope's heading):
-    its static state is the turned one to 1e-12 m, its run to the integrator's tolerance, its tensions unchanged."""
-    r = S.rotated(duration=15.0, rtol=1e-9)
-    assert r["success"] and r["static_max_abs_m"] < 1e-12
-    assert r["run_max_abs_m"] < 2e-6 and r["run_tension_max_rel"] < 5e-5
 
 
 def test_3d_statics_of_a_turned_mooring_are_the_closed_form_catenary_with_friction():

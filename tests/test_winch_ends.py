@@ -1,7 +1,7 @@
 """The winch with the line's other ends (cablesys.model.segmented_winch): a mooring line hauled in at its fairlead against
-the catenary of its current length (closed form and the node model's statics), the friction of its laid part while
-hauled, the mass of an anchored line in the water, the winch in space against the planar one, and a rigid body lowered
-by the winch (studies/_winch_ends.py, keys of studies/ends_checks.py)."""
+the catenary of its current length (closed form and the node model's statics), the mass of an anchored line in the
+water, and a rigid body lowered by the winch (studies/_winch_ends.py). The laid part's friction while hauled and the
+winch in space against the planar one are checked by studies/ends_checks.py's quick run (tests/test_ends_study.py)."""
 
 import sys
 from pathlib import Path
@@ -31,34 +31,10 @@ def test_hauling_in_a_mooring_line_follows_the_catenary_of_its_length():
     assert slow["statics_vs_closed_form_max_rel"] < 0.02 and slow["vs_closed_form_max_rel"] < 0.02
 
 
-def test_the_laid_line_resists_its_material_not_the_sliding_nodes_while_hauled_in():
-    """Axial friction 0.5 on the laid part: the fairlead tension during a 0.1 m/s haul-in lies between the statics of the
-    friction-free and of the laid-down line of each length (to the haul's dynamics, 7e-4), and the friction on the bed's
-    nodes points towards the anchor, against the material pulled towards the fairlead. The nodes themselves slide
-    towards the anchor (under a winch they are not material points): friction on their velocity pointed the other way
-    and put the fairlead 0.4 % outside that band."""
-    r = WE.haulin(10, 0.1, friction=0.5)
-    assert r["success"] and r["band_width_max_rel"] > 3e-3
-    assert r["outside_band_max_rel"] < 7e-4
-    assert r["friction_min_N"] >= 0.0 and r["friction_max_N"] > 1e4
-
-
 def test_an_anchored_line_in_the_water_has_the_mass_of_its_length():
     """Hauled in, held and paid back out: the free nodes carry m_r L (1 - 1 / N), the halves at the sheave and at the
     anchor being fixed, at every L(t)."""
     assert WE.anchored_mass() < 1e-12
-
-
-def test_the_winch_in_space_is_the_planar_winch_and_turns_with_the_scene():
-    """A package lowered, held and recovered under a top in surge and heave in a current: forced through the 3-D
-    equations its right-hand side is the planar one to 1e-12 and its run the planar run to the integrator's tolerance;
-    with the current and the surge turned by 40 degrees the run is the turned planar run (no sway left after turning
-    back), the winch's length back at l_0 + 4.5 m (10 m out, 5.5 m back in)."""
-    r = WE.winch_3d(n=4, duration=20.0, rtol=1e-9)
-    assert r["success"] and r["length_m"][1] == pytest.approx(30.0, abs=1e-9)
-    assert r["rhs_max_rel"] < 1e-12
-    assert r["forced_max_abs_m"] < 1e-6 and r["turned_max_abs_m"] < 1e-6 and r["turned_sway_back_max_abs_m"] < 1e-6
-    assert r["tension_top_max_abs_N"] < 1e-2
 
 
 def test_a_rigid_body_lowered_by_the_winch_keeps_its_hanging_pitch():

@@ -42,7 +42,7 @@ from ..errors import NumericalWarning, ParameterError
 from ..model import CableModel
 from ..scene import Scene
 from . import estimate as est
-from . import checks, extrapolation, metrics, plan_cost, static_check
+from . import checks, extrapolation, landed, metrics, plan_cost, static_check
 from .choice import (
     CHECK_ACCEPT,
     EXPLICIT_COST_MAX_ELEMENTS,
@@ -479,6 +479,18 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
     fine_st, coarse_st = (metrics.statistics(r, period, ramp) for r in (result, coarse))
     e, per = checks.richardson(fine_st, coarse_st, choice)
     order = choice.numbers.get("estimates", {}).get("segmented_1", {}).get("order", est.ORDER)
+    # a body resting on the seabed: its tensions converge at first order, judged at that order (:mod:`.landed`)
+    quarter_st, on_bed, block = None, landed.landed_sections(sc, result, period, ramp), None
+    if on_bed and n >= 8:
+        quarter = _run(check_scene(scene, n), dataclasses.replace(choice, segments=n // 4), tol, cache,
+                       checking(tight_kw), candidate=False)
+        if quarter.success:
+            quarter_st = metrics.statistics(quarter, period, ramp)
+            block = landed.extrapolate(quarter_st, coarse_st, fine_st, n)
+            if block["extrapolated_quantities"]:
+                e, per = block["estimated_error"], block["estimated_error_per_quantity"]
+            else:                      # nothing first order: the taut check as for any run
+                block = None
     limit = {"body": tol[0], "tension": tol[1]}
     asked = kw.get("quantities")
     judged = {k: v for k, v in per.items() if asked is None or k in asked}
@@ -487,6 +499,8 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
     same_rule = "" if checkable(scene, n) else ", one drag point per element in both"
     said = (f"a posteriori (N = {n} vs {n // 2}{same_rule}, order {order:g}): body {e['body']:.2g}, tension {e['tension']:.2g}"
             + (f", the quantity furthest from its tolerance {worst} {judged[worst]:.2g}" if worst else ""))
+    if on_bed:
+        said = landed.note(sc, on_bed, block) + said
     ok = (e["body"] <= CHECK_ACCEPT * tol[0] and e["tension"] <= CHECK_ACCEPT * tol[1]
           and all(v <= CHECK_ACCEPT * limit[metrics.group(k)] for k, v in judged.items()))
     numbers = dict(choice.numbers, checked_n=n, per_quantity=per)
@@ -497,7 +511,11 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
             tight = _run(scene, choice, tol, cache, tight_kw)
             if tight.success:
                 tight_st = metrics.statistics(tight, period, ramp)
-                e_d, per_d = checks.richardson(tight_st, coarse_st, choice)
+                if block is not None:
+                    block = landed.extrapolate(quarter_st, coarse_st, tight_st, n)
+                    e_d, per_d = block["estimated_error"], block["estimated_error_per_quantity"]
+                else:
+                    e_d, per_d = checks.richardson(tight_st, coarse_st, choice)
                 e_i, per_i = checks.integration_errors(tight_st, fine_st, settings.method)
                 e, per = checks.total(e_d, e_i), checks.total(per_d, per_i)
                 said += "; " + checks.summary(per_i, tight_kw["rtol"], settings.method)
@@ -512,6 +530,9 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
         prior = (est.rung_error(choice.numbers["estimates"], choice.name, n) if "estimates" in choice.numbers
                  else choice.estimated_error)
         stated = {k: max(v, prior.get(k, 0.0)) for k, v in e.items()}
+        if block is not None:        # the extrapolated statistics and their errors (extrapolation.model_dict shows them)
+            block.update(estimated_error=dict(stated), estimated_error_per_quantity=dict(per))
+            numbers.update(extrapolated=block)
         return Choice(choice.name, n, f"{choice.reason}; {said}", stated, numbers), False, result
     plan = choice.numbers.get("plan") or {}
     sure = plan.get("fallback")

@@ -129,6 +129,8 @@ def parameter_items(scene: Scene) -> list[tuple[str, float]]:
         items += [(f"seabed.{a}", float(getattr(scene.seabed, a))) for a in _SEABED]
         if scene.three_d:                  # in space the heading of its slope (deg from +x towards +z; 0 unset)
             items.append(("seabed.heading_deg", float(scene.seabed.heading_deg or 0.0)))
+        items += [(f"{section_prefix(n, i)}body.bed_area", float(s.body.bed_area or 0.0))      # footprints on the bed
+                  for i, s in enumerate(scene.sections)]
     if getattr(scene, "winch", None) is not None:    # the first section's payout (model/segmented_winch.py)
         items += scene.winch.parameter_items()     # its profile's numbers (scene.ends.Winch)
     return items

@@ -264,6 +264,8 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
             els.append(el)
         jb = j0 + n_el                                         # the body's node
         rb, vb = node_r[jb], node_v[jb]
+        if scene.seabed is not None:                           # the body's footprint on the bed (segmented_seabed.py)
+            contact_area[jb] += layout.sym(f"{section_prefix(n_sec, i)}body.bed_area")
         sec_d = dict(P=P, top=j0, body=jb, elements=els, pay=pay)
         if i in rigid:                                         # a rigid body (rigid_body.py)
             k = list(range(dim * n_free + len(rest) * rigid.index(i), dim * n_free + len(rest) * (rigid.index(i) + 1)))
