@@ -3,7 +3,8 @@ mooring-line catenary with seabed friction, a line lying on a sloped bed, a rest
 energy of a bouncing line, a package lowered and hauled back in by the winch (``_lift.py``), a span's
 free decay and the slack-cable tables.
 
-Writes ``ends_checks.json``, ``mooring_static_shape.png`` and ``payout_haulin.png`` into ``--out``:
+Writes ``ends_checks.json``, ``mooring_static_shape.png``, ``payout_haulin.png`` and ``seabed_3d_winch.png`` into
+``--out``:
 
 - ``catenary_seabed_max_rel_err``: the largest relative error of the fairlead forces (H, V_F), the
   anchor force H_A (V_A for the line that does not touch) and the length on the bed L_B over
@@ -43,7 +44,34 @@ Writes ``ends_checks.json``, ``mooring_static_shape.png`` and ``payout_haulin.pn
   (three significant figures: ``slack_table1_print_rounding`` is half a unit of the last figure,
   relative, per mode); ``slack_table3_frequencies_rad_s``: the nine modes of Table 3 (two masses),
   whose printed values are held out (``slack_table3_modes_inside_band`` stays null, named in
-  ``held_out``).
+  ``held_out``);
+- the seabed in space (``_seabed_3d.py``, node model N = 10 unless said): ``seabed_3d_planar_rhs_max_rel``, the 3-D
+  right-hand side of a planar mooring (axial and lateral friction, fairlead in surge and heave) at the planar run's
+  states against the planar one (relative to the run's largest node acceleration), and
+  ``seabed_3d_planar_run_max_abs_m`` the two runs' node positions (rtol 1e-10; quick 1e-9 over 15 s);
+  ``seabed_3d_rotation_max_abs_m``: the same mooring on a 3 degree slope turned by 35 degrees about the vertical,
+  turned back, against the unturned run (``seabed_3d_rotation`` has its static state's);
+  ``lateral_friction_hold_speed_err_m_s`` and ``lateral_friction_slide_speed_err_m_s``: a line laid along the contour
+  of a 20 degree slope, dropped, its middle node's down-slope speed against the closed form of the regularised lateral
+  friction (held, mu = 0.6 > tan 20 deg, creeping at v_s atanh(tan a / mu); sliding, mu = 0.2, at (w sin a - mu w cos a)
+  / m_e); ``resting_chain_3d_drift_m``: the turned mooring on a bed sloping across it (lateral friction 0.6) left at
+  rest 1000 s; ``contact_energy_drift_rel_3d``: a rope bowed sideways and dropped on the bed at a 35 degree bearing, no
+  drag, friction or damping (80 s, ``bounce_3d_contacts`` contacts; quick 4 s at N = 6);
+- the winch with the other ends (``_winch_ends.py``): ``haulin_mooring_vs_closed_form_max_rel``, the fairlead tension
+  of the 300 m chain hauled in 10 m at 0.1 m/s (N = 40; quick 20) against the closed-form catenary of the length at
+  each moment, ``haulin_mooring_vs_statics_max_rel`` against the node model's statics of that length (the haul's
+  dynamics; ``haulin_mooring`` has the statics' discretisation error); ``haulin_mooring_friction_outside_band_rel``:
+  with axial friction 0.5 (N = 10), how far the fairlead tension leaves the band between the friction-free and the
+  laid-down statics; ``anchored_payout_mass_rel_err``: an anchored line's mass in the water against m_r L (1 - 1 / N);
+  ``winch_3d_rhs_max_rel``, ``winch_3d_turned_max_abs_m``: the lift lowered and recovered in a current, forced through
+  the 3-D equations and turned by 40 degrees, against the planar run (figure ``seabed_3d_winch.png``);
+- a package lowered onto the bed (``_landing.py``): ``landed_top_tension_N`` per N with the package's footprint
+  (``body.bed_area`` 1 m^2: w (L - h / 2), first order) and without (``landed_top_tension_point_body_N``: the line
+  takes more of the package as N grows, a landed state that does not converge); ``landing_auto_segments``, the N auto
+  runs (it had doubled to its cap of 128), and ``landing_stated_vs_actual_max_ratio``, the largest ratio of a quantity's
+  actual error (against runs at N = 64 and 128, quick 16 and 32: the first-order limit of the landed tensions) to the
+  error auto states for it (honest: <= 1); ``landing_taut_rule_understatement``, the same ratio of the taut check's
+  |f(N) - f(N / 2)| / 3 for the line's pull on the landed package (what auto stated before).
 
 The parts of the issue not built here are present with ``null`` and named in ``not_built``.
 Run: ``python studies/ends_checks.py --out DIR [--quick]``.
@@ -60,6 +88,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import parse_args, setup_matplotlib, write_json  # noqa: E402
 import slack_tables  # noqa: E402
 from _lift import lowering, payout_haulin, payout_mass, round_trip_figure  # noqa: E402
+import _landing  # noqa: E402
+import _seabed_3d  # noqa: E402
+import _winch_ends  # noqa: E402
 import span_dynamics  # noqa: E402
 
 from cablesys.model import build_model  # noqa: E402
@@ -267,6 +298,100 @@ def slack_table3(levels) -> list[dict]:
     return [{"mode_type": r["mode_type"], "omega_rad_s": r["omega_rad_s"]} for r in conv.table()]
 
 
+def ends_3d(quick: bool) -> dict:
+    """The keys of the seabed in space and of the winch with the other ends (module docstring)."""
+    S, WE = _seabed_3d, _winch_ends
+    planar = S.planar_equivalence(duration=15.0, rtol=1e-9) if quick else S.planar_equivalence()
+    turned = S.rotated(duration=15.0, rtol=1e-9) if quick else S.rotated()
+    hold, slide = S.lateral_slide(0.6, duration=4.0, series=True), S.lateral_slide(0.2, duration=0.5, series=True)
+    rest = S.resting(1000.0)
+    bounce = S.bouncing(4.0, n=6, rtol=1e-8) if quick else S.bouncing(80.0)
+    haul = WE.haulin(20 if quick else 40, 0.1, series=True)
+    rough = WE.haulin(10, 0.1, friction=0.5)
+    w3 = WE.winch_3d(n=4, rtol=1e-9) if quick else WE.winch_3d()
+    return {
+        "seabed_3d_planar_rhs_max_rel": planar["rhs_max_rel"],
+        "seabed_3d_planar_run_max_abs_m": planar["run_positions_max_abs_m"],
+        "seabed_3d_planar": planar,
+        "seabed_3d_rotation_max_abs_m": turned["run_max_abs_m"],
+        "seabed_3d_rotation": turned,
+        "lateral_friction_hold_speed_err_m_s": hold["speed_max_abs_err_m_s"],
+        "lateral_friction_slide_speed_err_m_s": slide["speed_max_abs_err_m_s"],
+        "lateral_friction_hold": hold, "lateral_friction_slide": slide,
+        "resting_chain_3d_drift_m": rest["drift_max_m"],
+        "resting_chain_3d": rest,
+        "contact_energy_drift_rel_3d": bounce["energy_drift_rel"],
+        "bounce_3d_contacts": bounce["contacts"],
+        "bounce_3d": bounce,
+        "haulin_mooring_vs_closed_form_max_rel": haul["vs_closed_form_max_rel"],
+        "haulin_mooring_vs_statics_max_rel": haul["vs_statics_max_rel"],
+        "haulin_mooring": haul,
+        "haulin_mooring_friction_outside_band_rel": rough["outside_band_max_rel"],
+        "haulin_mooring_friction": rough,
+        "anchored_payout_mass_rel_err": WE.anchored_mass(),
+        "winch_3d_rhs_max_rel": w3["rhs_max_rel"],
+        "winch_3d_turned_max_abs_m": w3["turned_max_abs_m"],
+        "winch_3d": w3,
+        **landing(quick),
+    }
+
+
+def landing(quick: bool) -> dict:
+    """The keys of the package lowered onto the bed (module docstring)."""
+    ns = (8, 16) if quick else (8, 16, 32, 64)
+    foot = [_landing.landed_state(n, 1.0) for n in ns]
+    point = [_landing.landed_state(n, None) for n in ns]
+    hon = _landing.honesty(32 if quick else 128)
+    taut = hon["taut_rule"]
+    return {
+        "landed_N": list(ns),
+        "landed_top_tension_N": [r["tension_top_N"] for r in foot],
+        "landed_top_tension_point_body_N": [r["tension_top_N"] for r in point],
+        "landed_closed_form_top_tension_N": _landing.W_R * _landing.DEPTH,
+        "landing_auto_segments": hon["N"],
+        "landing_stated_vs_actual_max_ratio": max(hon["ratio"].values()),
+        "landing_taut_rule_understatement": taut["actual"]["tension_bottom_min"] / taut["stated"]["tension_bottom_min"],
+        "landing": hon,
+    }
+
+
+def seabed_3d_figure(path: Path, series: dict, res: dict) -> None:
+    """The lateral friction holding and sliding a laid line (node model and the regularised law's closed form), and the
+    fairlead tension of the mooring line hauled in (run, the node model's statics and the closed-form catenary)."""
+    plt = setup_matplotlib()
+    fig, (ax, axh) = plt.subplots(2, 1, figsize=(8, 8))
+    for key, c, label in (("lateral_friction_hold", "C0", "mu = 0.6 > tan 20 deg: held, creeping at v_s atanh(tan a / mu)"),
+                          ("lateral_friction_slide", "C3", "mu = 0.2 < tan 20 deg: slides")):
+        t, v, v_cf = series[key]
+        ax.plot(t, v_cf, "-", color=c, lw=1.2, label=f"{label} (closed form)")
+        ax.plot(t[::2], v[::2], "o", color=c, ms=3, mfc="none", label="node model, middle node")
+    ax.set_yscale("log")
+    ax.set_ylim(1e-3, 5.0)
+    ax.set_xlabel("time t (s)")
+    ax.set_ylabel("down-slope speed (m/s)")
+    ax.set_title("a 20 m chain laid along the contour of a 20 deg slope, dropped: lateral friction\n"
+                 f"speed errors {res['lateral_friction_hold_speed_err_m_s']:.1e} (held), "
+                 f"{res['lateral_friction_slide_speed_err_m_s']:.1e} m/s (sliding, 0.5 s)", fontsize=10)
+    ax.legend(fontsize=8, loc="upper right")
+    ax.grid(alpha=0.3, which="both")
+    L, T, Ls, st, cf = series["haulin_mooring"]
+    h = res["haulin_mooring"]
+    axh.plot(L, T / 1e3, "k-", lw=1, label=f"node model N = {h['N']}, hauled in at {h['speed_m_s']:g} m/s")
+    axh.plot(Ls, st / 1e3, "s", color="C1", ms=6, mfc="none", label="node model's statics of that length")
+    axh.plot(Ls, cf / 1e3, "x", color="C2", ms=8, label="closed-form catenary with seabed contact")
+    axh.invert_xaxis()
+    axh.set_xlabel("zero-tension length in the water L (m), decreasing as the winch hauls in")
+    axh.set_ylabel("fairlead tension (kN)")
+    axh.set_title(f"300 m chain from its anchor, 150 m on the bed at the start, hauled in {h['haul_m']:g} m at the "
+                  f"fairlead:\nvs closed form {h['vs_closed_form_max_rel']:.1e}, vs statics "
+                  f"{h['vs_statics_max_rel']:.1e} (the haul's dynamics)", fontsize=10)
+    axh.legend(fontsize=8, loc="upper left")
+    axh.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+
+
 def main(argv=None) -> dict:
     args = parse_args(__doc__.splitlines()[0], argv)
     quick = args.quick
@@ -309,10 +434,13 @@ def main(argv=None) -> dict:
         "slack_table3_frequencies_rad_s": slack_table3((24, 48, 96) if quick else (48, 96, 192)),
         **dict.fromkeys(HELD_OUT),
         "held_out": HELD_OUT,
-        "not_built": ["3-D seabed (lateral friction)"],
+        "not_built": [],
     }
+    out.update(ends_3d(quick))
+    series = {k: out[k].pop("series") for k in ("lateral_friction_hold", "lateral_friction_slide", "haulin_mooring")}
     figure(args.out / "mooring_static_shape.png", 40)
     round_trip_figure(args.out / "payout_haulin.png", trip)
+    seabed_3d_figure(args.out / "seabed_3d_winch.png", series, out)
     write_json(args.out / "ends_checks.json", out)
     return out
 

@@ -13,7 +13,7 @@ from cablesys.errors import ParameterError
 from cablesys.ladder.auto import decide
 from cablesys.linear import linearize, modes
 from cablesys.model import build_model
-from cablesys.scene import Anchor, Body, Cable, Environment, Numerics, Scene, Section, Sinusoid, TopMotion, Winch
+from cablesys.scene import Anchor, Body, Cable, Environment, Numerics, Scene, Seabed, Section, Sinusoid, TopMotion
 from cablesys.scene.scene import single_section_scene
 from cablesys.scene.toml_io import dump_scene, scene_from_dict
 from cablesys.statics import steady_state
@@ -203,9 +203,8 @@ def test_bad_rigid_input():
     rigid = Body(weight=1.0, mass_x=1.0, mass_y=1.0, pitch_inertia=1.0)
     with pytest.raises(ParameterError, match="body.pitch_inertia.*2-DOF"):
         _scene(rigid, _cable(1))                                               # Wang's 2-DOF model has no pitch
-    with pytest.raises(ParameterError, match="body.pitch_inertia.*winch"):
-        single_section_scene(cable=_cable(), body=rigid, environment=Environment(),
-                             winch=Winch(speed=0.5, start=0.0, duration=3.0, ramp=1.0, max_length=20.0))
+    with pytest.raises(ParameterError, match="body.pitch_inertia.*seabed"):
+        single_section_scene(cable=_cable(), body=rigid, environment=Environment(), seabed=Seabed(depth=200.0))
 
 
 def test_rigid_body_toml_round_trip():

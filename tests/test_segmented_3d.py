@@ -51,17 +51,17 @@ def test_hanging_chain_out_of_plane_modes_are_the_in_plane_ones_and_converge_to_
     assert 1.8 < r["observed_order"][0][0] < 2.2            # the lumped chain: second order in 1 / N (mode 1)
 
 
-def test_3d_node_model_refuses_a_seabed_before_building():
-    """A seabed in space is refused, named; an [anchor] is taken (held at (x, y, 0): tests/test_spans.py
-    checks that an anchored span hangs in space as in the plane)."""
+def test_3d_node_model_takes_an_anchor_and_a_seabed_in_space():
+    """An [anchor] (held at (x, y, 0) unless anchor.z is set: tests/test_spans.py checks that an anchored span hangs
+    in space as in the plane) and a [seabed] in space build the 3-D node model (tests/test_seabed_3d.py checks them)."""
     from cablesys.scene import Seabed
     sc = nodes.divided(checks.rotation_scene(), 3)
-    with pytest.raises(ParameterError, match="seabed.*3-D"):
-        type(sc)(sections=sc.sections, environment=sc.environment, top_motion=sc.top_motion,
-                 numerics=sc.numerics, anchor=Anchor(x=5.0, y=55.0), seabed=Seabed(depth=200.0))
-    anchored = type(sc)(sections=sc.sections, environment=sc.environment, top_motion=sc.top_motion,
-                        numerics=sc.numerics, anchor=Anchor(x=5.0, y=55.0))
-    assert build_model(anchored).anchored and build_model(anchored).dim == 3
+    for bed in (None, Seabed(depth=200.0)):
+        anchored = type(sc)(sections=sc.sections, environment=sc.environment, top_motion=sc.top_motion,
+                            numerics=sc.numerics, anchor=Anchor(x=5.0, y=55.0), seabed=bed)
+        model = build_model(anchored)
+        assert model.anchored and model.dim == 3
+        assert ("seabed_friction_lateral[1]" in model.output_labels) == (bed is not None)
 
 
 def test_cablesys_run_of_a_3d_scene_says_which_element_model_ran(tmp_path):

@@ -93,16 +93,17 @@ def test_bad_3d_fields_are_named_with_value_and_range(edit, field, says):
     assert field in msg and says in msg
 
 
-def test_dimensions_two_refuses_a_3d_field_and_3d_refuses_a_seabed():
+def test_dimensions_two_refuses_a_3d_field_and_3d_takes_a_seabed():
     with pytest.raises(ParameterError, match="numerics.dimensions.*top_motion.z"):
         _load(THREE_D + "\n[numerics]\ndimensions = 2\n")
     with pytest.raises(ParameterError, match="numerics.dimensions.*2 or 3"):
         _load(THREE_D + "\n[numerics]\ndimensions = 4\n")
-    # the node model runs in 3-D (segments > 1) with an anchor (held at z = 0), not yet with a seabed in space
+    # the node model runs in 3-D (segments > 1) with an anchor (held at z = 0 unless anchor.z is set) and a seabed
     nodes = THREE_D.replace("weight_per_length = 18.0", "weight_per_length = 18.0\nsegments = 4")
     assert _load(nodes).three_d and _load(nodes + "\n[anchor]\nx = 10.0\ny = 50.0\n").anchor.x == 10.0
-    with pytest.raises(ParameterError, match="seabed.*3-D"):
-        _load(nodes + "\n[seabed]\ndepth = 70.0\n")
+    bed = _load(nodes + "\n[seabed]\ndepth = 70.0\nheading_deg = 30.0\n")
+    assert bed.three_d and bed.seabed.heading_deg == 30.0
+
     with pytest.raises(ParameterError, match="initial.phi_rate = 0.1.*3-D"):
         _load(THREE_D + "\n[initial]\nphi_rate = 0.1\n")
 

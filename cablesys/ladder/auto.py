@@ -44,7 +44,7 @@ from ..errors import NumericalWarning, ParameterError
 from ..model import CableModel
 from ..scene import Scene
 from . import estimate as est
-from . import checks, extrapolation, metrics, plan_cost, static_check
+from . import checks, extrapolation, landed, metrics, plan_cost, static_check
 from .choice import (
     CHECK_ACCEPT,
     EXPLICIT_COST_MAX_ELEMENTS,
@@ -486,6 +486,18 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
     rough = checks.irregular(scene)
     e, per = checks.richardson(fine_st, coarse_st, choice, rough)
     order = choice.numbers.get("estimates", {}).get("segmented_1", {}).get("order", est.ORDER)
+    # a body resting on the seabed: its tensions converge at first order, judged at that order (:mod:`.landed`)
+    quarter_st, on_bed, block = None, landed.landed_sections(sc, result, period, ramp), None
+    if on_bed and n >= checks.THIRD_MIN_SEGMENTS:
+        quarter = _run(check_scene(scene, n, n // 4), dataclasses.replace(choice, segments=n // 4), tol, cache,
+                       checking(tight_kw), candidate=False)
+        if quarter.success:
+            quarter_st = metrics.statistics(quarter, period, ramp)
+            block = landed.extrapolate(quarter_st, coarse_st, fine_st, n)
+            if block["extrapolated_quantities"]:
+                e, per = block["estimated_error"], block["estimated_error_per_quantity"]
+            else:                      # nothing first order: the taut check as for any run
+                block = None
     limit = {"body": tol[0], "tension": tol[1]}
     asked = kw.get("quantities")
     judged = {k: v for k, v in per.items() if asked is None or k in asked}
@@ -495,6 +507,8 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
     how = "an irregular sea: the whole difference" if rough else f"order {order:g}"
     said = (f"a posteriori (N = {n} vs {n // 2}{same_rule}, {how}): body {e['body']:.2g}, tension {e['tension']:.2g}"
             + (f", the quantity furthest from its tolerance {worst} {judged[worst]:.2g}" if worst else ""))
+    if on_bed:
+        said = landed.note(sc, on_bed, block) + said
     ok = (e["body"] <= CHECK_ACCEPT * tol[0] and e["tension"] <= CHECK_ACCEPT * tol[1]
           and all(v <= CHECK_ACCEPT * limit[metrics.group(k)] for k, v in judged.items()))
     numbers = dict(choice.numbers, checked_n=n, per_quantity=per)
@@ -504,15 +518,20 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
             tight = _run(scene, choice, tol, cache, tight_kw)
             if tight.success:
                 kept_st = metrics.statistics(tight, period, ramp)
-                e, per = checks.richardson(kept_st, coarse_st, choice, rough)
+                if block is not None:
+                    block = landed.extrapolate(quarter_st, coarse_st, kept_st, n)
+                    e, per = block["estimated_error"], block["estimated_error_per_quantity"]
+                else:
+                    e, per = checks.richardson(kept_st, coarse_st, choice, rough)
                 e_i, per_i = checks.integration_errors(kept_st, fine_st, settings.method)
                 result = tight
-        if n >= checks.THIRD_MIN_SEGMENTS:   # N / 4 too: is N / 2 in the asymptotic range? (checks.richardson_triple)
-            quarter = _run(check_scene(scene, n, n // 4), dataclasses.replace(choice, segments=n // 4), tol, cache,
-                           checking(tight_kw), candidate=False)
-            if quarter.success:
-                e, per, observed = checks.richardson_triple(kept_st, coarse_st, metrics.statistics(quarter, period, ramp),
-                                                            choice, rough)
+        if n >= checks.THIRD_MIN_SEGMENTS and block is None:   # N / 4 too: is N / 2 in the asymptotic range?
+            if quarter_st is None:       # (checks.richardson_triple; a landed body's check has run it already)
+                quarter = _run(check_scene(scene, n, n // 4), dataclasses.replace(choice, segments=n // 4), tol, cache,
+                               checking(tight_kw), candidate=False)
+                quarter_st = metrics.statistics(quarter, period, ramp) if quarter.success else None
+            if quarter_st is not None:
+                e, per, observed = checks.richardson_triple(kept_st, coarse_st, quarter_st, choice, rough)
                 slow = sorted(k for k in per if k in judged and (observed.get(k) or 0.0) < order)
                 said += (f"; N = {n // 4} too" + ("" if rough else
                          f" (observed order below {order:g}: {', '.join(slow)})" if slow else " (asymptotic)"))
@@ -542,6 +561,9 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
         prior = (est.rung_error(choice.numbers["estimates"], choice.name, n) if "estimates" in choice.numbers
                  else choice.estimated_error)
         stated = {k: max(v, prior.get(k, 0.0)) for k, v in e.items()}
+        if block is not None:        # the extrapolated statistics and their errors (extrapolation.model_dict shows them)
+            block.update(estimated_error=dict(stated), estimated_error_per_quantity=dict(per))
+            numbers.update(extrapolated=block)
         return Choice(choice.name, n, f"{choice.reason}; {said}", stated, numbers), False, result
     plan = choice.numbers.get("plan") or {}
     sure = plan.get("fallback")

@@ -128,8 +128,14 @@ def parameter_items(scene: Scene) -> list[tuple[str, float]]:
         items += top.track.parameter_items()
     if scene.anchor is not None:           # the fixed lower end and the seabed (model/segmented.py)
         items += [(f"anchor.{a}", float(getattr(scene.anchor, a))) for a in _ANCHOR]
+        if scene.three_d:                  # in space its sway z (0 unset)
+            items.append(("anchor.z", float(scene.anchor.position[2])))
     if scene.seabed is not None:
         items += [(f"seabed.{a}", float(getattr(scene.seabed, a))) for a in _SEABED]
+        if scene.three_d:                  # in space the heading of its slope (deg from +x towards +z; 0 unset)
+            items.append(("seabed.heading_deg", float(scene.seabed.heading_deg or 0.0)))
+        items += [(f"{section_prefix(n, i)}body.bed_area", float(s.body.bed_area or 0.0))      # footprints on the bed
+                  for i, s in enumerate(scene.sections)]
     if getattr(scene, "winch", None) is not None:    # the first section's payout (model/segmented_winch.py)
         items += scene.winch.parameter_items()     # its profile's numbers (scene.ends.Winch)
     return items

@@ -28,8 +28,9 @@ seabed, ``static_force`` is the statics' own right-hand side at rest: elements e
 laid-down line's friction (:func:`.segmented_seabed.seabed_forces`); without one it is None and the
 statics use ``dynamics``. Scenes with an anchor or a seabed evaluate the element-by-element
 ``ode`` (no mapped kernel). A ``[winch]`` changes the first section's zero-tension length in time, its
-elements sharing L(t) uniformly (:mod:`.segmented_winch`: material velocities for the element terms, L a
-prescribed coordinate in Lagrange's equations; element-by-element ``ode`` too).
+elements sharing L(t) uniformly (:mod:`.segmented_winch`: material velocities for the element terms and the
+seabed's contact, L a prescribed coordinate in Lagrange's equations; element-by-element ``ode`` too), with a free body
+or an anchor at the line's lower end.
 
 In three dimensions (``scene.three_d``: Wang 1971 p. 32, "allow the cable to swing out of the vertical
 plane") the same elements and bodies are built with node positions r_j = (x_j, y_j, z_j), z the sway
@@ -39,8 +40,9 @@ exactly eq. 42's (v . e_n) e_n), the added mass on the normal part of the node v
 and waves with their headings (:func:`.fluid.fluid_velocity_3d`), the body's virtual mass M_bvz and its
 3-D drag (eq. 32-35, :func:`.fluid.axial_body_drag_3d`); 3 x 3 blocks per node. A planar scene builds the
 planar equations (2 x 2 blocks); both have the mapped kernel (:mod:`.segmented_kernel`); in 3-D an
-``[anchor]`` holds the node at (anchor.x, anchor.y, 0) (in the plane of the top's mean position); the 3-D
-model has no seabed yet. Outputs add Wang's 3-D
+``[anchor]`` holds the node at (anchor.x, anchor.y, anchor.z) and the ``[seabed]`` is a plane sloping towards
+``seabed.heading_deg`` with friction along and across the line (:mod:`.segmented_seabed`; output profiles add
+``seabed_friction_lateral[j]``). Outputs add Wang's 3-D
 ``phi_z``, ``phi_z_rate``, ``z_b``, ``z_b_rate`` per section and the profile ``node_z[j]``.
 
 A rigid body (``body.pitch_inertia`` set; Wang 1971 p. 32, body rotation "where the body is fairly large
@@ -196,8 +198,6 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     # a 3-D scene (scene.three_d) has nodes (x, y, z): the same elements and bodies in space, z the sway
     # (Wang 1971 p. 32, "allow the cable to swing out of the vertical plane"); the plane is dim = 2
     dim = 3 if scene.three_d else 2
-    if dim == 3 and scene.seabed is not None:
-        raise ParameterError("seabed", "set", "must be unset in a 3-D scene: the node model's seabed is planar so far")
     axes = ("x", "y", "z")[:dim]
     sfx = (lambda i: "") if n_sec == 1 else (lambda i: f"_{i + 1}")
     # a rigid body's orientation (model/rigid_body.py) after the nodes: its pitch theta_b in the plane, a quaternion
@@ -216,7 +216,7 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     node_r = [tuple(z[c] for c in range(dim))] + [tuple(q[dim * j + c] for c in range(dim)) for j in range(n_free)]
     node_v = [tuple(zd[c] for c in range(dim))] + [tuple(qd[dim * j + c] for c in range(dim)) for j in range(n_free)]
     if anchored:
-        node_r.append((layout.sym("anchor.x"), layout.sym("anchor.y")) + (0.0,) * (dim - 2))   # z = 0 in space
+        node_r.append(tuple(layout.sym(f"anchor.{c}") for c in axes))      # (x, y, z) in space
         node_v.append((0.0,) * dim)
     static_law = scene.seabed is not None            # the seabed's statics: elements elastic both ways (catenary.py)
 
@@ -264,6 +264,8 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
             els.append(el)
         jb = j0 + n_el                                         # the body's node
         rb, vb = node_r[jb], node_v[jb]
+        if scene.seabed is not None:                           # the body's footprint on the bed (segmented_seabed.py)
+            contact_area[jb] += layout.sym(f"{section_prefix(n_sec, i)}body.bed_area")
         sec_d = dict(P=P, top=j0, body=jb, elements=els, pay=pay)
         if i in rigid:                                         # a rigid body (rigid_body.py)
             k = list(range(dim * n_free + len(rest) * rigid.index(i), dim * n_free + len(rest) * (rigid.index(i) + 1)))
@@ -287,10 +289,15 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     V_grav = -sum(w * r[1] for w, r in zip(weights, node_r))   # eq. 15 with y down
     V_contact, bed = 0.0, None
     if scene.seabed is not None:
-        bed = seabed_forces(layout, node_r, node_v, contact_area, elements, depth0, range(1, n_free + 1))
+        # the bed resists the cable's material, which a winch makes slide past the first section's nodes
+        pay0, n0 = sections[0]["pay"], segs[0]
+        slide = [node_v[j] if pay0 is None or not 0 < j < n0 else pay0.node_velocity(j, n0, node_r[j - 1], node_v[j],
+                                                                                     node_r[j + 1])
+                 for j in range(len(node_r))]
+        bed = seabed_forces(layout, node_r, slide, contact_area, elements, depth0, range(1, n_free + 1))
         V_contact = bed["energy"]
         for j, (Fd, Fs) in bed["forces"].items():
-            for c in range(2):
+            for c in range(dim):
                 Q[j][c] += Fd[c]
                 Q_static[j][c] += Fs[c]
     # Lagrange's equations node by node (element by element, see element_inertia): M q'' = f with
@@ -395,6 +402,8 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     if bed is not None:
         prof["seabed_normal"] = ca.vertcat(*bed["normal"])
         prof["seabed_friction"] = ca.vertcat(*bed["friction"])
+        if dim == 3:
+            prof["seabed_friction_lateral"] = ca.vertcat(*bed["lateral"])
     s_el, s_node, s0 = [], [0.0], 0.0
     for s in sections:
         P, n_el = s["P"], len(s["elements"])

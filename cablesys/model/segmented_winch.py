@@ -90,6 +90,14 @@ class Payout:
         """Material velocities at the ends of element k (0 at the sheave) of the N = ``n_el`` elements."""
         return material_velocities((n_el - k) / n_el, (n_el - k - 1) / n_el, self.w, self.L, n_el, ra, va, rb, vb)
 
+    def node_velocity(self, j: int, n_el: int, r_prev, v, r_next) -> tuple:
+        """The material velocity at node j (0 < j < N) of the N = ``n_el`` elements, the mean of its two elements'
+        (:func:`material_velocities`): v_j + c_j g (r_(j+1) - r_(j-1)) / 2, c_j = (N - j) / N, g = w N / L. The velocity
+        the seabed resists (:mod:`.segmented_seabed`): where the winch hauls a laid line in, the node slides along the
+        bed and the material on it need not."""
+        c = (n_el - j) / n_el * self.w * n_el / self.L
+        return tuple(v[i] + 0.5 * c * (r_next[i] - r_prev[i]) for i in range(len(v)))
+
     def top_acceleration(self, n_el: int, r0, v0, a0, r1, v1) -> tuple:
         """The acceleration of the cable at the sheave, the rate of its material velocity v_0 + g (r_1 - r_0) there
         (g = w N / L, module docstring) with the node at the sheave: a_0 + g' (r_1 - r_0) + g (v_1 - v_0),

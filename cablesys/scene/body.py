@@ -52,6 +52,11 @@ class Body:
     axis_angle_deg: float = spec("angle_deg", "PHIBD: angle phi_b of the body's tangential axis with the vertical in degrees; |PHIBD| > 180 selects sphere drag (eq. 32)", 999.0)
     mass_z: float | None = spec("mass", "virtual mass for motion in z (out of the x-y plane), M_bvz; used by the 3-D "
                                 "equations only; unset: mass_x (a body symmetric about the vertical)", None)
+    # the body's footprint on a [seabed] (MoorDyn's kBot, cBot per unit area act on it: model/segmented_seabed.py)
+    bed_area: float | None = spec("area", "footprint of the body on a [seabed]: the area the bed's stiffness, damping "
+                                  "and friction per unit area act on when the body rests on it, beside its cable's "
+                                  "contact at that node (unset: 0, a point body, held on the bed by its cable's half "
+                                  "element alone, whose contact area d l / 2 falls with the element length)", None)
     # a rigid body that pitches in the x-y plane (Wang 1971 p. 32, "Extensions": "where the body is fairly large
     # and the cable is not attached to the center of mass"); body axes coincide with the scene's x, y (y down)
     # at theta_b = 0, theta_b turning +x towards +y (about +z); unset pitch_inertia: Wang's point body
@@ -123,6 +128,8 @@ class Body:
         require_positive("body.mass_y", self.mass_y, "kg")
         if self.mass_z is not None:
             require_positive("body.mass_z", self.mass_z, "kg")
+        if self.bed_area is not None:
+            require_nonnegative("body.bed_area", self.bed_area, "m^2")
         self._check_rigid()
         require_nonnegative("body.drag_area_normal", self.drag_area_normal, "m^2")
         require_nonnegative("body.drag_area_tangential", self.drag_area_tangential, "m^2")

@@ -26,9 +26,16 @@ class Anchor:
 
     x: float = spec("length", "horizontal position of the anchor from the top's mean position (+x to the right)")
     y: float = spec("length", "depth of the anchor below the top's mean depth (y down)")
+    z: float | None = spec("length", "sway position of the anchor from the top's mean position (+z; set: the scene "
+                                     "runs in 3-D; unset: 0, in the plane)", None)
 
     def __post_init__(self):
         check_all_finite(self, "anchor")
+
+    @property
+    def position(self) -> tuple:
+        """(x, y, z) of the anchor (m), z = 0 when unset."""
+        return (self.x, self.y, 0.0 if self.z is None else self.z)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -45,12 +52,15 @@ class Seabed:
     """
 
     depth: float = spec("length", "depth of the seabed below the still surface at x = 0 (the top's mean horizontal position)")
-    slope_deg: float = spec("angle_deg", "slope of the seabed in degrees, + when it deepens towards +x; in (-60, 60)", 0.0)
+    slope_deg: float = spec("angle_deg", "slope of the seabed in degrees, + when it deepens towards +x (towards the "
+                                         "heading in 3-D); in (-60, 60)", 0.0)
+    heading_deg: float | None = spec("angle_deg", "horizontal direction in which the bed deepens, degrees from +x "
+                                                  "towards +z (set: the scene runs in 3-D; unset: +x, in the plane)", None)
     stiffness: float = spec("stiffness_per_area", "normal stiffness per unit contact area k (MoorDyn kBot)", 3.0e6)
     damping: float = spec("damping_per_area", "normal damping per unit contact area c (MoorDyn cBot)", 3.0e5)
     friction_axial: float = spec("none", "Coulomb friction coefficient for sliding along the line", 0.0)
-    friction_lateral: float = spec("none", "Coulomb friction coefficient for sliding across the line (out of the plane: "
-                                           "acts in the 3-D model; the planar model's nodes slide along the line only)", 0.0)
+    friction_lateral: float = spec("none", "Coulomb friction coefficient for sliding across the line (acts in the 3-D "
+                                           "model; the planar model's nodes slide along the line only)", 0.0)
     friction_speed: float = spec("velocity", "sliding speed v_s of the tanh regularisation of the friction (m/s)", 0.01)
 
     def __post_init__(self):
@@ -61,9 +71,16 @@ class Seabed:
             require_nonnegative(f"seabed.{name}", getattr(self, name))
         require_positive("seabed.friction_speed", self.friction_speed, "m/s")
 
-    def bed_y(self, x: float, top_depth: float) -> float:
-        """The bed's y (down from the top's mean depth, m) at horizontal position x (m)."""
-        return self.depth - top_depth + x * math.tan(math.radians(self.slope_deg))
+    @property
+    def heading(self) -> float:
+        """The heading of the slope (rad from +x towards +z), 0 when unset."""
+        return math.radians(self.heading_deg or 0.0)
+
+    def bed_y(self, x: float, top_depth: float, z: float = 0.0) -> float:
+        """The bed's y (down from the top's mean depth, m) at horizontal position (x, z) (m):
+        y_0 + tan(slope) (x cos(heading) + z sin(heading))."""
+        along = x * math.cos(self.heading) + z * math.sin(self.heading)
+        return self.depth - top_depth + along * math.tan(math.radians(self.slope_deg))
 
 
 def _smoothstep(fmin, fmax):

@@ -77,14 +77,16 @@ class Scene:
             raise ParameterError("initial.phi" if self.initial.phi is not None else "initial.u",
                                  self.initial.phi if self.initial.phi is not None else self.initial.u,
                                  "must be unset for an anchored line: it starts from its static state")
+        ax, ay, az = a.position
         if bed is not None:
-            y_bed = bed.bed_y(a.x, depth0)
-            if a.y > y_bed + 1e-9 * max(1.0, abs(y_bed)):
+            y_bed = bed.bed_y(ax, depth0, az)
+            if ay > y_bed + 1e-9 * max(1.0, abs(y_bed)):
+                where = f"anchor.x = {ax:.6g} m" + (f", anchor.z = {az:.6g} m" if a.z is not None else "")
                 raise ParameterError("seabed.depth", bed.depth,
-                                     f"puts the bed at y = {y_bed:.6g} m under the anchor (anchor.x = {a.x:.6g} m), "
-                                     f"above anchor.y = {a.y:.6g} m: the anchor must lie on or above the seabed")
+                                     f"puts the bed at y = {y_bed:.6g} m under the anchor ({where}), "
+                                     f"above anchor.y = {ay:.6g} m: the anchor must lie on or above the seabed")
         length = sum(s.cable.length for s in self.sections)
-        chord = float(np.hypot(a.x, a.y))
+        chord = float(np.linalg.norm(a.position))
         if length < chord:
             raise ParameterError(f"{section_prefix(self, len(self.sections) - 1)}cable.length",
                                  self.sections[-1].cable.length,
@@ -92,7 +94,7 @@ class Scene:
                                  f"shorter than the {chord:.6g} m from the top's mean position to the anchor")
     def _check_rigid_bodies(self) -> None:
         """A rigid body is built by the segmented cable (model/rigid_body.py: pitch in the plane, three rotations in
-        space): it needs a section with ``cable.segments`` > 1, no seabed, no winch, and not to sit at an anchor."""
+        space): it needs a section with ``cable.segments`` > 1, no seabed, and not to sit at an anchor."""
         for i, s in enumerate(self.sections):
             if not s.body.is_rigid:
                 continue
@@ -100,7 +102,6 @@ class Scene:
             why = ("Wang's 2-DOF straight cable (every cable.segments = 1; the model ladder runs such a scene "
                    "with the node model)" if all(c.cable.segments == 1 for c in self.sections)
                    else "a scene with a [seabed]" if self.seabed is not None
-                   else "a scene with a [winch]" if getattr(self, "winch", None) is not None
                    else "the body at the [anchor]" if self.anchor is not None and i == len(self.sections) - 1 else None)
             if why is not None:
                 raise ParameterError(name, s.body.pitch_inertia, f"must be unset for {why}: a rigid, pitching body is "
@@ -108,24 +109,21 @@ class Scene:
 
     def _check_winch(self) -> None:
         """The winch keeps the first section's zero-tension length L(t) = l_0 + Delta L(t) in (0, max_length]
-        (:meth:`.ends.Winch.check_length`, l_0 of Wang 1971 eq. 1); it acts on the planar node model (no anchor,
-        no track, no 3-D so far)."""
+        (:meth:`.ends.Winch.check_length`, l_0 of Wang 1971 eq. 1); it acts on the node model in the plane and in space,
+        with a free body or an anchor at the lower end (no track so far: the steady turn has a fixed length)."""
         w = self.winch
         if w is None:
             return
-        for name, bad in (("anchor", self.anchor is not None), ("top_motion.track", self.top_motion.track is not None)):
-            if bad:
-                raise ParameterError(name, "set", "must be unset with [winch]: the node model with a winch has a free "
-                                     "body at the bottom and starts from rest under a still top so far")
-        if self.three_d:
-            raise ParameterError("winch", "set", "must be unset in a 3-D scene: the node model's winch is planar so far")
+        if self.top_motion.track is not None:
+            raise ParameterError("top_motion.track", "set", "must be unset with [winch]: the node model with a winch "
+                                 "starts from rest under a still top so far")
         c = self.sections[0].cable
         w.check_length(c.length * (1.0 - c.tension_ref / c.ae), f"{section_prefix(self, 0)}cable.length")
 
     def three_d_fields(self) -> tuple:
         """The 3-D fields this scene sets (``top_motion.z``, a track that leaves the x axis, a current or wave heading,
         ``body.mass_z``, a rigid body's 3-D fields: its inertia tensor's other entries, added inertias about x and y,
-        offsets' z, drag along z, its initial roll or yaw)."""
+        offsets' z, drag along z, its initial roll or yaw; ``anchor.z``, ``seabed.heading_deg``)."""
         env, out = self.environment, []
         track = self.top_motion.track
         if track is not None and not track.in_plane:
@@ -139,6 +137,10 @@ class Scene:
         out += [f"environment.waves[{k}].heading_deg" for k, w in enumerate(env.waves) if w.heading_deg is not None]
         out += [f"{section_prefix(self, i)}body.mass_z" for i, s in enumerate(self.sections) if s.body.mass_z is not None]
         out += [f"{section_prefix(self, i)}body.{name}" for i, s in enumerate(self.sections) for name in s.body.three_d_fields()]
+        if self.anchor is not None and self.anchor.z is not None:
+            out.append("anchor.z")
+        if self.seabed is not None and self.seabed.heading_deg is not None:
+            out.append("seabed.heading_deg")
         return tuple(out)
 
     @property
@@ -148,16 +150,13 @@ class Scene:
         return dims == 3 or (dims is None and bool(self.three_d_fields()))
 
     def _check_dimensions(self) -> None:
-        """A 3-D field needs the 3-D equations; those of Wang's straight cable and of the node model (segmented) have
-        no seabed in space yet; the node model's anchor holds its node at (anchor.x, anchor.y, 0)."""
+        """A 3-D field needs the 3-D equations; the node model's anchor and seabed are then in space
+        ((anchor.x, anchor.y, anchor.z), a bed sloping towards seabed.heading_deg)."""
         fields = self.three_d_fields()
         if self.numerics.dimensions == 2 and fields:
             raise ParameterError("numerics.dimensions", 2, f"must be 3 or unset: the scene sets {fields[0]}, "
                                  "which only the 3-D equations take")
         if self.three_d:
-            if self.seabed is not None:
-                raise ParameterError("seabed", "set", "must be unset in a 3-D scene: the 3-D equations (Wang's "
-                                     "straight cable, the node model) have no seabed in space so far")
             # the time domain's initial state sets every angle from initial.phi / phi_rate: it does not
             # know the out-of-plane angle yet, so a 3-D run starts from its steady state (or an x0 given)
             for name, unset in (("phi", None), ("phi_rate", 0.0)):

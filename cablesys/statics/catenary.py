@@ -104,17 +104,26 @@ def anchored_guess(model, p) -> np.ndarray:
     p : array
         Parameter vector.
 
+    In space the same path lies in the vertical plane through the top and the anchor (bearing psi = atan2(z, x) of
+    the anchor), on the bed's slope along that plane, atan(tan(slope) cos(heading - psi)).
+
     Returns
     -------
     numpy.ndarray
-        q = (x_1, y_1, ..., x_{n-1}, y_{n-1}) in m (the anchor node is not a coordinate); z_j = 0 added
-        for a 3-D model, and the rigid bodies' orientation coordinates at the level attitude after the nodes.
+        q = (x_1, y_1, ..., x_{n-1}, y_{n-1}) in m (the anchor node is not a coordinate); (x_j, y_j, z_j) in that
+        plane for a 3-D model, and the rigid bodies' orientation coordinates at the level attitude after the nodes.
     """
     from scipy.optimize import brentq
 
     lab = model.layout.labels
     val = lambda lbl: float(p[lab.index(lbl)])
     A = np.array([val("anchor.x"), val("anchor.y")])
+    psi = 0.0
+    slope = np.radians(val("seabed.slope_deg")) if "seabed.slope_deg" in lab else 0.0
+    if "anchor.z" in lab and val("anchor.z") != 0.0:     # in space, off the x-y plane: the plane through the anchor
+        psi, A = np.arctan2(val("anchor.z"), A[0]), np.array([np.hypot(A[0], val("anchor.z")), A[1]])
+    if "seabed.heading_deg" in lab:
+        slope = np.arctan(np.tan(slope) * np.cos(np.radians(val("seabed.heading_deg")) - psi))
     arcs, s0 = [], 0.0                     # zero-tension arc length of every node from the top
     for i, n_el in enumerate(model.segments):
         l_0 = val(model.layout.labels[model.layout.section_index(i, "cable.length")]) * (
@@ -127,7 +136,7 @@ def anchored_guess(model, p) -> np.ndarray:
         ea = min(p[model.layout.section_index(i, "cable.ae")] for i in range(model.n_sections))
         taut = _taut_span(L, A, np.array(arcs), min_strain=0.5 * w * L / ea)
         shot = _shot_span(model, p, A, taut)
-        return _in_space(model, taut if shot is None else shot)
+        return _in_space(model, taut if shot is None else shot, psi)
     if w > 0 and A[1] > 0 and L > chord:            # the closed-form catenary of the mean line (flat bed)
         ea = min(p[model.layout.section_index(i, "cable.ae")] for i in range(model.n_sections))
         mu = val("seabed.friction_axial") if "seabed.friction_axial" in lab else 0.0
@@ -138,14 +147,13 @@ def anchored_guess(model, p) -> np.ndarray:
         if cat is not None:
             x, z, _ = cat["shape"](L - np.array(arcs[:-1]))
             direction = -np.sign(A[0]) if A[0] != 0 else 1.0
-            return _in_space(model, np.column_stack([A[0] + direction * x, A[1] - z]))
+            return _in_space(model, np.column_stack([A[0] + direction * x, A[1] - z]), psi)
     if L <= chord:
         corners = [np.zeros(2), A]
     else:
         corners = None
         if "seabed.depth" in lab:
-            alpha = np.radians(val("seabed.slope_deg"))
-            t = np.array([np.cos(alpha), np.sin(alpha)]) * (-np.sign(A[0]) if A[0] != 0 else 1.0)
+            t = np.array([np.cos(slope), np.sin(slope)]) * (-np.sign(A[0]) if A[0] != 0 else 1.0)
             excess = lambda a: np.hypot(*(A + a * t)) + a - L      # path length - line length at touchdown a
             if excess(0.0) < 0 < excess(L):
                 corners = [np.zeros(2), A + brentq(excess, 0.0, L) * t, A]
@@ -158,7 +166,7 @@ def anchored_guess(model, p) -> np.ndarray:
     cum = np.concatenate([[0.0], np.cumsum(np.hypot(legs[:, 0], legs[:, 1]))])
     path = lambda s: np.array([np.interp(s, cum, [c[i] for c in corners]) for i in range(2)])
     q = [path(a / L * cum[-1]) for a in arcs[:-1]]
-    return _in_space(model, np.array(q))
+    return _in_space(model, np.array(q), psi)
 
 
 #: AE / (line weight) at which :func:`_shot_span`'s continuation in the stiffness starts.
@@ -235,10 +243,13 @@ def _taut_span(length: float, anchor, arcs, min_strain: float) -> np.ndarray:
     return pts[:-1]
 
 
-def _in_space(model, xy) -> np.ndarray:
-    """Planar node positions (rows (x, y)) as the model's q: z = 0 added for a 3-D model (the anchor's plane), and
-    the rigid bodies' orientation coordinates at the level attitude (:func:`_level`) after the nodes."""
-    nodes = np.column_stack([xy] + [np.zeros(len(xy))] * (_dim(model) - 2)).ravel()
+def _in_space(model, xy, psi: float = 0.0) -> np.ndarray:
+    """Planar node positions (rows (x, y)) as the model's q: for a 3-D model turned about the vertical into the plane
+    of bearing ``psi`` (rad from +x towards +z; x -> x cos psi, z = x sin psi; z = 0 at psi = 0), and the rigid bodies'
+    orientation coordinates at the level attitude (:func:`_level`) after the nodes."""
+    if _dim(model) == 3 and psi != 0.0:
+        xy = np.column_stack([xy[:, 0] * np.cos(psi), xy[:, 1], xy[:, 0] * np.sin(psi)])
+    nodes = np.column_stack([xy] + [np.zeros(len(xy))] * (_dim(model) - xy.shape[1])).ravel()
     return np.concatenate([nodes, _level(model)])
 
 
@@ -613,7 +624,8 @@ def _released(scene, rot) -> np.ndarray:
 
 
 def anchored_line_forces(model, state: SteadyState, p) -> dict:
-    """Fairlead and anchor forces of an anchored one-section line at rest, and its length on the bed.
+    """Fairlead and anchor forces of an anchored one-section line at rest, and its length on the bed (in the plane or
+    in space, where H is the force's horizontal magnitude).
 
     The fairlead carries the top element's tension along its axis plus the half element lumped at
     the top; the anchor the bottom element's tension plus the half element lumped there
@@ -642,19 +654,20 @@ def anchored_line_forces(model, state: SteadyState, p) -> dict:
     n = model.n_elements
     w, l_r = p[idx(0, "cable.weight_per_length")], p[idx(0, "cable.length")]
     half = 0.5 * w * l_r / n
-    nx = np.array([y[f"node_x[{j}]"] for j in range(n + 1)])
-    ny = np.array([y[f"node_y[{j}]"] for j in range(n + 1)])
+    axes = "xyz"[:_dim(model)]
+    r = np.array([[y[f"node_{c}[{j}]"] for c in axes] for j in range(n + 1)])
     T = np.array([y[f"element_tension[{k}]"] for k in range(n)])
-    et = lambda k: np.array([nx[k + 1] - nx[k], ny[k + 1] - ny[k]]) / np.hypot(nx[k + 1] - nx[k], ny[k + 1] - ny[k])
+    et = lambda k: (r[k + 1] - r[k]) / np.linalg.norm(r[k + 1] - r[k])
     top, bottom = T[0] * et(0), T[-1] * et(n - 1)
+    horizontal = lambda f: float(np.hypot(f[0], f[2] if len(f) == 3 else 0.0))     # in space the x-z plane's
     anchor_down = half - bottom[1]
     L_B = 0.0
     if "seabed.depth" in model.layout.labels:
         cos_a = np.cos(np.radians(p[model.layout.index("seabed.slope_deg")]))
         L_B = (cos_a * sum(y[f"seabed_normal[{j}]"] for j in range(n + 1)) + anchor_down) / w
-    H_A = abs(bottom[0])
+    H_A = horizontal(bottom)
     if "seabed.depth" in model.layout.labels and y["seabed_normal[%d]" % (n - 1)] > 0:
         # the line's tension at the anchor: the last element's (at its mid-point) less the laid-down
         # friction of the half element between (T(0) = max(T(h/2) - mu w h/2, 0), seabed_catenary)
         H_A = max(H_A - p[model.layout.index("seabed.friction_axial")] * half, 0.0)
-    return dict(H=abs(top[0]), V_F=top[1] + half, H_A=H_A, V_A=-anchor_down, L_B=L_B)
+    return dict(H=horizontal(top), V_F=top[1] + half, H_A=H_A, V_A=-anchor_down, L_B=L_B)
