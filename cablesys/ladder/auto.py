@@ -40,7 +40,7 @@ import warnings
 
 import numpy as np
 
-from ..errors import NumericalWarning, ParameterError
+from ..errors import NumericalWarning, ParameterError, SolverError
 from ..model import CableModel
 from ..scene import Scene
 from . import estimate as est
@@ -488,11 +488,10 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
     order = choice.numbers.get("estimates", {}).get("segmented_1", {}).get("order", est.ORDER)
     # a body resting on the seabed: its tensions converge at first order, judged at that order (:mod:`.landed`)
     quarter_st, on_bed, block = None, landed.landed_sections(sc, result, period, ramp), None
+    quarter_note = ""
     if on_bed and n >= checks.THIRD_MIN_SEGMENTS:
-        quarter = _run(check_scene(scene, n, n // 4), dataclasses.replace(choice, segments=n // 4), tol, cache,
-                       checking(tight_kw), candidate=False)
-        if quarter.success:
-            quarter_st = metrics.statistics(quarter, period, ramp)
+        quarter_st, quarter_note = _quarter(scene, choice, tol, cache, tight_kw, period, ramp)
+        if quarter_st is not None:
             block = landed.extrapolate(quarter_st, coarse_st, fine_st, n)
             if block["extrapolated_quantities"]:
                 e, per = block["estimated_error"], block["estimated_error_per_quantity"]
@@ -526,10 +525,9 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
                 e_i, per_i = checks.integration_errors(kept_st, fine_st, settings.method)
                 result = tight
         if n >= checks.THIRD_MIN_SEGMENTS and block is None:   # N / 4 too: is N / 2 in the asymptotic range?
-            if quarter_st is None:       # (checks.richardson_triple; a landed body's check has run it already)
-                quarter = _run(check_scene(scene, n, n // 4), dataclasses.replace(choice, segments=n // 4), tol, cache,
-                               checking(tight_kw), candidate=False)
-                quarter_st = metrics.statistics(quarter, period, ramp) if quarter.success else None
+            if quarter_st is None and not quarter_note:   # (a landed body's check has run it already)
+                quarter_st, quarter_note = _quarter(scene, choice, tol, cache, tight_kw, period, ramp)
+            said += quarter_note
             if quarter_st is not None:
                 e, per, observed = checks.richardson_triple(kept_st, coarse_st, quarter_st, choice, rough)
                 slow = sorted(k for k in per if k in judged and (observed.get(k) or 0.0) < order)
@@ -587,6 +585,21 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
         return node_model(choice, f"{said}; N grows to {n_next}, past the quasi-static segmented cable's size cap "
                                   f"N = {top}", n_next), True, result
     return dataclasses.replace(choice, segments=n_next, reason=f"{choice.reason}; {said}: N = {n_next}"), True, result
+
+
+def _quarter(scene: Scene, choice: Choice, tol, cache: RungCache, tight_kw: dict, period, ramp) -> tuple:
+    """(statistics of the check run at N / 4, "") or (None, the clause saying why there are none): a run that fails,
+    or a static state that does not exist at N / 4 (an anchored line of few elements with a compressed one), leaves
+    the pair's estimate standing."""
+    n = choice.segments
+    try:
+        quarter = _run(check_scene(scene, n, n // 4), dataclasses.replace(choice, segments=n // 4), tol, cache,
+                       checking(tight_kw), candidate=False)
+    except SolverError as err:
+        return None, f"; N = {n // 4} not run ({err}): the pair's estimate stands"
+    if not quarter.success:
+        return None, f"; N = {n // 4} failed ({quarter.message}): the pair's estimate stands"
+    return metrics.statistics(quarter, period, ramp), ""
 
 
 JUMP_MARGIN = 1.25    # the next N aims at the tolerance with this margin on the observed error's N^-p law
