@@ -103,7 +103,7 @@ def _quasi_static_method(scene: Scene, model, x0, rtol: float, elements: int, ca
     """QUASI_STATIC_METHOD where :func:`.stiffness.explicit_fit` accepts ``model`` at ``x0`` (compiled runs
     only: uncompiled, the explicit pair would fall back to CVODES anyway), else QUASI_STATIC_FALLBACK; up to
     EXPLICIT_MAX_ELEMENTS angles (the guard's dense probe grows with them: one per element in the plane, two in 3-D)."""
-    if model is None or x0 is None or model.nq > EXPLICIT_MAX_ELEMENTS or not compiles():
+    if model is None or x0 is None or max(elements, model.nq) > EXPLICIT_MAX_ELEMENTS or not compiles():
         return QUASI_STATIC_FALLBACK
     p = np.asarray(model.parameters(scene), dtype=float).ravel()
     x0 = np.asarray(x0, dtype=float).ravel()
