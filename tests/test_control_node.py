@@ -233,3 +233,29 @@ def test_compiled_step_kernels_find_the_virtual_machines_optimum(quick_compile):
     sc = _soft_scene(1).with_numerics(drag_segments=1)
     pr = heave_problem(sc, LIMITS, dt=0.5, model="wang", substeps=SUBSTEP_KERNELS_FROM + 1)
     assert_compiled_optimum_equals_vm(pr, 8.0, atol=1e-8)
+
+
+def test_gauss_newton_hessian_finds_the_exact_hessians_optimum(optima):
+    """IPOPT with the objective's Gauss-Newton matrix (the default, no second derivatives of the dynamics) and with
+    the exact AD Hessian solve one NLP: on the node model (N = 4, speed limit active), both to IPOPT's tolerance
+    1e-10 over 10 s, the two optima agree to 1e-9 in the objective and 1e-6 m/s^2 in the controls (but the last: below); the
+    Gauss-Newton residuals
+    are the stage cost's square roots (r^T r equals the stage cost at any state, to rounding)."""
+    from cablesys.control.kernels import residual_function
+    pr, default = optima["segmented"]
+    assert default.stats["hessian"] == "gauss-newton"
+    gn = optimal_payout(pr, 10.0, tol=1e-10)
+    exact = optimal_payout(pr, 10.0, hessian="exact", tol=1e-10)
+    assert exact.success and gn.success
+    assert gn.objective == pytest.approx(exact.objective, rel=1e-9)
+    # the last interval's alpha moves only the terminal node (its heave, and w against the speed bound there) besides
+    # its own small weight c_a: a nearly flat direction, not compared
+    np.testing.assert_allclose(gn.acceleration[:-1], exact.acceleration[:-1], atol=1e-6)
+    r = residual_function(pr)
+    E = pr.exogenous([3.0])[0]
+    for k in (5, 12, 19):
+        x, u = gn.states[k], gn.acceleration[k]
+        cost = float(pr.stage(x, u, E)[0])
+        assert float(ca.sumsqr(r(x, u, E))) == pytest.approx(cost, rel=1e-12)
+    with pytest.raises(ParameterError, match="hessian"):
+        optimal_payout(pr, 4.0, hessian="bfgs")

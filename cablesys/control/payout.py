@@ -36,7 +36,8 @@ from ..model.segmented_winch_control import rest_state as node_rest_state
 from ..model.winch import COMPENSATOR_PARAMETERS, WINCH_OUTPUTS, WinchModel, build_winch_model, rest_state
 from ..results import timed
 from .kernels import (G_ROWS, SUBSTEP_KERNELS_FROM, floor_output, gauss_newton_function, gauss_newton_kernel,
-                      interval_functions, interval_kernels, nlp_functions, output_labels, substep_kernels)
+                      interval_functions, interval_kernels, nlp_functions, output_labels, residual_function,
+                      substep_kernels)
 from .limits import WinchLimits
 from .payout_result import PayoutResult, heave_reduction_db, payout_result, statistics_window
 from .shooting import PathConstraint, ShootingNLP
@@ -277,20 +278,26 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
 
 
 def payout_nlp(problem: HeaveProblem, N: int, *, max_iter: int = 300, tol: float = 1e-8,
-               expand: bool = False, warm_duals: bool = False, constrain_first: bool = True) -> ShootingNLP:
+               expand: bool = False, warm_duals: bool = False, constrain_first: bool = True,
+               hessian: str = "exact") -> ShootingNLP:
     """The multiple-shooting NLP of ``problem`` over N intervals (start state and the tabulated top motion, :meth:`HeaveProblem.exogenous`, are its
     parameters: :meth:`.shooting.ShootingNLP.solve` takes them), with the last node's heave
     in the cost (the stage cost at alpha = 0). ``expand``: IPOPT on the SX expansion of the NLP, for the
     virtual machine's inlined functions only (compiled kernels, :meth:`HeaveProblem.nlp_functions`, are
-    external code, faster than any expansion, and are kept as they are)."""
+    external code, faster than any expansion, and are kept as they are). ``hessian``: "exact" (AD, the
+    kernels' forward-over-adjoint derivatives through every RK4 step) or "gauss-newton" (2 J^T J of the stage
+    residuals, :func:`.kernels.residual_function`: no second derivatives of the dynamics; the same NLP)."""
     ub, xb = problem.bounds()
     xN, EN = ca.SX.sym("x", problem.model.nx), ca.SX.sym("E", problem.step.size1_in(2))
     terminal = ca.Function("terminal", [xN, EN], [problem.stage(xN, 0.0, EN)[0]])   # the last node's cost
+    residual = residual_function(problem)
+    terminal_residual = ca.Function("terminal_residual", [xN, EN], [residual(xN, 0.0, EN)])
     step, stage, compiled = problem.nlp_functions()
     return ShootingNLP(step, stage, N, constraints=problem.constraints(), u_bounds=ub,
                        x_bounds=xb, terminal=terminal, x_ref=problem.x_rest, x_scale=problem.scales(),
                        ipopt={"max_iter": max_iter, "tol": tol}, expand=expand and not compiled,
-                       warm_duals=warm_duals, constrain_first=constrain_first)
+                       warm_duals=warm_duals, constrain_first=constrain_first, residual=residual,
+                       terminal_residual=terminal_residual, hessian=hessian)
 
 
 def check_window(problem: HeaveProblem, t0: float, horizon: float) -> int:
@@ -317,7 +324,8 @@ def solution_message(sol) -> str:
 
 @timed
 def optimal_payout(problem: HeaveProblem, horizon: float, *, warm_start: PayoutResult | None = None,
-                   max_iter: int = 300, tol: float = 1e-8, stats_start: float | None = None) -> PayoutResult:
+                   max_iter: int = 300, tol: float = 1e-8, stats_start: float | None = None,
+                   hessian: str = "gauss-newton") -> PayoutResult:
     """The open-loop optimal payout over [0, horizon] for the problem's known top motion.
 
     Parameters
@@ -332,6 +340,9 @@ def optimal_payout(problem: HeaveProblem, horizon: float, *, warm_start: PayoutR
         IPOPT's iteration limit and tolerance.
     stats_start : float, optional
         Start of the window of the heave statistics (s; default the window of every run's summary, :func:`cablesys.statistics.window`).
+    hessian : str
+        IPOPT's Hessian of the Lagrangian: "gauss-newton" (default: the objective's, no second derivatives of the
+        dynamics, :func:`payout_nlp`) or "exact" (AD through every RK4 step): the same NLP and optimum.
 
     Returns
     -------
@@ -343,11 +354,11 @@ def optimal_payout(problem: HeaveProblem, horizon: float, *, warm_start: PayoutR
     N = check_window(problem, 0.0, horizon)
     U = np.zeros(N) if warm_start is None else np.resize(warm_start.acceleration, N)
     guess = (problem.rollout(problem.x_rest, U), U[:, None])
-    sol = payout_nlp(problem, N, max_iter=max_iter, tol=tol).solve(problem.x_rest,
+    sol = payout_nlp(problem, N, max_iter=max_iter, tol=tol, hessian=hessian).solve(problem.x_rest,
                                                                    problem.exogenous(problem.dt * np.arange(N + 1)), guess)
     return payout_result(problem, sol.X, sol.U, status=sol.status, violated=sol.worst, violations=sol.violations,
                          objective=sol.objective, success=sol.success, message=solution_message(sol),
                          stats={"iterations": sol.iterations, "solve_s": sol.solve_s, "intervals": N,
-                                "ipopt_timing_s": sol.timing},
+                                "ipopt_timing_s": sol.timing, "hessian": hessian},
                          stats_start=stats_start)
 
