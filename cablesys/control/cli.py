@@ -21,8 +21,9 @@ def register(sub) -> None:
                                    "time-domain design of the line's AE and C_I (bounds from the scene's [design] "
                                    "table) that minimizes the body heave variance, mean over --seeds realisations "
                                    "of the sea, with no slack, peak tension <= working load and the body "
-                                   "excursion limit in every seed (cablesys.control.design), compared with the "
-                                   "frequency-domain design (cablesys design) and re-run by the plain time "
+                                   "excursion limit in every seed (cablesys.control.design), on the same model as "
+                                   "the plant (--model, --segments: the ladder's choice by default), compared with "
+                                   "the frequency-domain design (cablesys design) and re-run by the plain time "
                                    "domain; writes time_design.json and time_design.png.")
     p.add_argument("scene", help="scene TOML file (one section)")
     p.add_argument("--out", default="control_out", help="output directory (default: control_out)")
@@ -35,8 +36,9 @@ def register(sub) -> None:
     p.add_argument("--plant-segments", type=int, default=None,
                    help="drag segments of the plant's cable (default: the scene's numerics.drag_segments)")
     p.add_argument("--model", default="auto", choices=("auto", "wang", "segmented"),
-                   help="the closed loops' plant: Wang's 2-DOF winch, the segmented node model's winch "
-                        "(--segments N), or auto (default): the model ladder's choice for the uncompensated scene")
+                   help="the model every strategy plays on (the plant; with --design the design's model): Wang's "
+                        "2-DOF winch, the segmented node model's winch (--segments N), or auto (default): the model "
+                        "ladder's choice for the uncompensated scene")
     p.add_argument("--segments", type=int, default=None,
                    help="elements N of a segmented plant (default: the ladder's N, else the scene's cable.segments)")
     p.add_argument("--controller-model", default="wang", choices=("wang", "segmented"),
@@ -53,7 +55,9 @@ def register(sub) -> None:
     p.add_argument("--design", action="store_true",
                    help="design the line (AE, C_I) through the nonlinear time domain instead of compensating")
     p.add_argument("--seeds", default="1,2,3", help="--design: comma-separated seeds of the sea (default 1,2,3)")
-    p.add_argument("--design-dt", type=float, default=0.5, help="--design: RK4 interval [s] (default 0.5, 2 steps)")
+    p.add_argument("--design-dt", type=float, default=0.5,
+                   help="--design: interval of the rolled-out series [s] (default 0.5; RK4 steps per interval from "
+                        "the stiffest design in the bounds)")
     p.add_argument("--record", type=float, default=None,
                    help="--design: record length [s] (default: the scene's numerics.duration)")
     p.add_argument("--no-resimulate", action="store_true", help="--design: skip the plain time-domain re-run check")
@@ -81,15 +85,18 @@ def run_design(args) -> int:
 
     seeds = _seeds(args.seeds)
     scene = load_scene(args.scene)
-    settings = {"seeds": seeds, "dt": args.design_dt, "record": args.record, "resimulate": not args.no_resimulate}
-    problem = time_design_problem(scene, seeds=seeds, duration=args.record, dt=args.design_dt)
+    settings = {"seeds": seeds, "dt": args.design_dt, "record": args.record, "resimulate": not args.no_resimulate,
+                "model": args.model, "segments": args.segments}
+    model, n, why = plant_choice(scene, args.model, args.segments)
+    problem = time_design_problem(scene, seeds=seeds, duration=args.record, dt=args.design_dt, model=model,
+                                  segments=n)
     outdir = OutputDir(args.out, "control", {"scene": scene, "time_design": settings},
                        overwrite=args.overwrite, owned=("time_design.json",))
     with outdir.start(scene=scene.name):
         res = time_domain_design(problem)
         doc = {"scene": scene.name, "settings": settings,
-               "models": {"design": f"wang 2-DOF (the winch at zero payout), RK4 roll-out at {args.design_dt:g} s: the "
-                                    "design's model, re-run by the plain time domain", **_ladder(scene)},
+               "models": {"design": f"{problem.describe()}: the design's model ({why}), re-run by the plain time "
+                                    "domain on the same model", **_ladder(scene, model)},
                "time_domain": res.summary()}
         fd = frequency_design(scene, settings_from_dict(scene.design))
         theta_f = [float(v) for v in fd.values]
@@ -153,7 +160,10 @@ def plant_choice(scene, model: str, segments):
     if choice.name == "wang":
         return "wang", None, f"the ladder's choice: {choice.reason.split('; ')[0]}"
     n = segments or max(choice.segments, 2)
-    return "segmented", n, f"the ladder's choice is {choice.name}, N = {choice.segments}: {choice.reason.split('; ')[0]}"
+    stand_in = (f"; the node model at N = {n} stands for it (the control has no winch in the quasi-static form, "
+                "whose stiff axial modes it eliminates)" if choice.name == "quasi-static" else "")
+    return "segmented", n, (f"the ladder's choice is {choice.name}, N = {choice.segments}: "
+                            f"{choice.reason.split('; ')[0]}{stand_in}")
 
 
 def _ladder(scene, plant: str = "wang") -> dict:
@@ -163,8 +173,10 @@ def _ladder(scene, plant: str = "wang") -> dict:
     choice = _ladder_choice(scene)
     seg = f", N = {choice.segments}" if choice.segments > 1 else ""
     agree = (choice.name == "wang") == plant.startswith("wang")
+    same = ": the control's model" if choice.name != "quasi-static" else (
+        ": the control runs the node model in its place (the same elements with their axial modes kept)")
     out["ladder"] = (f"{choice.name}{seg} for the uncompensated scene"
-                     + (": the control's model" if agree else ": NOT the control's model, whose results then carry "
+                     + (same if agree else ": NOT the control's model, whose results then carry "
                         "that model's error") + f" ({choice.reason.split('; ')[0]})")
     out["ladder_choice"] = choice.as_dict()
     return out

@@ -146,13 +146,14 @@ def _compiled_kernels(key, functions):
     """``functions`` compiled (:data:`KERNEL_OPTIMIZATION`) and kept under ``key`` in the KERNELS_KEPT cache."""
     kernels = compile_functions(functions, jacobians=False, optimization=KERNEL_OPTIMIZATION)
     if kernels.compiled:
-        _keep(_KERNELS, key, kernels)
+        keep_recent(_KERNELS, key, kernels)
     return kernels
 
 
-def _keep(cache: dict, key, value) -> None:
-    """``cache[key] = value``, the oldest entries dropped first (dicts keep insertion order) to keep KERNELS_KEPT."""
-    while len(cache) >= KERNELS_KEPT:
+def keep_recent(cache: dict, key, value, kept: int = KERNELS_KEPT) -> None:
+    """``cache[key] = value``, the oldest entries dropped first (dicts keep insertion order) to keep ``kept``: the
+    in-memory caches of loaded kernel libraries (a library is not checked and opened again on every call)."""
+    while len(cache) >= kept:
         cache.pop(next(iter(cache)))
     cache[key] = value
 
@@ -251,5 +252,5 @@ def gauss_newton_kernel(problem) -> ca.Function:
         built = compile_functions([f], jacobians=False, optimization=KERNEL_OPTIMIZATION)
         kernel = built.functions["gn_interval"]
         if built.compiled:
-            _keep(_GN_KERNELS, key, kernel)
+            keep_recent(_GN_KERNELS, key, kernel)
     return kernel
