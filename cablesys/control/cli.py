@@ -12,10 +12,10 @@ def register(sub) -> None:
     """Add ``control SCENE.toml [--out DIR]`` to the cablesys parser."""
     p = sub.add_parser("control", help="optimal and MPC heave compensation by the winch (IPOPT)",
                        description="Compare no compensation, a passive compensator, a PI/feed-forward AHC, MPC "
-                                   "with a wave preview and the open-loop optimal payout on the scene's nonlinear "
-                                   "winch model (the plant: the model ladder's choice, Wang's 2-DOF cable or the "
-                                   "segmented node model with a variable length; the controller: Wang's or a "
-                                   "coarser node model), under winch speed, "
+                                   "with a wave preview and the open-loop optimal payout, every one on the same "
+                                   "nonlinear winch model of the scene (the plant: the model ladder's choice, Wang's "
+                                   "2-DOF cable or the segmented node model with a variable length; the controller: "
+                                   "Wang's or a coarser node model), under winch speed, "
                                    "acceleration and power limits and the tension band. Writes control.json, "
                                    "control_heave_tension.png and control_winch.png. With --design instead: the "
                                    "time-domain design of the line's AE and C_I (bounds from the scene's [design] "
@@ -134,15 +134,14 @@ def run_design(args) -> int:
 
 def _models(scene, res, why: str) -> dict:
     """Which models ran and why, and what the model ladder would run for the uncompensated scene: the plant
-    (Wang's 2-DOF winch, :mod:`cablesys.model.winch`, or the node model's, :mod:`cablesys.model.segmented_winch_control`),
-    the controller (the MPC's and the open-loop optimum's model), the passive compensator's plant."""
+    (Wang's 2-DOF winch, :mod:`cablesys.model.winch`, or the node model's, :mod:`cablesys.model.segmented_winch_control`)
+    on which every strategy plays, and the controller (the MPC's and the open-loop optimum's model)."""
     st = res.stats
     out = {"controller": f"{st['controller_model']}, {st.get('controller_segments', 1)} drag segment(s), RK4 "
                          f"{st['controller_substeps']} steps per interval: the open-loop optimum's and the MPC's model",
-           "plant": f"{st['plant_model']}, {st.get('plant_segments')} drag segments, CVODES: the closed loops' "
-                    f"nonlinear plant ({why})"}
-    if "passive" in res.metrics:
-        out["passive_plant"] = res.metrics["passive"]["plant"] + " (the compensator is a coordinate of that model only)"
+           "plant": f"{st['plant_model']}, {st.get('plant_segments')} drag segments, CVODES: the nonlinear plant of "
+                    f"every strategy, the passive compensator's with its piston coordinate ({why})",
+           "same_plant": True}
     return {**out, **_ladder(scene, st["plant_model"])}
 
 
@@ -180,13 +179,6 @@ def _ladder(scene, plant: str = "wang") -> dict:
                         "that model's error") + f" ({choice.reason.split('; ')[0]})")
     out["ladder_choice"] = choice.as_dict()
     return out
-
-
-def _other_plant(metrics: dict) -> str:
-    """A note for a strategy that ran on another plant than the table's (the passive compensator on Wang's)."""
-    if "plant" not in metrics:
-        return ""
-    return f"  (on {metrics['plant'].split(' (')[0]}: dB against its own uncompensated run, F min its spring force F_bc)"
 
 
 def run(args) -> int:
@@ -229,8 +221,6 @@ def run(args) -> int:
     w = sys.stdout.write
     w(f"{scene.name}\n{'' if res.success else 'WARNING: ' + res.message + chr(10)}")
     w(f"controller: {models['controller']}\nplant: {models['plant']}\nladder: {models['ladder']}\n")
-    if "passive_plant" in models:
-        w(f"passive: {models['passive_plant']}\n")
     # F min: the least tension the no-slack floor bounds (Wang's F_bc, the node model's least element tension)
     w(f"{'strategy':<14s} {'rms heave':>10s} {'dB':>7s} {'T max':>9s} {'F min':>9s} {'slack':>6s} "
       f"{'|P| max':>9s} {'step':>9s}\n")
@@ -238,7 +228,6 @@ def run(args) -> int:
         step = m.get("compute_per_step_s")
         w(f"{name:<14s} {m['heave_rms_m']:9.3f}m {m['heave_reduction_db']:7.1f} {m['tension_max_n'] / 1e3:8.1f}k "
           f"{m['tension_min_n'] / 1e3:8.1f}k {m['slack_time_s']:5.1f}s {m['power_max_w'] / 1e3:8.1f}k "
-          f"{'' if step is None else f'{step * 1e3:7.1f}ms'}"
-          f"{_other_plant(m)}\n")
+          f"{'' if step is None else f'{step * 1e3:7.1f}ms'}\n")
     w(f"wrote {outdir.path / 'control.json'}, control_heave_tension.png, control_winch.png\n")
     return 0 if res.success else 1

@@ -33,7 +33,7 @@ import numpy as np
 from ..errors import ParameterError, require_positive
 from ..model.segmented_winch_control import NodeWinchModel, build_node_winch_model
 from ..model.segmented_winch_control import rest_state as node_rest_state
-from ..model.winch import COMPENSATOR_PARAMETERS, WINCH_OUTPUTS, WinchModel, build_winch_model, rest_state
+from ..model.winch import COMPENSATOR_PARAMETERS, WinchModel, build_winch_model, rest_state
 from ..results import timed
 from .kernels import (G_ROWS, SUBSTEP_KERNELS_FROM, floor_output, gauss_newton_function, gauss_newton_kernel,
                       interval_functions, interval_kernels, nlp_functions, output_labels, residual_function,
@@ -57,6 +57,21 @@ def model_rest_state(model, p, c=None) -> np.ndarray:
     """The rest state of either control model (:func:`cablesys.model.winch.rest_state`,
     :func:`cablesys.model.segmented_winch_control.rest_state`)."""
     return (node_rest_state if isinstance(model, NodeWinchModel) else rest_state)(model, p, c)
+
+
+def precharge(model, scene, p, c) -> float:
+    """The compensator's precharge F_pre (N, down +) that holds the static load at zero stroke: the sheave's
+    acceleration s'' is affine in F_pre (the piston's equation, :mod:`cablesys.model.winch`,
+    :mod:`cablesys.model.segmented_winch_control`), so F_pre is the root of s'' at the plain model's rest state with
+    s = 0 (the cable's vertical pull on the sheave, with the sign that holds it up), from two evaluations."""
+    plain = (build_node_winch_model if isinstance(model, NodeWinchModel) else build_winch_model)(scene)
+    x = model_rest_state(plain, p)
+    nq = plain.nq
+    q, qd = np.append(x[:nq], 0.0), np.zeros(nq + 1)
+    s_dd = lambda f: float(np.array(model.accel(q, qd, np.zeros(7), [x[-2], 0.0, 0.0, 0.0], p,
+                                                np.r_[c[:3], f])).ravel()[-1])
+    a0, a1 = s_dd(0.0), s_dd(1.0)
+    return -a0 / (a1 - a0)
 
 
 def describe_model(model) -> str:
@@ -239,23 +254,19 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
     for name, v in (("tension_weight", tension_weight), ("control_weight", control_weight)):
         if not (v >= 0 and math.isfinite(v)):
             raise ParameterError(name, v, "must be a finite number >= 0")
-    if isinstance(model, str):
-        scene, model = control_model(scene, model, segments, compensator=compensator is not None)
-    elif model is None:
-        scene, model = control_model(scene, "wang", None, compensator=compensator is not None)
-    p = model.parameters(scene)
-    c = np.zeros(len(COMPENSATOR_PARAMETERS))
     if compensator is not None:
         unknown = set(compensator) - {"mass", "stiffness", "damping"}
         if unknown:
             raise ParameterError("compensator", sorted(unknown), "allowed keys: mass, stiffness, damping")
         require_positive("compensator.mass", compensator.get("mass", 0.0), "kg")
+    kind = model if isinstance(model, str) else ("wang" if model is None else None)
+    if kind is not None:
+        scene, model = control_model(scene, kind, segments, compensator=compensator is not None)
+    p = model.parameters(scene)
+    c = np.zeros(len(COMPENSATOR_PARAMETERS))
+    if compensator is not None:
         c[:3] = [compensator["mass"], compensator.get("stiffness", 0.0), compensator.get("damping", 0.0)]
-        plain = build_winch_model(scene)
-        x_plain = rest_state(plain, p)
-        t_top = dict(zip(WINCH_OUTPUTS, np.array(plain.outputs(x_plain, [0, 0], 0.0, p, c)).ravel()))["tension_top"]
-        # y down: the precharge pushes the sheave up against the cable's vertical pull and its own weight
-        c[3] = -t_top * math.cos(x_plain[0]) - c[0] * p[model.layout.index("environment.gravity")]
+        c[3] = precharge(model, scene, p, c)
     x_rest = model_rest_state(model, p, c)
     y_rest = dict(zip(output_labels(model), np.array(model.outputs(x_rest, [0, 0], 0.0, p, c)).ravel()))
     lam = fastest_mode(model, x_rest, p, c)
