@@ -272,12 +272,12 @@ def node_plant_mpc(scene, limits, quick: bool, segments: int = 4) -> dict:
 def node_design_gradient(scene, quick: bool, segments: int = 4) -> dict:
     """The time-domain design's Jacobian on the node model (one seed) against Richardson central differences
     (``time_domain_design.gradient_check``: relative to each row's largest entry) at z = (0.3, 0.5), and its cost
-    over one evaluation of (f, g)."""
+    over one evaluation of (f, g) (the least of 5 wall times each; ``--quick``: one)."""
     from time_domain_design import gradient_check
     from cablesys.control.design import time_design_problem
     problem = time_design_problem(scene.with_numerics(drag_segments=1), seeds=(1,), duration=70.0 if quick else 600.0,
                                   model="segmented", segments=segments)
-    check = gradient_check(problem, np.array([0.3, 0.5]))
+    check = gradient_check(problem, np.array([0.3, 0.5]), repeats=1 if quick else 5)
     return dict(node_design_gradient_cost_ratio=check["cost_ratio"], node_design_gradient_fd_rel_err=check["rel_err"],
                 node_design_gradient={**check, "model": problem.describe(), "record_s": problem.duration,
                                       "rk4_steps_per_interval": problem.heave.substeps})

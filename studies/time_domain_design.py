@@ -48,10 +48,10 @@ from cablesys.isolation import design as frequency_design, settings_from_dict
 from cablesys.scene import load_scene
 
 
-def gradient_check(problem, z) -> dict:
+def gradient_check(problem, z, repeats: int = 5) -> dict:
     """The NLP's Jacobian (forward sensitivities) at z against Richardson central differences of (f, g)
     at the relative steps 1e-4 and 1e-5 of z (the better per entry), each error relative to the largest
-    entry of its row (at an optimum a gradient entry is ~0: its own size is no scale), and the cost of the Jacobian over one evaluation of (f, g): least of 5 wall times each."""
+    entry of its row (at an optimum a gradient entry is ~0: its own size is no scale), and the cost of the Jacobian over one evaluation of (f, g): least of ``repeats`` wall times each (after one call)."""
     fns = design_functions(problem)
     z = np.asarray(z, float)
     jf, jg = (np.array(v) for v in fns.jac(z))
@@ -69,7 +69,7 @@ def gradient_check(problem, z) -> dict:
         errs.append(np.abs(fd - J) / scale)
     err = np.minimum(*errs)
 
-    def timed(f, n=5):
+    def timed(f, n=repeats):
         f(z)
         best = math.inf
         for _ in range(n):
