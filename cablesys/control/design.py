@@ -91,8 +91,8 @@ class TimeDesignResult(ResultBase):
     (the scene's values) and both responses per seed on the roll-out grid (``times`` s; ``tension_top``,
     ``tension_floor`` N, ``heave`` m from the window mean, per seed: arrays (seeds, N)); ``constraints``
     {row: (value, upper bound)} at the optimum and at the baseline; ``history`` IPOPT's per-iteration
-    objective and primal infeasibility; ``model`` the design's model (:meth:`.design_problem.TimeDesignProblem.describe`)
-    and ``floor_output`` the model's output ``tension_floor`` is (Wang's ``tension_mid``, F_bc; the node model's
+    objective and primal infeasibility; ``model`` the design's model
+    (:meth:`.design_problem.TimeDesignProblem.describe`) and ``floor_output`` the model's output ``tension_floor`` is (Wang's ``tension_mid``, F_bc; the node model's
     ``tension_least``)."""
 
     theta: tuple

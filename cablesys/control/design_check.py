@@ -37,7 +37,8 @@ def resimulate_design(problem: TimeDesignProblem, theta) -> dict:
             continue
         m = run.time >= problem.window_start * problem.dt - 1e-9
         d = {k: np.asarray(run.data[k])[m] for k in ("tension_top", "y_b", "x_b")}
-        d["floor"] = (np.min(np.asarray(run.profiles["element_tension"]), axis=1)[m] if "element_tension" in run.profiles
+        prof = run.profiles
+        d["floor"] = (np.min(np.asarray(prof["element_tension"]), axis=1)[m] if "element_tension" in prof
                       else np.asarray(run.data["tension_mid"])[m])
         h, xb = d["y_b"] - d["y_b"].mean(), d["x_b"] - d["x_b"].mean()
         vals = {}

@@ -249,7 +249,7 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
         runs["pi"] = _run(plant, prob_p, ctl, N, prob_p.x_rest)
         step_s["pi"] = runs["pi"][3]
     if "optimal" in strategies:
-        nlp = payout_nlp(prob_c, N, max_iter=max(max_iter, 300))
+        nlp = payout_nlp(prob_c, N, max_iter=max(max_iter, 300), hessian="gauss-newton")   # as optimal_payout
         sol = nlp.solve(prob_c.x_rest, prob_c.exogenous(dt * np.arange(N + 1)),
                         (prob_c.rollout(prob_c.x_rest, np.zeros(N)), np.zeros((N, 1))))
         if not sol.success:
