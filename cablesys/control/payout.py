@@ -13,7 +13,9 @@ from the rest state, with the scene's top motion (sinusoids or a realised JONSWA
 the model composes in). y_b is the body's depth below the top's mean depth, earth-fixed: its
 deviation from rest is the body heave relative to the seabed. Transcription: direct multiple
 shooting (:mod:`.shooting`) with ``substeps`` RK4 steps per control interval of ``dt``
-seconds, alpha piecewise constant, exact first and second derivatives by CasADi's AD, IPOPT.
+seconds, alpha piecewise constant, exact first derivatives by CasADi's AD, IPOPT with the objective's
+Gauss-Newton matrix for the Hessian of the Lagrangian (the stage cost is a sum of squares, :func:`payout_nlp`)
+or the exact second derivatives.
 The top motion depends on time only, so it is tabulated outside the NLP: each interval's
 parameters are the exogenous vector e (:data:`cablesys.model.signals.EXO_LABELS`) at the
 2 ``substeps`` + 1 times its RK4 stages read (:meth:`HeaveProblem.exogenous`); the NLP's
