@@ -67,9 +67,10 @@ def plot_time_design(result, path, *, title: str = "", frequency_theta=None):
         a3.plot([], [], color="none", label=f"frequency-domain optimum: AE {frequency_theta[0]:.3g} N, "
                                             f"C_I {frequency_theta[1]:.3g} N s")
         a3.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
-    if title:
-        fig.suptitle(title, fontsize=10)
-    fig.tight_layout(rect=(0, 0, 1, 0.965))
+    model = result.model.split(" (cablesys")[0] if result.model else ""      # the model's name, not its module
+    if title or model:
+        fig.suptitle("\n".join(t for t in (title, f"model: {model}" if model else "") if t), fontsize=10)
+    fig.tight_layout(rect=(0, 0, 1, 0.95 if title and model else 0.965))
     fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
