@@ -20,13 +20,22 @@ Measured in one run:
   kernels, dt = 0.5 s) over a 60 s record (``--quick``: 4 s), its RK4 steps per interval (set by the stiffest
   axial mode at rest, :func:`cablesys.control.payout.fastest_mode`), and Wang's 2-DOF optimum on the same record
   in the same run: wall and IPOPT CPU times and their ratio, iterations, status, heave in dB, IPOPT's time split
-  (the Lagrangian Hessian's share); ``--only node`` runs this row alone;
+  (the Lagrangian Hessian's share); IPOPT with the objective's Gauss-Newton Hessian (the default) and with the
+  exact AD Hessian on the node model, interleaved (exact, Gauss-Newton, twice; ``--quick``: once each): IPOPT CPU
+  and iterations of each and the difference of their optima; ``--only node`` runs this row alone;
+- the closed loop on the node-model plant (N = 4, the ladder's model of the ROV lift) with the Gauss-Newton MPC on
+  Wang's 2-DOF controller (the model mismatch of ``cablesys control``'s default), 120 s with a 20 s horizon
+  (``--quick``: 30 s, 10 s): heave in dB against the uncompensated node plant, time per MPC step and the
+  real-time factor;
 - the LQ check: the multiple-shooting optimum of a spring-mass plant against the discrete
   Riccati law (relative error);
 - a time-domain design gradient: d(mean square heave of the uncompensated 2-DOF run)/d(AE, C_I)
   by forward sensitivities of the RK4 roll-out, against central finite differences (relative
   error per parameter at the best of three steps, the largest of the two), and its cost over
-  one roll-out.
+  one roll-out;
+- the time-domain design's own gradient on the node model (N = 4, :mod:`cablesys.control.design`: the objective's
+  and every constraint's Jacobian by forward sensitivities, one seed, 600 s; ``--quick``: 70 s) against
+  Richardson central differences, and its cost over one evaluation of the objective and constraints.
 
 Writes bench_control.json. Usage: python studies/bench_control.py --out DIR [--quick] [--only node]
 """
@@ -218,7 +227,63 @@ def closed_loop_mpc(scene, limits, quick: bool) -> dict:
           "(run after the others; load averages before and after the Gauss-Newton runs in mpc_load_average_1min)")
 
 
-def node_ocp(scene, limits, horizon: float, segments: int = 4) -> dict:
+def node_hessians(problem, horizon: float, rounds: int) -> dict:
+    """IPOPT on the node-model OCP with the exact AD Hessian and with the objective's Gauss-Newton matrix,
+    interleaved (exact, Gauss-Newton, ``rounds`` times) in one run under the same load: IPOPT CPU (least of the
+    rounds), iterations, and the difference of the two optima (objective, relative; controls but the last, m/s^2:
+    the last interval's alpha moves only the terminal node, a nearly flat direction)."""
+    runs = {"exact": [], "gauss-newton": []}
+    for _ in range(rounds):
+        for h in runs:
+            runs[h].append(optimal_payout(problem, horizon, max_iter=300, hessian=h))
+    best = {h: min(r, key=lambda x: x.stats["ipopt_timing_s"]["t_proc_total"]) for h, r in runs.items()}
+    e, g = best["exact"], best["gauss-newton"]
+    cpu = {h: [r.stats["ipopt_timing_s"]["t_proc_total"] for r in rs] for h, rs in runs.items()}
+    return dict(node_ocp_exact_ipopt_proc_s=min(cpu["exact"]), node_ocp_gn_ipopt_proc_s=min(cpu["gauss-newton"]),
+                node_ocp_exact_iterations=e.stats["iterations"], node_ocp_gn_iterations=g.stats["iterations"],
+                node_ocp_hessian_speedup=min(cpu["exact"]) / min(cpu["gauss-newton"]),
+                node_ocp_gn_vs_exact_objective_rel=abs(g.objective - e.objective) / abs(e.objective),
+                node_ocp_gn_vs_exact_control_max=float(np.max(np.abs(g.acceleration[:-1] - e.acceleration[:-1]))),
+                node_ocp_hessians={h: {"ipopt_proc_s": cpu[h], "status": best[h].status,
+                                       "hessian_proc_s": best[h].stats["ipopt_timing_s"].get("t_proc_nlp_hess_l"),
+                                       "jacobian_proc_s": best[h].stats["ipopt_timing_s"].get("t_proc_nlp_jac_g")}
+                                   for h in runs},
+                node_ocp_hessian_note=f"the same NLP, IPOPT tol 1e-8; interleaved exact, gauss-newton x {rounds} "
+                                      "in one run; ipopt_proc_s per round, speedup from the least of each")
+
+
+def node_plant_mpc(scene, limits, quick: bool, segments: int = 4) -> dict:
+    """The Gauss-Newton MPC (Wang's 2-DOF controller) in closed loop on the node-model plant of ``segments`` elements
+    (CVODES), against the uncompensated node plant."""
+    duration, horizon = (30.0, 10.0) if quick else (120.0, 20.0)
+    cmp = compare_compensation(scene.with_numerics(duration=duration + horizon), limits, duration=duration,
+                               horizon=horizon, dt=0.5, strategies=("none", "mpc"), plant_model="segmented",
+                               plant_elements=segments)
+    m = cmp.metrics["mpc"]
+    return dict(node_plant_mpc_heave_reduction_db=m["heave_reduction_db"],
+                node_plant_mpc_step_ms=1e3 * m["compute_per_step_s"],
+                node_plant_mpc_realtime_factor=m["realtime_factor"], node_plant_mpc_success=cmp.success,
+                node_plant_mpc_message=cmp.message, node_plant_mpc_segments=segments,
+                node_plant_mpc_closed_loop_s=duration, node_plant_mpc_horizon_s=horizon,
+                node_plant_mpc_models={"plant": cmp.stats["plant_model"], "controller": cmp.stats["controller_model"]},
+                node_plant_mpc_metrics=cmp.metrics)
+
+
+def node_design_gradient(scene, quick: bool, segments: int = 4) -> dict:
+    """The time-domain design's Jacobian on the node model (one seed) against Richardson central differences
+    (``time_domain_design.gradient_check``: relative to each row's largest entry) at z = (0.3, 0.5), and its cost
+    over one evaluation of (f, g) (the least of 5 wall times each; ``--quick``: one)."""
+    from time_domain_design import gradient_check
+    from cablesys.control.design import time_design_problem
+    problem = time_design_problem(scene.with_numerics(drag_segments=1), seeds=(1,), duration=70.0 if quick else 600.0,
+                                  model="segmented", segments=segments)
+    check = gradient_check(problem, np.array([0.3, 0.5]), repeats=1 if quick else 5)
+    return dict(node_design_gradient_cost_ratio=check["cost_ratio"], node_design_gradient_fd_rel_err=check["rel_err"],
+                node_design_gradient={**check, "model": problem.describe(), "record_s": problem.duration,
+                                      "rk4_steps_per_interval": problem.heave.substeps})
+
+
+def node_ocp(scene, limits, horizon: float, segments: int = 4, rounds: int = 2) -> dict:
     """The open-loop optimum over ``horizon`` s on the segmented node model (``segments`` elements, dt = 0.5 s,
     the RK4 steps per interval from the stiffest mode at rest) and on Wang's 2-DOF winch over the same record,
     in this order in one run: solve wall time (IPOPT with its derivative set-up), IPOPT's own CPU and wall
@@ -241,7 +306,8 @@ def node_ocp(scene, limits, horizon: float, segments: int = 4) -> dict:
                          hessian_share_proc=timing.get("t_proc_nlp_hess_l", 0.0) / timing["t_proc_total"],
                          ipopt_timing_s=timing, kernels_compiled=compiled, kernels_setup_s=setup_s)
     n, w = out["node"], out["wang"]
-    return dict(node_ocp_wall_s=n["wall_s"], node_ocp_iterations=n["iterations"], node_ocp_status=n["status"],
+    hessians = node_hessians(heave_problem(sc, limits, dt=0.5, model="segmented", segments=segments), horizon, rounds)
+    return dict(**hessians, node_ocp_wall_s=n["wall_s"], node_ocp_iterations=n["iterations"], node_ocp_status=n["status"],
                 node_ocp_heave_reduction_db=n["heave_reduction_db"],
                 node_ocp_rk4_steps_per_interval=n["rk4_steps_per_interval"],
                 node_ocp_wang_wall_s=w["wall_s"], node_ocp_wang_heave_reduction_db=w["heave_reduction_db"],
@@ -264,10 +330,10 @@ def main(argv=None) -> int:
     limits = WinchLimits(speed=1.0, acceleration=1.0)
     node_horizon = 4.0 if quick else 60.0
     if args.only == "node":
-        doc = {"quick": quick, "scene": scene.name, **node_ocp(scene, limits, node_horizon),
+        doc = {"quick": quick, "scene": scene.name, **node_ocp(scene, limits, node_horizon, rounds=1 if quick else 2),
                "cpu_count": os.cpu_count()}
         write_json(args.out / "bench_control.json", doc)
-        print({k: v for k, v in doc.items() if k.startswith("node_ocp_") and k != "node_ocp_note"})
+        print({k: v for k, v in doc.items() if k.startswith("node_ocp_") and not isinstance(v, (dict, str))})
         return 0
     record = 60.0 if quick else 600.0
     ctrl = scene.with_numerics(drag_segments=1, duration=record)
@@ -295,6 +361,7 @@ def main(argv=None) -> int:
                    ocp_speedup_ipopt_proc=vm.stats["ipopt_timing_s"].get("t_proc_total")
                    / ocp.stats["ipopt_timing_s"].get("t_proc_total"))
     doc.update(ocp_wall_s=ocp.stats["solve_s"], ocp_iterations=ocp.stats["iterations"], ocp_status=ocp.status,
+               ocp_hessian=ocp.stats["hessian"],
                ocp_heave_reduction_db=ocp.heave_reduction_db, ocp_intervals=ocp.stats["intervals"],
                ocp_heave_rms_m=ocp.heave_rms_m, ocp_uncompensated_heave_rms_m=ocp.uncompensated_heave_rms_m,
                ocp_target="600 s record, 2-DOF model: at most 10 s of IPOPT wall time",
@@ -315,7 +382,9 @@ def main(argv=None) -> int:
                                     "parameters (AE, C_I) at AE = 2e5 N; objective mean square body heave; the largest "
                                     "error and cost ratio of the 2-DOF and the segmented (4 elements) model "
                                     "(cablesys.control.gradient); the design built on it: cablesys.control.design")
-    doc.update(node_ocp(scene, limits, node_horizon))
+    doc.update(node_ocp(scene, limits, node_horizon, rounds=1 if quick else 2))
+    doc.update(node_plant_mpc(scene, limits, quick))
+    doc.update(node_design_gradient(scene, quick))
     doc["lq_rel_err"] = lq_error()
     write_json(args.out / "bench_control.json", doc)
     print({k: doc[k] for k in ("ocp_wall_s", "ocp_iterations", "ocp_status", "ocp_heave_reduction_db",
@@ -324,7 +393,10 @@ def main(argv=None) -> int:
                                "design_gradient_cost_ratio", "lq_rel_err", "gradient_fd_rel_err",
                                "resimulated_constraint_violation_rel", "node_ocp_wall_s", "node_ocp_iterations",
                                "node_ocp_status", "node_ocp_heave_reduction_db", "node_ocp_rk4_steps_per_interval",
-                               "node_ocp_wall_ratio_vs_wang")})
+                               "node_ocp_wall_ratio_vs_wang", "node_ocp_exact_ipopt_proc_s", "node_ocp_gn_ipopt_proc_s",
+                               "node_ocp_hessian_speedup", "node_plant_mpc_heave_reduction_db",
+                               "node_plant_mpc_realtime_factor", "node_design_gradient_cost_ratio",
+                               "node_design_gradient_fd_rel_err")})
     return 0
 
 

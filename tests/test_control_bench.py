@@ -15,7 +15,10 @@ KEYS = ("ocp_wall_s", "ocp_iterations", "ocp_status", "ocp_heave_reduction_db", 
         "lq_rel_err", "gradient_fd_rel_err", "resimulated_constraint_violation_rel",
         "mpc_no_preview_heave_reduction_db", "mpc_ipopt_heave_reduction_db", "mpc_speedup_vs_ipopt",
         "node_ocp_wall_s", "node_ocp_iterations", "node_ocp_status", "node_ocp_heave_reduction_db",
-        "node_ocp_rk4_steps_per_interval", "node_ocp_wang_wall_s", "node_ocp_wall_ratio_vs_wang")
+        "node_ocp_rk4_steps_per_interval", "node_ocp_wang_wall_s", "node_ocp_wall_ratio_vs_wang",
+        "node_ocp_exact_ipopt_proc_s", "node_ocp_gn_ipopt_proc_s", "node_ocp_exact_iterations", "node_ocp_gn_iterations",
+        "node_ocp_hessian_speedup", "node_plant_mpc_heave_reduction_db", "node_plant_mpc_step_ms",
+        "node_plant_mpc_realtime_factor", "node_design_gradient_cost_ratio", "node_design_gradient_fd_rel_err")
 
 
 def test_bench_control_quick(run_study):
@@ -36,6 +39,12 @@ def test_bench_control_quick(run_study):
     assert abs(doc["mpc_heave_db_vs_ipopt"]) < 1.0
     assert doc["mpc_no_preview_heave_reduction_db"] < -20
     _check_node_row(doc)
+    # the MPC (Wang's controller) on the node plant the ladder chooses: it compensates there too, by > 20 dB
+    assert doc["node_plant_mpc_success"] and doc["node_plant_mpc_heave_reduction_db"] < -20
+    assert "segmented node model with winch, N = 4" in doc["node_plant_mpc_models"]["plant"]
+    assert doc["node_plant_mpc_step_ms"] > 0 and doc["node_plant_mpc_realtime_factor"] > 0
+    # the design's own gradient on the node model against central differences (issue 26: 1e-6)
+    assert doc["node_design_gradient_fd_rel_err"] < 1e-6 and doc["node_design_gradient_cost_ratio"] > 0
 
 
 def _check_node_row(doc):
@@ -57,3 +66,7 @@ def _check_node_row(doc):
     assert node["fastest_mode_rad_s"] == pytest.approx(omega, rel=0.02)
     steps = doc["node_ocp_rk4_steps_per_interval"]
     assert steps == math.ceil(0.5 * omega / RK4_STEP_LAMBDA) and steps > SUBSTEP_KERNELS_FROM
+    # the Gauss-Newton and the exact Hessian solve the same NLP: one optimum (IPOPT's tol 1e-8)
+    assert doc["node_ocp_hessians"]["exact"]["status"] == doc["node_ocp_hessians"]["gauss-newton"]["status"] \
+        == "Solve_Succeeded"
+    assert doc["node_ocp_gn_vs_exact_objective_rel"] < 1e-6 and doc["node_ocp_gn_vs_exact_control_max"] < 1e-3

@@ -98,11 +98,44 @@ def test_prescribed_alpha_follows_the_payout_profile_model():
 
 
 def test_node_winch_refuses_what_it_would_drop():
-    """A [winch] profile (the control drives L) and a compensator (no piston coordinate) are named errors."""
+    """A [winch] profile (the control drives L: the scene's payout would be dropped) is a named error."""
     with pytest.raises(ParameterError, match="winch"):
         build_node_winch_model(_scene(winch=Winch(speed=0.5, start=1.0, duration=8.0, ramp=2.0, max_length=60.0)))
-    with pytest.raises(ParameterError, match="compensator"):
-        build_node_winch_model(_scene(), compensator=True)
+
+
+def test_node_compensator_is_wangs_on_one_massless_element():
+    """The passive heave compensator under the sheave (piston m_p, spring k_p, damper c_p, precharge) in the node
+    model (Newton's equation of the piston with the cable's force on the sheave) and in Wang's 2-DOF winch (Lagrange's
+    equations with the piston's kinetic energy, cablesys.model.winch): N = 1 with a massless cable, no drag, no Voigt
+    damping, a heaving top and a payout alpha(t): two derivations, one system; body position, stroke and top tension
+    agree to 1e-6 over 8 s from the rest state that heave_problem's precharge sets (the stroke 0 there, to 1e-9 m:
+    the precharge carries the static load, the cable's weight and the body's), the body moving with the top."""
+    from scipy.integrate import solve_ivp
+    from cablesys.control.payout import model_rest_state, precharge
+    from cablesys.model.winch import build_winch_model
+    top = TopMotion(y=(Sinusoid(amplitude=0.8, frequency=1.0),), ramp_s=0.0)
+    sc = _scene(1, top=top).replace_section(cable={"cable_mass_switch": -1.0})
+    node, wang = build_node_winch_model(sc, compensator=True), build_winch_model(sc, compensator=True)
+    p_n, p_w = node.parameters(sc), wang.parameters(sc)
+    c = np.array([300.0, 4e3, 1.5e3, 0.0])
+    c_n, c_w = np.r_[c[:3], precharge(node, sc, p_n, c)], np.r_[c[:3], precharge(wang, sc, p_w, c)]
+    assert c_n[3] == pytest.approx(c_w[3], rel=1e-9) and c_n[3] == pytest.approx(-(W_B + W_R * L0), rel=1e-3)
+    x_n0, x_w0 = model_rest_state(node, p_n, c_n), model_rest_state(wang, p_w, c_w)
+    assert abs(x_n0[node.nq - 1]) < 1e-9 and abs(x_w0[wang.nq - 1]) < 1e-9
+    # Wang's rest (phi' = l' = s' = 0) moves the body with the top, which starts at 0.8 m/s: the node's the same
+    x_n0[node.nq: node.nq + 2] = np.array(node.top(0.0, p_n)).ravel()[3:5]
+    alpha = lambda t: 0.3 * math.sin(0.7 * t)
+    times = np.linspace(0.0, 8.0, 17)
+    run = lambda m, p, cc, x0: solve_ivp(lambda t, x: np.array(m.ode(x, [alpha(t), 0.0], t, p, cc)).ravel(), (0, 8),
+                                         x0, t_eval=times, rtol=1e-11, atol=1e-12, method="LSODA")
+    rn, rw = run(node, p_n, c_n, x_n0), run(wang, p_w, c_w, x_w0)
+    names = ("x_b", "heave", "stroke", "tension_top", "length")
+    for k, t in enumerate(times):
+        yn = np.array(node.outputs(rn.y[:, k], [alpha(t), 0.0], t, p_n, c_n)).ravel()
+        yw = np.array(wang.outputs(rw.y[:, k], [alpha(t), 0.0], t, p_w, c_w)).ravel()
+        for name in names:
+            assert yn[node.output_index(name)] == pytest.approx(yw[wang.output_index(name)], rel=1e-6, abs=1e-6), name
+    assert np.ptp(rn.y[node.nq - 1]) > 0.05                  # the piston strokes
 
 
 # a light 100 m line, soft enough (AE = 2.5e4 N) that RK4 at dt / 2 is stable for the node model's axial modes
@@ -153,6 +186,32 @@ def test_wang_and_node_optima_agree_where_the_models_do(optima):
     assert rw.heave_reduction_db < -8.0
 
 
+def test_gauss_newton_hessian_finds_the_exact_hessians_optimum(optima):
+    """IPOPT with the objective's Gauss-Newton matrix (the default, no second derivatives of the dynamics) and with
+    the exact AD Hessian solve one NLP: on the node model (N = 4, speed limit active), both to IPOPT's tolerance
+    1e-10 over 10 s, the two optima agree to 1e-9 in the objective and 1e-6 m/s^2 in the controls (but the last: below); the
+    Gauss-Newton residuals
+    are the stage cost's square roots (r^T r equals the stage cost at any state, to rounding)."""
+    from cablesys.control.kernels import residual_function
+    pr, default = optima["segmented"]
+    assert default.stats["hessian"] == "gauss-newton"
+    gn = optimal_payout(pr, 10.0, tol=1e-10)
+    exact = optimal_payout(pr, 10.0, hessian="exact", tol=1e-10)
+    assert exact.success and gn.success
+    assert gn.objective == pytest.approx(exact.objective, rel=1e-9)
+    # the last interval's alpha moves only the terminal node (its heave, and w against the speed bound there) besides
+    # its own small weight c_a: a nearly flat direction, not compared
+    np.testing.assert_allclose(gn.acceleration[:-1], exact.acceleration[:-1], atol=1e-6)
+    r = residual_function(pr)
+    E = pr.exogenous([3.0])[0]
+    for k in (5, 12, 19):
+        x, u = gn.states[k], gn.acceleration[k]
+        cost = float(pr.stage(x, u, E)[0])
+        assert float(ca.sumsqr(r(x, u, E))) == pytest.approx(cost, rel=1e-12)
+    with pytest.raises(ParameterError, match="hessian"):
+        optimal_payout(pr, 4.0, hessian="bfgs")
+
+
 def test_control_model_names_are_checked():
     with pytest.raises(ParameterError, match="model"):
         heave_problem(_soft_scene(4), LIMITS, model="chain")
@@ -200,9 +259,8 @@ def test_mpc_with_a_coarser_controller_than_the_plant():
 
 
 def test_control_command_names_the_models_it_ran(tmp_path):
-    """``cablesys control --model segmented --segments 4``: control.json's ``models`` name the node-model plant,
-    the Wang controller and the passive compensator's Wang plant (it has no coordinate in the node model), and the
-    passive run's dB are against that plant's own uncompensated run, not the node plant's."""
+    """``cablesys control --model segmented --segments 4``: control.json's ``models`` name the node-model plant, on
+    which every strategy played (the passive compensator too, with its piston coordinate), and the Wang controller."""
     import argparse
     import json
     from cablesys.control.cli import register
@@ -219,9 +277,10 @@ def test_control_command_names_the_models_it_ran(tmp_path):
     models = doc["models"]
     assert "segmented node model with winch, N = 4" in models["plant"] and "as asked" in models["plant"]
     assert models["controller"].startswith("wang 2-DOF")
-    assert models["passive_plant"].startswith("wang 2-DOF") and "compensator" in models["passive_plant"]
+    assert models["same_plant"] and "passive compensator's with its piston coordinate" in models["plant"]
     assert "NOT the control's model" in models["ladder"]          # the ladder keeps Wang for this still-water line
-    assert doc["metrics"]["passive"]["plant"].startswith("wang 2-DOF")
+    assert "plant" not in doc["metrics"]["passive"]
+    assert doc["metrics"]["passive"]["heave_reduction_db"] < 0
 
 
 def test_compiled_step_kernels_find_the_virtual_machines_optimum(quick_compile):
@@ -233,3 +292,4 @@ def test_compiled_step_kernels_find_the_virtual_machines_optimum(quick_compile):
     sc = _soft_scene(1).with_numerics(drag_segments=1)
     pr = heave_problem(sc, LIMITS, dt=0.5, model="wang", substeps=SUBSTEP_KERNELS_FROM + 1)
     assert_compiled_optimum_equals_vm(pr, 8.0, atol=1e-8)
+

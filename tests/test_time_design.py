@@ -47,8 +47,15 @@ def test_ks_envelope_bounds_the_maximum():
         assert ks == pytest.approx(math.log(np.sum(np.exp(rho * v))) / rho, rel=1e-12)
 
 
-def test_design_jacobian_matches_central_differences(rov):
-    problem = time_design_problem(rov, seeds=(1,), duration=75.0)
+@pytest.mark.parametrize("model,segments,duration", [("wang", None, 75.0), ("segmented", 4, 70.0)],
+                         ids=["2-dof", "segmented"])
+def test_design_jacobian_matches_central_differences(rov, model, segments, duration):
+    # issue 26's check on the design itself: its objective's and every constraint's gradient (forward sensitivities
+    # of the RK4 roll-out, the rest state's by the implicit-function theorem) against Richardson central differences
+    # to 1e-6 of the row's largest entry, on Wang's 2-DOF model and on the node model the ladder runs for the ROV
+    # lift (N = 4, its RK4 step set by the stiffest design's Voigt-damped axial mode)
+    problem = time_design_problem(rov, seeds=(1,), duration=duration, model=model, segments=segments)
+    assert problem.heave.model.nx == (6 if model == "wang" else 18)
     fns = design_functions(problem)
     z = np.array([0.1, 0.5])
     J = np.vstack([np.array(v) for v in fns.jac(z)])
@@ -90,6 +97,47 @@ def test_rov_design_sits_on_the_strain_limit_and_holds_when_rerun(rov):
         assert res.constraints[f"{name} (seed 1)"][0] >= v - 0.01, name
 
 
+def test_node_model_design_sits_on_the_strain_limit_and_holds_when_rerun(rov):
+    """The design on the segmented node model (N = 2, one seed, 90 s, from one start): IPOPT converges to the static
+    strain limit, as on Wang's model, by the same closed form (hanging at rest the element tensions fall linearly
+    from the top, so the mean element strain is the mid-length tension T_r over AE, Wang 1971 eq. 1 and 12); its
+    slack row bounds the least element tension; the node model re-run by the plain time domain keeps every limit
+    to 1 % and its heave variance agrees with the roll-out's to 2 %."""
+    problem = time_design_problem(rov, seeds=(1,), duration=90.0, model="segmented", segments=2)
+    assert problem.floor_output == "tension_least" and problem.scene.sections[0].cable.segments == 2
+    res = time_domain_design(problem, starts=[(3e5, 1e5)])
+    assert res.success, res.message
+    assert "N = 2" in res.model and res.floor_output == "tension_least"
+    eps, t_r = 0.15, rov.sections[0].cable.tension_ref
+    assert res.theta[0] == pytest.approx(t_r * (1 + eps) / eps, rel=5e-3)
+    assert res.constraints["static_strain"][0] == pytest.approx(eps, rel=1e-6)
+    rerun = resimulate_design(problem, res.theta)
+    assert rerun["segments"] == 2 and rerun["max_relative_violation"] <= 0.01
+    assert rerun["heave_variance_m2"] == pytest.approx(res.objective, rel=0.02)
+
+
+def test_design_steps_are_stable_for_the_stiffest_design(rov):
+    """The RK4 steps per interval come from the stiffest corner of the [design] box, not from the scene's own line:
+    at N = 4 the Voigt damping's fast real eigenvalue (C_I at its upper bound: element damping C_I N / l_r on node
+    masses m' l_r / N) dominates the axial modes; (dt / n) max |lambda| is within RK4's stability interval for every
+    design."""
+    from cablesys.control.payout import RK4_STEP_LAMBDA, fastest_mode, model_rest_state
+    problem = time_design_problem(rov, seeds=(1,), duration=70.0, model="segmented", segments=4)
+    hp = problem.heave
+    lay = hp.model.layout
+    lam = {}
+    for ae in problem.ae_bounds:
+        for ci in problem.damping_bounds:
+            p = np.array(hp.p, float)
+            p[lay.index("cable.ae")], p[lay.index("cable.internal_damping")] = ae, ci
+            lam[ae, ci] = fastest_mode(hp.model, model_rest_state(hp.model, p, hp.c), p, hp.c)
+    stiffest = max(lam, key=lam.get)
+    assert lam[stiffest] == pytest.approx(problem.fastest_mode, rel=1e-12)
+    assert stiffest[1] == problem.damping_bounds[1]
+    assert lam[stiffest] > 2 * fastest_mode(hp.model, hp.x_rest, hp.p, hp.c)          # well above the scene's line
+    assert hp.substeps == math.ceil(problem.dt * lam[stiffest] / RK4_STEP_LAMBDA)
+
+
 def test_bad_input(rov):
     with pytest.raises(ParameterError, match="design"):
         time_design_problem(rov.replace(design=None), duration=80.0)
@@ -111,6 +159,9 @@ def test_time_domain_design_study_quick(run_study):
     assert doc["design_gradient_fd_rel_err"] < 1e-6
     assert "static_strain" in doc["time_domain_active"] and doc["frequency_domain"]["active"] == ["static_strain_1"]
     assert doc["ae_ratio_time_over_frequency"] == pytest.approx(1.0, rel=1e-3)     # both on the strain limit
+    # the quick run designs on Wang's model and says so; the full run on the ladder's (the node model, N = 4)
+    assert doc["model"].startswith("wang 2-DOF") and doc["model_why"].startswith("quick: Wang's")
+    assert "the ladder's choice is" in doc["model_why"]
     assert (out / "time_domain_design.png").stat().st_size > 20000
 
 
@@ -128,7 +179,8 @@ def test_control_design_door_writes_json_and_png(tmp_path, capsys):
     scene = tmp_path / "rov.toml"
     scene.write_text(text)
     out = tmp_path / "out"
-    rc = main(["control", str(scene), "--design", "--record", "75", "--seeds", "1", "--no-resimulate", "--out", str(out)])
+    rc = main(["control", str(scene), "--design", "--record", "75", "--seeds", "1", "--no-resimulate", "--out", str(out),
+               "--model", "wang"])
     assert rc == 0
     doc = json.loads((out / "time_design.json").read_text())
     td, fd = doc["time_domain"], doc["frequency_domain"]
@@ -140,5 +192,19 @@ def test_control_design_door_writes_json_and_png(tmp_path, capsys):
     printed = capsys.readouterr().out
     assert "frequency-domain design" in printed
     # which model ran, and the ladder's own choice for the scene: the straight cable bows in the current
-    assert doc["models"]["design"].startswith("wang 2-DOF")
+    assert doc["models"]["design"].startswith("wang 2-DOF") and "as asked (--model)" in doc["models"]["design"]
     assert doc["models"]["ladder_choice"]["name"] != "wang" and "NOT the control's model" in printed
+
+
+def test_design_door_takes_the_ladders_model_by_default():
+    """``cablesys control SCENE --design`` without --model designs on the model the ladder chooses for the scene:
+    on the packaged ROV lift N = 4 elements, the quasi-static cable where the compiled rk23 pair makes it the
+    cheaper rung (else the node model itself), for which the control runs the node model at that N (the
+    quasi-static form has no winch), and says so."""
+    from cablesys.control.cli import plant_choice
+    scene = load_scene(example_path("rov-lift"))
+    model, n, why = plant_choice(scene, "auto", None)
+    assert (model, n) == ("segmented", 4)
+    rung = why.split(":")[0]
+    assert rung in ("the ladder's choice is quasi-static, N = 4", "the ladder's choice is segmented, N = 4")
+    assert ("stands for it" in why) == ("quasi-static" in rung)

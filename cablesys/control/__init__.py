@@ -4,10 +4,11 @@
 cable with the unstretched length driven by the payout rate (:mod:`cablesys.model.winch`, ``model="wang"``)
 or the segmented node model's winch (:mod:`cablesys.model.segmented_winch_control`, ``model="segmented"``,
 ``segments=N``); ``optimal_payout(problem, horizon)`` solves it by direct multiple shooting with
-IPOPT and exact AD derivatives; ``resimulate`` checks an optimum with CVODES between the grid
-points; ``compare_compensation`` runs no compensation, a passive compensator, a PI/feed-forward
-AHC, MPC with preview and the open-loop optimum in closed loop on a plant finer than the controller's model
-(a node-model plant with a Wang or coarser node controller: the model mismatch).
+IPOPT, exact AD derivatives and the objective's Gauss-Newton Hessian (or the exact one); ``resimulate`` checks an
+optimum with CVODES between the grid points; ``compare_compensation`` runs no compensation, a passive compensator,
+a PI/feed-forward AHC, MPC with preview and the open-loop optimum in closed loop, every one on the same plant, which
+may be finer than the controller's model (a node-model plant with a Wang or coarser node controller: the model
+mismatch). :mod:`.design` tunes the line's AE and C_I through the nonlinear time domain on either model.
 """
 
 from .limits import WinchLimits

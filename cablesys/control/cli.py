@@ -12,17 +12,18 @@ def register(sub) -> None:
     """Add ``control SCENE.toml [--out DIR]`` to the cablesys parser."""
     p = sub.add_parser("control", help="optimal and MPC heave compensation by the winch (IPOPT)",
                        description="Compare no compensation, a passive compensator, a PI/feed-forward AHC, MPC "
-                                   "with a wave preview and the open-loop optimal payout on the scene's nonlinear "
-                                   "winch model (the plant: the model ladder's choice, Wang's 2-DOF cable or the "
-                                   "segmented node model with a variable length; the controller: Wang's or a "
-                                   "coarser node model), under winch speed, "
+                                   "with a wave preview and the open-loop optimal payout, every one on the same "
+                                   "nonlinear winch model of the scene (the plant: the model ladder's choice, Wang's "
+                                   "2-DOF cable or the segmented node model with a variable length; the controller: "
+                                   "Wang's or a coarser node model), under winch speed, "
                                    "acceleration and power limits and the tension band. Writes control.json, "
                                    "control_heave_tension.png and control_winch.png. With --design instead: the "
                                    "time-domain design of the line's AE and C_I (bounds from the scene's [design] "
                                    "table) that minimizes the body heave variance, mean over --seeds realisations "
                                    "of the sea, with no slack, peak tension <= working load and the body "
-                                   "excursion limit in every seed (cablesys.control.design), compared with the "
-                                   "frequency-domain design (cablesys design) and re-run by the plain time "
+                                   "excursion limit in every seed (cablesys.control.design), on the same model as "
+                                   "the plant (--model, --segments: the ladder's choice by default), compared with "
+                                   "the frequency-domain design (cablesys design) and re-run by the plain time "
                                    "domain; writes time_design.json and time_design.png.")
     p.add_argument("scene", help="scene TOML file (one section)")
     p.add_argument("--out", default="control_out", help="output directory (default: control_out)")
@@ -35,8 +36,9 @@ def register(sub) -> None:
     p.add_argument("--plant-segments", type=int, default=None,
                    help="drag segments of the plant's cable (default: the scene's numerics.drag_segments)")
     p.add_argument("--model", default="auto", choices=("auto", "wang", "segmented"),
-                   help="the closed loops' plant: Wang's 2-DOF winch, the segmented node model's winch "
-                        "(--segments N), or auto (default): the model ladder's choice for the uncompensated scene")
+                   help="the model every strategy plays on (the plant; with --design the design's model): Wang's "
+                        "2-DOF winch, the segmented node model's winch (--segments N), or auto (default): the model "
+                        "ladder's choice for the uncompensated scene")
     p.add_argument("--segments", type=int, default=None,
                    help="elements N of a segmented plant (default: the ladder's N, else the scene's cable.segments)")
     p.add_argument("--controller-model", default="wang", choices=("wang", "segmented"),
@@ -53,7 +55,9 @@ def register(sub) -> None:
     p.add_argument("--design", action="store_true",
                    help="design the line (AE, C_I) through the nonlinear time domain instead of compensating")
     p.add_argument("--seeds", default="1,2,3", help="--design: comma-separated seeds of the sea (default 1,2,3)")
-    p.add_argument("--design-dt", type=float, default=0.5, help="--design: RK4 interval [s] (default 0.5, 2 steps)")
+    p.add_argument("--design-dt", type=float, default=0.5,
+                   help="--design: interval of the rolled-out series [s] (default 0.5; RK4 steps per interval from "
+                        "the stiffest design in the bounds)")
     p.add_argument("--record", type=float, default=None,
                    help="--design: record length [s] (default: the scene's numerics.duration)")
     p.add_argument("--no-resimulate", action="store_true", help="--design: skip the plain time-domain re-run check")
@@ -81,15 +85,18 @@ def run_design(args) -> int:
 
     seeds = _seeds(args.seeds)
     scene = load_scene(args.scene)
-    settings = {"seeds": seeds, "dt": args.design_dt, "record": args.record, "resimulate": not args.no_resimulate}
-    problem = time_design_problem(scene, seeds=seeds, duration=args.record, dt=args.design_dt)
+    settings = {"seeds": seeds, "dt": args.design_dt, "record": args.record, "resimulate": not args.no_resimulate,
+                "model": args.model, "segments": args.segments}
+    model, n, why = plant_choice(scene, args.model, args.segments)
+    problem = time_design_problem(scene, seeds=seeds, duration=args.record, dt=args.design_dt, model=model,
+                                  segments=n)
     outdir = OutputDir(args.out, "control", {"scene": scene, "time_design": settings},
                        overwrite=args.overwrite, owned=("time_design.json",))
     with outdir.start(scene=scene.name):
         res = time_domain_design(problem)
         doc = {"scene": scene.name, "settings": settings,
-               "models": {"design": f"wang 2-DOF (the winch at zero payout), RK4 roll-out at {args.design_dt:g} s: the "
-                                    "design's model, re-run by the plain time domain", **_ladder(scene)},
+               "models": {"design": f"{problem.describe()}: the design's model ({why}), re-run by the plain time "
+                                    "domain on the same model", **_ladder(scene, model)},
                "time_domain": res.summary()}
         fd = frequency_design(scene, settings_from_dict(scene.design))
         theta_f = [float(v) for v in fd.values]
@@ -127,15 +134,14 @@ def run_design(args) -> int:
 
 def _models(scene, res, why: str) -> dict:
     """Which models ran and why, and what the model ladder would run for the uncompensated scene: the plant
-    (Wang's 2-DOF winch, :mod:`cablesys.model.winch`, or the node model's, :mod:`cablesys.model.segmented_winch_control`),
-    the controller (the MPC's and the open-loop optimum's model), the passive compensator's plant."""
+    (Wang's 2-DOF winch, :mod:`cablesys.model.winch`, or the node model's, :mod:`cablesys.model.segmented_winch_control`)
+    on which every strategy plays, and the controller (the MPC's and the open-loop optimum's model)."""
     st = res.stats
     out = {"controller": f"{st['controller_model']}, {st.get('controller_segments', 1)} drag segment(s), RK4 "
                          f"{st['controller_substeps']} steps per interval: the open-loop optimum's and the MPC's model",
-           "plant": f"{st['plant_model']}, {st.get('plant_segments')} drag segments, CVODES: the closed loops' "
-                    f"nonlinear plant ({why})"}
-    if "passive" in res.metrics:
-        out["passive_plant"] = res.metrics["passive"]["plant"] + " (the compensator is a coordinate of that model only)"
+           "plant": f"{st['plant_model']}, {st.get('plant_segments')} drag segments, CVODES: the nonlinear plant of "
+                    f"every strategy, the passive compensator's with its piston coordinate ({why})",
+           "same_plant": True}
     return {**out, **_ladder(scene, st["plant_model"])}
 
 
@@ -153,7 +159,10 @@ def plant_choice(scene, model: str, segments):
     if choice.name == "wang":
         return "wang", None, f"the ladder's choice: {choice.reason.split('; ')[0]}"
     n = segments or max(choice.segments, 2)
-    return "segmented", n, f"the ladder's choice is {choice.name}, N = {choice.segments}: {choice.reason.split('; ')[0]}"
+    stand_in = (f"; the node model at N = {n} stands for it (the control has no winch in the quasi-static form, "
+                "whose stiff axial modes it eliminates)" if choice.name == "quasi-static" else "")
+    return "segmented", n, (f"the ladder's choice is {choice.name}, N = {choice.segments}: "
+                            f"{choice.reason.split('; ')[0]}{stand_in}")
 
 
 def _ladder(scene, plant: str = "wang") -> dict:
@@ -163,18 +172,13 @@ def _ladder(scene, plant: str = "wang") -> dict:
     choice = _ladder_choice(scene)
     seg = f", N = {choice.segments}" if choice.segments > 1 else ""
     agree = (choice.name == "wang") == plant.startswith("wang")
+    same = ": the control's model" if choice.name != "quasi-static" else (
+        ": the control runs the node model in its place (the same elements with their axial modes kept)")
     out["ladder"] = (f"{choice.name}{seg} for the uncompensated scene"
-                     + (": the control's model" if agree else ": NOT the control's model, whose results then carry "
+                     + (same if agree else ": NOT the control's model, whose results then carry "
                         "that model's error") + f" ({choice.reason.split('; ')[0]})")
     out["ladder_choice"] = choice.as_dict()
     return out
-
-
-def _other_plant(metrics: dict) -> str:
-    """A note for a strategy that ran on another plant than the table's (the passive compensator on Wang's)."""
-    if "plant" not in metrics:
-        return ""
-    return f"  (on {metrics['plant'].split(' (')[0]}: dB against its own uncompensated run, F min its spring force F_bc)"
 
 
 def run(args) -> int:
@@ -217,8 +221,6 @@ def run(args) -> int:
     w = sys.stdout.write
     w(f"{scene.name}\n{'' if res.success else 'WARNING: ' + res.message + chr(10)}")
     w(f"controller: {models['controller']}\nplant: {models['plant']}\nladder: {models['ladder']}\n")
-    if "passive_plant" in models:
-        w(f"passive: {models['passive_plant']}\n")
     # F min: the least tension the no-slack floor bounds (Wang's F_bc, the node model's least element tension)
     w(f"{'strategy':<14s} {'rms heave':>10s} {'dB':>7s} {'T max':>9s} {'F min':>9s} {'slack':>6s} "
       f"{'|P| max':>9s} {'step':>9s}\n")
@@ -226,7 +228,6 @@ def run(args) -> int:
         step = m.get("compute_per_step_s")
         w(f"{name:<14s} {m['heave_rms_m']:9.3f}m {m['heave_reduction_db']:7.1f} {m['tension_max_n'] / 1e3:8.1f}k "
           f"{m['tension_min_n'] / 1e3:8.1f}k {m['slack_time_s']:5.1f}s {m['power_max_w'] / 1e3:8.1f}k "
-          f"{'' if step is None else f'{step * 1e3:7.1f}ms'}"
-          f"{_other_plant(m)}\n")
+          f"{'' if step is None else f'{step * 1e3:7.1f}ms'}\n")
     w(f"wrote {outdir.path / 'control.json'}, control_heave_tension.png, control_winch.png\n")
     return 0 if res.success else 1

@@ -5,6 +5,9 @@ from __future__ import annotations
 
 import numpy as np
 
+# what the series the no-slack floor bounds is, by the model's output name
+FLOOR_NAMES = {"tension_mid": "F_bc (Wang's spring force, tension_mid)", "tension_least": "least element tension"}
+
 
 def plot_time_design(result, path, *, title: str = "", frequency_theta=None):
     """Objective and primal infeasibility per IPOPT iteration; top tension and body heave of the first
@@ -37,12 +40,13 @@ def plot_time_design(result, path, *, title: str = "", frequency_theta=None):
     des = f"time-domain design AE {ae:.3g} N, C_I {ci:.3g} N s"
     a2.plot(t, result.tension_top_baseline[0] / 1e3, color="0.55", lw=1.0, label=base)
     a2.plot(t, result.tension_top[0] / 1e3, color="tab:blue", lw=1.3, label=des)
-    a2.plot(t, result.tension_mid[0] / 1e3, color="tab:blue", lw=0.8, ls="--", label="design: F_bc (tension_mid)")
+    a2.plot(t, result.tension_floor[0] / 1e3, color="tab:blue", lw=0.8, ls="--",
+            label=f"design: {FLOOR_NAMES.get(result.floor_output, result.floor_output)}")
     if np.isfinite(lim["working_load_n"]):
         a2.plot([], [], color="none", label=f"working load {lim['working_load_n'] / 1e3:.0f} kN (off scale)")
     if lim.get("slack_fraction") is not None:
-        floor = lim["slack_fraction"] * np.mean(result.tension_mid[0])
-        a2.axhline(floor / 1e3, color="tab:red", ls="--", lw=1.0, label=f"slack floor {lim['slack_fraction']:g} x mean F_bc")
+        floor = lim["slack_fraction"] * np.mean(result.tension_floor[0])
+        a2.axhline(floor / 1e3, color="tab:red", ls="--", lw=1.0, label=f"slack floor {lim['slack_fraction']:g} x its mean")
     a2.axvline(lim["statistics_start_s"], color="0.3", ls=":", lw=0.8)
     a2.set_ylabel("tension [kN]")
     a2.set_title(f"seed {s}: tensions (the window starts at the dotted line)", fontsize=9)
@@ -63,9 +67,10 @@ def plot_time_design(result, path, *, title: str = "", frequency_theta=None):
         a3.plot([], [], color="none", label=f"frequency-domain optimum: AE {frequency_theta[0]:.3g} N, "
                                             f"C_I {frequency_theta[1]:.3g} N s")
         a3.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
-    if title:
-        fig.suptitle(title, fontsize=10)
-    fig.tight_layout(rect=(0, 0, 1, 0.965))
+    model = result.model.split(" (cablesys")[0] if result.model else ""      # the model's name, not its module
+    if title or model:
+        fig.suptitle("\n".join(t for t in (title, f"model: {model}" if model else "") if t), fontsize=10)
+    fig.tight_layout(rect=(0, 0, 1, 0.95 if title and model else 0.965))
     fig.savefig(path, dpi=120)
     plt.close(fig)
     return path

@@ -28,6 +28,7 @@ from ..disk_cache import digest
 from ..errors import ParameterError, require_positive
 from ..model import build_model
 from ..time_domain.initial import initial_state
+from .kernels import keep_recent
 
 PARAMETERS = ("cable.ae", "cable.internal_damping")
 
@@ -62,9 +63,7 @@ def compiled_kernels(step: ca.Function, sens: ca.Function):
         k = compile_functions([step, sens], jacobians=False, optimization="-O1")
         if not k.compiled:
             return step, sens, False
-        while len(_KERNELS) >= KERNELS_KEPT:
-            _KERNELS.pop(next(iter(_KERNELS)))
-        _KERNELS[key] = k
+        keep_recent(_KERNELS, key, k, KERNELS_KEPT)
     return k.functions[step.name()], k.functions[sens.name()], True
 
 

@@ -146,13 +146,14 @@ def _compiled_kernels(key, functions):
     """``functions`` compiled (:data:`KERNEL_OPTIMIZATION`) and kept under ``key`` in the KERNELS_KEPT cache."""
     kernels = compile_functions(functions, jacobians=False, optimization=KERNEL_OPTIMIZATION)
     if kernels.compiled:
-        _keep(_KERNELS, key, kernels)
+        keep_recent(_KERNELS, key, kernels)
     return kernels
 
 
-def _keep(cache: dict, key, value) -> None:
-    """``cache[key] = value``, the oldest entries dropped first (dicts keep insertion order) to keep KERNELS_KEPT."""
-    while len(cache) >= KERNELS_KEPT:
+def keep_recent(cache: dict, key, value, kept: int = KERNELS_KEPT) -> None:
+    """``cache[key] = value``, the oldest entries dropped first (dicts keep insertion order) to keep ``kept``: the
+    in-memory caches of loaded kernel libraries (a library is not checked and opened again on every call)."""
+    while len(cache) >= kept:
         cache.pop(next(iter(cache)))
     cache[key] = value
 
@@ -193,6 +194,29 @@ def nlp_functions(problem):
 _GN_KERNELS: dict = {}
 
 
+def residuals(model, x, u, e, p, c, w):
+    """The stage cost's residuals r at the interval start (SX): cost = r^T r with r = sqrt(dt) (y_b - y_b0,
+    sqrt(c_T) (T_top - T_0) / T_0, sqrt(c_a) alpha), the objective of :mod:`.payout`'s module docstring as a sum
+    of squares; e the top's exogenous vector there, w = (heave at rest, T_0, c_T, c_a, dt)."""
+    nq = model.nq
+    y = model.outputs_e(x[:nq], x[nq:2 * nq], e, ca.vertcat(x[2 * nq], x[2 * nq + 1], u, 0.0), p, c)
+    oi = output_labels(model).index
+    return ca.sqrt(w[4]) * ca.vertcat(y[oi("heave")] - w[0], ca.sqrt(w[2]) * (y[oi("tension_top")] - w[1]) / w[1],
+                                      ca.sqrt(w[3]) * u)
+
+
+def residual_function(problem) -> ca.Function:
+    """``(x, alpha, E_k) -> r`` of a :class:`.payout.HeaveProblem`: :func:`residuals` at the interval start (the
+    first 7 rows of E_k) with the problem's numbers inlined (SX; cheap, the outputs only: no dynamics), whose
+    r^T r is the stage cost. The Gauss-Newton Hessian of the objective is 2 J^T J with J = dr/d(x, alpha)
+    (:class:`.shooting.ShootingNLP`'s ``hessian="gauss-newton"``)."""
+    model = problem.model
+    x, u, E = ca.SX.sym("x", model.nx), ca.SX.sym("u"), ca.SX.sym("E", problem.step.size1_in(2))
+    w = ca.DM([problem.heave_rest, problem.static_tension, problem.tension_weight, problem.control_weight, problem.dt])
+    r = residuals(model, x, u, E[:7], ca.DM(problem.p), ca.DM(problem.c), w)
+    return ca.Function("residual", [x, u, E], [r], ["x", "u", "E"], ["r"])
+
+
 def gauss_newton_function(problem) -> ca.Function:
     """The interval's linearization of a :class:`.payout.HeaveProblem` for a Gauss-Newton method, an SX function
     of (x, u, E, p, c, w):
@@ -201,18 +225,14 @@ def gauss_newton_function(problem) -> ca.Function:
     :func:`interval_functions`), A = dxn/dx, B = dxn/du; r the stage cost's residuals at the interval start,
     cost = r^T r with r = sqrt(dt) (y_b - y_b0, sqrt(c_T) (T_top - T_0) / T_0, sqrt(c_a) alpha) (the
     objective of :mod:`.payout`'s module docstring is a sum of squares), Rx, Ru their Jacobians; g the path outputs
-    (:data:`G_ROWS`) and Gx, Gu theirs. w = (heave at rest, T_0, c_T, c_a, dt) as for ``interval``. The
+    (:data:`G_ROWS`) and Gx, Gu theirs (:func:`residuals`). w = (heave at rest, T_0, c_T, c_a, dt) as for ``interval``. The
     Gauss-Newton Hessian of the objective is J_r^T J_r (Bock 1983, "Recent advances in parameter
     identification techniques for ODE", in Numerical Treatment of Inverse Problems, Birkhaeuser, p. 95-121):
     no second derivatives of the dynamics."""
     model, interval = problem.model, problem.interval
     x, u, e, p, c, w = (ca.SX.sym(n, interval.sparsity_in(i)) for i, n in enumerate(interval.name_in()))
     xn, _, g = interval(x, u, e, p, c, w)
-    nq = model.nq
-    y = model.outputs_e(x[:nq], x[nq:2 * nq], e[:7], ca.vertcat(x[2 * nq], x[2 * nq + 1], u, 0.0), p, c)
-    oi = WINCH_OUTPUTS.index
-    r = ca.sqrt(w[4]) * ca.vertcat(y[oi("heave")] - w[0], ca.sqrt(w[2]) * (y[oi("tension_top")] - w[1]) / w[1],
-                                   ca.sqrt(w[3]) * u)
+    r = residuals(model, x, u, e[:7], p, c, w)
     jac = lambda f, v: ca.jacobian(f, v)
     return ca.Function("gn_interval", [x, u, e, p, c, w],
                        [xn, jac(xn, x), jac(xn, u), r, jac(r, x), jac(r, u), g, jac(g, x), jac(g, u)],
@@ -232,5 +252,5 @@ def gauss_newton_kernel(problem) -> ca.Function:
         built = compile_functions([f], jacobians=False, optimization=KERNEL_OPTIMIZATION)
         kernel = built.functions["gn_interval"]
         if built.compiled:
-            _keep(_GN_KERNELS, key, kernel)
+            keep_recent(_GN_KERNELS, key, kernel)
     return kernel

@@ -13,7 +13,9 @@ from the rest state, with the scene's top motion (sinusoids or a realised JONSWA
 the model composes in). y_b is the body's depth below the top's mean depth, earth-fixed: its
 deviation from rest is the body heave relative to the seabed. Transcription: direct multiple
 shooting (:mod:`.shooting`) with ``substeps`` RK4 steps per control interval of ``dt``
-seconds, alpha piecewise constant, exact first and second derivatives by CasADi's AD, IPOPT.
+seconds, alpha piecewise constant, exact first derivatives by CasADi's AD, IPOPT with the objective's
+Gauss-Newton matrix for the Hessian of the Lagrangian (the stage cost is a sum of squares, :func:`payout_nlp`)
+or the exact second derivatives.
 The top motion depends on time only, so it is tabulated outside the NLP: each interval's
 parameters are the exogenous vector e (:data:`cablesys.model.signals.EXO_LABELS`) at the
 2 ``substeps`` + 1 times its RK4 stages read (:meth:`HeaveProblem.exogenous`); the NLP's
@@ -33,10 +35,11 @@ import numpy as np
 from ..errors import ParameterError, require_positive
 from ..model.segmented_winch_control import NodeWinchModel, build_node_winch_model
 from ..model.segmented_winch_control import rest_state as node_rest_state
-from ..model.winch import COMPENSATOR_PARAMETERS, WINCH_OUTPUTS, WinchModel, build_winch_model, rest_state
+from ..model.winch import COMPENSATOR_PARAMETERS, WinchModel, build_winch_model, rest_state
 from ..results import timed
 from .kernels import (G_ROWS, SUBSTEP_KERNELS_FROM, floor_output, gauss_newton_function, gauss_newton_kernel,
-                      interval_functions, interval_kernels, nlp_functions, output_labels, substep_kernels)
+                      interval_functions, interval_kernels, nlp_functions, output_labels, residual_function,
+                      substep_kernels)
 from .limits import WinchLimits
 from .payout_result import PayoutResult, heave_reduction_db, payout_result, statistics_window
 from .shooting import PathConstraint, ShootingNLP
@@ -56,6 +59,21 @@ def model_rest_state(model, p, c=None) -> np.ndarray:
     """The rest state of either control model (:func:`cablesys.model.winch.rest_state`,
     :func:`cablesys.model.segmented_winch_control.rest_state`)."""
     return (node_rest_state if isinstance(model, NodeWinchModel) else rest_state)(model, p, c)
+
+
+def precharge(model, scene, p, c) -> float:
+    """The compensator's precharge F_pre (N, down +) that holds the static load at zero stroke: the sheave's
+    acceleration s'' is affine in F_pre (the piston's equation, :mod:`cablesys.model.winch`,
+    :mod:`cablesys.model.segmented_winch_control`), so F_pre is the root of s'' at the plain model's rest state with
+    s = 0 (the cable's vertical pull on the sheave, with the sign that holds it up), from two evaluations."""
+    plain = (build_node_winch_model if isinstance(model, NodeWinchModel) else build_winch_model)(scene)
+    x = model_rest_state(plain, p)
+    nq = plain.nq
+    q, qd = np.append(x[:nq], 0.0), np.zeros(nq + 1)
+    s_dd = lambda f: float(np.array(model.accel(q, qd, np.zeros(7), [x[-2], 0.0, 0.0, 0.0], p,
+                                                np.r_[c[:3], f])).ravel()[-1])
+    a0, a1 = s_dd(0.0), s_dd(1.0)
+    return -a0 / (a1 - a0)
 
 
 def describe_model(model) -> str:
@@ -238,23 +256,19 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
     for name, v in (("tension_weight", tension_weight), ("control_weight", control_weight)):
         if not (v >= 0 and math.isfinite(v)):
             raise ParameterError(name, v, "must be a finite number >= 0")
-    if isinstance(model, str):
-        scene, model = control_model(scene, model, segments, compensator=compensator is not None)
-    elif model is None:
-        scene, model = control_model(scene, "wang", None, compensator=compensator is not None)
-    p = model.parameters(scene)
-    c = np.zeros(len(COMPENSATOR_PARAMETERS))
     if compensator is not None:
         unknown = set(compensator) - {"mass", "stiffness", "damping"}
         if unknown:
             raise ParameterError("compensator", sorted(unknown), "allowed keys: mass, stiffness, damping")
         require_positive("compensator.mass", compensator.get("mass", 0.0), "kg")
+    kind = model if isinstance(model, str) else ("wang" if model is None else None)
+    if kind is not None:
+        scene, model = control_model(scene, kind, segments, compensator=compensator is not None)
+    p = model.parameters(scene)
+    c = np.zeros(len(COMPENSATOR_PARAMETERS))
+    if compensator is not None:
         c[:3] = [compensator["mass"], compensator.get("stiffness", 0.0), compensator.get("damping", 0.0)]
-        plain = build_winch_model(scene)
-        x_plain = rest_state(plain, p)
-        t_top = dict(zip(WINCH_OUTPUTS, np.array(plain.outputs(x_plain, [0, 0], 0.0, p, c)).ravel()))["tension_top"]
-        # y down: the precharge pushes the sheave up against the cable's vertical pull and its own weight
-        c[3] = -t_top * math.cos(x_plain[0]) - c[0] * p[model.layout.index("environment.gravity")]
+        c[3] = precharge(model, scene, p, c)
     x_rest = model_rest_state(model, p, c)
     y_rest = dict(zip(output_labels(model), np.array(model.outputs(x_rest, [0, 0], 0.0, p, c)).ravel()))
     lam = fastest_mode(model, x_rest, p, c)
@@ -277,20 +291,26 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
 
 
 def payout_nlp(problem: HeaveProblem, N: int, *, max_iter: int = 300, tol: float = 1e-8,
-               expand: bool = False, warm_duals: bool = False, constrain_first: bool = True) -> ShootingNLP:
+               expand: bool = False, warm_duals: bool = False, constrain_first: bool = True,
+               hessian: str = "exact") -> ShootingNLP:
     """The multiple-shooting NLP of ``problem`` over N intervals (start state and the tabulated top motion, :meth:`HeaveProblem.exogenous`, are its
     parameters: :meth:`.shooting.ShootingNLP.solve` takes them), with the last node's heave
     in the cost (the stage cost at alpha = 0). ``expand``: IPOPT on the SX expansion of the NLP, for the
     virtual machine's inlined functions only (compiled kernels, :meth:`HeaveProblem.nlp_functions`, are
-    external code, faster than any expansion, and are kept as they are)."""
+    external code, faster than any expansion, and are kept as they are). ``hessian``: "exact" (AD, the
+    kernels' forward-over-adjoint derivatives through every RK4 step) or "gauss-newton" (2 J^T J of the stage
+    residuals, :func:`.kernels.residual_function`: no second derivatives of the dynamics; the same NLP)."""
     ub, xb = problem.bounds()
     xN, EN = ca.SX.sym("x", problem.model.nx), ca.SX.sym("E", problem.step.size1_in(2))
     terminal = ca.Function("terminal", [xN, EN], [problem.stage(xN, 0.0, EN)[0]])   # the last node's cost
+    residual = residual_function(problem)
+    terminal_residual = ca.Function("terminal_residual", [xN, EN], [residual(xN, 0.0, EN)])
     step, stage, compiled = problem.nlp_functions()
     return ShootingNLP(step, stage, N, constraints=problem.constraints(), u_bounds=ub,
                        x_bounds=xb, terminal=terminal, x_ref=problem.x_rest, x_scale=problem.scales(),
                        ipopt={"max_iter": max_iter, "tol": tol}, expand=expand and not compiled,
-                       warm_duals=warm_duals, constrain_first=constrain_first)
+                       warm_duals=warm_duals, constrain_first=constrain_first, residual=residual,
+                       terminal_residual=terminal_residual, hessian=hessian)
 
 
 def check_window(problem: HeaveProblem, t0: float, horizon: float) -> int:
@@ -317,7 +337,8 @@ def solution_message(sol) -> str:
 
 @timed
 def optimal_payout(problem: HeaveProblem, horizon: float, *, warm_start: PayoutResult | None = None,
-                   max_iter: int = 300, tol: float = 1e-8, stats_start: float | None = None) -> PayoutResult:
+                   max_iter: int = 300, tol: float = 1e-8, stats_start: float | None = None,
+                   hessian: str = "gauss-newton") -> PayoutResult:
     """The open-loop optimal payout over [0, horizon] for the problem's known top motion.
 
     Parameters
@@ -332,6 +353,9 @@ def optimal_payout(problem: HeaveProblem, horizon: float, *, warm_start: PayoutR
         IPOPT's iteration limit and tolerance.
     stats_start : float, optional
         Start of the window of the heave statistics (s; default the window of every run's summary, :func:`cablesys.statistics.window`).
+    hessian : str
+        IPOPT's Hessian of the Lagrangian: "gauss-newton" (default: the objective's, no second derivatives of the
+        dynamics, :func:`payout_nlp`) or "exact" (AD through every RK4 step): the same NLP and optimum.
 
     Returns
     -------
@@ -343,11 +367,11 @@ def optimal_payout(problem: HeaveProblem, horizon: float, *, warm_start: PayoutR
     N = check_window(problem, 0.0, horizon)
     U = np.zeros(N) if warm_start is None else np.resize(warm_start.acceleration, N)
     guess = (problem.rollout(problem.x_rest, U), U[:, None])
-    sol = payout_nlp(problem, N, max_iter=max_iter, tol=tol).solve(problem.x_rest,
+    sol = payout_nlp(problem, N, max_iter=max_iter, tol=tol, hessian=hessian).solve(problem.x_rest,
                                                                    problem.exogenous(problem.dt * np.arange(N + 1)), guess)
     return payout_result(problem, sol.X, sol.U, status=sol.status, violated=sol.worst, violations=sol.violations,
                          objective=sol.objective, success=sol.success, message=solution_message(sol),
                          stats={"iterations": sol.iterations, "solve_s": sol.solve_s, "intervals": N,
-                                "ipopt_timing_s": sol.timing},
+                                "ipopt_timing_s": sol.timing, "hessian": hessian},
                          stats_start=stats_start)
 

@@ -17,6 +17,10 @@ import time
 import casadi as ca
 import numpy as np
 
+from ..errors import ParameterError
+
+# the Hessian of the Lagrangian IPOPT is given: CasADi's exact AD one, or the objective's Gauss-Newton matrix
+HESSIANS = ("exact", "gauss-newton")
 
 @dataclasses.dataclass(frozen=True)
 class PathConstraint:
@@ -95,11 +99,21 @@ def solve_shooting(step: ca.Function, stage: ca.Function, x0, N: int, *, params=
 class ShootingNLP:
     """The transcription of :func:`solve_shooting` built once; ``solve(x0, params, guess)`` re-solves
     it for a new initial state and interval parameters (the receding horizon of MPC: IPOPT and
-    its derivative functions are reused, only the numbers change)."""
+    its derivative functions are reused, only the numbers change).
+
+    ``hessian``: "exact" (CasADi's AD Hessian of the Lagrangian) or "gauss-newton" (the objective's
+    Gauss-Newton matrix, :meth:`_gauss_newton_hessian`, for a stage cost r^T r: ``residual(x, u, r_k)`` gives
+    r, ``terminal_residual`` the terminal cost's, as ``terminal``'s inputs)."""
 
     def __init__(self, step, stage, N, *, constraints=(), u_bounds=None, x_bounds=None, terminal=None,
                  x_ref=None, x_scale=None, u_scale=None, ipopt=None, elastic=False, expand=False,
-                 warm_duals=False, constrain_first=True):
+                 warm_duals=False, constrain_first=True, residual=None, terminal_residual=None,
+                 hessian: str = "exact"):
+        if hessian not in HESSIANS:
+            raise ParameterError("hessian", hessian, f"allowed: {', '.join(HESSIANS)}")
+        if hessian == "gauss-newton" and (residual is None or (terminal is not None and terminal_residual is None)):
+            raise ParameterError("hessian", hessian, "needs the stage cost's residuals (residual, and "
+                                                     "terminal_residual with a terminal cost)")
         nx, nu = step.size1_in(0), step.size1_in(1)
         self.N, self.nx, self.nu, self.elastic = N, nx, nu, elastic
         self.args = dict(step=step, stage=stage, N=N, constraints=constraints, u_bounds=u_bounds,
@@ -141,7 +155,27 @@ class ShootingNLP:
         if warm_duals:     # IPOPT restarted near the previous solution: small barrier, previous multipliers
             opts = {"warm_start_init_point": "yes", "mu_init": 1e-5, "warm_start_bound_push": 1e-6,
                     "warm_start_mult_bound_push": 1e-6, **opts}
-        opti.solver("ipopt", {"print_time": False, "record_time": True, "expand": expand}, opts)
+        plugin = {"print_time": False, "record_time": True, "expand": expand}
+        if hessian == "gauss-newton" and not elastic:     # the phase-one problem's objective is linear
+            plugin["hess_lag"] = self._gauss_newton_hessian(residual, terminal_residual)
+        opti.solver("ipopt", plugin, opts)
+
+    def _gauss_newton_hessian(self, residual, terminal_residual) -> ca.Function:
+        """The Hessian of the Lagrangian as IPOPT's ``hess_lag``: 2 lam_f J^T J with J the Jacobian of every
+        stage's (and the terminal's) residuals r (cost = r^T r) in the NLP's variables (Bock 1983, "Recent
+        advances in parameter identification techniques for ODE", in Numerical Treatment of Inverse Problems,
+        Birkhaeuser, 95-121): the objective's Gauss-Newton matrix, no second derivatives of the dynamics or of
+        the path constraints (their multipliers' terms are dropped). The NLP is the same, so is its KKT point;
+        only the steps toward it differ (superlinear near a small-residual optimum with inactive curvature)."""
+        opti, N = self.opti, self.N
+        r = ca.vec(residual.map(N)(self.Xe[:, :N], self.Ue, self.R[:, :N]))
+        if terminal_residual is not None:
+            r = ca.vertcat(r, terminal_residual(*([self.Xe[:, N], self.R[:, N]][: terminal_residual.n_in()])))
+        J = ca.jacobian(r, opti.x)
+        lam_f, lam_g = ca.MX.sym("lam_f"), ca.MX.sym("lam_g", opti.ng)
+        H = ca.triu(2 * lam_f * ca.mtimes(J.T, J))
+        return ca.Function("gauss_newton_hess", [opti.x, opti.p, lam_f, lam_g], [H],
+                           ["x", "p", "lam_f", "lam_g"], ["triu_hess_gamma_x_x"])
 
     def solve(self, x0, params=None, guess=None) -> ShootingSolution:
         """Solve from ``x0`` with interval parameters ``params`` (N, nr) and warm start ``guess`` (X, U)."""

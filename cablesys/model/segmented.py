@@ -177,7 +177,9 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
         A 3-vector of symbols (L, w, alpha): the first section's zero-tension length (m), payout speed (m/s)
         and acceleration (m/s^2) as inputs instead of the ``[winch]`` profile (:mod:`.segmented_winch`, the
         same terms), for a controlled winch (:mod:`.segmented_winch_control`). ``dynamics``, ``accel``,
-        ``ode``, ``outputs`` and ``energy`` then take it as their last input ``winch``; no kernel.
+        ``ode``, ``outputs`` and ``energy`` then take it as their last input ``winch``; no kernel; ``outputs`` adds
+        ``top_force_x``, ``top_force_y`` (N): the cable's force on the sheave, the first element's tension and the
+        half element lumped there (what a heave compensator under the sheave carries).
 
     Returns
     -------
@@ -363,6 +365,7 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
             len(els), rt, vt_, acc_nodes[s["top"]], node_r[s["top"] + 1], node_v[s["top"] + 1])
         lt = lump_force(first, "a", acc_top)
         top_force = tuple(first["tension"] * first["et"][c] + lt[c] for c in range(dim))
+        s.setdefault("top_force", top_force)
         lb = lump_force(last, "b", acc_nodes[s["body"]])
         bottom_force = tuple(-last["tension"] * last["et"][c] + lb[c] for c in range(dim))
         out += [phi, phid, u, ud, rb[0], vb[0], rb[1], vb[1], mid_tension(els), norm(bottom_force), norm(top_force),
@@ -388,6 +391,9 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
         pay = sections[0]["pay"]
         out += [pay.L, pay.w, pay.alpha, out[OUTPUT_NAMES.index("tension_top")] * pay.w]
         labels += list(WINCH_OUTPUTS)
+    if winch_input is not None:      # a controlled winch: the cable's force on the sheave (N), for a compensator
+        out += list(sections[0]["top_force"])
+        labels += [f"top_force_{c}" for c in axes]
     # profiles (element k top to bottom over all sections; node j = 0 the top) and their arc lengths
     T = ca.vertcat(*[el["tension"] for el in elements])
     T_rate = ca.jtimes(T, x, xdot) + ca.jacobian(T, e) @ ca.vertcat(1.0, zd, zdd, ca.DM.zeros(dim))

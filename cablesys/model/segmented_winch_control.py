@@ -9,16 +9,30 @@ state, L' = w, w' = alpha, as in Wang's 2-DOF winch (:mod:`.winch`), and the fun
 interface (:class:`.winch.WinchModel`), so the optimal control and the MPC (:mod:`cablesys.control`) run on
 either:
 
-State x = (x[1], y[1], ..., x[N], y[N], their rates, L, w): node positions (m, y down from the top's mean
-depth; node N the body), L (m), w (m/s, + pays out); control v = (alpha, F_a): alpha (m/s^2); F_a (N) is the
-2-DOF model's compensator force, which this model has no coordinate for (``compensator`` False: F_a is not an
-input here, a compensator is refused when the model is built).
+State x = (x[1], y[1], ..., x[N], y[N][, s], their rates, L, w): node positions (m, y down from the top's mean
+depth; node N the body), with a compensator the sheave's stroke s (m, down +), L (m), w (m/s, + pays out);
+control v = (alpha, F_a): alpha (m/s^2), F_a (N, down +) the compensator's actuated force.
+
+The compensator (``compensator=True``; parameters c = (m_p, k_p, c_p, F_pre) as :data:`.winch.COMPENSATOR_PARAMETERS`)
+is the 2-DOF model's (:mod:`.winch`): the sheave rides a piston of mass m_p at the stroke s below the crane tip, on
+a spring k_p and a damper c_p about the precharge F_pre, pushed by F_a. The cable's top node is the sheave,
+(x_s, y_s + s), so the node model sees the top motion e with y_s, y_s', y_s'' replaced by y_s + s, y_s' + s',
+y_s'' + s''. The piston's equation is Newton's (the Lagrange equation of s with its kinetic energy
+1/2 m_p (y_s' + s')^2 and the cable's generalized force, the vertical component F_y of the cable's force on the
+sheave, ``top_force_y`` of :func:`.segmented.build_segmented_model`):
+
+    m_p (y_s'' + s'') = F_pre + F_a - k_p s - c_p s' + F_y(y_s'' + s''),
+
+F_y affine in the sheave's acceleration (its half element's inertia, :func:`.segmented_element.lump_force`), so
+s'' is solved in closed form; the free nodes' accelerations do not depend on it (lumped masses: block-diagonal
+mass matrix), so the system stays explicit. As in the 2-DOF model the piston's weight is not modelled apart (it is
+part of the precharge).
 
 ``outputs`` rows: :data:`.winch.WINCH_OUTPUTS` (heave = y_b, the body's depth below the top's mean depth; its
 rate; x_b; ``tension_mid`` the section's tension at mid-length, :func:`.segmented.mid_tension`; ``tension_top``
 the cable's pull on the sheave with its half element's material acceleration; ``tension_bottom``; ``stretch``
 the sum of the element elongations minus L; ``length`` L, ``speed`` w, ``acceleration`` alpha, ``power``
-T_top w (W); ``stroke`` 0, no compensator) and then ``tension_least``, the least element tension (N): in the
+T_top w (W); ``stroke`` s, 0 without a compensator) and then ``tension_least``, the least element tension (N): in the
 node model slack starts at the element of least tension, usually the lowest, so the no-slack limit of the
 control bounds that row (``floor_output``), where the 2-DOF model, with one uniform stretch, bounds its F_bc.
 """
@@ -51,9 +65,9 @@ class NodeWinchModel(WinchModel):
 
     ``ode(x, v, t, p, c) -> x'``; ``outputs(x, v, t, p, c) -> y`` (labels :data:`NODE_WINCH_OUTPUTS`);
     ``accel(q, qd, e, winch, p, c) -> q''`` with e the top's exogenous vector (:data:`.signals.EXO_LABELS`) and
-    winch = (L, w, alpha, F_a) (F_a unused); ``outputs_e(q, qd, e, winch, p, c) -> y``. ``c`` (the 2-DOF model's
-    compensator parameters) is accepted and unused, so the control code calls both models alike.
-    ``segments`` is N, the first section's elements.
+    winch = (L, w, alpha, F_a); ``outputs_e(q, qd, e, winch, p, c) -> y``. ``c`` holds the compensator's parameters
+    (:data:`.winch.COMPENSATOR_PARAMETERS`; accepted and unused without one), so the control code calls both models
+    alike. ``segments`` is N, the first section's elements.
     """
 
     segments: int = 1
@@ -69,7 +83,8 @@ class NodeWinchModel(WinchModel):
         return self.output_labels.index(name)
 
     def describe(self) -> str:
-        return f"segmented node model with winch, N = {self.segments} (cablesys.model.segmented_winch_control)"
+        return (f"segmented node model with winch, N = {self.segments} (cablesys.model.segmented_winch_control)"
+                + (", compensator" if self.compensator else ""))
 
 
 def build_node_winch_model(scene: Scene, *, compensator: bool = False) -> NodeWinchModel:
@@ -79,7 +94,7 @@ def build_node_winch_model(scene: Scene, *, compensator: bool = False) -> NodeWi
     ------
     ParameterError
         More than one section, a 3-D scene, an anchor, a ``[winch]`` profile (the control drives L: the scene's
-        prescribed payout would be dropped), or ``compensator`` (no piston coordinate in this model).
+        prescribed payout would be dropped).
     """
     if len(scene.sections) != 1:
         raise ParameterError("sections", len(scene.sections), "the controlled winch has one section")
@@ -93,21 +108,33 @@ def build_node_winch_model(scene: Scene, *, compensator: bool = False) -> NodeWi
     if getattr(scene, "winch", None) is not None:
         raise ParameterError("winch", "set", "must be unset: the control drives the payout (a [winch] profile "
                                              "would be ignored)")
-    if compensator:
-        raise ParameterError("compensator", True, "the node model has no compensator coordinate (use Wang's 2-DOF "
-                                                  "winch, cablesys.model.winch)")
     z = ca.SX.sym("winch", 3)
     seg = build_segmented_model(scene, winch_input=z)
-    nq = len(seg.q_labels)
+    nn = len(seg.q_labels)                             # the node coordinates
+    q_labels = seg.q_labels + (("s",) if compensator else ())
+    nq = len(q_labels)
     labels = seg.output_labels
     q, qd, e = ca.SX.sym("q", nq), ca.SX.sym("qd", nq), ca.SX.sym("e", 7)
     winch = ca.SX.sym("winch", 4)                       # L, w, alpha, F_a
     p = seg.layout.symbol
     c = ca.SX.sym("c", 4)
     zc = winch[:3]
-    qdd = seg.accel(q, qd, e, p, zc)
-    y = seg.outputs(ca.vertcat(q, qd), e, p, zc)
-    rows = [y[labels.index(src)] if src else ca.SX(0.0) for src in (_FROM_NODE_MODEL[n] for n in WINCH_OUTPUTS)]
+    qn, qdn = q[:nn], qd[:nn]
+    if compensator:          # the sheave at the stroke s below the tip: the cable's top is (x_s, y_s + s)
+        a = ca.SX.sym("a_sheave")                       # the sheave's vertical acceleration y_s'' + s''
+        e_a = ca.vertcat(e[:2], e[2] + q[nn], e[3], e[4] + qd[nn], e[5], a)
+        f_y = seg.outputs(ca.vertcat(qn, qdn), e_a, p, zc)[labels.index("top_force_y")]
+        k_a, f_0 = ca.jacobian(f_y, a), ca.substitute(f_y, a, 0.0)      # f_y = f_0 + k_a a (affine)
+        m_p, k_p, c_p, f_pre = (c[i] for i in range(4))
+        a_s = (f_pre + winch[3] - k_p * q[nn] - c_p * qd[nn] + f_0) / (m_p - k_a)     # module docstring
+        e_c = ca.substitute(e_a, a, a_s)
+        qdd = ca.vertcat(seg.accel(qn, qdn, e_c, p, zc), a_s - e[6])
+    else:
+        e_c = e
+        qdd = seg.accel(qn, qdn, e, p, zc)
+    y = seg.outputs(ca.vertcat(qn, qdn), e_c, p, zc)
+    rows = [y[labels.index(src)] if src else (q[nn] if compensator else ca.SX(0.0))
+            for src in (_FROM_NODE_MODEL[n] for n in WINCH_OUTPUTS)]
     tens = [y[labels.index(f"element_tension[{k}]")] for k in range(seg.n_elements)]
     rows.append(ca.mmin(ca.vertcat(*tens)))
     names = ["q", "qd", "e", "winch", "p", "c"]
@@ -121,8 +148,8 @@ def build_node_winch_model(scene: Scene, *, compensator: bool = False) -> NodeWi
     ode = ca.Function("node_winch_ode", [xs, vs, ts, p, c], [xdot], ["x", "v", "t", "p", "c"], ["xdot"])
     outputs = ca.Function("node_winch_outputs", [xs, vs, ts, p, c], [out_e(xs[:nq], xs[nq:2 * nq], ex, wx, p, c)],
                           ["x", "v", "t", "p", "c"], ["y"])
-    return NodeWinchModel(layout=seg.layout, compensator=False, q_labels=seg.q_labels, ode=ode, outputs=outputs, accel=accel, top=top,
-                          outputs_e=out_e, segments=int(seg.segments[0]))
+    return NodeWinchModel(layout=seg.layout, compensator=compensator, q_labels=q_labels, ode=ode, outputs=outputs,
+                          accel=accel, top=top, outputs_e=out_e, segments=int(seg.segments[0]))
 
 
 def rest_state(model: NodeWinchModel, p, c=None, length: float | None = None) -> np.ndarray:
@@ -139,7 +166,7 @@ def rest_state(model: NodeWinchModel, p, c=None, length: float | None = None) ->
     n = model.segments
     s = L * (n - np.arange(1, n + 1)) / n                  # node j's unstretched arc from the body
     y = np.array([L - sj + (w_b * (L - sj) + w_r * (L * L - sj * sj) / 2) / ae for sj in s])   # y_j below the top
-    guess = np.ravel(np.column_stack([np.zeros(n), y]))
+    guess = np.concatenate([np.ravel(np.column_stack([np.zeros(n), y])), np.zeros(model.nq - 2 * n)])   # s = 0
     qs = ca.SX.sym("q", model.nq)
     wz = ca.DM([L, 0, 0, 0])
     res = model.accel(qs, ca.DM.zeros(model.nq), ca.DM.zeros(7), wz, p, c)
