@@ -8,6 +8,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import json
+import re
 from pathlib import Path
 from typing import ClassVar
 
@@ -333,7 +334,11 @@ class TimeResult(ResultBase):
         return out
 
     def to_xarray(self):
-        """An ``xarray.Dataset`` with dimension ``time`` and units in attributes."""
+        """An ``xarray.Dataset`` with dimension ``time`` and units in attributes; the profiles along the cable with
+        ``element`` or ``node``; and every position vector with an ``axis`` dimension (x, y down, z in 3-D): each body's
+        ``r_b`` (and ``v_b``, from ``x_b``, ``y_b``, ``z_b`` and their rates; a chain's ``r_b_2``, ...), a rigid body's
+        centre of gravity ``r_cg``, and the nodes' ``node_position`` (time, node, axis), beside the series they are
+        made of."""
         import xarray as xr
         ds = xr.Dataset({k: ("time", v, {"units": unit_of(k)}) for k, v in self.data.items()},
                         coords={"time": ("time", self.time, {"units": "s"})},
@@ -346,7 +351,7 @@ class TimeResult(ResultBase):
         for name, arr in self.profiles.items():
             if name not in COORDINATES.values():
                 ds[name] = (("time", dimension_of(name)), arr)
-        return ds
+        return _with_axes(ds, self.data, self.profiles)
 
     def to_csv(self, path) -> Path:
         """Write ``time`` and every series as CSV columns (SI units in the header)."""
@@ -362,3 +367,35 @@ class TimeResult(ResultBase):
         path = Path(path)
         self.to_xarray().to_netcdf(path, engine="scipy")
         return path
+
+
+AXES = ("x", "y", "z")
+
+
+def _with_axes(ds, data: dict, profiles: dict):
+    """``ds`` with the position vectors of :meth:`TimeResult.to_xarray` stacked on an ``axis`` dimension (the axes
+    the run has: x, y in the plane, x, y, z in 3-D)."""
+    axes = AXES if any(re.fullmatch(r"z_b(_\d+)?", k) for k in data) or "node_z" in profiles else AXES[:2]
+    out = {}
+    for key in data:
+        m = re.fullmatch(r"x_(b|cg)(_\d+)?", key)
+        if m is None:
+            continue
+        what, sfx = m.group(1), m.group(2) or ""
+        names = [f"{a}_{what}{sfx}" for a in axes]
+        if all(n in data for n in names):
+            out[f"r_{what}{sfx}"] = (("time", "axis"), np.column_stack([data[n] for n in names]), {"units": "m"})
+            rates = [f"{n}_rate" for n in names]
+            if all(r in data for r in rates):
+                out[f"v_{what}{sfx}"] = (("time", "axis"), np.column_stack([data[r] for r in rates]), {"units": "m/s"})
+    nodes = [f"node_{a}" for a in axes]
+    if all(n in profiles for n in nodes):
+        out["node_position"] = (("time", "node", "axis"), np.stack([profiles[n] for n in nodes], axis=-1),
+                                {"units": "m"})
+    if not out:
+        return ds
+    ds = ds.assign_coords(axis=("axis", list(axes), {"long_name": "axis of (x, y, z): right-handed, y down"}))
+    for k, v in out.items():
+        ds[k] = v
+    return ds
+

@@ -116,3 +116,17 @@ def test_the_element_coordinates_take_a_3d_scene_and_refuse_an_anchored_line():
                         numerics=sc.numerics, anchor=Anchor(x=5.0, y=55.0))
     with pytest.raises(ParameterError, match="anchor.*element coordinates"):
         build_element_model(anchored)
+
+
+def test_to_xarray_stacks_positions_on_an_axis_dimension():
+    """A 3-D run's dataset has ``axis`` (x, y, z): the body's ``r_b`` is (x_b, y_b, z_b), and its node positions'
+    last node is the body (the node model's body sits on its last node); the top node moves with the top."""
+    import cablesys
+    sc = nodes.divided(checks.rotation_scene(), 3).with_numerics(duration=2.0, output_step=0.5, model="as-built")
+    r = cablesys.simulate(sc)
+    ds = r.to_xarray()
+    assert list(ds["axis"].values) == ["x", "y", "z"] and ds["r_b"].dims == ("time", "axis")
+    np.testing.assert_array_equal(ds["r_b"].values, np.column_stack([r["x_b"], r["y_b"], r["z_b"]]))
+    np.testing.assert_allclose(ds["node_position"].values[:, -1, :], ds["r_b"].values, rtol=0, atol=1e-12)
+    assert ds["node_position"].attrs["units"] == "m" and ds["v_b"].dims == ("time", "axis")
+    assert float(np.ptp(ds["node_position"].values[:, 0, 2])) > 0.0          # the top sways
