@@ -100,8 +100,11 @@ def test_bad_sea_input_is_named():
         SeaSpectrum(kind="bretschneider-ish", hs=1.0, tp=8.0)
     with pytest.raises(ParameterError, match="top_motion.rao.heave_amplitude"):
         MotionRAO(omega=(0.5, 1.0), heave_amplitude=(1.0,))
-    with pytest.raises(ParameterError, match="heading"):
-        SeaSpectrum(hs=1.0, tp=8.0, heading_deg=90.0, waves_at_cable=True)
+    with pytest.raises(ParameterError, match="top_motion.spectrum.spreading_n"):
+        SeaSpectrum(hs=1.0, tp=8.0, spreading_n=-1.0)
+    with pytest.raises(ParameterError, match="top_motion.spectrum.spreading_n.*top_motion.vessel"):
+        TopMotion(spectrum=SeaSpectrum(hs=1.0, tp=8.0, spreading_n=2.0),
+                  rao=MotionRAO(omega=(0.5, 1.0), heave_amplitude=(1.0, 1.0)))
 
 
 def test_rao_from_csv_file(tmp_path):
@@ -122,3 +125,54 @@ def test_rov_lift_example_loads_with_sea_limits_and_design():
     assert scene.design["ae_bounds"]
     assert math.isclose(scene.cable.length, 500.0)
     assert dataclasses.replace(scene, name="x").top_motion == scene.top_motion
+
+
+def test_directional_spreading_draws_its_cos_n_law_and_the_linear_sea_response_integrates_it():
+    """A cos^n spread sea (DNV-RP-C205 sec. 3.5.8): the spreading integrates to 1 and E[cos^2(theta - heading)] =
+    (n + 1) / (n + 2) in closed form, by its quadrature and, to sampling error, over the realised components'
+    directions; spreading keeps the frequencies, phases and heave (direction-free) of the long-crested sea; the
+    crane tip's sway variance realised in the time domain (sum of the sinusoids' a^2 / 2, each component through the
+    vessel RAO at its own direction), averaged over 8 seeds, equals the spectral one sum_j w_j int S |Z(omega, theta_j)|^2 d omega."""
+    from cablesys.scene.vessel import HeadingRAO, VesselRAO
+    n = 2.0
+    sea = SeaSpectrum(hs=3.0, tp=9.0, heading_deg=30.0, spreading_n=n, n_components=3000, seed=4)
+    grid = np.linspace(-60.0, 120.0, 20001)
+    assert np.trapezoid(sea.spreading(grid), np.radians(grid)) == pytest.approx(1.0, rel=1e-6)
+    theta, w = sea.direction_quadrature()
+    assert np.sum(w * np.cos(np.radians(theta - 30.0)) ** 2) == pytest.approx((n + 1) / (n + 2), rel=1e-10)
+    dirs = sea.directions()
+    assert np.all(np.abs(dirs - 30.0) <= 90.0)
+    assert np.mean(np.cos(np.radians(dirs - 30.0)) ** 2) == pytest.approx((n + 1) / (n + 2), abs=0.015)
+    flat = SeaSpectrum(hs=3.0, tp=9.0, heading_deg=30.0, n_components=3000, seed=4)
+    for a, b in zip(flat.components(), sea.components()):
+        np.testing.assert_array_equal(a, b)
+    heave = [TopMotion(spectrum=s).y for s in (flat, sea)]
+    assert heave[0] == heave[1]
+    omega = (0.3, 0.6, 0.9, 1.5)
+    beam = lambda b, v: tuple(abs(math.sin(math.radians(b))) * x for x in v)    # sway and roll in beam seas only
+    tables = tuple(HeadingRAO(heading_deg=b, surge_amplitude=(1.0, 0.8, 0.4, 0.1), sway_amplitude=beam(b, (0.9, 0.7, 0.3, 0.1)),
+                              heave_amplitude=(1.0, 0.9, 0.5, 0.1), roll_amplitude=beam(b, (2.0, 3.0, 1.0, 0.2)))
+                   for b in (0.0, 90.0, 180.0))
+    vessel = VesselRAO(omega=omega, headings=tables, lever_arm=(10.0, 15.0, 20.0))
+    realised = np.mean([sum(0.5 * s.amplitude ** 2 for s in TopMotion(spectrum=dataclasses.replace(sea, seed=k),
+                                                                         vessel=vessel).z) for k in range(8)])
+    om = np.linspace(*sea.band(), 4000)
+    spectral = sum(wj * np.trapezoid(sea.density(om) * np.abs(top_transfer(vessel, om, float(tj))[2]) ** 2, om)
+                   for tj, wj in zip(theta, w))
+    assert realised == pytest.approx(spectral, rel=0.06)      # 8 seeds: one's sampling scatter is ~6 %, the mean's ~2 %
+    long_crested = np.trapezoid(flat.density(om) * np.abs(top_transfer(vessel, om, 30.0)[2]) ** 2, om)
+    assert abs(spectral / long_crested - 1.0) > 0.1          # the spreading matters for this sway
+
+
+def test_a_spread_sea_at_the_cable_is_three_dimensional_and_reads_back():
+    """With waves_at_cable each realised wave travels its component's direction: the scene runs the 3-D equations,
+    and a dumped scene reads back with its waves once, their headings kept."""
+    sea = SeaSpectrum(hs=2.0, tp=9.0, n_components=12, waves_at_cable=True, spreading_n=4.0, seed=2)
+    scene = default_scene().replace(top_motion=TopMotion(spectrum=sea))
+    assert scene.three_d and "environment.waves[0].heading_deg" in scene.three_d_fields()
+    headings = [w.heading_deg for w in scene.environment.waves]
+    np.testing.assert_allclose(headings, sea.directions(), rtol=0, atol=1e-12)
+    again = scene_from_dict(tomllib.loads(dump_scene(scene)))
+    assert [w.heading_deg for w in again.environment.waves] == pytest.approx(headings, abs=1e-9)
+    long_crested = default_scene().replace(top_motion=TopMotion(spectrum=dataclasses.replace(sea, spreading_n=0.0)))
+    assert not long_crested.three_d

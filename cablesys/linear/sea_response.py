@@ -63,10 +63,11 @@ def sea_response(scene, lin, *, outputs=None, exposure: float | None = None, n: 
     omega = np.linspace(lo, hi, n)
     S = sea.density(omega)
     top = scene.top_motion
-    X, Y, Z = top_transfer(top.vessel or top.rao, omega, sea.heading_deg)
+    theta, weight = sea.direction_quadrature()       # a spread sea: sum_j w_j |H(omega, theta_j)|^2 (DNV-RP-C205 3.5.8)
+    transfers = [top_transfer(top.vessel or top.rao, omega, float(t)) for t in theta]
     r = rao(lin, omega)
     sway = "z_s" in r.input_labels
-    if not sway and np.any(Z != 0.0):
+    if not sway and any(np.any(Z != 0.0) for _, _, Z in transfers):
         raise ParameterError("top_motion.vessel", "sway at the lever arm", "needs the 3-D equations: the linear "
                              "model given has no z_s input (linearize the scene's own model)")
     if outputs is None:
@@ -76,8 +77,9 @@ def sea_response(scene, lin, *, outputs=None, exposure: float | None = None, n: 
     mean = dict(zip(lin.output_labels, np.asarray(lin.y0, float)))
     spectra, stats = {}, {}
     for o in outputs:
-        H = r(o, "x_s") * X + r(o, "y_s") * Y + (r(o, "z_s") * Z if sway else 0.0)
-        spectra[o] = np.abs(H) ** 2 * S
+        H2 = sum(wj * np.abs(r(o, "x_s") * X + r(o, "y_s") * Y + (r(o, "z_s") * Z if sway else 0.0)) ** 2
+                 for wj, (X, Y, Z) in zip(weight, transfers))
+        spectra[o] = H2 * S
         stats[o] = st.frequency_domain(omega, spectra[o], exposure, mean=float(mean.get(o, 0.0)),
                                        nonnegative=o.startswith("tension"))      # a tension-only cable: >= 0
     return SeaResponse(omega=omega, sea=S, spectra=spectra, statistics=stats, exposure=float(exposure))

@@ -40,6 +40,7 @@ from .fields import spec
 from .harmonics import Sinusoid, Wave
 
 SPECTRA = ("jonswap", "pierson-moskowitz")
+MAX_SPREADING_N = 100.0     # cos^100 spreads +- 13 deg (2 sigma): sharper is a long-crested sea
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -50,14 +51,17 @@ class SeaSpectrum:
     hs: float = spec("length", "significant wave height H_s = 4 sqrt(m0)")
     tp: float = spec("time", "peak period T_p")
     gamma: float = spec("none", "JONSWAP peak-enhancement factor (1..7; ignored for pierson-moskowitz)", 3.3)
-    heading_deg: float = spec("angle_deg", "direction the waves travel, deg from +x (a [top_motion.rao] table is for this heading, a "
-                                           "[top_motion.vessel] table is read at heading - vessel_heading_deg; "
-                                           "waves_at_cable needs 0)", 0.0)
+    heading_deg: float = spec("angle_deg", "direction the waves travel, deg from +x towards +z (a [top_motion.rao] table is "
+                                           "for this heading, a [top_motion.vessel] table is read at heading - "
+                                           "vessel_heading_deg; waves_at_cable off +x make the scene 3-D)", 0.0)
     seed: int = spec("none", "seed of the random phases (same seed, same sea)", 0)
     n_components: int = spec("none", "number of sinusoids (equal frequency bins)", 100)
     omega_min: float = spec("frequency", "lower end of the band; 0: where 0.1 % of the energy lies below", 0.0)
     omega_max: float = spec("frequency", "upper end of the band; 0: where 0.1 % of the energy lies above", 0.0)
     waves_at_cable: bool = spec("none", "also add the sea's particle velocities at the cable (Wang 1971 eq. 26-28)", False)
+    spreading_n: float = spec("none", "directional spreading D(theta) ~ cos^n(theta - heading_deg) within 90 deg of the "
+                                      "heading (DNV-RP-C205 sec. 3.5.8; 2-4 for a wind sea), each component travelling "
+                                      "its own direction drawn from D; 0: long-crested", 0.0)
 
     def __post_init__(self):
         if self.kind not in SPECTRA:
@@ -79,9 +83,7 @@ class SeaSpectrum:
                                  f"must be > omega_min = {self.omega_min} rad/s")
         if not isinstance(self.waves_at_cable, bool):
             raise ParameterError("top_motion.spectrum.waves_at_cable", self.waves_at_cable, "must be true or false")
-        if self.waves_at_cable and self.heading_deg % 360.0 != 0.0:
-            raise ParameterError("top_motion.spectrum.heading_deg", self.heading_deg,
-                                 "must be 0 with waves_at_cable (Wang's plane model has waves travelling in +x)")
+        require_range("top_motion.spectrum.spreading_n", self.spreading_n, 0.0, MAX_SPREADING_N)
 
     @property
     def omega_peak(self) -> float:
@@ -118,6 +120,47 @@ class SeaSpectrum:
         omega = lo + dw * (np.arange(n) + rng.uniform(0.0, 1.0, n))    # one random frequency per bin:
         amp = np.sqrt(2.0 * self.density(omega) * dw)                     # no repetition period 2 pi / dw
         return omega, amp, eps
+
+    @property
+    def long_crested(self) -> bool:
+        """True without directional spreading (every component travels ``heading_deg``)."""
+        return self.spreading_n == 0.0
+
+    def spreading(self, theta_deg) -> np.ndarray:
+        """D(theta) (1/rad) of the cos^n spreading about ``heading_deg`` (DNV-RP-C205 sec. 3.5.8, eq. 3.5.8.4):
+        Gamma(1 + n/2) / (sqrt(pi) Gamma(1/2 + n/2)) cos^n(theta - theta_p) for |theta - theta_p| <= 90 deg, else 0;
+        its integral over theta is 1."""
+        n = self.spreading_n
+        d = np.radians(np.asarray(theta_deg, float) - self.heading_deg)
+        d = (d + math.pi) % (2 * math.pi) - math.pi
+        c = math.exp(math.lgamma(1 + n / 2) - math.lgamma(0.5 + n / 2)) / math.sqrt(math.pi)
+        return np.where(np.abs(d) <= 0.5 * math.pi, c * np.clip(np.cos(d), 0.0, None) ** n, 0.0)
+
+    def direction_quadrature(self, m: int = 64) -> tuple[np.ndarray, np.ndarray]:
+        """(theta_j in deg, w_j summing to 1): Gauss-Legendre nodes over heading +- 90 deg weighted by
+        :func:`spreading`, for the linear response of a spread sea (sum_j w_j |H(omega, theta_j)|^2); the long-crested
+        sea: the heading alone, weight 1."""
+        if self.long_crested:
+            return np.array([self.heading_deg]), np.array([1.0])
+        x, w = np.polynomial.legendre.leggauss(m)
+        theta = self.heading_deg + 90.0 * x
+        wt = w * self.spreading(theta) * 0.5 * math.pi
+        return theta, wt / wt.sum()
+
+    def directions(self) -> np.ndarray:
+        """The direction (deg from +x towards +z) each component of :meth:`components` travels: ``heading_deg`` for
+        a long-crested sea; drawn from :meth:`spreading` by inverse transform sampling of its cumulative on a fine
+        grid (one direction per frequency component, so the realised sea keeps its spectrum and its components stay
+        uncorrelated: Jefferys, "Simulation of wave power spectra", Appl. Ocean Res. 9, 1987), from a random stream
+        of its own (``seed``), so that spreading leaves the frequencies and phases as they were."""
+        n = self.n_components
+        if self.long_crested:
+            return np.full(n, float(self.heading_deg))
+        grid = self.heading_deg + np.linspace(-90.0, 90.0, 4001)
+        dens = self.spreading(grid)
+        cum = np.concatenate([[0.0], np.cumsum(0.5 * (dens[1:] + dens[:-1]) * np.diff(grid))])
+        u = np.random.default_rng([self.seed, 1]).uniform(0.0, 1.0, n)
+        return np.interp(u * cum[-1], cum, grid)
 
     def elevation(self, t) -> np.ndarray:
         """eta(t) at the vessel (m, z up) of this realisation."""
@@ -223,10 +266,20 @@ def top_transfer(rao, omega, wave_heading_deg: float = 0.0) -> tuple[np.ndarray,
 
 def sea_sinusoids(spectrum: SeaSpectrum, rao) -> tuple[tuple, tuple, tuple]:
     """(x, y, z sinusoids) of the top motion realising ``spectrum`` through ``rao`` (see
-    :func:`top_transfer`); an axis the motion does not reach has no terms."""
+    :func:`top_transfer`), each component through the RAO at its own direction in a spread sea
+    (:meth:`SeaSpectrum.directions`); an axis the motion does not reach has no terms."""
     w, a, eps = spectrum.components()
+    if spectrum.long_crested:
+        transfer = top_transfer(rao, w, spectrum.heading_deg)
+    else:
+        if isinstance(rao, MotionRAO):
+            raise ParameterError("top_motion.spectrum.spreading_n", spectrum.spreading_n,
+                                 "must be 0 with a [top_motion.rao] table, which holds surge and heave for one heading: "
+                                 "a spread sea needs [top_motion.vessel] (its tables per heading)")
+        per = [top_transfer(rao, np.array([wk]), float(dk)) for wk, dk in zip(w, spectrum.directions())]
+        transfer = tuple(np.concatenate([p[i] for p in per]) for i in range(3))
     out = []
-    for T in top_transfer(rao, w, spectrum.heading_deg):
+    for T in transfer:
         terms = []
         for wk, ak, ek, Tk in zip(w, a, eps, T):
             amp = float(abs(Tk) * ak)
@@ -237,10 +290,14 @@ def sea_sinusoids(spectrum: SeaSpectrum, rao) -> tuple[tuple, tuple, tuple]:
 
 
 def sea_waves(spectrum: SeaSpectrum, gravity: float) -> tuple:
-    """Wang (1971) eq. 26 wave components of the realised sea (see the module docstring)."""
+    """Wang (1971) eq. 26 wave components of the realised sea (see the module docstring), each travelling its
+    direction (:meth:`SeaSpectrum.directions`; unset for a long-crested sea along +x: a planar scene)."""
     w, a, eps = spectrum.components()
+    along_x = spectrum.long_crested and spectrum.heading_deg % 360.0 == 0.0
+    dirs = [None] * len(w) if along_x else [float(d) for d in spectrum.directions()]
     return tuple(Wave(amplitude=float(ak), length=float(2 * math.pi * gravity / wk**2),
-                      phase=float((math.pi - ek) % (2 * math.pi))) for wk, ak, ek in zip(w, a, eps))
+                      phase=float((math.pi - ek) % (2 * math.pi)), heading_deg=dk)
+                 for wk, ak, ek, dk in zip(w, a, eps, dirs))
 
 
 def _close(u, v) -> bool:
