@@ -96,4 +96,6 @@ def test_auto_follows_the_scenes_numerics_model(rov):
         resolve_model(rov, "segmented", 0, names=("plant_model", "plant_elements"))
     asked = ModelChoice(model="segmented", segments=2, reason="as asked (model = 'segmented', segments = 2)")
     assert resolve_model(rov, asked) is asked
+    with pytest.raises(ParameterError, match="segments"):
+        resolve_model(rov, asked, 8)                           # not dropped: the choice's N is not 8
     assert "another N (2 against the ladder's 4)" in ladder_note(rov, asked)["ladder"]

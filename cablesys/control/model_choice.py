@@ -21,6 +21,7 @@ A stand-in is said in the reason. ``model="wang"`` or ``"segmented"`` runs that 
 from __future__ import annotations
 
 import dataclasses
+import numbers
 
 from ..errors import ParameterError
 
@@ -92,7 +93,7 @@ def resolve_model(scene, model=AUTO, segments: int | None = None, *, names=("mod
         The scene the model will run (one section).
     model : str or ModelChoice
         "auto" (default): the scene's ``[numerics] model`` through the ladder, as ``cablesys run`` runs it; "wang" or
-        "segmented": that model, as asked; a :class:`ModelChoice` is returned as it is.
+        "segmented": that model, as asked; a :class:`ModelChoice` is returned as it is (``segments`` unset or its N).
     segments : int, optional
         N of the node model: with "segmented" (default the scene's ``cable.segments``), or with "auto" in place of
         the ladder's N (refused where the ladder runs Wang's 2-DOF model, which has one straight element).
@@ -103,19 +104,23 @@ def resolve_model(scene, model=AUTO, segments: int | None = None, *, names=("mod
     -------
     ModelChoice
     """
-    if isinstance(model, ModelChoice):
-        return model
     field, n_field = names
+    if isinstance(model, ModelChoice):
+        if segments is not None and segments != model.segments:
+            raise ParameterError(n_field, segments, f"must be unset or {model.segments} with a resolved ModelChoice "
+                                                    f"({model.model}, N = {model.segments})")
+        return model
     if not isinstance(model, str) or model not in CHOICES:
         raise ParameterError(field, model, f"allowed: {', '.join(CHOICES)} (or a built winch model)")
-    if segments is not None and not (isinstance(segments, int) and not isinstance(segments, bool) and segments >= 1):
+    if segments is not None and not (isinstance(segments, numbers.Integral) and not isinstance(segments, bool)
+                                     and segments >= 1):
         raise ParameterError(n_field, segments, "must be an integer >= 1")
     if model != AUTO:
         n = segments if segments is not None or model == "wang" else _scene_segments(scene)
         n = n if n is None or n > 1 or model == "wang" else None      # none: control_model says N is needed
         asked = f"{field} = '{model}'" + (f", {n_field} = {segments}" if segments is not None else "")
         note = "" if segments is not None or n is None else f"; N = {n}, the scene's cable.segments"
-        return ModelChoice(model=model, segments=n, reason=f"as asked ({asked}){note}")
+        return ModelChoice(model=model, segments=None if n is None else int(n), reason=f"as asked ({asked}){note}")
     from ..ladder.auto import AS_BUILT
     if getattr(scene.numerics, "model", AUTO) == AS_BUILT:
         n = _scene_segments(scene)
@@ -137,30 +142,9 @@ def resolve_model(scene, model=AUTO, segments: int | None = None, *, names=("mod
     if choice.model == "wang":
         raise ParameterError(n_field, segments, f"must be unset for this scene: {choice.reason}, one straight "
                                                  f"element (ask for {field}='segmented' to run N elements)")
-    return dataclasses.replace(choice, segments=segments,
-                               reason=f"{choice.reason}; N = {segments} as asked ({n_field}), not the ladder's "
+    return dataclasses.replace(choice, segments=int(segments),
+                               reason=f"{choice.reason}; N = {segments} as asked ({n_field}) in place of "
                                       f"{choice.segments}")
-
-
-def plant_choice(scene, model: str, segments):
-    """(model, N, reason) of :func:`resolve_model`: the closed loops' plant of ``cablesys control``.
-
-    Parameters
-    ----------
-    scene : Scene
-        The scene.
-    model : str
-        "auto", "wang" or "segmented".
-    segments : int or None
-        N of the node model (:func:`resolve_model`).
-
-    Returns
-    -------
-    tuple
-        (model, N or None, reason).
-    """
-    c = resolve_model(scene, model, segments)
-    return c.model, c.segments, c.reason
 
 
 def ladder_note(scene, choice: ModelChoice) -> dict:
