@@ -1,8 +1,8 @@
 """Design through the nonlinear time domain: the line's AE and C_I tuned on realised seas.
 
 The plant is the design's winch model at zero payout (:mod:`.design_problem`: Wang's 2-DOF cable, Wang 1971 eq.
-47-48 with the drag of eq. 32-45, or the segmented node model; ``cablesys control --design`` takes the model
-ladder's choice for the scene), rolled out by the classical RK4 from the rest state of each candidate design, in
+47-48 with the drag of eq. 32-45, or the segmented node model; by default, in the API as in ``cablesys control
+--design``, the winch form of the model the ladder chooses for the scene, :mod:`.model_choice`), rolled out by the classical RK4 from the rest state of each candidate design, in
 each of ``seeds`` realisations of the scene's sea (:mod:`.design_rollout`). The NLP over theta = (AE, C_I),
 normalized to z in [0, 1]^2 on the log of the ``[design]`` bounds:
 

@@ -1,7 +1,8 @@
 """The time-domain design problem of a scene (:mod:`.design`): its model, its seas and its limits.
 
 The plant is a winch model of the control (:func:`cablesys.control.payout.control_model`: Wang's 2-DOF winch,
-:mod:`cablesys.model.winch`, or the segmented node model's, :mod:`cablesys.model.segmented_winch_control`) held at
+:mod:`cablesys.model.winch`, or the segmented node model's, :mod:`cablesys.model.segmented_winch_control`; by
+default the ladder's choice for the scene, :func:`.model_choice.resolve_model`) held at
 zero payout (w = alpha = 0, L = l_0: the fixed-length model exactly), rolled out by the classical RK4 of
 :mod:`.kernels` (``substeps`` steps per ``dt``) from the rest state of each candidate design, in each of ``seeds``
 realisations of the scene's sea (:mod:`cablesys.scene.sea`: same spectrum, phases from ``default_rng(seed)``).
