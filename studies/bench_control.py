@@ -10,7 +10,8 @@ Measured in one run:
   time (a cold cache: code generation and compile; a warm one: hashing and loading);
 - that optimum re-simulated by CVODES on a 4x finer output grid: the largest relative
   constraint violation;
-- closed loop on a finer plant (the scene's 10 drag segments; ``--quick``: 4): PI/feed-forward
+- closed loop on a finer plant (Wang's 2-DOF winch, asked for by name, with the scene's 10 drag segments;
+  ``--quick``: 4): PI/feed-forward
   AHC, MPC with a 20 s horizon (``--quick``: 10 s) and preview, and MPC without preview (the top
   motion predicted by an AR model of its measured past), both by the Gauss-Newton real-time
   iteration: heave in dB against the uncompensated plant run, mean time per MPC step and the
@@ -145,7 +146,7 @@ def gauss_newton_breakdown(scene, limits, t0: float, horizon: float, repeats: in
     """Least mean time (ms, of 5 rounds of ``repeats``) of the parts of one Gauss-Newton MPC step on the 2-DOF
     controller model at the rest state, horizon starting at t0: the kernels mapped over the horizon (roll-out
     and linearization), the whole linearization with the condensing, and the QP."""
-    prob = heave_problem(scene.with_numerics(drag_segments=1), limits, dt=0.5)
+    prob = heave_problem(scene.with_numerics(drag_segments=1), limits, dt=0.5, model="wang")
     n_h = int(round(horizon / prob.dt))
     gn = GaussNewtonMPC(prob, n_h)
     E, U, x = prob.exogenous(t0 + prob.dt * np.arange(n_h + 1)), np.zeros(n_h), prob.x_rest
@@ -171,7 +172,7 @@ def prediction_error(scene, limits, duration: float, horizon: float, leads=(1.0,
     """The no-preview MPC's top-motion prediction (``ARPredictor``, as in the closed loop: samples at
     dt = 0.5 s from t = 0) against the record: rms error of y_s (m) at each lead time (s) over the steps
     from duration / 4 on, and the rms of y_s itself over the same steps."""
-    prob = heave_problem(scene.with_numerics(drag_segments=1), limits, dt=0.5)
+    prob = heave_problem(scene.with_numerics(drag_segments=1), limits, dt=0.5, model="wang")
     n_h = int(round(horizon / prob.dt))
     pred, errs, ys = ARPredictor(prob), {lead: [] for lead in leads}, []
     for k in range(int(round(duration / prob.dt))):
@@ -197,13 +198,14 @@ def closed_loop_mpc(scene, limits, quick: bool) -> dict:
     Hessian, to convergence) as the reference of quality and speed in the same run."""
     duration, horizon = (30.0, 10.0) if quick else (120.0, 20.0)
     loop_scene = scene.with_numerics(duration=duration + horizon)
-    kw = dict(duration=duration, horizon=horizon, dt=0.5, plant_segments=4 if quick else None)
+    kw = dict(duration=duration, horizon=horizon, dt=0.5, plant_segments=4 if quick else None, plant_model="wang")
     load0 = os.getloadavg()[0]
     cmp = compare_compensation(loop_scene, limits, strategies=("none", "pi", "mpc", "mpc_no_preview"), **kw)
     load1 = os.getloadavg()[0]
     ref = compare_compensation(loop_scene, limits, strategies=("none", "mpc"), mpc_scheme="ipopt", **kw)
     m, r = cmp.metrics, ref.metrics["mpc"]
-    compiled = interval_kernels(heave_problem(scene.with_numerics(drag_segments=1), limits, dt=0.5).interval)
+    compiled = interval_kernels(heave_problem(scene.with_numerics(drag_segments=1), limits, dt=0.5,
+                                              model="wang").interval)
     compiled = bool(compiled is not None and compiled.compiled)
     return dict(
         mpc_step_breakdown_ms=gauss_newton_breakdown(loop_scene, limits, duration, horizon),
@@ -265,7 +267,9 @@ def node_plant_mpc(scene, limits, quick: bool, segments: int = 4) -> dict:
                 node_plant_mpc_realtime_factor=m["realtime_factor"], node_plant_mpc_success=cmp.success,
                 node_plant_mpc_message=cmp.message, node_plant_mpc_segments=segments,
                 node_plant_mpc_closed_loop_s=duration, node_plant_mpc_horizon_s=horizon,
-                node_plant_mpc_models={"plant": cmp.stats["plant_model"], "controller": cmp.stats["controller_model"]},
+                node_plant_mpc_models={"plant": cmp.stats["plant_model"], "controller": cmp.stats["controller_model"],
+                                       "plant_reason": cmp.stats["plant_model_reason"],
+                                       "controller_reason": cmp.stats["controller_model_reason"]},
                 node_plant_mpc_metrics=cmp.metrics)
 
 
@@ -340,7 +344,7 @@ def main(argv=None) -> int:
     doc: dict = {"quick": quick, "scene": scene.name, "record_s": record, "limits": {"speed_m_s": 1.0,
                                                                                      "acceleration_m_s2": 1.0}}
 
-    problem = heave_problem(ctrl, limits, dt=0.5)
+    problem = heave_problem(ctrl, limits, dt=0.5, model="wang")
     t0 = time.perf_counter()
     kernels = interval_kernels(problem.interval)       # compiled once per structure (a cold cache: the build)
     doc.update(kernels_compiled=bool(kernels is not None and kernels.compiled),

@@ -42,7 +42,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import parse_args, write_json
 
-from cablesys.control.cli import plant_choice
+from cablesys.control import resolve_model
 from cablesys.control.design import (design_functions, design_kernels, evaluate_design, resimulate_design,
                                      time_design_problem, time_domain_design)
 from cablesys.control.design_figure import plot_time_design
@@ -135,10 +135,12 @@ def main(argv=None) -> int:
     if quick:
         scene = scene.with_numerics(drag_segments=1)
     seeds, record = ((1, 2), 90.0) if quick else ((1, 2, 3), 600.0)
-    kind, n, why = plant_choice(scene, "auto", None)           # the ladder's model, as cablesys control --design
+    # the ladder's model for the scene with the record's duration, as time_design_problem's default and
+    # cablesys control --design take it
+    choice = resolve_model(scene.with_numerics(duration=record))
+    model, why = {"model": choice}, choice.reason
     if quick:             # the quick run (the test's, in CasADi's virtual machine) on Wang's model
-        kind, n, why = "wang", None, f"quick: Wang's 2-DOF model in place of the ladder's ({why})"
-    model = {"model": kind, "segments": n}
+        model, why = {"model": "wang"}, f"quick: Wang's 2-DOF model in place of the ladder's ({why})"
     load0 = os.getloadavg()[0]
     t0 = time.perf_counter()
     problem = time_design_problem(scene, seeds=seeds, duration=record, dt=0.5, **model)

@@ -3,10 +3,11 @@
 1. Imports point down the ladder (the table ``LAYERS`` below is the one place it is written):
    foundation (units, errors, results, reader, tables, statistics, outputs, atomic, compiled,
    messages, integration, profiles) < scene < model < statics
-   < analyses (simulate, linear, and the slack and towed models) < design (design, ladder,
-   verdict, export, ...) < workflows over any analysis (sweep) < plots < cli. A module may import its
-   own layer only inside its own subpackage (``simulate`` does not import ``linear``: what
-   both need lives in ``statics``). Lazy imports inside functions count: a dependency is a
+   < analyses (simulate, linear, and the slack and towed models) < ladder (which model a scene
+   needs, over the analyses) < design (isolation, control, verdict, export, ...: the control
+   takes the ladder's model, as every door does) < workflows over any analysis (sweep) < plots
+   < cli. A module may import its own layer only inside its own subpackage (``simulate`` does
+   not import ``linear``: what both need lives in ``statics``). Lazy imports inside functions count: a dependency is a
    dependency. A subpackage's ``__init__`` is its facade and may re-export any module of its
    own subpackage (``cablesys.slack`` exports its plots).
 2. No import cycles: the graph of every ``import`` in the package (module level and inside
@@ -36,7 +37,8 @@ LAYERS = [
     ("model", ("cablesys.model",)),
     ("statics", ("cablesys.statics",)),
     ("analyses", ("cablesys.time_domain", "cablesys.linear", "cablesys.slack", "cablesys.towed")),
-    ("design", ("cablesys.isolation", "cablesys.control", "cablesys.ladder", "cablesys.verdict", "cablesys.examples", "cablesys.export")),
+    ("ladder", ("cablesys.ladder",)),
+    ("design", ("cablesys.isolation", "cablesys.control", "cablesys.verdict", "cablesys.examples", "cablesys.export")),
     ("workflows", ("cablesys.sweeps",)),
     ("plots", ("cablesys.plots",)),
     ("cli", ("cablesys.cli", "cablesys.__main__", "cablesys.commands")),

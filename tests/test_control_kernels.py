@@ -54,14 +54,14 @@ def test_restricted_derivatives_equal_casadi_ad():
 
 
 def test_compiled_kernels_find_the_same_optimum(quick_compile):
-    """The 30 s ROV-lift optimum (1 m/s, 1 m/s^2 winch, JONSWAP sea) through the compiled kernels and
+    """The 30 s ROV-lift optimum (Wang's 2-DOF winch; 1 m/s, 1 m/s^2 winch, JONSWAP sea) through the compiled kernels and
     their restricted derivatives equals the virtual machine's (inlined SX, CasADi's full AD) to 1e-8 in
     the objective, in the same number of IPOPT iterations; the library is keyed by structure: a second
     problem with other numbers (another tension weight, another speed limit) loads the same kernels."""
     scene = load_scene(example_path("rov-lift")).with_numerics(drag_segments=1, duration=30.0)
-    pr = heave_problem(scene, WinchLimits(speed=1.0, acceleration=1.0), dt=0.5)
+    pr = heave_problem(scene, WinchLimits(speed=1.0, acceleration=1.0), dt=0.5, model="wang")
     kernels = interval_kernels(pr.interval)
     assert kernels is not None and kernels.compiled, kernels and kernels.note
     assert_compiled_optimum_equals_vm(pr, 30.0, atol=1e-6)
-    other = heave_problem(scene, WinchLimits(speed=0.8, acceleration=1.0), dt=0.5, tension_weight=0.1)
+    other = heave_problem(scene, WinchLimits(speed=0.8, acceleration=1.0), dt=0.5, tension_weight=0.1, model="wang")
     assert interval_kernels(other.interval).library == kernels.library

@@ -29,7 +29,7 @@ def test_gauss_newton_iterated_reaches_the_full_nlp_optimum():
     converges to the KKT point IPOPT finds with exact Hessians on the same NLP (constrain_first=False):
     two independent routes to one optimum. Tolerance 1e-5 of the largest control, well above IPOPT's 1e-8
     and the Gauss-Newton iteration's linear rate after 15 steps."""
-    prob = heave_problem(_scene(), WinchLimits(speed=0.5, acceleration=1.0), dt=0.5)
+    prob = heave_problem(_scene(), WinchLimits(speed=0.5, acceleration=1.0), dt=0.5, model="wang")
     N, t0 = 16, 20.0
     E = prob.exogenous(t0 + prob.dt * np.arange(N + 1))
     x0 = prob.x_rest + np.r_[0.01, 0.05, 0.0, 0.02, 0.0, 0.1]
@@ -51,7 +51,8 @@ def test_real_time_iteration_closed_loop_equals_ipopt_mpc():
     reduction to 0.1 dB: the real-time iteration tracks the optimum as the horizon recedes."""
     sc = _scene(ramp=5.0, duration=30.0)
     runs = {scheme: compare_compensation(sc, WinchLimits(speed=1.0, acceleration=1.0), duration=12.0, horizon=4.0,
-                                         dt=0.5, plant_segments=1, strategies=("none", "mpc"), mpc_scheme=scheme)
+                                         dt=0.5, plant_segments=1, strategies=("none", "mpc"), mpc_scheme=scheme,
+                                         plant_model="wang")
             for scheme in ("ipopt", "gauss-newton")}
     ref, rti = runs["ipopt"], runs["gauss-newton"]
     assert ref.success and rti.success, (ref.message, rti.message)
@@ -66,7 +67,7 @@ def test_ar_prediction_of_a_sinusoid_matches_it_over_the_horizon():
     predicts its position 20 s ahead to 1e-4 m of a 1 m amplitude, and the cubic spline through the
     samples gives the rate and acceleration to its interpolation error, O((omega h)^3) and O((omega h)^2)
     relative with omega h = 0.31: 1e-2 a omega and 5e-2 a omega^2."""
-    prob = heave_problem(_scene(ramp=0.0), WinchLimits(), dt=0.5)
+    prob = heave_problem(_scene(ramp=0.0), WinchLimits(), dt=0.5, model="wang")
     pred = ARPredictor(prob, order=8)
     k, n_h = 120, 40
     for j in range(k + 1):
@@ -95,7 +96,7 @@ def test_compiled_gauss_newton_kernel_equals_the_virtual_machine(quick_compile):
     speed limit and tension weight) loads the same compiled kernel: the cache is keyed by structure."""
     from cablesys.control.kernels import gauss_newton_kernel
     sc = load_scene(example_path("rov-lift")).with_numerics(drag_segments=1, duration=30.0)
-    prob = heave_problem(sc, WinchLimits(speed=1.0, acceleration=1.0), dt=0.5)
+    prob = heave_problem(sc, WinchLimits(speed=1.0, acceleration=1.0), dt=0.5, model="wang")
     N = 12
     E = prob.exogenous(10.0 + prob.dt * np.arange(N + 1))
     x0, U = prob.x_rest, 0.1 * np.sin(np.arange(N))
@@ -108,5 +109,5 @@ def test_compiled_gauss_newton_kernel_equals_the_virtual_machine(quick_compile):
         assert np.array_equal(np.isinf(a), np.isinf(b))            # the one-sided rows' infinite bounds
         a, b = a[np.isfinite(b)], b[np.isfinite(b)]
         np.testing.assert_allclose(a, b, rtol=1e-9, atol=1e-9 * np.max(np.abs(b)))
-    other = heave_problem(sc, WinchLimits(speed=0.8, acceleration=1.0), dt=0.5, tension_weight=0.1)
+    other = heave_problem(sc, WinchLimits(speed=0.8, acceleration=1.0), dt=0.5, tension_weight=0.1, model="wang")
     assert gauss_newton_kernel(other) is gauss_newton_kernel(prob)

@@ -27,7 +27,7 @@ def _sine_scene(duration=100.0, light=False):
 
 @pytest.fixture(scope="module")
 def light_optimum():
-    pr = heave_problem(_sine_scene(60.0, light=True), WinchLimits(), control_weight=1e-9)
+    pr = heave_problem(_sine_scene(60.0, light=True), WinchLimits(), control_weight=1e-9, model="wang")
     return pr, optimal_payout(pr, 60.0)
 
 
@@ -74,7 +74,8 @@ def test_speed_limit_residual_matches_the_closed_form_bound():
     over whole periods is the rate-limited bound (the stiff rope's axial mode, 6 rad/s, makes
     the quasi-static bound exact to (0.63/6.3)^2 ~ 1 %)."""
     w_max = 0.3
-    pr = heave_problem(_sine_scene(100.0, light=True), WinchLimits(speed=w_max), control_weight=1e-9)
+    pr = heave_problem(_sine_scene(100.0, light=True), WinchLimits(speed=w_max), control_weight=1e-9,
+                       model="wang")
     res = optimal_payout(pr, 100.0)
     assert res.success, res.message
     assert res.speed_max_m_s <= w_max * (1 + 1e-6)
@@ -89,7 +90,7 @@ def test_speed_limit_residual_matches_the_closed_form_bound():
 
 def test_working_load_below_static_weight_is_refused():
     with pytest.raises(ParameterError, match="working_load"):
-        heave_problem(_sine_scene(), WinchLimits(working_load=1.0e4))     # the rope holds ~2.4e4 N at rest
+        heave_problem(_sine_scene(), WinchLimits(working_load=1.0e4), model="wang")   # the rope holds ~2.4e4 N at rest
 
 
 @pytest.mark.parametrize("field", ["speed", "acceleration", "power"])
@@ -99,7 +100,7 @@ def test_zero_limit_is_refused(field):
 
 
 def test_horizon_longer_than_the_record_is_refused():
-    pr = heave_problem(_sine_scene(100.0), WinchLimits())
+    pr = heave_problem(_sine_scene(100.0), WinchLimits(), model="wang")
     with pytest.raises(ParameterError, match="horizon"):
         optimal_payout(pr, 150.0)
 
@@ -108,7 +109,7 @@ def test_unreachable_tension_floor_reports_the_constraint():
     """A floor at 98 % of the static tension with a 0.05 m/s winch: the 1 m heave must slacken the
     rope below it, so the result is infeasible and names the tension floor."""
     sc = _sine_scene(40.0)
-    pr = heave_problem(sc, WinchLimits(speed=0.05, tension_floor=0.98 * 23887.0))
+    pr = heave_problem(sc, WinchLimits(speed=0.05, tension_floor=0.98 * 23887.0), model="wang")
     res = optimal_payout(pr, 40.0, max_iter=150)
     assert not res.success
     assert res.violated == "tension floor (no slack)", res.message

@@ -72,7 +72,7 @@ def test_design_jacobian_matches_central_differences(rov, model, segments, durat
 
 
 def test_rov_design_sits_on_the_strain_limit_and_holds_when_rerun(rov):
-    problem = time_design_problem(rov, seeds=(1,), duration=90.0)
+    problem = time_design_problem(rov, seeds=(1,), duration=90.0, model="wang")
     res = time_domain_design(problem)
     assert res.success, res.message
     assert res.stats["iterations"] < 100 and res.stats["starts"] == 2
@@ -146,7 +146,7 @@ def test_bad_input(rov):
     with pytest.raises(ParameterError, match="duration"):
         time_design_problem(rov, seeds=(1,), duration=62.0)          # window [60 s, 62 s]: too short
     with pytest.raises(ParameterError, match="working_load"):
-        time_design_problem(rov.replace(design={**rov.design, "working_load": [1000.0]}), duration=80.0)
+        time_design_problem(rov.replace(design={**rov.design, "working_load": [1000.0]}), duration=80.0, model="wang")
     with pytest.raises(ParameterError, match="ae_bounds"):
         time_design_problem(rov.replace(design={**rov.design, "ae_bounds": [[1e4, 9e7]]}), duration=80.0)
 
@@ -192,19 +192,7 @@ def test_control_design_door_writes_json_and_png(tmp_path, capsys):
     printed = capsys.readouterr().out
     assert "frequency-domain design" in printed
     # which model ran, and the ladder's own choice for the scene: the straight cable bows in the current
-    assert doc["models"]["design"].startswith("wang 2-DOF") and "as asked (--model)" in doc["models"]["design"]
+    assert doc["models"]["design"].startswith("wang 2-DOF") and "as asked (model = 'wang')" in doc["models"]["design"]
+    assert doc["models"]["design_choice"] == {"model": "wang", "segments": None, "reason": "as asked (model = 'wang')"}
+    assert td["model_reason"] == "as asked (model = 'wang')"                # the result's summary says why too
     assert doc["models"]["ladder_choice"]["name"] != "wang" and "NOT the control's model" in printed
-
-
-def test_design_door_takes_the_ladders_model_by_default():
-    """``cablesys control SCENE --design`` without --model designs on the model the ladder chooses for the scene:
-    on the packaged ROV lift N = 4 elements, the quasi-static cable where the compiled rk23 pair makes it the
-    cheaper rung (else the node model itself), for which the control runs the node model at that N (the
-    quasi-static form has no winch), and says so."""
-    from cablesys.control.cli import plant_choice
-    scene = load_scene(example_path("rov-lift"))
-    model, n, why = plant_choice(scene, "auto", None)
-    assert (model, n) == ("segmented", 4)
-    rung = why.split(":")[0]
-    assert rung in ("the ladder's choice is quasi-static, N = 4", "the ladder's choice is segmented, N = 4")
-    assert ("stands for it" in why) == ("quasi-static" in rung)

@@ -6,6 +6,7 @@ import math
 import sys
 
 from ..errors import ParameterError
+from .model_choice import CHOICES, ladder_note, resolve_model
 
 
 def register(sub) -> None:
@@ -35,12 +36,14 @@ def register(sub) -> None:
     p.add_argument("--power", type=float, default=math.inf, help="winch power limit [W] (default: none)")
     p.add_argument("--plant-segments", type=int, default=None,
                    help="drag segments of the plant's cable (default: the scene's numerics.drag_segments)")
-    p.add_argument("--model", default="auto", choices=("auto", "wang", "segmented"),
+    p.add_argument("--model", default="auto", choices=CHOICES,
                    help="the model every strategy plays on (the plant; with --design the design's model): Wang's "
-                        "2-DOF winch, the segmented node model's winch (--segments N), or auto (default): the model "
-                        "ladder's choice for the uncompensated scene")
+                        "2-DOF winch, the segmented node model's winch (--segments N), or auto (default): the winch "
+                        "form of the model cablesys run runs for the scene (its [numerics] model, the ladder's choice "
+                        "by default), as the Python API's model='auto'")
     p.add_argument("--segments", type=int, default=None,
-                   help="elements N of a segmented plant (default: the ladder's N, else the scene's cable.segments)")
+                   help="elements N of a segmented plant (default: the ladder's N, else the scene's cable.segments; "
+                        "with auto, in place of the ladder's N)")
     p.add_argument("--controller-model", default="wang", choices=("wang", "segmented"),
                    help="the MPC's and the open-loop optimum's model, not finer than the plant (default wang: the "
                         "model mismatch against a node-model plant)")
@@ -87,16 +90,17 @@ def run_design(args) -> int:
     scene = load_scene(args.scene)
     settings = {"seeds": seeds, "dt": args.design_dt, "record": args.record, "resimulate": not args.no_resimulate,
                 "model": args.model, "segments": args.segments}
-    model, n, why = plant_choice(scene, args.model, args.segments)
-    problem = time_design_problem(scene, seeds=seeds, duration=args.record, dt=args.design_dt, model=model,
-                                  segments=n)
+    problem = time_design_problem(scene, seeds=seeds, duration=args.record, dt=args.design_dt, model=args.model,
+                                  segments=args.segments)
     outdir = OutputDir(args.out, "control", {"scene": scene, "time_design": settings},
                        overwrite=args.overwrite, owned=("time_design.json",))
     with outdir.start(scene=scene.name):
         res = time_domain_design(problem)
         doc = {"scene": scene.name, "settings": settings,
-               "models": {"design": f"{problem.describe()}: the design's model ({why}), re-run by the plain time "
-                                    "domain on the same model", **_ladder(scene, model)},
+               "models": {"design": f"{problem.describe()}: the design's model ({problem.model_reason}), re-run by "
+                                    "the plain time domain on the same model",
+                          "design_choice": {k: v for k, v in problem.model_choice.as_dict().items() if k != "ladder"},
+                          **ladder_note(scene, problem.model_choice)},
                "time_domain": res.summary()}
         fd = frequency_design(scene, settings_from_dict(scene.design))
         theta_f = [float(v) for v in fd.values]
@@ -132,53 +136,20 @@ def run_design(args) -> int:
     return 0 if res.success else 1
 
 
-def _models(scene, res, why: str) -> dict:
-    """Which models ran and why, and what the model ladder would run for the uncompensated scene: the plant
-    (Wang's 2-DOF winch, :mod:`cablesys.model.winch`, or the node model's, :mod:`cablesys.model.segmented_winch_control`)
-    on which every strategy plays, and the controller (the MPC's and the open-loop optimum's model)."""
+def _models(scene, res, choice) -> dict:
+    """Which models ran and why, and what the model ladder runs for the uncompensated scene: the plant (Wang's 2-DOF
+    winch, :mod:`cablesys.model.winch`, or the node model's, :mod:`cablesys.model.segmented_winch_control`) on which
+    every strategy plays, its :class:`.model_choice.ModelChoice` ``choice``, and the controller (the MPC's and the
+    open-loop optimum's model)."""
     st = res.stats
     out = {"controller": f"{st['controller_model']}, {st.get('controller_segments', 1)} drag segment(s), RK4 "
-                         f"{st['controller_substeps']} steps per interval: the open-loop optimum's and the MPC's model",
+                         f"{st['controller_substeps']} steps per interval: the open-loop optimum's and the MPC's model, "
+                         f"{st['controller_model_reason']}",
            "plant": f"{st['plant_model']}, {st.get('plant_segments')} drag segments, CVODES: the nonlinear plant of "
-                    f"every strategy, the passive compensator's with its piston coordinate ({why})",
+                    f"every strategy, the passive compensator's with its piston coordinate ({choice.reason})",
+           "plant_choice": {k: v for k, v in choice.as_dict().items() if k != "ladder"},
            "same_plant": True}
-    return {**out, **_ladder(scene, st["plant_model"])}
-
-
-def _ladder_choice(scene):
-    from ..ladder.auto import decide
-    return decide(scene, "auto", None, None)[0]
-
-
-def plant_choice(scene, model: str, segments):
-    """(model, N, why) of the closed loops' plant: ``model`` "auto" takes the ladder's choice for the
-    uncompensated scene (Wang's rung: the 2-DOF winch; any rung with N elements: the node model's winch at N)."""
-    if model != "auto":
-        return model, segments, "as asked (--model)"
-    choice = _ladder_choice(scene)
-    if choice.name == "wang":
-        return "wang", None, f"the ladder's choice: {choice.reason.split('; ')[0]}"
-    n = segments or max(choice.segments, 2)
-    stand_in = (f"; the node model at N = {n} stands for it (the control has no winch in the quasi-static form, "
-                "whose stiff axial modes it eliminates)" if choice.name == "quasi-static" else "")
-    return "segmented", n, (f"the ladder's choice is {choice.name}, N = {choice.segments}: "
-                            f"{choice.reason.split('; ')[0]}{stand_in}")
-
-
-def _ladder(scene, plant: str = "wang") -> dict:
-    """What the model ladder would run for the uncompensated scene, and why, against the control's model (the
-    plant's in ``cablesys control``, the design's with ``--design``)."""
-    out = {}
-    choice = _ladder_choice(scene)
-    seg = f", N = {choice.segments}" if choice.segments > 1 else ""
-    agree = (choice.name == "wang") == plant.startswith("wang")
-    same = ": the control's model" if choice.name != "quasi-static" else (
-        ": the control runs the node model in its place (the same elements with their axial modes kept)")
-    out["ladder"] = (f"{choice.name}{seg} for the uncompensated scene"
-                     + (same if agree else ": NOT the control's model, whose results then carry "
-                        "that model's error") + f" ({choice.reason.split('; ')[0]})")
-    out["ladder_choice"] = choice.as_dict()
-    return out
+    return {**out, **ladder_note(scene, choice)}
 
 
 def run(args) -> int:
@@ -187,7 +158,7 @@ def run(args) -> int:
     from ..outputs import OutputDir
     from ..scene import load_scene
     from .limits import WinchLimits
-    from .mpc import STRATEGIES, compare_compensation
+    from .mpc import STRATEGIES, compare_compensation, plant_scene
     from .plots import plot_heave_tension, plot_winch
 
     strategies = tuple(s.strip() for s in args.strategies.split(",") if s.strip())
@@ -201,16 +172,16 @@ def run(args) -> int:
                 "plant_segments": args.plant_segments, "mpc_scheme": args.mpc_scheme, "model": args.model,
                 "segments": args.segments, "controller_model": args.controller_model,
                 "controller_segments": args.controller_segments}
-    plant_model, plant_n, why = plant_choice(scene, args.model, args.segments)
+    plant = resolve_model(plant_scene(scene, args.plant_segments), args.model, args.segments)   # before any work
     outdir = OutputDir(args.out, "control", {"scene": scene, "control": settings},
                        overwrite=args.overwrite, owned=("control.json",))
     with outdir.start(scene=scene.name):
         res = compare_compensation(scene, limits, duration=args.duration, horizon=args.horizon, dt=args.dt,
                                    plant_segments=args.plant_segments, strategies=strategies,
-                                   mpc_scheme=args.mpc_scheme, plant_model=plant_model, plant_elements=plant_n,
+                                   mpc_scheme=args.mpc_scheme, plant_model=plant,
                                    controller_model=args.controller_model,
                                    controller_elements=args.controller_segments)
-        models = _models(scene, res, why)
+        models = _models(scene, res, plant)
         outdir.write_json("control.json", {"scene": scene.name, "settings": settings, "models": models,
                                            **res.summary()})
         title = f"{scene.name}: heave compensation, |w| <= {args.speed:g} m/s, |w'| <= {args.acceleration:g} m/s^2"

@@ -1,8 +1,8 @@
 """Design through the nonlinear time domain: the line's AE and C_I tuned on realised seas.
 
 The plant is the design's winch model at zero payout (:mod:`.design_problem`: Wang's 2-DOF cable, Wang 1971 eq.
-47-48 with the drag of eq. 32-45, or the segmented node model; ``cablesys control --design`` takes the model
-ladder's choice for the scene), rolled out by the classical RK4 from the rest state of each candidate design, in
+47-48 with the drag of eq. 32-45, or the segmented node model; by default, in the API as in ``cablesys control
+--design``, the winch form of the model the ladder chooses for the scene, :mod:`.model_choice`), rolled out by the classical RK4 from the rest state of each candidate design, in
 each of ``seeds`` realisations of the scene's sea (:mod:`.design_rollout`). The NLP over theta = (AE, C_I),
 normalized to z in [0, 1]^2 on the log of the ``[design]`` bounds:
 
@@ -92,7 +92,8 @@ class TimeDesignResult(ResultBase):
     ``tension_floor`` N, ``heave`` m from the window mean, per seed: arrays (seeds, N)); ``constraints``
     {row: (value, upper bound)} at the optimum and at the baseline; ``history`` IPOPT's per-iteration
     objective and primal infeasibility; ``model`` the design's model
-    (:meth:`.design_problem.TimeDesignProblem.describe`) and ``floor_output`` the model's output ``tension_floor`` is (Wang's ``tension_mid``, F_bc; the node model's
+    (:meth:`.design_problem.TimeDesignProblem.describe`), ``model_reason`` why it runs
+    (:attr:`.design_problem.TimeDesignProblem.model_reason`) and ``floor_output`` the model's output ``tension_floor`` is (Wang's ``tension_mid``, F_bc; the node model's
     ``tension_least``)."""
 
     theta: tuple
@@ -117,6 +118,7 @@ class TimeDesignResult(ResultBase):
     stats: dict = dataclasses.field(default_factory=dict)
     model: str = ""
     floor_output: str = "tension_mid"
+    model_reason: str = ""
 
     VARIABLES: ClassVar[dict] = {
         "heave": ("m", "body heave from its window mean (down +), design"),
@@ -141,7 +143,7 @@ class TimeDesignResult(ResultBase):
             ds[n].attrs.update(units=self.VARIABLES[n][0], long_name=self.VARIABLES[n][1])
         ds["time"].attrs.update(units="s", long_name="time")
         ds.attrs.update(ae_n=self.theta[0], internal_damping_n_s=self.theta[1], model=self.model,
-                        floor_output=self.floor_output)
+                        model_reason=self.model_reason, floor_output=self.floor_output)
         return ds
 
     def summary(self) -> dict:
@@ -154,7 +156,7 @@ class TimeDesignResult(ResultBase):
                 "constraints": {k: {"value": v, "bound": b} for k, (v, b) in self.constraints.items()},
                 "constraints_baseline": {k: {"value": v, "bound": b} for k, (v, b) in self.constraints_baseline.items()},
                 "seeds": list(self.seeds), "limits": self.limits, "stats": self.stats, "model": self.model,
-                "floor_output": self.floor_output}
+                "model_reason": self.model_reason, "floor_output": self.floor_output}
 
 
 def _evaluate(problem, fns, z):
@@ -257,7 +259,8 @@ def time_domain_design(problem: TimeDesignProblem, *, starts=None, max_iter: int
                             heave=centre(Y[:, 0]), heave_baseline=centre(Yb[:, 0]), tension_top=Y[:, 3],
                             tension_top_baseline=Yb[:, 3], tension_floor=Y[:, 2], tension_floor_baseline=Yb[:, 2],
                             history=best["history"], limits=limits, status=best["status"], success=success,
-                            message=message, stats=stats, model=problem.describe(), floor_output=problem.floor_output)
+                            message=message, stats=stats, model=problem.describe(), floor_output=problem.floor_output,
+                            model_reason=problem.model_reason)
 
 
 def evaluate_design(problem: TimeDesignProblem, theta) -> dict:

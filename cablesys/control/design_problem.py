@@ -1,7 +1,8 @@
 """The time-domain design problem of a scene (:mod:`.design`): its model, its seas and its limits.
 
 The plant is a winch model of the control (:func:`cablesys.control.payout.control_model`: Wang's 2-DOF winch,
-:mod:`cablesys.model.winch`, or the segmented node model's, :mod:`cablesys.model.segmented_winch_control`) held at
+:mod:`cablesys.model.winch`, or the segmented node model's, :mod:`cablesys.model.segmented_winch_control`; by
+default the ladder's choice for the scene, :func:`.model_choice.resolve_model`) held at
 zero payout (w = alpha = 0, L = l_0: the fixed-length model exactly), rolled out by the classical RK4 of
 :mod:`.kernels` (``substeps`` steps per ``dt``) from the rest state of each candidate design, in each of ``seeds``
 realisations of the scene's sea (:mod:`cablesys.scene.sea`: same spectrum, phases from ``default_rng(seed)``).
@@ -19,6 +20,7 @@ import numpy as np
 from ..errors import ParameterError, require_positive
 from ..model.params import ParameterLayout
 from ..model.top_motion import top_motion_function
+from .model_choice import ModelChoice, resolve_model
 from .payout import (RK4_STABILITY, RK4_STEP_LAMBDA, control_model, describe_model, fastest_mode, floor_output,
                      heave_problem, model_rest_state)
 
@@ -44,7 +46,8 @@ class TimeDesignProblem:
 
     ``scene`` is the scene of the design's model (its ``cable.segments`` the model's N); ``exogenous`` holds,
     per seed, the top motion at the RK4 stage times of every interval
-    (:meth:`cablesys.control.payout.HeaveProblem.exogenous`, shape (N, 7 (2 substeps + 1))).
+    (:meth:`cablesys.control.payout.HeaveProblem.exogenous`, shape (N, 7 (2 substeps + 1))); ``model_choice`` says
+    which model the design runs and why (:class:`.model_choice.ModelChoice`: the ladder's choice by default).
     """
 
     scene: object
@@ -63,6 +66,12 @@ class TimeDesignProblem:
     rho: float
     theta_nominal: tuple                # the scene's (AE, C_I)
     fastest_mode: float = math.nan      # max |lambda| over the design box's corners (1/s)
+    model_choice: ModelChoice | None = None
+
+    @property
+    def model_reason(self) -> str:
+        """Why the design's model runs (:attr:`model_choice`'s reason)."""
+        return "" if self.model_choice is None else self.model_choice.reason
 
     @property
     def duration(self) -> float:
@@ -130,7 +139,7 @@ def design_substeps(model, p, c, dt: float, ae_bounds, damping_bounds) -> tuple:
 
 
 def time_design_problem(scene, *, seeds=(1, 2, 3), duration: float | None = None, dt: float = 0.5,
-                        substeps: int | None = None, rho: float = 200.0, model: str = "wang",
+                        substeps: int | None = None, rho: float = 200.0, model="auto",
                         segments: int | None = None) -> TimeDesignProblem:
     """Set the time-domain design of ``scene`` up (module docstring and :mod:`.design`'s).
 
@@ -149,10 +158,18 @@ def time_design_problem(scene, *, seeds=(1, 2, 3), duration: float | None = None
         RK4 steps per interval (default :func:`design_substeps`: stable for the stiffest design in the bounds).
     rho : float
         KS parameter on the normalized constraints (the envelope is within ln(N)/rho of the max).
-    model : str
-        "wang" (Wang's 2-DOF cable) or "segmented" (the node model of ``segments`` elements, default the scene's
-        ``cable.segments``): :func:`cablesys.control.payout.control_model`. ``cablesys control --design`` takes the
-        model ladder's choice for the scene.
+    model : str or ModelChoice
+        "auto" (default): the winch form of the model ``cablesys run`` runs for the scene with the record's duration
+        (the ladder's choice, :func:`.model_choice.resolve_model`, as ``cablesys control --design``; on the packaged
+        ROV lift the node model at N = 4); "wang" (Wang's 2-DOF cable) or "segmented" (the node model of
+        ``segments`` elements, default the scene's ``cable.segments``): :func:`cablesys.control.payout.control_model`.
+    segments : int, optional
+        N of the node model (with "auto": in place of the ladder's N).
+
+    Returns
+    -------
+    TimeDesignProblem
+        Its ``model_choice`` says which model the design runs and why.
     """
     if not scene.design:
         raise ParameterError("design", None, "the scene needs a [design] table (ae_bounds, damping_bounds)")
@@ -180,11 +197,13 @@ def time_design_problem(scene, *, seeds=(1, 2, 3), duration: float | None = None
     wl = float(np.ravel(wl)[0]) if wl is not None else (lim.working_load if lim is not None else None)
     strain = design.get("strain_limit")
     strain = None if strain is None else float(np.ravel(strain)[0])
-    scene, winch = control_model(scene.with_numerics(duration=duration), model, segments)
+    scene = scene.with_numerics(duration=duration)
+    choice = resolve_model(scene, model, segments)
+    scene, winch = control_model(scene, choice.model, choice.segments)
     p, c = winch.parameters(scene), np.zeros(4)
     n_auto, lam = design_substeps(winch, p, c, dt, ae_b, ci_b)
-    hp = heave_problem(scene, dt=dt, substeps=substeps or n_auto, tension_weight=0.0, control_weight=0.0,
-                       model=winch)
+    hp = dataclasses.replace(heave_problem(scene, dt=dt, substeps=substeps or n_auto, tension_weight=0.0,
+                                           control_weight=0.0, model=winch), model_choice=choice)
     if wl is not None and not wl > hp.static_tension:
         raise ParameterError("design.working_load", wl, f"must exceed the static top tension {hp.static_tension:.6g} N")
     N = int(round(duration / dt))
@@ -200,7 +219,7 @@ def time_design_problem(scene, *, seeds=(1, 2, 3), duration: float | None = None
                              slack_fraction=None if lim is None else lim.slack_fraction,
                              max_excursion=None if lim is None else lim.max_excursion, strain_limit=strain,
                              rho=float(rho), theta_nominal=(float(cable.ae), float(cable.internal_damping)),
-                             fastest_mode=float(lam))
+                             fastest_mode=float(lam), model_choice=choice)
 
 
 def _exogenous(scene, hp, N: int) -> np.ndarray:

@@ -1,7 +1,8 @@
 """Closed-loop heave compensation against the nonlinear plant: MPC and the strategies it replaces.
 
-The plant is a winch model of the scene (``plant_model``: Wang's 2-DOF winch or the node model's winch on
-``plant_elements`` elements) with ``plant_segments`` drag segments on the cable (Wang 1971 eq. 38-45),
+The plant is a winch model of the scene (``plant_model``: by default the winch form of the model ``cablesys run``
+runs for the scene, :mod:`.model_choice`; Wang's 2-DOF winch or the node model's winch on ``plant_elements``
+elements as asked) with ``plant_segments`` drag segments on the cable (Wang 1971 eq. 38-45),
 integrated by CVODES (:class:`.plant.Plant`); the controller's model (``controller_model``, not finer:
 Wang's 2-DOF or a node model of fewer elements, with ``controller_segments`` drag segments) has its own RK4
 transcription, and sees the plant's state in its coordinates (:func:`state_map`): the model mismatch. Every
@@ -56,6 +57,7 @@ from ..model.segmented_winch_control import NodeWinchModel
 from ..model.winch import WINCH_OUTPUTS
 from ..results import ResultBase, timed
 from .limits import WinchLimits
+from .model_choice import MODELS, resolve_model
 from .payout import check_window, describe_model, heave_problem, payout_nlp
 from .payout_result import heave_reduction_db, statistics_window
 from .plant import Plant
@@ -103,6 +105,11 @@ class Comparison(ResultBase):
         data = {k: (("strategy", "time"), np.array([getattr(self, k)[s] for s in names]))
                 for k in ("heave", "tension_top", "tension_mid", "speed", "power", "length")}
         return xr.Dataset(data, coords={"strategy": names, "time": self.times})
+
+
+def plant_scene(scene, plant_segments: int | None = None):
+    """The plant's scene: ``scene`` with ``plant_segments`` drag segments on its cable (None: the scene's own)."""
+    return scene if plant_segments is None else scene.with_numerics(drag_segments=plant_segments)
 
 
 def _metrics(problem, T, Y, heave0, mask, tens_floor):
@@ -159,7 +166,7 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
                          passive_ratio: float = 3.0, pi_gains=(0.5, 0.05), servo_tau: float | None = None,
                          strategies=STRATEGIES, stats_start: float | None = None, max_iter: int = 100,
                          mpc_scheme: str = "gauss-newton", mpc_iterations: int = 1, ar_order: int = 24,
-                         plant_model: str = "wang", plant_elements: int | None = None,
+                         plant_model="auto", plant_elements: int | None = None,
                          controller_model: str = "wang", controller_elements: int | None = None) -> Comparison:
     """Run the strategies of the module docstring on the plant and compare them.
 
@@ -196,20 +203,26 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
         Gauss-Newton QPs per MPC step (1: the real-time iteration; "gauss-newton" only).
     ar_order : int
         Order of the autoregressive top-motion predictor of ``mpc_no_preview`` (:class:`ARPredictor`).
-    plant_model, controller_model : str
-        "wang" (Wang's 2-DOF winch) or "segmented" (the node model's winch,
-        :mod:`cablesys.model.segmented_winch_control`) of the plant and of the controller (the MPC's and the
-        open-loop optimum's model); the controller's model is not finer than the plant's (a node plant with a
-        Wang or a coarser node controller is the model mismatch). The controller sees the plant's state
+    plant_model : str or ModelChoice
+        The plant's model: "auto" (default), the winch form of the model ``cablesys run`` runs for the plant's scene
+        (the scene with ``plant_segments``; the ladder's choice, :func:`.model_choice.resolve_model`, as
+        ``cablesys control``), "wang" (Wang's 2-DOF winch), "segmented" (the node model's winch,
+        :mod:`cablesys.model.segmented_winch_control`) or a resolved :class:`.model_choice.ModelChoice`.
+    controller_model : str
+        "wang" (default, as ``cablesys control``: the model mismatch against a node-model plant) or "segmented":
+        the controller's (the MPC's and the open-loop optimum's) model, not finer than the plant's (a node plant
+        with a Wang or a coarser node controller is the model mismatch). The controller sees the plant's state
         mapped to its coordinates (:func:`state_map`).
     plant_elements, controller_elements : int, optional
-        N of a segmented plant / controller (default the scene's ``cable.segments``).
+        N of a segmented plant / controller (default: the ladder's N for an "auto" plant, else the scene's
+        ``cable.segments``).
 
     Returns
     -------
     Comparison
         ``success`` False (with the reason) when an MPC step or the open-loop optimum did not
-        converge; the runs computed are kept.
+        converge; the runs computed are kept. ``stats`` names the plant's and the controller's models and says
+        why each ran (``plant_model_reason``, ``plant_model_choice``, ``controller_model_reason``).
     """
     unknown = [s for s in strategies if s not in STRATEGIES]
     if unknown:
@@ -223,11 +236,16 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
                                                                "convergence (max_iter)")
     if not (isinstance(ar_order, int) and ar_order >= 1):
         raise ParameterError("ar_order", ar_order, "must be an integer >= 1")
-    plant_scene = scene if plant_segments is None else scene.with_numerics(drag_segments=plant_segments)
+    plant_sc = plant_scene(scene, plant_segments)
     ctrl_scene = scene.with_numerics(drag_segments=controller_segments)
     kw = dict(dt=dt, tension_weight=tension_weight, control_weight=control_weight)
-    prob_p = heave_problem(plant_scene, limits, model=plant_model, segments=plant_elements, **kw)
-    prob_c = heave_problem(ctrl_scene, limits, model=controller_model, segments=controller_elements, **kw)
+    if controller_model not in MODELS:
+        raise ParameterError("controller_model", controller_model, f"allowed: {', '.join(MODELS)}")
+    plant_choice = resolve_model(plant_sc, plant_model, plant_elements, names=("plant_model", "plant_elements"))
+    ctrl_choice = resolve_model(ctrl_scene, controller_model, controller_elements,
+                                names=("controller_model", "controller_elements"))
+    prob_p = heave_problem(plant_sc, limits, model=plant_choice, **kw)
+    prob_c = heave_problem(ctrl_scene, limits, model=ctrl_choice, **kw)
     observe = state_map(prob_p, prob_c)
     N = check_window(prob_c, 0.0, duration)
     mpcs = [s for s in ("mpc", "mpc_no_preview") if s in strategies]
@@ -273,8 +291,7 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
             messages.append(f"{name}: {memo['fail']} of {N} steps did not converge (the previous plan, shifted, "
                             "was applied)")
     if "passive" in strategies:     # the plant's model with the compensator's piston coordinate
-        runs["passive"] = _passive_run(scene, plant_scene, limits, dict(kw, model=plant_model,
-                                                                        segments=plant_elements), passive_ratio, N)
+        runs["passive"] = _passive_run(scene, plant_sc, limits, dict(kw, model=plant_choice), passive_ratio, N)
 
     T = dt * np.arange(N + 1)
     mask = statistics_window(T, stats_start, prob_c.scene.top_motion)
@@ -301,9 +318,11 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
            "static_tension_n": prob_p.static_tension}
     return Comparison(times=T, metrics=metrics, limits=lim, success=not messages, message="; ".join(messages),
                       stats={"steps": N, "horizon_intervals": n_h, "dt_s": dt,
-                             "plant_segments": plant_scene.numerics.drag_segments,
+                             "plant_segments": plant_sc.numerics.drag_segments,
                              "controller_segments": controller_segments, "mpc_scheme": mpc_scheme,
                              "plant_model": describe_model(prob_p.model), "controller_model": describe_model(prob_c.model),
+                             "plant_model_reason": prob_p.model_reason, "plant_model_choice": plant_choice.as_dict(),
+                             "controller_model_reason": prob_c.model_reason,
                              "same_plant": "every strategy on the plant (passive: its model with the compensator)",
                              "controller_substeps": prob_c.substeps,
                              "mpc_iterations": mpc_iterations, "ar_order": ar_order}, **out)

@@ -41,19 +41,16 @@ from .kernels import (G_ROWS, SUBSTEP_KERNELS_FROM, floor_output, gauss_newton_f
                       interval_functions, interval_kernels, nlp_functions, output_labels, residual_function,
                       substep_kernels)
 from .limits import WinchLimits
+from .model_choice import MODELS, ModelChoice, resolve_model
 from .payout_result import PayoutResult, heave_reduction_db, payout_result, statistics_window
 from .shooting import PathConstraint, ShootingNLP
 
 # names of the problem's pieces that live in .kernels and .payout_result, importable from here too
-__all__ = ["G_ROWS", "MODELS", "SUBSTEP_KERNELS_FROM", "HeaveProblem", "PayoutResult", "check_window", "control_model",
-           "describe_model", "fastest_mode", "floor_output", "gauss_newton_function", "gauss_newton_kernel",
+__all__ = ["G_ROWS", "MODELS", "SUBSTEP_KERNELS_FROM", "HeaveProblem", "ModelChoice", "PayoutResult", "check_window",
+           "control_model", "describe_model", "fastest_mode", "floor_output", "gauss_newton_function", "gauss_newton_kernel",
            "heave_problem", "heave_reduction_db", "interval_kernels", "model_rest_state", "optimal_payout",
            "output_labels", "payout_nlp", "payout_result", "solution_message", "statistics_window",
            "substep_kernels"]
-
-# the control's models (heave_problem's ``model``): Wang's 2-DOF winch, the segmented node model's winch
-MODELS = ("wang", "segmented")
-
 
 def model_rest_state(model, p, c=None) -> np.ndarray:
     """The rest state of either control model (:func:`cablesys.model.winch.rest_state`,
@@ -83,10 +80,11 @@ def describe_model(model) -> str:
     return "wang 2-DOF with winch (cablesys.model.winch)" + (", compensator" if model.compensator else "")
 
 
-def control_model(scene, model="wang", segments: int | None = None, *, compensator: bool = False):
+def control_model(scene, model, segments: int | None = None, *, compensator: bool = False):
     """(scene, model) for a control model name: "wang" (the scene's first section as one straight element,
     ``segments`` must be None or 1) or "segmented" (N = ``segments`` elements, default the scene's
-    ``cable.segments`` when above 1); the scene is returned with that N."""
+    ``cable.segments`` when above 1); the scene is returned with that N. Which name a scene runs by default:
+    :func:`.model_choice.resolve_model`."""
     if model not in MODELS:
         raise ParameterError("model", model, f"allowed: {', '.join(MODELS)} (or a built winch model)")
     if segments is not None and not (isinstance(segments, (int, np.integer)) and segments >= 1):
@@ -107,7 +105,8 @@ def control_model(scene, model="wang", segments: int | None = None, *, compensat
 
 @dataclasses.dataclass(frozen=True)
 class HeaveProblem:
-    """A scene, its winch model and the numbers of the compensation problem (SI units)."""
+    """A scene, its winch model and the numbers of the compensation problem (SI units); ``model_choice`` says which
+    model it is and why (:class:`.model_choice.ModelChoice`: the ladder's choice for the scene by default)."""
 
     scene: object
     model: WinchModel
@@ -132,6 +131,16 @@ class HeaveProblem:
     # (x, alpha, e, p, c, w) -> (cost, g) at the interval start: the kernels of a model with many substeps
     substep: ca.Function = dataclasses.field(repr=False, default=None)
     start: ca.Function = dataclasses.field(repr=False, default=None)
+    model_choice: ModelChoice | None = None
+
+    @property
+    def model_reason(self) -> str:
+        """Why this model runs (:attr:`model_choice`'s reason)."""
+        return "" if self.model_choice is None else self.model_choice.reason
+
+    def describe(self) -> str:
+        """One line naming the problem's winch model (:func:`describe_model`)."""
+        return describe_model(self.model)
 
     @property
     def record_s(self) -> float:
@@ -217,7 +226,7 @@ def fastest_mode(model, x_rest, p, c) -> float:
 
 def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25, substeps: int | None = None,
                   tension_weight: float = 0.0, control_weight: float = 1e-3,
-                  compensator: dict | None = None, model="wang", segments: int | None = None) -> HeaveProblem:
+                  compensator: dict | None = None, model="auto", segments: int | None = None) -> HeaveProblem:
     """Set up the heave-compensation problem of ``scene`` (module docstring).
 
     Parameters
@@ -238,12 +247,14 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
     compensator : dict, optional
         ``mass``, ``stiffness``, ``damping`` of a passive compensator under the sheave (the
         precharge is set to hold the static load at zero stroke).
-    model : str or WinchModel or NodeWinchModel
-        "wang" (Wang's 2-DOF winch, :mod:`cablesys.model.winch`), "segmented" (the node model's winch on
-        ``segments`` elements, :mod:`cablesys.model.segmented_winch_control`), or a model built before for this
-        scene's structure.
+    model : str or ModelChoice or WinchModel or NodeWinchModel
+        "auto" (default): the winch form of the model ``cablesys run`` runs for the scene (the ladder's choice,
+        :func:`.model_choice.resolve_model`; on the packaged ROV lift the node model at N = 4); "wang" (Wang's
+        2-DOF winch, :mod:`cablesys.model.winch`), "segmented" (the node model's winch on ``segments`` elements,
+        :mod:`cablesys.model.segmented_winch_control`), a resolved :class:`.model_choice.ModelChoice`, or a model
+        built before for this scene's structure. :attr:`HeaveProblem.model_choice` says which ran and why.
     segments : int, optional
-        N of the segmented model (default the scene's ``cable.segments``).
+        N of the segmented model (default the scene's ``cable.segments``; with "auto" in place of the ladder's N).
 
     Returns
     -------
@@ -261,9 +272,13 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
         if unknown:
             raise ParameterError("compensator", sorted(unknown), "allowed keys: mass, stiffness, damping")
         require_positive("compensator.mass", compensator.get("mass", 0.0), "kg")
-    kind = model if isinstance(model, str) else ("wang" if model is None else None)
-    if kind is not None:
-        scene, model = control_model(scene, kind, segments, compensator=compensator is not None)
+    if model is None or isinstance(model, (str, ModelChoice)):
+        choice = resolve_model(scene, "auto" if model is None else model, segments)
+        scene, model = control_model(scene, choice.model, choice.segments, compensator=compensator is not None)
+    else:
+        node = isinstance(model, NodeWinchModel)
+        choice = ModelChoice(model="segmented" if node else "wang", segments=model.segments if node else None,
+                             reason="the caller's built model, as built")
     p = model.parameters(scene)
     c = np.zeros(len(COMPENSATOR_PARAMETERS))
     if compensator is not None:
@@ -286,7 +301,7 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
                         working_load=wl, static_tension=T0, heave_rest=y_rest["heave"], dt=float(dt),
                         substeps=substeps, tension_weight=float(tension_weight),
                         control_weight=float(control_weight), step=step, stage=stage,
-                        interval=interval, substep=substep, start=start)
+                        interval=interval, substep=substep, start=start, model_choice=choice)
 
 
 

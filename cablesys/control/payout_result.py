@@ -24,7 +24,9 @@ class PayoutResult(ResultBase):
     ``violated`` the constraint that could not be met ("" when all hold), ``violations`` the
     largest violation of each, relative to its scale (the static tension for forces). ``tension_min_n`` is the
     least of the tension the no-slack floor bounds (:attr:`.payout.HeaveProblem.floor_output`: Wang's F_bc, the node
-    model's least element tension), ``tension_max_n`` the largest top tension.
+    model's least element tension), ``tension_max_n`` the largest top tension. ``model`` names the problem's winch
+    model and ``model_reason`` says why it ran (:attr:`.payout.HeaveProblem.model_choice`); both are in
+    :meth:`summary`.
     """
 
     times: np.ndarray
@@ -48,6 +50,8 @@ class PayoutResult(ResultBase):
     success: bool = True
     message: str = ""
     stats: dict = dataclasses.field(default_factory=dict)
+    model: str = ""
+    model_reason: str = ""
 
     VARIABLES: ClassVar[dict] = {
         "heave": ("m", "body heave from rest, earth-fixed (down +)"),
@@ -115,4 +119,5 @@ def payout_result(problem, X, U, *, status: str, violated: str = "", violations=
                         tension_min_n=float(np.min(Y[:, oi(problem.floor_output)])),
                         speed_max_m_s=float(np.max(np.abs(Y[:, oi("speed")]))),
                         power_max_w=float(np.max(np.abs(Y[:, oi("power")]))),
-                        success=success, message=message, stats=dict(stats or {}))
+                        success=success, message=message, stats=dict(stats or {}), model=problem.describe(),
+                        model_reason=problem.model_reason)
