@@ -117,6 +117,8 @@ def build_model(scene: Scene) -> CableModel:
 
 def _build(scene: Scene) -> CableModel:
     """The symbolic build of :func:`build_model`."""
+    if getattr(scene, "system", None) is not None:
+        raise ParameterError("system", "points and lines", "a system that is not a chain of sections has no model yet")
     if any(s.cable.segments > 1 for s in scene.sections):   # N straight elements per section
         return build_segmented_model(scene)
     if getattr(scene, "winch", None) is not None:
