@@ -29,7 +29,7 @@ from ..scene import Scene
 from . import estimate as est
 from . import metrics
 from .indicators import scene_numbers
-from .rung.base import with_segments
+from .rung.base import cables, scene_segments, with_segments
 from .rung.quasistatic import EXPLICIT_COST, EXPLICIT_COST_MAX_ELEMENTS, STIFF_QS_COST  # noqa: F401 - the plans' weights
 from .rung.segmented import CHECK_ACCEPT, CHECK_COST  # noqa: F401 - re-exported with the plans' other numbers
 from .rungs import BUILTIN, Assessment, RungCache, get_rung, registered_rungs, rung_scene, validity
@@ -152,7 +152,7 @@ def model_operations(scene: Scene, name: str, segments: int) -> float:
     before it is built: the quasi-static segmented cable QS_OPERATIONS_PER_SECTION x N^QS_OPERATIONS_EXPONENT per
     section, the node model NODE_OPERATIONS_PER_ELEMENT x N per section (fits to the counts above); the straight
     rungs (N = 1) a node model's element."""
-    sections = len(scene.sections)
+    sections = len(cables(scene))
     if name == "quasi-static" and segments > 1:
         return sections * QS_OPERATIONS_PER_SECTION * float(segments) ** QS_OPERATIONS_EXPONENT
     return sections * NODE_OPERATIONS_PER_ELEMENT * max(int(segments), 1)
@@ -161,7 +161,7 @@ def model_operations(scene: Scene, name: str, segments: int) -> float:
 def quasistatic_max_segments(scene: Scene) -> int:
     """The largest N of the quasi-static segmented cable whose predicted size (:func:`model_operations`) is within
     MAX_MODEL_OPERATIONS (1 when none is)."""
-    per = QS_OPERATIONS_PER_SECTION * len(scene.sections)
+    per = QS_OPERATIONS_PER_SECTION * len(cables(scene))
     n = int((MAX_MODEL_OPERATIONS / per) ** (1.0 / QS_OPERATIONS_EXPONENT))
     while n > 1 and model_operations(scene, "quasi-static", n) > MAX_MODEL_OPERATIONS:
         n -= 1
@@ -511,7 +511,7 @@ def forced(scene: Scene, name: str, segments: int | None = None, tolerance=None,
         reason = f"{name} (a registered rung) requested by the user" + ("" if ok else "; OUTSIDE its validity: "
                                                                           + str(e.get("note", "")))
         return Choice(name, 1, reason, {"body": e["body"], "tension": e["tension"]}, dict(info, valid=ok))
-    scene_n = max(s.cable.segments for s in scene.sections)          # the user's own `segments = N`
+    scene_n = scene_segments(scene)                                  # the user's own `segments = N`
     if name == "segmented":
         n = segments or (scene_n if scene_n > 1 else segments_for(errs, tol))
     elif name == "quasi-static" and quasistatic_segments_available(scene):

@@ -3,7 +3,9 @@
 Over the run's statistics window (:func:`cablesys.statistics.window`, the one window of a run's summary):
 ``body``, the largest difference of the body's x and y (and z in 3-D) amplitudes (half peak-to-peak) relative to
 the larger reference amplitude; ``tension``, the largest difference of the top and body-end tension
-extremes relative to the largest reference tension.
+extremes relative to the largest reference tension. A system of lines joined at points (model/system.py) has no
+``x_b`` or ``tension_top``: its points' coordinates (``point.NAME.x``) are the body group, its lines' end tensions
+(``line.NAME.tension_from``, ``tension_to``) the tension group.
 """
 
 from __future__ import annotations
@@ -17,6 +19,8 @@ from .. import statistics as st
 BODY = ("x_b", "y_b", "z_b")        # z_b: the sway of a 3-D run (absent from planar runs)
 TENSIONS = ("tension_top", "tension_bottom")
 _SUFFIX = re.compile(r"_\d+$")
+# the same groups of a system of lines (model/system.py): every point's coordinates, every line's end tensions
+_SYSTEM = {BODY: re.compile(r"^point\.[^.]+\.[xyz]$"), TENSIONS: re.compile(r"^line\.[^.]+\.tension_(from|to)$")}
 
 
 def base_label(label: str) -> str:
@@ -28,7 +32,10 @@ def base_label(label: str) -> str:
 def _labels(result, bases) -> list:
     """The labels of ``result`` with these base names (a record without ``labels``: the bases themselves)."""
     labels = getattr(result, "labels", None)
-    return list(bases) if labels is None else [k for k in labels if base_label(k) in bases]
+    if labels is None:
+        return list(bases)
+    system = _SYSTEM.get(tuple(bases))
+    return [k for k in labels if base_label(k) in bases or (system is not None and system.match(k))]
 
 
 def window(time: np.ndarray, period: float | None, ramp_s: float = 0.0) -> np.ndarray:
@@ -84,7 +91,10 @@ def errors(stats: dict, reference: dict) -> dict:
     ext = tops + [k for k in reference if k.endswith("_min")]
     a_ref = max(reference[k] for k in amps)
     t_ref = max(reference[k] for k in tops)
-    body = max(abs(stats[k] - reference[k]) for k in amps) / max(a_ref, 1e-300)
+    # a system's points (held ones among them) may all stand still (a mooring in a current): judged on at least
+    # LENGTH_FLOOR_M, as every quantity is (:func:`quantity_errors`)
+    floor = LENGTH_FLOOR_M if any(k.startswith("point.") for k in amps) else 1e-300
+    body = max(abs(stats[k] - reference[k]) for k in amps) / max(a_ref, floor)
     tension = max(abs(stats[k] - reference[k]) for k in ext) / max(t_ref, 1e-300)
     return {"body": float(body), "tension": float(tension)}
 

@@ -130,6 +130,13 @@ class Scene:
                 raise ParameterError(name, "set", "must be unset for a system that is not a chain of sections: the "
                                      "node model of a graph of lines has no " + {"winch": "winch",
                                      "top_motion.track": "steady turn", "seabed": "seabed"}[name] + " yet")
+        top = self.top_motion
+        if self.system.prescribed is None:
+            moved = [f"top_motion.{a}" for a in ("x", "y", "z") if getattr(top, a)] + [
+                f"top_motion.{a}" for a in ("series", "spectrum", "track") if getattr(top, a) is not None]
+            if moved:
+                raise ParameterError(moved[0], "set", "must be unset: [top_motion] moves the prescribed point, and "
+                                     "this system has none (its points are fixed or free)")
         for name in ("phi", "u"):
             if getattr(self.initial, name) is not None:
                 raise ParameterError(f"initial.{name}", getattr(self.initial, name), "must be unset for a system of "

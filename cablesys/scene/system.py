@@ -150,6 +150,17 @@ class Line:
         return sum(c.length for c in self.section)
 
 
+def _unique(kind: str, items) -> dict:
+    """{name: index} of the points or lines ``items``; a name given twice is an error naming the second."""
+    seen = {}
+    for i, item in enumerate(items):
+        if item.name in seen:
+            raise ParameterError(f"{kind}[{i}].name", item.name, f"is the name of {kind}[{seen[item.name]}] too: "
+                                 f"{kind} names must be unique")
+        seen[item.name] = i
+    return seen
+
+
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class System:
     """Points joined by lines (module docstring): ``point`` and ``line`` are the ``[[point]]`` and ``[[line]]``
@@ -172,18 +183,9 @@ class System:
         for k, ln in enumerate(lns):
             if not isinstance(ln, Line):
                 raise ParameterError(f"line[{k}]", type(ln).__name__, "must be a Line")
-        seen = {}
-        for i, p in enumerate(pts):
-            if p.name in seen:
-                raise ParameterError(f"point[{i}].name", p.name, f"is the name of point[{seen[p.name]}] too: "
-                                     "point names must be unique")
-            seen[p.name] = i
-        lines_seen = {}
+        seen = _unique("point", pts)
+        _unique("line", lns)
         for k, ln in enumerate(lns):
-            if ln.name in lines_seen:
-                raise ParameterError(f"line[{k}].name", ln.name, f"is the name of line[{lines_seen[ln.name]}] too: "
-                                     "line names must be unique")
-            lines_seen[ln.name] = k
             for key, end in (("from", ln.start), ("to", ln.end)):
                 if end not in seen:
                     raise ParameterError(f"line[{k}].{key}", end, f"names no point; the points are {list(seen)}")
@@ -196,12 +198,32 @@ class System:
             raise ParameterError("point", f"{len(pts)} points of kinds {sorted({p.kind for p in pts})}",
                                  "nothing holds the system: it needs a prescribed point (the top) or a fixed point "
                                  "(an anchor, a support)")
+        self._check_held_parts()
         top = [i for i, p in enumerate(pts) if p.kind == "prescribed"]
         if len(top) > 1:
             raise ParameterError(f"point[{top[1]}].kind", "prescribed", f"point[{top[0]}] is prescribed already: a "
                                  "system has one prescribed point so far (the scene's one [top_motion] moves it); make "
                                  "the others fixed points (supports at rest)")
         self._check_reach()
+
+    def _check_held_parts(self) -> None:
+        """Every connected part of the system holds a prescribed or a fixed point (a part of free points only would
+        fall or float away): the error names the first point of a part that nothing holds."""
+        part = {p.name: p.name for p in self.point}
+
+        def root(a):
+            while part[a] != a:
+                part[a] = part[part[a]]
+                a = part[a]
+            return a
+        for ln in self.line:
+            part[root(ln.start)] = root(ln.end)
+        held = {root(p.name) for p in self.point if p.held}
+        for i, p in enumerate(self.point):
+            if root(p.name) not in held:
+                names = [q.name for q in self.point if root(q.name) == root(p.name)]
+                raise ParameterError(f"point[{i}].name", p.name, f"is in a part of the system that nothing holds "
+                                     f"(points {names}, joined to no prescribed or fixed point)")
 
     def _check_reach(self) -> None:
         """Every path of lines between two held points is at least as long as their distance: for each pair, the
@@ -290,6 +312,11 @@ class System:
         if end.kind == "fixed" and end.z not in (None, 0.0):
             return None
         return tuple(steps), end
+
+    def with_segments(self, n: int) -> "System":
+        """The same system with every section of every line divided into ``n`` elements (``cable.segments``)."""
+        return dataclasses.replace(self, line=tuple(dataclasses.replace(ln, section=tuple(
+            dataclasses.replace(c, segments=int(n)) for c in ln.section)) for ln in self.line))
 
     def structure(self) -> tuple:
         """What fixes the shape of the system's model: its graph (kinds, line ends and sections' element counts),

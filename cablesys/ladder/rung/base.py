@@ -8,7 +8,8 @@ cable; the element rungs' nodes would have no mass), an anchored line or a seabe
 segmented cable, which the straight cable has none of) and a winch (a varying length, carried by the node model only).
 A rigid body (``body.pitch_inertia``) limits them too: its orientation (the pitch in the plane, a quaternion in
 3-D) is a coordinate of the node model alone
-(:mod:`cablesys.model.rigid_body`).
+(:mod:`cablesys.model.rigid_body`). So does a system of lines joined at points that is not a chain (``scene.system``):
+only the node model builds a graph of lines (:mod:`cablesys.model.system`).
 """
 
 from __future__ import annotations
@@ -22,7 +23,10 @@ from ...scene import Scene
 def with_segments(scene: Scene, n: int) -> Scene:
     """``scene`` with every section divided into ``n`` elements (1: Wang's straight cable). Elements each have their
     own inclination: a chain whose sections share one swing angle (``angles = "shared"``, the dual-isolation model
-    of Wang 1971 p. 33) is divided with every element's angle its own (``per_section``)."""
+    of Wang 1971 p. 33) is divided with every element's angle its own (``per_section``). A system of lines: every
+    section of every line divided into ``n``."""
+    if system(scene):
+        return dataclasses.replace(scene, system=scene.system.with_segments(int(n)))
     secs = tuple(dataclasses.replace(s, cable=dataclasses.replace(s.cable, segments=int(n))) for s in scene.sections)
     angles = "per_section" if n > 1 else scene.angles
     return dataclasses.replace(scene, sections=secs, angles=angles)
@@ -33,9 +37,16 @@ def three_d(scene: Scene) -> bool:
     return bool(getattr(scene, "three_d", False))
 
 
+def cables(scene: Scene) -> tuple:
+    """Every cable of the scene: its sections' (a chain) or its lines' sections (a system)."""
+    if getattr(scene, "system", None) is not None:
+        return tuple(c for line in scene.system.line for c in line.section)
+    return tuple(sec.cable for sec in scene.sections)
+
+
 def massless(scene: Scene) -> bool:
     """True when a section's cable is massless (``cable.cable_mass_switch < 0``, Wang 1971's CBMAS)."""
-    return any(sec.cable.cable_mass_switch < 0 for sec in scene.sections)
+    return any(c.cable_mass_switch < 0 for c in cables(scene))
 
 
 def has_ends(scene: Scene) -> bool:
@@ -54,6 +65,17 @@ def winched(scene: Scene) -> bool:
     return getattr(scene, "winch", None) is not None
 
 
+def system(scene: Scene) -> bool:
+    """True when the scene is a system of lines joined at points that is not a chain (``scene.system``): the node
+    model of a graph of lines (:mod:`cablesys.model.system`) builds it."""
+    return getattr(scene, "system", None) is not None
+
+
+def scene_segments(scene: Scene) -> int:
+    """The most elements a section of the scene has (a chain's sections, or a system's line sections)."""
+    return max(c.segments for c in cables(scene))
+
+
 def turning(scene: Scene) -> bool:
     """True when the tow point runs on a circle (``top_motion.track``): the run starts on the steady turn, which
     the statics find for the node model (:mod:`cablesys.statics.turning`)."""
@@ -69,6 +91,8 @@ ROTATES = ("a rigid body (body.pitch_inertia): its orientation (pitch in the pla
            "coordinate of the node model (segmented) only")
 WINCHED = ("a winch ([winch]): only the node model (segmented) carries a varying cable length; the other rungs "
            "have a fixed one and would ignore the payout")
+SYSTEM = ("a system of lines joined at points that is not a chain ([[point]], [[line]]): only the node model "
+          "(segmented) builds a graph of lines")
 TURNING = ("towing in a circle (top_motion.track): the run starts on the steady turn, which the statics find for the "
            "node model (segmented) only")
 
@@ -76,6 +100,8 @@ TURNING = ("towing in a circle (top_motion.track): the run starts on the steady 
 def straight_validity(scene: Scene) -> str:
     """The validity of a rung built on Wang's planar straight cable with mass (frequency, quasi-static): "" or
     why not (see the module docstring)."""
+    if system(scene):
+        return SYSTEM
     if three_d(scene):
         return PLANAR
     if massless(scene):
