@@ -256,3 +256,78 @@ def test_a_buoy_pulled_by_a_current_gets_the_catenaries_restoring_force():
         offsets[U] = (force, rich[0], bx)
     (f1, x1, c1), (f2, x2, c2) = offsets[1.5], offsets[2.0]
     assert (f2 - f1) / (x2 - x1) == pytest.approx((f2 - f1) / (c2 - c1), rel=2e-3)
+
+
+def test_a_chain_wire_chain_mooring_line_is_todays_sections_with_weightless_joints():
+    """One [[line]] of three sections from a fairlead to an anchor on a seabed with friction, in the graph model, and
+    today's [[sections]] with [anchor] and [seabed] whose joints carry weightless bodies of 1e-9 kg: the same nodes,
+    the same static state (1e-9 m), the same static forces (the laid-down friction) and ode (to the joints' masses)."""
+    from cablesys.scene import Anchor, Seabed
+    from cablesys.statics.steady import steady_state
+    chain = lambda n, length: Cable(length=length, ae=5e8, diameter=0.1, mass_per_length=60.0, weight_per_length=500.0,
+                                    cd_normal=2.4, ct_tangential=0.4, segments=n)
+    secs = (chain(4, 60.0), Cable(length=150.0, ae=2e8, diameter=0.08, mass_per_length=20.0, weight_per_length=150.0,
+                                  cd_normal=1.2, segments=6), chain(8, 120.0))
+    bed = Seabed(depth=100.0, friction_axial=0.5, damping=1e5)
+    motion = TopMotion(x=(Sinusoid(amplitude=2.0, frequency=0.5),), ramp_s=20.0)
+    graph = Scene(system=System(point=(Point(name="fairlead", kind="prescribed"),
+                                       Point(name="anchor", kind="fixed", x=280.0, y=100.0)),
+                                line=(Line(name="mooring", start="fairlead", end="anchor", section=secs),)),
+                  seabed=bed, top_motion=motion)
+    joint = Body(weight=0.0, mass_x=1e-9, mass_y=1e-9)
+    old = Scene(sections=tuple(Section(cable=c, body=joint) for c in secs), anchor=Anchor(x=280.0, y=100.0), seabed=bed,
+                top_motion=motion)
+    assert graph.system is not None and graph.sections == ()
+    m_g, m_o = build_model(graph), build_model(old)
+    assert m_g.q_labels == m_o.q_labels
+    p_g, p_o = m_g.parameters(graph), m_o.parameters(old)
+    s_g, s_o = steady_state(m_g, p_g), steady_state(m_o, p_o)
+    np.testing.assert_allclose(s_g.q, s_o.q, rtol=0, atol=1e-9)
+    assert s_g.outputs["line.mooring.tension_from"] == pytest.approx(s_o.outputs["tension_top_1"], rel=1e-9)
+    assert s_g.outputs["line.mooring.tension_to"] == pytest.approx(s_o.outputs["tension_bottom_3"], rel=1e-9)
+    rng = np.random.default_rng(5)
+    x = np.concatenate([s_o.q + rng.normal(size=s_o.q.size) * 0.05, rng.normal(size=s_o.q.size) * 0.1])
+    f_g, f_o = (np.array(m.ode(x, 5.0, pp)).ravel() for m, pp in ((m_g, p_g), (m_o, p_o)))
+    assert np.max(np.abs(f_g - f_o)) < 1e-10 * np.max(np.abs(f_o))
+    z = np.zeros(s_o.q.size)
+    np.testing.assert_array_equal(np.array(m_g.static_force(x[:z.size], z, np.zeros(7), p_g)),
+                                  np.array(m_o.static_force(x[:z.size], z, np.zeros(7), p_o)))
+
+
+def test_a_buoy_held_by_two_lines_lying_on_the_seabed_against_the_catenary_with_friction():
+    """A buoy (90 kN net buoyancy) held by two 240 m chains to anchors on the bed 190 m either side, friction 0.5: each
+    line is the elastic catenary with seabed friction (closed form: its fairlead carries half the buoyancy, 150 m lie on
+    the bed, the touchdown on a node at every N here); the buoy's depth converges to it at second order in N
+    (N = 8, 16, 32 from the default guess; N = 64 by a run's start, which refines the state from coarser N when its
+    first guess fails)."""
+    from scipy.optimize import brentq
+    from cablesys.scene import Seabed
+    from cablesys.statics.system import system_initial_state
+    L, w, ea, R, D, B, mu = 240.0, 500.0, 5e8, 190.0, 100.0, 90e3, 0.5
+
+    def scene(n):
+        cab = (Cable(length=L, ae=ea, diameter=0.1, mass_per_length=60.0, weight_per_length=w, segments=n),)
+        return Scene(system=System(
+            point=(Point(name="buoy", kind="body", body=Body(weight=-B, mass_x=1e4, mass_y=1e4)),
+                   Point(name="west", kind="fixed", x=-R, y=D), Point(name="east", kind="fixed", x=R, y=D)),
+            line=(Line(name="w", start="buoy", end="west", section=cab), Line(name="e", start="buoy", end="east",
+                                                                             section=cab))),
+            seabed=Seabed(depth=D, friction_axial=mu, stiffness=3e8))
+    cat = lambda Z: seabed_catenary(length=L, weight_per_length=w, ea=ea, span=R, height=Z, friction=mu)
+    Z = brentq(lambda Z: cat(Z)["V_F"] - B / 2, 60.0, 95.0, xtol=1e-13)
+    assert cat(Z)["L_B"] == pytest.approx(150.0, rel=1e-9)
+    errors = []
+    for n in (8, 16, 32, 64):
+        sc = scene(n)
+        m = build_model(sc)
+        p = m.parameters(sc)
+        if n < 64:
+            y = system_steady(m, p).outputs
+            assert y["line.w.tension_from"] == pytest.approx(y["line.e.tension_from"], rel=1e-9)
+            q = (y["point.buoy.x"], y["point.buoy.y"])
+        else:
+            q = system_initial_state(sc, m, p)[:2]
+        assert abs(q[0]) < 1e-9
+        errors.append(abs(q[1] - (D - Z)))
+    order = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert np.all((order > 1.7) & (order < 2.3)), order

@@ -178,9 +178,18 @@ def test_the_system_form_refuses_what_its_model_does_not_take_yet():
     sys_ = non_chain()
     with pytest.raises(ParameterError, match="initial.u"):
         Scene(system=sys_, initial=Initial(u=0.1))
-    with pytest.raises(ParameterError) as err:
-        Scene(system=sys_, seabed=Seabed(depth=500.0))
-    assert err.value.field == "seabed"
+    off = System(point=sys_.point[:3] + (Point(name="post", kind="fixed", x=80.0, y=60.0, z=5.0),), line=sys_.line)
+    with pytest.raises(ParameterError) as err:              # the node model's seabed is planar (as the chain's)
+        Scene(system=off, seabed=Seabed(depth=500.0))
+    assert err.value.field == "seabed" and "3-D" in str(err.value)
+    from cablesys.scene.components import TopMotion as TM
+    still = System(point=(Point(name="a", kind="fixed", x=0.0, y=0.0), Point(name="b", kind="fixed", x=50.0, y=0.0),
+                          Point(name="m", kind="junction", body=Body(**CLUMP))),
+                   line=(Line(name="l", start="a", end="m", section=(cable(),)), Line(name="r", start="m", end="b",
+                                                                                     section=(cable(),))))
+    with pytest.raises(ParameterError) as err:              # top motion without a prescribed point to move
+        Scene(system=still, top_motion=TM(y=(Sinusoid(amplitude=1.0, frequency=1.0),)))
+    assert err.value.field == "top_motion.y"
     with pytest.raises(ParameterError) as err:
         Scene(sections=(Section(cable=cable(), body=Body(**PKG)),), system=sys_)
     assert err.value.field == "sections"

@@ -30,7 +30,7 @@ import casadi as ca
 __all__ = ["seabed_forces"]
 
 
-def seabed_forces(layout, node_r, node_v, area, elements, depth0, nodes) -> dict:
+def seabed_forces(layout, node_r, node_v, area, elements, depth0, nodes, up: dict | None = None) -> dict:
     """Contact and friction forces of the seabed on the free ``nodes`` (indices into ``node_r``).
 
     Parameters
@@ -47,6 +47,9 @@ def seabed_forces(layout, node_r, node_v, area, elements, depth0, nodes) -> dict
         The top's mean depth below the still surface (m).
     nodes : iterable of int
         The free nodes.
+    up : dict, optional
+        {node: the element on its fairlead side} (the laid-down friction's direction and tension); default the element
+        ending at the node (``el["b"]``), the chain's numbering from its top.
 
     Returns
     -------
@@ -60,7 +63,7 @@ def seabed_forces(layout, node_r, node_v, area, elements, depth0, nodes) -> dict
     alpha = sym("slope_deg") * ca.pi / 180.0
     n_in, t_b = (-ca.sin(alpha), ca.cos(alpha)), (ca.cos(alpha), ca.sin(alpha))
     y0 = sym("depth") - depth0
-    up = {el["b"]: el for el in elements}             # the element on the fairlead side of each node
+    up = up if up is not None else {el["b"]: el for el in elements}   # the element on the fairlead side of each node
     dot = lambda a, b: a[0] * b[0] + a[1] * b[1]
     forces, energy = {}, 0.0
     normal, friction = [0.0] * len(node_r), [0.0] * len(node_r)

@@ -24,6 +24,12 @@ at that node (weight, drag share, minus its inertia), as the chain's ``tension_t
 profiles ``element_tension[k]``, ``element_tension_rate[k]``, ``element_strain[k]``, ``element_slack[k]`` (elements
 line by line, each from its start), ``element_s[k]`` (the element mid-point's unstretched arc length from its line's
 start, m) and ``node_x[j]``, ``node_y[j]`` (``node_z[j]``) of every node. Units SI.
+
+A ``[seabed]`` (planar scenes) acts on every free node as on the chain's (:mod:`.segmented_seabed`: normal contact,
+regularised Coulomb friction, the laid-down line's friction in the statics, ``static_force``): a line is laid from its
+start towards its end, so a node's fairlead side is the element of its line that ends at it (a point that no element
+ends at: the element leaving it); write a mooring line from its fairlead to its anchor. Profiles ``seabed_normal[j]``
+and ``seabed_friction[j]`` per node.
 """
 
 from __future__ import annotations
@@ -38,6 +44,7 @@ from .params import ParameterLayout, environment_symbols
 from .section import SectionParameters
 from .segmented import SegmentedModel, drag_points
 from .segmented_element import block_solve, element_inertia, element_terms, lump_force, norm
+from .segmented_seabed import seabed_forces
 from .signals import EXO_LABELS
 from .top_motion import EXO_LABELS_3D, symbolic_type, top_motion_function
 
@@ -139,6 +146,7 @@ def build_system_model(scene: Scene) -> SystemModel:
         node_v.append(v)
         node_labels.append(labels)
 
+    static_law = scene.seabed is not None            # the seabed's statics: elements elastic both ways (catenary.py)
     sums = NodeSums(n_nodes, dim)
     elements, lines, s_el = [], [], []
     for k, line in enumerate(system.line):
@@ -154,7 +162,7 @@ def build_system_model(scene: Scene) -> SystemModel:
                 el.update(a=a, b=b)
                 sums.element(el, node_v[a], node_v[b], inertia(ca.vertcat(*node_r[a]), ca.vertcat(*node_r[b]),
                                                                ca.vertcat(*node_v[a]), ca.vertcat(*node_v[b]), p),
-                             P, n_el, False)
+                             P, n_el, static_law)
                 els.append(el)
                 s_el.append(s0 + (m + 0.5) * P.l_0 / n_el)
             pos += n_el
@@ -167,6 +175,19 @@ def build_system_model(scene: Scene) -> SystemModel:
             P = SectionParameters.for_body(layout, f"system.point[{i}].body.", pt.body.is_sphere, dim == 3)
             sums.point_body(j, P, node_r[j], node_v[j], rho=rho, t=t, env=env, depth0=depth0)
 
+    V_contact, bed = 0.0, None
+    if scene.seabed is not None:     # the planar seabed on every free node (segmented_seabed.py); a line is laid
+        # from its start towards its end: a node's fairlead side is the element of its line ending at it
+        up = {}
+        for el in reversed(elements):
+            up[el["a"]] = el                          # a point no element ends at: the element leaving it
+        up.update({el["b"]: el for el in elements})
+        bed = seabed_forces(layout, node_r, node_v, sums.area, elements, depth0, free, up)
+        V_contact = bed["energy"]
+        for j, (Fd, Fs) in bed["forces"].items():
+            for c in range(2):
+                sums.Q[j][c] += Fd[c]
+                sums.Q_static[j][c] += Fs[c]
     # Lagrange's equations node by node (node_terms.py): M_j q''_j = f_j, block diagonal
     acc_nodes, acc = [None] * n_nodes, []
     for j in range(n_nodes):
@@ -205,6 +226,9 @@ def build_system_model(scene: Scene) -> SystemModel:
             "element_slack": ca.vertcat(*[el["slack"] for el in elements]),
             "element_s": ca.vertcat(*s_el)}
     prof.update({f"node_{c}": ca.vertcat(*[r[n] for r in node_r]) for n, c in enumerate(axes)})
+    if bed is not None:
+        prof["seabed_normal"] = ca.vertcat(*bed["normal"])
+        prof["seabed_friction"] = ca.vertcat(*bed["friction"])
     for name, v in prof.items():
         out += [v[k] for k in range(v.shape[0])]
         labels += [f"{name}[{k}]" for k in range(v.shape[0])]
@@ -218,13 +242,16 @@ def build_system_model(scene: Scene) -> SystemModel:
     ode = ca.Function("ode", [xs, ts, ps], [ca.vertcat(xs[nq:], accel(xs[:nq], xs[nq:], top(ts, ps), ps))],
                       ["x", "t", "p"], ["xdot"])
     outputs = ca.Function("outputs", [x, e, p], [ca.vertcat(*out)], ["x", "e", "p"], ["y"])
-    energy = ca.Function("energy", [x, e, p], [sums.K, sums.gravity(node_r) + sums.V_strain], ["x", "e", "p"],
-                         ["K", "V"])
+    energy = ca.Function("energy", [x, e, p], [sums.K, sums.gravity(node_r) + sums.V_strain + V_contact],
+                         ["x", "e", "p"], ["K", "V"])
+    static = (ca.Function("static_force", [q, qd, e, p], [ca.vertcat(*[sums.force(j, static=True) for j in free])],
+                          ["q", "qd", "e", "p"], ["f"]) if bed is not None else None)
     cable_force = ca.Function("cable_force", [x, p], [ca.SX(0, 1)], ["x", "p"], ["gap"])
     return SystemModel(layout=layout, n_sections=0, angles=scene.angles, q_labels=q_labels,
                        output_labels=tuple(labels), dynamics=dynamics, ode=ode, top=top, outputs=outputs,
                        energy=energy, cable_force=cable_force, slack_index=(), symbolic=S,
                        segments=tuple(c.segments for ln in system.line for c in ln.section), accel=accel,
+                       static_force=static,
                        dim=dim, point_names=tuple(pt.name for pt in system.point),
                        point_kinds=tuple(pt.kind for pt in system.point), point_nodes=point_nodes,
                        line_names=tuple(ln.name for ln in system.line), line_nodes=line_nodes,

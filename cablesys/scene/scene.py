@@ -123,13 +123,13 @@ class Scene:
 
     def _check_system(self) -> None:
         """What the node model of a graph of lines (:mod:`cablesys.model.system`) does not take yet, each refused by
-        name: a rigid body, a winch, a track, a seabed, an initial angle or stretch (it starts from its statics)."""
-        for name, bad in (("winch", self.winch is not None), ("top_motion.track", self.top_motion.track is not None),
-                          ("seabed", self.seabed is not None)):
+        name: a rigid body, a winch, a track, an initial angle or stretch (it starts from its statics), top motion
+        without a prescribed point; a seabed in 3-D (:meth:`_check_dimensions`, as for the chain)."""
+        for name, bad in (("winch", self.winch is not None), ("top_motion.track", self.top_motion.track is not None)):
             if bad:
                 raise ParameterError(name, "set", "must be unset for a system that is not a chain of sections: the "
                                      "node model of a graph of lines has no " + {"winch": "winch",
-                                     "top_motion.track": "steady turn", "seabed": "seabed"}[name] + " yet")
+                                     "top_motion.track": "steady turn"}[name] + " yet")
         top = self.top_motion
         if self.system.prescribed is None:
             moved = [f"top_motion.{a}" for a in ("x", "y", "z") if getattr(top, a)] + [

@@ -23,6 +23,8 @@ current or tow speed it still cannot reach is approached by continuation in the 
 
 from __future__ import annotations
 
+import dataclasses
+
 import casadi as ca
 import numpy as np
 
@@ -171,6 +173,12 @@ def system_guess(model, p, *, points: dict | None = None, top=None) -> np.ndarra
         inner = _line_nodes(model, p, k, pos[seq[0]], pos[seq[-1]])
         for j, r in zip(seq[1:-1], inner):
             pos[j] = r
+    lab = model.layout.labels
+    if "seabed.depth" in lab:        # nodes the catenaries put under the bed lie on it
+        v = lambda name: float(p[lab.index(f"seabed.{name}")])
+        y0 = v("depth") - float(p[lab.index("environment.top_depth")])
+        for j, r in pos.items():
+            r[1] = min(r[1], y0 + r[0] * np.tan(np.radians(v("slope_deg"))))
     for j, r in pos.items():
         if model.node_q[j] >= 0:
             q[model.node_q[j]:model.node_q[j] + dim] = r[:dim]
@@ -188,7 +196,11 @@ def _residual(model) -> ca.Function:
         zeroed = set(static_zeroed(model))
         ps = ca.vertcat(*[0.0 if i in zeroed else p[i] for i in range(n_p)])
         e = ca.vertcat(0.0, pz[n_p:], ca.SX.zeros(2 * dim))
-        _, f = model.dynamics(q, ca.SX.zeros(model.nq), e, ps)
+        forces = getattr(model, "static_force", None)   # a seabed's statics have their own laws (segmented_seabed.py)
+        if forces is not None:
+            f = forces(q, ca.SX.zeros(model.nq), e, ps)
+        else:
+            _, f = model.dynamics(q, ca.SX.zeros(model.nq), e, ps)
         return ca.Function("system_residual", [q, pz], [f / residual_scales(model, p)], ["q", "p"], ["r"])
     return model.derive("system_static_residual", build)
 
@@ -285,6 +297,8 @@ def system_equilibrium(model, p, *, guess=None, points: dict | None = None, top=
                 q_c, lam = flow_continuation(solve, q_c, p, flow, tol, 0.0 if np.any(p[flow]) else 1.0)
                 if lam >= 1.0:
                     q, r = q_c, residual(q_c, p)
+    if r < tol and "seabed.depth" in model.layout.labels:
+        _no_compression(model, q, p, z0, tol)
     if not r < tol:
         flags = kinsol_flags(kinsol)
         raise SolverError(f"cable system equilibrium not found (best scaled residual {r:.3g} > {tol:.3g}): KINSOL "
@@ -292,6 +306,22 @@ def system_equilibrium(model, p, *, guess=None, points: dict | None = None, top=
                           "speed" + (f" (KINSOL: {', '.join(flags)})" if flags else "") + "; give the bodies' and "
                           "junctions' positions (x, y, z of their [[point]] tables) as a guess")
     return q, r
+
+
+def _no_compression(model, q, p, z0, tol) -> None:
+    """A seabed's statics hold for lines in tension or lying unstretched on the bed (the elements elastic both ways,
+    :mod:`cablesys.model.segmented_seabed`): a static state with a compressed element is refused (SolverError)."""
+    e = np.concatenate([[0.0], z0, np.zeros(2 * model.dim)])
+    y = dict(zip(model.output_labels, np.array(model.outputs(np.concatenate([q, np.zeros_like(q)]), e, p)).ravel()))
+    secs = _sections(model, p)
+    ae = np.concatenate([[s_[2]] * s_[4] for line in secs for s_ in line])
+    T = ae * np.array([y[f"element_strain[{k}]"] for k in range(ae.size)])
+    weight = sum(abs(w) for w in _bodies(model, p).values()) + sum(abs(w) * l_r for line in secs
+                                                                   for l_r, _, _, w, _ in line)
+    if T.min() < -1e3 * np.finfo(float).eps * max(1.0, float(np.max(np.abs(T)))) - tol * weight:
+        raise SolverError(f"the system's static state has a compressed element (tension {T.min():.6g} N at element "
+                          f"{int(T.argmin())}): the seabed statics hold only for lines in tension or lying unstretched "
+                          "on the bed")
 
 
 def _both_ways(model, pp, both, p):
@@ -311,13 +341,62 @@ def system_steady(model, p, *, guess=None, points: dict | None = None) -> Steady
     return at_rest(model, q, p, r)
 
 
+def _positions(model, p, q, top) -> dict:
+    """{node: (x, y, z)} of every node of ``model`` at q (the held ones from ``p`` and the prescribed point at top)."""
+    pos = _held(model, p, top)
+    for j, k in enumerate(model.node_q):
+        if k >= 0:
+            pos[j] = np.r_[q[k:k + model.dim], np.zeros(3 - model.dim)]
+    return pos
+
+
+def refine(coarse, p_coarse, q_coarse, fine, p_fine, top=None) -> np.ndarray:
+    """A guess for the ``fine`` model (more elements per section) from the static state ``q_coarse`` of the ``coarse``
+    model of the same system: every line's nodes interpolated linearly in unstretched arc length between the coarse
+    line's nodes, the points where they are."""
+    pos_c = _positions(coarse, p_coarse, q_coarse, top)
+    q = np.zeros(fine.nq)
+    for k, seq in enumerate(fine.line_nodes):
+        arcs = lambda model, pp: np.concatenate([[0.0], np.cumsum(np.concatenate(
+            [[l0 / n] * n for _, l0, _, _, n in _sections(model, pp)[k]]))])
+        s_c, s_f = arcs(coarse, p_coarse), arcs(fine, p_fine)
+        s_f = s_f * s_c[-1] / s_f[-1]
+        pts = np.array([pos_c[j] for j in coarse.line_nodes[k]])
+        for j, s_ in zip(seq, s_f):
+            if fine.node_q[j] >= 0:
+                q[fine.node_q[j]:fine.node_q[j] + fine.dim] = [np.interp(s_, s_c, pts[:, c]) for c in range(fine.dim)]
+    return q
+
+
+#: The elements per line section of the first model of :func:`system_initial_state`'s coarse-to-fine statics.
+COARSE_SEGMENTS = 4
+
+
 def system_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
     """x0 = (q, q') of a run: the system at rest in its static state with the prescribed point where the top motion
     puts it at t0 (the origin after a smooth start), the bodies' and junctions' positions given in the scene as the
-    statics' guess."""
+    statics' guess. When the statics do not converge from the first guess, they are solved for the same system with
+    COARSE_SEGMENTS elements per line section, then twice as many, ..., each state interpolated along the lines into the
+    next one's guess (:func:`refine`): a mooring line lying on the seabed, whose touchdown the coarse guess misplaces by
+    tens of metres, is found so."""
     e = np.array(model.top(t0, p)).ravel()
     top = e[1:1 + model.dim]
     points = {pt.name: tuple(v for v in (pt.x, pt.y, pt.z or 0.0)) for pt in scene.system.point
               if pt.free and pt.x is not None and pt.y is not None}
-    q, _ = system_equilibrium(model, p, points=points, top=top)
+    try:
+        q, _ = system_equilibrium(model, p, points=points, top=top)
+    except SolverError:
+        from ..model import build_model
+        n_fine, n = max(model.segments), COARSE_SEGMENTS
+        if n_fine <= n:
+            raise
+        prev = None
+        while n < n_fine:
+            sc = dataclasses.replace(scene, system=scene.system.with_segments(n))
+            m = build_model(sc)
+            p_c = m.parameters(sc)
+            guess = None if prev is None else refine(*prev, m, p_c, top)
+            prev = (m, p_c, system_equilibrium(m, p_c, guess=guess, points=points, top=top)[0])
+            n *= 2
+        q, _ = system_equilibrium(model, p, guess=refine(*prev, model, p, top), top=top)
     return np.concatenate([q, np.zeros_like(q)])
