@@ -37,7 +37,6 @@ __all__ = ["KINDS", "Line", "Point", "System"]
 
 KINDS = ("prescribed", "fixed", "body", "junction")
 _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_\-]*$")
-#: Body fields a junction (a point mass) may not set: those of a rigid body (:data:`.body.RIGID_FIELDS`).
 _POSITION = ("x", "y", "z")
 
 
