@@ -56,3 +56,17 @@ def test_the_python_api_runs_the_same_scene_and_the_ring_balances_its_lines():
     assert np.allclose(r["point.crane.y"], r["y_s"]) and np.ptp(r["point.post.x"]) == 0.0
     late = r.time > 20.0
     assert np.ptp(r["point.clump.y"][late]) > 0.3          # the 0.5 m heave reaches the clump
+
+
+def test_cablesys_run_as_built_plots_the_scenes_own_lines(tmp_path):
+    """--model as-built runs the scene's own N per line section (8 here): the figure and the netCDF scene are that
+    scene's (the run's model info counts all 24 elements, which is no N per section)."""
+    f = tmp_path / "span.toml"
+    f.write_text(dump_scene(short(load_scene(example_path("clump-span")), 4.0)))
+    out = tmp_path / "out"
+    assert main(["run", str(f), "--out", str(out), "--model", "as-built"]) == 0
+    import xarray as xr
+    with xr.open_dataset(out / "timeseries.nc", engine="scipy") as ds:
+        assert ds["node_x"].shape[1] == 4 + 3 * 7
+        assert scene_from_dict(__import__("tomllib").loads(ds.attrs["scene_toml"])).system.line[0].section[0].segments == 8
+    assert (out / "timeseries.png").stat().st_size > 20000

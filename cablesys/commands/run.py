@@ -206,7 +206,10 @@ def _run(args) -> int:
         info = result.stats["model"]
         if getattr(args, "window", None):         # the statistics window of the summary groups, if asked
             result = dataclasses.replace(result, window_s=tuple(args.window))
-        scene_run = rung_scene(scene, info["name"], info.get("segments") or 1) if info["name"] in RUNGS else scene
+        # the scene the model ran: as built, the scene itself (its model_info counts every element, not N per section)
+        as_built = (args.model or scene.numerics.model) == "as-built"
+        scene_run = rung_scene(scene, info["name"], info.get("segments") or 1) if info["name"] in RUNGS and not as_built \
+            else scene
         summary = write_run(scene_run, result, outdir, series_on_disk=on_disk, units=units)
         if "run_s" in result.stats:     # a time-domain run: the ladder built its models and simulators besides
             summary["timing"]["build_s"] += float(result.stats.get("ladder_timing", {}).get("build_s", 0.0))
