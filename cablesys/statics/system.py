@@ -18,7 +18,11 @@ law. The first guess:
 When KINSOL does not converge from that guess, the model's potential energy (weights, elastic strain; Wang 1971
 eq. 14-15) is minimized from it by IPOPT (the equilibrium without flow is its minimum) and KINSOL restarts there; a
 current or tow speed it still cannot reach is approached by continuation in the flow speed, as for the chain
-(:func:`.catenary.segmented_equilibrium`). Forces in N, lengths in m.
+(:func:`.catenary.segmented_equilibrium`). With a seabed the statics' own laws hold (elements elastic both ways, the
+laid-down line's friction: :mod:`cablesys.model.segmented_seabed`), the guess lays the nodes it puts under the bed on
+it, and a state with a compressed element is refused. A run's start (:func:`system_initial_state`) that fails from
+this guess solves the system at COARSE_SEGMENTS elements per section first and refines it (:func:`refine`).
+Forces in N, lengths in m.
 """
 
 from __future__ import annotations
@@ -34,11 +38,6 @@ from .catenary import NODE_KINSOL, TOLERANCE, _taut_span, flow_continuation, flo
 from .problem import SteadyState, at_rest, residual_scales, static_parameters, static_zeroed
 
 __all__ = ["system_equilibrium", "system_guess", "system_initial_state", "system_steady"]
-
-
-def is_system(model) -> bool:
-    """True for the node model of a graph of lines (:class:`cablesys.model.system.SystemModel`)."""
-    return getattr(model, "line_nodes", None) is not None and hasattr(model, "node_q")
 
 
 def _sections(model, p) -> list:
