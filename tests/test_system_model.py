@@ -258,26 +258,40 @@ def test_a_buoy_pulled_by_a_current_gets_the_catenaries_restoring_force():
     assert (f2 - f1) / (x2 - x1) == pytest.approx((f2 - f1) / (c2 - c1), rel=1e-4)
 
 
-def test_a_chain_wire_chain_mooring_line_is_todays_sections_with_weightless_joints():
+@pytest.mark.parametrize("bearing", [None, 30.0])
+def test_a_chain_wire_chain_mooring_line_is_todays_sections_with_weightless_joints(bearing):
     """One [[line]] of three sections from a fairlead to an anchor on a seabed with friction, in the graph model, and
     today's [[sections]] with [anchor] and [seabed] whose joints carry weightless bodies of 1e-9 kg: the same nodes,
-    the same static state (1e-9 m), the same static forces (the laid-down friction) and ode (to the joints' masses)."""
+    the same static state (1e-9 m), the same static forces (the laid-down friction) and ode (to the joints' masses).
+    In the plane, and in space (``bearing``): the line's vertical plane turned 30 deg about the vertical, on a bed
+    sloping 2 deg along it, the fairlead moved along the line and across it (the 3-D bed's normal, axial and lateral
+    friction on a line's tangent from the elements on both sides of a node, as the chain's; axial friction 0.1, with
+    which the laid part stays in tension to the anchor)."""
     from cablesys.scene import Anchor, Seabed
     from cablesys.statics.steady import steady_state
     chain = lambda n, length: Cable(length=length, ae=5e8, diameter=0.1, mass_per_length=60.0, weight_per_length=500.0,
                                     cd_normal=2.4, ct_tangential=0.4, segments=n)
     secs = (chain(4, 60.0), Cable(length=150.0, ae=2e8, diameter=0.08, mass_per_length=20.0, weight_per_length=150.0,
                                   cd_normal=1.2, segments=6), chain(8, 120.0))
-    bed = Seabed(depth=100.0, friction_axial=0.5, damping=1e5)
-    motion = TopMotion(x=(Sinusoid(amplitude=2.0, frequency=0.5),), ramp_s=20.0)
+    if bearing is None:
+        bed = Seabed(depth=100.0, friction_axial=0.5, damping=1e5)
+        end, motion = (280.0, 100.0, None), TopMotion(x=(Sinusoid(amplitude=2.0, frequency=0.5),), ramp_s=20.0)
+    else:
+        g, slope = math.radians(bearing), 2.0
+        bed = Seabed(depth=100.0, friction_axial=0.1, friction_lateral=0.8, damping=1e5, slope_deg=slope,
+                     heading_deg=bearing)
+        end = (280.0 * math.cos(g), 100.0 + 280.0 * math.tan(math.radians(slope)), 280.0 * math.sin(g))
+        motion = TopMotion(x=(Sinusoid(amplitude=2.0, frequency=0.5),), z=(Sinusoid(amplitude=1.0, frequency=0.5),),
+                           ramp_s=20.0)
     graph = Scene(system=System(point=(Point(name="fairlead", kind="prescribed"),
-                                       Point(name="anchor", kind="fixed", x=280.0, y=100.0)),
+                                       Point(name="anchor", kind="fixed", x=end[0], y=end[1], z=end[2])),
                                 line=(Line(name="mooring", start="fairlead", end="anchor", section=secs),)),
                   seabed=bed, top_motion=motion)
     joint = Body(weight=0.0, mass_x=1e-9, mass_y=1e-9)
-    old = Scene(sections=tuple(Section(cable=c, body=joint) for c in secs), anchor=Anchor(x=280.0, y=100.0), seabed=bed,
-                top_motion=motion)
+    old = Scene(sections=tuple(Section(cable=c, body=joint) for c in secs), anchor=Anchor(x=end[0], y=end[1], z=end[2]),
+                seabed=bed, top_motion=motion)
     assert graph.system is not None and graph.sections == ()
+    assert graph.three_d == old.three_d == (bearing is not None)
     m_g, m_o = build_model(graph), build_model(old)
     assert m_g.q_labels == m_o.q_labels
     p_g, p_o = m_g.parameters(graph), m_o.parameters(old)
@@ -289,9 +303,16 @@ def test_a_chain_wire_chain_mooring_line_is_todays_sections_with_weightless_join
     x = np.concatenate([s_o.q + rng.normal(size=s_o.q.size) * 0.05, rng.normal(size=s_o.q.size) * 0.1])
     f_g, f_o = (np.array(m.ode(x, 5.0, pp)).ravel() for m, pp in ((m_g, p_g), (m_o, p_o)))
     assert np.max(np.abs(f_g - f_o)) < 1e-10 * np.max(np.abs(f_o))
-    z = np.zeros(s_o.q.size)
-    np.testing.assert_array_equal(np.array(m_g.static_force(x[:z.size], z, np.zeros(7), p_g)),
-                                  np.array(m_o.static_force(x[:z.size], z, np.zeros(7), p_o)))
+    z, e = np.zeros(s_o.q.size), np.zeros(m_o.dynamics.size1_in(2))
+    np.testing.assert_array_equal(np.array(m_g.static_force(x[:z.size], z, e, p_g)),
+                                  np.array(m_o.static_force(x[:z.size], z, e, p_o)))
+    if bearing is not None:          # the bed's lateral friction acts on the perturbed line, the same in both
+        y_g = dict(zip(m_g.output_labels, np.array(m_g.outputs(x, e, p_g)).ravel()))
+        y_o = dict(zip(m_o.output_labels, np.array(m_o.outputs(x, e, p_o)).ravel()))
+        lat = [k for k in y_o if k.startswith("seabed_friction_lateral[")]
+        assert len(lat) == m_o.nq // 3 + 2 and max(abs(y_o[k]) for k in lat) > 1.0
+        for k in lat:
+            assert y_g[k] == pytest.approx(y_o[k], rel=1e-10, abs=1e-9), k
 
 
 def test_a_buoy_held_by_two_lines_lying_on_the_seabed_against_the_catenary_with_friction():
@@ -331,3 +352,35 @@ def test_a_buoy_held_by_two_lines_lying_on_the_seabed_against_the_catenary_with_
         errors.append(abs(q[1] - (D - Z)))
     order = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
     assert np.all((order > 1.7) & (order < 2.3)), order
+
+
+def test_a_buoy_held_by_two_lines_lying_on_the_seabed_turned_about_the_vertical():
+    """The buoy held by two chains lying on the bed (friction 0.5, 150 m laid each side), its anchors turned 30 deg
+    about the vertical into a 3-D scene: the 3-D bed (normal contact and the laid-down friction along the lines'
+    tangent projected on the bed) gives the planar statics, the buoy's depth and every line-end tension to 1e-9 and no
+    sway beyond the statics' tolerance (rotation invariance)."""
+    from cablesys.scene import Seabed
+    L, w, R, D, B = 240.0, 500.0, 190.0, 100.0, 90e3
+
+    def scene(bearing):
+        cab = (Cable(length=L, ae=5e8, diameter=0.1, mass_per_length=60.0, weight_per_length=w, segments=8),)
+        c, s = math.cos(math.radians(bearing or 0.0)), math.sin(math.radians(bearing or 0.0))
+        z = (lambda v: None) if bearing is None else (lambda v: v)
+        return Scene(system=System(
+            point=(Point(name="buoy", kind="body", body=Body(weight=-B, mass_x=1e4, mass_y=1e4)),
+                   Point(name="west", kind="fixed", x=-R * c, y=D, z=z(-R * s)),
+                   Point(name="east", kind="fixed", x=R * c, y=D, z=z(R * s))),
+            line=(Line(name="w", start="buoy", end="west", section=cab),
+                  Line(name="e", start="buoy", end="east", section=cab))),
+            seabed=Seabed(depth=D, friction_axial=0.5, stiffness=3e8, heading_deg=None if bearing is None else 0.0))
+    out = {}
+    for bearing in (None, 30.0):
+        sc = scene(bearing)
+        assert sc.three_d == (bearing is not None)
+        m = build_model(sc)
+        out[bearing] = system_steady(m, m.parameters(sc)).outputs
+    plane, space = out[None], out[30.0]
+    for k in ("point.buoy.y", "line.w.tension_from", "line.w.tension_to", "line.e.tension_from", "line.e.tension_to"):
+        assert space[k] == pytest.approx(plane[k], rel=1e-9), k
+    assert plane["line.w.tension_to"] < 0.2 * plane["line.w.tension_from"]       # the friction has taken most of it
+    assert abs(space["point.buoy.x"]) < 1e-5 and abs(space["point.buoy.z"]) < 1e-5

@@ -179,9 +179,11 @@ def test_the_system_form_refuses_what_its_model_does_not_take_yet():
     with pytest.raises(ParameterError, match="initial.u"):
         Scene(system=sys_, initial=Initial(u=0.1))
     off = System(point=sys_.point[:3] + (Point(name="post", kind="fixed", x=80.0, y=60.0, z=5.0),), line=sys_.line)
-    with pytest.raises(ParameterError) as err:              # the node model's seabed is planar (as the chain's)
-        Scene(system=off, seabed=Seabed(depth=500.0))
-    assert err.value.field == "seabed" and "3-D" in str(err.value)
+    assert Scene(system=off, seabed=Seabed(depth=500.0)).three_d         # a seabed in space (as the chain's)
+    bed = Seabed(depth=60.5, slope_deg=10.0, heading_deg=-90.0)          # 0.88 m shallower at the post's z = 5 m
+    with pytest.raises(ParameterError) as err:
+        Scene(system=off, seabed=bed)
+    assert err.value.field == "point[3].y" and "z = 5 m" in str(err.value)
     from cablesys.scene.components import TopMotion as TM
     still = System(point=(Point(name="a", kind="fixed", x=0.0, y=0.0), Point(name="b", kind="fixed", x=50.0, y=0.0),
                           Point(name="m", kind="junction", body=Body(**CLUMP))),

@@ -25,11 +25,12 @@ profiles ``element_tension[k]``, ``element_tension_rate[k]``, ``element_strain[k
 line by line, each from its start), ``element_s[k]`` (the element mid-point's unstretched arc length from its line's
 start, m) and ``node_x[j]``, ``node_y[j]`` (``node_z[j]``) of every node. Units SI.
 
-A ``[seabed]`` (planar scenes) acts on every free node as on the chain's (:mod:`.segmented_seabed`: normal contact,
-regularised Coulomb friction, the laid-down line's friction in the statics, ``static_force``): a line is laid from its
-start towards its end, so a node's fairlead side is the element of its line that ends at it (a point that no element
-ends at: the element leaving it); write a mooring line from its fairlead to its anchor. Profiles ``seabed_normal[j]``
-and ``seabed_friction[j]`` per node.
+A ``[seabed]`` acts on every free node as on the chain's (:mod:`.segmented_seabed`: normal contact, regularised
+Coulomb friction, in space along and across the line on a bed sloping towards ``seabed.heading_deg``, the laid-down
+line's friction in the statics, ``static_force``): a line is laid from its start towards its end, so a node's fairlead side is the
+element of its line that ends at it (a point that no element ends at: the element leaving it), its other side (the
+line's tangent in space) the element leaving it; write a mooring line from its fairlead to its anchor. Profiles
+``seabed_normal[j]`` and ``seabed_friction[j]`` per node (in space also ``seabed_friction_lateral[j]``).
 """
 
 from __future__ import annotations
@@ -176,16 +177,19 @@ def build_system_model(scene: Scene) -> SystemModel:
             sums.point_body(j, P, node_r[j], node_v[j], rho=rho, t=t, env=env, depth0=depth0)
 
     V_contact, bed = 0.0, None
-    if scene.seabed is not None:     # the planar seabed on every free node (segmented_seabed.py); a line is laid
-        # from its start towards its end: a node's fairlead side is the element of its line ending at it
-        up = {}
+    if scene.seabed is not None:     # the seabed on every free node (segmented_seabed.py); a line is laid from its
+        # start towards its end: a node's fairlead side is the element of its line ending at it
+        up, down = {}, {}
         for el in reversed(elements):
             up[el["a"]] = el                          # a point no element ends at: the element leaving it
         up.update({el["b"]: el for el in elements})
-        bed = seabed_forces(layout, node_r, node_v, sums.area, elements, depth0, free, up)
+        for el in reversed(elements):                 # the other side (the line's tangent in space): an element
+            if up[el["a"]] is not el:                 # leaving the node, its line's next one at an inner node
+                down[el["a"]] = el
+        bed = seabed_forces(layout, node_r, node_v, sums.area, elements, depth0, free, up, down)
         V_contact = bed["energy"]
         for j, (Fd, Fs) in bed["forces"].items():
-            for c in range(2):
+            for c in range(dim):
                 sums.Q[j][c] += Fd[c]
                 sums.Q_static[j][c] += Fs[c]
     # Lagrange's equations node by node (node_terms.py): M_j q''_j = f_j, block diagonal
@@ -229,6 +233,8 @@ def build_system_model(scene: Scene) -> SystemModel:
     if bed is not None:
         prof["seabed_normal"] = ca.vertcat(*bed["normal"])
         prof["seabed_friction"] = ca.vertcat(*bed["friction"])
+        if dim == 3:
+            prof["seabed_friction_lateral"] = ca.vertcat(*bed["lateral"])
     for name, v in prof.items():
         out += [v[k] for k in range(v.shape[0])]
         labels += [f"{name}[{k}]" for k in range(v.shape[0])]

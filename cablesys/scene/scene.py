@@ -101,10 +101,11 @@ class Scene:
         bed, depth0 = self.seabed, self.environment.top_depth
         for i, p in enumerate(sys_.point):
             if p.kind == "fixed" and bed is not None:
-                y_bed = bed.bed_y(p.x, depth0)
+                y_bed = bed.bed_y(p.x, depth0, p.z or 0.0)
                 if p.y > y_bed + 1e-9 * max(1.0, abs(y_bed)):
+                    where = f"x = {p.x:.6g} m" + (f", z = {p.z:.6g} m" if p.z else "")
                     raise ParameterError(f"point[{i}].y", p.y, f"puts the fixed point {p.name!r} below the seabed "
-                                         f"(the bed is at y = {y_bed:.6g} m under x = {p.x:.6g} m, seabed.depth = "
+                                         f"(the bed is at y = {y_bed:.6g} m under {where}, seabed.depth = "
                                          f"{bed.depth:.6g} m): a fixed point must lie on or above the bed")
         chain = sys_.as_chain()
         if chain is None:
@@ -124,15 +125,12 @@ class Scene:
     def _check_system(self) -> None:
         """What the node model of a graph of lines (:mod:`cablesys.model.system`) does not take yet, each refused by
         name: a rigid body, a winch, a track, an initial angle or stretch (it starts from its statics), top motion
-        without a prescribed point, a seabed in 3-D (the graph's seabed is planar so far)."""
+        without a prescribed point."""
         for name, bad in (("winch", self.winch is not None), ("top_motion.track", self.top_motion.track is not None)):
             if bad:
                 raise ParameterError(name, "set", "must be unset for a system that is not a chain of sections: the "
                                      "node model of a graph of lines has no " + {"winch": "winch",
                                      "top_motion.track": "steady turn"}[name] + " yet")
-        if self.seabed is not None and self.three_d:
-            raise ParameterError("seabed", "set", "must be unset in a 3-D scene of a system that is not a chain of "
-                                 "sections: the node model of a graph of lines has a planar seabed so far")
         top = self.top_motion
         if self.system.prescribed is None:
             moved = [f"top_motion.{a}" for a in ("x", "y", "z") if getattr(top, a)] + [

@@ -173,11 +173,12 @@ def system_guess(model, p, *, points: dict | None = None, top=None) -> np.ndarra
         for j, r in zip(seq[1:-1], inner):
             pos[j] = r
     lab = model.layout.labels
-    if "seabed.depth" in lab:        # nodes the catenaries put under the bed lie on it
+    if "seabed.depth" in lab:        # nodes the catenaries put under the bed lie on it (in space: its heading)
         v = lambda name: float(p[lab.index(f"seabed.{name}")])
         y0 = v("depth") - float(p[lab.index("environment.top_depth")])
+        beta = np.radians(v("heading_deg")) if "seabed.heading_deg" in lab else 0.0
         for j, r in pos.items():
-            r[1] = min(r[1], y0 + r[0] * np.tan(np.radians(v("slope_deg"))))
+            r[1] = min(r[1], y0 + (r[0] * np.cos(beta) + r[2] * np.sin(beta)) * np.tan(np.radians(v("slope_deg"))))
     for j, r in pos.items():
         if model.node_q[j] >= 0:
             q[model.node_q[j]:model.node_q[j] + dim] = r[:dim]
