@@ -384,3 +384,37 @@ def test_a_buoy_held_by_two_lines_lying_on_the_seabed_turned_about_the_vertical(
         assert space[k] == pytest.approx(plane[k], rel=1e-9), k
     assert plane["line.w.tension_to"] < 0.2 * plane["line.w.tension_from"]       # the friction has taken most of it
     assert abs(space["point.buoy.x"]) < 1e-5 and abs(space["point.buoy.z"]) < 1e-5
+
+
+def test_a_package_landed_at_the_end_of_a_graph_rests_on_its_footprint_as_the_chains():
+    """ship -> wire -> clump (junction) -> wire -> package (body.bed_area = 2 m^2) on a seabed, the chain built as a
+    graph and as today's sections: the same ode and static forces, and the package's node pressed 1 cm into the bed
+    carries the contact law's k (d l / 2 + bed_area) delta (its footprint with its line's half element, MoorDyn's
+    kBot per unit area)."""
+    from cablesys.scene import Seabed
+    pkg = Body(weight=3000.0, mass_x=400.0, mass_y=450.0, drag_area_normal=0.8, drag_area_tangential=0.5,
+               axis_angle_deg=10.0, bed_area=2.0)
+    system = System(point=(Point(name="ship", kind="prescribed"), Point(name="clump", kind="junction", body=CLUMP),
+                           Point(name="pkg", kind="body", body=pkg)),
+                    line=(Line(name="upper", start="ship", end="clump", section=(wire(4),)),
+                          Line(name="lower", start="clump", end="pkg", section=(wire(3, length=80.0),))))
+    bed = Seabed(depth=180.0, stiffness=3e6, friction_axial=0.4)
+    chain, graph = Scene(system=system, seabed=bed), as_graph(system, seabed=bed)
+    assert chain.system is None and graph.system is not None
+    m_c, m_g = build_model(chain), build_system_model(graph)
+    p_c, p_g = m_c.parameters(chain), m_g.parameters(graph)
+    rng = np.random.default_rng(11)
+    k = m_c.nq // 2
+    y = np.r_[np.arange(1, 5) * 25.0, 100.0 + np.arange(1, 4) * 80.0 / 3]
+    y[-1] = 180.01                                      # the package 1 cm into the bed
+    q = np.column_stack([rng.normal(size=k) * 0.3, y]).ravel()
+    q[-2] = 0.0
+    x = np.r_[q, rng.normal(size=m_c.nq) * 0.01]
+    f_c, f_g = np.array(m_c.ode(x, 1.0, p_c)).ravel(), np.array(m_g.ode(x, 1.0, p_g)).ravel()
+    assert np.max(np.abs(f_g - f_c)) <= 1e-12 * np.max(np.abs(f_c))
+    e = np.zeros(m_c.dynamics.size1_in(2))
+    np.testing.assert_allclose(np.array(m_g.static_force(q, 0 * q, e, p_g)), np.array(m_c.static_force(q, 0 * q, e, p_c)),
+                               rtol=1e-12, atol=1e-9)
+    out = dict(zip(m_g.output_labels, np.array(m_g.outputs(np.r_[q, 0 * q], e, p_g)).ravel()))
+    area = 0.02 * 80.0 / 3 / 2 + 2.0                    # d l / 2 of the lower wire's last element, and the footprint
+    assert out["seabed_normal[7]"] == pytest.approx(3e6 * area * 0.01, rel=1e-9)

@@ -178,6 +178,9 @@ def _scene_items(scene: Scene) -> list:
             items.append(("seabed.heading_deg", float(scene.seabed.heading_deg or 0.0)))
         items += [(f"{section_prefix(len(scene.sections), i)}body.bed_area", float(s.body.bed_area or 0.0))
                   for i, s in enumerate(scene.sections)]                   # footprints on the bed
+        if getattr(scene, "system", None) is not None:                      # a system's bodies' and junctions'
+            items += [(f"system.point[{i}].body.bed_area", float(pt.body.bed_area or 0.0))
+                      for i, pt in enumerate(scene.system.point) if pt.free]
     if getattr(scene, "winch", None) is not None:    # the first section's payout (model/segmented_winch.py)
         items += scene.winch.parameter_items()     # its profile's numbers (scene.ends.Winch)
     return items

@@ -27,10 +27,12 @@ start, m) and ``node_x[j]``, ``node_y[j]`` (``node_z[j]``) of every node. Units 
 
 A ``[seabed]`` acts on every free node as on the chain's (:mod:`.segmented_seabed`: normal contact, regularised
 Coulomb friction, in space along and across the line on a bed sloping towards ``seabed.heading_deg``, the laid-down
-line's friction in the statics, ``static_force``): a line is laid from its start towards its end, so a node's fairlead side is the
-element of its line that ends at it (a point that no element ends at: the element leaving it), its other side (the
-line's tangent in space) the element leaving it; write a mooring line from its fairlead to its anchor. Profiles
-``seabed_normal[j]`` and ``seabed_friction[j]`` per node (in space also ``seabed_friction_lateral[j]``).
+line's friction in the statics, ``static_force``), a body's or junction's node with its footprint ``body.bed_area``
+besides its lines' half elements (as the chain's body): a line is laid from its start towards its end, so a node's
+fairlead side is the element of its line that ends at it (a point that no element ends at: the element leaving it),
+its other side (the line's tangent in space) the element leaving it; write a mooring line from its fairlead to its
+anchor. Profiles ``seabed_normal[j]`` and ``seabed_friction[j]`` per node (in space also
+``seabed_friction_lateral[j]``).
 """
 
 from __future__ import annotations
@@ -179,6 +181,9 @@ def build_system_model(scene: Scene) -> SystemModel:
     V_contact, bed = 0.0, None
     if scene.seabed is not None:     # the seabed on every free node (segmented_seabed.py); a line is laid from its
         # start towards its end: a node's fairlead side is the element of its line ending at it
+        for i, pt in enumerate(system.point):         # a body's or junction's footprint on the bed
+            if pt.free:
+                sums.area[point_nodes[i]] += layout.sym(f"system.point[{i}].body.bed_area")
         up, down = {}, {}
         for el in reversed(elements):
             up[el["a"]] = el                          # a point no element ends at: the element leaving it
