@@ -2,6 +2,7 @@
 same Scene, hence the same model and run: checked on the model's functions and a short run); bad systems are named
 errors, with the file's line, before any work."""
 
+import dataclasses
 import tomllib
 
 import numpy as np
@@ -195,3 +196,26 @@ def test_the_system_form_refuses_what_its_model_does_not_take_yet():
     with pytest.raises(ParameterError) as err:
         Scene(sections=(Section(cable=cable(), body=Body(**PKG)),), system=sys_)
     assert err.value.field == "sections"
+
+
+def test_a_chain_to_a_fixed_point_off_the_plane_is_todays_chain_with_a_3d_anchor():
+    """The anchored chain with its fixed point 30 m out of the x-y plane is today's sections with [anchor] at
+    (x, y, z) in a 3-D scene: the same Scene, parameters and ode; a fixed point at z = 0 stays in the plane."""
+    off = lambda z: System(point=(Point(name="ship", kind="prescribed"),
+                                  Point(name="clump", kind="junction", body=Body(**CLUMP)),
+                                  Point(name="anchor", kind="fixed", x=60.0, y=150.0, z=z)),
+                           line=(Line(name="upper", start="ship", end="clump", section=(cable(4),)),
+                                 Line(name="lower", start="clump", end="anchor", section=(cable(3, length=80.0),))))
+    old, _ = chain_pair(anchored=True)
+    old3 = dataclasses.replace(old, anchor=Anchor(x=60.0, y=150.0, z=30.0))
+    got = Scene(system=off(30.0), top_motion=MOTION, numerics=NUM)
+    assert got == old3 and got.system is None and got.three_d and got.anchor.position == (60.0, 150.0, 30.0)
+    flat = Scene(system=off(0.0), top_motion=MOTION, numerics=NUM)
+    assert flat == old and not flat.three_d
+    m_old, m_new = build_model(old3), build_model(got)
+    assert m_new.q_labels == m_old.q_labels and m_new.dim == 3
+    p_old, p_new = m_old.parameters(old3), m_new.parameters(got)
+    np.testing.assert_array_equal(p_new, p_old)
+    x = np.random.default_rng(2).normal(size=2 * m_old.nq) + np.r_[np.tile([0.0, 40.0, 5.0], m_old.nq // 3),
+                                                                    np.zeros(m_old.nq)]
+    np.testing.assert_array_equal(np.array(m_new.ode(x, 1.3, p_new)), np.array(m_old.ode(x, 1.3, p_old)))

@@ -119,7 +119,7 @@ class Scene:
         object.__setattr__(self, "sections", tuple(out))
         object.__setattr__(self, "system", None)
         if end.kind == "fixed":
-            object.__setattr__(self, "anchor", Anchor(x=end.x, y=end.y))
+            object.__setattr__(self, "anchor", Anchor(x=end.x, y=end.y, z=end.z or None))   # z = 0: in the plane
         return tuple(out)
 
     def _check_system(self) -> None:

@@ -16,9 +16,10 @@ points: every point ends a line, and every line names two points. A system held 
 fixed point) has no equilibrium; a line shorter than the distance between the held points it joins cannot reach.
 
 A system whose lines make one path from the prescribed point down through bodies and junctions to a free body or
-a fixed point in the x-y plane, one section per line, is today's chain of sections (:meth:`System.as_chain`), and
-the scene is that chain, exactly: the same model, parameters and outputs (:class:`~.scene.Scene`). Any other
-system is built by the node model of a graph of lines (:mod:`cablesys.model.system`).
+a fixed point (the chain's ``[anchor]``, in the plane or off it), one section per line, is today's chain of sections
+(:meth:`System.as_chain`), and the scene is that chain, exactly: the same model, parameters and outputs
+(:class:`~.scene.Scene`). Any other system is built by the node model of a graph of lines
+(:mod:`cablesys.model.system`).
 """
 
 from __future__ import annotations
@@ -283,8 +284,8 @@ class System:
         """The system as today's chain of sections, or None when it is not one.
 
         A chain: one prescribed point ending one line; from it a path of lines, each with one section, through
-        bodies and junctions each ending two lines, to a free body or a fixed point in the x-y plane (z unset or 0)
-        ending one line. Returns ``(steps, end)``: steps ((line index, reversed), ...) in order from the top
+        bodies and junctions each ending two lines, to a free body or a fixed point (the chain's ``[anchor]``, at its
+        x, y and z) ending one line. Returns ``(steps, end)``: steps ((line index, reversed), ...) in order from the top
         (reversed when the line is written from its lower end) and the last point.
         """
         top = self.prescribed
@@ -307,8 +308,6 @@ class System:
                 break
         end = self.by_name(here)
         if len(used) != len(self.line) or self.degree(end.name) != 1 or end.kind == "prescribed":
-            return None
-        if end.kind == "fixed" and end.z not in (None, 0.0):
             return None
         return tuple(steps), end
 
