@@ -5,7 +5,7 @@ from __future__ import annotations
 from importlib import resources
 from pathlib import Path
 
-EXAMPLES = {"rov-lift": "rov_lift.toml", "light-lift": "light_lift.toml"}
+EXAMPLES = {"rov-lift": "rov_lift.toml", "light-lift": "light_lift.toml", "clump-span": "clump_span.toml"}
 
 
 def example_path(name: str) -> Path:

@@ -30,6 +30,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import json
+import re
 import time as _time
 from typing import Any, ClassVar, Protocol, runtime_checkable
 
@@ -79,13 +80,30 @@ def _base(label: str) -> tuple[str, str]:
     return (head, tail) if tail.isdigit() and head else (label, "")
 
 
+# a system of lines joined at points (model/system.py): ``point.NAME.x`` .. ``point.NAME.z_rate`` of every point,
+# ``line.NAME.tension_from`` / ``tension_to`` of every line
+_SYSTEM = re.compile(r"^(point|line)\.([A-Za-z][A-Za-z0-9_\-]*)\.(x|y|z|x_rate|y_rate|z_rate|tension_from|tension_to)$")
+_SYSTEM_NAMES = {"x": ("m", "horizontal position of point {}"), "y": ("m", "depth of point {} (y down)"),
+                 "z": ("m", "sway position of point {}"), "x_rate": ("m/s", "horizontal velocity of point {}"),
+                 "y_rate": ("m/s", "vertical velocity of point {} (y down)"),
+                 "z_rate": ("m/s", "sway velocity of point {}"),
+                 "tension_from": ("N", "tension of line {} at its from end (its pull on that point)"),
+                 "tension_to": ("N", "tension of line {} at its to end (its pull on that point)")}
+
+
 def unit_of(label: str) -> str:
-    """SI unit of a labelled quantity (``phi_2`` -> ``rad``); "" when unknown."""
+    """SI unit of a labelled quantity (``phi_2`` -> ``rad``, ``point.buoy.x`` -> ``m``); "" when unknown."""
+    m = _SYSTEM.match(label)
+    if m:
+        return _SYSTEM_NAMES[m.group(3)][0]
     return UNITS.get(_base(label)[0], "")
 
 
 def long_name_of(label: str) -> str:
     """Long name of a labelled quantity (``phi_2`` -> ``cable angle ... (section 2)``)."""
+    m = _SYSTEM.match(label)
+    if m:
+        return _SYSTEM_NAMES[m.group(3)][1].format(m.group(2))
     base, k = _base(label)
     name = QUANTITIES.get(base, ("", label.replace("_", " ")))[1]
     return f"{name} (section {k})" if k and base in QUANTITIES else name

@@ -49,9 +49,14 @@ def statistics_window(time, limits=None, result=None) -> np.ndarray:
     return mask
 
 
+_SYSTEM_TENSION = re.compile(r"^line\.[^.]+\.tension_(from|to)$")      # a system's line-end tensions (model/system.py)
+_SYSTEM_POINT = re.compile(r"^point\.([^.]+)\.[xyz]$")                  # a system's point coordinates
+
+
 def tension_labels(labels) -> list[str]:
-    """The tension outputs: ``tension_top``/``tension_bottom``... when present, else ``tension*``."""
-    tens = [lbl for lbl in labels if lbl.startswith("tension") and not lbl.endswith("rate")]
+    """The tension outputs: ``tension_top``/``tension_bottom``... when present, else ``tension*``; a system's
+    ``line.NAME.tension_from`` / ``tension_to``."""
+    tens = [lbl for lbl in labels if _is_tension(lbl)]
     return tens
 
 
@@ -65,10 +70,11 @@ def body_labels(labels) -> tuple[str, str] | None:
     return (x, y) if y in labels else None
 
 
-def run_statistics(result, limits=None) -> dict:
+def run_statistics(result, limits=None, free_points=()) -> dict:
     """Time-domain statistics (:func:`cablesys.statistics.time_domain`) of the lowest body's motion (x, y, and z in 3-D) and
     every tension output over the statistics window (tensions never below 0 N, resolutions from
-    :data:`cablesys.statistics.FLOORS`); exposure from ``limits.exposure``."""
+    :data:`cablesys.statistics.FLOORS`); exposure from ``limits.exposure``. A system of lines: the coordinates of its
+    bodies and junctions (``free_points``, their names) and every line's end tensions."""
     mask = statistics_window(result.time, limits, result)
     t = result.time[mask]
     exposure = getattr(limits, "exposure", None)
@@ -77,12 +83,14 @@ def run_statistics(result, limits=None) -> dict:
     if body:
         sway = "z" + body[0][1:]                 # the lowest body's sway in a 3-D run
         labels = list(body) + ([sway] if sway in result.labels else []) + labels
+    labels = [lbl for lbl in result.labels if _SYSTEM_POINT.match(lbl) and _SYSTEM_POINT.match(lbl).group(1)
+              in free_points] + labels
     return {lbl: st.time_domain(t, np.asarray(result[lbl])[mask], exposure, floor=st.FLOORS.get(_unit(lbl), 0.0),
                                 nonnegative=_is_tension(lbl)) for lbl in labels}
 
 
 def _is_tension(label: str) -> bool:
-    return label.startswith("tension") and not label.endswith("rate")
+    return (label.startswith("tension") and not label.endswith("rate")) or bool(_SYSTEM_TENSION.match(label))
 
 
 def window_snap_loads(result, limits=None) -> tuple[list, list]:
@@ -155,7 +163,7 @@ def evaluate(limits, stats: dict, snaps=()) -> dict:
                 k = max(dafs, key=dafs.get)
                 out["daf"] = _upper(dafs[k], limits.max_daf, "-", f"peak / static tension ({k}) <= allowed DAF")
     if limits.max_excursion is not None:
-        body = [k for k in stats if k.startswith(("x_b", "y_b", "z_b"))]
+        body = [k for k in stats if k.startswith(("x_b", "y_b", "z_b")) or _SYSTEM_POINT.match(k)]
         if body:
             exc = {k: max(hi(stats[k]) - stats[k]["mean"], stats[k]["mean"] - lo(stats[k])) for k in body}
             k = max(exc, key=exc.get)
@@ -301,7 +309,8 @@ def report(scene, result) -> dict:
     names), ``verdict`` against ``scene.limits``, the slack/snap ``warnings`` and, for a steady tow,
     its ``steady_shape`` (:func:`steady_shape`)."""
     limits = getattr(scene, "limits", None)
-    stats = run_statistics(result, limits)
+    system = getattr(scene, "system", None)
+    stats = run_statistics(result, limits, tuple(p.name for p in system.point if p.free) if system is not None else ())
     grouped = group_by_quantity(stats)
     mask = statistics_window(result.time, limits, result)
     window = [float(result.time[mask][0]), float(result.time[mask][-1])]

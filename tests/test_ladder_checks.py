@@ -78,6 +78,21 @@ def test_a_body_quantity_is_judged_on_the_motions_scale():
     assert metrics.body_floor(still) == metrics.LENGTH_FLOOR_M
 
 
+def test_a_systems_body_group_is_judged_on_the_body_floor():
+    """metrics.errors on a system's points (point.NAME.x, ...), which may all stand still (a buoy moored in a current):
+    the body group's difference is relative to the larger of the largest amplitude and metrics.body_floor, so 2 mm on a
+    still system is 0.2 of a centimetre, on a buoy swinging 0.5 m 2 mm / 0.5 m; a chain's body group keeps its body's
+    amplitude (2 mm on 5 mm is 0.4)."""
+    still = {"point.buoy.x_amplitude": 0.0, "point.buoy.y_amplitude": 0.0, "point.anchor.x_amplitude": 0.0,
+             "line.leg.tension_from_max": 1e5}
+    off = dict(still, **{"point.buoy.x_amplitude": 0.002})
+    assert metrics.errors(off, still)["body"] == pytest.approx(0.2, rel=1e-12)
+    swing = dict(still, **{"point.buoy.y_amplitude": 0.5})
+    assert metrics.errors(dict(swing, **{"point.buoy.x_amplitude": 0.002}), swing)["body"] == pytest.approx(0.004)
+    chain = {"x_b_amplitude": 0.0, "y_b_amplitude": 0.005, "tension_top_max": 1e5}
+    assert metrics.errors(dict(chain, x_b_amplitude=0.002), chain)["body"] == pytest.approx(0.4, rel=1e-12)
+
+
 def _seq(f, ns):
     """Statistics of runs at N in ``ns`` for a body amplitude y(N) = f(N) beside a fixed 10 m heave and top tension."""
     return [{"x_b_amplitude": f(n), "y_b_amplitude": 10.0, "tension_top_max": 1e4} for n in ns]

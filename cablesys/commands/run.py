@@ -62,8 +62,9 @@ def register(sub) -> None:
                                    "validate it and print it back in SI.")
     s.add_argument("file", nargs="?", type=Path)
     s.add_argument("--example", nargs="?", const="dale", default=None, choices=("dale",) + tuple(EXAMPLES),
-                   help="print an annotated example scene: dale (default), rov-lift (irregular sea, limits, design) "
-                        "or light-lift (a light cage in a steep sea: slack and snap)")
+                   help="print an annotated example scene: dale (default), rov-lift (irregular sea, limits, design), "
+                        "light-lift (a light cage in a steep sea: slack and snap) or clump-span (a system of lines "
+                        "joined at points: a span with a clump weight hung from a junction)")
     s.add_argument("--design", action="store_true", help="with --example: append a commented [design] template")
     s.add_argument("--units", default="SI", choices=("SI", "fps"), help="units to print in")
     s.set_defaults(func=_scene)
@@ -205,7 +206,10 @@ def _run(args) -> int:
         info = result.stats["model"]
         if getattr(args, "window", None):         # the statistics window of the summary groups, if asked
             result = dataclasses.replace(result, window_s=tuple(args.window))
-        scene_run = rung_scene(scene, info["name"], info.get("segments") or 1) if info["name"] in RUNGS else scene
+        # the scene the model ran: as built, the scene itself (its model_info counts every element, not N per section)
+        as_built = (args.model or scene.numerics.model) == "as-built"
+        scene_run = rung_scene(scene, info["name"], info.get("segments") or 1) if info["name"] in RUNGS and not as_built \
+            else scene
         summary = write_run(scene_run, result, outdir, series_on_disk=on_disk, units=units)
         if "run_s" in result.stats:     # a time-domain run: the ladder built its models and simulators besides
             summary["timing"]["build_s"] += float(result.stats.get("ladder_timing", {}).get("build_s", 0.0))
@@ -283,8 +287,9 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
         result = dataclasses.replace(result, window_s=(float(start), float(result.time[-1])))
     summary = result.summary()
     summary.pop("status", None)
-    # where the last section's tension_bottom acts: its body, or the anchor that holds its lower end
-    summary["tension_bottom_at"] = "at the anchor" if scene.anchor is not None else "at the body"
+    system = getattr(scene, "system", None)
+    if system is None:    # where the last section's tension_bottom acts: its body, or the anchor that holds its lower end
+        summary["tension_bottom_at"] = "at the anchor" if scene.anchor is not None else "at the body"
     st = result.stats
     summary["timing"] = {k: float(st.get(k, 0.0)) for k in ("build_s", "load_s", "run_s")}
     if "ladder_timing" in st and "run_s" not in st:     # the frequency rung: no time-domain run, the ladder's times
@@ -296,8 +301,9 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
         # the amplitudes over the one statistics window (cablesys.statistics.window), which holds a whole period
         summary["amplitude_periods"] = (t1 - t0) / period
         mask = st_window_mask(result.time, t0, t1)
+        free = tuple(f"point.{p.name}." for p in system.point if p.free) if system is not None else ()
         amps = {lbl: half_range(np.asarray(result[lbl])[mask])
-                for lbl in result.labels if lbl.startswith(("x_b", "y_b", "z_b", "phi", "u", "tension"))
+                for lbl in result.labels if lbl.startswith(("x_b", "y_b", "z_b", "phi", "u", "tension", "line.") + free)
                 and not lbl.endswith("rate")}
         for unit in ("m", "rad", "N"):      # grouped by quantity, the unit in the key
             summary[f"amplitudes_{unit}"] = {k: v for k, v in amps.items() if unit_of(k) == unit}
@@ -307,7 +313,16 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
         from ..linear.sea_response import side_by_side
         td = {k: v for g, rows in summary["statistics"].items() if isinstance(rows, dict) for k, v in rows.items()}
         summary["statistics_time_vs_frequency_domain"] = side_by_side(scene, td, summary["statistics"]["exposure_s"])
-    if plot and result.time.size > 1:
+    if plot and result.time.size > 1 and system is not None:     # lines joined at points: shape, paths, tensions
+        from ..model.system import topology
+        from ..plots.system import plot_system_series
+        point_nodes, line_nodes, _ = topology(system)
+        with out.writing("timeseries.png") as tmp:
+            plot_system_series(result, tmp, units=units, limits=scene.limits,
+                               window_start=summary["statistics"]["window_s"][0],
+                               lines={ln.name: (nodes, ln.start, ln.end) for ln, nodes in zip(system.line, line_nodes)},
+                               points={p.name: (p.kind, j) for p, j in zip(system.point, point_nodes)})
+    elif plot and result.time.size > 1:
         from ..plots.time_domain import plot_time_series
         with out.writing("timeseries.png") as tmp:
             plot_time_series(result, tmp, units=units, limits=scene.limits, anchored=scene.anchor is not None,

@@ -70,7 +70,7 @@ from .run_settings import (  # noqa: F401 - re-exported: the ladder's run settin
     rung_settings,
 )
 from .hooks import checking, hooks
-from .rung.base import NOT_ESTIMATED
+from .rung.base import NOT_ESTIMATED, scene_segments
 from .rung.segmented import ENDS_SEGMENTS  # noqa: F401 - re-exported: the first N of an anchored line
 from .rungs import BUILTIN, RUNGS, RungCache, check_rung, get_rung, ladder_rungs, rung_scene, takes_elements, validity
 
@@ -256,7 +256,7 @@ def _as_built(scene: Scene, model, simulator, kw: dict, cache: RungCache | None)
     from ..time_domain import simulate as run_model
     given = model is not None or simulator is not None
     if not given and cache is not None:       # the scene's own structure, built once per cache
-        n = max(s.cable.segments for s in scene.sections)
+        n = scene_segments(scene)
         model = cache.model(scene, "segmented" if n > 1 else "wang", n)
     extra = hooks(kw, "as built", True)
     opts = {k: kw[k] for k in ("method", "rtol", "atol", "max_num_steps", "times", "x0") if kw.get(k) is not None}
@@ -734,7 +734,7 @@ def linear_model(scene: Scene, tolerance=None, cache: RungCache | None = None):
     require_at_rest(scene, "the linear analyses")
     cache = cache if cache is not None else RungCache()
     if getattr(scene.numerics, "model", "auto") == AS_BUILT:
-        n = max(s.cable.segments for s in scene.sections)
+        n = scene_segments(scene)
         name = "segmented" if n > 1 else "wang"
         return scene, cache.model(scene, name, n), {
             "name": name, "segments": n, "reason": "numerics.model = 'as-built': the scene's own model, as built; "

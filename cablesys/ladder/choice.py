@@ -29,8 +29,7 @@ from ..scene import Scene
 from . import estimate as est
 from . import metrics
 from .indicators import scene_numbers
-from .rung.base import with_segments
-from .rung.base import three_d
+from .rung.base import cables, scene_segments, three_d, with_segments
 from .rung.quasistatic import (  # noqa: F401 - the plans' weights
     EXPLICIT_COST,
     EXPLICIT_COST_MAX_ELEMENTS,
@@ -163,7 +162,7 @@ def model_operations(scene: Scene, name: str, segments: int) -> float:
     45 deg has 25 k / 98 k / 571 k operations at N = 4 / 8 / 16, along x 10 k / 26 k / 103 k), the node model
     NODE_OPERATIONS_PER_ELEMENT x N per section (fits to the counts above); the straight rungs (N = 1) a node model's
     element."""
-    sections = len(scene.sections)
+    sections = len(cables(scene))
     if name == "quasi-static" and segments > 1:
         angles = float(segments) * (2 if three_d(scene) else 1)
         return sections * QS_OPERATIONS_PER_SECTION * angles ** QS_OPERATIONS_EXPONENT
@@ -173,7 +172,7 @@ def model_operations(scene: Scene, name: str, segments: int) -> float:
 def quasistatic_max_segments(scene: Scene) -> int:
     """The largest N of the quasi-static segmented cable whose predicted size (:func:`model_operations`) is within
     MAX_MODEL_OPERATIONS (1 when none is)."""
-    per = QS_OPERATIONS_PER_SECTION * len(scene.sections)
+    per = QS_OPERATIONS_PER_SECTION * len(cables(scene))
     n = int((MAX_MODEL_OPERATIONS / per) ** (1.0 / QS_OPERATIONS_EXPONENT))
     while n > 1 and model_operations(scene, "quasi-static", n) > MAX_MODEL_OPERATIONS:
         n -= 1
@@ -528,7 +527,7 @@ def forced(scene: Scene, name: str, segments: int | None = None, tolerance=None,
         reason = f"{name} (a registered rung) requested by the user" + ("" if ok else "; OUTSIDE its validity: "
                                                                           + str(e.get("note", "")))
         return Choice(name, 1, reason, {"body": e["body"], "tension": e["tension"]}, dict(info, valid=ok))
-    scene_n = max(s.cable.segments for s in scene.sections)          # the user's own `segments = N`
+    scene_n = scene_segments(scene)                                  # the user's own `segments = N`
     if name == "segmented":
         n = segments or (scene_n if scene_n > 1 else segments_for(errs, tol))
     elif name == "quasi-static" and quasistatic_segments_available(scene):

@@ -3,7 +3,9 @@
 Over the run's statistics window (:func:`cablesys.statistics.window`, the one window of a run's summary):
 ``body``, the largest difference of the body's x and y (and z in 3-D) amplitudes (half peak-to-peak) relative to
 the larger reference amplitude; ``tension``, the largest difference of the top and body-end tension
-extremes relative to the largest reference tension.
+extremes relative to the largest reference tension. A system of lines joined at points (model/system.py) has no
+``x_b`` or ``tension_top``: its points' coordinates (``point.NAME.x``) are the body group, its lines' end tensions
+(``line.NAME.tension_from``, ``tension_to``) the tension group.
 """
 
 from __future__ import annotations
@@ -17,6 +19,8 @@ from .. import statistics as st
 BODY = ("x_b", "y_b", "z_b")        # z_b: the sway of a 3-D run (absent from planar runs)
 TENSIONS = ("tension_top", "tension_bottom")
 _SUFFIX = re.compile(r"_\d+$")
+# the same groups of a system of lines (model/system.py): every point's coordinates, every line's end tensions
+_SYSTEM = {BODY: re.compile(r"^point\.[^.]+\.[xyz]$"), TENSIONS: re.compile(r"^line\.[^.]+\.tension_(from|to)$")}
 
 
 def base_label(label: str) -> str:
@@ -28,7 +32,10 @@ def base_label(label: str) -> str:
 def _labels(result, bases) -> list:
     """The labels of ``result`` with these base names (a record without ``labels``: the bases themselves)."""
     labels = getattr(result, "labels", None)
-    return list(bases) if labels is None else [k for k in labels if base_label(k) in bases]
+    if labels is None:
+        return list(bases)
+    system = _SYSTEM.get(tuple(bases))
+    return [k for k in labels if base_label(k) in bases or (system is not None and system.match(k))]
 
 
 def window(time: np.ndarray, period: float | None, ramp_s: float = 0.0) -> np.ndarray:
@@ -79,14 +86,18 @@ def window_change(result, period: float | None, ramp_s: float | None = None) -> 
 
 def errors(stats: dict, reference: dict, factors: dict | None = None) -> dict:
     """{"body": e, "tension": e} of ``stats`` against ``reference`` (both from :func:`statistics`), each difference
-    times its ``factors`` entry when given (default 1)."""
+    times its ``factors`` entry when given (default 1). A system's body group (its points' coordinates) is relative to
+    the larger of its largest amplitude and :func:`body_floor`, a chain's to its body's largest amplitude."""
     amps = [k for k in reference if k.endswith("_amplitude")]
     tops = [k for k in reference if k.endswith("_max")]
     ext = tops + [k for k in reference if k.endswith("_min")]
     a_ref = max(reference[k] for k in amps)
     t_ref = max(reference[k] for k in tops)
     f = factors or {}
-    body = max(abs(stats[k] - reference[k]) * f.get(k, 1.0) for k in amps) / max(a_ref, 1e-300)
+    # a system's points (held ones among them) may all stand still (a mooring in a current): its body group is judged
+    # on at least body_floor(reference), the scale its every body quantity is judged on (quantity_differences)
+    scale = max(a_ref, body_floor(reference)) if any(k.startswith("point.") for k in amps) else a_ref
+    body = max(abs(stats[k] - reference[k]) * f.get(k, 1.0) for k in amps) / max(scale, 1e-300)
     tension = max(abs(stats[k] - reference[k]) * f.get(k, 1.0) for k in ext) / max(t_ref, 1e-300)
     return {"body": float(body), "tension": float(tension)}
 

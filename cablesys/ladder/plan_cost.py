@@ -67,6 +67,7 @@ import math
 from ..compiled import SIZE_FLAGS, compiles, predicted_compile_s
 from ..scene import Scene
 from .choice import model_operations
+from .rung.base import cables
 from .rungs import rung_scene
 
 log = logging.getLogger(__name__)
@@ -173,7 +174,7 @@ def step_seconds(operations: float, compiled: bool) -> float:
 def run_operations(scene_run: Scene, name: str, segments: int) -> float:
     """Predicted SX operations of the ODE plus the outputs of rung ``name`` at ``segments`` elements per section
     (the module docstring)."""
-    n, sections = max(int(segments), 1), len(scene_run.sections)
+    n, sections = max(int(segments), 1), len(cables(scene_run))
     base = model_operations(scene_run, name, n)
     if name == "quasi-static":
         base = max(base + sections * QS_OPERATIONS_PER_ELEMENT * n, sections * QS_OPERATIONS_FLOOR)
@@ -231,7 +232,7 @@ def state_count(scene_run: Scene, name: str, segments: int) -> int:
     dim = 3 in a 3-D scene, else 2)."""
     dim = 3 if getattr(scene_run, "three_d", False) else 2
     per = {"segmented": dim * segments, "quasi-static": (dim - 1) * segments}.get(name, dim)
-    return 2 * per * len(scene_run.sections)
+    return 2 * per * len(cables(scene_run))
 
 
 def predict(scene: Scene, choice, settings, guard_decides: bool = False) -> Prediction:
@@ -242,13 +243,13 @@ def predict(scene: Scene, choice, settings, guard_decides: bool = False) -> Pred
     from ..time_domain.record import run_memory_bytes
     n = max(int(choice.segments), 1)
     sc = rung_scene(scene, choice.name, n)
-    elements = n * len(sc.sections)
+    elements = n * len(cables(sc))
     ops = run_operations(sc, choice.name, n)
     method = str(settings.method)
     steps, how = predicted_steps(sc, method, float(settings.rtol), elements, int(settings.steps_per_output))
     compiled = bool(settings.compiled)
     outputs = len(sc.output_times)
-    memory = run_memory_bytes(outputs, len(sc.sections), state_count(sc, choice.name, n) + OUTPUT_LABELS)
+    memory = run_memory_bytes(outputs, len(cables(sc)), state_count(sc, choice.name, n) + OUTPUT_LABELS)
     what = choice.name + (f" N = {n}" if n > 1 else "")
     run_s = steps * step_seconds(ops, compiled)
     compile_s = compile_guess(ops, choice.name, method, n) if compiled else 0.0
@@ -277,7 +278,7 @@ def from_plan(scene: Scene, choice, plan) -> Prediction:
     compiled = compiles()
     libs = [("outputs", OUTPUT_BYTES_PER_OP["other"] * run_operations(sc, "segmented", r.segments)) for r in runs]
     libs.append(("rk4", RK4_INTERVAL_BYTES))          # the candidate's interval on its grid (the others: planning's)
-    return Prediction(f"segmented N = {n} (extrapolation)", n * len(sc.sections),
+    return Prediction(f"segmented N = {n} (extrapolation)", n * len(cables(sc)),
                       run_operations(sc, "segmented", n), runs[0].method,
                       sum(r.steps for r in runs), "duration / stable step", compiled,
                       compile_seconds(libs) if compiled else 0.0,
@@ -315,7 +316,7 @@ def for_run(scene: Scene, choice, tol, kw: dict) -> Prediction | None:
     if choice.name not in RUNGS or choice.name == "frequency":
         return None
     sc = rung_scene(scene, choice.name, choice.segments)
-    elements = sum(s.cable.segments for s in sc.sections)
+    elements = sum(c.segments for c in cables(sc))
     s = integrator_settings(sc, tol, elements, method=kw.get("method"), rtol=kw.get("rtol"), atol=kw.get("atol"),
                             rung=None, stated=choice.estimated_error.get("body"))
     s = dataclasses.replace(s, compiled=bool(s.compiled and compiles()))

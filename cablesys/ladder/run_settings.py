@@ -22,6 +22,7 @@ from ..time_domain.integrators import (  # one rule, simulate's default too
     compiled_by_default,
 )
 from .choice import Choice, tolerances
+from .rung.base import cables
 from .rungs import rung_scene
 from .stiffness import EXPLICIT_MAX_ELEMENTS, explicit_fit
 
@@ -127,7 +128,7 @@ def rung_settings(scene_run: Scene, tol, choice: Choice, model, *, cache=None, x
     with the rung's elements and stated error; ``x0`` for the quasi-static rungs their static start (:func:`start`,
     unless given), which their guard probes (with ``model`` and no ``method`` of the caller's), else the given one
     (None: the simulator's own start)."""
-    elements = sum(s.cable.segments for s in scene_run.sections)
+    elements = sum(c.segments for c in cables(scene_run))
     if choice.name == "quasi-static" and x0 is None and model is not None and method is None:
         x0 = start(scene_run, model, cache)
     s = integrator_settings(scene_run, tol, elements, method=method, rtol=rtol, atol=atol, max_num_steps=max_num_steps,

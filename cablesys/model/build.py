@@ -22,6 +22,7 @@ from .section import SectionParameters, dot as _dot, section_terms
 from .segmented import build_segmented_model
 from .signals import EXO_LABELS, OUTPUT_NAMES
 from .store import stored_model
+from .system import build_system_model
 from .top_motion import EXO_LABELS_3D, symbolic_type, top_motion_function
 
 
@@ -99,7 +100,8 @@ def build_model(scene: Scene) -> CableModel:
 
     Wang's 2-DOF model (one section; Wang 1971 eq. 8-9, 15, 25, 37-46) or the chain of sections
     (p. 32-33) by Lagrange's equations from energies and virtual work; a scene with
-    ``segments > 1`` in a section's cable gets the segmented cable (:mod:`.segmented`).
+    ``segments > 1`` in a section's cable gets the segmented cable (:mod:`.segmented`), and a system of lines
+    joined at points that is not a chain (``scene.system``) the node model of a graph of lines (:mod:`.system`).
 
     Parameters
     ----------
@@ -117,6 +119,8 @@ def build_model(scene: Scene) -> CableModel:
 
 def _build(scene: Scene) -> CableModel:
     """The symbolic build of :func:`build_model`."""
+    if getattr(scene, "system", None) is not None:       # lines joined at points: a graph of lines
+        return build_system_model(scene)
     if any(s.cable.segments > 1 for s in scene.sections):   # N straight elements per section
         return build_segmented_model(scene)
     if getattr(scene, "winch", None) is not None:

@@ -44,6 +44,11 @@ def structure_of(scene: Scene) -> tuple:
         Hashable structure key: two scenes with equal keys share one compiled model.
     """
     env, top = scene.environment, scene.top_motion
+    if getattr(scene, "system", None) is not None:     # a graph of lines (model/system.py): its own last entry
+        return (0, "per_section", (), scene.numerics.drag_segments, len(env.current_depths), len(env.waves),
+                len(top.x), len(top.y), None if top.series is None else (top.series.times, top.series.x, top.series.y),
+                ()) + _ends_structure(scene) + ((("3d", len(top.z)),) if scene.three_d else ()) + (
+                scene.system.structure(),)
     return (len(scene.sections), scene.angles, tuple(s.body.is_sphere for s in scene.sections),
             scene.numerics.drag_segments, len(env.current_depths), len(env.waves),
             len(top.x), len(top.y),
@@ -87,25 +92,62 @@ def parameter_items(scene: Scene) -> list[tuple[str, float]]:
     list of (str, float)
         Labels (``sections[i].cable.ae``, ...) and values of the parameter vector p.
     """
+    items = _system_items(scene) if getattr(scene, "system", None) is not None else _section_items(scene)
+    return items + _scene_items(scene)
+
+
+def _cable_items(prefix: str, cable) -> list:
+    """(label, SI value) of a cable's numbers (:data:`_CABLE`), labels ``{prefix}{name}``."""
+    out = []
+    for name in _CABLE:
+        v = getattr(cable, name)
+        if name == "tension_floor" and v == -math.inf:
+            v = TENSION_FLOOR_NONE
+        out.append((f"{prefix}{name}", float(v)))
+    return out
+
+
+def _body_items(prefix: str, body, three_d: bool) -> list:
+    """(label, SI value) of a point body's numbers (:data:`_BODY`; the axis angle in rad), and M_bvz in 3-D."""
+    out = [(f"{prefix}{name}", float(math.radians(body.axis_angle_deg) if name == "axis_angle" else getattr(body, name)))
+           for name in _BODY]
+    return out + ([(f"{prefix}mass_z", float(body.virtual_mass_z))] if three_d else [])
+
+
+def _system_items(scene: Scene) -> list:
+    """A system's numbers (model/system.py): every line section's cable (``system.line[k].section[s].ae``), every
+    fixed point's position (``system.point[i].x``, ``.y``, ``.z``) and every body's or junction's numbers
+    (``system.point[i].body.weight``), the labels being the scene's field paths."""
+    items = []
+    for k, line in enumerate(scene.system.line):
+        for s, cable in enumerate(line.section):
+            items += _cable_items(f"system.line[{k}].section[{s}].", cable)
+    for i, pt in enumerate(scene.system.point):
+        if pt.kind == "fixed":
+            items += [(f"system.point[{i}].{c}", float(v)) for c, v in zip("xyz", pt.position)]
+        if pt.body is not None:
+            items += _body_items(f"system.point[{i}].body.", pt.body, scene.three_d)
+    return items
+
+
+def _section_items(scene: Scene) -> list:
+    """A chain's numbers per section (``sections[i].cable.ae``, ``body.weight``, its slack switch)."""
     items: list[tuple[str, float]] = []
     n = len(scene.sections)
     for i, s in enumerate(scene.sections):
         pre = section_prefix(n, i)
-        for name in _CABLE:
-            v = getattr(s.cable, name)
-            if name == "tension_floor" and v == -math.inf:
-                v = TENSION_FLOOR_NONE
-            items.append((f"{pre}cable.{name}", float(v)))
-        for name in _BODY:
-            v = math.radians(s.body.axis_angle_deg) if name == "axis_angle" else getattr(s.body, name)
-            items.append((f"{pre}body.{name}", float(v)))
-        if scene.three_d:
-            items.append((f"{pre}body.mass_z", float(s.body.virtual_mass_z)))
+        items += _cable_items(f"{pre}cable.", s.cable) + _body_items(f"{pre}body.", s.body, scene.three_d)
         if s.body.is_rigid:              # a pitching body's inertia, offsets, buoyancy, damping (model/rigid_body.py)
             items += [(f"{pre}body.{name}", s.body.rigid(name)) for name in RIGID_FIELDS]
             if scene.three_d:            # its inertia tensor, added inertias per axis and offsets' z in space
                 items += [(f"{pre}body.{name}", s.body.rigid(name)) for name in RIGID_FIELDS_3D]
         items.append((f"{pre}slack", 0.0))          # 1 while the section is slack (set by the simulator)
+    return items
+
+
+def _scene_items(scene: Scene) -> list:
+    """The numbers every scene has: environment, top motion, ends and winch."""
+    items = []
     env = scene.environment
     items += [(f"environment.{k}", float(getattr(env, k))) for k in _ENV]
     for k, (d, c) in enumerate(zip(env.current_depths, env.current_speeds)):
@@ -134,8 +176,11 @@ def parameter_items(scene: Scene) -> list[tuple[str, float]]:
         items += [(f"seabed.{a}", float(getattr(scene.seabed, a))) for a in _SEABED]
         if scene.three_d:                  # in space the heading of its slope (deg from +x towards +z; 0 unset)
             items.append(("seabed.heading_deg", float(scene.seabed.heading_deg or 0.0)))
-        items += [(f"{section_prefix(n, i)}body.bed_area", float(s.body.bed_area or 0.0))      # footprints on the bed
-                  for i, s in enumerate(scene.sections)]
+        items += [(f"{section_prefix(len(scene.sections), i)}body.bed_area", float(s.body.bed_area or 0.0))
+                  for i, s in enumerate(scene.sections)]                   # footprints on the bed
+        if getattr(scene, "system", None) is not None:                      # a system's bodies' and junctions'
+            items += [(f"system.point[{i}].body.bed_area", float(pt.body.bed_area or 0.0))
+                      for i, pt in enumerate(scene.system.point) if pt.free]
     if getattr(scene, "winch", None) is not None:    # the first section's payout (model/segmented_winch.py)
         items += scene.winch.parameter_items()     # its profile's numbers (scene.ends.Winch)
     return items

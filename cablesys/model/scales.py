@@ -119,6 +119,34 @@ def _segmented_scales(model) -> ca.SX:
     return ca.vertcat(*pos, *([ANGLE_SCALE_MIN] * n_rot), *rates, *([ANGLE_SCALE_MIN * speed / delta] * n_rot))
 
 
+def _system_scales(model) -> ca.SX:
+    """A system of lines (model/system.py): every free node's position by the static stretch T h / AE of an element of
+    the line section it lies in (a point's node: the smallest of its lines' end sections'), T the section's
+    ``tension_ref`` when set, else the bodies' weight shared among the lines plus half the line's weight (N); the rates
+    by the top's speed or the elements' axial speed, whichever is larger."""
+    lay, p = model.layout, model.layout.symbol
+    sym = lambda k, s, name: p[lay.index(f"system.line[{k}].section[{s}].{name}")]
+    bodies = sum((ca.fabs(p[i]) for i, lb in enumerate(lay.labels) if lb.endswith("body.weight")), ca.SX(0))
+    share = bodies / max(len(model.line_nodes), 1)
+    node_scale, speed = {}, top_speed(lay)
+    for k, (seq, segs) in enumerate(zip(model.line_nodes, model.line_segments)):
+        w_line = sum((sym(k, s, "weight_per_length") * sym(k, s, "length") for s in range(len(segs))), ca.SX(0))
+        pos = 0
+        for s, n_el in enumerate(segs):
+            h = sym(k, s, "length") / n_el
+            hanging = share + ca.fabs(w_line) / 2
+            T = ca.if_else(sym(k, s, "tension_ref") > 0, sym(k, s, "tension_ref"), hanging)
+            delta = ca.fabs(T) * h / sym(k, s, "ae")
+            speed = ca.fmax(speed, delta * ca.sqrt(sym(k, s, "ae") / (sym(k, s, "mass_per_length") * h**2)))
+            for j in seq[pos:pos + n_el + 1]:
+                node_scale[j] = delta if j not in node_scale else ca.fmin(node_scale[j], delta)
+            pos += n_el
+    dim = model.dim
+    free = sorted((q0, j) for j, q0 in enumerate(model.node_q) if q0 >= 0)
+    pos = [node_scale[j] for _, j in free for _ in range(dim)]
+    return ca.vertcat(*pos, *([speed] * len(pos)))
+
+
 # the scale provider of each model kind (``model.kind``): model -> SX (2 nq,) in p
 PROVIDERS = {"wang": _wang_scales, "quasi-static": _wang_scales, "segmented": _segmented_scales}
 
@@ -139,7 +167,7 @@ def state_scales(model) -> ca.Function:
         (len(p),) -> (2 nq,) positive scales, positions then rates (see the module docstring).
     """
     def build():
-        provider = PROVIDERS.get(model.kind)
+        provider = _system_scales if getattr(model, "line_nodes", None) is not None else PROVIDERS.get(model.kind)
         S = provider(model) if provider is not None else ca.SX.ones(2 * model.nq)
         if S.numel() != 2 * model.nq:
             raise ValueError(f"state scales of a {model.kind!r} model: {S.numel()} for {2 * model.nq} states")

@@ -47,15 +47,31 @@ class SectionParameters:
 
     @classmethod
     def from_layout(cls, layout, prefix: str, sphere: bool, three_d: bool = False) -> "SectionParameters":
-        c = lambda n: layout.sym(f"{prefix}cable.{n}")
-        b = lambda n: layout.sym(f"{prefix}body.{n}")
+        """Section ``prefix``'s cable (``{prefix}cable.ae``, ...), body and slack switch of the parameter vector."""
+        return cls.from_symbols(lambda n: layout.sym(f"{prefix}cable.{n}"), lambda n: layout.sym(f"{prefix}body.{n}"),
+                                layout.sym(f"{prefix}slack"), sphere, three_d)
+
+    @classmethod
+    def for_cable(cls, layout, prefix: str) -> "SectionParameters":
+        """A cable's parameters alone (``{prefix}ae``, ...: a line section of a system, model/system.py): no body at
+        its lower end (its body entries 0) and no slack switch (the node model's elements have their own law)."""
+        return cls.from_symbols(lambda n: layout.sym(f"{prefix}{n}"), lambda n: 0.0, 0.0, False, False)
+
+    @classmethod
+    def for_body(cls, layout, prefix: str, sphere: bool, three_d: bool) -> "SectionParameters":
+        """A point body's parameters alone (``{prefix}weight``, ...: a body or junction of a system, model/system.py),
+        its cable entries 0."""
+        return cls.from_symbols(lambda n: 0.0, lambda n: layout.sym(f"{prefix}{n}"), 0.0, sphere, three_d)
+
+    @classmethod
+    def from_symbols(cls, c, b, slack, sphere: bool, three_d: bool) -> "SectionParameters":
+        """From the lookups ``c(name)`` of the cable's and ``b(name)`` of the body's entries."""
         return cls(l_r=c("length"), T_r=c("tension_ref"), ae=c("ae"), d_r=c("diameter"),
                    m_r=c("mass_per_length"), w_r=c("weight_per_length"), thinning=c("thinning_ratio"),
                    gamma=c("added_mass_factor"), cd=c("cd_normal"), ct=c("ct_tangential"),
                    c_i=c("internal_damping"), tens=c("tension_floor"), cbmas=c("cable_mass_switch"),
                    w_b=b("weight"), m_bx=b("mass_x"), m_by=b("mass_y"), cda_n=b("drag_area_normal"),
-                   cda_t=b("drag_area_tangential"), phi_b=b("axis_angle"),
-                   slack=layout.sym(f"{prefix}slack"), sphere=sphere,
+                   cda_t=b("drag_area_tangential"), phi_b=b("axis_angle"), slack=slack, sphere=sphere,
                    m_bz=b("mass_z") if three_d else None)
 
     @property

@@ -77,7 +77,8 @@ from .cable_model import CableModel
 from .params import ParameterLayout, environment_symbols, section_prefix
 from .rigid_body import ORIENTATION_REST, RigidParameters, attitude, rigid_body
 from .section import SectionParameters
-from .segmented_element import block_solve, body_drag, dot, element_inertia, element_terms, lump_force, lump_kinetic, norm
+from .node_terms import NodeSums
+from .segmented_element import block_solve, dot, element_inertia, element_terms, lump_force, norm
 from .segmented_kernel import kernel_ode
 from .segmented_seabed import seabed_forces
 from .segmented_winch import WINCH_OUTPUTS, Payout, payout
@@ -222,13 +223,7 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
         node_v.append((0.0,) * dim)
     static_law = scene.seabed is not None            # the seabed's statics: elements elastic both ways (catenary.py)
 
-    K, V_grav, V_strain = 0.0, 0.0, 0.0
-    Q = [[0.0] * dim for _ in range(n_nodes + 1)]            # generalized forces per node (node 0: top)
-    Q_static = [[0.0] * dim for _ in range(n_nodes + 1)]     # the same at rest with the statics' tension law
-    contact_area = [0.0] * (n_nodes + 1)                     # d l per node (seabed contact)
-    M_nodes = [ca.SX.zeros(dim, dim) for _ in range(n_nodes + 1)]     # dim x dim mass block per node
-    F_inertia = [ca.SX.zeros(dim, 1) for _ in range(n_nodes + 1)]   # inertial forces of the added mass
-    weights = [0.0] * (n_nodes + 1)
+    sums = NodeSums(n_nodes + 1, dim)         # the element and body terms per node (node 0: the top)
     sections, elements = [], []
     V_rigid, rigid_terms = 0.0, {}       # rigid bodies: energy; node -> (M, f, indices of its orientation in q)
     j0 = 0
@@ -247,48 +242,29 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
             el = element_terms(P, n_el, node_r[a], va, node_r[b], vb, rho=rho, t=t, env=env,
                                depth0=depth0, n_points=drag_points(scene, n_el))
             el.update(a=a, b=b)
-            K += lump_kinetic(el, va, vb)
-            Ma, Mb, fa, fb = inertia(ca.vertcat(*node_r[a]), ca.vertcat(*node_r[b]), ca.vertcat(*node_v[a]),
-                                     ca.vertcat(*node_v[b]), p, *((pay.z(k, n_el),) if pay else ()))
-            M_nodes[a], M_nodes[b] = M_nodes[a] + Ma, M_nodes[b] + Mb
-            F_inertia[a], F_inertia[b] = F_inertia[a] + fa, F_inertia[b] + fb
-            weights[a] += 0.5 * el["weight"]
-            weights[b] += 0.5 * el["weight"]
-            V_strain += el["strain_energy"]
-            el["static_tension"] = P.ae * el["strain"] if static_law else el["tension"]
-            for c in range(dim):     # tension -T dl/dr (virtual work of eq. 46/54), drag shares
-                Q[a][c] += el["tension"] * el["et"][c] + el["drag_a"][c]
-                Q[b][c] += -el["tension"] * el["et"][c] + el["drag_b"][c]
-                Q_static[a][c] += el["static_tension"] * el["et"][c] + el["drag_a"][c]
-                Q_static[b][c] += -el["static_tension"] * el["et"][c] + el["drag_b"][c]
-            contact_area[a] += 0.5 * P.l_r / n_el * P.d_0
-            contact_area[b] += 0.5 * P.l_r / n_el * P.d_0
+            sums.element(el, va, vb, inertia(ca.vertcat(*node_r[a]), ca.vertcat(*node_r[b]), ca.vertcat(*node_v[a]),
+                                             ca.vertcat(*node_v[b]), p, *((pay.z(k, n_el),) if pay else ())),
+                         P, n_el, static_law)
             els.append(el)
         jb = j0 + n_el                                         # the body's node
         rb, vb = node_r[jb], node_v[jb]
         if scene.seabed is not None:                           # the body's footprint on the bed (segmented_seabed.py)
-            contact_area[jb] += layout.sym(f"{section_prefix(n_sec, i)}body.bed_area")
+            sums.area[jb] += layout.sym(f"{section_prefix(n_sec, i)}body.bed_area")
         sec_d = dict(P=P, top=j0, body=jb, elements=els, pay=pay)
         if i in rigid:                                         # a rigid body (rigid_body.py)
             k = list(range(dim * n_free + len(rest) * rigid.index(i), dim * n_free + len(rest) * (rigid.index(i) + 1)))
             Mb, fb, Kb, Vb, r_cg, v_cg, om = rigid_body(P, RigidParameters.from_layout(
                 layout, section_prefix(n_sec, i), dim), p, rho, t, env, depth0, dim)(
                 ca.vertcat(*rb), ca.vertcat(*vb), q[k], qd[k], p, t)
-            K, V_rigid = K + Kb, V_rigid + Vb
+            sums.K, V_rigid = sums.K + Kb, V_rigid + Vb
             rigid_terms[jb] = (Mb, fb, k)
             sec_d.update(theta=(q[k], qd[k]), cg=(r_cg, v_cg), omega=om)
         else:
-            masses = (P.m_bx, P.m_by) + ((P.m_bz,) if dim == 3 else ())   # eq. 16; M_bvz in space
-            K += 0.5 * sum((masses[c] * vb[c] ** 2 for c in range(2, dim)), P.m_bx * vb[0] ** 2 + P.m_by * vb[1] ** 2)
-            M_nodes[jb] = M_nodes[jb] + ca.diag(ca.vertcat(*masses))
-            weights[jb] += P.w_b
-            D_b = body_drag(P, rho, rb, vb, t, env, depth0)        # eq. 32-35
-            for c in range(dim):
-                Q[jb][c] += D_b[c]
+            sums.point_body(jb, P, rb, vb, rho=rho, t=t, env=env, depth0=depth0)
         sections.append(sec_d)
         elements += els
         j0 = jb
-    V_grav = -sum(w * r[1] for w, r in zip(weights, node_r))   # eq. 15 with y down
+    V_grav = sums.gravity(node_r)                               # eq. 15 with y down
     V_contact, bed = 0.0, None
     if scene.seabed is not None:
         # the bed resists the cable's material, which a winch makes slide past the first section's nodes
@@ -296,18 +272,17 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
         slide = [node_v[j] if pay0 is None or not 0 < j < n0 else pay0.node_velocity(j, n0, node_r[j - 1], node_v[j],
                                                                                      node_r[j + 1])
                  for j in range(len(node_r))]
-        bed = seabed_forces(layout, node_r, slide, contact_area, elements, depth0, range(1, n_free + 1))
+        bed = seabed_forces(layout, node_r, slide, sums.area, elements, depth0, range(1, n_free + 1))
         V_contact = bed["energy"]
         for j, (Fd, Fs) in bed["forces"].items():
             for c in range(dim):
-                Q[j][c] += Fd[c]
-                Q_static[j][c] += Fs[c]
+                sums.Q[j][c] += Fd[c]
+                sums.Q_static[j][c] += Fs[c]
     # Lagrange's equations node by node (element by element, see element_inertia): M q'' = f with
-    # f = generalized forces + weights (-dV/dq, eq. 15) + inertial forces of the added mass
-    blocks = M_nodes[1:n_free + 1]
-    f_nodes = [F_inertia[j] + ca.vertcat(Q[j][0], Q[j][1] + weights[j], *Q[j][2:]) for j in range(1, n_free + 1)]
-    f_static = ca.vertcat(*[F_inertia[j] + ca.vertcat(Q_static[j][0], Q_static[j][1] + weights[j], *Q_static[j][2:])
-                            for j in range(1, n_free + 1)])
+    # f = generalized forces + weights (-dV/dq, eq. 15) + inertial forces of the added mass (node_terms.py)
+    blocks = sums.M[1:n_free + 1]
+    f_nodes = [sums.force(j) for j in range(1, n_free + 1)]
+    f_static = ca.vertcat(*[sums.force(j, static=True) for j in range(1, n_free + 1)])
     M, f = ca.diagcat(*blocks), ca.vertcat(*f_nodes)
     if n_rot:       # a rigid body's node and its orientation share one block (3 x 3 in the plane, 7 x 7 in space)
         M = ca.diagcat(M, ca.SX.zeros(n_rot, n_rot))
@@ -434,7 +409,7 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     ode = ca.Function("ode", [xs, ts, ps, *zs], [ca.vertcat(xs[nq:], accel(xs[:nq], xs[nq:], top(ts, ps), ps, *zs))],
                       ["x", "t", "p", *zn], ["xdot"])
     outputs = ca.Function("outputs", [x, e, p, *zi], [ca.vertcat(*out)], ["x", "e", "p", *zn], ["y"])
-    energy = ca.Function("energy", [x, e, p, *zi], [K, V_grav + V_strain + V_contact + V_rigid], ["x", "e", "p", *zn],
+    energy = ca.Function("energy", [x, e, p, *zi], [sums.K, V_grav + sums.V_strain + V_contact + V_rigid], ["x", "e", "p", *zn],
                          ["K", "V"])
     cable_force = ca.Function("cable_force", [x, p], [ca.SX(0, 1)], ["x", "p"], ["gap"])
     static = (ca.Function("static_force", [q, qd, e, p, *zi], [f_static], ["q", "qd", "e", "p", *zn], ["f"])

@@ -67,7 +67,8 @@ def bed_frame(alpha, beta, dim: int):
             (-ca.sin(beta), 0.0, ca.cos(beta)))
 
 
-def seabed_forces(layout, node_r, node_v, area, elements, depth0, nodes) -> dict:
+def seabed_forces(layout, node_r, node_v, area, elements, depth0, nodes, up: dict | None = None,
+                  down: dict | None = None) -> dict:
     """Contact and friction forces of the seabed on the free ``nodes`` (indices into ``node_r``).
 
     Parameters
@@ -85,6 +86,13 @@ def seabed_forces(layout, node_r, node_v, area, elements, depth0, nodes) -> dict
         The top's mean depth below the still surface (m).
     nodes : iterable of int
         The free nodes.
+    up : dict, optional
+        {node: the element on its fairlead side} (the laid-down friction's direction and tension); default the element
+        ending at the node (``el["b"]``), the chain's numbering from its top.
+    down : dict, optional
+        {node: the element on its other side} (in space the line's tangent at the node is the sum of the two elements'
+        unit axes); default the element starting at the node (``el["a"]``); a node missing from it (a free lower end)
+        takes its ``up`` element's axis alone.
 
     Returns
     -------
@@ -101,8 +109,8 @@ def seabed_forces(layout, node_r, node_v, area, elements, depth0, nodes) -> dict
     beta = sym("heading_deg") * ca.pi / 180.0 if dim == 3 else None
     n_in, t_b, _ = bed_frame(alpha, beta, dim)
     y0 = sym("depth") - depth0
-    up = {el["b"]: el for el in elements}             # the element on the fairlead side of each node
-    down = {el["a"]: el for el in elements}           # and on the other side (none at a free lower end)
+    up = up if up is not None else {el["b"]: el for el in elements}   # the element on the fairlead side of each node
+    down = down if down is not None else {el["a"]: el for el in elements}   # and on the other side (none at a free end)
     on_bed = lambda v: tuple(v[i] - dot(v, n_in) * n_in[i] for i in range(dim))      # (I - n n^T) v
     forces, energy = {}, 0.0
     normal, friction, lateral = [0.0] * len(node_r), [0.0] * len(node_r), [0.0] * len(node_r)

@@ -100,3 +100,19 @@ def legend_outside(ax, fontsize: float = 7, ncol: int = 1):
         return None
     return ax.legend(handles, labels, fontsize=fontsize, loc="upper left", bbox_to_anchor=(1.01, 1.0),
                      borderaxespad=0.0, ncol=ncol)
+
+
+def tension_marks(values: list, limits, factor: float) -> tuple[list, dict]:
+    """(values, marks) of a tension panel: the traces' extremes ``values`` (drawn units) with 0 added when they come
+    within 25 % of it (near slack: zero on the axis; a taut line keeps its detail), and the ``limits``' working load and
+    least allowed tension (N, times ``factor``) to mark (:func:`limit_lines`)."""
+    values = list(values)
+    if min(values) <= 0.25 * max(values):
+        values.append(0.0)
+    marks = {}
+    if limits is not None:
+        if getattr(limits, "working_load", None) is not None:
+            marks["working load"] = limits.working_load * factor
+        if getattr(limits, "least_tension", None) is not None:
+            marks["least allowed tension"] = limits.least_tension * factor
+    return values, marks

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .axes import clean, is_steady, legend_outside, limit_lines, plain_axis, series_panel
+from .axes import clean, is_steady, legend_outside, limit_lines, plain_axis, series_panel, tension_marks
 from .figure import save_figure
 
 # steady-series tolerances (SI): below these ranges a series is integrator noise, stated by its value
@@ -183,14 +183,8 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
     a_t.set(xlabel="time (s)", ylabel=f"tension ({uf})", title="cable tension (eq. 54)")
     values = [v for _, y, _ in traces for v in (float(np.nanmin(y)), float(np.nanmax(y)))]
     values += [v * ff for _, v in snaps]
-    if min(values) <= 0.25 * max(values):        # near slack: zero on the axis; a taut line keeps its detail
-        values.append(0.0)
-    marks = {}
+    values, marks = tension_marks(values, limits, ff)
     if limits is not None:
-        if getattr(limits, "working_load", None) is not None:
-            marks["working load"] = limits.working_load * ff
-        if getattr(limits, "least_tension", None) is not None:
-            marks["least allowed tension"] = limits.least_tension * ff
         frac = getattr(limits, "slack_fraction", None)
         if frac is not None:              # the verdict's slack check: each trace's least >= frac x its static mean
             after = t >= (window_start if window_start is not None else t[0])

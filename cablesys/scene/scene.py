@@ -12,21 +12,32 @@ from .ends import Anchor, Seabed, Winch
 from .labels import section_prefix
 from .limits import Limits
 from .sea import append_once, sea_waves, user_count
+from .system import System
+
+#: The body of a chain's last section when the chain ends at a fixed point (an [anchor]): it sits at the anchor and
+#: loads nothing (weight 0; its mass is no coordinate's).
+ANCHOR_BODY = Body(weight=0.0, mass_x=1.0, mass_y=1.0)
 
 ANGLE_MODES = ("per_section", "shared")
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class Scene:
-    """A chain of cable sections hanging from a moving top (Wang 1971, Fig. 1 and p. 33).
+    """A chain of cable sections hanging from a moving top (Wang 1971, Fig. 1 and p. 33), or a system of lines
+    joined at points (:class:`~.system.System`).
 
     One section is Wang's 2-DOF model (angle phi, stretch u). Several sections are the
     report's extensions: ``angles="shared"`` is the dual-isolation model (one swing angle,
     one stretch per section); ``angles="per_section"`` the general segmented cable.
+
+    ``system`` (the ``[[point]]`` and ``[[line]]`` tables) describes any cable system instead of ``sections``: a
+    system that is a chain (:meth:`.system.System.as_chain`) becomes that chain of sections here (with an
+    ``anchor`` when it ends at a fixed point), so it is today's scene exactly and ``system`` is None; any other
+    system keeps ``system`` and has no sections (the node model of a graph of lines builds it).
     """
 
     name: str = "scene"
-    sections: tuple
+    sections: tuple = ()
     angles: str = "per_section"
     environment: Environment = dataclasses.field(default_factory=Environment)
     top_motion: TopMotion = dataclasses.field(default_factory=TopMotion)
@@ -37,9 +48,17 @@ class Scene:
     anchor: Anchor | None = None      # the last section's lower end fixed (segmented cable only)
     seabed: Seabed | None = None      # a seabed acting on the nodes (segmented cable only)
     winch: Winch | None = None        # the first section's length changes in time (segmented cable only)
+    system: System | None = None      # points joined by lines ([[point]], [[line]]); a chain becomes sections
 
     def __post_init__(self):
         secs = tuple(self.sections)
+        if self.system is not None:
+            secs = self._from_system(secs)
+        if self.system is not None:       # not a chain: the node model of a graph of lines
+            self._check_system()
+            self._check_dimensions()
+            self._finish_sea()
+            return
         if not secs:
             raise ParameterError("sections", secs, "needs at least one cable section")
         for i, s in enumerate(secs):
@@ -55,11 +74,79 @@ class Scene:
         self._check_rigid_bodies()
         self._check_track()
         self._check_winch()
+        self._finish_sea()
+
+    def _finish_sea(self) -> None:
+        """The irregular sea's waves at the cable too (Wang 1971 eq. 26-28; scene/sea.py), when asked."""
         sea = self.top_motion.spectrum
         if sea is not None and sea.waves_at_cable:   # the same sea at the cable (Wang 1971 eq. 26-28; scene/sea.py)
             env = self.environment
             object.__setattr__(self, "environment", dataclasses.replace(
                 env, waves=append_once(env.waves, sea_waves(sea, env.gravity))))
+
+    def _from_system(self, secs: tuple) -> tuple:
+        """Check the system against the rest of the scene and, when it is a chain (:meth:`.system.System.as_chain`),
+        make it that chain: sections top to bottom, each with the body at its lower end (:data:`ANCHOR_BODY` at a
+        fixed end, which becomes the ``[anchor]``); returns the sections."""
+        sys_ = self.system
+        if not isinstance(sys_, System):
+            raise ParameterError("system", type(sys_).__name__, "must be a System of [[point]] and [[line]] tables")
+        if secs:
+            raise ParameterError("sections", f"{len(secs)} sections", "must be unset with [[point]] and [[line]]: "
+                                 "describe the cable either as sections ([cable]/[body] or [[sections]]) or as a "
+                                 "system of points and lines")
+        if self.anchor is not None:
+            raise ParameterError("anchor", "set", "must be unset with [[point]] and [[line]]: a fixed point is the "
+                                 "anchor")
+        bed, depth0 = self.seabed, self.environment.top_depth
+        for i, p in enumerate(sys_.point):
+            if p.kind == "fixed" and bed is not None:
+                y_bed = bed.bed_y(p.x, depth0, p.z or 0.0)
+                if p.y > y_bed + 1e-9 * max(1.0, abs(y_bed)):
+                    where = f"x = {p.x:.6g} m" + (f", z = {p.z:.6g} m" if p.z else "")
+                    raise ParameterError(f"point[{i}].y", p.y, f"puts the fixed point {p.name!r} below the seabed "
+                                         f"(the bed is at y = {y_bed:.6g} m under {where}, seabed.depth = "
+                                         f"{bed.depth:.6g} m): a fixed point must lie on or above the bed")
+        chain = sys_.as_chain()
+        if chain is None:
+            return secs
+        steps, end = chain
+        out = []
+        for k, rev in steps:
+            line = sys_.line[k]
+            lower = sys_.by_name(line.start if rev else line.end)
+            out.append(Section(cable=line.section[0], body=lower.body if lower.free else ANCHOR_BODY))
+        object.__setattr__(self, "sections", tuple(out))
+        object.__setattr__(self, "system", None)
+        if end.kind == "fixed":
+            object.__setattr__(self, "anchor", Anchor(x=end.x, y=end.y, z=end.z or None))   # z = 0: in the plane
+        return tuple(out)
+
+    def _check_system(self) -> None:
+        """What the node model of a graph of lines (:mod:`cablesys.model.system`) does not take yet, each refused by
+        name: a rigid body, a winch, a track, an initial angle or stretch (it starts from its statics), top motion
+        without a prescribed point."""
+        for name, bad in (("winch", self.winch is not None), ("top_motion.track", self.top_motion.track is not None)):
+            if bad:
+                raise ParameterError(name, "set", "must be unset for a system that is not a chain of sections: the "
+                                     "node model of a graph of lines has no " + {"winch": "winch",
+                                     "top_motion.track": "steady turn"}[name] + " yet")
+        top = self.top_motion
+        if self.system.prescribed is None:
+            moved = [f"top_motion.{a}" for a in ("x", "y", "z") if getattr(top, a)] + [
+                f"top_motion.{a}" for a in ("series", "spectrum", "track") if getattr(top, a) is not None]
+            if moved:
+                raise ParameterError(moved[0], "set", "must be unset: [top_motion] moves the prescribed point, and "
+                                     "this system has none (its points are fixed or free)")
+        for name in ("phi", "u"):
+            if getattr(self.initial, name) is not None:
+                raise ParameterError(f"initial.{name}", getattr(self.initial, name), "must be unset for a system of "
+                                     "lines: it starts from its static state")
+        for i, p in enumerate(self.system.point):
+            if p.body is not None and p.body.is_rigid:
+                raise ParameterError(f"point[{i}].pitch_inertia", p.body.pitch_inertia, "must be unset in a "
+                                     "system that is not a chain of sections: the node model of a graph of lines "
+                                     "takes point bodies so far")
 
     def _check_ends(self) -> None:
         """An anchor or a seabed acts on the nodes of the segmented cable; the anchor lies on or above
@@ -141,6 +228,10 @@ class Scene:
             out.append("anchor.z")
         if self.seabed is not None and self.seabed.heading_deg is not None:
             out.append("seabed.heading_deg")
+        if self.system is not None:      # a fixed point off the x-y plane, a body's M_bvz
+            out += [f"point[{i}].z" for i, p in enumerate(self.system.point) if p.kind == "fixed" and p.z]
+            out += [f"point[{i}].mass_z" for i, p in enumerate(self.system.point)
+                    if p.body is not None and p.body.mass_z is not None]
         return tuple(out)
 
     @property

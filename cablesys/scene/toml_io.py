@@ -8,6 +8,9 @@ and optionally ``[anchor]`` (x, y) and ``[seabed]`` (depth, slope_deg, stiffness
 friction_lateral, friction_speed) and ``[winch]`` (speed, start, duration, ramp, max_length: the
 first section's payout, :class:`~cablesys.scene.ends.Winch`; or start, ramp, max_length and ``[[winch.leg]]``
 tables of speed and duration: payout, hold, haul-in).
+Instead of ``[cable]``/``[body]`` or ``[[sections]]`` a scene may describe a cable system: ``[[point]]`` tables (name,
+kind, position, and a body's or junction's body fields in the same table) and ``[[line]]`` tables (name, ``from``,
+``to`` and ``[[line.section]]`` cable tables), :mod:`cablesys.scene.system`.
 Unknown keys are errors.
 """
 
@@ -19,12 +22,18 @@ from pathlib import Path
 
 from ..errors import ParameterError
 from ..reader import SourceMap, build, located, read_toml, typed_fields
-from .components import Section
+from .body import Body
+from .components import Cable, Section
 from .fields import SI_UNIT, UNIT_SYSTEMS, from_si, to_si
 from .scene import Scene
+from .system import Line, Point, System
 
-# top-level keys read as tables/values of Scene's own fields (generic: a new Scene field is read too)
-_SCENE_FIELDS = {f.name: f for f in dataclasses.fields(Scene) if f.init and f.name != "sections"}
+# top-level keys read as tables/values of Scene's own fields (generic: a new Scene field is read too); the system is
+# read from [[point]] and [[line]]
+_SCENE_FIELDS = {f.name: f for f in dataclasses.fields(Scene) if f.init and f.name not in ("sections", "system")}
+_POINT_KEYS = tuple(f.name for f in dataclasses.fields(Point) if f.name != "body")
+_BODY_KEYS = tuple(f.name for f in dataclasses.fields(Body))
+_LINE_KEYS = ("name", "from", "to", "section")
 
 
 def _converter(units: str):
@@ -67,10 +76,17 @@ def _scene_from_dict(data: dict) -> Scene:
     if units not in UNIT_SYSTEMS:
         raise ParameterError("units", units, f"must be one of {UNIT_SYSTEMS}")
     convert = _converter(units)
-    allowed = set(_SCENE_FIELDS) | {"cable", "body", "sections"}
+    allowed = set(_SCENE_FIELDS) | {"cable", "body", "sections", "point", "line"}
     unknown = sorted(set(data) - allowed)
     if unknown:
         raise ParameterError(unknown[0], data[unknown[0]], f"unknown key; allowed: units, {', '.join(sorted(allowed))}")
+    if "point" in data or "line" in data:
+        given = [k for k in ("sections", "cable", "body") if k in data]
+        if given:
+            raise ParameterError(given[0], "given with [[point]]/[[line]]", "describe the cable either as sections "
+                                 "([cable]+[body] or [[sections]]) or as a system of [[point]] and [[line]] tables")
+        system = _system_from(data.pop("point", None), data.pop("line", None), convert)
+        return Scene(system=system, **typed_fields(Scene, data, "", convert=convert, skip=("sections", "system")))
     if "sections" in data:
         if "cable" in data or "body" in data:
             raise ParameterError("sections", "given with [cable]/[body]", "use either [cable]+[body] or [[sections]]")
@@ -88,6 +104,68 @@ def _scene_from_dict(data: dict) -> Scene:
         sections = [build(Section, {"cable": data.pop("cable"), "body": data.pop("body")}, "", convert=convert)]
     # every other top-level key is a field of Scene, typed by its annotation
     return Scene(sections=tuple(sections), **typed_fields(Scene, data, "", convert=convert, skip=("sections",)))
+
+
+def _tables(key: str, value) -> list:
+    """The array of tables ``[[key]]`` (a named error for anything else)."""
+    if value is None:
+        raise ParameterError(key, "missing", f"a system needs [[point]] and [[line]] tables ([[{key}]] is missing)")
+    if isinstance(value, dict):
+        raise ParameterError(key, "one table", f"must be an array of tables: write [[{key}]] per {key}")
+    if not isinstance(value, list) or not all(isinstance(v, dict) for v in value):
+        raise ParameterError(key, value, f"must be an array of tables [[{key}]]")
+    return value
+
+
+def _system_from(points, lines, convert) -> System:
+    """The :class:`System` of the ``[[point]]`` and ``[[line]]`` tables: a point's own keys (name, kind, x, y, z) and,
+    for a body or junction, its body fields in the same table; a line's name, from, to and ``[[line.section]]``."""
+    pts = []
+    for i, t in enumerate(_tables("point", points)):
+        where = f"point[{i}]"
+        unknown = sorted(set(t) - set(_POINT_KEYS) - set(_BODY_KEYS))
+        if unknown:
+            raise ParameterError(f"{where}.{unknown[0]}", t[unknown[0]], "unknown key; allowed: "
+                                 f"{', '.join(_POINT_KEYS)} and a body's or junction's {', '.join(_BODY_KEYS)}")
+        own = {k: v for k, v in t.items() if k in _POINT_KEYS}
+        body_keys = {k: v for k, v in t.items() if k not in _POINT_KEYS}
+        kind = own.get("kind")
+        if body_keys and kind in ("prescribed", "fixed"):
+            key = sorted(body_keys)[0]
+            raise ParameterError(f"{where}.{key}", body_keys[key], f"must be unset for a {kind} point: it does not "
+                                 "move, so a body there would load only the support")
+        if kind in ("body", "junction"):
+            if not body_keys:
+                raise ParameterError(f"{where}.weight", "missing", f"a {kind} needs its body fields (weight, mass_x, "
+                                     "mass_y; drag_area_normal, ...): Wang's body")
+        kw = typed_fields(Point, own, where, convert=convert, skip=("body",))
+        if kind in ("body", "junction"):
+            kw["body"] = build(Body, body_keys, where, convert=convert)
+        try:
+            pts.append(Point(**kw))
+        except ParameterError as err:
+            raise ParameterError(f"{where}.{err.field.split('.')[-1]}", err.value, err.allowed, err.hint) from None
+    lns = []
+    for k, t in enumerate(_tables("line", lines)):
+        where = f"line[{k}]"
+        unknown = sorted(set(t) - set(_LINE_KEYS))
+        if unknown:
+            raise ParameterError(f"{where}.{unknown[0]}", t[unknown[0]], f"unknown key; allowed: {', '.join(_LINE_KEYS)}")
+        for key in _LINE_KEYS:
+            if key not in t:
+                raise ParameterError(f"{where}.{key}", "missing", "is required" + (" ([[line.section]] cable tables)"
+                                                                                   if key == "section" else ""))
+        for key in ("name", "from", "to"):
+            if not isinstance(t[key], str):
+                raise ParameterError(f"{where}.{key}", t[key], "must be a string (a point's name)" if key != "name"
+                                     else "must be a string")
+        secs = _tables(f"{where}.section", t["section"])
+        cables = tuple(build(Cable, c, f"{where}.section[{s}]", convert=convert) for s, c in enumerate(secs))
+        try:
+            lns.append(Line(name=t["name"], start=t["from"], end=t["to"], section=cables))
+        except ParameterError as err:
+            raise ParameterError(f"{where}.{err.field.split('.', 1)[-1]}", err.value, err.allowed, err.hint) from None
+    return System(point=tuple(pts), line=tuple(lns))
 
 
 def load_scene(path: str | Path) -> Scene:
@@ -140,9 +218,11 @@ def _unit_label(dim: str, units: str) -> str:
     return SI_UNIT[dim]
 
 
-def _table_lines(obj, header: str, units: str, annotate: bool) -> list[str]:
+def _table_lines(obj, header: str, units: str, annotate: bool, skip: tuple = ()) -> list[str]:
     lines, subtables = [header], []
     for f in dataclasses.fields(obj):
+        if f.name in skip:
+            continue
         v = getattr(obj, f.name)
         if v is None:
             if annotate:
@@ -173,6 +253,24 @@ def _table_lines(obj, header: str, units: str, annotate: bool) -> list[str]:
     return lines
 
 
+def _system_lines(system: System, units: str, annotate: bool) -> list[str]:
+    """The ``[[point]]`` tables (a body's or junction's fields in the point's table) and the ``[[line]]`` tables with
+    their ``from``, ``to`` and ``[[line.section]]`` cables."""
+    out = []
+    for p in system.point:
+        lines = _table_lines(p, "[[point]]", units, annotate, skip=("body",))
+        if p.body is not None:
+            lines = lines[:-1] + _table_lines(p.body, "", units, annotate)[1:]
+        out += lines
+    for ln in system.line:
+        out += ["[[line]]", f"name = {_fmt(ln.name)}", f"from = {_fmt(ln.start)}" + (
+            "   # the point the line starts from: its first section begins there" if annotate else ""),
+                f"to = {_fmt(ln.end)}", ""]
+        for c in ln.section:
+            out += _table_lines(c, "[[line.section]]", units, annotate)
+    return out
+
+
 def dump_scene(scene: Scene, *, units: str = "SI", annotate: bool = False) -> str:
     """Write a scene as TOML text (loadable by :func:`load_scene`).
 
@@ -198,7 +296,9 @@ def dump_scene(scene: Scene, *, units: str = "SI", annotate: bool = False) -> st
                 "# each line's comment gives [unit] and meaning (Wang 1971 notation).", ""]
     out += [f"name = {_fmt(scene.name)}", f"units = {_fmt(units)}",
             f"angles = {_fmt(scene.angles)}" + ("   # per_section | shared (dual isolation)" if annotate else ""), ""]
-    if len(scene.sections) == 1:
+    if scene.system is not None:       # points and lines: a system that is not a chain
+        out += _system_lines(scene.system, units, annotate)
+    elif len(scene.sections) == 1:
         out += _table_lines(scene.sections[0].cable, "[cable]", units, annotate)
         out += _table_lines(scene.sections[0].body, "[body]", units, annotate)
     else:

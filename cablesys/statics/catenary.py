@@ -27,7 +27,7 @@ TOLERANCE = 1e-10     # largest static force residual over the total weight
 
 
 
-def _flow_indices(model) -> list[int]:
+def flow_indices(model) -> list[int]:
     """Entries of p that carry the flow: current speeds and the system (tow) speed."""
     return [i for i, lb in enumerate(model.layout.labels)
             if lb.startswith("environment.current_speeds[") or lb == "environment.system_speed"]
@@ -422,24 +422,35 @@ def segmented_equilibrium(model, p, *, guess=None):
     with casadi_warnings_captured() as kinsol:
         q, r = solve(g0, p)
         if not r < tol:                   # continuation in flow speed, adaptive steps
-            flow = _flow_indices(model)
-            lam, step = 0.0, 0.25
-            q = hanging_guess(model, p)
-            while lam < 1.0 and step > 1.0 / 1024:
-                pp = p.copy()
-                pp[flow] *= min(1.0, lam + step)
-                q_try, r = solve(q, pp)
-                if r < tol:
-                    q, lam, step = q_try, min(1.0, lam + step), 2.0 * step
-                else:
-                    step *= 0.5
-            if lam < 1.0:
-                r = np.inf
+            q, lam = flow_continuation(solve, hanging_guess(model, p), p, flow_indices(model), tol)
+            r = residual(q, p) if lam >= 1.0 else np.inf
     if not r < tol:
         raise SolverError(f"segmented cable equilibrium not found (best scaled residual {r:.3g}): KINSOL failed from "
                           f"the hanging cable and along the flow-speed continuation{_flags(kinsol)}; a very strong "
                           "current or tow streams the cable horizontally: check weights and speeds, or give a guess")
     return q, r
+
+
+def flow_continuation(solve, q, p, flow, tol, lam: float = 0.0) -> tuple:
+    """(q, lambda reached): the equilibrium followed from ``q`` (solved with the flow entries ``flow`` of ``p`` scaled by
+    ``lam``) as the flow speed grows to its full value in adaptive steps (a quarter first, doubled after a success,
+    halved after a failure, given up below 1/1024); ``solve(q, p) -> (q, scaled residual)``, success below ``tol``."""
+    step = 0.25
+    while lam < 1.0 and step > 1.0 / 1024:
+        pp = p.copy()
+        pp[flow] *= min(1.0, lam + step)
+        q_try, r = solve(q, pp)
+        if r < tol:
+            q, lam, step = q_try, min(1.0, lam + step), 2.0 * step
+        else:
+            step *= 0.5
+    return q, lam
+
+
+#: KINSOL in node coordinates: a line search, a sparse direct solve (the static Jacobian is banded per line).
+NODE_KINSOL = {"strategy": "linesearch", "abstol": 1e-13, "error_on_fail": False, "print_level": 0,
+               "disable_internal_warnings": True, "max_iter": 400, "linear_solver_type": "user_defined",
+               "linear_solver": "csparse"}
 
 
 def _residual_jacobian(model):
@@ -461,10 +472,7 @@ def _max_residual(resid, q, p) -> float:
 
 def _node_rootfinder(model):
     def build():
-        opts = {"strategy": "linesearch", "abstol": 1e-13, "error_on_fail": False, "print_level": 0,
-                "disable_internal_warnings": True, "max_iter": 400, "linear_solver_type": "user_defined",
-                "linear_solver": "csparse"}
-        return ca.rootfinder("catenary_anchored", "kinsol", _pinned_residual(model), opts)
+        return ca.rootfinder("catenary_anchored", "kinsol", _pinned_residual(model), NODE_KINSOL)
     return model.derive("catenary_anchored_rootfinder", build)
 
 

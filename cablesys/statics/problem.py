@@ -88,7 +88,7 @@ def residual_scales(model: CableModel, p):
     lab = model.layout.labels
     weight = sum(ca.fabs(p[i]) for i, lb in enumerate(lab) if lb.endswith("body.weight")) + sum(
         ca.fabs(p[i] * p[lab.index(lb.replace("weight_per_length", "length"))])
-        for i, lb in enumerate(lab) if lb.endswith("cable.weight_per_length"))
+        for i, lb in enumerate(lab) if lb.endswith(".weight_per_length"))      # a chain's cables, a system's lines
     length = sum(p[i] for i, lb in enumerate(lab) if lb.endswith("cable.length"))
     return ca.vertcat(*[weight * length if lbl.startswith("phi") else weight for lbl in model.q_labels])
 

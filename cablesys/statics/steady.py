@@ -49,6 +49,10 @@ def starting_guesses(model: CableModel, p):
     numpy.ndarray
         Generalized coordinates q in ``model.q_labels`` order.
     """
+    if getattr(model, "line_nodes", None) is not None:     # a system of lines joined at points
+        from .system import system_guess
+        yield system_guess(model, p)
+        return
     if getattr(model, "segments", None):
         yield np.asarray(anchored_guess(model, p) if getattr(model, "anchored", False) else hanging_guess(model, p), float)
         return
@@ -77,7 +81,8 @@ def steady_state(model: CableModel, p, *, guess=None, solver: ca.Function | None
     """Equilibrium of the scene with parameters ``p`` (top at rest, no waves).
 
     Raises :class:`SolverError` if no equilibrium is found from any starting guess. A segmented
-    model (node coordinates) gets its elastic catenary (:mod:`cablesys.statics.catenary`).
+    model (node coordinates) gets its elastic catenary (:mod:`cablesys.statics.catenary`), a system of lines joined
+    at points its own statics (:mod:`cablesys.statics.system`).
 
     Parameters
     ----------
@@ -96,6 +101,9 @@ def steady_state(model: CableModel, p, *, guess=None, solver: ca.Function | None
         Coordinates ``q``, labelled ``outputs`` (angles in rad, lengths in m, tensions in N) and the
         relative residual reached.
     """
+    if getattr(model, "line_nodes", None) is not None:     # a system of lines joined at points (statics/system.py)
+        from .system import system_steady
+        return system_steady(model, p, guess=guess)
     if getattr(model, "segments", None):
         return segmented_steady(model, p, guess=guess)
     if getattr(model, "kind", None) == "element-coordinates":

@@ -9,7 +9,8 @@ anchored line or a seabed (they act on the nodes of the segmented cable, which t
 winch (a varying length, carried by the node model only) and a towing ship's track (its steady start, the turn or
 the straight tow, is found for the node model only). A rigid body (``body.pitch_inertia``) limits them too: its
 orientation (the pitch in the plane, a quaternion in 3-D) is a coordinate of the node model alone
-(:mod:`cablesys.model.rigid_body`).
+(:mod:`cablesys.model.rigid_body`). So does a system of lines joined at points that is not a chain (``scene.system``):
+only the node model builds a graph of lines (:mod:`cablesys.model.system`).
 """
 
 from __future__ import annotations
@@ -23,7 +24,10 @@ from ...scene import Scene
 def with_segments(scene: Scene, n: int) -> Scene:
     """``scene`` with every section divided into ``n`` elements (1: Wang's straight cable). Elements each have their
     own inclination: a chain whose sections share one swing angle (``angles = "shared"``, the dual-isolation model
-    of Wang 1971 p. 33) is divided with every element's angle its own (``per_section``)."""
+    of Wang 1971 p. 33) is divided with every element's angle its own (``per_section``). A system of lines: every
+    section of every line divided into ``n``."""
+    if system(scene):
+        return dataclasses.replace(scene, system=scene.system.with_segments(int(n)))
     secs = tuple(dataclasses.replace(s, cable=dataclasses.replace(s.cable, segments=int(n))) for s in scene.sections)
     angles = "per_section" if n > 1 else scene.angles
     return dataclasses.replace(scene, sections=secs, angles=angles)
@@ -34,9 +38,16 @@ def three_d(scene: Scene) -> bool:
     return bool(getattr(scene, "three_d", False))
 
 
+def cables(scene: Scene) -> tuple:
+    """Every cable of the scene: its sections' (a chain) or its lines' sections (a system)."""
+    if getattr(scene, "system", None) is not None:
+        return tuple(c for line in scene.system.line for c in line.section)
+    return tuple(sec.cable for sec in scene.sections)
+
+
 def massless(scene: Scene) -> bool:
     """True when a section's cable is massless (``cable.cable_mass_switch < 0``, Wang 1971's CBMAS)."""
-    return any(sec.cable.cable_mass_switch < 0 for sec in scene.sections)
+    return any(c.cable_mass_switch < 0 for c in cables(scene))
 
 
 def has_ends(scene: Scene) -> bool:
@@ -55,6 +66,17 @@ def winched(scene: Scene) -> bool:
     return getattr(scene, "winch", None) is not None
 
 
+def system(scene: Scene) -> bool:
+    """True when the scene is a system of lines joined at points that is not a chain (``scene.system``): the node
+    model of a graph of lines (:mod:`cablesys.model.system`) builds it."""
+    return getattr(scene, "system", None) is not None
+
+
+def scene_segments(scene: Scene) -> int:
+    """The most elements a section of the scene has (a chain's sections, or a system's line sections)."""
+    return max(c.segments for c in cables(scene))
+
+
 def turning(scene: Scene) -> bool:
     """True when the tow point follows a track (``top_motion.track``: a circle, a straight, a turn, a zig-zag or a
     path): the run starts on the steady turn or the steady straight tow, which the statics find for the node model
@@ -71,6 +93,8 @@ ROTATES = ("a rigid body (body.pitch_inertia): its orientation (pitch in the pla
            "coordinate of the node model (segmented) only")
 WINCHED = ("a winch ([winch]): only the node model (segmented) carries a varying cable length; the other rungs "
            "have a fixed one and would ignore the payout")
+SYSTEM = ("a system of lines joined at points that is not a chain ([[point]], [[line]]): only the node model "
+          "(segmented) builds a graph of lines")
 TURNING = ("a towing ship's track (top_motion.track: a circle, a straight, a turn, a zig-zag or a path): the run starts "
            "on the steady turn or the steady straight tow, which the statics find for the node model (segmented) only")
 
@@ -78,6 +102,8 @@ TURNING = ("a towing ship's track (top_motion.track: a circle, a straight, a tur
 def reduced_validity(scene: Scene) -> str:
     """The validity of a rung built on Wang's straight cable with mass, in the plane or in space, that the node model
     does not carry (the quasi-static rungs): "" or why not (see the module docstring)."""
+    if system(scene):
+        return SYSTEM
     if massless(scene):
         return WITH_MASS
     if rigid(scene):
@@ -92,6 +118,8 @@ def reduced_validity(scene: Scene) -> str:
 def straight_validity(scene: Scene) -> str:
     """The validity of a rung built on Wang's planar straight cable with mass (the frequency rung's periodic orbit):
     "" or why not (see the module docstring)."""
+    if system(scene):
+        return SYSTEM
     return PLANAR if three_d(scene) else reduced_validity(scene)
 
 

@@ -7,7 +7,7 @@ from ...errors import ParameterError
 from ...model import CableModel, build_model
 from ...scene import Scene
 from .. import estimate as est
-from .base import WITH_MASS, BuiltinRung, has_ends, massless, rigid, winched
+from .base import WITH_MASS, BuiltinRung, has_ends, massless, rigid, scene_segments, system, winched
 
 ENDS_SEGMENTS = 16
 """The first N of an anchored line or a seabed scene (the a posteriori check at N / 2 grows it)."""
@@ -41,12 +41,14 @@ class Segmented(BuiltinRung):
         return est.segmented_error(assessment.estimates, self.segments(segments))
 
     def alone(self, scene: Scene, requested: str, segments) -> tuple:
-        """An anchored line or a seabed, a winch, a rigid body, or a towing ship's track: the node model with the caller's N, else the scene's
+        """A system of lines, an anchored line or a seabed, a winch, a rigid body, or a towing ship's track: the node model with the caller's N, else the scene's
         (named segmented rung), else at least ENDS_SEGMENTS, checked a posteriori on every quantity when the ladder
         chose it."""
-        scene_n = max(s.cable.segments for s in scene.sections)
+        scene_n = scene_segments(scene)
         n = int(segments or (scene_n if requested == self.name and scene_n > 1 else max(scene_n, ENDS_SEGMENTS)))
-        why = ("an anchored line or a seabed: the node model with N = {n}, the only rung with nodes to anchor and to lay "
+        why = ("a system of lines joined at points ([[point]], [[line]]) that is not a chain: the node model with N = {n} "
+               "elements per line section, the only rung that builds a graph of lines" if system(scene) else
+               "an anchored line or a seabed: the node model with N = {n}, the only rung with nodes to anchor and to lay "
                "on the bed" if has_ends(scene) else "a winch ([winch]): the node model with N = {n}, the only rung whose "
                "cable length can change in time" if winched(scene) else "a rigid body: the node model with "
                "N = {n}, the only rung whose coordinates include its orientation (pitch in the plane, a quaternion in 3-D)" if rigid(scene) else "a towing ship's track "

@@ -6,7 +6,7 @@ from __future__ import annotations
 from ...model import CableModel, build_model
 from ...scene import Scene
 from .. import estimate as est
-from .base import NO_NODES, ROTATES, TURNING, WINCHED, BuiltinRung, has_ends, rigid, turning, winched
+from .base import NO_NODES, ROTATES, SYSTEM, TURNING, WINCHED, BuiltinRung, has_ends, rigid, system, turning, winched
 
 
 class Wang(BuiltinRung):
@@ -19,7 +19,9 @@ class Wang(BuiltinRung):
     def valid(self, scene: Scene) -> str:
         """"" unless the scene has an anchor or a seabed (the straight cable has no nodes), a winch (its length is fixed
         here; :mod:`cablesys.model.winch` is the control door's), a rigid body or a turning track (its
-        steady turn is the node model's)."""
+        steady turn is the node model's), or is a system of lines that is not a chain."""
+        if system(scene):
+            return SYSTEM
         if has_ends(scene):
             return NO_NODES
         if winched(scene):

@@ -1,0 +1,270 @@
+"""The node model of a cable system: lines joined at points (a graph of lines, :mod:`cablesys.scene.system`).
+
+The chain's node model (:mod:`.segmented`) numbers its nodes top to bottom; here the lines meet at shared point
+nodes, in any graph. The physics is the same and comes from the same functions: every line section of N elements
+(reference length h_r = l_r / N, zero-tension length h_0 = l_0 / N, Wang 1971 eq. 1) has the element terms of
+:func:`.segmented_element.element_terms` (tension-only law with Voigt damping and the slack rule, eq. 46, 54; mass and
+added mass, eq. 5, 23-24; weight in water, eq. 12; normal and tangential drag in the current and waves, eq. 26-28,
+42, 44) and the inertia of :func:`.segmented_element.element_inertia` (Lagrange's equations of the element's lumped
+kinetic energy by AD), and every body or junction the point body's virtual masses, weight and drag (eq. 16, 32-35),
+summed node by node in :class:`.node_terms.NodeSums`.
+
+Nodes. The lines are walked in the scene's order; each line's start point gets a node when first met, then the
+line's interior nodes from its start to its end (section joints included: a section's last node is the next
+section's first), then its end point when first met. The prescribed point's node moves with the top motion e (the
+origin of the node frame at its mean position); a fixed point's node is held at its position (entries of p); every
+other node is free: its coordinates (x, y) in the plane, (x, y, z) in space are q, labelled ``x[j]``, ``y[j]``,
+``z[j]`` by node number j. A chain written from its top down is numbered as the chain's node model numbers it, so
+the two models are the same functions (tests/test_system_model.py).
+
+Outputs: ``point.NAME.x``, ``.y`` (``.z`` in space) of every point and their rates (m, m/s; y down from the
+prescribed point's mean depth); ``line.NAME.tension_from`` and ``line.NAME.tension_to``, the size of the force of
+the line on its start and end point (N): its end element's tension along the element plus the half element lumped
+at that node (weight, drag share, minus its inertia), as the chain's ``tension_top``/``tension_bottom``; the
+profiles ``element_tension[k]``, ``element_tension_rate[k]``, ``element_strain[k]``, ``element_slack[k]`` (elements
+line by line, each from its start), ``element_s[k]`` (the element mid-point's unstretched arc length from its line's
+start, m) and ``node_x[j]``, ``node_y[j]`` (``node_z[j]``) of every node. Units SI.
+
+A ``[seabed]`` acts on every free node as on the chain's (:mod:`.segmented_seabed`: normal contact, regularised
+Coulomb friction, in space along and across the line on a bed sloping towards ``seabed.heading_deg``, the laid-down
+line's friction in the statics, ``static_force``), a body's or junction's node with its footprint ``body.bed_area``
+besides its lines' half elements (as the chain's body): a line is laid from its start towards its end, so a node's
+fairlead side is the element of its line that ends at it (a point that no element ends at: the element leaving it),
+its other side (the line's tangent in space) the element leaving it; write a mooring line from its fairlead to its
+anchor. Profiles ``seabed_normal[j]`` and ``seabed_friction[j]`` per node (in space also
+``seabed_friction_lateral[j]``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import casadi as ca
+
+from ..scene import Scene
+from .node_terms import NodeSums
+from .params import ParameterLayout, environment_symbols
+from .section import SectionParameters
+from .segmented import SegmentedModel, drag_points
+from .segmented_element import block_solve, element_inertia, element_terms, lump_force, norm
+from .segmented_seabed import seabed_forces
+from .signals import EXO_LABELS
+from .top_motion import EXO_LABELS_3D, symbolic_type, top_motion_function
+
+__all__ = ["SystemModel", "build_system_model", "topology"]
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class SystemModel(SegmentedModel):
+    """The node model of a graph of lines (module docstring): a :class:`~.segmented.SegmentedModel` whose nodes are
+    numbered line by line. ``point_names``, ``point_kinds`` and ``point_nodes`` (the node of each point, scene
+    order); ``line_names``, ``line_nodes`` (each line's nodes from its start to its end) and ``line_segments`` (its
+    sections' element counts); ``node_q`` the position of each node's first coordinate in q (-1 for the prescribed
+    and fixed nodes); ``node_labels`` the parameter labels of a fixed node's position (() for the others)."""
+
+    point_names: tuple = ()
+    point_kinds: tuple = ()
+    point_nodes: tuple = ()
+    line_names: tuple = ()
+    line_nodes: tuple = ()
+    line_segments: tuple = ()
+    node_q: tuple = ()
+    node_labels: tuple = ()
+
+    @property
+    def n_nodes(self) -> int:
+        """Every node: free, fixed and the prescribed one."""
+        return len(self.node_q)
+
+
+def topology(system) -> tuple:
+    """(point_nodes, line_nodes, n_nodes) of ``system`` (:class:`~cablesys.scene.system.System`): the node of every
+    point and the nodes of every line from its start to its end, numbered as the module docstring says."""
+    point_nodes, line_nodes, count = {}, [], 0
+
+    def point(name):
+        nonlocal count
+        if name not in point_nodes:
+            point_nodes[name] = count
+            count += 1
+        return point_nodes[name]
+
+    for line in system.line:
+        seq = [point(line.start)]
+        n = sum(c.segments for c in line.section)
+        seq += list(range(count, count + n - 1))
+        count += n - 1
+        seq.append(point(line.end))
+        line_nodes.append(tuple(seq))
+    return tuple(point_nodes[p.name] for p in system.point), tuple(line_nodes), count
+
+
+def build_system_model(scene: Scene) -> SystemModel:
+    """Build the node model of ``scene.system`` (module docstring); every value enters through ``p``.
+
+    Parameters
+    ----------
+    scene : Scene
+        A scene with a ``system`` that is not a chain (a chain is built by :mod:`.segmented`).
+
+    Returns
+    -------
+    SystemModel
+        ``dynamics``, ``accel``, ``ode``, ``top``, ``outputs``, ``energy`` and an empty ``cable_force``, as the chain's
+        node model.
+    """
+    system = scene.system
+    layout = ParameterLayout.from_scene(scene)
+    p = layout.symbol
+    dim = 3 if scene.three_d else 2
+    axes = ("x", "y", "z")[:dim]
+    point_nodes, line_nodes, n_nodes = topology(system)
+    kind_of = {point_nodes[i]: pt for i, pt in enumerate(system.point)}
+    point_index = {point_nodes[i]: i for i in range(len(system.point))}
+    node_q, free = [-1] * n_nodes, []
+    for j in range(n_nodes):
+        if j not in kind_of or kind_of[j].free:
+            node_q[j] = dim * len(free)
+            free.append(j)
+    q_labels = tuple(f"{c}[{j}]" for j in free for c in axes)
+    q, qd = ca.SX.sym("q", dim * len(free)), ca.SX.sym("qd", dim * len(free))
+    e = ca.SX.sym("e", len(EXO_LABELS_3D if dim == 3 else EXO_LABELS))
+    t, z, zd, zdd = e[0], e[1:1 + dim], e[1 + dim:1 + 2 * dim], e[1 + 2 * dim:1 + 3 * dim]
+    env = environment_symbols(layout, scene)          # Wang 1971 eq. 26-28 inputs
+    rho, depth0 = env["density"], env["top_depth"]
+
+    node_r, node_v, node_labels = [], [], []
+    for j in range(n_nodes):
+        pt = kind_of.get(j)
+        labels = ()
+        if node_q[j] >= 0:
+            k = node_q[j]
+            r, v = tuple(q[k + c] for c in range(dim)), tuple(qd[k + c] for c in range(dim))
+        elif pt.kind == "prescribed":                  # the top: the scene's top motion
+            r, v = tuple(z[c] for c in range(dim)), tuple(zd[c] for c in range(dim))
+        else:                                          # a fixed point, held at its position
+            labels = tuple(f"system.point[{point_index[j]}].{c}" for c in axes)
+            r, v = tuple(layout.sym(lb) for lb in labels), (0.0,) * dim
+        node_r.append(r)
+        node_v.append(v)
+        node_labels.append(labels)
+
+    static_law = scene.seabed is not None            # the seabed's statics: elements elastic both ways (catenary.py)
+    sums = NodeSums(n_nodes, dim)
+    elements, lines, s_el = [], [], []
+    for k, line in enumerate(system.line):
+        seq, pos, els, s0 = line_nodes[k], 0, [], 0.0
+        for s, cable in enumerate(line.section):
+            P = SectionParameters.for_cable(layout, f"system.line[{k}].section[{s}].")
+            n_el = cable.segments
+            inertia = element_inertia(P, n_el, p, rho, t, env, depth0, drag_points(scene, n_el), dim)
+            for m in range(n_el):
+                a, b = seq[pos + m], seq[pos + m + 1]
+                el = element_terms(P, n_el, node_r[a], node_v[a], node_r[b], node_v[b], rho=rho, t=t, env=env,
+                                   depth0=depth0, n_points=drag_points(scene, n_el))
+                el.update(a=a, b=b)
+                sums.element(el, node_v[a], node_v[b], inertia(ca.vertcat(*node_r[a]), ca.vertcat(*node_r[b]),
+                                                               ca.vertcat(*node_v[a]), ca.vertcat(*node_v[b]), p),
+                             P, n_el, static_law)
+                els.append(el)
+                s_el.append(s0 + (m + 0.5) * P.l_0 / n_el)
+            pos += n_el
+            s0 = s0 + P.l_0
+        lines.append(els)
+        elements += els
+    for i, pt in enumerate(system.point):
+        if pt.free:                                    # Wang's point body: a body or a junction
+            j = point_nodes[i]
+            P = SectionParameters.for_body(layout, f"system.point[{i}].body.", pt.body.is_sphere, dim == 3)
+            sums.point_body(j, P, node_r[j], node_v[j], rho=rho, t=t, env=env, depth0=depth0)
+
+    V_contact, bed = 0.0, None
+    if scene.seabed is not None:     # the seabed on every free node (segmented_seabed.py); a line is laid from its
+        # start towards its end: a node's fairlead side is the element of its line ending at it
+        for i, pt in enumerate(system.point):         # a body's or junction's footprint on the bed
+            if pt.free:
+                sums.area[point_nodes[i]] += layout.sym(f"system.point[{i}].body.bed_area")
+        up, down = {}, {}
+        for el in reversed(elements):
+            up[el["a"]] = el                          # a point no element ends at: the element leaving it
+        up.update({el["b"]: el for el in elements})
+        for el in reversed(elements):                 # the other side (the line's tangent in space): an element
+            if up[el["a"]] is not el:                 # leaving the node, its line's next one at an inner node
+                down[el["a"]] = el
+        bed = seabed_forces(layout, node_r, node_v, sums.area, elements, depth0, free, up, down)
+        V_contact = bed["energy"]
+        for j, (Fd, Fs) in bed["forces"].items():
+            for c in range(dim):
+                sums.Q[j][c] += Fd[c]
+                sums.Q_static[j][c] += Fs[c]
+    # Lagrange's equations node by node (node_terms.py): M_j q''_j = f_j, block diagonal
+    acc_nodes, acc = [None] * n_nodes, []
+    for j in range(n_nodes):
+        if node_q[j] >= 0:
+            a_j = block_solve(sums.M[j], sums.force(j))
+            acc += list(a_j)
+        elif kind_of[j].kind == "prescribed":
+            a_j = tuple(zdd[c] for c in range(dim))
+        else:
+            a_j = (0.0,) * dim
+        acc_nodes[j] = a_j
+    acc = ca.vertcat(*acc)
+    M = ca.diagcat(*[sums.M[j] for j in free])
+    f = ca.vertcat(*[sums.force(j) for j in free])
+
+    x = ca.vertcat(q, qd)
+    xdot = ca.vertcat(qd, acc)
+    out, labels = [], []
+    for i, pt in enumerate(system.point):
+        j = point_nodes[i]
+        out += [node_r[j][c] for c in range(dim)] + [node_v[j][c] for c in range(dim)]
+        labels += [f"point.{pt.name}.{c}" for c in axes] + [f"point.{pt.name}.{c}_rate" for c in axes]
+    for k, line in enumerate(system.line):
+        first, last = lines[k][0], lines[k][-1]
+        a, b = line_nodes[k][0], line_nodes[k][-1]
+        # force of the line on its end points: the end element's tension plus the half element lumped there
+        lt, lb = lump_force(first, "a", acc_nodes[a]), lump_force(last, "b", acc_nodes[b])
+        start = tuple(first["tension"] * first["et"][c] + lt[c] for c in range(dim))
+        end = tuple(-last["tension"] * last["et"][c] + lb[c] for c in range(dim))
+        out += [norm(start), norm(end)]
+        labels += [f"line.{line.name}.tension_from", f"line.{line.name}.tension_to"]
+    T = ca.vertcat(*[el["tension"] for el in elements])
+    T_rate = ca.jtimes(T, x, xdot) + ca.jacobian(T, e) @ ca.vertcat(1.0, zd, zdd, ca.DM.zeros(dim))
+    prof = {"element_tension": T, "element_tension_rate": T_rate,
+            "element_strain": ca.vertcat(*[el["strain"] for el in elements]),
+            "element_slack": ca.vertcat(*[el["slack"] for el in elements]),
+            "element_s": ca.vertcat(*s_el)}
+    prof.update({f"node_{c}": ca.vertcat(*[r[n] for r in node_r]) for n, c in enumerate(axes)})
+    if bed is not None:
+        prof["seabed_normal"] = ca.vertcat(*bed["normal"])
+        prof["seabed_friction"] = ca.vertcat(*bed["friction"])
+        if dim == 3:
+            prof["seabed_friction_lateral"] = ca.vertcat(*bed["lateral"])
+    for name, v in prof.items():
+        out += [v[k] for k in range(v.shape[0])]
+        labels += [f"{name}[{k}]" for k in range(v.shape[0])]
+
+    dynamics = ca.Function("dynamics", [q, qd, e, p], [M, f], ["q", "qd", "e", "p"], ["M", "f"])
+    accel = ca.Function("accel", [q, qd, e, p], [acc], ["q", "qd", "e", "p"], ["qdd"])
+    top = top_motion_function(scene, layout)
+    S = symbolic_type(scene)
+    nq = len(q_labels)
+    xs, ts, ps = S.sym("x", 2 * nq), S.sym("t"), S.sym("p", p.shape[0])
+    ode = ca.Function("ode", [xs, ts, ps], [ca.vertcat(xs[nq:], accel(xs[:nq], xs[nq:], top(ts, ps), ps))],
+                      ["x", "t", "p"], ["xdot"])
+    outputs = ca.Function("outputs", [x, e, p], [ca.vertcat(*out)], ["x", "e", "p"], ["y"])
+    energy = ca.Function("energy", [x, e, p], [sums.K, sums.gravity(node_r) + sums.V_strain + V_contact],
+                         ["x", "e", "p"], ["K", "V"])
+    static = (ca.Function("static_force", [q, qd, e, p], [ca.vertcat(*[sums.force(j, static=True) for j in free])],
+                          ["q", "qd", "e", "p"], ["f"]) if bed is not None else None)
+    cable_force = ca.Function("cable_force", [x, p], [ca.SX(0, 1)], ["x", "p"], ["gap"])
+    return SystemModel(layout=layout, n_sections=0, angles=scene.angles, q_labels=q_labels,
+                       output_labels=tuple(labels), dynamics=dynamics, ode=ode, top=top, outputs=outputs,
+                       energy=energy, cable_force=cable_force, slack_index=(), symbolic=S,
+                       segments=tuple(c.segments for ln in system.line for c in ln.section), accel=accel,
+                       static_force=static,
+                       dim=dim, point_names=tuple(pt.name for pt in system.point),
+                       point_kinds=tuple(pt.kind for pt in system.point), point_nodes=point_nodes,
+                       line_names=tuple(ln.name for ln in system.line), line_nodes=line_nodes,
+                       line_segments=tuple(tuple(c.segments for c in ln.section) for ln in system.line),
+                       node_q=tuple(node_q), node_labels=tuple(node_labels))
