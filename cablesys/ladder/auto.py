@@ -360,6 +360,7 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
         result = _run(scene, choice, tol, cache, kw)
     t2, b2 = time.perf_counter(), cache.build_s
     result, choice = _check(scene, choice, tol, result, cache, kw, auto=auto)
+    choice = static_check.refresh(scene, choice, cache)        # the static shape's error at the N that ran
     choice = settled_check(scene, choice, result)
     t3, b3 = time.perf_counter(), cache.build_s
     info = extrapolation.model_dict(choice)

@@ -107,7 +107,7 @@ def check(scene: Scene, choice: Choice, tol, cache: RungCache) -> Choice:
     note = (f"static shape in the current against the node model's at N = {ref_n}: body {worst['body']:.2g}, "
             f"tension {worst['tension']:.2g}")
     if worst["body"] <= tol[0] and worst["tension"] <= tol[1]:
-        return _stated(choice, errs, note, ref_n)
+        return _stated(choice, errs, note, ref_n, reference)
     # the element rungs share the node model's statics: one search over N; past the quasi-static segmented cable's
     # size cap, or past the N up to which it was chosen for its cost (explicit_only: the plan's own cap), the node
     # model runs instead
@@ -129,19 +129,35 @@ def check(scene: Scene, choice: Choice, tol, cache: RungCache) -> Choice:
             rung = name if n <= top else "segmented"
             why = "" if rung == name else f" (the node model: the quasi-static segmented cable is {cap_why})"
             return _raised(choice, rung, n, e, f"{note} at N = {choice.segments}, within the tolerance from N = {n}{why}",
-                           ref_n)
-    return _stated(choice, errs, f"{note}: outside the tolerance, and no N up to {MAX_SEGMENTS} meets it", ref_n)
+                           ref_n, reference)
+    return _stated(choice, errs, f"{note}: outside the tolerance, and no N up to {MAX_SEGMENTS} meets it", ref_n,
+                   reference)
 
 
-def _stated(choice: Choice, errs: dict, note: str, ref_n: int) -> Choice:
+def refresh(scene: Scene, choice: Choice, cache: RungCache) -> Choice:
+    """``choice`` with its static errors at the N that ran, where the a posteriori check grew N after the static
+    check (the reference's values are kept in the block: one statics solve at the new N); unchanged when nothing
+    was checked, N is the same, or the solve fails (the block then keeps the N it speaks of)."""
+    block = choice.numbers.get("static_errors")
+    if block is None or block["segments"] == choice.segments or "reference" not in block:
+        return choice
+    try:
+        errs = static_errors(static_values(scene, choice.name, choice.segments, cache), block["reference"])
+    except SolverError:
+        return choice
+    return dataclasses.replace(choice, numbers=dict(choice.numbers, static_errors=dict(
+        block, segments=choice.segments, errors=errs)))
+
+
+def _stated(choice: Choice, errs: dict, note: str, ref_n: int, reference: dict) -> Choice:
     """``choice`` with the static errors of its N (``numbers["static_errors"]``: their own quantities, judged on
     their own values; the body and tension groups' estimates speak of the motion) and ``note`` in its reason."""
-    static = {"segments": choice.segments, "reference_segments": ref_n, "errors": dict(errs)}
+    static = {"segments": choice.segments, "reference_segments": ref_n, "errors": dict(errs), "reference": reference}
     return dataclasses.replace(choice, reason=f"{choice.reason}; {note}" if note else choice.reason,
                                numbers=dict(choice.numbers, static_errors=static))
 
 
-def _raised(choice: Choice, name: str, n: int, errs: dict, note: str, ref_n: int) -> Choice:
+def _raised(choice: Choice, name: str, n: int, errs: dict, note: str, ref_n: int, reference: dict) -> Choice:
     """The element rung ``name`` at N = ``n`` in place of ``choice``, its estimate at that N, the static errors."""
     e = est.rung_error(choice.numbers["estimates"], name, n)
     plan = dict(choice.numbers.get("plan", {}), name=name, segments=n, checked=True)
@@ -149,4 +165,4 @@ def _raised(choice: Choice, name: str, n: int, errs: dict, note: str, ref_n: int
         plan["explicit_only"] = False
     raised = Choice(name, n, f"{choice.reason}; {note}: {name} with N = {n}",
                     {"body": e["body"], "tension": e["tension"]}, dict(choice.numbers, plan=plan))
-    return _stated(raised, errs, "", ref_n)
+    return _stated(raised, errs, "", ref_n, reference)
