@@ -372,6 +372,25 @@ def _timed_run(sc, method, rtol, atol):
     return r, time.perf_counter() - t0, first, setup
 
 
+def _bdf_equal_n(scene, n: int) -> dict:
+    """The segmented cable at ``n`` elements, BDF(<= 2) at the loosest rtol whose statistics are within matched accuracy
+    (:func:`_matched`: 0.5 % body amplitudes, 1 % tension extremes) of its own tight run (CVODES rtol 1e-7), compiled
+    up to COMPILE_MAX_ELEMENTS: the plan cases' equal-N row on a taut scene (``_bench_slack.bench_plan_case``)."""
+    sc, period = _segments(scene, n), M.forcing_period(scene)
+    with _compiled(n <= COMPILE_MAX_ELEMENTS):
+        tight = simulate(sc, method="cvodes", rtol=1e-7, atol=1e-10)
+        c0 = time.process_time()
+        m = _matched(None, _stats(tight, period), period,
+                     timed=lambda meth, rtol: _timed_run(sc, meth, rtol, rtol * 1e-3),
+                     methods=SEGMENTED_METHODS, rtols=SEGMENTED_RTOLS)
+        search_cpu = time.process_time() - c0
+    if m is None:
+        return {"segments": n, "wall_s": None, "note": "no setting met matched accuracy"}
+    res, wall, first, how = m
+    return {"segments": n, "wall_s": wall, "first_call_s": first, "load_1min": os.getloadavg()[0],
+            "steps": res.stats.get("nsteps"), "search_cpu_s": search_cpu, **how}
+
+
 def _moordyn_stats(r, period):
     class _R:                        # the metrics read a result by label and time
         time = r["time"]
@@ -589,7 +608,7 @@ def main(argv=None):
             continue
         dur = args.plan_duration or (PLAN_QUICK_DURATION if args.quick else None)
         rows.append(bench_plan_case(name, plan_scene(name, dur), quick=args.quick, ns=PLAN_NS,
-                                    moordyn=not args.no_moordyn))
+                                    moordyn=not args.no_moordyn, taut_equal_n=None if args.quick else _bdf_equal_n))
         write_json(args.out / "bench_vs_moordyn.json", {"cases": rows, "quick": args.quick, "notes": NOTES})
     ends = []
     for name in _bench_ends.ENDS_CASES:
