@@ -56,6 +56,7 @@ from .choice import (
     checkable,
     choose,
     forced,
+    model_operations,
     quasistatic_max_segments,
     tolerances,
 )
@@ -608,6 +609,10 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
     if choice.name == "quasi-static" and n_next > top:    # past its size cap (choice.MAX_MODEL_OPERATIONS): not built
         return node_model(choice, f"{said}; N grows to {n_next}, past the quasi-static segmented cable's size cap "
                                   f"N = {top}", n_next), True, result
+    ratio_ops = model_operations(scene, "quasi-static", n_next) / model_operations(scene, "segmented", n_next)
+    if choice.name == "quasi-static" and ratio_ops > QS_NODE_SIZE_RATIO:     # it no longer pays
+        return node_model(choice, f"{said}; N grows to {n_next}, where the quasi-static segmented cable's functions "
+                                  f"are {ratio_ops:.0f}x the node model's", n_next), True, result
     return dataclasses.replace(choice, segments=n_next, reason=f"{choice.reason}; {said}: N = {n_next}"), True, result
 
 
@@ -624,6 +629,14 @@ def _quarter(scene: Scene, choice: Choice, tol, cache: RungCache, tight_kw: dict
     if not quarter.success:
         return None, f"; N = {n // 4} failed ({quarter.message}): the pair's estimate stands"
     return metrics.statistics(quarter, period, ramp), ""
+
+
+QS_NODE_SIZE_RATIO = 16.0
+"""Largest ratio of the quasi-static segmented cable's operations to the node model's (:func:`~.choice.model_operations`)
+at which a grown N keeps the quasi-static rung: it is chosen where it costs a quarter of the node model at small N
+(rung.quasistatic.STIFF_QS_COST) with about 4x the node model's operations per step, so it takes some 16x fewer
+steps; past 16x the operations, a step costs what those steps save, and the build grows as N^2.75 (the 3-D
+heave line at N = 16: 571 k operations, minutes of C compile, against the node model's 10 k)."""
 
 
 JUMP_MARGIN = 1.25    # the next N aims at the tolerance with this margin on the observed error's N^-p law
