@@ -29,7 +29,7 @@ def test_bench_sweep_quick(run_study):
     out = run_study("bench_sweep", "--quick")
     doc = json.loads((out / "bench_sweep.json").read_text())
     assert (out / "bench_sweep.png").exists()
-    for name, n in (("time_domain", 16), ("rao", 100)):
+    for name, n in (("time_domain", 8), ("rao", 100)):
         r = doc[name]
         assert r["cases"] == n and r["parallel_equals_serial"]
         assert {"loop", "sweep_serial", "sweep_parallel", "dask"} <= set(r["throughput_cases_per_s"])
