@@ -484,7 +484,8 @@ def bench_plan_case(name: str, scene, *, quick: bool = False, ns=PLAN_NS, moordy
     auto at its default tolerance and at the peer's convergence (body; tension twice it, as the ladder's tolerance
     reads); ``auto_speedup`` = MoorDyn's wall at the larger N / auto's (default tolerance), ``auto_speedup_matched`` the
     same at the peer's convergence, given MoorDyn's wall at the larger N as its time budget (``numerics.time_budget_s``:
-    auto plans a slack scene's runs to fit it and states the error it reaches; a taut plan is not budgeted);
+    auto plans a slack scene's runs to fit it and states the error it reaches; a taut candidate predicted past it is
+    refused at once, ``auto_matched["refused"]`` says why and ``auto_speedup_matched`` is None);
     ``speedup`` = MoorDyn's wall / the segmented cable's at equal N (the larger): as the extrapolation steps it, and on a
     taut scene also BDF(<= 2) at the loosest rtol that meets matched accuracy against its own tight run
     (``taut_equal_n(scene, n) -> dict`` of the main script: ``segmented_equal_n_bdf``), the faster of the two. Every
@@ -525,8 +526,11 @@ def bench_plan_case(name: str, scene, *, quick: bool = False, ns=PLAN_NS, moordy
     if moordyn:
         tol = max(row["moordyn_convergence"]["body"], 1e-4)
         budget = md[max(ns)]["wall_s"]
-        row["auto_matched"] = dict(_auto_timed(scene.with_numerics(time_budget_s=budget), tol, period),
-                                   time_budget_s=budget)
+        try:
+            row["auto_matched"] = dict(_auto_timed(scene.with_numerics(time_budget_s=budget), tol, period),
+                                       time_budget_s=budget)
+        except X.PlanRefused as err:   # the peer's accuracy does not fit in the peer's time: auto says so at once
+            row["auto_matched"] = {"tolerance": tol, "time_budget_s": budget, "wall_s": None, "refused": str(err)}
     row["segmented_equal_n"] = _segmented_timed(scene, max(ns))
     fastest = row["segmented_equal_n"]
     if taut_equal_n is not None and not _slack_plan(scene):
@@ -536,12 +540,13 @@ def bench_plan_case(name: str, scene, *, quick: bool = False, ns=PLAN_NS, moordy
     if moordyn:
         big, big_cpu = md[max(ns)]["wall_s"], md[max(ns)]["cpu_s"]
         row["auto_speedup"] = big / row["auto_default"]["wall_s"]
-        row["auto_speedup_matched"] = big / row["auto_matched"]["wall_s"]
+        matched = row["auto_matched"].get("wall_s")
+        row["auto_speedup_matched"] = big / matched if matched else None
         row["speedup"] = big / fastest["wall_s"]
         row["speedup_of"] = "segmented_equal_n_bdf" if fastest is not row["segmented_equal_n"] else "segmented_equal_n"
         # the same ratios of process CPU time: on a loaded machine the walls also count the other processes' share
         row["auto_speedup_cpu"] = big_cpu / row["auto_default"]["cpu_s"]
-        row["auto_speedup_matched_cpu"] = big_cpu / row["auto_matched"]["cpu_s"]
+        row["auto_speedup_matched_cpu"] = big_cpu / row["auto_matched"]["cpu_s"] if matched else None
         row["speedup_cpu"] = big_cpu / fastest["cpu_s"] if fastest.get("cpu_s") else None
     return row
 

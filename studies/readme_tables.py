@@ -3,8 +3,10 @@
     python studies/readme_tables.py --bench studies/results [--readme README.md] [--check]
 
 Reads ``bench_vs_moordyn.json`` (``studies/bench_vs_moordyn.py --out DIR``) from ``--bench``, and beside it the
-other ends' and the 3-D cases' files when present (``bench_vs_moordyn_ends.json``: ``--case mooring --case lowering``;
-``bench_vs_moordyn_3d.json``: ``--case turn --case crane_rao --case current45``), and rewrites the block between
+other ends', the 3-D cases' and the slack plans' files when present (``bench_vs_moordyn_ends.json``: ``--case mooring
+--case lowering``; ``bench_vs_moordyn_3d.json``: ``--case turn --case crane_rao --case current45``;
+``bench_vs_moordyn_plan.json``: ``--case light_lift --case harsh_sea``, each a copy of that run's
+``bench_vs_moordyn.json``), and rewrites the block between
 ``<!-- bench:begin -->`` and ``<!-- bench:end -->`` of the README: per case, auto's model and its wall time per
 simulated second against MoorDyn's at the case's smallest N at its largest stable step, the speed-up measured in
 that one run, the segmented cable's speed-up at equal N (matched accuracy), and auto's error against the
@@ -20,7 +22,8 @@ import sys
 from pathlib import Path
 
 BEGIN, END = "<!-- bench:begin -->", "<!-- bench:end -->"
-FILES = ("bench_vs_moordyn.json", "bench_vs_moordyn_ends.json", "bench_vs_moordyn_3d.json")   # main, other ends, 3-D
+FILES = ("bench_vs_moordyn.json", "bench_vs_moordyn_ends.json", "bench_vs_moordyn_3d.json",    # main, other ends, 3-D,
+         "bench_vs_moordyn_plan.json")                                                        # the slack plans
 
 
 def _pct(v) -> str:
@@ -37,6 +40,19 @@ def _equal_n(r: dict) -> str:
     return ", ".join(got) or "n/a"
 
 
+def _plan_row(r: dict) -> str:
+    """A plan case's row (``_bench_slack.bench_plan_case``: MoorDyn at its largest N, auto at its default tolerance,
+    the segmented cable at that N)."""
+    auto, n = r["auto_default"], max(int(k) for k in r["moordyn"])
+    md = r["moordyn"][str(n)]
+    name = (auto.get("model") or "?") + (f" N = {auto['segments']}" if (auto.get("segments") or 1) > 1 else "")
+    err = auto.get("estimated_error") or {}
+    eq = r.get(r.get("speedup_of") or "segmented_equal_n") or {}
+    return (f"| {r['case']} | {name} | {auto['wall_s'] / r['duration_s']:.3g} | N = {n}, {md['s_per_s']:.3g} | "
+            f"{_x(r.get('auto_speedup'))} | N = {eq.get('segments', n)}: {_x(r.get('speedup'))} | "
+            f"{_pct(err.get('body'))} / {_pct(err.get('tension'))} (stated) |")
+
+
 def table(bench: dict | list, source: str | list) -> str:
     """The Markdown block for ``bench`` (the content of ``bench_vs_moordyn.json``), or for a list of such contents
     with a list of their sources (one run each)."""
@@ -44,6 +60,8 @@ def table(bench: dict | list, source: str | list) -> str:
     rows = ["| case | auto's model | auto, s per simulated s | MoorDyn (N, s/s) | auto speed-up | segmented at equal N "
             "| auto error body / tension |",
             "|---|---|---|---|---|---|---|"]
+    for r in (r for b in benches for r in b.get("cases", []) if "auto_default" in r and "moordyn" in r):
+        rows.append(_plan_row(r))
     for r in (r for b in benches for r in b.get("cases", []) if "by_n" in r):
         auto = r.get("auto", {})
         md = (r.get("by_n") or [{}])[0]
