@@ -122,7 +122,8 @@ def run_design(args) -> int:
     w(f"model: {doc['models']['design']}\nladder: {doc['models']['ladder']}\n")
     w(f"time-domain design:      AE {res.theta[0]:.4g} N, C_I {res.theta[1]:.4g} N s; heave std "
       f"{s['baseline_heave_std_m']:.3f} -> {s['heave_std_m']:.3f} m ({s['heave_reduction_db']:+.1f} dB), "
-      f"mean over seeds {seeds}; {res.stats['iterations']} IPOPT iterations in {res.stats['solve_s']:.1f} s\n")
+      f"mean over seeds {seeds}; {res.stats['iterations']} IPOPT iterations "
+      f"over {res.stats.get('starts', 1)} start(s) in {res.stats['solve_s']:.1f} s\n")
     fdt = doc["frequency_domain"]["in_the_time_domain"]
     w(f"frequency-domain design: AE {theta_f[0]:.4g} N, C_I {theta_f[1]:.4g} N s; in the time domain heave std "
       f"{fdt['objective_heave_variance_m2'] ** 0.5:.3f} m\n")
@@ -192,13 +193,16 @@ def run(args) -> int:
     w = sys.stdout.write
     w(f"{scene.name}\n{'' if res.success else 'WARNING: ' + res.message + chr(10)}")
     w(f"controller: {models['controller']}\nplant: {models['plant']}\nladder: {models['ladder']}\n")
-    # F min: the least tension the no-slack floor bounds (Wang's F_bc, the node model's least element tension)
-    w(f"{'strategy':<14s} {'rms heave':>10s} {'dB':>7s} {'T max':>9s} {'F min':>9s} {'slack':>6s} "
+    w(f"{'strategy':<14s} {'rms heave':>10s} {'dB':>7s} {'T top max':>10s} {'T min':>9s} {'slack':>6s} "
       f"{'|P| max':>9s} {'step':>9s}\n")
     for name, m in res.metrics.items():
         step = m.get("compute_per_step_s")
         w(f"{name:<14s} {m['heave_rms_m']:9.3f}m {m['heave_reduction_db']:7.1f} {m['tension_max_n'] / 1e3:8.1f}k "
-          f"{m['tension_min_n'] / 1e3:8.1f}k {m['slack_time_s']:5.1f}s {m['power_max_w'] / 1e3:8.1f}k "
+          f" {m['tension_min_n'] / 1e3:8.1f}k {m['slack_time_s']:5.1f}s {m['power_max_w'] / 1e3:8.1f}k "
           f"{'' if step is None else f'{step * 1e3:7.1f}ms'}\n")
+    w("rms heave: the body's heave from rest; dB: its rms against no compensation's; T top max: the peak tension at "
+      "the sheave [kN]; T min: the least tension along the line [kN] (Wang's F_bc, the node model's least element "
+      "tension), which the no-slack floor bounds; slack: time below that floor; |P| max: the winch's peak power [kW]; "
+      "step: compute time per control step\n")
     w(f"wrote {outdir.path / 'control.json'}, control_heave_tension.png, control_winch.png\n")
     return 0 if res.success else 1
