@@ -375,7 +375,7 @@ def _timed_run(sc, method, rtol, atol):
 def _bdf_equal_n(scene, n: int) -> dict:
     """The segmented cable at ``n`` elements, BDF(<= 2) at the loosest rtol whose statistics are within matched accuracy
     (:func:`_matched`: 0.5 % body amplitudes, 1 % tension extremes) of its own tight run (CVODES rtol 1e-7), compiled
-    up to COMPILE_MAX_ELEMENTS: the plan cases' equal-N row on a taut scene (``_bench_slack.bench_plan_case``)."""
+    up to COMPILE_MAX_ELEMENTS: the plan cases' equal-N row (``_bench_slack.bench_plan_case``), with its statistics."""
     sc, period = _segments(scene, n), M.forcing_period(scene)
     with _compiled(n <= COMPILE_MAX_ELEMENTS):
         tight = simulate(sc, method="cvodes", rtol=1e-7, atol=1e-10)
@@ -388,7 +388,8 @@ def _bdf_equal_n(scene, n: int) -> dict:
         return {"segments": n, "wall_s": None, "note": "no setting met matched accuracy"}
     res, wall, first, how = m
     return {"segments": n, "wall_s": wall, "first_call_s": first, "load_1min": os.getloadavg()[0],
-            "steps": res.stats.get("nsteps"), "search_cpu_s": search_cpu, **how}
+            "steps": res.stats.get("nsteps"), "search_cpu_s": search_cpu, **how,
+            "statistics": M.statistics(res, period, scene.top_motion.effective_ramp_s)}
 
 
 def _moordyn_stats(r, period):
@@ -608,7 +609,7 @@ def main(argv=None):
             continue
         dur = args.plan_duration or (PLAN_QUICK_DURATION if args.quick else None)
         rows.append(bench_plan_case(name, plan_scene(name, dur), quick=args.quick, ns=PLAN_NS,
-                                    moordyn=not args.no_moordyn, taut_equal_n=None if args.quick else _bdf_equal_n))
+                                    moordyn=not args.no_moordyn, bdf_equal_n=None if args.quick else _bdf_equal_n))
         write_json(args.out / "bench_vs_moordyn.json", {"cases": rows, "quick": args.quick, "notes": NOTES})
     ends = []
     for name in _bench_ends.ENDS_CASES:

@@ -48,8 +48,9 @@ def _plan_row(r: dict) -> str:
     name = (auto.get("model") or "?") + (f" N = {auto['segments']}" if (auto.get("segments") or 1) > 1 else "")
     err = auto.get("estimated_error") or {}
     eq = r.get(r.get("speedup_of") or "segmented_equal_n") or {}
+    how = f" ({eq['method']}, rtol {eq['rtol']:g})" if eq.get("rtol") else ""
     return (f"| {r['case']} | {name} | {auto['wall_s'] / r['duration_s']:.3g} | N = {n}, {md['s_per_s']:.3g} | "
-            f"{_x(r.get('auto_speedup'))} | N = {eq.get('segments', n)}: {_x(r.get('speedup'))} | "
+            f"{_x(r.get('auto_speedup'))} | N = {eq.get('segments', n)}{how}: {_x(r.get('speedup'))} | "
             f"{_pct(err.get('body'))} / {_pct(err.get('tension'))} (stated) |")
 
 

@@ -119,18 +119,23 @@ def _run(scene: Scene, choice: Choice, tol, cache: RungCache, kw: dict, candidat
         return _periodic_run(scene, cache)
     sc = rung_scene(scene, choice.name, choice.segments)
     model = cache.model(scene, choice.name, choice.segments)
-    opts = {**({"x0": kw["x0"]} if kw.get("x0") is not None else {}),
-            **hooks(kw, describe_run(choice), candidate)}
-    settings, x0 = rung_settings(sc, tol, choice, model, cache=cache, x0=opts.get("x0"), method=kw.get("method"),
+    settings, x0 = rung_settings(sc, tol, choice, model, cache=cache, x0=kw.get("x0"), method=kw.get("method"),
                                  rtol=kw.get("rtol"), atol=kw.get("atol"), max_num_steps=kw.get("max_num_steps"),
                                  jit=kw.get("jit", False))
-    if x0 is not None:            # the quasi-static rungs: the start their guard probed, once (run_settings.start)
-        opts["x0"] = x0
     times = kw.get("times")
+    # a check run the plan has made already (the N / 4 run of one check is the N / 2 run of the one before): once
+    memo = kw.get("check_runs") if not candidate and times is None else None
+    key = (id(scene), choice.name, choice.segments, str(settings.method), settings.rtol, settings.atol)
+    if memo is not None and key in memo:
+        return memo[key][1]
+    opts = {**({"x0": x0} if x0 is not None else {}),   # the quasi-static rungs: the start their guard probed, once
+            **hooks(kw, describe_run(choice), candidate)}
     sim = cache.simulator(model, sc.output_times if times is None else times, settings)
     t0, c0 = time.perf_counter(), time.process_time()
     result = simulate(sc, model=model, simulator=sim, **opts)
     log_run(kw, choice, candidate, settings, result, time.perf_counter() - t0, time.process_time() - c0)
+    if memo is not None:
+        memo[key] = (scene, result)        # the scene held, so that its id is not reused within the plan
     return result
 
 
@@ -341,6 +346,7 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
         return _as_built(scene, model if isinstance(model, CableModel) else None, simulator, kw, cache)
     cache = cache if cache is not None else RungCache()
     kw["run_log"] = []          # every run of the taut path's plan (log_run); the extrapolation keeps its own plan
+    kw["check_runs"] = {}       # the plan's check runs by scene, rung, N and integrator settings (_run)
     t0, b0 = time.perf_counter(), cache.build_s
     choice, tol, auto = decide(scene, model, tolerance, segments, cache)
     if auto:                                     # the mean shape in the current, from the statics, before any run
@@ -374,9 +380,7 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
                                                 stats={**result.stats, "model": info, "ladder_timing": timing}))
 
 
-CHECKED_MIN_SEGMENTS = 4
-"""Least N whose a posteriori check runs at N / 2 (:func:`needs_richardson`): N / 2 of a smaller N is Wang's straight
-cable (N = 1), another model, or not the same sequence."""
+CHECKED_MIN_SEGMENTS = checks.CHECKED_MIN_SEGMENTS
 
 
 def checked_upward(choice: Choice) -> Choice:

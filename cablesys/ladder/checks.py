@@ -27,6 +27,7 @@ import math
 
 from . import estimate as est
 from . import metrics
+from .rungs import takes_elements
 
 TIGHTEN = 10.0
 """rtol (and atol) of the check runs over the candidate's."""
@@ -89,6 +90,18 @@ def richardson(fine: dict, coarse: dict, choice, irregular: bool = False) -> tup
     e = {k: max(v * factor, est.RESOLUTION) for k, v in metrics.errors(coarse, fine).items()}
     per = {k: max(v * factor, est.RESOLUTION) for k, v in metrics.quantity_errors(coarse, fine).items()}
     return _stretch(choice, e, per)
+
+
+CHECKED_MIN_SEGMENTS = 4
+"""Least N whose a posteriori check runs at N / 2 (:func:`cablesys.ladder.auto.needs_richardson`): N / 2 of a smaller N
+is Wang's straight cable (N = 1), another model, or not the same sequence."""
+
+
+def integration_checked(name: str, segments: int) -> bool:
+    """Whether a run of rung ``name`` with ``segments`` elements per section has its integration error measured and
+    stated by the a posteriori check (an element rung from CHECKED_MIN_SEGMENTS on, stepped by an :func:`adaptive`
+    method): the same N again at rtol / TIGHTEN (module docstring)."""
+    return takes_elements(name) and int(segments) >= CHECKED_MIN_SEGMENTS
 
 
 THIRD_MIN_SEGMENTS = 8

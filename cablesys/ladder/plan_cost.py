@@ -312,13 +312,13 @@ def for_run(scene: Scene, choice, tol, kw: dict) -> Prediction | None:
     rungs with QUASI_STATIC_METHOD (the method their guard, which needs the built model, accepts first). None for
     a run with no time-domain model to predict (the frequency rung, a registered rung)."""
     from .rungs import RUNGS
-    from .run_settings import QUASI_STATIC_METHOD, integrator_settings
+    from .run_settings import QUASI_STATIC_METHOD, integrator_settings, stated_room
     if choice.name not in RUNGS or choice.name == "frequency":
         return None
     sc = rung_scene(scene, choice.name, choice.segments)
     elements = sum(c.segments for c in cables(sc))
     s = integrator_settings(sc, tol, elements, method=kw.get("method"), rtol=kw.get("rtol"), atol=kw.get("atol"),
-                            rung=None, stated=choice.estimated_error.get("body"))
+                            rung=None, stated=stated_room(choice))
     s = dataclasses.replace(s, compiled=bool(s.compiled and compiles()))
     guessed = choice.name == "quasi-static" and kw.get("method") is None and s.method not in FIXED_STEP and s.compiled
     if guessed:
