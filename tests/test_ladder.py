@@ -198,6 +198,22 @@ def test_ladder_timing_lists_every_run_of_the_plan():
     assert all(q["wall_per_step_us"] == pytest.approx(1e6 * q["wall_s"] / q["steps"]) for q in runs)
     if m["segments"] >= 4:                       # checked a posteriori against N / 2
         assert any(not q["candidate"] and q["segments"] == m["segments"] // 2 for q in runs)
+    checks = [(q["rung"], q["segments"], q["method"], q["rtol"]) for q in runs if not q["candidate"]]
+    assert len(checks) == len(set(checks))       # a check run the plan has made is not made again
+
+
+def test_a_checked_runs_rtol_answers_to_the_tolerance_an_unchecked_ones_to_its_stated_error():
+    """rtol = min(1e-4, body tolerance / 100); where no a posteriori check measures the integration error (N < 4
+    elements, the straight cable) also at most the stated body error / STATED_ROOM in decades, else not: the check
+    states that part (ladder.checks.integration_checked)."""
+    from cablesys.ladder.choice import Choice
+    from cablesys.ladder.run_settings import STATED_ROOM, rung_settings
+    scene = _stiff_pendulum()
+    tol, stated = (0.01, 0.02), {"body": 1e-5, "tension": 1e-5}
+    rtol = lambda name, n: rung_settings(scene, tol, Choice(name, n, "", stated, {}), None)[0].rtol
+    assert rtol("segmented", 8) == rtol("segmented", 4) == pytest.approx(1e-4)
+    tight = 10.0 ** math.floor(math.log10(1e-5 / STATED_ROOM))
+    assert rtol("segmented", 2) == rtol("wang", 1) == pytest.approx(tight)
 
 
 def test_auto_integrator_settings_follow_the_tolerance_unless_someone_chose():
