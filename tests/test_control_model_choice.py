@@ -52,7 +52,9 @@ def test_api_default_is_the_cli_default_on_the_rov_lift(rov, default_problem, tm
     assert api.ladder["name"] == rung.split(" is ")[1].split(",")[0] and api.ladder["segments"] == 4
     assert default_problem.model.segments == 4 and default_problem.model_reason == api.reason
     assert "for the uncompensated scene" in doc["models"]["ladder"]
-    assert "NOT the control's model" not in doc["models"]["ladder"]
+    assert "NOT the control's model" not in doc["models"]["ladder"] and doc["models"]["ladder_agrees"]
+    asked = ModelChoice(model="segmented", segments=2, reason="as asked")
+    assert not ladder_note(rov, asked)["ladder_agrees"]               # another N: the console says so apart
 
 
 def test_the_reason_is_in_the_results_summary(default_problem):

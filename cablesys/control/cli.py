@@ -119,7 +119,7 @@ def run_design(args) -> int:
     w = sys.stdout.write
     s = res.summary()
     w(f"{scene.name}\n{'' if res.success else 'WARNING: ' + res.message + chr(10)}")
-    w(f"model: {doc['models']['design']}\nladder: {doc['models']['ladder']}\n")
+    w(f"model: {doc['models']['design']}\n" + _ladder_line(doc["models"]))
     w(f"time-domain design:      AE {res.theta[0]:.4g} N, C_I {res.theta[1]:.4g} N s; heave std "
       f"{s['baseline_heave_std_m']:.3f} -> {s['heave_std_m']:.3f} m ({s['heave_reduction_db']:+.1f} dB), "
       f"mean over seeds {seeds}; {res.stats['iterations']} IPOPT iterations "
@@ -135,6 +135,12 @@ def run_design(args) -> int:
           f"(design), {doc['resimulated']['frequency_design']['max_relative_violation']:.3g} (frequency design)\n")
     w(f"wrote {outdir.path / 'time_design.json'}, time_design.png\n")
     return 0 if res.success else 1
+
+
+def _ladder_line(models: dict) -> str:
+    """The console's line on the ladder's own choice for the uncompensated scene, where it is not the model that ran
+    (the model's line gives the ladder's reason otherwise; control.json keeps ``ladder`` always)."""
+    return "" if models.get("ladder_agrees", False) else f"ladder: {models['ladder']}\n"
 
 
 def _models(scene, res, choice) -> dict:
@@ -192,7 +198,7 @@ def run(args) -> int:
         outdir.finish("success" if res.success else "failed", message=res.message)
     w = sys.stdout.write
     w(f"{scene.name}\n{'' if res.success else 'WARNING: ' + res.message + chr(10)}")
-    w(f"controller: {models['controller']}\nplant: {models['plant']}\nladder: {models['ladder']}\n")
+    w(f"controller: {models['controller']}\nplant: {models['plant']}\n" + _ladder_line(models))
     w(f"{'strategy':<14s} {'rms heave':>10s} {'dB':>7s} {'T top max':>10s} {'T min':>9s} {'slack':>6s} "
       f"{'|P| max':>9s} {'step':>9s}\n")
     for name, m in res.metrics.items():

@@ -149,7 +149,8 @@ def resolve_model(scene, model=AUTO, segments: int | None = None, *, names=("mod
 
 def ladder_note(scene, choice: ModelChoice) -> dict:
     """What the model ladder runs for the uncompensated scene and why, against the control's model ``choice``:
-    ``ladder`` (one line) and ``ladder_choice`` (:meth:`cablesys.ladder.Choice.as_dict`). For the scene's
+    ``ladder`` (one line), ``ladder_choice`` (:meth:`cablesys.ladder.Choice.as_dict`) and ``ladder_agrees`` (the
+    control runs the ladder's model at its N, or its winch form's stand-in: the plant's reason says so). For the scene's
     ``as-built`` model the ladder is not asked."""
     lc = choice.ladder
     if lc is None:
@@ -169,4 +170,4 @@ def ladder_note(scene, choice: ModelChoice) -> dict:
     else:
         verdict = ": the control's model"
     return {"ladder": f"{lc['name']}{seg} for the uncompensated scene{verdict} ({_first(lc['reason'])})",
-            "ladder_choice": lc}
+            "ladder_choice": lc, "ladder_agrees": not verdict.startswith((": NOT", ": the control's model at another N"))}
