@@ -160,9 +160,10 @@ def ladder_note(scene, choice: ModelChoice) -> dict:
         lc = ladder_choice(scene).as_dict()
     kind, n, stand_in = winch_form(lc["name"], lc["segments"])
     seg = f", N = {lc['segments']}" if lc["segments"] > 1 else ""
+    other_n = choice.segments is not None and n is not None and choice.segments != n
     if kind != choice.model:
         verdict = ": NOT the control's model, whose results then carry that model's error"
-    elif choice.segments is not None and n is not None and choice.segments != n:
+    elif other_n:
         verdict = (f": the control's model at another N ({choice.segments} against the ladder's {n}), whose results "
                    "then carry that N's error")
     elif stand_in:
@@ -170,4 +171,4 @@ def ladder_note(scene, choice: ModelChoice) -> dict:
     else:
         verdict = ": the control's model"
     return {"ladder": f"{lc['name']}{seg} for the uncompensated scene{verdict} ({_first(lc['reason'])})",
-            "ladder_choice": lc, "ladder_agrees": not verdict.startswith((": NOT", ": the control's model at another N"))}
+            "ladder_choice": lc, "ladder_agrees": kind == choice.model and not other_n}
