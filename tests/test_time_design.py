@@ -149,6 +149,8 @@ def test_bad_input(rov):
         time_design_problem(rov.replace(design={**rov.design, "working_load": [1000.0]}), duration=80.0, model="wang")
     with pytest.raises(ParameterError, match="ae_bounds"):
         time_design_problem(rov.replace(design={**rov.design, "ae_bounds": [[1e4, 9e7]]}), duration=80.0)
+    with pytest.raises(ParameterError, match="sections = 2: must be 1: the time-domain design tunes one section"):
+        time_design_problem(rov.replace(sections=(rov.sections[0], rov.sections[0])), duration=80.0)
 
 
 def test_time_domain_design_study_quick(run_study):

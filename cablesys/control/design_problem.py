@@ -173,6 +173,10 @@ def time_design_problem(scene, *, seeds=(1, 2, 3), duration: float | None = None
     """
     if not scene.design:
         raise ParameterError("design", None, "the scene needs a [design] table (ae_bounds, damping_bounds)")
+    if len(scene.sections) != 1:
+        raise ParameterError("sections", len(scene.sections), "must be 1: the time-domain design tunes one section's (AE, "
+                             "C_I); a soft insert or an intermediate body (a chain of sections) is designed in the "
+                             "frequency domain only (cablesys design)")
     if scene.top_motion.spectrum is None:
         raise ParameterError("top_motion.spectrum", None, "a realised sea is needed: give [top_motion.spectrum]")
     seeds = tuple(seeds)
