@@ -130,6 +130,9 @@ def run_design(args) -> int:
     for row, (v, b) in res.constraints.items():
         fv = fdt["constraints"][row][0]
         w(f"  {row:<28s} design {v:+.4f}  frequency design {fv:+.4f}  (<= {b:+.4g})\n")
+    w("  (peak_tension: the top tension's peak over the working load; slack: minus the least floor tension over its "
+      "mean, so <= -f keeps that least tension above f x the mean; excursion: the body's largest heave or surge from "
+      "its mean over the limit; static_strain: the line's static strain; peaks as smooth KS envelopes)\n")
     if "resimulated" in doc:
         w(f"re-run by the plain time domain: largest relative violation {doc['resimulated']['design']['max_relative_violation']:.3g} "
           f"(design), {doc['resimulated']['frequency_design']['max_relative_violation']:.3g} (frequency design)\n")
