@@ -205,7 +205,7 @@ def test_ladder_timing_lists_every_run_of_the_plan():
 def test_a_checked_runs_rtol_answers_to_the_tolerance_an_unchecked_ones_to_its_stated_error():
     """rtol = min(1e-4, body tolerance / 100); where no a posteriori check measures the integration error (N < 4
     elements, the straight cable) also at most the stated body error / STATED_ROOM in decades, else not: the check
-    states that part (ladder.checks.integration_checked)."""
+    states that part (ladder.checks.checked)."""
     from cablesys.ladder.choice import Choice
     from cablesys.ladder.run_settings import STATED_ROOM, rung_settings
     scene = _stiff_pendulum()

@@ -380,9 +380,6 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
                                                 stats={**result.stats, "model": info, "ladder_timing": timing}))
 
 
-CHECKED_MIN_SEGMENTS = checks.CHECKED_MIN_SEGMENTS
-
-
 def checked_upward(choice: Choice) -> Choice:
     """``choice``, or under auto an element rung with 2 or 3 elements per section doubled to 4 or 6: such an N has no
     coarser run of its own model to be checked against, so the ladder runs 2N and checks it against N, a run that
@@ -390,7 +387,7 @@ def checked_upward(choice: Choice) -> Choice:
     unchecked, stated 0.26 % on the body and was 0.61 % off; in the plane 1.19 %, outside the tolerance). Slack
     scenes are extrapolated instead (:mod:`.extrapolation`)."""
     n = choice.segments
-    if not takes_elements(choice.name) or not 2 <= n < CHECKED_MIN_SEGMENTS or extrapolation.applies(choice, True):
+    if not takes_elements(choice.name) or not 2 <= n < checks.CHECKED_MIN_SEGMENTS or extrapolation.applies(choice, True):
         return choice
     e = (est.rung_error(choice.numbers["estimates"], choice.name, 2 * n) if "estimates" in choice.numbers
          else choice.estimated_error)
@@ -479,8 +476,7 @@ def needs_richardson(choice: Choice, tol) -> bool:
     amplitude was 2x the converged one. An N whose half lies across the drag rule's switch is checked against a
     run with one drag point per element (:func:`~.choice.check_scene`); auto runs no fewer elements
     (:func:`checked_upward`), a named rung's 2 or 3 is reported unchecked with its a priori estimate."""
-    return (takes_elements(choice.name) and choice.segments >= CHECKED_MIN_SEGMENTS
-            and choice.numbers.get("checked_n") != choice.segments)
+    return checks.checked(choice.name, choice.segments) and choice.numbers.get("checked_n") != choice.segments
 
 
 def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict, *, auto: bool):

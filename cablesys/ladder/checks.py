@@ -97,10 +97,11 @@ CHECKED_MIN_SEGMENTS = 4
 is Wang's straight cable (N = 1), another model, or not the same sequence."""
 
 
-def integration_checked(name: str, segments: int) -> bool:
-    """Whether a run of rung ``name`` with ``segments`` elements per section has its integration error measured and
-    stated by the a posteriori check (an element rung from CHECKED_MIN_SEGMENTS on, stepped by an :func:`adaptive`
-    method): the same N again at rtol / TIGHTEN (module docstring)."""
+def checked(name: str, segments: int) -> bool:
+    """Whether a run of rung ``name`` with ``segments`` elements per section is checked a posteriori: against N / 2
+    on every quantity, and, stepped by an :func:`adaptive` method, for its integration error (the same N again at
+    rtol / TIGHTEN, module docstring), which the stated error then holds: an element rung from CHECKED_MIN_SEGMENTS
+    on."""
     return takes_elements(name) and int(segments) >= CHECKED_MIN_SEGMENTS
 
 

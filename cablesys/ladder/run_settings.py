@@ -127,11 +127,11 @@ def start(scene_run: Scene, model, cache=None):
 def stated_room(choice: Choice) -> float | None:
     """The stated body error the rtol of a run of ``choice`` answers to (``stated`` of :func:`integrator_settings`): its
     a priori estimate, or None where the a posteriori check measures the run's integration error and states it
-    (:func:`.checks.integration_checked`): there rtol = min(AUTO_RTOL, body tolerance / 100) leaves that part within
+    (:func:`.checks.checked`): there rtol = min(AUTO_RTOL, body tolerance / 100) leaves that part within
     the tolerance, and tightening it to a stated error far below the tolerance bought nothing the check does not
     show (the ROV lift in Hs 6 m, segmented N = 46, stated body 1.8e-4: rtol 1e-5 and its check at 1e-6 took
     2.2x the steps of 1e-4 and 1e-5, for an integration part of 7e-5 of a tension)."""
-    if checks.integration_checked(choice.name, choice.segments):
+    if checks.checked(choice.name, choice.segments):
         return None
     return choice.estimated_error.get("body")
 

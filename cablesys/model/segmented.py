@@ -340,7 +340,7 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
             len(els), rt, vt_, acc_nodes[s["top"]], node_r[s["top"] + 1], node_v[s["top"] + 1])
         lt = lump_force(first, "a", acc_top)
         top_force = tuple(first["tension"] * first["et"][c] + lt[c] for c in range(dim))
-        s.setdefault("top_force", top_force)
+        s["top_force"] = top_force                 # a controlled winch reports it (below)
         lb = lump_force(last, "b", acc_nodes[s["body"]])
         bottom_force = tuple(-last["tension"] * last["et"][c] + lb[c] for c in range(dim))
         out += [phi, phid, u, ud, rb[0], vb[0], rb[1], vb[1], mid_tension(els), norm(bottom_force), norm(top_force),
