@@ -163,7 +163,7 @@ def test_time_domain_design_study_quick(run_study):
     assert doc["ae_ratio_time_over_frequency"] == pytest.approx(1.0, rel=1e-3)     # both on the strain limit
     # the quick run designs on Wang's model and says so; the full run on the ladder's (the node model, N = 4)
     assert doc["model"].startswith("wang 2-DOF") and doc["model_why"].startswith("quick: Wang's")
-    assert "the ladder's choice is" in doc["model_why"]
+    assert "the ladder's a priori choice is" in doc["model_why"]
     assert (out / "time_domain_design.png").stat().st_size > 20000
 
 

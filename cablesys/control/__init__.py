@@ -1,8 +1,8 @@
 """Optimal heave compensation by the winch: open-loop optimum, MPC, and the strategies it replaces.
 
 ``heave_problem(scene, WinchLimits(...), model=...)`` sets the problem up on a winch model: by default
-(``model="auto"``) the winch form of the model ``cablesys run`` runs for the scene, the ladder's choice, with its
-reason (:mod:`.model_choice`: ``resolve_model``, the one place every door of the control takes it from);
+(``model="auto"``) the winch form of the ladder's a priori choice for the scene (where ``cablesys run`` starts,
+before the a posteriori checks that may grow its N), with its reason (:mod:`.model_choice`: ``resolve_model``, the one place every door of the control takes it from);
 explicitly Wang's 2-DOF cable with the unstretched length driven by the payout rate (:mod:`cablesys.model.winch`,
 ``model="wang"``) or the segmented node model's winch (:mod:`cablesys.model.segmented_winch_control`,
 ``model="segmented"``, ``segments=N``); ``optimal_payout(problem, horizon)`` solves it by direct multiple shooting with

@@ -39,8 +39,9 @@ def register(sub) -> None:
     p.add_argument("--model", default="auto", choices=CHOICES,
                    help="the model every strategy plays on (the plant; with --design the design's model): Wang's "
                         "2-DOF winch, the segmented node model's winch (--segments N), or auto (default): the winch "
-                        "form of the model cablesys run runs for the scene (its [numerics] model, the ladder's choice "
-                        "by default), as the Python API's model='auto'")
+                        "form of the ladder's a priori choice for the scene (its [numerics] model; cablesys run "
+                        "starts there and its a posteriori checks may grow N, which the control does not run), as the "
+                        "Python API's model='auto'")
     p.add_argument("--segments", type=int, default=None,
                    help="elements N of a segmented plant (default: the ladder's N, else the scene's cable.segments; "
                         "with auto, in place of the ladder's N)")

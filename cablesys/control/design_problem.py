@@ -159,8 +159,8 @@ def time_design_problem(scene, *, seeds=(1, 2, 3), duration: float | None = None
     rho : float
         KS parameter on the normalized constraints (the envelope is within ln(N)/rho of the max).
     model : str or ModelChoice
-        "auto" (default): the winch form of the model ``cablesys run`` runs for the scene with the record's duration
-        (the ladder's choice, :func:`.model_choice.resolve_model`, as ``cablesys control --design``; on the packaged
+        "auto" (default): the winch form of the ladder's a priori choice for the scene with the record's duration
+        (where ``cablesys run`` starts, before its checks may grow N; :func:`.model_choice.resolve_model`, as ``cablesys control --design``; on the packaged
         ROV lift the node model at N = 4); "wang" (Wang's 2-DOF cable) or "segmented" (the node model of
         ``segments`` elements, default the scene's ``cable.segments``): :func:`cablesys.control.payout.control_model`.
     segments : int, optional

@@ -1,7 +1,10 @@
-"""Which winch model the control runs on a scene, and why: one scene, one answer.
+"""Which winch model the control runs on a scene, and why.
 
 ``cablesys.simulate`` and ``cablesys run`` run the scene's ``[numerics] model``: by default ("auto") the model the
-ladder chooses (:mod:`cablesys.ladder`). Every door of the control (:func:`.payout.heave_problem`,
+ladder chooses (:mod:`cablesys.ladder`), checked a posteriori against N / 2, which may grow N (the packaged ROV lift:
+the quasi-static cable at N = 4 a priori, the node model at N = 28 after the checks of its 600 s sea). The control
+takes the ladder's a priori choice, not the checked N (a winch form at the checked N would multiply the design's
+and the plant's cost, and the check needs the runs it checks), and says so in its reason. Every door of the control (:func:`.payout.heave_problem`,
 :func:`.mpc.compare_compensation`'s plant, :func:`.design_problem.time_design_problem` and ``cablesys control``, with
 and without ``--design``) resolves its ``model`` here, so that for one scene they run one model, with one N and one
 stated reason. The control has winch forms of two models only: Wang's 2-DOF cable (:mod:`cablesys.model.winch`,
@@ -132,10 +135,11 @@ def resolve_model(scene, model=AUTO, segments: int | None = None, *, names=("mod
         kind, n, stand_in = winch_form(lc.name, lc.segments)
         rung = f"{lc.name}, N = {lc.segments}" if lc.segments > 1 else lc.name
         if getattr(scene.numerics, "model", AUTO) == AUTO:       # the deciding numbers follow the first "; "
-            reason = f"the ladder's choice is {rung}: {_first(lc.reason)}"
+            reason = f"the ladder's a priori choice is {rung}: {_first(lc.reason)}"
         else:                                                    # a named rung: all of it (its validity too)
             reason = f"the scene's numerics.model, {rung}: {lc.reason}"
-        reason += f"; {stand_in}" if stand_in else ""
+        reason += (f"; {stand_in}" if stand_in else "") + ("; a priori: cablesys run checks it against N / 2 and "
+                                                            "may run a larger N, the control does not")
         choice = ModelChoice(model=kind, segments=n, reason=reason, ladder=lc.as_dict())
     if segments is None or segments == choice.segments:
         return choice

@@ -204,8 +204,8 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
     ar_order : int
         Order of the autoregressive top-motion predictor of ``mpc_no_preview`` (:class:`ARPredictor`).
     plant_model : str or ModelChoice
-        The plant's model: "auto" (default), the winch form of the model ``cablesys run`` runs for the plant's scene
-        (the scene with ``plant_segments``; the ladder's choice, :func:`.model_choice.resolve_model`, as
+        The plant's model: "auto" (default), the winch form of the ladder's a priori choice for the plant's scene
+        (the scene with ``plant_segments``; where ``cablesys run`` starts, before its checks may grow N; :func:`.model_choice.resolve_model`, as
         ``cablesys control``), "wang" (Wang's 2-DOF winch), "segmented" (the node model's winch,
         :mod:`cablesys.model.segmented_winch_control`) or a resolved :class:`.model_choice.ModelChoice`.
     controller_model : str

@@ -248,8 +248,8 @@ def heave_problem(scene, limits: WinchLimits | None = None, *, dt: float = 0.25,
         ``mass``, ``stiffness``, ``damping`` of a passive compensator under the sheave (the
         precharge is set to hold the static load at zero stroke).
     model : str or ModelChoice or WinchModel or NodeWinchModel
-        "auto" (default): the winch form of the model ``cablesys run`` runs for the scene (the ladder's choice,
-        :func:`.model_choice.resolve_model`; on the packaged ROV lift the node model at N = 4); "wang" (Wang's
+        "auto" (default): the winch form of the ladder's a priori choice for the scene (the model ``cablesys
+        run`` starts from, before the checks that may grow its N: :func:`.model_choice.resolve_model`; on the packaged ROV lift the node model at N = 4); "wang" (Wang's
         2-DOF winch, :mod:`cablesys.model.winch`), "segmented" (the node model's winch on ``segments`` elements,
         :mod:`cablesys.model.segmented_winch_control`), a resolved :class:`.model_choice.ModelChoice`, or a model
         built before for this scene's structure. :attr:`HeaveProblem.model_choice` says which ran and why.
