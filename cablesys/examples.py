@@ -5,7 +5,8 @@ from __future__ import annotations
 from importlib import resources
 from pathlib import Path
 
-EXAMPLES = {"rov-lift": "rov_lift.toml", "light-lift": "light_lift.toml", "clump-span": "clump_span.toml"}
+EXAMPLES = {"rov-lift": "rov_lift.toml", "light-lift": "light_lift.toml", "clump-span": "clump_span.toml",
+            "dual-isolation": "dual_isolation.toml"}
 
 
 def example_path(name: str) -> Path:

@@ -125,15 +125,16 @@ def test_design_steps_are_stable_for_the_stiffest_design(rov):
     problem = time_design_problem(rov, seeds=(1,), duration=70.0, model="segmented", segments=4)
     hp = problem.heave
     lay = hp.model.layout
+    ae_var, ci_var = problem.variables                  # one section: (AE, C_I)
     lam = {}
-    for ae in problem.ae_bounds:
-        for ci in problem.damping_bounds:
+    for ae in (ae_var.lower, ae_var.upper):
+        for ci in (ci_var.lower, ci_var.upper):
             p = np.array(hp.p, float)
             p[lay.index("cable.ae")], p[lay.index("cable.internal_damping")] = ae, ci
             lam[ae, ci] = fastest_mode(hp.model, model_rest_state(hp.model, p, hp.c), p, hp.c)
     stiffest = max(lam, key=lam.get)
     assert lam[stiffest] == pytest.approx(problem.fastest_mode, rel=1e-12)
-    assert stiffest[1] == problem.damping_bounds[1]
+    assert stiffest[1] == ci_var.upper
     assert lam[stiffest] > 2 * fastest_mode(hp.model, hp.x_rest, hp.p, hp.c)          # well above the scene's line
     assert hp.substeps == math.ceil(problem.dt * lam[stiffest] / RK4_STEP_LAMBDA)
 
@@ -149,7 +150,8 @@ def test_bad_input(rov):
         time_design_problem(rov.replace(design={**rov.design, "working_load": [1000.0]}), duration=80.0, model="wang")
     with pytest.raises(ParameterError, match="ae_bounds"):
         time_design_problem(rov.replace(design={**rov.design, "ae_bounds": [[1e4, 9e7]]}), duration=80.0)
-    with pytest.raises(ParameterError, match="sections = 2: must be 1: the time-domain design tunes one section"):
+    # a chain needs one pair per section (top first)
+    with pytest.raises(ParameterError, match=r"ae_bounds.*pair per section \(2\)"):
         time_design_problem(rov.replace(sections=(rov.sections[0], rov.sections[0])), duration=80.0)
 
 
@@ -165,6 +167,12 @@ def test_time_domain_design_study_quick(run_study):
     assert doc["model"].startswith("wang 2-DOF") and doc["model_why"].startswith("quick: Wang's")
     assert "the ladder's a priori choice is" in doc["model_why"]
     assert (out / "time_domain_design.png").stat().st_size > 20000
+    # the chain (dual isolation): five variables, the gradient exact, the re-run within 1 %, its own figure
+    dual = doc["dual"]
+    assert dual["time_domain"]["success"] and len(dual["variables"]) == 5
+    assert dual["resimulated_constraint_violation_rel"] <= 0.01 and dual["design_gradient"]["rel_err"] < 1e-6
+    assert dual["frequency_over_time_heave_variance"] >= 1 - 1e-6     # the time design is the better in its own roll-out
+    assert (out / "time_domain_design_dual.png").stat().st_size > 20000
 
 
 def test_control_help_documents_the_design_door(capsys):
@@ -188,7 +196,7 @@ def test_control_design_door_writes_json_and_png(tmp_path, capsys):
     td, fd = doc["time_domain"], doc["frequency_domain"]
     assert td["success"] and td["seeds"] == [1]
     # both designs sit on the static strain limit; the frequency optimum is also judged by the roll-out
-    assert td["ae_n"] == pytest.approx(fd["ae_n"], rel=1e-3)
+    assert td["ae_n"] == pytest.approx(fd["design"]["ae_1"], rel=1e-3)
     assert fd["in_the_time_domain"]["objective_heave_variance_m2"] >= td["objective_heave_variance_m2"] * (1 - 1e-6)
     assert (out / "time_design.png").stat().st_size > 20000
     printed = capsys.readouterr().out

@@ -63,8 +63,9 @@ def register(sub) -> None:
     s.add_argument("file", nargs="?", type=Path)
     s.add_argument("--example", nargs="?", const="dale", default=None, choices=("dale",) + tuple(EXAMPLES),
                    help="print an annotated example scene: dale (default), rov-lift (irregular sea, limits, design), "
-                        "light-lift (a light cage in a steep sea: slack and snap) or clump-span (a system of lines "
-                        "joined at points: a span with a clump weight hung from a junction)")
+                        "light-lift (a light cage in a steep sea: slack and snap), clump-span (a system of lines "
+                        "joined at points: a span with a clump weight hung from a junction) or dual-isolation (a "
+                        "package below a damper plate and a soft insert: a chain of sections with a [design] table)")
     s.add_argument("--design", action="store_true", help="with --example: append a commented [design] template")
     s.add_argument("--units", default="SI", choices=("SI", "fps"), help="units to print in")
     s.set_defaults(func=_scene)

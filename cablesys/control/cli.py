@@ -19,14 +19,15 @@ def register(sub) -> None:
                                    "Wang's or a coarser node model), under winch speed, "
                                    "acceleration and power limits and the tension band. Writes control.json, "
                                    "control_heave_tension.png and control_winch.png. With --design instead: the "
-                                   "time-domain design of the line's AE and C_I (bounds from the scene's [design] "
+                                   "time-domain design of the line's AE and C_I (each section's in a chain, and "
+                                   "an intermediate body's mass: bounds from the scene's [design] "
                                    "table) that minimizes the body heave variance, mean over --seeds realisations "
                                    "of the sea, with no slack, peak tension <= working load and the body "
                                    "excursion limit in every seed (cablesys.control.design), on the same model as "
                                    "the plant (--model, --segments: the ladder's choice by default), compared with "
                                    "the frequency-domain design (cablesys design) and re-run by the plain time "
                                    "domain; writes time_design.json and time_design.png.")
-    p.add_argument("scene", help="scene TOML file (one section)")
+    p.add_argument("scene", help="scene TOML file (one section; with --design also a chain of sections)")
     p.add_argument("--out", default="control_out", help="output directory (default: control_out)")
     p.add_argument("--duration", type=float, default=120.0, help="closed-loop run [s] (default 120)")
     p.add_argument("--horizon", type=float, default=20.0, help="MPC horizon and preview [s] (default 20)")
@@ -57,7 +58,8 @@ def register(sub) -> None:
                    help="how each MPC step solves its horizon: gauss-newton (real-time iteration, one QP per "
                         "step; default) or ipopt (the full NLP to convergence)")
     p.add_argument("--design", action="store_true",
-                   help="design the line (AE, C_I) through the nonlinear time domain instead of compensating")
+                   help="design the line (AE, C_I per section, an intermediate body's mass) through the nonlinear "
+                        "time domain instead of compensating")
     p.add_argument("--seeds", default="1,2,3", help="--design: comma-separated seeds of the sea (default 1,2,3)")
     p.add_argument("--design-dt", type=float, default=0.5,
                    help="--design: interval of the rolled-out series [s] (default 0.5; RK4 steps per interval from "
@@ -85,6 +87,7 @@ def run_design(args) -> int:
     from ..outputs import OutputDir
     from ..scene import load_scene
     from .design import evaluate_design, resimulate_design, time_design_problem, time_domain_design
+    from .design_problem import describe_theta
     from .design_figure import plot_time_design
 
     seeds = _seeds(args.seeds)
@@ -105,7 +108,8 @@ def run_design(args) -> int:
                "time_domain": res.summary()}
         fd = frequency_design(scene, settings_from_dict(scene.design))
         theta_f = [float(v) for v in fd.values]
-        doc["frequency_domain"] = {"success": bool(fd.success), "ae_n": theta_f[0], "internal_damping_n_s": theta_f[1],
+        doc["frequency_domain"] = {"success": bool(fd.success), "design": dict(zip(problem.names, theta_f)),
+                                   "described": describe_theta(problem.names, theta_f),
                                    "objective": float(fd.objective), "objective_kind": fd.objective_kind,
                                    "active": list(fd.active),
                                    "in_the_time_domain": evaluate_design(problem, theta_f)}
@@ -121,19 +125,23 @@ def run_design(args) -> int:
     s = res.summary()
     w(f"{scene.name}\n{'' if res.success else 'WARNING: ' + res.message + chr(10)}")
     w(f"model: {doc['models']['design']}\n" + _ladder_line(doc["models"]))
-    w(f"time-domain design:      AE {res.theta[0]:.4g} N, C_I {res.theta[1]:.4g} N s; heave std "
+    w(f"time-domain design:      {describe_theta(res.names, res.theta)}; heave std "
       f"{s['baseline_heave_std_m']:.3f} -> {s['heave_std_m']:.3f} m ({s['heave_reduction_db']:+.1f} dB), "
       f"mean over seeds {seeds}; {res.stats['iterations']} IPOPT iterations "
       f"over {res.stats.get('starts', 1)} start(s) in {res.stats['solve_s']:.1f} s\n")
+    if len(res.names) > 2:
+        w("  (AE_i, C_I,i: section i's AE and Voigt damping, top first; m_1: the intermediate body's heave mass, its "
+          "weight and surge mass in proportion)\n")
     fdt = doc["frequency_domain"]["in_the_time_domain"]
-    w(f"frequency-domain design: AE {theta_f[0]:.4g} N, C_I {theta_f[1]:.4g} N s; in the time domain heave std "
+    w(f"frequency-domain design: {describe_theta(res.names, theta_f)}; in the time domain heave std "
       f"{fdt['objective_heave_variance_m2'] ** 0.5:.3f} m\n")
     for row, (v, b) in res.constraints.items():
         fv = fdt["constraints"][row][0]
         w(f"  {row:<28s} design {v:+.4f}  frequency design {fv:+.4f}  (<= {b:+.4g})\n")
-    w("  (peak_tension: the top tension's peak over the working load; slack: minus the least floor tension over its "
-      "mean, so <= -f keeps that least tension above f x the mean; excursion: the body's largest heave or surge from "
-      "its mean over the limit; static_strain: the line's static strain; peaks as smooth KS envelopes)\n")
+    w("  (peak_tension: the top tension's peak over the working load (peak_tension_2, ...: a chain's lower sections' "
+      "tops); slack: minus the least floor tension over its mean, so <= -f keeps that least tension above f x the "
+      "mean; excursion: the lowest body's largest heave or surge from its mean over the limit; static_strain "
+      "(_2, ...): each section's static strain; peaks as smooth KS envelopes)\n")
     if "resimulated" in doc:
         w(f"re-run by the plain time domain: largest relative violation {doc['resimulated']['design']['max_relative_violation']:.3g} "
           f"(design), {doc['resimulated']['frequency_design']['max_relative_violation']:.3g} (frequency design)\n")

@@ -1,16 +1,18 @@
-"""Design through the nonlinear time domain: the line's AE and C_I tuned on realised seas.
+"""Design through the nonlinear time domain: the line's AE and C_I (each section's, and an intermediate body's mass)
+tuned on realised seas.
 
 The plant is the design's winch model at zero payout (:mod:`.design_problem`: Wang's 2-DOF cable, Wang 1971 eq.
 47-48 with the drag of eq. 32-45, or the segmented node model; by default, in the API as in ``cablesys control
 --design``, the winch form of the model the ladder chooses for the scene, :mod:`.model_choice`), rolled out by the classical RK4 from the rest state of each candidate design, in
-each of ``seeds`` realisations of the scene's sea (:mod:`.design_rollout`). The NLP over theta = (AE, C_I),
-normalized to z in [0, 1]^2 on the log of the ``[design]`` bounds:
+each of ``seeds`` realisations of the scene's sea (:mod:`.design_rollout`). The NLP over theta (one section:
+(AE, C_I); a chain: each section's, a soft insert's among them, and the intermediate body's mass,
+:mod:`.design_problem`), normalized to z in [0, 1]^n on the log of the ``[design]`` bounds:
 
-    minimize   (1 / S) sum_s var_s(y_b)                        (mean over the seeds)
-    subject to KS_rho(T_top / WL) <= 1                         (peak tension <= working load)
+    minimize   (1 / S) sum_s var_s(y_b)                        (mean over the seeds; y_b the lowest body's)
+    subject to KS_rho(T_top,i / WL_i) <= 1                     (each section's top tension <= its working load)
                KS_rho(-T_f / mean T_f) <= -slack_fraction      (no slack: least / static tension, DNV-RP-H103)
                KS_rho(|y_b - mean y_b|, |x_b - mean x_b|) / e_max <= 1   (body excursion)
-               u_0 / l_0 <= strain_limit                       (static stretch of the rest state)
+               u_0,i / l_0,i <= strain_limit_i                 (each section's static stretch at rest)
 
 for every seed s separately (so each constraint holds in the worst seed), over the statistics window
 [``limits.statistics_start``, T] of the record. var is the variance about the window mean; T_f the tension the
@@ -23,7 +25,7 @@ normalized limit (rho = 200: 3.5 % at N = 1200, in practice far less: only sampl
 count). The shift m cancels in exact arithmetic (d KS / d m = 0), so AD through it is exact.
 
 Derivatives: exact, by forward sensitivities of the roll-out (:mod:`.design_rollout`). IPOPT (``nlpsol``) sees the
-roll-out as one function with that Jacobian (a ``casadi.Callback``) and a limited-memory Hessian (2 variables),
+roll-out as one function with that Jacobian (a ``casadi.Callback``) and a limited-memory Hessian (a few variables),
 from the two starts of a scan (:func:`scan_starts`). The design re-run by the plain time domain:
 :mod:`.design_check`.
 """
@@ -37,10 +39,11 @@ from typing import ClassVar
 
 import casadi as ca
 import numpy as np
+from scipy.stats import qmc
 
 from ..results import ResultBase, timed
 from .design_check import resimulate_design
-from .design_problem import SERIES, TimeDesignProblem, time_design_problem
+from .design_problem import SERIES, TimeDesignProblem, describe_theta, time_design_problem, unit
 from .design_rollout import DesignFunctions, design_functions, design_kernels, ks_max
 
 # constraint kinds (per seed, then the static one)
@@ -54,9 +57,9 @@ __all__ = ["CONSTRAINTS", "SERIES", "DesignFunctions", "TimeDesignProblem", "Tim
 class _NLP(ca.Callback):
     """z -> (f, g) for ``nlpsol`` with the Jacobian from the forward sensitivities (:class:`DesignFunctions`)."""
 
-    def __init__(self, fns: DesignFunctions, scale: float):
+    def __init__(self, fns: DesignFunctions, scale: float, n: int):
         ca.Callback.__init__(self)
-        self.fns, self.scale = fns, scale
+        self.fns, self.scale, self.n = fns, scale, n
         self.construct("time_design_nlp", {"enable_fd": False})
 
     def get_n_in(self):
@@ -66,7 +69,7 @@ class _NLP(ca.Callback):
         return 2
 
     def get_sparsity_in(self, i):
-        return ca.Sparsity.dense(2, 1)
+        return ca.Sparsity.dense(self.n, 1)
 
     def get_sparsity_out(self, i):
         return ca.Sparsity.dense(1, 1) if i == 0 else ca.Sparsity.dense(len(self.fns.rows), 1)
@@ -79,7 +82,7 @@ class _NLP(ca.Callback):
         return True
 
     def get_jacobian(self, name, inames, onames, opts):
-        z = ca.MX.sym("z", 2)
+        z = ca.MX.sym("z", self.n)
         out = [ca.MX.sym("f"), ca.MX.sym("g", len(self.fns.rows))]
         jf, jg = self.fns.jac(z)
         return ca.Function(name, [z, *out], [self.scale * jf, jg], inames, onames, opts)
@@ -87,8 +90,8 @@ class _NLP(ca.Callback):
 
 @dataclasses.dataclass(frozen=True)
 class TimeDesignResult(ResultBase):
-    """A time-domain design (module docstring): the optimum ``theta`` = (AE N, C_I N s), the baseline
-    (the scene's values) and both responses per seed on the roll-out grid (``times`` s; ``tension_top``,
+    """A time-domain design (module docstring): the optimum ``theta`` (the variables ``names``, one section: (AE N,
+    C_I N s)), the baseline (the scene's values) and both responses per seed on the roll-out grid (``times`` s; ``tension_top``,
     ``tension_floor`` N, ``heave`` m from the window mean, per seed: arrays (seeds, N)); ``constraints``
     {row: (value, upper bound)} at the optimum and at the baseline; ``history`` IPOPT's per-iteration
     objective and primal infeasibility; ``model`` the design's model
@@ -119,6 +122,7 @@ class TimeDesignResult(ResultBase):
     model: str = ""
     floor_output: str = "tension_mid"
     model_reason: str = ""
+    names: tuple = ("ae_1", "internal_damping_1")
 
     VARIABLES: ClassVar[dict] = {
         "heave": ("m", "body heave from its window mean (down +), design"),
@@ -142,14 +146,19 @@ class TimeDesignResult(ResultBase):
         for n in names:
             ds[n].attrs.update(units=self.VARIABLES[n][0], long_name=self.VARIABLES[n][1])
         ds["time"].attrs.update(units="s", long_name="time")
-        ds.attrs.update(ae_n=self.theta[0], internal_damping_n_s=self.theta[1], model=self.model,
+        ds.attrs.update(**{_key(n): v for n, v in zip(self.names, self.theta)}, model=self.model,
                         model_reason=self.model_reason, floor_output=self.floor_output)
         return ds
 
     def summary(self) -> dict:
-        return {"success": self.success, "message": self.message, "status": self.status,
-                "ae_n": self.theta[0], "internal_damping_n_s": self.theta[1],
-                "baseline_ae_n": self.theta_baseline[0], "baseline_internal_damping_n_s": self.theta_baseline[1],
+        single = {}
+        if tuple(self.names) == ("ae_1", "internal_damping_1"):      # one section: its (AE, C_I) by their names
+            single = {"ae_n": self.theta[0], "internal_damping_n_s": self.theta[1],
+                      "baseline_ae_n": self.theta_baseline[0], "baseline_internal_damping_n_s": self.theta_baseline[1]}
+        return {"success": self.success, "message": self.message, "status": self.status, **single,
+                "design": {_key(n): v for n, v in zip(self.names, self.theta)},
+                "baseline": {_key(n): v for n, v in zip(self.names, self.theta_baseline)},
+                "described": describe_theta(self.names, self.theta),
                 "objective_heave_variance_m2": self.objective, "baseline_heave_variance_m2": self.objective_baseline,
                 "heave_std_m": self.heave_std_m, "baseline_heave_std_m": math.sqrt(self.objective_baseline),
                 "heave_reduction_db": 10 * math.log10(self.objective / self.objective_baseline),
@@ -157,6 +166,11 @@ class TimeDesignResult(ResultBase):
                 "constraints_baseline": {k: {"value": v, "bound": b} for k, (v, b) in self.constraints_baseline.items()},
                 "seeds": list(self.seeds), "limits": self.limits, "stats": self.stats, "model": self.model,
                 "model_reason": self.model_reason, "floor_output": self.floor_output}
+
+
+def _key(name: str) -> str:
+    """A variable's key with its unit (``ae_1_n``, ``internal_damping_1_n_s``, ``intermediate_mass_kg``)."""
+    return f"{name}_{unit(name).lower().replace(' ', '_')}"
 
 
 def _evaluate(problem, fns, z):
@@ -168,12 +182,18 @@ def _evaluate(problem, fns, z):
     return float(f), {r: (float(v), float(b)) for r, v, b in zip(fns.rows, g, fns.ub)}, Ys
 
 
-def scan_starts(problem, fns, n_ae: int = 17, n_ci: int = 3) -> list:
-    """IPOPT's starts from a scan of n_ae x n_ci log-spaced designs: the feasible design of least
-    objective and the best one at least a quarter of the log-AE range away from it (the heave variance
-    has a local optimum on each side of the axial resonance's passage through the sea band: a soft
-    insert below it, a stiff line above). Without a feasible design: the least violations."""
-    pts = [(a, b) for a in np.linspace(0.0, 1.0, n_ae) for b in np.linspace(0.1, 0.9, n_ci)]
+def scan_starts(problem, fns, n_ae: int = 17, n_ci: int = 3, n_points: int = 32) -> list:
+    """IPOPT's starts from a scan of designs: the feasible design of least objective and the best one at least a
+    quarter of the log-AE range away from it in some section's AE (the heave variance has a local optimum on each
+    side of the axial resonance's passage through the sea band: a soft insert below it, a stiff line above). One
+    section: n_ae x n_ci log-spaced (AE, C_I); more variables: ``n_points`` scrambled Sobol points of the
+    normalized box (``scipy.stats.qmc``, seed 0). Without a feasible design: the least violations."""
+    nv = len(problem.variables)
+    if nv == 2:
+        pts = [(a, b) for a in np.linspace(0.0, 1.0, n_ae) for b in np.linspace(0.1, 0.9, n_ci)]
+    else:
+        pts = [tuple(p) for p in qmc.Sobol(nv, scramble=True, seed=0).random(n_points)]
+    ae = [j for j, n in enumerate(problem.names) if n.startswith("ae_")]
     scored = []
     for zz in pts:
         f, g = fns.fg(zz)
@@ -181,7 +201,8 @@ def scan_starts(problem, fns, n_ae: int = 17, n_ci: int = 3) -> list:
         scored.append((viol > 0, viol if viol > 0 else float(f), zz))
     scored.sort(key=lambda t: (t[0], t[1]))
     first = scored[0]
-    other = next((t for t in scored[1:] if abs(t[2][0] - first[2][0]) >= 0.25 and t[0] == first[0]), None)
+    other = next((t for t in scored[1:] if max(abs(t[2][j] - first[2][j]) for j in ae) >= 0.25
+                  and t[0] == first[0]), None)
     return [tuple(problem.theta(t[2])) for t in (first, other) if t is not None]
 
 
@@ -194,18 +215,19 @@ def time_domain_design(problem: TimeDesignProblem, *, starts=None, max_iter: int
     ----------
     problem : TimeDesignProblem
         From :func:`time_design_problem`.
-    starts : sequence of (AE, C_I), optional
-        IPOPT's starting designs (default: the two of a 17 x 3 scan,
+    starts : sequence of theta, optional
+        IPOPT's starting designs (the variables' values, ``problem.names``; default: the two of a scan,
         :func:`scan_starts`); the feasible optimum of least objective is kept.
     max_iter, tol : int, float
         IPOPT's iteration limit and tolerance per start.
     """
     fns = design_functions(problem)
-    z = ca.MX.sym("z", 2)
+    nv = len(problem.variables)
+    z = ca.MX.sym("z", nv)
     t0 = time.perf_counter()
     f0 = float(fns.fg(problem.z(problem.theta_nominal))[0])
     scale = 1.0 / f0 if f0 > 0 else 1.0
-    cb = _NLP(fns, scale)
+    cb = _NLP(fns, scale, nv)
     f, g = cb(z)
     opts = {"ipopt": {"max_iter": max_iter, "tol": tol, "hessian_approximation": "limited-memory",
                       "print_level": 0, "sb": "yes", "acceptable_tol": 1e-4, "acceptable_iter": 5},
@@ -247,7 +269,7 @@ def time_domain_design(problem: TimeDesignProblem, *, starts=None, max_iter: int
     limits = {"working_load_n": problem.working_load, "slack_fraction": problem.slack_fraction,
               "max_excursion_m": problem.max_excursion, "strain_limit": problem.strain_limit,
               "statistics_start_s": k0 * problem.dt, "ks_rho": problem.rho,
-              "ae_bounds_n": list(problem.ae_bounds), "damping_bounds_n_s": list(problem.damping_bounds)}
+              "bounds": {_key(v.name): [v.lower, v.upper] for v in problem.variables}}
     stats = {"iterations": sum(r["iterations"] for r in runs), "solve_s": solve_s, "starts": len(runs),
              "setup_and_scan_s": scan_s,
              "runs": [{k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in r.items() if k != "history"}
@@ -260,12 +282,12 @@ def time_domain_design(problem: TimeDesignProblem, *, starts=None, max_iter: int
                             tension_top_baseline=Yb[:, 3], tension_floor=Y[:, 2], tension_floor_baseline=Yb[:, 2],
                             history=best["history"], limits=limits, status=best["status"], success=success,
                             message=message, stats=stats, model=problem.describe(), floor_output=problem.floor_output,
-                            model_reason=problem.model_reason)
+                            model_reason=problem.model_reason, names=problem.names)
 
 
 def evaluate_design(problem: TimeDesignProblem, theta) -> dict:
-    """The roll-out's objective and constraint values (row -> (value, bound)) at ``theta`` = (AE, C_I):
-    e.g. the frequency-domain optimum seen by the nonlinear time domain."""
+    """The roll-out's objective and constraint values (row -> (value, bound)) at ``theta`` (the variables' values,
+    ``problem.names``): e.g. the frequency-domain optimum seen by the nonlinear time domain."""
     fns = design_functions(problem)
     f, c, _ = _evaluate(problem, fns, problem.z(theta))
     return {"objective_heave_variance_m2": f, "constraints": c}

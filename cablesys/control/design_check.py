@@ -8,16 +8,20 @@ import math
 
 import numpy as np
 
+from ..model.segmented import build_segmented_model
+from ..model.segmented_winch_control import NodeWinchModel
+from ..scene.labels import section_suffix
 from .design_problem import TimeDesignProblem
+from .design_rollout import section_row
 
 
 def resimulate_design(problem: TimeDesignProblem, theta) -> dict:
     """The design ``theta`` re-run by the plain time domain (:func:`cablesys.time_domain.simulate`, the
-    scene's integrator and tolerances, output every ``numerics.output_step``; the model of the design's scene:
-    Wang's 2-DOF model, or the node model of its N elements) in every seed, judged over the same window by the
-    sampled extremes: peak ``tension_top`` / working load, the least of the tension the no-slack floor bounds /
-    its mean (the slack ratio: Wang's F_bc, ``tension_mid``; the node model's least element tension at each
-    time), largest |y_b - mean| and |x_b - mean| / max excursion, and var(y_b).
+    scene's integrator and tolerances, output every ``numerics.output_step``; the design's model without its winch:
+    Wang's 2-DOF model, or the node model of its N elements per section) in every seed, judged over the same window
+    by the sampled extremes: each section's peak ``tension_top`` / its working load, the least of the tension the
+    no-slack floor bounds / its mean (the slack ratio: Wang's F_bc, ``tension_mid``; the node model's least element
+    tension at each time), the lowest body's largest |y_b - mean| and |x_b - mean| / max excursion, and var(y_b).
 
     Returns
     -------
@@ -27,23 +31,31 @@ def resimulate_design(problem: TimeDesignProblem, theta) -> dict:
     """
     from ..time_domain import simulate
     scene = problem.designed_scene(theta)
+    # the design's model: the node model's plain form (a chain's at N = 1 per section too, where build_model would
+    # build Wang's chain), else Wang's (build_model's default); per seed, whose sea may realise other sinusoids
+    node = isinstance(problem.model, NodeWinchModel)
+    k = problem.sections
+    low = section_suffix(k, k - 1)
     per_seed, worst, variances = {}, 0.0, []
     for s in problem.seeds:
         sea = dataclasses.replace(scene.top_motion.spectrum, seed=int(s))
-        run = simulate(scene.replace(top_motion=dataclasses.replace(scene.top_motion, spectrum=sea)))
+        seeded = scene.replace(top_motion=dataclasses.replace(scene.top_motion, spectrum=sea))
+        run = simulate(seeded, model=build_segmented_model(seeded) if node else None)
         if not run.success:
             per_seed[s] = {"success": False, "message": run.message}
             worst = math.inf
             continue
         m = run.time >= problem.window_start * problem.dt - 1e-9
-        d = {k: np.asarray(run.data[k])[m] for k in ("tension_top", "y_b", "x_b")}
+        d = {name: np.asarray(run.data[name + low])[m] for name in ("y_b", "x_b")}
+        tops = [np.asarray(run.data["tension_top" + section_suffix(k, i)])[m] for i in range(k)]
         prof = run.profiles
         d["floor"] = (np.min(np.asarray(prof["element_tension"]), axis=1)[m] if "element_tension" in prof
-                      else np.asarray(run.data["tension_mid"])[m])
+                      else np.asarray(run.data["tension_mid" + section_suffix(k, 0)])[m])
         h, xb = d["y_b"] - d["y_b"].mean(), d["x_b"] - d["x_b"].mean()
         vals = {}
-        if math.isfinite(problem.working_load):
-            vals["peak_tension"] = (float(d["tension_top"].max() / problem.working_load), 1.0)
+        for i, (top, wl) in enumerate(zip(tops, problem.working_load)):
+            if math.isfinite(wl):
+                vals[section_row("peak_tension", i)] = (float(top.max() / wl), 1.0)
         if problem.slack_fraction is not None:
             vals["slack"] = (float(-d["floor"].min() / d["floor"].mean()), -problem.slack_fraction)
         if problem.max_excursion is not None:
@@ -52,9 +64,9 @@ def resimulate_design(problem: TimeDesignProblem, theta) -> dict:
         worst = max(worst, viol)
         variances.append(float(np.mean(h ** 2)))
         per_seed[s] = {"success": True, "constraints": vals, "max_relative_violation": viol,
-                       "heave_variance_m2": variances[-1], "tension_top_max_n": float(d["tension_top"].max()),
+                       "heave_variance_m2": variances[-1], "tension_top_max_n": float(tops[0].max()),
                        "tension_floor_min_n": float(d["floor"].min())}
     return {"theta": [float(v) for v in theta], "per_seed": per_seed, "max_relative_violation": worst,
             "heave_variance_m2": float(np.mean(variances)) if variances else math.nan,
             "integrator": scene.numerics.integrator, "drag_segments": scene.numerics.drag_segments,
-            "segments": scene.sections[0].cable.segments}
+            "segments": scene.sections[0].cable.segments, "sections": k}

@@ -3,7 +3,11 @@ and the baseline and designed responses of one seed."""
 
 from __future__ import annotations
 
+from textwrap import fill as wrap
+
 import numpy as np
+
+from .design_problem import describe_theta
 
 # what the series the no-slack floor bounds is, by the model's output name
 FLOOR_NAMES = {"tension_mid": "F_bc (Wang's spring force, tension_mid)", "tension_least": "least element tension"}
@@ -36,16 +40,18 @@ def plot_time_design(result, path, *, title: str = "", frequency_theta=None):
     t = result.times
     lim = result.limits
     s = result.seeds[0]
-    ae0, ci0 = result.theta_baseline
-    ae, ci = result.theta
-    base = f"baseline AE {ae0:.3g} N, C_I {ci0:.3g} N s"
-    des = f"time-domain design AE {ae:.3g} N, C_I {ci:.3g} N s"
+    base = wrap(f"baseline {describe_theta(result.names, result.theta_baseline)}", 48)
+    des = wrap(f"time-domain design {describe_theta(result.names, result.theta)}", 48)
     a2.plot(t, result.tension_top_baseline[0] / 1e3, color="0.55", lw=1.0, label=base)
     a2.plot(t, result.tension_top[0] / 1e3, color="tab:blue", lw=1.3, label=des)
     a2.plot(t, result.tension_floor[0] / 1e3, color="tab:blue", lw=0.8, ls="--",
             label=f"design: {FLOOR_NAMES.get(result.floor_output, result.floor_output)}")
-    if np.isfinite(lim["working_load_n"]):
-        a2.plot([], [], color="none", label=f"working load {lim['working_load_n'] / 1e3:.0f} kN (off scale)")
+    wl = np.ravel(lim["working_load_n"])[0]          # the top section's
+    top = max(np.max(result.tension_top[0]), np.max(result.tension_top_baseline[0]))
+    if np.isfinite(wl) and wl <= 1.5 * top:          # on the tensions' scale: drawn
+        a2.axhline(wl / 1e3, color="tab:red", lw=1.2, label=f"working load {wl / 1e3:.3g} kN")
+    elif np.isfinite(wl):
+        a2.plot([], [], color="none", label=f"working load {wl / 1e3:.3g} kN (off scale)")
     if lim.get("slack_fraction") is not None:
         floor = lim["slack_fraction"] * np.mean(result.tension_floor[0])
         a2.axhline(floor / 1e3, color="tab:red", ls="--", lw=1.0, label=f"slack floor {lim['slack_fraction']:g} x its mean")
@@ -66,8 +72,8 @@ def plot_time_design(result, path, *, title: str = "", frequency_theta=None):
         ax.grid(alpha=0.3)
         ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
     if frequency_theta is not None:
-        a3.plot([], [], color="none", label=f"frequency-domain optimum: AE {frequency_theta[0]:.3g} N, "
-                                            f"C_I {frequency_theta[1]:.3g} N s")
+        a3.plot([], [], color="none", label=wrap("frequency-domain optimum: "
+                                                 + describe_theta(result.names, frequency_theta), 48))
         a3.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
     model = result.model.split(" (cablesys")[0] if result.model else ""      # the model's name, not its module
     if title or model:

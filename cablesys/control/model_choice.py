@@ -17,6 +17,9 @@ The ladder's rung maps to them as follows:
   stands for it, axial modes kept (the quasi-static form has no winch); at N = 1 (the straight cable with a
   quasi-static stretch) Wang's 2-DOF model stands for it, its stretch kept as a coordinate;
 - a registered rung: the node model at its N (at least 2) stands for it.
+- a chain of sections (a soft insert, an intermediate body): Wang's 2-DOF winch has one section, so the node model
+  at N = 1 per section (one straight element per section, as Wang's chain) stands for ``wang`` and for the
+  quasi-static rung at N = 1, and the node model at the rung's N for the others.
 
 A stand-in is said in the reason. ``model="wang"`` or ``"segmented"`` runs that model as asked.
 """
@@ -67,11 +70,16 @@ def _first(reason: str) -> str:
     return reason.split("; ")[0]
 
 
-def winch_form(name: str, segments: int) -> tuple:
+def winch_form(name: str, segments: int, chain: bool = False) -> tuple:
     """(model, N, stand-in note) of the control for the ladder's rung ``name`` at ``segments`` elements (module
-    docstring); the note is "" where the control runs the rung's own model."""
+    docstring; ``chain``: the scene has more than one section, which only the node model's winch carries); the note
+    is "" where the control runs the rung's own model."""
     from ..ladder.rungs import get_rung
     base = getattr(get_rung(name), "model_of", None) or name
+    if chain and (base == "wang" or segments <= 1):
+        return "segmented", 1, ("the node model at N = 1 per section (one straight element per section, as Wang's "
+                                "chain) stands for it: Wang's 2-DOF winch has one section, a chain's winch is the "
+                                "node model's")
     if base == "wang":
         return "wang", None, ""
     if base == "segmented":
@@ -93,7 +101,7 @@ def resolve_model(scene, model=AUTO, segments: int | None = None, *, names=("mod
     Parameters
     ----------
     scene : Scene
-        The scene the model will run (one section).
+        The scene the model will run (one section, or a chain: the node model's winch only).
     model : str or ModelChoice
         "auto" (default): the scene's ``[numerics] model`` through the ladder, as ``cablesys run`` runs it; "wang" or
         "segmented": that model, as asked; a :class:`ModelChoice` is returned as it is (``segments`` unset or its N).
@@ -127,12 +135,13 @@ def resolve_model(scene, model=AUTO, segments: int | None = None, *, names=("mod
     from ..ladder.auto import AS_BUILT
     if getattr(scene.numerics, "model", AUTO) == AS_BUILT:
         n = _scene_segments(scene)
-        kind, n = ("wang", None) if n <= 1 else ("segmented", n)
+        chain = len(scene.sections) > 1
+        kind, n = ("wang", None) if n <= 1 and not chain else ("segmented", n if chain else max(n, 2))
         choice = ModelChoice(model=kind, segments=n, reason="numerics.model = 'as-built': the scene's own model "
                                                             f"({'Wang' if n is None else f'N = {n}'}), no ladder choice")
     else:
         lc = ladder_choice(scene)
-        kind, n, stand_in = winch_form(lc.name, lc.segments)
+        kind, n, stand_in = winch_form(lc.name, lc.segments, chain=len(scene.sections) > 1)
         rung = f"{lc.name}, N = {lc.segments}" if lc.segments > 1 else lc.name
         if getattr(scene.numerics, "model", AUTO) == AUTO:       # the deciding numbers follow the first "; "
             reason = f"the ladder's a priori choice is {rung}: {_first(lc.reason)}"

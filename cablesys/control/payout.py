@@ -81,25 +81,33 @@ def describe_model(model) -> str:
 
 
 def control_model(scene, model, segments: int | None = None, *, compensator: bool = False):
-    """(scene, model) for a control model name: "wang" (the scene's first section as one straight element,
-    ``segments`` must be None or 1) or "segmented" (N = ``segments`` elements, default the scene's
-    ``cable.segments`` when above 1); the scene is returned with that N. Which name a scene runs by default:
-    :func:`.model_choice.resolve_model`."""
+    """(scene, model) for a control model name: "wang" (the scene's one section as one straight element,
+    ``segments`` must be None or 1) or "segmented" (N = ``segments`` elements per section, default the scene's
+    ``cable.segments`` when above 1; a chain of sections runs this model only, from N = 1 per section, the winch
+    paying out its first section, :mod:`cablesys.model.segmented_winch_control`); the scene is returned with that N. Which name a scene
+    runs by default: :func:`.model_choice.resolve_model`."""
     if model not in MODELS:
         raise ParameterError("model", model, f"allowed: {', '.join(MODELS)} (or a built winch model)")
     if segments is not None and not (isinstance(segments, (int, np.integer)) and segments >= 1):
         raise ParameterError("segments", segments, "must be an integer >= 1")
-    n_scene = scene.sections[0].cable.segments if len(scene.sections) == 1 else None
+    chain = len(scene.sections) > 1
+    n_scene = max(s.cable.segments for s in scene.sections)
     if model == "wang":
+        if chain:
+            raise ParameterError("model", model, f"Wang's 2-DOF winch has one section; this scene is a chain of "
+                                                 f"{len(scene.sections)}: ask for 'segmented' (the node model)")
         if segments not in (None, 1):
             raise ParameterError("segments", segments, "Wang's 2-DOF winch is one straight element: 1 or unset")
-        sc = scene if n_scene in (None, 1) else scene.replace_section(cable={"segments": 1})
+        sc = scene if n_scene == 1 else scene.replace_section(cable={"segments": 1})
         return sc, build_winch_model(sc, compensator=compensator)
-    n = segments if segments is not None else n_scene
-    if n is None or n < 2:
+    n = segments if segments is not None else (n_scene if n_scene > 1 or chain else None)
+    if n is None or n < (1 if chain else 2):
         raise ParameterError("segments", segments, "the segmented model needs N >= 2 elements (segments, or the "
-                                                   "scene's cable.segments)")
-    sc = scene if n == n_scene else scene.replace_section(cable={"segments": int(n)})
+                                                   "scene's cable.segments; a chain: N >= 1 per section)")
+    sc = scene
+    for i, sec in enumerate(scene.sections):
+        if sec.cable.segments != n:
+            sc = sc.replace_section(i, cable={"segments": int(n)})
     return sc, build_node_winch_model(sc, compensator=compensator)
 
 

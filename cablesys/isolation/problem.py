@@ -16,29 +16,14 @@ value strictly positive (so C_I needs a lower bound > 0).
 from __future__ import annotations
 
 import dataclasses
-import math
 
 import numpy as np
 
 from ..errors import ParameterError, require_positive, require_range
-from ..model.params import section_prefix
+from ..model.design_variables import Variable, bound_pairs, current_values, section_variables  # noqa: F401  (re-exported)
 from ..reader import build, located
 
 OBJECTIVES = ("significant", "rao_band")
-
-
-def _pairs(field: str, value, n: int | None = None) -> tuple:
-    try:
-        pairs = tuple((float(a), float(b)) for a, b in value)
-    except (TypeError, ValueError):
-        raise ParameterError(field, value, "must be a list of [lower, upper] pairs, one per section") from None
-    if n is not None and len(pairs) != n:
-        raise ParameterError(field, value, f"needs one [lower, upper] pair per section ({n})")
-    for i, (lo, hi) in enumerate(pairs):
-        require_positive(f"{field}[{i}] lower", lo)
-        if not hi > lo:
-            raise ParameterError(f"{field}[{i}]", [lo, hi], "upper bound must exceed the lower bound")
-    return pairs
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -71,12 +56,12 @@ class DesignSettings:
     tol: float = 1e-8                       # IPOPT tolerance
 
     def __post_init__(self):
-        ae = _pairs("design.ae_bounds", self.ae_bounds)
+        ae = bound_pairs("design.ae_bounds", self.ae_bounds)
         n = len(ae)
         object.__setattr__(self, "ae_bounds", ae)
-        object.__setattr__(self, "damping_bounds", _pairs("design.damping_bounds", self.damping_bounds, n))
+        object.__setattr__(self, "damping_bounds", bound_pairs("design.damping_bounds", self.damping_bounds, n))
         if self.intermediate_mass_bounds is not None:
-            (m,) = _pairs("design.intermediate_mass_bounds", (self.intermediate_mass_bounds,))
+            (m,) = bound_pairs("design.intermediate_mass_bounds", (self.intermediate_mass_bounds,))
             object.__setattr__(self, "intermediate_mass_bounds", m)
         if self.objective not in OBJECTIVES:
             raise ParameterError("design.objective", self.objective, f"must be one of {OBJECTIVES}")
@@ -177,23 +162,6 @@ def settings_to_toml(settings: DesignSettings) -> str:
     return "\n".join(lines) + "\n"
 
 
-@dataclasses.dataclass(frozen=True)
-class Variable:
-    """One decision variable: its name, the parameter labels it sets, and its log-scaled bounds."""
-
-    name: str
-    lower: float
-    upper: float
-    targets: tuple            # ((parameter label, factor per unit of the variable), ...)
-
-    def value(self, x):
-        """Physical value of the normalized variable x in [0, 1] (works on CasADi symbols)."""
-        return self.lower * (self.upper / self.lower) ** x
-
-    def normalized(self, v: float) -> float:
-        return math.log(v / self.lower) / math.log(self.upper / self.lower)
-
-
 def variables(scene, settings: DesignSettings) -> tuple:
     """The decision variables of ``settings`` for ``scene`` (whose structure must match).
 
@@ -207,41 +175,8 @@ def variables(scene, settings: DesignSettings) -> tuple:
     Returns
     -------
     tuple of Variable
-        Name, bounds and scaling of each decision variable.
+        Name, bounds and scaling of each decision variable (:func:`section_variables`).
     """
-    n = len(scene.sections)
-    if n != settings.n_sections:
-        raise ParameterError("design.ae_bounds", f"{settings.n_sections} pairs",
-                             f"the scene has {n} sections; give one pair per section")
-    out = []
-    for i in range(n):
-        t_ref = scene.sections[i].cable.tension_ref
-        if settings.ae_bounds[i][0] <= t_ref:
-            raise ParameterError(f"design.ae_bounds[{i}] lower", settings.ae_bounds[i][0],
-                                 f"must exceed the section's reference tension {t_ref:.6g} N so that the zero-tension "
-                                 "length l_0 = l_r (1 - T_r / AE) stays positive (Wang 1971 eq. 1)")
-        out.append(Variable(f"ae_{i + 1}", *settings.ae_bounds[i], ((f"{section_prefix(n, i)}cable.ae", 1.0),)))
-        out.append(Variable(f"internal_damping_{i + 1}", *settings.damping_bounds[i],
-                            ((f"{section_prefix(n, i)}cable.internal_damping", 1.0),)))
-    if settings.intermediate_mass_bounds is not None:
-        if n < 2:
-            raise ParameterError("design.intermediate_mass_bounds", settings.intermediate_mass_bounds,
-                                 "needs a scene with at least two sections (an intermediate body)")
-        b = scene.sections[0].body
-        # body 1 scaled as a whole (same shape and material): weight and virtual masses per kg of mass_y
-        out.append(Variable("intermediate_mass", *settings.intermediate_mass_bounds,
-                            (("sections[0].body.mass_y", 1.0), ("sections[0].body.mass_x", b.mass_x / b.mass_y),
-                             ("sections[0].body.weight", b.weight / b.mass_y))))
-    return tuple(out)
+    return section_variables(scene, settings.ae_bounds, settings.damping_bounds, settings.intermediate_mass_bounds)
 
 
-def current_values(scene, variables_: tuple) -> np.ndarray:
-    """The scene's own values of the decision variables (first target of each)."""
-    n = len(scene.sections)
-    vals = []
-    for v in variables_:
-        label = v.targets[0][0]
-        sec = scene.sections[0] if n == 1 else scene.sections[int(label.split("[")[1].split("]")[0])]
-        obj = sec.cable if ".cable." in f".{label}" else sec.body
-        vals.append(getattr(obj, label.split(".")[-1]))
-    return np.array(vals, float)

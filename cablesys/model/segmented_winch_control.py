@@ -35,6 +35,14 @@ the sum of the element elongations minus L; ``length`` L, ``speed`` w, ``acceler
 T_top w (W); ``stroke`` s, 0 without a compensator) and then ``tension_least``, the least element tension (N): in the
 node model slack starts at the element of least tension, usually the lowest, so the no-slack limit of the
 control bounds that row (``floor_output``), where the 2-DOF model, with one uniform stretch, bounds its F_bc.
+
+A chain of sections (a soft insert, an intermediate body: Wang 1971 p. 33's dual isolation) is the node model of
+its every section (N elements each, the ladder's convention, :func:`cablesys.ladder.rungs.rung_scene`), the winch
+paying out the first (top) section. Then ``heave``, ``heave_rate``, ``x_b`` and ``tension_bottom`` are the lowest
+body's (the payload's, ``y_b_K`` of the chain's K sections), ``tension_mid``, ``tension_top`` and ``stretch`` the
+first section's, ``tension_least`` the least over every element, and ``stretch_2`` ... ``stretch_K`` (the
+elongations of the lower sections, m) and ``tension_top_2`` ... ``tension_top_K`` (the tensions at their tops, N)
+follow it.
 """
 
 from __future__ import annotations
@@ -46,7 +54,8 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..scene import Scene
-from .params import ParameterLayout
+from ..scene.labels import section_suffix
+from .params import ParameterLayout, section_prefix
 from .segmented import build_segmented_model
 from .winch import WINCH_OUTPUTS, WinchModel
 
@@ -56,6 +65,19 @@ _FROM_NODE_MODEL = {"heave": "y_b", "heave_rate": "y_b_rate", "x_b": "x_b", "ten
                     "tension_top": "tension_top", "tension_bottom": "tension_bottom", "stretch": "u",
                     "length": "winch_length", "speed": "winch_speed", "acceleration": "winch_acceleration",
                     "power": "winch_power", "stroke": None}
+_PAYLOAD = ("heave", "heave_rate", "x_b", "tension_bottom")      # in a chain: the lowest body's rows
+
+
+def source_labels(n_sections: int) -> dict:
+    """{WINCH_OUTPUTS row: the node model's output label} of a chain of ``n_sections`` sections (module docstring:
+    the payload's rows from the lowest section, the winch's from the first; None: the absent compensator's stroke)."""
+    top, low = section_suffix(n_sections, 0), section_suffix(n_sections, n_sections - 1)
+    out = {}
+    for row, src in _FROM_NODE_MODEL.items():
+        if src is not None and not src.startswith("winch_"):         # the winch's rows carry no section suffix
+            src += low if row in _PAYLOAD else top
+        out[row] = src
+    return out
 
 
 @dataclasses.dataclass(frozen=True)
@@ -71,6 +93,7 @@ class NodeWinchModel(WinchModel):
     """
 
     segments: int = 1
+    sections: int = 1
     output_labels: tuple = NODE_WINCH_OUTPUTS
     floor_output: str = "tension_least"
     name: str = "segmented"
@@ -83,28 +106,32 @@ class NodeWinchModel(WinchModel):
         return self.output_labels.index(name)
 
     def describe(self) -> str:
-        return (f"segmented node model with winch, N = {self.segments} (cablesys.model.segmented_winch_control)"
+        per = f" per section, {self.sections} sections" if self.sections > 1 else ""
+        return (f"segmented node model with winch, N = {self.segments}{per} (cablesys.model.segmented_winch_control)"
                 + (", compensator" if self.compensator else ""))
 
 
 def build_node_winch_model(scene: Scene, *, compensator: bool = False) -> NodeWinchModel:
-    """Build the controlled winch on the node model of a one-section planar ``scene`` (N = ``cable.segments``).
+    """Build the controlled winch on the node model of a planar ``scene``: one section, or a chain (module docstring),
+    N = each section's ``cable.segments``, the winch paying out the first.
 
     Raises
     ------
     ParameterError
-        More than one section, a 3-D scene, an anchor, a ``[winch]`` profile (the control drives L: the scene's
-        prescribed payout would be dropped).
+        Sections of unequal N, a 3-D scene, an anchor, a rigid body, a ``[winch]`` profile (the control drives L:
+        the scene's prescribed payout would be dropped).
     """
-    if len(scene.sections) != 1:
-        raise ParameterError("sections", len(scene.sections), "the controlled winch has one section")
+    ns = sorted({s.cable.segments for s in scene.sections})
+    if len(ns) > 1:
+        raise ParameterError("cable.segments", ns, "must be one N for every section of the controlled winch's chain")
     if scene.three_d:
         raise ParameterError("three_d", True, "the controlled node-model winch is planar")
     if scene.anchor is not None:
         raise ParameterError("anchor", "set", "a winch-lowered line hangs free: no [anchor]")
-    if scene.sections[0].body.is_rigid:
-        raise ParameterError("body.pitch_inertia", scene.sections[0].body.pitch_inertia,
-                             "must be unset: the controlled winch's body is a point (no pitch coordinate yet)")
+    for sec in scene.sections:
+        if sec.body.is_rigid:
+            raise ParameterError("body.pitch_inertia", sec.body.pitch_inertia,
+                                 "must be unset: the controlled winch's bodies are points (no pitch coordinate yet)")
     if getattr(scene, "winch", None) is not None:
         raise ParameterError("winch", "set", "must be unset: the control drives the payout (a [winch] profile "
                                              "would be ignored)")
@@ -133,10 +160,17 @@ def build_node_winch_model(scene: Scene, *, compensator: bool = False) -> NodeWi
         e_c = e
         qdd = seg.accel(qn, qdn, e, p, zc)
     y = seg.outputs(ca.vertcat(qn, qdn), e_c, p, zc)
+    k_sec = len(scene.sections)
+    src_of = source_labels(k_sec)
     rows = [y[labels.index(src)] if src else (q[nn] if compensator else ca.SX(0.0))
-            for src in (_FROM_NODE_MODEL[n] for n in WINCH_OUTPUTS)]
+            for src in (src_of[n] for n in WINCH_OUTPUTS)]
     tens = [y[labels.index(f"element_tension[{k}]")] for k in range(seg.n_elements)]
     rows.append(ca.mmin(ca.vertcat(*tens)))
+    lower = range(1, k_sec)                 # a chain's lower sections: their elongations and top tensions
+    rows += [y[labels.index("u" + section_suffix(k_sec, i))] for i in lower]
+    rows += [y[labels.index("tension_top" + section_suffix(k_sec, i))] for i in lower]
+    out_labels = (NODE_WINCH_OUTPUTS + tuple(f"stretch_{i + 1}" for i in lower)
+                  + tuple(f"tension_top_{i + 1}" for i in lower))
     names = ["q", "qd", "e", "winch", "p", "c"]
     accel = ca.Function("accel", [q, qd, e, winch, p, c], [qdd], names, ["qdd"])
     out_e = ca.Function("node_winch_outputs_e", [q, qd, e, winch, p, c], [ca.vertcat(*rows)], names, ["y"])
@@ -149,24 +183,36 @@ def build_node_winch_model(scene: Scene, *, compensator: bool = False) -> NodeWi
     outputs = ca.Function("node_winch_outputs", [xs, vs, ts, p, c], [out_e(xs[:nq], xs[nq:2 * nq], ex, wx, p, c)],
                           ["x", "v", "t", "p", "c"], ["y"])
     return NodeWinchModel(layout=seg.layout, compensator=compensator, q_labels=q_labels, ode=ode, outputs=outputs,
-                          accel=accel, top=top, outputs_e=out_e, segments=int(seg.segments[0]))
+                          accel=accel, top=top, outputs_e=out_e, segments=int(seg.segments[0]), sections=k_sec,
+                          output_labels=out_labels)
 
 
 def rest_state(model: NodeWinchModel, p, c=None, length: float | None = None) -> np.ndarray:
-    """The state at rest: top still (e = 0), w = 0, zero-tension length ``length`` (default l_0 of Wang 1971
-    eq. 1), the node positions solving q'' = 0 by Newton's method with a line search (CasADi ``rootfinder``,
-    KINSOL) from the straight
-    vertical line stretched by the hanging weight (eq. 1, 12)."""
+    """The state at rest: top still (e = 0), w = 0, zero-tension length ``length`` of the first section (default l_0
+    of Wang 1971 eq. 1; a chain's lower sections at their own l_0), the node positions solving q'' = 0 by Newton's
+    method with a line search (CasADi ``rootfinder``, KINSOL) from the straight vertical line stretched by the weight
+    hanging below each element's middle (eq. 1, 12)."""
     p = np.asarray(p, float)
     c = np.zeros(4) if c is None else np.asarray(c, float)
-    lay = model.layout
-    l_r, t_r, ae = (p[lay.index(f"cable.{n}")] for n in ("length", "tension_ref", "ae"))
-    w_r, w_b = p[lay.index("cable.weight_per_length")], p[lay.index("body.weight")]
-    L = l_r - t_r * l_r / ae if length is None else float(length)
-    n = model.segments
-    s = L * (n - np.arange(1, n + 1)) / n                  # node j's unstretched arc from the body
-    y = np.array([L - sj + (w_b * (L - sj) + w_r * (L * L - sj * sj) / 2) / ae for sj in s])   # y_j below the top
-    guess = np.concatenate([np.ravel(np.column_stack([np.zeros(n), y])), np.zeros(model.nq - 2 * n)])   # s = 0
+    lay, k_sec, n = model.layout, model.sections, model.segments
+
+    def num(i, name):
+        return p[lay.index(section_prefix(k_sec, i) + name)]
+
+    l0 = [num(i, "cable.length") * (1.0 - num(i, "cable.tension_ref") / num(i, "cable.ae")) for i in range(k_sec)]
+    L = l0[0] if length is None else float(length)
+    l0[0] = L
+    # the elements top to bottom: (unstretched length, weight in water, AE), and each section's body below its last
+    elems, below = [], 0.0
+    for i in reversed(range(k_sec)):
+        below += num(i, "body.weight")
+        w, ae = num(i, "cable.weight_per_length") * l0[i] / n, num(i, "cable.ae")
+        for _ in range(n):
+            elems.append((l0[i] / n, below + 0.5 * w, ae))          # the tension at the element's middle
+            below += w
+    elems.reverse()
+    y = np.cumsum([le * (1.0 + t / ae) for le, t, ae in elems])     # node j's depth below the top
+    guess = np.concatenate([np.ravel(np.column_stack([np.zeros(y.size), y])), np.zeros(model.nq - 2 * y.size)])
     qs = ca.SX.sym("q", model.nq)
     wz = ca.DM([L, 0, 0, 0])
     res = model.accel(qs, ca.DM.zeros(model.nq), ca.DM.zeros(7), wz, p, c)
