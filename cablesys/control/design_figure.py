@@ -76,9 +76,11 @@ def plot_time_design(result, path, *, title: str = "", frequency_theta=None):
                                                  + describe_theta(result.names, frequency_theta), 48))
         a3.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
     model = result.model.split(" (cablesys")[0] if result.model else ""      # the model's name, not its module
-    if title or model:
-        fig.suptitle("\n".join(t for t in (title, f"model: {model}" if model else "") if t), fontsize=10)
-    fig.tight_layout(rect=(0, 0, 1, 0.95 if title and model else 0.965))
+    lines = ([wrap(title, 150)] if title else []) + ([f"model: {model}"] if model else [])
+    if lines:
+        text = "\n".join(lines)
+        fig.suptitle(text, fontsize=10)
+    fig.tight_layout(rect=(0, 0, 1, 1.0 - 0.018 * (text.count("\n") + 1) - 0.01 if lines else 1.0))
     fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
