@@ -144,5 +144,9 @@ def test_chain_bad_input(dual):
         time_design_problem(dual, duration=80.0, model="wang")
     with pytest.raises(ParameterError, match="working_load"):
         time_design_problem(dual.replace(design={**dual.design, "working_load": [1.5e4, 1.5e4, 1.5e4]}), duration=80.0)
+    from cablesys.control import WinchLimits
+    from cablesys.control.mpc import compare_compensation
+    with pytest.raises(ParameterError, match="sections = 2: must be 1"):      # the winch strategies: one section
+        compare_compensation(dual, WinchLimits(), duration=60.0)
     with pytest.raises(ParameterError, match="damping_bounds"):
         time_design_problem(dual.replace(design={**dual.design, "damping_bounds": [[5e3, 5e5]]}), duration=80.0)

@@ -236,6 +236,9 @@ def compare_compensation(scene, limits: WinchLimits, *, duration: float, horizon
                                                                "convergence (max_iter)")
     if not (isinstance(ar_order, int) and ar_order >= 1):
         raise ParameterError("ar_order", ar_order, "must be an integer >= 1")
+    if len(scene.sections) != 1:      # the controller's state map (state_map) interpolates one section's nodes
+        raise ParameterError("sections", len(scene.sections), "must be 1: the compensation strategies run one "
+                             "section (a chain is designed through the time domain: cablesys control --design)")
     plant_sc = plant_scene(scene, plant_segments)
     ctrl_scene = scene.with_numerics(drag_segments=controller_segments)
     kw = dict(dt=dt, tension_weight=tension_weight, control_weight=control_weight)
