@@ -58,7 +58,7 @@ from ..compiled import SIZE_FLAGS, Compiled, compilation_enabled, compile_functi
 from ..integration import METHODS, IntegratorMethod, resolve
 from ..model import CableModel
 from ..model.scales import state_scales
-from .dae import relative_time_dae
+from .dae import relative_time_dae, relative_time_jacobian
 from .explicit_rk import PAIRS, explicit_rk_library, fallback_settings, make_explicit_rk
 from .rkc import coefficients
 from .rkc import step as rkc_step
@@ -179,20 +179,37 @@ def dae_function(model: CableModel, implicit: bool, compiled: bool = True, scale
     def build():
         # the integrators need the state blocks of the Jacobian only (d/dp would grow with the scene's
         # parameter count); never use this library for parameter sensitivities
-        f = relative_time_dae(model, implicit, scaled, kernel=kernel)
-        size = len(generate([f], jacobians=("x", "z"))) if kernel else None   # MX serializes shorter than its C
-        return compile_functions([f], jacobians=("x", "z"), enabled=compiled, size=size,
-                                 optimization=kernel_dae_optimization(size) if kernel else None)
+        if kernel:
+            functions = kernel_dae_functions(model, scaled)
+            size = len(generate(functions, jacobians=False))    # MX serializes shorter than its C
+            comp = compile_functions(functions, jacobians=False, enabled=compiled, size=size,
+                                     optimization=kernel_dae_optimization(size))
+            name = functions[0].name()                          # the DAE; its Jacobian is found by casadi.external
+            return dataclasses.replace(comp, functions={name: comp.functions[name]})
+        return compile_functions([relative_time_dae(model, implicit, scaled)], jacobians=("x", "z"), enabled=compiled)
     return model.derive(key, build)
 
 
-# The element-kernel DAE (kernel_dae) is loops over the elements plus its Jacobian's nonzero copies: its C grows
-# with N (harsh_sea ROV lift, planar: N = 28 1.49 MB, N = 56 2.05 MB) past compiled.SIZE_FLAGS's -O1 limit, and at
-# -O0 every right-hand side and Jacobian costs 2-3x more (N = 56, CVODES BDF2, rtol 1e-5, 200 s: 105-115 us per step
-# at -O0, 45 us at -O1; right-hand side 29-52 vs 8.8 us, Jacobian 1.0-1.8 ms vs 0.43 ms; studies/bench_vs_moordyn.py
-# notes "harsh_sea_profile"), for a compile of 11.8 s instead of 4.8 s (once per structure, cached). Up to
-# KERNEL_O1_MAX_BYTES of C it is compiled at least at -O1 (compiled.COMPILE_S_PER_MB: ~4.5 s per MB); past it the size
-# rule holds (the compiler's memory).
+def kernel_dae_functions(model: CableModel, scaled: bool) -> list:
+    """What :func:`dae_function` compiles for the element-kernel DAE (:func:`kernel_dae`): the DAE
+    (:func:`.dae.relative_time_dae`) and its Jacobian ``jac_<name>`` by the chain rule over the elements
+    (:func:`.dae.relative_time_jacobian`), under the name ``casadi.external`` looks for beside the DAE.
+
+    CasADi's AD of the whole mapped DAE (:func:`cablesys.derivatives.state_jacobian`) is the same matrix to rounding
+    but costs ~40 right-hand sides (12 forward directions through every element, then nonzero copies into the
+    result; harsh_sea ROV lift, N = 46, planar: 0.33 ms against 33 us per Jacobian, 1.4-1.8 MB of C against 0.18 MB).
+    """
+    f = relative_time_dae(model, False, scaled, kernel=True)
+    return [f, relative_time_jacobian(model, f, scaled)]
+
+
+# The element-kernel DAE (kernel_dae) is loops over the elements plus, with AD's Jacobian, that Jacobian's nonzero
+# copies, whose C grew with N (harsh_sea ROV lift, planar: N = 28 1.49 MB, N = 56 2.05 MB) past compiled.SIZE_FLAGS's
+# -O1 limit, and at -O0 every right-hand side and Jacobian cost 2-3x more (N = 56, CVODES BDF2, rtol 1e-5, 200 s:
+# 105-115 us per step at -O0, 45 us at -O1; studies/bench_vs_moordyn.py notes "harsh_sea_profile"). With the chain
+# rule's Jacobian (kernel_dae_functions) the C stays near 0.2 MB (N = 23: 0.16 MB, N = 92: 0.21 MB), -O2 by the size
+# rule; up to KERNEL_O1_MAX_BYTES of C it is compiled at least at -O1 (compiled.COMPILE_S_PER_MB: ~4.5 s per MB);
+# past it the size rule holds (the compiler's memory).
 KERNEL_O1_MAX_BYTES = 6_000_000
 
 
