@@ -144,11 +144,29 @@ def compiled_by_default(model: CableModel, method=None) -> bool:
             and kernel_dae(model, implicit=False))
 
 
-def helpers_compiled(model: CableModel, settings: IntegratorSettings) -> IntegratorSettings:
+# The functions a run evaluates at the output times (helpers_compiled) past COMPILE_MAX_ELEMENTS elements: compiled
+# while their C is predicted under HELPERS_MAX_C_BYTES (their SX code grows with N), the prediction being their
+# serialized length x HELPERS_C_PER_SERIALIZED (0.25-0.28 measured on the harsh_sea ROV lift, planar, N = 23-92:
+# 0.22-0.86 MB of C; compiled.compiler_command picks the flags by the serialized length, -O1, -O0 past 1.5 MB, as
+# ladder.plan_cost predicts). Outputs per output time there: N = 23 18 us in CasADi's VM, 3 us compiled (-O1);
+# N = 46 36 us in the VM, 14 us compiled (-O0); 2400 output times, shared load: 0.05 s of a 0.45 s run at N = 46.
+# The compile (~1 s at N = 23 or 46) is once per structure.
+HELPERS_MAX_C_BYTES = 1_000_000
+HELPERS_C_PER_SERIALIZED = 0.3
+
+
+def helpers_c_bytes(functions) -> int:
+    """The predicted size (bytes) of the C of ``functions`` compiled together without Jacobians (see
+    :data:`HELPERS_C_PER_SERIALIZED`)."""
+    return int(HELPERS_C_PER_SERIALIZED * sum(len(f.serialize()) for f in functions))
+
+
+def helpers_compiled(model: CableModel, settings: IntegratorSettings, functions=None) -> IntegratorSettings:
     """``settings`` for the functions a run evaluates at the output times (slack gaps, top motion,
     outputs): compiled as the integrator is, but past :data:`COMPILE_MAX_ELEMENTS` elements only when
-    ``jit`` asks (their SX code grows with N: the outputs of 80 elements are 2.4 MB of C)."""
-    if settings.compiled and not settings.jit and int(getattr(model, "n_elements", 1)) > COMPILE_MAX_ELEMENTS:
+    ``jit`` asks or ``functions`` (those helpers) are predicted under :data:`HELPERS_MAX_C_BYTES` of C."""
+    if settings.compiled and not settings.jit and int(getattr(model, "n_elements", 1)) > COMPILE_MAX_ELEMENTS and (
+            functions is None or helpers_c_bytes(functions) > HELPERS_MAX_C_BYTES):
         return dataclasses.replace(settings, compiled=False)
     return settings
 
