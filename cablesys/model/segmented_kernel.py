@@ -118,9 +118,10 @@ def _solve_columns(dim: int, cols: int) -> ca.Function:
 def _on_used_parameters(kern: ca.Function) -> tuple[ca.Function, list]:
     """(the element kernel with its parameter input ``p`` cut to the entries it depends on, their indices in ``p``).
 
-    A map's shared input is copied once per element (CasADi repeats it into a column per call): the whole scene
-    vector ``p`` (181 entries on the harsh_sea ROV lift) 46 times per right-hand side was ~40 % of its cost, where the
-    element uses its section's and the environment's few entries."""
+    A map's shared input is copied once per element (CasADi repeats it into a column per call), so the mapped kernel
+    takes only its section's and the environment's entries (``casadi.which_depends``), not the whole scene vector."""
+    # harsh_sea ROV lift, planar, N = 46: 22 of p's 181 entries; copying all of p per element was ~1/3 of a
+    # right-hand side (7.0 -> 5.2 us, bit-identical results)
     ins = [ca.SX.sym(kern.name_in(k), kern.sparsity_in(k)) for k in range(kern.n_in())]
     k_p = kern.name_in().index("p")
     outs = kern.call(ins)
@@ -222,10 +223,10 @@ def kernel_jacobian(scene, n_points) -> ca.Function:
     to the element's two end nodes come from CasADi's AD of the element kernel (:func:`_element_jacobian`), mapped
     over the elements like the kernel itself, then summed per node and solved column by column. This is the
     Jacobian AD of the whole mapped ``ode`` gives (to rounding: ``tests/test_segmented_kernel.py``) at a fraction of
-    its cost: AD of the assembled function seeds 4 dim directions through every element (the column colouring of a
-    block-tridiagonal matrix) and scatters them into the result (harsh_sea ROV lift, N = 46, planar: 0.33 ms per
-    Jacobian against 8 us per right-hand side), where here each element is differentiated once with respect to its
-    own 4 dim inputs.
+    its cost: AD of the assembled function seeds a direction per colour of the block-tridiagonal pattern (12 in the
+    plane) through every element and copies the result's nonzeros out of them, where here each element is
+    differentiated once with respect to its own 4 dim inputs (the costs: :func:`cablesys.time_domain.integrators.
+    kernel_dae_functions`).
 
     Parameters
     ----------

@@ -215,8 +215,10 @@ def kernel_dae_functions(model: CableModel, scaled: bool) -> list:
 
     CasADi's AD of the whole mapped DAE (:func:`cablesys.derivatives.state_jacobian`) is the same matrix to rounding
     but costs ~40 right-hand sides (12 forward directions through every element, then nonzero copies into the
-    result; harsh_sea ROV lift, N = 46, planar: 0.33 ms against 33 us per Jacobian, 1.4-1.8 MB of C against 0.18 MB).
+    result) and ten times the C.
     """
+    # harsh_sea ROV lift, planar, CVODES BDF2: N = 46, 333 us per Jacobian by AD of the mapped DAE (48 % of a run),
+    # 29 us by the chain rule; 1.84 MB of C against 0.18 MB (N = 23: 1.40 / 0.16 MB)
     f = relative_time_dae(model, False, scaled, kernel=True)
     return [f, relative_time_jacobian(model, f, scaled)]
 
