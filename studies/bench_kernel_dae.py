@@ -38,14 +38,14 @@ def measure(n: int, duration: float) -> dict:
     from cablesys.time_domain import IntegratorSettings, Simulator
     from cablesys.time_domain.dae import relative_time_dae
     from cablesys.time_domain.initial import initial_state
-    from cablesys.time_domain.integrators import kernel_dae
+    from cablesys.time_domain.integrators import kernel_dae, kernel_dae_functions
 
     scene = cablesys.load_scene(ROOT / "cablesys" / "data" / "heave_300m.toml")
     sc = rung_scene(scene, "segmented", n)
     model = build_rung(scene, "segmented", n)
     row = {"segments": n, "kernel_dae": kernel_dae(model, implicit=False)}
     row["c_bytes_elementwise"] = len(generate([relative_time_dae(model, False, True)], jacobians=("x", "z")))
-    row["c_bytes_kernel"] = len(generate([relative_time_dae(model, False, True, kernel=True)], jacobians=("x", "z")))
+    row["c_bytes_kernel"] = len(generate(kernel_dae_functions(model, True), jacobians=False))
     p = model.parameters(sc)
     x0 = initial_state(sc, model, p)
     times = np.linspace(0.0, duration, int(duration * 4) + 1)

@@ -340,23 +340,29 @@ def test_stored_segmented_model_keeps_every_function(cache, monkeypatch):
     assert np.array_equal(np.array(second.accel(q, qd, e, p)), np.array(first.accel(q, qd, e, p)))
 
 
-def test_large_segmented_models_compile_their_element_kernel_by_default(cache):
+def test_large_segmented_models_compile_their_element_kernel_by_default(cache, monkeypatch):
     """simulate() compiles the element-by-element code up to COMPILE_MAX_ELEMENTS elements; above, gcc's minutes
     and gigabytes over it are not spent: the explicit-form DAE is compiled from the mapped element kernel (one
     library, :func:`~cablesys.time_domain.integrators.kernel_dae`), and the implicit form, which has no kernel,
-    runs in the VM (the same rule as the ladder's)."""
+    runs in the VM (the same rule as the ladder's). The output functions are compiled while their C is predicted
+    small (HELPERS_MAX_C_BYTES), else they stay in the VM."""
     from cablesys.ladder.rungs import with_segments
     from cablesys.scene import dale_scene
-    from cablesys.time_domain import simulate
+    from cablesys.time_domain import integrators, simulate
     from cablesys.time_domain.integrators import COMPILE_MAX_ELEMENTS
     scene = dale_scene().with_numerics(duration=0.1, output_step=0.05)
     big = with_segments(scene, COMPILE_MAX_ELEMENTS + 1)
+    limit = integrators.HELPERS_MAX_C_BYTES
+    monkeypatch.setattr(integrators, "HELPERS_MAX_C_BYTES", 0)      # outputs predicted too large: the VM
     implicit = simulate(big, method="idas")
     assert implicit.success and implicit.stats["compiled"] is False
     assert not list(cache_dir().glob("*.so"))                  # nothing was handed to the compiler
     explicit = simulate(big, method="cvodes")
     assert explicit.success and explicit.stats["compiled"] is True
-    assert len(list(cache_dir().glob("*.so"))) == 1            # the kernel DAE alone (outputs stay in the VM)
+    assert len(list(cache_dir().glob("*.so"))) == 1            # the kernel DAE alone (outputs in the VM)
+    monkeypatch.setattr(integrators, "HELPERS_MAX_C_BYTES", limit)
+    assert simulate(big, method="cvodes").success
+    assert len(list(cache_dir().glob("*.so"))) == 2            # and the outputs' library, predicted small
     np.testing.assert_allclose(explicit["y_b"], implicit["y_b"], rtol=1e-5)
     small = simulate(with_segments(scene, 2))
     assert small.success and small.stats["compiled"] is True
@@ -378,10 +384,10 @@ def test_the_kernel_dae_compiles_at_least_at_O1_up_to_its_cap(monkeypatch):
     assert "-O0" in compiler_command(KERNEL_O1_MAX_BYTES + 1, kernel_dae_optimization(KERNEL_O1_MAX_BYTES + 1))
 
 
-def test_the_rk_loop_of_a_large_segmented_model_compiles_its_kernel_alone(cache):
+def test_the_rk_loop_of_a_large_segmented_model_compiles_its_kernel_alone(cache, monkeypatch):
     """Past COMPILE_MAX_ELEMENTS the fixed-step RK4 loop still compiles: it steps the mapped element
-    kernel, whose C does not grow with N; the output functions, which do, stay in the VM. The compiled
-    run gives the VM run's states."""
+    kernel, whose C does not grow with N; the output functions, which do, stay in the VM once predicted past
+    HELPERS_MAX_C_BYTES (here: set to 0). The compiled run gives the VM run's states."""
     from cablesys.ladder.rungs import with_segments
     from cablesys.model import build_model
     from cablesys.scene import dale_scene
@@ -390,6 +396,8 @@ def test_the_rk_loop_of_a_large_segmented_model_compiles_its_kernel_alone(cache)
         COMPILE_MAX_ELEMENTS,
         compiled_by_default,
     )
+    from cablesys.time_domain import integrators
+    monkeypatch.setattr(integrators, "HELPERS_MAX_C_BYTES", 0)
     scene = with_segments(dale_scene().with_numerics(duration=0.02, output_step=0.01, steps_per_output=160),
                           COMPILE_MAX_ELEMENTS + 1)
     model = build_model(scene)

@@ -5,6 +5,7 @@ import math
 import sys
 from pathlib import Path
 
+import casadi as ca
 import numpy as np
 import pytest
 
@@ -106,6 +107,12 @@ def test_3d_kernel_ode_equals_the_element_by_element_ode():
         for t in (0.0, 4.2):
             a, b = (np.array(f(x, t, p)).ravel() for f in (m.ode, m.kernel_ode))
             assert np.max(np.abs(b - a)) <= 1e-12 * np.max(np.abs(a))
+    # its Jacobian by the chain rule over the elements (3 x 3 blocks) is AD of the element-by-element ode
+    xs, ts, ps = ca.SX.sym("x", m.ode.size1_in(0)), ca.SX.sym("t"), ca.SX.sym("p", m.ode.size1_in(2))
+    ad = ca.Function("ode_jac", [xs, ts, ps], [ca.jacobian(m.ode(xs, ts, ps), xs)])
+    for x in nodes._random_states(m, p, np.random.default_rng(3), 3, 1):
+        a, b = np.array(ad(x, 4.2, p)), np.array(m.kernel_jacobian(x, 4.2, p))
+        assert np.max(np.abs(b - a)) <= 1e-11 * np.max(np.abs(a))
 
 
 def test_the_element_coordinates_take_a_3d_scene_and_refuse_an_anchored_line():

@@ -1,12 +1,14 @@
 """The segmented cable's element-kernel right-hand side (cablesys.model.segmented_kernel) is the
 same function as its element-by-element ``ode``: equal to rounding on random states (positions off
 the straight line, random velocities, random times, in a current), one and two sections, and a
-compiled RK4 loop over it steps like the loop over the SX ``ode``."""
+compiled RK4 loop over it steps like the loop over the SX ``ode``; its Jacobian by the chain rule over the
+elements (``kernel_jacobian``) is AD of the element-by-element ``ode`` to rounding."""
 
 import dataclasses
 import math
 from pathlib import Path
 
+import casadi as ca
 import numpy as np
 import pytest
 
@@ -51,6 +53,34 @@ def test_kernel_ode_equals_the_element_by_element_ode(name, n):
     assert (model.loop_ode is model.kernel_ode) == (n >= KERNEL_MIN_ELEMENTS)
 
 
+def _ad_jacobian(model):
+    """d ode / d x of the element-by-element SX ode by CasADi's AD (the independent route)."""
+    x, t, p = ca.SX.sym("x", model.ode.size1_in(0)), ca.SX.sym("t"), ca.SX.sym("p", model.ode.size1_in(2))
+    return ca.Function("ode_jac", [x, t, p], [ca.jacobian(model.ode(x, t, p), x)])
+
+
+def _same_jacobian(model, scene, states):
+    """The kernel's chain-rule Jacobian against AD of the SX ode at ``states``: the same matrix to rounding, and
+    no structural nonzero outside the three-node band (the pattern the linear solver gets)."""
+    ad = _ad_jacobian(model)
+    p = model.parameters(scene)
+    for x, t in states:
+        a, b = np.array(ad(x, t, p)), model.kernel_jacobian(x, t, p)
+        assert np.max(np.abs(np.array(b) - a)) <= 1e-11 * np.max(np.abs(a))
+        n, dim = model.nq // model.dim, model.dim
+        rows, cols = b.sparsity().get_triplet()
+        node = lambda i: (i % (dim * n)) // dim    # noqa: E731 - the free node of a state index
+        assert all(abs(node(r) - node(c)) <= 1 for r, c in zip(rows, cols))
+
+
+@pytest.mark.parametrize("name", ["dale", "slack"])
+@pytest.mark.parametrize("n", [1, 4, 20])
+def test_kernel_jacobian_equals_ad_of_the_element_by_element_ode(name, n):
+    scene = _scenes()[name].replace_section(0, cable={"segments": n})
+    model = build_segmented_model(scene)
+    _same_jacobian(model, scene, _random_states(model, scene, np.random.default_rng(n), count=2))
+
+
 def test_kernel_ode_two_sections_with_a_joint_body():
     """The joint node gets the last element of the upper section, the joint body and the first element
     of the lower section (each section its own kernel)."""
@@ -65,6 +95,7 @@ def test_kernel_ode_two_sections_with_a_joint_body():
     for x, t in _random_states(model, two, np.random.default_rng(7)):
         a, b = (np.array(f(x, t, p)).ravel() for f in (model.ode, model.kernel_ode))
         assert np.max(np.abs(b - a)) <= 1e-12 * np.max(np.abs(a))
+    _same_jacobian(model, two, _random_states(model, two, np.random.default_rng(8), count=2))
 
 
 def test_rk4_loop_over_the_kernel_steps_like_the_loop_over_the_sx_ode(monkeypatch):

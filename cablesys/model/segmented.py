@@ -79,7 +79,7 @@ from .rigid_body import ORIENTATION_REST, RigidParameters, attitude, rigid_body
 from .section import SectionParameters
 from .node_terms import NodeSums
 from .segmented_element import block_solve, dot, element_inertia, element_terms, lump_force, norm
-from .segmented_kernel import kernel_ode
+from .segmented_kernel import kernel_jacobian, kernel_ode
 from .segmented_seabed import seabed_forces
 from .segmented_winch import WINCH_OUTPUTS, Payout, payout
 from .signals import CHORD_NAMES, EXO_LABELS, OUTPUT_NAMES
@@ -117,6 +117,8 @@ class SegmentedModel(CableModel):
     static_force: ca.Function | None = None   # (q, qd, e, p) -> f at rest with the seabed's static laws
                                               # (elements elastic both ways, laid-down friction); None: ``dynamics``
     kernel_ode: ca.Function | None = None     # the same ode from mapped element kernels (MX; .segmented_kernel)
+    kernel_jacobian: ca.Function | None = None   # (x, t, p) -> d kernel_ode / d x, sparse, by the chain rule over
+                                                 # the elements' AD (.segmented_kernel.kernel_jacobian)
     name: str = "segmented"
     kind: str = "segmented"                  # the model-ladder rung (integrators cap BDF at order 2 for it)
     dim: int = 2                              # coordinates per node: 2 (x, y) in the plane, 3 (x, y, z) in space
@@ -132,7 +134,7 @@ class SegmentedModel(CableModel):
         """The ``ode`` a compiled explicit loop (RK4) should evaluate: the element kernel mapped over
         the elements (:mod:`.segmented_kernel`, MX: C of constant size) from
         :data:`KERNEL_MIN_ELEMENTS` elements, else the element-by-element SX ``ode``. A copy made with
-        another ``ode`` (``dataclasses.replace``) must replace or clear ``kernel_ode`` too; one whose
+        another ``ode`` (``dataclasses.replace``) must replace or clear ``kernel_ode`` (and ``kernel_jacobian``) too; one whose
         state size no longer matches falls back to its ``ode``."""
         if (self.kernel_ode is not None and self.n_elements >= KERNEL_MIN_ELEMENTS
                 and self.kernel_ode.sparsity_in(0) == self.ode.sparsity_in(0)):
@@ -416,11 +418,12 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
               if scene.seabed is not None else None)
     # a sampled series is an MX node inside the SX physics: no kernel form of that model; the kernel
     # has no anchor, no seabed and no winch (such scenes evaluate the element-by-element ode)
-    kernel = (kernel_ode(scene, lambda n_el: drag_points(scene, n_el))
-              if S is ca.SX and not anchored and scene.seabed is None and scene.winch is None and not n_rot
-              and winch_input is None else None)
+    kernel = (S is ca.SX and not anchored and scene.seabed is None and scene.winch is None and not n_rot
+              and winch_input is None)
+    points = lambda n_el: drag_points(scene, n_el)  # noqa: E731
     return SegmentedModel(layout=layout, n_sections=n_sec, angles=scene.angles, q_labels=q_labels,
                           output_labels=tuple(labels), dynamics=dynamics, ode=ode, top=top, outputs=outputs,
                           energy=energy, cable_force=cable_force, slack_index=(), symbolic=S,
-                          segments=segs, accel=accel, kernel_ode=kernel, anchored=anchored,
+                          segments=segs, accel=accel, kernel_ode=kernel_ode(scene, points) if kernel else None,
+                          kernel_jacobian=kernel_jacobian(scene, points) if kernel else None, anchored=anchored,
                           static_force=static, dim=dim, n_rotations=n_rot, rotation_rest=rest * len(rigid))

@@ -13,7 +13,7 @@ import casadi as ca
 from ..model import CableModel
 from ..model.scales import state_scales
 
-__all__ = ["relative_time_dae"]
+__all__ = ["relative_time_dae", "relative_time_jacobian"]
 
 
 def relative_time_dae(model: CableModel, implicit: bool, scaled: bool = False, kernel: bool = False) -> ca.Function:
@@ -56,3 +56,34 @@ def relative_time_dae(model: CableModel, implicit: bool, scaled: bool = False, k
             ode = ode / S
     name = ("cablesys_dae_implicit" if implicit else "cablesys_dae") + ("_scaled" if scaled else "")
     return ca.Function(name, [s, x, z, p, u], [ode, alg, empty, empty], ca.dyn_in(), ca.dyn_out())
+
+
+def relative_time_jacobian(model: CableModel, dae: ca.Function, scaled: bool = False) -> ca.Function:
+    """``jac_<name>`` of the element-kernel DAE ``dae`` (:func:`relative_time_dae` with ``kernel``), in the signature
+    of ``dae.jacobian()`` (what ``casadi.external`` finds beside the DAE in a compiled library, and an integrator asks
+    of it), with the state block from the model's ``kernel_jacobian`` (the chain rule over the elements' AD,
+    :func:`cablesys.model.segmented_kernel.kernel_jacobian`) instead of AD of the whole mapped function:
+    d x~'/d x~ = h diag(1 / S) J(S x~) diag(S) (S = 1 unscaled). Every other block is structurally zero, as in
+    :func:`cablesys.derivatives.state_jacobian` (the explicit form has no z): a library built with it serves the
+    integrators, never parameter sensitivities."""
+    jac = model.kernel_jacobian
+    if jac is None or model.loop_ode is not model.kernel_ode:
+        raise ValueError("the model has no element-kernel Jacobian for its loop_ode")
+    ins = [ca.MX.sym(n, dae.sparsity_in(i)) for i, n in enumerate(dae.name_in())]
+    # the nominal outputs the signature passes in, unused (no nonzeros, as CasADi declares them)
+    ins += [ca.MX.sym(f"out_{n}", ca.Sparsity(*dae.size_out(i))) for i, n in enumerate(dae.name_out())]
+    s, x, p = ins[dae.name_in().index("t")], ins[dae.name_in().index("x")], ins[dae.name_in().index("p")]
+    pm, t0, h = p[:-2], p[-2], p[-1]
+    S = state_scales(model)(pm) if scaled else ca.MX.ones(x.shape[0])
+    J = jac(S * x, t0 + h * s, pm)
+    sp = J.sparsity()
+    rows, cols = sp.get_triplet()
+    # J's nonzeros times h / S_row * S_col, in J's own (column-major) order
+    block = ca.MX(sp, J.nz[:] * h * S[list(cols)] / S[list(rows)]) if scaled else h * J
+    outs, names = [], []
+    for o in range(dae.n_out()):
+        for i in range(dae.n_in()):
+            names.append(f"jac_{dae.name_out(o)}_{dae.name_in(i)}")
+            stateful = dae.name_out(o) == "ode" and dae.name_in(i) == "x"
+            outs.append(block if stateful else ca.MX(dae.numel_out(o), dae.numel_in(i)))
+    return ca.Function(f"jac_{dae.name()}", ins, outs, dae.name_in() + [f"out_{n}" for n in dae.name_out()], names)

@@ -58,7 +58,7 @@ from ..compiled import SIZE_FLAGS, Compiled, compilation_enabled, compile_functi
 from ..integration import METHODS, IntegratorMethod, resolve
 from ..model import CableModel
 from ..model.scales import state_scales
-from .dae import relative_time_dae
+from .dae import relative_time_dae, relative_time_jacobian
 from .explicit_rk import PAIRS, explicit_rk_library, fallback_settings, make_explicit_rk
 from .rkc import coefficients
 from .rkc import step as rkc_step
@@ -144,11 +144,29 @@ def compiled_by_default(model: CableModel, method=None) -> bool:
             and kernel_dae(model, implicit=False))
 
 
-def helpers_compiled(model: CableModel, settings: IntegratorSettings) -> IntegratorSettings:
+# The functions a run evaluates at the output times (helpers_compiled) past COMPILE_MAX_ELEMENTS elements: compiled
+# while their C is predicted under HELPERS_MAX_C_BYTES (their SX code grows with N), the prediction being their
+# serialized length x HELPERS_C_PER_SERIALIZED (0.25-0.28 measured on the harsh_sea ROV lift, planar, N = 23-92:
+# 0.22-0.86 MB of C; compiled.compiler_command picks the flags by the serialized length, -O1, -O0 past 1.5 MB, as
+# ladder.plan_cost predicts). Outputs per output time there: N = 23 18 us in CasADi's VM, 3 us compiled (-O1);
+# N = 46 36 us in the VM, 14 us compiled (-O0); 2400 output times, shared load: 0.05 s of a 0.45 s run at N = 46.
+# The compile (~1 s at N = 23 or 46) is once per structure.
+HELPERS_MAX_C_BYTES = 1_000_000
+HELPERS_C_PER_SERIALIZED = 0.3
+
+
+def helpers_c_bytes(functions) -> int:
+    """The predicted size (bytes) of the C of ``functions`` compiled together without Jacobians (see
+    :data:`HELPERS_C_PER_SERIALIZED`)."""
+    return int(HELPERS_C_PER_SERIALIZED * sum(len(f.serialize()) for f in functions))
+
+
+def helpers_compiled(model: CableModel, settings: IntegratorSettings, functions=None) -> IntegratorSettings:
     """``settings`` for the functions a run evaluates at the output times (slack gaps, top motion,
     outputs): compiled as the integrator is, but past :data:`COMPILE_MAX_ELEMENTS` elements only when
-    ``jit`` asks (their SX code grows with N: the outputs of 80 elements are 2.4 MB of C)."""
-    if settings.compiled and not settings.jit and int(getattr(model, "n_elements", 1)) > COMPILE_MAX_ELEMENTS:
+    ``jit`` asks or ``functions`` (those helpers) are predicted under :data:`HELPERS_MAX_C_BYTES` of C."""
+    if settings.compiled and not settings.jit and int(getattr(model, "n_elements", 1)) > COMPILE_MAX_ELEMENTS and (
+            functions is None or helpers_c_bytes(functions) > HELPERS_MAX_C_BYTES):
         return dataclasses.replace(settings, compiled=False)
     return settings
 
@@ -179,20 +197,39 @@ def dae_function(model: CableModel, implicit: bool, compiled: bool = True, scale
     def build():
         # the integrators need the state blocks of the Jacobian only (d/dp would grow with the scene's
         # parameter count); never use this library for parameter sensitivities
-        f = relative_time_dae(model, implicit, scaled, kernel=kernel)
-        size = len(generate([f], jacobians=("x", "z"))) if kernel else None   # MX serializes shorter than its C
-        return compile_functions([f], jacobians=("x", "z"), enabled=compiled, size=size,
-                                 optimization=kernel_dae_optimization(size) if kernel else None)
+        if kernel:
+            functions = kernel_dae_functions(model, scaled)
+            size = len(generate(functions, jacobians=False))    # MX serializes shorter than its C
+            comp = compile_functions(functions, jacobians=False, enabled=compiled, size=size,
+                                     optimization=kernel_dae_optimization(size))
+            name = functions[0].name()                          # the DAE; its Jacobian is found by casadi.external
+            return dataclasses.replace(comp, functions={name: comp.functions[name]})
+        return compile_functions([relative_time_dae(model, implicit, scaled)], jacobians=("x", "z"), enabled=compiled)
     return model.derive(key, build)
 
 
-# The element-kernel DAE (kernel_dae) is loops over the elements plus its Jacobian's nonzero copies: its C grows
-# with N (harsh_sea ROV lift, planar: N = 28 1.49 MB, N = 56 2.05 MB) past compiled.SIZE_FLAGS's -O1 limit, and at
-# -O0 every right-hand side and Jacobian costs 2-3x more (N = 56, CVODES BDF2, rtol 1e-5, 200 s: 105-115 us per step
-# at -O0, 45 us at -O1; right-hand side 29-52 vs 8.8 us, Jacobian 1.0-1.8 ms vs 0.43 ms; studies/bench_vs_moordyn.py
-# notes "harsh_sea_profile"), for a compile of 11.8 s instead of 4.8 s (once per structure, cached). Up to
-# KERNEL_O1_MAX_BYTES of C it is compiled at least at -O1 (compiled.COMPILE_S_PER_MB: ~4.5 s per MB); past it the size
-# rule holds (the compiler's memory).
+def kernel_dae_functions(model: CableModel, scaled: bool) -> list:
+    """What :func:`dae_function` compiles for the element-kernel DAE (:func:`kernel_dae`): the DAE
+    (:func:`.dae.relative_time_dae`) and its Jacobian ``jac_<name>`` by the chain rule over the elements
+    (:func:`.dae.relative_time_jacobian`), under the name ``casadi.external`` looks for beside the DAE.
+
+    CasADi's AD of the whole mapped DAE (:func:`cablesys.derivatives.state_jacobian`) is the same matrix to rounding
+    but costs ~40 right-hand sides (12 forward directions through every element, then nonzero copies into the
+    result) and ten times the C.
+    """
+    # harsh_sea ROV lift, planar, CVODES BDF2: N = 46, 333 us per Jacobian by AD of the mapped DAE (48 % of a run),
+    # 29 us by the chain rule; 1.84 MB of C against 0.18 MB (N = 23: 1.40 / 0.16 MB)
+    f = relative_time_dae(model, False, scaled, kernel=True)
+    return [f, relative_time_jacobian(model, f, scaled)]
+
+
+# The element-kernel DAE (kernel_dae) is loops over the elements plus, with AD's Jacobian, that Jacobian's nonzero
+# copies, whose C grew with N (harsh_sea ROV lift, planar: N = 28 1.49 MB, N = 56 2.05 MB) past compiled.SIZE_FLAGS's
+# -O1 limit, and at -O0 every right-hand side and Jacobian cost 2-3x more (N = 56, CVODES BDF2, rtol 1e-5, 200 s:
+# 105-115 us per step at -O0, 45 us at -O1; studies/bench_vs_moordyn.py notes "harsh_sea_profile"). With the chain
+# rule's Jacobian (kernel_dae_functions) the C stays near 0.2 MB (N = 23: 0.16 MB, N = 92: 0.21 MB), -O2 by the size
+# rule; up to KERNEL_O1_MAX_BYTES of C it is compiled at least at -O1 (compiled.COMPILE_S_PER_MB: ~4.5 s per MB);
+# past it the size rule holds (the compiler's memory).
 KERNEL_O1_MAX_BYTES = 6_000_000
 
 
@@ -243,7 +280,7 @@ def compiled_dae(model: CableModel, settings: IntegratorSettings) -> Compiled:
 
 class ScaledIntegrator:
     """A CasADi integrator of the scaled DAE seen in the physical states: called like the
-    integrator (``F(x0=..., p=...)`` -> ``{"xf": ..., "zf": ...}``, positional (x0, p) too), it
+    integrator (``F(x0=..., p=...)`` -> ``{"xf": ndarray, "zf": ndarray}``, positional (x0, p) too), it
     divides x0 by S(p) and multiplies the outputs back, so callers never see x~.
     ``stats()`` and every other attribute are the wrapped integrator's (its step counts).
 
@@ -272,9 +309,11 @@ class ScaledIntegrator:
             kw["z0"] = np.asarray(kw["z0"], dtype=float).ravel() / S[self.nq:]
         out = self.integrator(**kw)
         out = dict(out)
-        out["xf"] = ca.DM(np.array(out["xf"]) * S[:, None])
+        # numpy, as the explicit driver's (every caller takes np.array of it; a DM round trip cost ~20 us per output
+        # time of a 184-state run)
+        out["xf"] = np.array(out["xf"]) * S[:, None]
         if "zf" in out and out["zf"].numel():
-            out["zf"] = ca.DM(np.array(out["zf"]) * S[self.nq:, None])
+            out["zf"] = np.array(out["zf"]) * S[self.nq:, None]
         return out
 
     def __getattr__(self, name):

@@ -109,8 +109,9 @@ class Simulator(ev.EventLocator):
         g2 = ca.mtimes(ca.jacobian(g1, x), xdot) + ca.jacobian(g1, t)
         self._gap_and_rate = ca.Function("gap_rate", [x, t, p], [g, g1])
         self._gap_rates = ca.Function("gap_rates", [x, t, p], [g, g1, g2])
+        helpers = [self._gap_and_rate, model.top, model.outputs]
         self._gap_and_rate, self._top_c, self._outputs_c = compiled_functions(   # one cached library
-            model, helpers_compiled(model, self.settings), [self._gap_and_rate, model.top, model.outputs])
+            model, helpers_compiled(model, self.settings, helpers), helpers)
         # the same functions over many output times, numpy in and out (no DM conversion, no map per call)
         self._gap_cols, self._top_cols, self._outputs_cols = (
             Columns(f) for f in (self._gap_and_rate, self._top_c, self._outputs_c))
