@@ -46,3 +46,23 @@ def test_run_command_prints_the_prediction(tmp_path, capsys):
     import json
     pred = json.loads((tmp_path / "o" / "summary.json").read_text())["model"]["prediction"]
     assert pred["what"] == "wang" and pred["steps"] > 0
+
+
+@pytest.mark.parametrize("anchored", [False, True])
+def test_past_the_element_rule_the_prediction_compiles_as_the_run_does(anchored, monkeypatch):
+    # before the build, the prediction's "compiled" (plan_cost.kernel_compiled) must be what the built model's run
+    # does (integrators.compiled_by_default): past COMPILE_MAX_ELEMENTS the node model's element kernel compiles the
+    # DAE of an adaptive ODE-form method (the run is then ~10x cheaper per step than in the VM), an anchored line has
+    # no kernel and runs in the VM
+    from cablesys.model import build_model
+    from cablesys.scene.ends import Anchor
+    from cablesys.time_domain.integrators import COMPILE_MAX_ELEMENTS, compiled_by_default
+    monkeypatch.setenv("CABLESYS_COMPILE", "1")          # as a user's run (the suite runs in the VM); nothing compiles
+    n = COMPILE_MAX_ELEMENTS + 4
+    scene = default_scene().replace_section(cable={"segments": n})
+    if anchored:
+        scene = scene.replace(anchor=Anchor(x=0.0, y=scene.sections[0].cable.length * 0.99))
+    for method in ("cvodes-bdf2", "rk23"):
+        assert plan_cost.kernel_compiled(scene, "segmented", method) == compiled_by_default(build_model(scene), method), \
+            method
+    assert not plan_cost.kernel_compiled(scene, "quasi-static", "cvodes-bdf2")

@@ -46,7 +46,8 @@ Compile time (a model compiled and not yet in the cache, :func:`compile_plan`): 
 integrator's (the DAE; with its state Jacobian for an implicit method) and its outputs', and the quasi-static
 segmented cable stepped by the explicit pair a third, its stiffness guard's probe; the C of each is predicted from
 the operations (bytes of C per operation, measured on the same cold-cache builds: outputs 14-21, an explicit DAE
-7-10, the guard's probe 40, an implicit node-model DAE with its banded Jacobian 80, the quasi-static cable's dense
+7-10, the guard's probe 40, an implicit node-model DAE with its banded Jacobian 80 (past COMPILE_MAX_ELEMENTS the
+DAE and Jacobian from the element kernel: 7, the harsh-sea ROV lift at N = 46), the quasi-static cable's dense
 one 290 at N = 14, i.e. about 20 N), its flags chosen by size as :func:`cablesys.compiled.compiler_command` does,
 and its time is :func:`cablesys.compiled.predicted_compile_s` (the same prediction the compile's own progress
 lines give). The slack extrapolation compiles, per run of its plan, the outputs and an RK4 interval of its N.
@@ -65,6 +66,9 @@ import logging
 import math
 
 from ..compiled import SIZE_FLAGS, compiles, predicted_compile_s
+from ..integration import METHODS, resolve
+from ..time_domain.explicit_rk import PAIRS
+from ..time_domain.integrators import COMPILE_MAX_ELEMENTS, FIXED_LOOPS
 from ..scene import Scene
 from .choice import model_operations
 from .rung.base import cables
@@ -98,6 +102,7 @@ OUTPUT_BYTES_PER_OP = {"quasi-static": 20.0, "other": 13.0}
 EXPLICIT_BYTES_PER_OP = 10.0
 PROBE_BYTES_PER_OP = 40.0
 IMPLICIT_BYTES_PER_OP = 80.0
+KERNEL_DAE_BYTES_PER_OP = 7.0       # the node model's DAE and Jacobian from its element kernel (kernel_compiled)
 QS_IMPLICIT_BYTES_PER_ELEMENT = 20.0
 RK4_INTERVAL_BYTES = 30_000.0                           # the extrapolation's compiled RK4 interval (0.03 MB seen)
 C_PER_SERIALIZED = {"outputs": 0.3, "explicit": 0.3, "implicit": 1.6, "rk4": 1.0}
@@ -200,11 +205,13 @@ def compile_seconds(libraries) -> float:
     return float(sum(predicted_compile_s(b, _flags(b, kind)) for kind, b in libraries))
 
 
-def compile_plan(operations: float, name: str, method: str, segments: int) -> tuple:
+def compile_plan(operations: float, name: str, method: str, segments: int, kernel: bool = False) -> tuple:
     """The libraries ((kind, predicted bytes of C) each) a run of ``name`` at ``segments`` stepped by ``method``
-    compiles (the module docstring)."""
+    compiles (the module docstring; ``kernel``: its DAE is the element kernel's, :func:`kernel_compiled`)."""
     libs = [("outputs", OUTPUT_BYTES_PER_OP["quasi-static" if name == "quasi-static" else "other"] * operations)]
-    if method in EXPLICIT:
+    if kernel and method not in FIXED_LOOPS:
+        libs.append(("implicit", KERNEL_DAE_BYTES_PER_OP * operations))
+    elif method in EXPLICIT:
         libs.append(("explicit", EXPLICIT_BYTES_PER_OP * operations))
         if name == "quasi-static" and segments > 1:
             libs.append(("explicit", PROBE_BYTES_PER_OP * operations))
@@ -263,7 +270,8 @@ def predict(scene: Scene, choice, settings, guard_decides: bool = False) -> Pred
         steps, run_s = int(math.ceil(math.sqrt(steps * steps_i))), math.sqrt(run_s * run_i)
         method, how = f"{method} or cvodes-bdf2", f"{how}; the middle of both methods, the stiffness guard decides"
     else:
-        compile_s = compile_seconds(compile_plan(ops, choice.name, method, n)) if compiled else 0.0
+        kernel = elements > COMPILE_MAX_ELEMENTS and kernel_compiled(sc, choice.name, method)
+        compile_s = compile_seconds(compile_plan(ops, choice.name, method, n, kernel)) if compiled else 0.0
     return Prediction(what, elements, ops, method, steps, how, compiled, compile_s, memory, run_s)
 
 
@@ -306,6 +314,22 @@ def check_budget(scene: Scene, prediction: Prediction, budget_s: float | None = 
         f"would fit: {'; '.join(cheaper)}")
 
 
+def kernel_compiled(scene_run: Scene, name: str, method: str) -> bool:
+    """Whether a run of rung ``name`` on ``scene_run`` past COMPILE_MAX_ELEMENTS elements is compiled all the same,
+    before its model is built: the node model ("segmented") has its element kernel where the scene has no anchor, no
+    seabed, no winch and no rigid body (:func:`cablesys.model.segmented.build_segmented_model`), and its fixed-step
+    loop or an adaptive method on its ODE form then compiles the kernel's DAE
+    (:func:`cablesys.time_domain.integrators.compiled_by_default`); the explicit pairs and the implicit methods run in
+    the VM."""
+    if name != "segmented" or scene_run.anchor is not None or scene_run.seabed is not None \
+            or getattr(scene_run, "winch", None) is not None or getattr(scene_run, "system", None) is not None \
+            or any(s.body.is_rigid for s in scene_run.sections):
+        return False
+    if method in FIXED_LOOPS:
+        return True
+    return method not in PAIRS and method in METHODS and not resolve(method).implicit
+
+
 def for_run(scene: Scene, choice, tol, kw: dict) -> Prediction | None:
     """The :class:`Prediction` of the ladder's run of ``choice`` with the caller's options ``kw`` (``method``,
     ``rtol``, ``atol``, ``times``): the settings :func:`.run_settings.integrator_settings` gives it, the quasi-static
@@ -319,7 +343,8 @@ def for_run(scene: Scene, choice, tol, kw: dict) -> Prediction | None:
     elements = sum(c.segments for c in cables(sc))
     s = integrator_settings(sc, tol, elements, method=kw.get("method"), rtol=kw.get("rtol"), atol=kw.get("atol"),
                             rung=None, stated=stated_room(choice))
-    s = dataclasses.replace(s, compiled=bool(s.compiled and compiles()))
+    s = dataclasses.replace(s, compiled=bool((s.compiled or kernel_compiled(sc, choice.name, str(s.method)))
+                                             and compiles()))
     guessed = choice.name == "quasi-static" and kw.get("method") is None and s.method not in FIXED_STEP and s.compiled
     if guessed:
         s = dataclasses.replace(s, method=QUASI_STATIC_METHOD)     # uncompiled, the guard falls back to CVODES
