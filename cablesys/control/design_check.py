@@ -31,16 +31,16 @@ def resimulate_design(problem: TimeDesignProblem, theta) -> dict:
     """
     from ..time_domain import simulate
     scene = problem.designed_scene(theta)
-    # the design's model: the node model's plain form (a chain's at N = 1 per section too, where build_model would
-    # build Wang's chain), else Wang's (build_model's default); per seed, whose sea may realise other sinusoids
-    node = isinstance(problem.model, NodeWinchModel)
+    # the design's model without its winch: build_model's (the stored model), except a chain's node model at N = 1
+    # per section, for which build_model would build Wang's chain; per seed, whose sea may realise other sinusoids
+    node_n1 = isinstance(problem.model, NodeWinchModel) and problem.model.segments == 1
     k = problem.sections
     low = section_suffix(k, k - 1)
     per_seed, worst, variances = {}, 0.0, []
     for s in problem.seeds:
         sea = dataclasses.replace(scene.top_motion.spectrum, seed=int(s))
         seeded = scene.replace(top_motion=dataclasses.replace(scene.top_motion, spectrum=sea))
-        run = simulate(seeded, model=build_segmented_model(seeded) if node else None)
+        run = simulate(seeded, model=build_segmented_model(seeded) if node_n1 else None)
         if not run.success:
             per_seed[s] = {"success": False, "message": run.message}
             worst = math.inf

@@ -23,7 +23,7 @@ import math
 import numpy as np
 
 from ..errors import ParameterError, require_positive
-from ..model.design_variables import bound_pairs, current_values, section_variables
+from ..model.design_variables import bound_pairs, current_values, designed_scene, kind, linear_map, section_variables
 from ..model.params import ParameterLayout
 from ..model.top_motion import top_motion_function
 from .kernels import output_labels
@@ -46,7 +46,7 @@ def series_names(sections: int) -> tuple:
 
 def unit(name: str) -> str:
     """The unit of the design variable ``name`` (:data:`UNITS`)."""
-    return next(u for k, u in sorted(UNITS.items(), key=lambda kv: -len(kv[0])) if name.startswith(k))
+    return UNITS[kind(name)]
 
 
 def symbol(name: str, single: bool = False) -> str:
@@ -171,42 +171,23 @@ class TimeDesignProblem:
     def designed_scene(self, theta):
         """The scene (of the design's model) with the variables set to ``theta`` (each of its targets, its factor
         times the value)."""
-        scene = self.scene
-        for var, value in zip(self.variables, theta):
-            for label, factor in var.targets:
-                i, part, field = _target(label)
-                scene = scene.replace_section(i, **{part: {field: float(value) * factor}})
-        return scene
-
-
-def _target(label: str) -> tuple:
-    """(section index, "cable" or "body", field) of a layout label ``sections[i].cable.ae`` or ``cable.ae``."""
-    parts = label.split(".")
-    i = int(parts[0][len("sections["):-1]) if parts[0].startswith("sections[") else 0
-    return i, parts[-2], parts[-1]
+        return designed_scene(self.scene, self.variables, theta)
 
 
 def selection(problem: TimeDesignProblem):
     """(base, B): p(theta) = base + B theta, the nominal parameters with the variables' targets replaced."""
     hp = problem.heave
-    lay = hp.model.layout
-    base = np.array(hp.p, float)
-    B = np.zeros((len(base), len(problem.variables)))
-    for j, var in enumerate(problem.variables):
-        for label, factor in var.targets:
-            base[lay.index(label)] = 0.0
-            B[lay.index(label), j] = factor
-    return base, B
+    return linear_map(hp.model.layout, hp.p, problem.variables)
 
 
 def _corners(variables) -> list:
     """The designs at the joint corners of the bounds' box: every AE at its lower or upper bound together, every
     C_I, the intermediate mass (:func:`design_substeps`)."""
-    kinds = sorted({v.name.rstrip("_0123456789") for v in variables})
+    kinds = sorted({kind(v.name) for v in variables})
     out = []
     for ends in itertools.product((0, 1), repeat=len(kinds)):
         side = dict(zip(kinds, ends))
-        out.append([(v.lower, v.upper)[side[v.name.rstrip("_0123456789")]] for v in variables])
+        out.append([(v.lower, v.upper)[side[kind(v.name)]] for v in variables])
     return out
 
 
@@ -216,13 +197,10 @@ def design_substeps(model, p, c, dt: float, variables) -> tuple:
     box (:func:`_corners`: the axial modes stiffen with AE, the Voigt damping's real eigenvalues grow with C_I, a
     lighter body raises the frequencies; each section's modes follow its own AE and C_I, so every section at its
     stiffest together bounds them), each at its own rest state: a roll-out stable for every candidate design."""
-    lay = model.layout
+    base, B = linear_map(model.layout, p, variables)
     lam = 0.0
     for values in _corners(variables):
-        pk = np.array(p, float)
-        for var, value in zip(variables, values):
-            for label, factor in var.targets:
-                pk[lay.index(label)] = value * factor
+        pk = base + B @ np.asarray(values, float)
         lam = max(lam, fastest_mode(model, model_rest_state(model, pk, c), pk, c))
     n = max(2, math.ceil(dt * lam / RK4_STEP_LAMBDA))
     assert dt / n * lam <= RK4_STABILITY

@@ -94,13 +94,9 @@ def write_figures(scene, settings, result, outdir) -> list[str]:
 
 def designed_scene(scene, settings, result):
     """``scene`` with the design's values: each variable's value times its factor at each of its parameter labels."""
-    from ..sweeps.values import apply_values
+    from ..model.design_variables import designed_scene as with_values
     from .problem import variables
-    values = {}
-    for var, v in zip(variables(scene, settings), result.values):
-        for label, factor in var.targets:
-            values[label] = float(v) * float(factor)
-    return apply_values(scene, values, "run")[0]
+    return with_values(scene, variables(scene, settings), result.values)
 
 
 def baseline(scene, settings) -> float:

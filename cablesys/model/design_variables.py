@@ -84,13 +84,44 @@ def section_variables(scene, ae_bounds, damping_bounds, intermediate_mass_bounds
     return tuple(out)
 
 
+def kind(name: str) -> str:
+    """A variable's kind without its section number: ``ae``, ``internal_damping`` or ``intermediate_mass``."""
+    return name.rstrip("_0123456789")
+
+
+def target(label: str) -> tuple:
+    """(section index, "cable" or "body", field) of a variable's layout label, ``sections[i].cable.ae`` in a chain or
+    ``cable.ae`` in one section."""
+    parts = label.split(".")
+    i = int(parts[0][len("sections["):-1]) if parts[0].startswith("sections[") else 0
+    return i, parts[-2], parts[-1]
+
+
 def current_values(scene, variables_: tuple) -> np.ndarray:
     """The scene's own values of the decision variables (first target of each)."""
-    n = len(scene.sections)
     vals = []
     for v in variables_:
-        label = v.targets[0][0]
-        sec = scene.sections[0] if n == 1 else scene.sections[int(label.split("[")[1].split("]")[0])]
-        obj = sec.cable if ".cable." in f".{label}" else sec.body
-        vals.append(getattr(obj, label.split(".")[-1]))
+        i, part, field = target(v.targets[0][0])
+        vals.append(getattr(getattr(scene.sections[i], part), field))
     return np.array(vals, float)
+
+
+def designed_scene(scene, variables_: tuple, values):
+    """``scene`` with the variables at ``values``: each target field set to the value times its factor."""
+    for var, value in zip(variables_, values):
+        for label, factor in var.targets:
+            i, part, field = target(label)
+            scene = scene.replace_section(i, **{part: {field: float(value) * float(factor)}})
+    return scene
+
+
+def linear_map(layout, p, variables_: tuple) -> tuple:
+    """(base, B): the parameter vector p(theta) = base + B theta of the variables' values theta, ``p`` with every
+    target zeroed in ``base`` and its factor in B (``layout``: the model's :class:`.params.ParameterLayout`)."""
+    base = np.array(p, float)
+    B = np.zeros((len(base), len(variables_)))
+    for j, var in enumerate(variables_):
+        for label, factor in var.targets:
+            base[layout.index(label)] = 0.0
+            B[layout.index(label), j] = factor
+    return base, B
