@@ -66,10 +66,9 @@ import logging
 import math
 
 from ..compiled import SIZE_FLAGS, compiles, predicted_compile_s
-from ..integration import METHODS, resolve
-from ..time_domain.explicit_rk import PAIRS
-from ..time_domain.integrators import COMPILE_MAX_ELEMENTS, FIXED_LOOPS
+from ..model.segmented import has_kernel
 from ..scene import Scene
+from ..time_domain.integrators import COMPILE_MAX_ELEMENTS, FIXED_LOOPS, kernel_method
 from .choice import model_operations
 from .rung.base import cables
 from .rungs import rung_scene
@@ -316,18 +315,12 @@ def check_budget(scene: Scene, prediction: Prediction, budget_s: float | None = 
 
 def kernel_compiled(scene_run: Scene, name: str, method: str) -> bool:
     """Whether a run of rung ``name`` on ``scene_run`` past COMPILE_MAX_ELEMENTS elements is compiled all the same,
-    before its model is built: the node model ("segmented") has its element kernel where the scene has no anchor, no
-    seabed, no winch and no rigid body (:func:`cablesys.model.segmented.build_segmented_model`), and its fixed-step
-    loop or an adaptive method on its ODE form then compiles the kernel's DAE
-    (:func:`cablesys.time_domain.integrators.compiled_by_default`); the explicit pairs and the implicit methods run in
-    the VM."""
-    if name != "segmented" or scene_run.anchor is not None or scene_run.seabed is not None \
-            or getattr(scene_run, "winch", None) is not None or getattr(scene_run, "system", None) is not None \
-            or any(s.body.is_rigid for s in scene_run.sections):
-        return False
-    if method in FIXED_LOOPS:
-        return True
-    return method not in PAIRS and method in METHODS and not resolve(method).implicit
+    known before its model is built: the node model ("segmented") of a scene with its element-kernel form
+    (:func:`cablesys.model.segmented.has_kernel`) stepped by a method that steps that kernel compiled
+    (:func:`cablesys.time_domain.integrators.kernel_method`), as
+    :func:`cablesys.time_domain.integrators.compiled_by_default` decides once it is built."""
+    return (name == "segmented" and getattr(scene_run, "system", None) is None and has_kernel(scene_run)
+            and kernel_method(method))
 
 
 def for_run(scene: Scene, choice, tol, kw: dict) -> Prediction | None:

@@ -149,6 +149,13 @@ class SegmentedModel(CableModel):
 KERNEL_MIN_ELEMENTS = 10
 
 
+def has_kernel(scene: Scene) -> bool:
+    """Whether the segmented model of ``scene`` has its element-kernel form (:mod:`.segmented_kernel`): no anchor, no
+    seabed, no winch and no rigid body (such scenes evaluate the element-by-element ``ode``)."""
+    return (scene.anchor is None and scene.seabed is None and scene.winch is None
+            and not any(s.body.is_rigid for s in scene.sections))
+
+
 def drag_points(scene: Scene, n_el: int) -> int:
     """Drag points per element: ``numerics.drag_segments`` shared among the section's elements (at
     least one, the element mid-point); N = 1 uses the 2-DOF model's points exactly."""
@@ -416,10 +423,8 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     cable_force = ca.Function("cable_force", [x, p], [ca.SX(0, 1)], ["x", "p"], ["gap"])
     static = (ca.Function("static_force", [q, qd, e, p, *zi], [f_static], ["q", "qd", "e", "p", *zn], ["f"])
               if scene.seabed is not None else None)
-    # a sampled series is an MX node inside the SX physics: no kernel form of that model; the kernel
-    # has no anchor, no seabed and no winch (such scenes evaluate the element-by-element ode)
-    kernel = (S is ca.SX and not anchored and scene.seabed is None and scene.winch is None and not n_rot
-              and winch_input is None)
+    # a sampled series is an MX node inside the SX physics: no kernel form of that model
+    kernel = S is ca.SX and has_kernel(scene) and winch_input is None
     points = lambda n_el: drag_points(scene, n_el)  # noqa: E731
     return SegmentedModel(layout=layout, n_sections=n_sec, angles=scene.angles, q_labels=q_labels,
                           output_labels=tuple(labels), dynamics=dynamics, ode=ode, top=top, outputs=outputs,

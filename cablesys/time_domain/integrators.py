@@ -135,13 +135,17 @@ def compiled_by_default(model: CableModel, method=None) -> bool:
     """
     if int(getattr(model, "n_elements", 1)) <= COMPILE_MAX_ELEMENTS:
         return True
-    if getattr(model, "kernel_ode", None) is None:
+    if getattr(model, "kernel_ode", None) is None or not kernel_method(method):
         return False
-    if method in FIXED_LOOPS:
-        return True
-    # an adaptive method integrating the ODE form: the DAE and its Jacobian from the element kernel (kernel_dae)
-    return (method is not None and method not in PAIRS and not resolve(method).implicit
-            and kernel_dae(model, implicit=False))
+    # the fixed-step loop, or an adaptive method on the ODE form: the DAE and its Jacobian from the element kernel
+    return method in FIXED_LOOPS or kernel_dae(model, implicit=False)
+
+
+def kernel_method(method) -> bool:
+    """Whether ``method`` steps the segmented model's element kernel compiled past :data:`COMPILE_MAX_ELEMENTS`
+    elements (:func:`compiled_by_default`): the fixed-step loops, and the adaptive methods on the explicit ODE form;
+    not the compiled explicit pairs (:data:`.explicit_rk.PAIRS`) nor the implicit (DAE-form) methods."""
+    return method in FIXED_LOOPS or (method is not None and method not in PAIRS and not resolve(method).implicit)
 
 
 # The functions a run evaluates at the output times (helpers_compiled) past COMPILE_MAX_ELEMENTS elements: compiled
