@@ -55,7 +55,8 @@ import numpy as np
 from ..errors import ParameterError
 from ..scene import Scene
 from ..scene.labels import section_suffix
-from .params import ParameterLayout, section_prefix
+from .element_coordinates import hanging_stretch, zero_tension_lengths
+from .params import ParameterLayout
 from .segmented import build_segmented_model
 from .winch import WINCH_OUTPUTS, WinchModel
 
@@ -94,6 +95,7 @@ class NodeWinchModel(WinchModel):
 
     segments: int = 1
     sections: int = 1
+    hanging: ca.Function | None = None      # (p) -> (h_0, u) of every element, top first: the rest state's start
     output_labels: tuple = NODE_WINCH_OUTPUTS
     floor_output: str = "tension_least"
     name: str = "segmented"
@@ -184,34 +186,25 @@ def build_node_winch_model(scene: Scene, *, compensator: bool = False) -> NodeWi
                           ["x", "v", "t", "p", "c"], ["y"])
     return NodeWinchModel(layout=seg.layout, compensator=compensator, q_labels=q_labels, ode=ode, outputs=outputs,
                           accel=accel, top=top, outputs_e=out_e, segments=int(seg.segments[0]), sections=k_sec,
-                          output_labels=out_labels)
+                          output_labels=out_labels, hanging=ca.Function(
+                              "hanging", [p], [ca.vertcat(*zero_tension_lengths(scene, seg.layout)),
+                                               hanging_stretch(scene, seg.layout)(p)], ["p"], ["h0", "u"]))
 
 
 def rest_state(model: NodeWinchModel, p, c=None, length: float | None = None) -> np.ndarray:
     """The state at rest: top still (e = 0), w = 0, zero-tension length ``length`` of the first section (default l_0
     of Wang 1971 eq. 1; a chain's lower sections at their own l_0), the node positions solving q'' = 0 by Newton's
-    method with a line search (CasADi ``rootfinder``, KINSOL) from the straight vertical line stretched by the weight
-    hanging below each element's middle (eq. 1, 12)."""
+    method with a line search (CasADi ``rootfinder``, KINSOL) from the straight vertical line of zero-tension element
+    lengths stretched by the weight hanging below each element's middle (``hanging``:
+    :func:`.element_coordinates.zero_tension_lengths` and :func:`.element_coordinates.hanging_stretch`, eq. 1, 12)."""
     p = np.asarray(p, float)
     c = np.zeros(4) if c is None else np.asarray(c, float)
-    lay, k_sec, n = model.layout, model.sections, model.segments
-
-    def num(i, name):
-        return p[lay.index(section_prefix(k_sec, i) + name)]
-
-    l0 = [num(i, "cable.length") * (1.0 - num(i, "cable.tension_ref") / num(i, "cable.ae")) for i in range(k_sec)]
-    L = l0[0] if length is None else float(length)
-    l0[0] = L
-    # the elements top to bottom: (unstretched length, weight in water, AE), and each section's body below its last
-    elems, below = [], 0.0
-    for i in reversed(range(k_sec)):
-        below += num(i, "body.weight")
-        w, ae = num(i, "cable.weight_per_length") * l0[i] / n, num(i, "cable.ae")
-        for _ in range(n):
-            elems.append((l0[i] / n, below + 0.5 * w, ae))          # the tension at the element's middle
-            below += w
-    elems.reverse()
-    y = np.cumsum([le * (1.0 + t / ae) for le, t, ae in elems])     # node j's depth below the top
+    h0, u = (np.array(v, float).ravel() for v in model.hanging(p))
+    n = model.segments
+    if length is not None:
+        h0[:n] = float(length) / n
+    L = float(np.sum(h0[:n]))
+    y = np.cumsum(h0 + u)                                          # node j's depth below the top
     guess = np.concatenate([np.ravel(np.column_stack([np.zeros(y.size), y])), np.zeros(model.nq - 2 * y.size)])
     qs = ca.SX.sym("q", model.nq)
     wz = ca.DM([L, 0, 0, 0])
