@@ -46,6 +46,7 @@ import os
 import time
 
 import numpy as np
+from _common import BDF_RTOLS
 from _moordyn import largest_stable_dt, moordyn_input, moordyn_static, run_moordyn, seabed_options, volume_diameter
 
 from cablesys.model import build_model
@@ -58,7 +59,7 @@ from cablesys.time_domain.integrators import COMPILE_MAX_ELEMENTS, IntegratorSet
 from cablesys.time_domain.run import Simulator
 
 ENDS_CASES = ("mooring", "lowering")
-RTOLS = (1e-3, 3e-4, 1e-4, 1e-5, 1e-6)      # BDF(<= 2) candidates, loosest first (as the taut rows)
+RTOLS = BDF_RTOLS                            # BDF(<= 2) candidates, loosest first (as the taut rows)
 TIGHT = (1e-7, 1e-10)                        # cablesys's own tight run (rtol, atol)
 
 # the mooring line: the chain of ends_checks, the fairlead TOP_DEPTH below the surface, half the chain on the bed

@@ -16,6 +16,11 @@ from pathlib import Path
 import numpy as np
 
 
+# the BDF(<= 2) tolerances the benchmarks try on the segmented model against MoorDyn, loosest first: a row keeps the
+# first whose statistics are within matched accuracy of the run's own tight run (bench_vs_moordyn._matched)
+BDF_RTOLS = (1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 1e-5, 1e-6)
+
+
 def parse_args(description: str, argv=None, extra=None) -> argparse.Namespace:
     """--out DIR (created) and --quick; ``extra(parser)`` adds a study's own options."""
     ap = argparse.ArgumentParser(description=description)
