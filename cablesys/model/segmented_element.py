@@ -131,7 +131,10 @@ def element_inertia(P: SectionParameters, n_el: int, p, rho, t, env, depth0, n_p
     node by node gives the equations :func:`lagrange.lagrange_equations` gives for the whole cable
     (tests/test_segmented_scales.py), with a smaller expression: K_e depends on the positions through
     the chord u = r_b - r_a alone, so the AD is over u and the four velocities (the right-hand side
-    of the 300 m heave cable at 20 elements: 6009 operations instead of 8736)."""
+    of the 300 m heave cable at 20 elements: 6009 operations instead of 8736). The velocities are the nodes' over
+    the ground, as Wang's eq. 23-24 write the cable's normal kinetic energy with the ship's velocity in it: a cable
+    moving obliquely through still water feels each element's Munk couple, one at rest in a current does not
+    (:mod:`cablesys.statics.tow`; tests/test_tracks.py measures the two frames' difference)."""
     ra, rb, va, vb = (ca.SX.sym(name, dim) for name in ("ra", "rb", "va", "vb"))
     # K_e depends on the positions through the chord u = r_b - r_a only: differentiate with respect
     # to u (dK/dr_b = dK/du = -dK/dr_a, d p/dt = (dp/du) u' + (dp/dv) v')
