@@ -123,11 +123,13 @@ def _run(scene: Scene, choice: Choice, tol, cache: RungCache, kw: dict, candidat
                                  rtol=kw.get("rtol"), atol=kw.get("atol"), max_num_steps=kw.get("max_num_steps"),
                                  jit=kw.get("jit", False))
     times = kw.get("times")
-    # a check run the plan has made already (the N / 4 run of one check is the N / 2 run of the one before): once
-    memo = kw.get("check_runs") if not candidate and times is None else None
-    key = (id(scene), choice.name, choice.segments, str(settings.method), settings.rtol, settings.atol)
-    if memo is not None and key in memo:
-        return memo[key][1]
+    # a run the plan has made already, by the run's scene (compared by value) and settings: the N / 4 run of one check
+    # is the N / 2 run of the one before, a rejected N's run at the check's rtol the N / 2 run of the next N's check.
+    # A check takes it; a candidate always runs (its caller's on_block and progress see it)
+    memo = kw.get("check_runs") if times is None else None
+    key = (sc, choice.name, choice.segments, str(settings.method), settings.rtol, settings.atol)
+    if memo is not None and not candidate and key in memo:
+        return memo[key]
     opts = {**({"x0": x0} if x0 is not None else {}),   # the quasi-static rungs: the start their guard probed, once
             **hooks(kw, describe_run(choice), candidate)}
     sim = cache.simulator(model, sc.output_times if times is None else times, settings)
@@ -135,7 +137,7 @@ def _run(scene: Scene, choice: Choice, tol, cache: RungCache, kw: dict, candidat
     result = simulate(sc, model=model, simulator=sim, **opts)
     log_run(kw, choice, candidate, settings, result, time.perf_counter() - t0, time.process_time() - c0)
     if memo is not None:
-        memo[key] = (scene, result)        # the scene held, so that its id is not reused within the plan
+        memo[key] = result
     return result
 
 
@@ -346,7 +348,7 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
         return _as_built(scene, model if isinstance(model, CableModel) else None, simulator, kw, cache)
     cache = cache if cache is not None else RungCache()
     kw["run_log"] = []          # every run of the taut path's plan (log_run); the extrapolation keeps its own plan
-    kw["check_runs"] = {}       # the plan's check runs by scene, rung, N and integrator settings (_run)
+    kw["check_runs"] = {}       # the plan's runs by scene, rung, N and integrator settings, for its checks (_run)
     t0, b0 = time.perf_counter(), cache.build_s
     choice, tol, auto = decide(scene, model, tolerance, segments, cache)
     if auto:                                     # the mean shape in the current, from the statics, before any run
