@@ -25,6 +25,15 @@ profiles ``element_tension[k]``, ``element_tension_rate[k]``, ``element_strain[k
 line by line, each from its start), ``element_s[k]`` (the element mid-point's unstretched arc length from its line's
 start, m) and ``node_x[j]``, ``node_y[j]`` (``node_z[j]``) of every node. Units SI.
 
+A body point whose body is rigid (``pitch_inertia`` set; Wang 1971 p. 32, body rotation) is the chain's rigid body
+(:mod:`.rigid_body`, assembled by :mod:`.rigid_assembly` as the chain's): its node is the lines' attachment point, its
+orientation more coordinates after every node's, point by point in the scene's order (``point.NAME.theta_b`` in the
+plane, ``point.NAME.quat_w_b`` .. ``quat_z_b`` in space; ``n_rotations``, ``rotation_rest``), node and orientation one
+block of Lagrange's equations (3 x 3 in the plane, 7 x 7 in space); its parameters ``system.point[i].body.*``, its
+outputs ``point.NAME.theta_b``, ``theta_b_rate``, ``x_cg``, ``x_cg_rate``, ``y_cg``, ``y_cg_rate`` and in space
+``roll_b``, ``yaw_b`` and rates, ``z_cg``, ``z_cg_rate``, ``omega_x_b`` .. ``omega_z_b``, ``quat_w_b`` .. ``quat_z_b``
+(:data:`.rigid_assembly.RIGID_OUTPUTS`, :data:`.rigid_assembly.RIGID_OUTPUTS_3D`).
+
 A ``[seabed]`` acts on every free node as on the chain's (:mod:`.segmented_seabed`: normal contact, regularised
 Coulomb friction, in space along and across the line on a bed sloping towards ``seabed.heading_deg``, the laid-down
 line's friction in the statics, ``static_force``), a body's or junction's node with its footprint ``body.bed_area``
@@ -44,6 +53,8 @@ import casadi as ca
 from ..scene import Scene
 from .node_terms import NodeSums
 from .params import ParameterLayout, environment_symbols
+from .rigid_assembly import assemble, node_acceleration, orientation_names, rigid_block, rigid_outputs
+from .rigid_body import ORIENTATION_REST
 from .section import SectionParameters
 from .segmented import SegmentedModel, drag_points
 from .segmented_element import block_solve, element_inertia, element_terms, lump_force, norm
@@ -126,8 +137,14 @@ def build_system_model(scene: Scene) -> SystemModel:
         if j not in kind_of or kind_of[j].free:
             node_q[j] = dim * len(free)
             free.append(j)
-    q_labels = tuple(f"{c}[{j}]" for j in free for c in axes)
-    q, qd = ca.SX.sym("q", dim * len(free)), ca.SX.sym("qd", dim * len(free))
+    # a rigid body's orientation (rigid_body.py) after the nodes, point by point: theta_b in the plane, a quaternion
+    # in space, labelled point.NAME.theta_b, point.NAME.quat_w_b, ...
+    rigid = [i for i, pt in enumerate(system.point) if pt.free and pt.body.is_rigid]
+    rest = ORIENTATION_REST[dim]
+    n_rot, n_nq = len(rigid) * len(rest), dim * len(free)
+    q_labels = tuple(f"{c}[{j}]" for j in free for c in axes) + tuple(
+        f"point.{system.point[i].name}.{name}" for i in rigid for name in orientation_names(dim))
+    q, qd = ca.SX.sym("q", n_nq + n_rot), ca.SX.sym("qd", n_nq + n_rot)
     e = ca.SX.sym("e", len(EXO_LABELS_3D if dim == 3 else EXO_LABELS))
     t, z, zd, zdd = e[0], e[1:1 + dim], e[1 + dim:1 + 2 * dim], e[1 + 2 * dim:1 + 3 * dim]
     env = environment_symbols(layout, scene)          # Wang 1971 eq. 26-28 inputs
@@ -172,10 +189,20 @@ def build_system_model(scene: Scene) -> SystemModel:
             s0 = s0 + P.l_0
         lines.append(els)
         elements += els
+    V_rigid, rigid_terms = 0.0, {}                    # rigid bodies: energy; node -> its RigidBlock
     for i, pt in enumerate(system.point):
-        if pt.free:                                    # Wang's point body: a body or a junction
-            j = point_nodes[i]
-            P = SectionParameters.for_body(layout, f"system.point[{i}].body.", pt.body.is_sphere, dim == 3)
+        if not pt.free:
+            continue
+        j = point_nodes[i]
+        P = SectionParameters.for_body(layout, f"system.point[{i}].body.", pt.body.is_sphere, dim == 3)
+        if i in rigid:                                 # a rigid body at its attachment node (rigid_assembly.py)
+            m = rigid.index(i)
+            blk = rigid_block(P, layout, f"system.point[{i}].", [node_q[j] + c for c in range(dim)],
+                              range(n_nq + len(rest) * m, n_nq + len(rest) * (m + 1)), node_r[j], node_v[j], q, qd,
+                              rho=rho, t=t, env=env, depth0=depth0, dim=dim)
+            sums.K, V_rigid = sums.K + blk.K, V_rigid + blk.V
+            rigid_terms[j] = blk
+        else:                                          # Wang's point body: a body or a junction
             sums.point_body(j, P, node_r[j], node_v[j], rho=rho, t=t, env=env, depth0=depth0)
 
     V_contact, bed = 0.0, None
@@ -197,10 +224,17 @@ def build_system_model(scene: Scene) -> SystemModel:
             for c in range(dim):
                 sums.Q[j][c] += Fd[c]
                 sums.Q_static[j][c] += Fs[c]
-    # Lagrange's equations node by node (node_terms.py): M_j q''_j = f_j, block diagonal
-    acc_nodes, acc = [None] * n_nodes, []
+    # Lagrange's equations node by node (node_terms.py): M_j q''_j = f_j, block diagonal; a rigid body's node and
+    # its orientation one block (rigid_assembly.py)
+    acc_nodes, acc, acc_rot = [None] * n_nodes, [], [0.0] * n_rot
     for j in range(n_nodes):
-        if node_q[j] >= 0:
+        if j in rigid_terms:
+            blk = rigid_terms[j]
+            a_j, a_rot = node_acceleration(blk, sums.M[j], sums.force(j), dim)
+            acc += list(a_j)
+            for kk, a_k in zip(blk.k, a_rot):
+                acc_rot[kk - n_nq] = a_k
+        elif node_q[j] >= 0:
             a_j = block_solve(sums.M[j], sums.force(j))
             acc += list(a_j)
         elif kind_of[j].kind == "prescribed":
@@ -208,9 +242,9 @@ def build_system_model(scene: Scene) -> SystemModel:
         else:
             a_j = (0.0,) * dim
         acc_nodes[j] = a_j
-    acc = ca.vertcat(*acc)
-    M = ca.diagcat(*[sums.M[j] for j in free])
-    f = ca.vertcat(*[sums.force(j) for j in free])
+    acc = ca.vertcat(*acc, *acc_rot)
+    M, f, f_static = assemble(ca.diagcat(*[sums.M[j] for j in free]), ca.vertcat(*[sums.force(j) for j in free]),
+                              ca.vertcat(*[sums.force(j, static=True) for j in free]), rigid_terms.values(), n_rot)
 
     x = ca.vertcat(q, qd)
     xdot = ca.vertcat(qd, acc)
@@ -219,6 +253,10 @@ def build_system_model(scene: Scene) -> SystemModel:
         j = point_nodes[i]
         out += [node_r[j][c] for c in range(dim)] + [node_v[j][c] for c in range(dim)]
         labels += [f"point.{pt.name}.{c}" for c in axes] + [f"point.{pt.name}.{c}_rate" for c in axes]
+        if j in rigid_terms:                           # its attitude, CG and (in space) rates and quaternion
+            values, names = rigid_outputs(rigid_terms[j], dim)
+            out += values
+            labels += [f"point.{pt.name}.{name}" for name in names]
     for k, line in enumerate(system.line):
         first, last = lines[k][0], lines[k][-1]
         a, b = line_nodes[k][0], line_nodes[k][-1]
@@ -253,9 +291,9 @@ def build_system_model(scene: Scene) -> SystemModel:
     ode = ca.Function("ode", [xs, ts, ps], [ca.vertcat(xs[nq:], accel(xs[:nq], xs[nq:], top(ts, ps), ps))],
                       ["x", "t", "p"], ["xdot"])
     outputs = ca.Function("outputs", [x, e, p], [ca.vertcat(*out)], ["x", "e", "p"], ["y"])
-    energy = ca.Function("energy", [x, e, p], [sums.K, sums.gravity(node_r) + sums.V_strain + V_contact],
+    energy = ca.Function("energy", [x, e, p], [sums.K, sums.gravity(node_r) + sums.V_strain + V_contact + V_rigid],
                          ["x", "e", "p"], ["K", "V"])
-    static = (ca.Function("static_force", [q, qd, e, p], [ca.vertcat(*[sums.force(j, static=True) for j in free])],
+    static = (ca.Function("static_force", [q, qd, e, p], [f_static],
                           ["q", "qd", "e", "p"], ["f"]) if bed is not None else None)
     cable_force = ca.Function("cable_force", [x, p], [ca.SX(0, 1)], ["x", "p"], ["gap"])
     return SystemModel(layout=layout, n_sections=0, angles=scene.angles, q_labels=q_labels,
@@ -267,4 +305,5 @@ def build_system_model(scene: Scene) -> SystemModel:
                        point_kinds=tuple(pt.kind for pt in system.point), point_nodes=point_nodes,
                        line_names=tuple(ln.name for ln in system.line), line_nodes=line_nodes,
                        line_segments=tuple(tuple(c.segments for c in ln.section) for ln in system.line),
-                       node_q=tuple(node_q), node_labels=tuple(node_labels))
+                       node_q=tuple(node_q), node_labels=tuple(node_labels), n_rotations=n_rot,
+                       rotation_rest=rest * len(rigid))

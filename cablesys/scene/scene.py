@@ -124,8 +124,8 @@ class Scene:
 
     def _check_system(self) -> None:
         """What the node model of a graph of lines (:mod:`cablesys.model.system`) does not take yet, each refused by
-        name: a rigid body, a winch, a track, an initial angle or stretch (it starts from its statics), top motion
-        without a prescribed point."""
+        name: a winch, a track, a rigid body with a seabed (as the chain's), an initial angle or stretch (it starts
+        from its statics), top motion without a prescribed point."""
         for name, bad in (("winch", self.winch is not None), ("top_motion.track", self.top_motion.track is not None)):
             if bad:
                 raise ParameterError(name, "set", "must be unset for a system that is not a chain of sections: the "
@@ -143,10 +143,10 @@ class Scene:
                 raise ParameterError(f"initial.{name}", getattr(self.initial, name), "must be unset for a system of "
                                      "lines: it starts from its static state")
         for i, p in enumerate(self.system.point):
-            if p.body is not None and p.body.is_rigid:
-                raise ParameterError(f"point[{i}].pitch_inertia", p.body.pitch_inertia, "must be unset in a "
-                                     "system that is not a chain of sections: the node model of a graph of lines "
-                                     "takes point bodies so far")
+            if p.body is not None and p.body.is_rigid and self.seabed is not None:
+                raise ParameterError(f"point[{i}].pitch_inertia", p.body.pitch_inertia, "must be unset for a scene "
+                                     "with a [seabed]: a rigid, pitching body is built by the node model without "
+                                     "seabed so far (its footprint's contact does not turn it)")
 
     def _check_ends(self) -> None:
         """An anchor or a seabed acts on the nodes of the segmented cable; the anchor lies on or above
@@ -232,6 +232,8 @@ class Scene:
             out += [f"point[{i}].z" for i, p in enumerate(self.system.point) if p.kind == "fixed" and p.z]
             out += [f"point[{i}].mass_z" for i, p in enumerate(self.system.point)
                     if p.body is not None and p.body.mass_z is not None]
+            out += [f"point[{i}].{name}" for i, p in enumerate(self.system.point) if p.body is not None
+                    for name in p.body.three_d_fields()]      # a rigid body's 3-D fields
         return tuple(out)
 
     @property

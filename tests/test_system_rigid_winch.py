@@ -1,0 +1,164 @@
+"""A rigid body and a winch in a system of lines joined at points (cablesys.model.system): a chain written as a graph
+with a rigid body at its end is the chain's node model to round-off (the independent route: the graph's own
+builder against the chain's); a rigid body held by three lines finds at rest the attitude of its closed-form moment
+balance (plane and space) and conserves its energy without drag and damping; the graph runs from the Python API and
+from ``cablesys run`` on a TOML, saying which model ran and why."""
+
+import json
+import math
+import sys
+from pathlib import Path
+
+import casadi as ca
+import numpy as np
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from energy_checks import energy_history  # noqa: E402
+from test_system_model import as_graph  # noqa: E402
+
+import cablesys  # noqa: E402
+from cablesys.cli import main  # noqa: E402
+from cablesys.model import build_model  # noqa: E402
+from cablesys.model.rigid_assembly import RIGID_OUTPUTS, RIGID_OUTPUTS_3D  # noqa: E402
+from cablesys.model.rigid_body import rotation  # noqa: E402
+from cablesys.model.system import build_system_model  # noqa: E402
+from cablesys.scene import Body, Cable, Scene, TopMotion, dump_scene  # noqa: E402
+from cablesys.scene.components import Numerics  # noqa: E402
+from cablesys.scene.harmonics import Sinusoid  # noqa: E402
+from cablesys.scene.system import Line, Point, System  # noqa: E402
+from cablesys.statics.system import system_steady  # noqa: E402
+
+pytestmark = pytest.mark.filterwarnings("ignore")
+
+W_B, BUOY = 3000.0, 500.0                 # the body's weight in water and buoyancy (N)
+ATTACH, CB = (0.3, -0.8, 0.2), (-0.1, -0.2, 0.0)   # attachment point and centre of buoyancy from the CG (m, body axes)
+
+
+def wire(n, **kw):
+    return Cable(**{**dict(length=30.0, ae=2e6, diameter=0.02, mass_per_length=1.5, weight_per_length=12.0,
+                           cd_normal=1.2, internal_damping=400.0, segments=n), **kw})
+
+
+def rigid(space: bool, **kw) -> Body:
+    """A rigid package: attached 0.8 m above and 0.3 m ahead of its CG (0.2 m to the side in space), its buoyancy
+    centre 0.2 m above and 0.1 m behind the CG; a cylinder's drag at 10 deg and per-axis drag."""
+    return Body(**{**dict(weight=W_B, mass_x=400.0, mass_y=450.0, drag_area_normal=0.8, drag_area_tangential=0.5,
+                          axis_angle_deg=10.0, drag_area_x=0.3, pitch_inertia=900.0, pitch_added_inertia=100.0,
+                          attachment_x=ATTACH[0], attachment_y=ATTACH[1], buoyancy=BUOY, buoyancy_x=CB[0],
+                          buoyancy_y=CB[1], pitch_damping=200.0),
+                   **(dict(mass_z=420.0, inertia_xx=700.0, inertia_yy=800.0, inertia_xy=30.0,
+                           attachment_z=ATTACH[2]) if space else {}), **kw})
+
+
+@pytest.mark.parametrize("space", [False, True])
+def test_a_chain_with_a_rigid_body_built_as_a_graph_is_the_chains_node_model(space):
+    """ship -> wire (4 elements) -> rigid package, heaving and surging (swaying in space): the graph builder's ode, energy
+    and outputs (the body's pitch, CG, in space roll, yaw, body rates and quaternion, named point.pkg.*) equal the
+    chain builder's at random states to 1e-12 (measured: exactly equal), its orientation coordinates after the
+    nodes as the chain's."""
+    motion = TopMotion(x=(Sinusoid(amplitude=1.0, frequency=0.6),), y=(Sinusoid(amplitude=0.5, frequency=0.6),),
+                       z=(Sinusoid(amplitude=0.7, frequency=0.4),) if space else (), ramp_s=10.0)
+    system = System(point=(Point(name="ship", kind="prescribed"), Point(name="pkg", kind="body", body=rigid(space))),
+                    line=(Line(name="wire", start="ship", end="pkg", section=(wire(4),)),))
+    chain = Scene(system=system, top_motion=motion)
+    assert chain.system is None and chain.sections[0].body.is_rigid
+    graph = as_graph(system, top_motion=motion)
+    m_c, m_g = build_model(chain), build_system_model(graph)
+    names = ("theta_b",) if not space else tuple(f"quat_{c}_b" for c in "wxyz")
+    assert m_g.q_labels == m_c.q_labels[:-len(names)] + tuple(f"point.pkg.{n}" for n in names)
+    assert m_g.n_rotations == m_c.n_rotations == len(names) and m_g.rotation_rest == m_c.rotation_rest
+    rng = np.random.default_rng(5)
+    dim, nq = m_c.dim, m_c.nq
+    x = rng.normal(size=2 * nq)
+    x[:nq - len(names)] += np.tile(np.r_[0.0, 25.0, 0.0][:dim], 4) * np.repeat(np.arange(1, 5), dim)
+    p_c, p_g = m_c.parameters(chain), m_g.parameters(graph)
+    for t in (0.7, 13.1):
+        f_c, f_g = np.array(m_c.ode(x, t, p_c)).ravel(), np.array(m_g.ode(x, t, p_g)).ravel()
+        assert np.max(np.abs(f_g - f_c)) <= 1e-12 * np.max(np.abs(f_c))
+        e = np.array(m_c.top(t, p_c)).ravel()
+        np.testing.assert_allclose(np.array(m_g.energy(x, e, p_g), float), np.array(m_c.energy(x, e, p_c), float),
+                                   rtol=1e-12)
+        y_c = dict(zip(m_c.output_labels, np.array(m_c.outputs(x, e, p_c)).ravel()))
+        y_g = dict(zip(m_g.output_labels, np.array(m_g.outputs(x, e, p_g)).ravel()))
+        for k in RIGID_OUTPUTS + (RIGID_OUTPUTS_3D if space else ()):
+            assert y_g[f"point.pkg.{k}"] == pytest.approx(y_c[k], rel=1e-12, abs=1e-12), k
+        assert y_g["line.wire.tension_to"] == pytest.approx(y_c["tension_bottom"], rel=1e-12)
+
+
+def star(space: bool, n: int = 6, **body):
+    """A rigid package held by three lines (not a chain): 30 m from the ship and from a post 40 m away at the ship's
+    depth, and a soft 20 m downhaul to a sinker 45 m below the mid-point."""
+    return System(point=(Point(name="ship", kind="prescribed"), Point(name="post", kind="fixed", x=40.0, y=0.0),
+                         Point(name="pkg", kind="body", body=rigid(space, **body)),
+                         Point(name="sinker", kind="fixed", x=20.0, y=45.0)),
+                  line=(Line(name="a", start="ship", end="pkg", section=(wire(n),)),
+                        Line(name="b", start="post", end="pkg", section=(wire(n),)),
+                        Line(name="c", start="pkg", end="sinker", section=(wire(n, length=20.0, ae=2e4),))))
+
+
+@pytest.mark.parametrize("space", [False, True])
+def test_a_rigid_body_held_by_three_lines_rests_at_its_closed_form_attitude(space):
+    """The lines act at the attachment point, so at rest the body's moment about it vanishes: its weight W_b + B at the
+    CG and its buoyancy B at the centre of buoyancy give R (W_b c + B b) vertical, up (c the attachment point, b the
+    centre of buoyancy from the CG in body axes; rigid_body.py's potential). In the plane theta_b = atan(v_x / v_y),
+    v = W_b c + B b, to 1e-12; in space R v / |v| = (0, -1, 0) to 1e-9 (the yaw about the vertical through the
+    attachment neutral, pinned by the statics). The attachment node sits on the symmetry line x = 20 m."""
+    sc = Scene(system=star(space))
+    assert sc.system is not None and sc.three_d == space
+    m = build_model(sc)
+    st = system_steady(m, m.parameters(sc))
+    y = st.outputs
+    assert y["point.pkg.x"] == pytest.approx(20.0, abs=1e-9)
+    v = W_B * np.array(ATTACH[:3 if space else 2]) + BUOY * np.array(CB[:3 if space else 2])
+    if not space:
+        v = np.r_[v[0], v[1]]
+        assert y["point.pkg.theta_b"] == pytest.approx(math.atan(v[0] / v[1]), abs=1e-12)
+        assert y["point.pkg.theta_b"] < -0.3                        # a real tilt, not the level guess
+    else:
+        R = np.array(rotation(ca.DM(st.q[-4:])))
+        np.testing.assert_allclose(R @ v / np.linalg.norm(v), [0.0, -1.0, 0.0], atol=1e-9)
+        assert abs(y["point.pkg.roll_b"]) > 0.2 and np.linalg.norm(st.q[-4:]) == pytest.approx(1.0, abs=1e-12)
+    # the CG hangs straight below the attachment point's vertical through the combined centre (no drag at rest)
+    assert y["point.pkg.y_cg"] > y["point.pkg.y"]
+
+
+def test_a_rigid_body_held_by_three_lines_conserves_energy_without_drag_and_damping():
+    """The star released 0.2 rad off its static pitch in still water, no drag, Voigt or pitch damping: K + V (the
+    model's own energy, the body's rotation and its buoyancy included) drifts by less than 1e-6 of the swing energy
+    over 20 s (several pitch periods)."""
+    still = dict(cd_normal=0.0, ct_tangential=0.0, internal_damping=0.0)
+    pts = star(False, n=3, drag_area_normal=0.0, drag_area_tangential=0.0, drag_area_x=0.0, pitch_damping=0.0)
+    system = System(point=pts.point, line=tuple(Line(name=ln.name, start=ln.start, end=ln.end, section=tuple(
+        Cable(**{**{f: getattr(c, f) for f in ("length", "ae", "diameter", "mass_per_length", "weight_per_length",
+                                                 "segments")}, **still}) for c in ln.section)) for ln in pts.line))
+    sc = Scene(system=system, numerics=Numerics(duration=20.0, output_step=0.1))
+    m = build_model(sc)
+    p = m.parameters(sc)
+    x_static = system_steady(m, p).x
+    x0 = x_static.copy()
+    x0[m.q_labels.index("point.pkg.theta_b")] += 0.2
+    r, E, swing = energy_history(sc, m, p, x0, x_static)
+    crossings = np.sum(np.diff(np.sign(r["point.pkg.theta_b"] - r["point.pkg.theta_b"].mean())) != 0)
+    assert crossings >= 6 and swing > 10.0
+    assert np.max(np.abs(E - E[0])) < 1e-6 * swing
+
+
+def test_a_system_with_a_rigid_body_runs_from_the_api_and_the_cli(tmp_path):
+    """The star under a heaving ship: cablesys.simulate and ``cablesys run`` on its TOML run the node model and say so
+    (a system of lines, a rigid body's orientation among its coordinates); the run starts at the static pitch and the
+    CSV names the body's pitch per point, in rad."""
+    sc = Scene(system=star(False, n=3), top_motion=TopMotion(y=(Sinusoid(amplitude=0.5, frequency=0.8),)),
+               numerics=Numerics(duration=4.0, output_step=0.1))
+    r = cablesys.simulate(sc, model="as-built")
+    assert r.success and r.stats["model"]["name"] == "segmented"
+    v = W_B * np.array(ATTACH[:2]) + BUOY * np.array(CB[:2])
+    assert r["point.pkg.theta_b"][0] == pytest.approx(math.atan(v[0] / v[1]), abs=1e-9)
+    f = tmp_path / "star.toml"
+    f.write_text(dump_scene(sc))
+    out = tmp_path / "out"
+    assert main(["run", str(f), "--out", str(out)]) == 0
+    reason = json.loads((out / "summary.json").read_text())["model"]["reason"]
+    assert "system of lines joined at points" in reason and "rigid body's orientation" in reason
+    header = (out / "timeseries.csv").read_text().splitlines()[0].split(",")
+    assert "point.pkg.theta_b [rad]" in header and "point.pkg.y_cg [m]" in header
