@@ -23,8 +23,12 @@ from cablesys.model import build_model  # noqa: E402
 from cablesys.model.rigid_assembly import RIGID_OUTPUTS, RIGID_OUTPUTS_3D  # noqa: E402
 from cablesys.model.rigid_body import rotation  # noqa: E402
 from cablesys.model.system import build_system_model  # noqa: E402
-from cablesys.scene import Body, Cable, Scene, TopMotion, dump_scene  # noqa: E402
+from cablesys.ladder.auto import decide  # noqa: E402
+from cablesys.scene import Body, Cable, Scene, TopMotion, dump_scene, load_scene  # noqa: E402
+from cablesys.errors import ParameterError  # noqa: E402
+from cablesys.model.segmented_winch import WINCH_OUTPUTS  # noqa: E402
 from cablesys.scene.components import Numerics  # noqa: E402
+from cablesys.scene.ends import Seabed, Winch  # noqa: E402
 from cablesys.scene.harmonics import Sinusoid  # noqa: E402
 from cablesys.scene.system import Line, Point, System  # noqa: E402
 from cablesys.statics.system import system_steady  # noqa: E402
@@ -162,3 +166,114 @@ def test_a_system_with_a_rigid_body_runs_from_the_api_and_the_cli(tmp_path):
     assert "system of lines joined at points" in reason and "rigid body's orientation" in reason
     header = (out / "timeseries.csv").read_text().splitlines()[0].split(",")
     assert "point.pkg.theta_b [rad]" in header and "point.pkg.y_cg [m]" in header
+
+
+@pytest.mark.parametrize("space, bed", [(False, False), (False, True), (True, False), (True, True)])
+def test_a_chain_paid_out_by_a_winch_built_as_a_graph_is_the_chains_node_model(space, bed):
+    """ship -> wire (5 elements) -> package, the wire paid out at 0.5 m/s (ramped), surging (swaying in space), with
+    and without a seabed its lower nodes lie on (the material sliding past them): the graph builder's ode, energy and
+    outputs (the winch's length, speed, acceleration and power, the line's end tensions at the sheave's material
+    acceleration) equal the chain builder's at random states during the ramp and the payout to 1e-12 (measured:
+    exactly equal)."""
+    motion = TopMotion(x=(Sinusoid(amplitude=1.0, frequency=0.6),),
+                       z=(Sinusoid(amplitude=0.7, frequency=0.4),) if space else (), ramp_s=10.0)
+    pkg = Body(weight=3000.0, mass_x=400.0, mass_y=450.0, drag_area_normal=0.8, drag_area_tangential=0.8, bed_area=1.0)
+    system = System(point=(Point(name="ship", kind="prescribed"), Point(name="pkg", kind="body", body=pkg)),
+                    line=(Line(name="wire", start="ship", end="pkg", section=(wire(5, length=100.0),)),))
+    kw = dict(top_motion=motion, winch=Winch(speed=0.5, duration=20.0, ramp=2.0, max_length=150.0),
+              seabed=Seabed(depth=80.0) if bed else None)
+    chain, graph = Scene(system=system, **kw), as_graph(system, **kw)
+    assert chain.system is None
+    m_c, m_g = build_model(chain), build_system_model(graph)
+    p_c, p_g = m_c.parameters(chain), m_g.parameters(graph)
+    rng = np.random.default_rng(7)
+    x = rng.normal(size=2 * m_c.nq)
+    x[:m_c.nq] += np.tile(np.r_[0.0, 25.0, 0.0][:m_c.dim], 5) * np.repeat(np.arange(1, 6), m_c.dim)
+    for t in (0.7, 5.1, 13.1):
+        f_c, f_g = np.array(m_c.ode(x, t, p_c)).ravel(), np.array(m_g.ode(x, t, p_g)).ravel()
+        assert np.max(np.abs(f_g - f_c)) <= 1e-12 * np.max(np.abs(f_c))
+        e = np.array(m_c.top(t, p_c)).ravel()
+        np.testing.assert_allclose(np.array(m_g.energy(x, e, p_g), float), np.array(m_c.energy(x, e, p_c), float),
+                                   rtol=1e-12)
+        y_c = dict(zip(m_c.output_labels, np.array(m_c.outputs(x, e, p_c)).ravel()))
+        y_g = dict(zip(m_g.output_labels, np.array(m_g.outputs(x, e, p_g)).ravel()))
+        pairs = {k: k for k in WINCH_OUTPUTS}
+        pairs.update({"tension_top": "line.wire.tension_from", "tension_bottom": "line.wire.tension_to"})
+        pairs.update({f"element_tension_rate[{k}]": f"element_tension_rate[{k}]" for k in range(5)})
+        if bed:
+            pairs.update({f"seabed_friction[{j}]": f"seabed_friction[{j}]" for j in range(6)})
+        for a, b in pairs.items():
+            assert y_g[b] == pytest.approx(y_c[a], rel=1e-12, abs=1e-12), (a, b)
+        if t > 2.0:                                       # past the ramp: paying out at full speed
+            assert y_c["winch_speed"] == pytest.approx(0.5, rel=1e-12)
+
+
+def lowering(lift: float) -> System:
+    """A package lowered on a 4-element lift line from the ship and steadied by two soft, light 42 m guys to posts at
+    (+-40 m, 50 m): not a chain (the package ends three lines)."""
+    guy = wire(3, length=42.0, ae=2e5, weight_per_length=4.0, internal_damping=2e4)
+    pkg = Body(weight=3000.0, mass_x=400.0, mass_y=400.0, drag_area_normal=8.0, drag_area_tangential=8.0)
+    return System(point=(Point(name="ship", kind="prescribed"), Point(name="pkg", kind="body", body=pkg),
+                         Point(name="east", kind="fixed", x=40.0, y=50.0),
+                         Point(name="west", kind="fixed", x=-40.0, y=50.0)),
+                  line=(Line(name="lift", start="ship", end="pkg",
+                             section=(wire(4, length=lift, ae=5e6, internal_damping=2e4),)),
+                        Line(name="east_guy", start="pkg", end="east", section=(guy,)),
+                        Line(name="west_guy", start="pkg", end="west", section=(guy,))))
+
+
+def test_a_winch_lowers_a_package_held_by_guys_to_the_statics_of_the_longer_line(tmp_path):
+    """The lift line paid out 10 m (0.5 m/s, 2 s ramps) and held: 38 s after the winch stops the run rests where the
+    statics of the same system with a 60 m lift line put it (the independent route: KINSOL on a fixed-length scene):
+    the package's depth to 1e-4 m (measured 6e-6), the sheave's tension averaged over the last 10 s to 3e-5 of it
+    (measured 9e-6; the guys' transverse modes still ring at +-0.5 N); the lift hangs vertical (symmetry), so its
+    tension at the sheave minus at the package is the paid-out line's weight in water, 12 N/m x 60 m (1e-5, measured
+    6e-7; Wang 1971 eq. 12 with l_0 -> L: the paid-out mass), and the winch outputs say L = 60 m at rest; the
+    payout's power (braking) is positive."""
+    sc = Scene(system=lowering(50.0), winch=Winch(speed=0.5, duration=22.0, ramp=2.0, max_length=80.0),
+               numerics=Numerics(duration=60.0, output_step=0.5))
+    assert sc.system is not None
+    r = cablesys.simulate(sc, model="as-built")
+    assert r.success
+    ref = Scene(system=lowering(60.0))
+    m = build_model(ref)
+    st = system_steady(m, m.parameters(ref)).outputs
+    late = r.time > r.time[-1] - 10.0
+    assert r["point.pkg.y"][-1] == pytest.approx(st["point.pkg.y"], abs=1e-4)
+    assert abs(r["point.pkg.x"][-1]) < 1e-9
+    assert np.mean(r["line.lift.tension_from"][late]) == pytest.approx(st["line.lift.tension_from"], rel=3e-5)
+    weight = r["line.lift.tension_from"][-1] - r["line.lift.tension_to"][-1]
+    assert weight == pytest.approx(12.0 * 60.0, rel=1e-5)
+    assert r["winch_length"][-1] == pytest.approx(60.0, rel=1e-12) and r["winch_speed"][-1] == 0.0
+    assert r["winch_power"].max() > 0.4 * 3000.0          # braking the payout of ~3.4 kN at 0.5 m/s
+    f = tmp_path / "lowering.toml"                         # the TOML door: the ladder says why the node model runs
+    f.write_text(dump_scene(sc))
+    choice, _, _ = decide(load_scene(f), "auto", None, None)
+    assert choice.name == "segmented" and "system of lines" in choice.reason and "[winch]" in choice.reason
+
+
+def test_a_winch_on_a_system_needs_the_prescribed_points_one_line():
+    """Refused by name before any work: a winch when no line starts at the prescribed point (the line written towards
+    it), when two do, and when the system has no prescribed point; a rigid body with a seabed (as the chain's)."""
+    w = Winch(speed=0.5, duration=10.0, max_length=80.0)
+    base = lowering(50.0)
+    towards = System(point=base.point, line=(Line(name="lift", start="pkg", end="ship", section=base.line[0].section),)
+                     + base.line[1:])
+    with pytest.raises(ParameterError) as err:
+        Scene(system=towards, winch=w)
+    assert err.value.field == "winch" and "0 lines from the prescribed point 'ship'" in str(err.value)
+    two = System(point=base.point, line=base.line + (Line(name="tag", start="ship", end="east",
+                                                          section=(wire(2, length=70.0),)),))
+    with pytest.raises(ParameterError) as err:
+        Scene(system=two, winch=w)
+    assert err.value.field == "winch" and "(lift, tag)" in str(err.value) and "exactly one" in str(err.value)
+    held = System(point=(Point(name="ship", kind="fixed", x=0.0, y=0.0),) + base.point[1:], line=base.line)
+    with pytest.raises(ParameterError) as err:
+        Scene(system=held, winch=w)
+    assert err.value.field == "winch" and "has none" in str(err.value)
+    with pytest.raises(ParameterError) as err:              # the drum too small for the line in the water
+        Scene(system=base, winch=Winch(speed=0.5, duration=10.0, max_length=40.0))
+    assert err.value.field == "winch.max_length" and "line[0].section[0].length" in str(err.value)
+    with pytest.raises(ParameterError) as err:
+        Scene(system=star(False), seabed=Seabed(depth=200.0))
+    assert err.value.field == "point[2].pitch_inertia" and "seabed" in str(err.value)

@@ -80,7 +80,7 @@ from .rigid_assembly import (RIGID_OUTPUTS, RIGID_OUTPUTS_3D, assemble, node_acc
 from .rigid_body import ORIENTATION_REST
 from .section import SectionParameters
 from .node_terms import NodeSums
-from .segmented_element import block_solve, dot, element_inertia, element_terms, lump_force, norm
+from .segmented_element import block_solve, dot, lump_force, norm
 from .segmented_kernel import kernel_jacobian, kernel_ode
 from .segmented_seabed import seabed_forces
 from .segmented_winch import WINCH_OUTPUTS, Payout, payout
@@ -235,22 +235,11 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     for i, sec in enumerate(scene.sections):
         P = SectionParameters.from_layout(layout, section_prefix(n_sec, i), sec.body.is_sphere, dim == 3)
         n_el = segs[i]
-        els = []
         pay = payout(scene, layout, P, t) if i == 0 else None     # a [winch]: L(t) (segmented_winch.py)
         if i == 0 and winch_input is not None:                    # L, w, alpha as inputs (a control)
             pay = Payout(L=winch_input[0], w=winch_input[1], alpha=winch_input[2])
-        inertia = (pay.inertia if pay else element_inertia)(P, n_el, p, rho, t, env, depth0, drag_points(scene, n_el), dim)
-        P = pay.section(P) if pay else P
-        for k in range(n_el):
-            a, b = j0 + k, j0 + k + 1
-            va, vb = pay.velocities(k, n_el, node_r[a], node_v[a], node_r[b], node_v[b]) if pay else (node_v[a], node_v[b])
-            el = element_terms(P, n_el, node_r[a], va, node_r[b], vb, rho=rho, t=t, env=env,
-                               depth0=depth0, n_points=drag_points(scene, n_el))
-            el.update(a=a, b=b)
-            sums.element(el, va, vb, inertia(ca.vertcat(*node_r[a]), ca.vertcat(*node_r[b]), ca.vertcat(*node_v[a]),
-                                             ca.vertcat(*node_v[b]), p, *((pay.z(k, n_el),) if pay else ())),
-                         P, n_el, static_law)
-            els.append(el)
+        els, P = sums.section(P, n_el, range(j0, j0 + n_el + 1), node_r, node_v, pay=pay, p=p, rho=rho, t=t, env=env,
+                              depth0=depth0, n_points=drag_points(scene, n_el), static_law=static_law)
         jb = j0 + n_el                                         # the body's node
         rb, vb = node_r[jb], node_v[jb]
         if scene.seabed is not None:                           # the body's footprint on the bed (segmented_seabed.py)
@@ -272,10 +261,8 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     V_contact, bed = 0.0, None
     if scene.seabed is not None:
         # the bed resists the cable's material, which a winch makes slide past the first section's nodes
-        pay0, n0 = sections[0]["pay"], segs[0]
-        slide = [node_v[j] if pay0 is None or not 0 < j < n0 else pay0.node_velocity(j, n0, node_r[j - 1], node_v[j],
-                                                                                     node_r[j + 1])
-                 for j in range(len(node_r))]
+        pay0 = sections[0]["pay"]
+        slide = list(node_v) if pay0 is None else pay0.sliding(node_r, node_v, range(segs[0] + 1))
         bed = seabed_forces(layout, node_r, slide, sums.area, elements, depth0, range(1, n_free + 1))
         V_contact = bed["energy"]
         for j, (Fd, Fs) in bed["forces"].items():
@@ -351,8 +338,7 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
             out += values
             labels += [f"{name}{sfx(i)}" for name in names]
     if sections[0].get("pay") is not None:     # the winch: L, w, alpha and the power T_top w (segmented_winch.py)
-        pay = sections[0]["pay"]
-        out += [pay.L, pay.w, pay.alpha, out[OUTPUT_NAMES.index("tension_top")] * pay.w]
+        out += sections[0]["pay"].outputs(out[OUTPUT_NAMES.index("tension_top")])
         labels += list(WINCH_OUTPUTS)
     if winch_input is not None:      # a controlled winch: the cable's force on the sheave (N), for a compensator
         out += list(sections[0]["top_force"])

@@ -34,6 +34,13 @@ outputs ``point.NAME.theta_b``, ``theta_b_rate``, ``x_cg``, ``x_cg_rate``, ``y_c
 ``roll_b``, ``yaw_b`` and rates, ``z_cg``, ``z_cg_rate``, ``omega_x_b`` .. ``omega_z_b``, ``quat_w_b`` .. ``quat_z_b``
 (:data:`.rigid_assembly.RIGID_OUTPUTS`, :data:`.rigid_assembly.RIGID_OUTPUTS_3D`).
 
+A ``[winch]`` pays out the one line that starts at the prescribed point (:func:`winch_line`; the scene refuses any
+other), its first section exactly as the chain's first section (:mod:`.segmented_winch`: its elements share L(t),
+their terms see the material velocities, L a prescribed coordinate in Lagrange's equations; the seabed resists the
+sliding material, :meth:`.segmented_winch.Payout.sliding`; the line's ``tension_from`` lumps the sheave's half element
+with the material's acceleration there) through the same :meth:`.node_terms.NodeSums.section`; outputs add
+:data:`.segmented_winch.WINCH_OUTPUTS` (the power with that line's ``tension_from``).
+
 A ``[seabed]`` acts on every free node as on the chain's (:mod:`.segmented_seabed`: normal contact, regularised
 Coulomb friction, in space along and across the line on a bed sloping towards ``seabed.heading_deg``, the laid-down
 line's friction in the statics, ``static_force``), a body's or junction's node with its footprint ``body.bed_area``
@@ -57,12 +64,13 @@ from .rigid_assembly import assemble, node_acceleration, orientation_names, rigi
 from .rigid_body import ORIENTATION_REST
 from .section import SectionParameters
 from .segmented import SegmentedModel, drag_points
-from .segmented_element import block_solve, element_inertia, element_terms, lump_force, norm
+from .segmented_element import block_solve, lump_force, norm
 from .segmented_seabed import seabed_forces
+from .segmented_winch import WINCH_OUTPUTS, payout
 from .signals import EXO_LABELS
 from .top_motion import EXO_LABELS_3D, symbolic_type, top_motion_function
 
-__all__ = ["SystemModel", "build_system_model", "topology"]
+__all__ = ["SystemModel", "build_system_model", "topology", "winch_line"]
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -108,6 +116,15 @@ def topology(system) -> tuple:
         seq.append(point(line.end))
         line_nodes.append(tuple(seq))
     return tuple(point_nodes[p.name] for p in system.point), tuple(line_nodes), count
+
+
+def winch_line(scene: Scene) -> int | None:
+    """The index of the line a ``[winch]`` pays out (the one line starting at the prescribed point, checked by the
+    scene), None without a winch."""
+    if getattr(scene, "winch", None) is None:
+        return None
+    top = scene.system.prescribed.name
+    return next(k for k, ln in enumerate(scene.system.line) if ln.start == top)
 
 
 def build_system_model(scene: Scene) -> SystemModel:
@@ -169,22 +186,20 @@ def build_system_model(scene: Scene) -> SystemModel:
     static_law = scene.seabed is not None            # the seabed's statics: elements elastic both ways (catenary.py)
     sums = NodeSums(n_nodes, dim)
     elements, lines, s_el = [], [], []
+    wound = winch_line(scene)                         # a [winch] pays out this line's first section (segmented_winch)
+    pay = None
     for k, line in enumerate(system.line):
         seq, pos, els, s0 = line_nodes[k], 0, [], 0.0
         for s, cable in enumerate(line.section):
             P = SectionParameters.for_cable(layout, f"system.line[{k}].section[{s}].")
             n_el = cable.segments
-            inertia = element_inertia(P, n_el, p, rho, t, env, depth0, drag_points(scene, n_el), dim)
-            for m in range(n_el):
-                a, b = seq[pos + m], seq[pos + m + 1]
-                el = element_terms(P, n_el, node_r[a], node_v[a], node_r[b], node_v[b], rho=rho, t=t, env=env,
-                                   depth0=depth0, n_points=drag_points(scene, n_el))
-                el.update(a=a, b=b)
-                sums.element(el, node_v[a], node_v[b], inertia(ca.vertcat(*node_r[a]), ca.vertcat(*node_r[b]),
-                                                               ca.vertcat(*node_v[a]), ca.vertcat(*node_v[b]), p),
-                             P, n_el, static_law)
-                els.append(el)
-                s_el.append(s0 + (m + 0.5) * P.l_0 / n_el)
+            sec_pay = payout(scene, layout, P, t) if (k, s) == (wound, 0) else None
+            pay = sec_pay or pay
+            sec_els, P = sums.section(P, n_el, seq[pos:pos + n_el + 1], node_r, node_v, pay=sec_pay, p=p, rho=rho,
+                                      t=t, env=env, depth0=depth0, n_points=drag_points(scene, n_el),
+                                      static_law=static_law)
+            els += sec_els
+            s_el += [s0 + (m + 0.5) * P.l_0 / n_el for m in range(n_el)]
             pos += n_el
             s0 = s0 + P.l_0
         lines.append(els)
@@ -218,7 +233,10 @@ def build_system_model(scene: Scene) -> SystemModel:
         for el in reversed(elements):                 # the other side (the line's tangent in space): an element
             if up[el["a"]] is not el:                 # leaving the node, its line's next one at an inner node
                 down[el["a"]] = el
-        bed = seabed_forces(layout, node_r, node_v, sums.area, elements, depth0, free, up, down)
+        # the bed resists the cable's material, which a winch makes slide past its line's nodes
+        slide = node_v if pay is None else pay.sliding(
+            node_r, node_v, line_nodes[wound][:system.line[wound].section[0].segments + 1])
+        bed = seabed_forces(layout, node_r, slide, sums.area, elements, depth0, free, up, down)
         V_contact = bed["energy"]
         for j, (Fd, Fs) in bed["forces"].items():
             for c in range(dim):
@@ -261,11 +279,21 @@ def build_system_model(scene: Scene) -> SystemModel:
         first, last = lines[k][0], lines[k][-1]
         a, b = line_nodes[k][0], line_nodes[k][-1]
         # force of the line on its end points: the end element's tension plus the half element lumped there
-        lt, lb = lump_force(first, "a", acc_nodes[a]), lump_force(last, "b", acc_nodes[b])
+        acc_a = acc_nodes[a]
+        if pay is not None and k == wound:           # the material's acceleration at the sheave (segmented_winch.py)
+            seq = line_nodes[k]
+            acc_a = pay.top_acceleration(system.line[k].section[0].segments, node_r[a], node_v[a], acc_a,
+                                         node_r[seq[1]], node_v[seq[1]])
+        lt, lb = lump_force(first, "a", acc_a), lump_force(last, "b", acc_nodes[b])
         start = tuple(first["tension"] * first["et"][c] + lt[c] for c in range(dim))
         end = tuple(-last["tension"] * last["et"][c] + lb[c] for c in range(dim))
         out += [norm(start), norm(end)]
         labels += [f"line.{line.name}.tension_from", f"line.{line.name}.tension_to"]
+        if pay is not None and k == wound:           # the winch: L, w, alpha and the power T w at the sheave
+            winch_out = pay.outputs(norm(start))
+    if pay is not None:
+        out += winch_out
+        labels += list(WINCH_OUTPUTS)
     T = ca.vertcat(*[el["tension"] for el in elements])
     T_rate = ca.jtimes(T, x, xdot) + ca.jacobian(T, e) @ ca.vertcat(1.0, zd, zdd, ca.DM.zeros(dim))
     prof = {"element_tension": T, "element_tension_rate": T_rate,

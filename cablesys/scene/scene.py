@@ -124,13 +124,12 @@ class Scene:
 
     def _check_system(self) -> None:
         """What the node model of a graph of lines (:mod:`cablesys.model.system`) does not take yet, each refused by
-        name: a winch, a track, a rigid body with a seabed (as the chain's), an initial angle or stretch (it starts
-        from its statics), top motion without a prescribed point."""
-        for name, bad in (("winch", self.winch is not None), ("top_motion.track", self.top_motion.track is not None)):
-            if bad:
-                raise ParameterError(name, "set", "must be unset for a system that is not a chain of sections: the "
-                                     "node model of a graph of lines has no " + {"winch": "winch",
-                                     "top_motion.track": "steady turn"}[name] + " yet")
+        name: a track, a rigid body with a seabed (as the chain's), an initial angle or stretch (it starts from its
+        statics), top motion without a prescribed point; a winch whose line is not the prescribed point's one line."""
+        if self.top_motion.track is not None:
+            raise ParameterError("top_motion.track", "set", "must be unset for a system that is not a chain of "
+                                 "sections: the node model of a graph of lines has no steady turn yet")
+        self._check_system_winch()
         top = self.top_motion
         if self.system.prescribed is None:
             moved = [f"top_motion.{a}" for a in ("x", "y", "z") if getattr(top, a)] + [
@@ -147,6 +146,27 @@ class Scene:
                 raise ParameterError(f"point[{i}].pitch_inertia", p.body.pitch_inertia, "must be unset for a scene "
                                      "with a [seabed]: a rigid, pitching body is built by the node model without "
                                      "seabed so far (its footprint's contact does not turn it)")
+
+    def _check_system_winch(self) -> None:
+        """A ``[winch]`` on a system pays out the one line that starts at the prescribed point (its first section, as
+        the chain's first section: :mod:`cablesys.model.segmented_winch`), keeping its zero-tension length in
+        (0, max_length] (:meth:`.ends.Winch.check_length`)."""
+        if self.winch is None:
+            return
+        top = self.system.prescribed
+        if top is None:
+            raise ParameterError("winch", "set", "must be unset: a winch pays out the line that starts at the "
+                                 "prescribed point, and this system has none (its points are fixed or free)")
+        starts = [k for k, ln in enumerate(self.system.line) if ln.start == top.name]
+        if len(starts) != 1:
+            names = [self.system.line[k].name for k in starts]
+            raise ParameterError("winch", f"{len(starts)} lines from the prescribed point {top.name!r}"
+                                 + (f" ({', '.join(names)})" if names else ""),
+                                 "must pay out one line: exactly one [[line]] must start (from) at the prescribed "
+                                 "point, the line the winch pays out (write the others from their other end)")
+        k = starts[0]
+        c = self.system.line[k].section[0]
+        self.winch.check_length(c.length * (1.0 - c.tension_ref / c.ae), f"line[{k}].section[0].length")
 
     def _check_ends(self) -> None:
         """An anchor or a seabed acts on the nodes of the segmented cable; the anchor lies on or above
