@@ -116,14 +116,16 @@ def _body_items(prefix: str, body, three_d: bool) -> list:
 
 def _system_items(scene: Scene) -> list:
     """A system's numbers (model/system.py): every line section's cable (``system.line[k].section[s].ae``), every
-    fixed point's position (``system.point[i].x``, ``.y``, ``.z``) and every body's or junction's numbers
+    fixed point's position and every prescribed point's mean position but the first's (the origin)
+    (``system.point[i].x``, ``.y``, ``.z``) and every body's or junction's numbers
     (``system.point[i].body.weight``), the labels being the scene's field paths."""
     items = []
     for k, line in enumerate(scene.system.line):
         for s, cable in enumerate(line.section):
             items += _cable_items(f"system.line[{k}].section[{s}].", cable)
+    origin = scene.system.prescribed
     for i, pt in enumerate(scene.system.point):
-        if pt.kind == "fixed":
+        if pt.kind == "fixed" or (pt.kind == "prescribed" and pt is not origin):   # a held point's (mean) position
             items += [(f"system.point[{i}].{c}", float(v)) for c, v in zip("xyz", pt.position)]
         if pt.body is not None:
             items += _body_items(f"system.point[{i}].body.", pt.body, scene.three_d)

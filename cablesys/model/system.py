@@ -12,7 +12,9 @@ summed node by node in :class:`.node_terms.NodeSums`.
 Nodes. The lines are walked in the scene's order; each line's start point gets a node when first met, then the
 line's interior nodes from its start to its end (section joints included: a section's last node is the next
 section's first), then its end point when first met. The prescribed point's node moves with the top motion e (the
-origin of the node frame at its mean position); a fixed point's node is held at its position (entries of p); every
+origin of the node frame at its mean position), a further prescribed point's node (another point of the vessel) with
+the same translation about its mean position (entries of p, ``system.point[i].x``, ...); a fixed point's node is held
+at its position (entries of p); every
 other node is free: its coordinates (x, y) in the plane, (x, y, z) in space are q, labelled ``x[j]``, ``y[j]``,
 ``z[j]`` by node number j. A chain written from its top down is numbered as the chain's node model numbers it, so
 the two models are the same functions (tests/test_system_model.py).
@@ -79,7 +81,8 @@ class SystemModel(SegmentedModel):
     numbered line by line. ``point_names``, ``point_kinds`` and ``point_nodes`` (the node of each point, scene
     order); ``line_names``, ``line_nodes`` (each line's nodes from its start to its end) and ``line_segments`` (its
     sections' element counts); ``node_q`` the position of each node's first coordinate in q (-1 for the prescribed
-    and fixed nodes); ``node_labels`` the parameter labels of a fixed node's position (() for the others)."""
+    and fixed nodes); ``node_labels`` the parameter labels of a fixed node's position or a further prescribed node's
+    mean position (() for the others)."""
 
     point_names: tuple = ()
     point_kinds: tuple = ()
@@ -174,8 +177,11 @@ def build_system_model(scene: Scene) -> SystemModel:
         if node_q[j] >= 0:
             k = node_q[j]
             r, v = tuple(q[k + c] for c in range(dim)), tuple(qd[k + c] for c in range(dim))
-        elif pt.kind == "prescribed":                  # the top: the scene's top motion
+        elif pt.kind == "prescribed" and pt is system.prescribed:     # the top: the scene's top motion
             r, v = tuple(z[c] for c in range(dim)), tuple(zd[c] for c in range(dim))
+        elif pt.kind == "prescribed":                  # another point of the vessel: its mean position, translated
+            labels = tuple(f"system.point[{point_index[j]}].{c}" for c in axes)
+            r, v = tuple(layout.sym(lb) + z[c] for c, lb in enumerate(labels)), tuple(zd[c] for c in range(dim))
         else:                                          # a fixed point, held at its position
             labels = tuple(f"system.point[{point_index[j]}].{c}" for c in axes)
             r, v = tuple(layout.sym(lb) for lb in labels), (0.0,) * dim

@@ -100,13 +100,14 @@ class Scene:
                                  "anchor")
         bed, depth0 = self.seabed, self.environment.top_depth
         for i, p in enumerate(sys_.point):
-            if p.kind == "fixed" and bed is not None:
-                y_bed = bed.bed_y(p.x, depth0, p.z or 0.0)
-                if p.y > y_bed + 1e-9 * max(1.0, abs(y_bed)):
-                    where = f"x = {p.x:.6g} m" + (f", z = {p.z:.6g} m" if p.z else "")
-                    raise ParameterError(f"point[{i}].y", p.y, f"puts the fixed point {p.name!r} below the seabed "
+            if p.held and bed is not None:
+                px, py, pz = p.position
+                y_bed = bed.bed_y(px, depth0, pz)
+                if py > y_bed + 1e-9 * max(1.0, abs(y_bed)):
+                    where = f"x = {px:.6g} m" + (f", z = {pz:.6g} m" if pz else "")
+                    raise ParameterError(f"point[{i}].y", py, f"puts the {p.kind} point {p.name!r} below the seabed "
                                          f"(the bed is at y = {y_bed:.6g} m under {where}, seabed.depth = "
-                                         f"{bed.depth:.6g} m): a fixed point must lie on or above the bed")
+                                         f"{bed.depth:.6g} m): a fixed or prescribed point must lie on or above the bed")
         chain = sys_.as_chain()
         if chain is None:
             return secs
@@ -125,12 +126,19 @@ class Scene:
     def _check_system(self) -> None:
         """What the node model of a graph of lines (:mod:`cablesys.model.system`) does not take yet, each refused by
         name: a track, a rigid body with a seabed (as the chain's), an initial angle or stretch (it starts from its
-        statics), top motion without a prescribed point; a winch whose line is not the prescribed point's one line."""
+        statics), top motion without a prescribed point, a vessel's 6-DOF RAO with several prescribed points (each
+        would need its own lever arm); a winch whose line is not the prescribed point's one line."""
         if self.top_motion.track is not None:
             raise ParameterError("top_motion.track", "set", "must be unset for a system that is not a chain of "
                                  "sections: the node model of a graph of lines has no steady turn yet")
         self._check_system_winch()
         top = self.top_motion
+        n_top = self.system.n_prescribed
+        if n_top > 1 and top.vessel is not None:
+            raise ParameterError("top_motion.vessel", "set", f"must be unset with {n_top} prescribed points: the "
+                                 "6-DOF RAO moves each point of the vessel by its own lever arm (its rotations), and "
+                                 "the system's one [top_motion] translates every prescribed point alike so far; give "
+                                 "that translation as top_motion.x, y, z, a series or [top_motion.rao]")
         if self.system.prescribed is None:
             moved = [f"top_motion.{a}" for a in ("x", "y", "z") if getattr(top, a)] + [
                 f"top_motion.{a}" for a in ("series", "spectrum", "track") if getattr(top, a) is not None]
@@ -148,7 +156,7 @@ class Scene:
                                      "seabed so far (its footprint's contact does not turn it)")
 
     def _check_system_winch(self) -> None:
-        """A ``[winch]`` on a system pays out the one line that starts at the prescribed point (its first section, as
+        """A ``[winch]`` on a system pays out the one line that starts at the (first) prescribed point (its first section, as
         the chain's first section: :mod:`cablesys.model.segmented_winch`), keeping its zero-tension length in
         (0, max_length] (:meth:`.ends.Winch.check_length`)."""
         if self.winch is None:
@@ -249,7 +257,7 @@ class Scene:
         if self.seabed is not None and self.seabed.heading_deg is not None:
             out.append("seabed.heading_deg")
         if self.system is not None:      # a fixed point off the x-y plane, a body's M_bvz
-            out += [f"point[{i}].z" for i, p in enumerate(self.system.point) if p.kind == "fixed" and p.z]
+            out += [f"point[{i}].z" for i, p in enumerate(self.system.point) if p.held and p.z]
             out += [f"point[{i}].mass_z" for i, p in enumerate(self.system.point)
                     if p.body is not None and p.body.mass_z is not None]
             out += [f"point[{i}].{name}" for i, p in enumerate(self.system.point) if p.body is not None

@@ -1,8 +1,8 @@
 """Equilibrium of a cable system: lines joined at points (the node model of a graph of lines, model/system.py).
 
 The static residual is the model's own force vector with every rate zero (:func:`.problem.static_residual`; waves
-off, forces over the total weight), the prescribed point held at a given position (its mean position, or where the
-top motion puts it at the start of a run). KINSOL solves it in node coordinates with a sparse direct solver, as the
+off, forces over the total weight), the prescribed points held at a given translation (their mean positions, or
+where the top motion puts them at the start of a run). KINSOL solves it in node coordinates with a sparse direct solver, as the
 anchored line's statics do (:mod:`.catenary`): first with every element elastic both ways (tension floor -(AE)_r, so
 that an element of the guess shorter than its zero-tension length keeps its stiffness), then with the lines' own
 law. The first guess:
@@ -62,16 +62,19 @@ def _bodies(model, p) -> dict:
 
 
 def _held(model, p, top) -> dict:
-    """{node: (x, y, z)} of the held nodes: the prescribed point at ``top`` (default its mean position, the origin),
-    the fixed points at their positions (m)."""
+    """{node: (x, y, z)} of the held nodes: the prescribed points translated by ``top`` (default 0: at their mean
+    positions, the first at the origin), the fixed points at their positions (m)."""
     lab = model.layout.labels
+    shift = np.zeros(3) if top is None else np.r_[np.asarray(top, float), np.zeros(3 - len(top))]
     out = {}
     for i, kind in enumerate(model.point_kinds):
         j = model.point_nodes[i]
+        at = np.array([float(p[lab.index(f"system.point[{i}].{c}")]) if f"system.point[{i}].{c}" in lab else 0.0
+                       for c in "xyz"])
         if kind == "prescribed":
-            out[j] = np.zeros(3) if top is None else np.r_[np.asarray(top, float), np.zeros(3 - len(top))]
+            out[j] = at + shift
         elif kind == "fixed":
-            out[j] = np.array([float(p[lab.index(f"system.point[{i}].{c}")]) for c in "xyz"])
+            out[j] = at
     return out
 
 
