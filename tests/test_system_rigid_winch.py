@@ -34,7 +34,7 @@ from cablesys.scene.components import Numerics  # noqa: E402
 from cablesys.scene.ends import Seabed, Winch  # noqa: E402
 from cablesys.scene.harmonics import Sinusoid  # noqa: E402
 from cablesys.scene.system import Line, Point, System  # noqa: E402
-from cablesys.statics.system import system_steady  # noqa: E402
+from cablesys.statics.system import system_initial_state, system_steady  # noqa: E402
 
 pytestmark = pytest.mark.filterwarnings("ignore")
 
@@ -149,6 +149,24 @@ def test_a_rigid_body_held_by_three_lines_conserves_energy_without_drag_and_damp
     crossings = np.sum(np.diff(np.sign(r["point.pkg.theta_b"] - r["point.pkg.theta_b"].mean())) != 0)
     assert crossings >= 6 and swing > 10.0
     assert np.max(np.abs(E - E[0])) < 1e-6 * swing
+
+
+def test_a_rigid_body_of_a_system_starts_at_its_initial_attitude():
+    """``initial_pitch_deg`` (in space also roll and yaw) turns the body about its attachment point at the start of a
+    run (as the chain's, statics.catenary.released): the nodes keep their static places, the orientation is the
+    named angles (1e-12)."""
+    for space, angles in ((False, dict(initial_pitch_deg=10.0)), (True, dict(initial_roll_deg=5.0,
+                                                                               initial_yaw_deg=-20.0))):
+        still, turned = Scene(system=star(space, n=3)), Scene(system=star(space, n=3, **angles))
+        m = build_model(turned)
+        x_still = system_initial_state(still, m, m.parameters(still))
+        x0 = system_initial_state(turned, m, m.parameters(turned))
+        n_node = m.nq - m.n_rotations
+        np.testing.assert_allclose(x0[:n_node], x_still[:n_node], rtol=0, atol=1e-12)
+        y = dict(zip(m.output_labels, np.array(m.outputs(x0, np.zeros(m.top.size1_out(0)), m.parameters(turned))).ravel()))
+        for name, value in angles.items():
+            key = {"initial_pitch_deg": "theta_b", "initial_roll_deg": "roll_b", "initial_yaw_deg": "yaw_b"}[name]
+            assert y[f"point.pkg.{key}"] == pytest.approx(math.radians(value), abs=1e-12), key
 
 
 def test_a_system_with_a_rigid_body_runs_from_the_api_and_the_cli(tmp_path):
