@@ -91,11 +91,24 @@ _SYSTEM_NAMES = {"x": ("m", "horizontal position of point {}"), "y": ("m", "dept
                  "tension_to": ("N", "tension of line {} at its to end (its pull on that point)")}
 
 
+# a rigid body at a system's point: ``point.NAME.theta_b``, ``point.NAME.x_cg``, ... (the chain's body quantities)
+_SYSTEM_BODY = re.compile(r"^point\.([A-Za-z][A-Za-z0-9_\-]*)\.([a-z_]+)$")
+
+
+def _system_body(label: str):
+    """(point name, quantity) of a rigid body's quantity at a system's point, or None."""
+    m = _SYSTEM_BODY.match(label)
+    return (m.group(1), m.group(2)) if m and m.group(2) in QUANTITIES else None
+
+
 def unit_of(label: str) -> str:
     """SI unit of a labelled quantity (``phi_2`` -> ``rad``, ``point.buoy.x`` -> ``m``); "" when unknown."""
     m = _SYSTEM.match(label)
     if m:
         return _SYSTEM_NAMES[m.group(3)][0]
+    body = _system_body(label)
+    if body:
+        return UNITS[body[1]]
     return UNITS.get(_base(label)[0], "")
 
 
@@ -104,6 +117,9 @@ def long_name_of(label: str) -> str:
     m = _SYSTEM.match(label)
     if m:
         return _SYSTEM_NAMES[m.group(3)][1].format(m.group(2))
+    body = _system_body(label)
+    if body:
+        return f"{QUANTITIES[body[1]][1]} (point {body[0]})"
     base, k = _base(label)
     name = QUANTITIES.get(base, ("", label.replace("_", " ")))[1]
     return f"{name} (section {k})" if k and base in QUANTITIES else name

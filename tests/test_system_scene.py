@@ -151,8 +151,9 @@ def edited(points=None, lines=None, extra=""):
     (edited(points=[dict(name="ship", kind="body", **PKG)] + BASE_POINTS[1:3] + [dict(name="post", kind="junction",
                                                                                         **CLUMP)]),
      "point", "nothing holds the system"),
-    # two prescribed points
-    (edited(points=BASE_POINTS[:3] + [dict(name="post", kind="prescribed")]), "point[3].kind", "one prescribed point"),
+    # a second prescribed point without its mean position, a first one off the origin
+    (edited(points=BASE_POINTS[:3] + [dict(name="post", kind="prescribed")]), "point[3].x", "second prescribed point"),
+    (edited(points=[dict(BASE_POINTS[0], x=5.0, y=1.0)] + BASE_POINTS[1:]), "point[0].x", "first prescribed point"),
     # a body's field on a fixed point, an unknown key, a rigid junction, a bad kind, a self-loop, a duplicate name
     (edited(points=BASE_POINTS[:3] + [dict(BASE_POINTS[3], weight=10.0)]), "point[3].weight", "fixed point"),
     (edited(points=BASE_POINTS[:3] + [dict(BASE_POINTS[3], colour="red")]), "point[3].colour", "unknown key"),

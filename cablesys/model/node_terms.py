@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import casadi as ca
 
-from .segmented_element import body_drag, lump_kinetic
+from .segmented_element import body_drag, element_inertia, element_terms, lump_kinetic
 
 __all__ = ["NodeSums"]
 
@@ -61,6 +61,29 @@ class NodeSums:
             self.Q_static[b][c] += -el["static_tension"] * el["et"][c] + el["drag_b"][c]
         self.area[a] += 0.5 * P.l_r / n_el * P.d_0
         self.area[b] += 0.5 * P.l_r / n_el * P.d_0
+
+    def section(self, P, n_el: int, seq, node_r, node_v, *, pay=None, p, rho, t, env, depth0, n_points: int,
+                static_law: bool) -> tuple:
+        """Add the ``n_el`` elements of one line section from node ``seq[0]`` to ``seq[n_el]`` (its nodes in order;
+        ``P`` its parameters at its reference length, ``n_points`` drag points per element); ``pay`` a winch's
+        :class:`.segmented_winch.Payout` paying the section out at ``seq[0]`` (its elements at L(t), material end
+        velocities and the payout's inertia terms) or None. Returns (the elements' terms, the section's parameters as
+        its elements see them: at L(t) under a winch)."""
+        dim = self.dim
+        inertia = (pay.inertia if pay else element_inertia)(P, n_el, p, rho, t, env, depth0, n_points, dim)
+        P = pay.section(P) if pay else P
+        els = []
+        for k in range(n_el):
+            a, b = seq[k], seq[k + 1]
+            va, vb = pay.velocities(k, n_el, node_r[a], node_v[a], node_r[b], node_v[b]) if pay else (node_v[a], node_v[b])
+            el = element_terms(P, n_el, node_r[a], va, node_r[b], vb, rho=rho, t=t, env=env, depth0=depth0,
+                               n_points=n_points)
+            el.update(a=a, b=b)
+            self.element(el, va, vb, inertia(ca.vertcat(*node_r[a]), ca.vertcat(*node_r[b]), ca.vertcat(*node_v[a]),
+                                             ca.vertcat(*node_v[b]), p, *((pay.z(k, n_el),) if pay else ())),
+                         P, n_el, static_law)
+            els.append(el)
+        return els, P
 
     def point_body(self, j: int, P, r, v, *, rho, t, env, depth0) -> None:
         """Add Wang's point body at node j (position r, velocity v): virtual masses M_bvx, M_bvy (M_bvz in space) in

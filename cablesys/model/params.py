@@ -116,18 +116,29 @@ def _body_items(prefix: str, body, three_d: bool) -> list:
 
 def _system_items(scene: Scene) -> list:
     """A system's numbers (model/system.py): every line section's cable (``system.line[k].section[s].ae``), every
-    fixed point's position (``system.point[i].x``, ``.y``, ``.z``) and every body's or junction's numbers
+    fixed point's position and every prescribed point's mean position but the first's (the origin)
+    (``system.point[i].x``, ``.y``, ``.z``) and every body's or junction's numbers
     (``system.point[i].body.weight``), the labels being the scene's field paths."""
     items = []
     for k, line in enumerate(scene.system.line):
         for s, cable in enumerate(line.section):
             items += _cable_items(f"system.line[{k}].section[{s}].", cable)
+    origin = scene.system.prescribed
     for i, pt in enumerate(scene.system.point):
-        if pt.kind == "fixed":
+        if pt.kind == "fixed" or (pt.kind == "prescribed" and pt is not origin):   # a held point's (mean) position
             items += [(f"system.point[{i}].{c}", float(v)) for c, v in zip("xyz", pt.position)]
         if pt.body is not None:
             items += _body_items(f"system.point[{i}].body.", pt.body, scene.three_d)
+            items += _rigid_items(f"system.point[{i}].body.", pt.body, scene.three_d)
     return items
+
+
+def _rigid_items(prefix: str, body, three_d: bool) -> list:
+    """(label, SI value) of a rigid body's inertia, offsets, buoyancy and damping (model/rigid_body.py), in space also
+    its inertia tensor, added inertias per axis and offsets' z; none for a point body."""
+    if not body.is_rigid:
+        return []
+    return [(f"{prefix}{name}", body.rigid(name)) for name in RIGID_FIELDS + (RIGID_FIELDS_3D if three_d else ())]
 
 
 def _section_items(scene: Scene) -> list:
@@ -137,10 +148,7 @@ def _section_items(scene: Scene) -> list:
     for i, s in enumerate(scene.sections):
         pre = section_prefix(n, i)
         items += _cable_items(f"{pre}cable.", s.cable) + _body_items(f"{pre}body.", s.body, scene.three_d)
-        if s.body.is_rigid:              # a pitching body's inertia, offsets, buoyancy, damping (model/rigid_body.py)
-            items += [(f"{pre}body.{name}", s.body.rigid(name)) for name in RIGID_FIELDS]
-            if scene.three_d:            # its inertia tensor, added inertias per axis and offsets' z in space
-                items += [(f"{pre}body.{name}", s.body.rigid(name)) for name in RIGID_FIELDS_3D]
+        items += _rigid_items(f"{pre}body.", s.body, scene.three_d)    # a pitching body (model/rigid_body.py)
         items.append((f"{pre}slack", 0.0))          # 1 while the section is slack (set by the simulator)
     return items
 

@@ -23,6 +23,8 @@ T_i is the section's ``tension_ref`` when set, else W_b + w L / 2 (its body and 
 
 from __future__ import annotations
 
+import functools
+
 import casadi as ca
 import numpy as np
 
@@ -123,7 +125,7 @@ def _system_scales(model) -> ca.SX:
     """A system of lines (model/system.py): every free node's position by the static stretch T h / AE of an element of
     the line section it lies in (a point's node: the smallest of its lines' end sections'), T the section's
     ``tension_ref`` when set, else the bodies' weight shared among the lines plus half the line's weight (N); the rates
-    by the top's speed or the elements' axial speed, whichever is larger."""
+    by the top's speed or the elements' axial speed, whichever is larger; a rigid body's orientation as the chain's."""
     lay, p = model.layout, model.layout.symbol
     sym = lambda k, s, name: p[lay.index(f"system.line[{k}].section[{s}].{name}")]
     bodies = sum((ca.fabs(p[i]) for i, lb in enumerate(lay.labels) if lb.endswith("body.weight")), ca.SX(0))
@@ -144,7 +146,11 @@ def _system_scales(model) -> ca.SX:
     dim = model.dim
     free = sorted((q0, j) for j, q0 in enumerate(model.node_q) if q0 >= 0)
     pos = [node_scale[j] for _, j in free for _ in range(dim)]
-    return ca.vertcat(*pos, *([speed] * len(pos)))
+    # a rigid body's orientation coordinates (rad, or the quaternion's entries) by ANGLE_SCALE_MIN, their rates by
+    # that times the fastest element's frequency, as the chain's
+    n_rot = getattr(model, "n_rotations", 0)
+    rot_rate = ANGLE_SCALE_MIN * speed / functools.reduce(ca.fmin, pos) if n_rot else 0.0
+    return ca.vertcat(*pos, *([ANGLE_SCALE_MIN] * n_rot), *([speed] * len(pos)), *([rot_rate] * n_rot))
 
 
 # the scale provider of each model kind (``model.kind``): model -> SX (2 nq,) in p

@@ -75,10 +75,12 @@ from ..errors import ParameterError
 from ..scene import Scene
 from .cable_model import CableModel
 from .params import ParameterLayout, environment_symbols, section_prefix
-from .rigid_body import ORIENTATION_REST, RigidParameters, attitude, rigid_body
+from .rigid_assembly import (RIGID_OUTPUTS, RIGID_OUTPUTS_3D, assemble, node_acceleration,  # noqa: F401 (re-exported)
+                             orientation_names, rigid_block, rigid_outputs)
+from .rigid_body import ORIENTATION_REST
 from .section import SectionParameters
 from .node_terms import NodeSums
-from .segmented_element import block_solve, dot, element_inertia, element_terms, lump_force, norm
+from .segmented_element import block_solve, dot, lump_force, norm
 from .segmented_kernel import kernel_jacobian, kernel_ode
 from .segmented_seabed import seabed_forces
 from .segmented_winch import WINCH_OUTPUTS, Payout, payout
@@ -90,12 +92,6 @@ NODE_PROFILES = ("node_x", "node_y")
 # a section's outputs in 3-D besides the planar ones: the chord's angle out of the x-y plane (rad) and its
 # rate, the body's sway z_b (m, from the top's mean position) and its rate (the names of Wang's 3-D model)
 OUTPUTS_3D = ("phi_z", "phi_z_rate", "z_b", "z_b_rate")
-# a rigid body's outputs (model/rigid_body.py): pitch theta_b (rad) and its rate, the CG's x, y (m) and rates
-RIGID_OUTPUTS = ("theta_b", "theta_b_rate", "x_cg", "x_cg_rate", "y_cg", "y_cg_rate")
-# and in space: roll and yaw (rad, sequence in rigid_body.attitude) and rates, the CG's z (m) and rate, the body-axis
-# angular velocity (rad/s) and the unit quaternion (scalar first)
-RIGID_OUTPUTS_3D = ("roll_b", "roll_b_rate", "yaw_b", "yaw_b_rate", "z_cg", "z_cg_rate", "omega_x_b", "omega_y_b",
-                    "omega_z_b", "quat_w_b", "quat_x_b", "quat_y_b", "quat_z_b")
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -216,7 +212,7 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     # (quat_w_b, quat_x_b, quat_y_b, quat_z_b) in space
     rigid = [i for i, s in enumerate(scene.sections) if s.body.is_rigid]
     rest = ORIENTATION_REST[dim]
-    rot_names = ("theta_b",) if dim == 2 else tuple(f"quat_{c}_b" for c in "wxyz")
+    rot_names = orientation_names(dim)
     n_rot = len(rigid) * len(rest)
     q_labels = tuple(f"{c}[{j}]" for j in range(1, n_free + 1) for c in axes) + tuple(
         f"{name}{sfx(i)}" for i in rigid for name in rot_names)
@@ -234,40 +230,28 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
 
     sums = NodeSums(n_nodes + 1, dim)         # the element and body terms per node (node 0: the top)
     sections, elements = [], []
-    V_rigid, rigid_terms = 0.0, {}       # rigid bodies: energy; node -> (M, f, indices of its orientation in q)
+    V_rigid, rigid_terms = 0.0, {}       # rigid bodies: energy; node -> its RigidBlock (rigid_assembly.py)
     j0 = 0
     for i, sec in enumerate(scene.sections):
         P = SectionParameters.from_layout(layout, section_prefix(n_sec, i), sec.body.is_sphere, dim == 3)
         n_el = segs[i]
-        els = []
         pay = payout(scene, layout, P, t) if i == 0 else None     # a [winch]: L(t) (segmented_winch.py)
         if i == 0 and winch_input is not None:                    # L, w, alpha as inputs (a control)
             pay = Payout(L=winch_input[0], w=winch_input[1], alpha=winch_input[2])
-        inertia = (pay.inertia if pay else element_inertia)(P, n_el, p, rho, t, env, depth0, drag_points(scene, n_el), dim)
-        P = pay.section(P) if pay else P
-        for k in range(n_el):
-            a, b = j0 + k, j0 + k + 1
-            va, vb = pay.velocities(k, n_el, node_r[a], node_v[a], node_r[b], node_v[b]) if pay else (node_v[a], node_v[b])
-            el = element_terms(P, n_el, node_r[a], va, node_r[b], vb, rho=rho, t=t, env=env,
-                               depth0=depth0, n_points=drag_points(scene, n_el))
-            el.update(a=a, b=b)
-            sums.element(el, va, vb, inertia(ca.vertcat(*node_r[a]), ca.vertcat(*node_r[b]), ca.vertcat(*node_v[a]),
-                                             ca.vertcat(*node_v[b]), p, *((pay.z(k, n_el),) if pay else ())),
-                         P, n_el, static_law)
-            els.append(el)
+        els, P = sums.section(P, n_el, range(j0, j0 + n_el + 1), node_r, node_v, pay=pay, p=p, rho=rho, t=t, env=env,
+                              depth0=depth0, n_points=drag_points(scene, n_el), static_law=static_law)
         jb = j0 + n_el                                         # the body's node
         rb, vb = node_r[jb], node_v[jb]
         if scene.seabed is not None:                           # the body's footprint on the bed (segmented_seabed.py)
             sums.area[jb] += layout.sym(f"{section_prefix(n_sec, i)}body.bed_area")
         sec_d = dict(P=P, top=j0, body=jb, elements=els, pay=pay)
         if i in rigid:                                         # a rigid body (rigid_body.py)
-            k = list(range(dim * n_free + len(rest) * rigid.index(i), dim * n_free + len(rest) * (rigid.index(i) + 1)))
-            Mb, fb, Kb, Vb, r_cg, v_cg, om = rigid_body(P, RigidParameters.from_layout(
-                layout, section_prefix(n_sec, i), dim), p, rho, t, env, depth0, dim)(
-                ca.vertcat(*rb), ca.vertcat(*vb), q[k], qd[k], p, t)
-            sums.K, V_rigid = sums.K + Kb, V_rigid + Vb
-            rigid_terms[jb] = (Mb, fb, k)
-            sec_d.update(theta=(q[k], qd[k]), cg=(r_cg, v_cg), omega=om)
+            k = range(dim * n_free + len(rest) * rigid.index(i), dim * n_free + len(rest) * (rigid.index(i) + 1))
+            blk = rigid_block(P, layout, section_prefix(n_sec, i), [dim * (jb - 1) + c for c in range(dim)], k, rb, vb,
+                              q, qd, rho=rho, t=t, env=env, depth0=depth0, dim=dim)
+            sums.K, V_rigid = sums.K + blk.K, V_rigid + blk.V
+            rigid_terms[jb] = blk
+            sec_d.update(rigid=blk)
         else:
             sums.point_body(jb, P, rb, vb, rho=rho, t=t, env=env, depth0=depth0)
         sections.append(sec_d)
@@ -277,10 +261,8 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     V_contact, bed = 0.0, None
     if scene.seabed is not None:
         # the bed resists the cable's material, which a winch makes slide past the first section's nodes
-        pay0, n0 = sections[0]["pay"], segs[0]
-        slide = [node_v[j] if pay0 is None or not 0 < j < n0 else pay0.node_velocity(j, n0, node_r[j - 1], node_v[j],
-                                                                                     node_r[j + 1])
-                 for j in range(len(node_r))]
+        pay0 = sections[0]["pay"]
+        slide = list(node_v) if pay0 is None else pay0.sliding(node_r, node_v, range(segs[0] + 1))
         bed = seabed_forces(layout, node_r, slide, sums.area, elements, depth0, range(1, n_free + 1))
         V_contact = bed["energy"]
         for j, (Fd, Fs) in bed["forces"].items():
@@ -293,17 +275,8 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     f_nodes = [sums.force(j) for j in range(1, n_free + 1)]
     f_static = ca.vertcat(*[sums.force(j, static=True) for j in range(1, n_free + 1)])
     M, f = ca.diagcat(*blocks), ca.vertcat(*f_nodes)
-    if n_rot:       # a rigid body's node and its orientation share one block (3 x 3 in the plane, 7 x 7 in space)
-        M = ca.diagcat(M, ca.SX.zeros(n_rot, n_rot))
-        f = ca.vertcat(f, ca.SX.zeros(n_rot))
-        f_static = ca.vertcat(f_static, ca.SX.zeros(n_rot))
-        for jb, (Mb, fb, k) in rigid_terms.items():
-            rows = [dim * (jb - 1) + c for c in range(dim)] + k
-            for a in range(len(rows)):
-                f[rows[a]] += fb[a]
-                f_static[rows[a]] += fb[a]
-                for b in range(len(rows)):
-                    M[rows[a], rows[b]] += Mb[a, b]
+    # a rigid body's node and its orientation share one block (3 x 3 in the plane, 7 x 7 in space)
+    M, f, f_static = assemble(M, f, f_static, rigid_terms.values(), n_rot)
 
     # q'' node by node: M is block diagonal (dim x dim per node; a rigid body's node and orientation one block):
     # solve each node's block in closed form, a body's block by CasADi's QR (7 x 7 in space)
@@ -311,12 +284,10 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
     acc, acc_rot = [], [0.0] * n_rot
     for j in range(n_free):
         if j + 1 in rigid_terms:
-            Mb, fb, k = rigid_terms[j + 1]
-            Mj, fj = ca.diagcat(blocks[j], ca.SX.zeros(len(k), len(k))) + Mb, ca.vertcat(f_nodes[j], ca.SX.zeros(len(k))) + fb
-            ab = block_solve(Mj, fj) if dim == 2 else ca.solve(Mj, fj)
-            a_j = tuple(ab[c] for c in range(dim))
-            for n_k, kk in enumerate(k):
-                acc_rot[kk - dim * n_free] = ab[dim + n_k]
+            blk = rigid_terms[j + 1]
+            a_j, a_rot = node_acceleration(blk, blocks[j], f_nodes[j], dim)
+            for kk, a_k in zip(blk.k, a_rot):
+                acc_rot[kk - dim * n_free] = a_k
         else:
             a_j = block_solve(blocks[j], f_nodes[j])
         acc += list(a_j)
@@ -362,18 +333,12 @@ def build_segmented_model(scene: Scene, *, winch_input: ca.SX | None = None) -> 
             lpd = (chord[0] * chord_v[0] + chord[1] * chord_v[1]) / lp
             out += [ca.atan2(chord[2], lp), (lp * chord_v[2] - chord[2] * lpd) / lc**2, rb[2], vb[2]]
             labels += [f"{name}{sfx(i)}" for name in OUTPUTS_3D]
-        if "theta" in s:      # the rigid body's pitch (rad, +x towards +y) and rate, its CG (m) and CG velocity
-            (a, ad), (r_cg, v_cg), om = s["theta"], s["cg"], s["omega"]
-            ang = {name: (value, ca.jtimes(value, a, ad)) for name, value in attitude(a).items()}
-            out += [*ang["theta_b"], r_cg[0], v_cg[0], r_cg[1], v_cg[1]]
-            labels += [f"{name}{sfx(i)}" for name in RIGID_OUTPUTS]
-            if dim == 3:      # roll, yaw (rigid_body.attitude), the CG's z, omega in body axes, the unit quaternion
-                out += [*ang["roll_b"], *ang["yaw_b"], r_cg[2], v_cg[2], *[om[c] for c in range(3)],
-                        *[a[c] / ca.norm_2(a) for c in range(4)]]
-                labels += [f"{name}{sfx(i)}" for name in RIGID_OUTPUTS_3D]
+        if "rigid" in s:      # the rigid body's pitch (rad, +x towards +y) and rate, its CG (m) and CG velocity; in
+            values, names = rigid_outputs(s["rigid"], dim)     # space roll, yaw, omega and the quaternion
+            out += values
+            labels += [f"{name}{sfx(i)}" for name in names]
     if sections[0].get("pay") is not None:     # the winch: L, w, alpha and the power T_top w (segmented_winch.py)
-        pay = sections[0]["pay"]
-        out += [pay.L, pay.w, pay.alpha, out[OUTPUT_NAMES.index("tension_top")] * pay.w]
+        out += sections[0]["pay"].outputs(out[OUTPUT_NAMES.index("tension_top")])
         labels += list(WINCH_OUTPUTS)
     if winch_input is not None:      # a controlled winch: the cable's force on the sheave (N), for a compensator
         out += list(sections[0]["top_force"])

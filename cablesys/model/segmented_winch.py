@@ -98,6 +98,22 @@ class Payout:
         c = (n_el - j) / n_el * self.w * n_el / self.L
         return tuple(v[i] + 0.5 * c * (r_next[i] - r_prev[i]) for i in range(len(v)))
 
+    def sliding(self, node_r, node_v, seq) -> list:
+        """The velocities the seabed resists at every node (:mod:`.segmented_seabed`): ``node_v`` with the paid-out
+        section's inner nodes ``seq[1:-1]`` (``seq`` its nodes from the sheave on) at their material velocity
+        (:meth:`node_velocity`)."""
+        seq, slide = list(seq), list(node_v)
+        n_el = len(seq) - 1
+        for m in range(1, n_el):
+            j = seq[m]
+            slide[j] = self.node_velocity(m, n_el, node_r[seq[m - 1]], node_v[j], node_r[seq[m + 1]])
+        return slide
+
+    def outputs(self, tension_top) -> list:
+        """The values of :data:`WINCH_OUTPUTS`: L (m), w (m/s), alpha (m/s^2) and the power T_top w (W), ``tension_top``
+        the cable's pull on the sheave (N)."""
+        return [self.L, self.w, self.alpha, tension_top * self.w]
+
     def top_acceleration(self, n_el: int, r0, v0, a0, r1, v1) -> tuple:
         """The acceleration of the cable at the sheave, the rate of its material velocity v_0 + g (r_1 - r_0) there
         (g = w N / L, module docstring) with the node at the sheave: a_0 + g' (r_1 - r_0) + g (v_1 - v_0),

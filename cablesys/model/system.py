@@ -12,7 +12,9 @@ summed node by node in :class:`.node_terms.NodeSums`.
 Nodes. The lines are walked in the scene's order; each line's start point gets a node when first met, then the
 line's interior nodes from its start to its end (section joints included: a section's last node is the next
 section's first), then its end point when first met. The prescribed point's node moves with the top motion e (the
-origin of the node frame at its mean position); a fixed point's node is held at its position (entries of p); every
+origin of the node frame at its mean position), a further prescribed point's node (another point of the vessel) with
+the same translation about its mean position (entries of p, ``system.point[i].x``, ...); a fixed point's node is held
+at its position (entries of p); every
 other node is free: its coordinates (x, y) in the plane, (x, y, z) in space are q, labelled ``x[j]``, ``y[j]``,
 ``z[j]`` by node number j. A chain written from its top down is numbered as the chain's node model numbers it, so
 the two models are the same functions (tests/test_system_model.py).
@@ -24,6 +26,22 @@ at that node (weight, drag share, minus its inertia), as the chain's ``tension_t
 profiles ``element_tension[k]``, ``element_tension_rate[k]``, ``element_strain[k]``, ``element_slack[k]`` (elements
 line by line, each from its start), ``element_s[k]`` (the element mid-point's unstretched arc length from its line's
 start, m) and ``node_x[j]``, ``node_y[j]`` (``node_z[j]``) of every node. Units SI.
+
+A body point whose body is rigid (``pitch_inertia`` set; Wang 1971 p. 32, body rotation) is the chain's rigid body
+(:mod:`.rigid_body`, assembled by :mod:`.rigid_assembly` as the chain's): its node is the lines' attachment point, its
+orientation more coordinates after every node's, point by point in the scene's order (``point.NAME.theta_b`` in the
+plane, ``point.NAME.quat_w_b`` .. ``quat_z_b`` in space; ``n_rotations``, ``rotation_rest``), node and orientation one
+block of Lagrange's equations (3 x 3 in the plane, 7 x 7 in space); its parameters ``system.point[i].body.*``, its
+outputs ``point.NAME.theta_b``, ``theta_b_rate``, ``x_cg``, ``x_cg_rate``, ``y_cg``, ``y_cg_rate`` and in space
+``roll_b``, ``yaw_b`` and rates, ``z_cg``, ``z_cg_rate``, ``omega_x_b`` .. ``omega_z_b``, ``quat_w_b`` .. ``quat_z_b``
+(:data:`.rigid_assembly.RIGID_OUTPUTS`, :data:`.rigid_assembly.RIGID_OUTPUTS_3D`).
+
+A ``[winch]`` pays out the one line that starts at the prescribed point (:func:`winch_line`; the scene refuses any
+other), its first section exactly as the chain's first section (:mod:`.segmented_winch`: its elements share L(t),
+their terms see the material velocities, L a prescribed coordinate in Lagrange's equations; the seabed resists the
+sliding material, :meth:`.segmented_winch.Payout.sliding`; the line's ``tension_from`` lumps the sheave's half element
+with the material's acceleration there) through the same :meth:`.node_terms.NodeSums.section`; outputs add
+:data:`.segmented_winch.WINCH_OUTPUTS` (the power with that line's ``tension_from``).
 
 A ``[seabed]`` acts on every free node as on the chain's (:mod:`.segmented_seabed`: normal contact, regularised
 Coulomb friction, in space along and across the line on a bed sloping towards ``seabed.heading_deg``, the laid-down
@@ -44,14 +62,17 @@ import casadi as ca
 from ..scene import Scene
 from .node_terms import NodeSums
 from .params import ParameterLayout, environment_symbols
+from .rigid_assembly import assemble, node_acceleration, orientation_names, rigid_block, rigid_outputs
+from .rigid_body import ORIENTATION_REST
 from .section import SectionParameters
 from .segmented import SegmentedModel, drag_points
-from .segmented_element import block_solve, element_inertia, element_terms, lump_force, norm
+from .segmented_element import block_solve, lump_force, norm
 from .segmented_seabed import seabed_forces
+from .segmented_winch import WINCH_OUTPUTS, payout
 from .signals import EXO_LABELS
 from .top_motion import EXO_LABELS_3D, symbolic_type, top_motion_function
 
-__all__ = ["SystemModel", "build_system_model", "topology"]
+__all__ = ["SystemModel", "build_system_model", "topology", "winch_line"]
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -60,7 +81,8 @@ class SystemModel(SegmentedModel):
     numbered line by line. ``point_names``, ``point_kinds`` and ``point_nodes`` (the node of each point, scene
     order); ``line_names``, ``line_nodes`` (each line's nodes from its start to its end) and ``line_segments`` (its
     sections' element counts); ``node_q`` the position of each node's first coordinate in q (-1 for the prescribed
-    and fixed nodes); ``node_labels`` the parameter labels of a fixed node's position (() for the others)."""
+    and fixed nodes); ``node_labels`` the parameter labels of a fixed node's position or a further prescribed node's
+    mean position (() for the others)."""
 
     point_names: tuple = ()
     point_kinds: tuple = ()
@@ -99,6 +121,15 @@ def topology(system) -> tuple:
     return tuple(point_nodes[p.name] for p in system.point), tuple(line_nodes), count
 
 
+def winch_line(scene: Scene) -> int | None:
+    """The index of the line a ``[winch]`` pays out (the one line starting at the prescribed point, checked by the
+    scene), None without a winch."""
+    if getattr(scene, "winch", None) is None:
+        return None
+    top = scene.system.prescribed.name
+    return next(k for k, ln in enumerate(scene.system.line) if ln.start == top)
+
+
 def build_system_model(scene: Scene) -> SystemModel:
     """Build the node model of ``scene.system`` (module docstring); every value enters through ``p``.
 
@@ -126,8 +157,14 @@ def build_system_model(scene: Scene) -> SystemModel:
         if j not in kind_of or kind_of[j].free:
             node_q[j] = dim * len(free)
             free.append(j)
-    q_labels = tuple(f"{c}[{j}]" for j in free for c in axes)
-    q, qd = ca.SX.sym("q", dim * len(free)), ca.SX.sym("qd", dim * len(free))
+    # a rigid body's orientation (rigid_body.py) after the nodes, point by point: theta_b in the plane, a quaternion
+    # in space, labelled point.NAME.theta_b, point.NAME.quat_w_b, ...
+    rigid = [i for i, pt in enumerate(system.point) if pt.free and pt.body.is_rigid]
+    rest = ORIENTATION_REST[dim]
+    n_rot, n_nq = len(rigid) * len(rest), dim * len(free)
+    q_labels = tuple(f"{c}[{j}]" for j in free for c in axes) + tuple(
+        f"point.{system.point[i].name}.{name}" for i in rigid for name in orientation_names(dim))
+    q, qd = ca.SX.sym("q", n_nq + n_rot), ca.SX.sym("qd", n_nq + n_rot)
     e = ca.SX.sym("e", len(EXO_LABELS_3D if dim == 3 else EXO_LABELS))
     t, z, zd, zdd = e[0], e[1:1 + dim], e[1 + dim:1 + 2 * dim], e[1 + 2 * dim:1 + 3 * dim]
     env = environment_symbols(layout, scene)          # Wang 1971 eq. 26-28 inputs
@@ -140,8 +177,11 @@ def build_system_model(scene: Scene) -> SystemModel:
         if node_q[j] >= 0:
             k = node_q[j]
             r, v = tuple(q[k + c] for c in range(dim)), tuple(qd[k + c] for c in range(dim))
-        elif pt.kind == "prescribed":                  # the top: the scene's top motion
+        elif pt.kind == "prescribed" and pt is system.prescribed:     # the top: the scene's top motion
             r, v = tuple(z[c] for c in range(dim)), tuple(zd[c] for c in range(dim))
+        elif pt.kind == "prescribed":                  # another point of the vessel: its mean position, translated
+            labels = tuple(f"system.point[{point_index[j]}].{c}" for c in axes)
+            r, v = tuple(layout.sym(lb) + z[c] for c, lb in enumerate(labels)), tuple(zd[c] for c in range(dim))
         else:                                          # a fixed point, held at its position
             labels = tuple(f"system.point[{point_index[j]}].{c}" for c in axes)
             r, v = tuple(layout.sym(lb) for lb in labels), (0.0,) * dim
@@ -152,30 +192,38 @@ def build_system_model(scene: Scene) -> SystemModel:
     static_law = scene.seabed is not None            # the seabed's statics: elements elastic both ways (catenary.py)
     sums = NodeSums(n_nodes, dim)
     elements, lines, s_el = [], [], []
+    wound = winch_line(scene)                         # a [winch] pays out this line's first section (segmented_winch)
+    pay = None
     for k, line in enumerate(system.line):
         seq, pos, els, s0 = line_nodes[k], 0, [], 0.0
         for s, cable in enumerate(line.section):
             P = SectionParameters.for_cable(layout, f"system.line[{k}].section[{s}].")
             n_el = cable.segments
-            inertia = element_inertia(P, n_el, p, rho, t, env, depth0, drag_points(scene, n_el), dim)
-            for m in range(n_el):
-                a, b = seq[pos + m], seq[pos + m + 1]
-                el = element_terms(P, n_el, node_r[a], node_v[a], node_r[b], node_v[b], rho=rho, t=t, env=env,
-                                   depth0=depth0, n_points=drag_points(scene, n_el))
-                el.update(a=a, b=b)
-                sums.element(el, node_v[a], node_v[b], inertia(ca.vertcat(*node_r[a]), ca.vertcat(*node_r[b]),
-                                                               ca.vertcat(*node_v[a]), ca.vertcat(*node_v[b]), p),
-                             P, n_el, static_law)
-                els.append(el)
-                s_el.append(s0 + (m + 0.5) * P.l_0 / n_el)
+            sec_pay = payout(scene, layout, P, t) if (k, s) == (wound, 0) else None
+            pay = sec_pay or pay
+            sec_els, P = sums.section(P, n_el, seq[pos:pos + n_el + 1], node_r, node_v, pay=sec_pay, p=p, rho=rho,
+                                      t=t, env=env, depth0=depth0, n_points=drag_points(scene, n_el),
+                                      static_law=static_law)
+            els += sec_els
+            s_el += [s0 + (m + 0.5) * P.l_0 / n_el for m in range(n_el)]
             pos += n_el
             s0 = s0 + P.l_0
         lines.append(els)
         elements += els
+    V_rigid, rigid_terms = 0.0, {}                    # rigid bodies: energy; node -> its RigidBlock
     for i, pt in enumerate(system.point):
-        if pt.free:                                    # Wang's point body: a body or a junction
-            j = point_nodes[i]
-            P = SectionParameters.for_body(layout, f"system.point[{i}].body.", pt.body.is_sphere, dim == 3)
+        if not pt.free:
+            continue
+        j = point_nodes[i]
+        P = SectionParameters.for_body(layout, f"system.point[{i}].body.", pt.body.is_sphere, dim == 3)
+        if i in rigid:                                 # a rigid body at its attachment node (rigid_assembly.py)
+            m = rigid.index(i)
+            blk = rigid_block(P, layout, f"system.point[{i}].", [node_q[j] + c for c in range(dim)],
+                              range(n_nq + len(rest) * m, n_nq + len(rest) * (m + 1)), node_r[j], node_v[j], q, qd,
+                              rho=rho, t=t, env=env, depth0=depth0, dim=dim)
+            sums.K, V_rigid = sums.K + blk.K, V_rigid + blk.V
+            rigid_terms[j] = blk
+        else:                                          # Wang's point body: a body or a junction
             sums.point_body(j, P, node_r[j], node_v[j], rho=rho, t=t, env=env, depth0=depth0)
 
     V_contact, bed = 0.0, None
@@ -191,16 +239,26 @@ def build_system_model(scene: Scene) -> SystemModel:
         for el in reversed(elements):                 # the other side (the line's tangent in space): an element
             if up[el["a"]] is not el:                 # leaving the node, its line's next one at an inner node
                 down[el["a"]] = el
-        bed = seabed_forces(layout, node_r, node_v, sums.area, elements, depth0, free, up, down)
+        # the bed resists the cable's material, which a winch makes slide past its line's nodes
+        slide = node_v if pay is None else pay.sliding(
+            node_r, node_v, line_nodes[wound][:system.line[wound].section[0].segments + 1])
+        bed = seabed_forces(layout, node_r, slide, sums.area, elements, depth0, free, up, down)
         V_contact = bed["energy"]
         for j, (Fd, Fs) in bed["forces"].items():
             for c in range(dim):
                 sums.Q[j][c] += Fd[c]
                 sums.Q_static[j][c] += Fs[c]
-    # Lagrange's equations node by node (node_terms.py): M_j q''_j = f_j, block diagonal
-    acc_nodes, acc = [None] * n_nodes, []
+    # Lagrange's equations node by node (node_terms.py): M_j q''_j = f_j, block diagonal; a rigid body's node and
+    # its orientation one block (rigid_assembly.py)
+    acc_nodes, acc, acc_rot = [None] * n_nodes, [], [0.0] * n_rot
     for j in range(n_nodes):
-        if node_q[j] >= 0:
+        if j in rigid_terms:
+            blk = rigid_terms[j]
+            a_j, a_rot = node_acceleration(blk, sums.M[j], sums.force(j), dim)
+            acc += list(a_j)
+            for kk, a_k in zip(blk.k, a_rot):
+                acc_rot[kk - n_nq] = a_k
+        elif node_q[j] >= 0:
             a_j = block_solve(sums.M[j], sums.force(j))
             acc += list(a_j)
         elif kind_of[j].kind == "prescribed":
@@ -208,9 +266,9 @@ def build_system_model(scene: Scene) -> SystemModel:
         else:
             a_j = (0.0,) * dim
         acc_nodes[j] = a_j
-    acc = ca.vertcat(*acc)
-    M = ca.diagcat(*[sums.M[j] for j in free])
-    f = ca.vertcat(*[sums.force(j) for j in free])
+    acc = ca.vertcat(*acc, *acc_rot)
+    M, f, f_static = assemble(ca.diagcat(*[sums.M[j] for j in free]), ca.vertcat(*[sums.force(j) for j in free]),
+                              ca.vertcat(*[sums.force(j, static=True) for j in free]), rigid_terms.values(), n_rot)
 
     x = ca.vertcat(q, qd)
     xdot = ca.vertcat(qd, acc)
@@ -219,15 +277,29 @@ def build_system_model(scene: Scene) -> SystemModel:
         j = point_nodes[i]
         out += [node_r[j][c] for c in range(dim)] + [node_v[j][c] for c in range(dim)]
         labels += [f"point.{pt.name}.{c}" for c in axes] + [f"point.{pt.name}.{c}_rate" for c in axes]
+        if j in rigid_terms:                           # its attitude, CG and (in space) rates and quaternion
+            values, names = rigid_outputs(rigid_terms[j], dim)
+            out += values
+            labels += [f"point.{pt.name}.{name}" for name in names]
     for k, line in enumerate(system.line):
         first, last = lines[k][0], lines[k][-1]
         a, b = line_nodes[k][0], line_nodes[k][-1]
         # force of the line on its end points: the end element's tension plus the half element lumped there
-        lt, lb = lump_force(first, "a", acc_nodes[a]), lump_force(last, "b", acc_nodes[b])
+        acc_a = acc_nodes[a]
+        if pay is not None and k == wound:           # the material's acceleration at the sheave (segmented_winch.py)
+            seq = line_nodes[k]
+            acc_a = pay.top_acceleration(system.line[k].section[0].segments, node_r[a], node_v[a], acc_a,
+                                         node_r[seq[1]], node_v[seq[1]])
+        lt, lb = lump_force(first, "a", acc_a), lump_force(last, "b", acc_nodes[b])
         start = tuple(first["tension"] * first["et"][c] + lt[c] for c in range(dim))
         end = tuple(-last["tension"] * last["et"][c] + lb[c] for c in range(dim))
         out += [norm(start), norm(end)]
         labels += [f"line.{line.name}.tension_from", f"line.{line.name}.tension_to"]
+        if pay is not None and k == wound:           # the winch: L, w, alpha and the power T w at the sheave
+            winch_out = pay.outputs(norm(start))
+    if pay is not None:
+        out += winch_out
+        labels += list(WINCH_OUTPUTS)
     T = ca.vertcat(*[el["tension"] for el in elements])
     T_rate = ca.jtimes(T, x, xdot) + ca.jacobian(T, e) @ ca.vertcat(1.0, zd, zdd, ca.DM.zeros(dim))
     prof = {"element_tension": T, "element_tension_rate": T_rate,
@@ -253,9 +325,9 @@ def build_system_model(scene: Scene) -> SystemModel:
     ode = ca.Function("ode", [xs, ts, ps], [ca.vertcat(xs[nq:], accel(xs[:nq], xs[nq:], top(ts, ps), ps))],
                       ["x", "t", "p"], ["xdot"])
     outputs = ca.Function("outputs", [x, e, p], [ca.vertcat(*out)], ["x", "e", "p"], ["y"])
-    energy = ca.Function("energy", [x, e, p], [sums.K, sums.gravity(node_r) + sums.V_strain + V_contact],
+    energy = ca.Function("energy", [x, e, p], [sums.K, sums.gravity(node_r) + sums.V_strain + V_contact + V_rigid],
                          ["x", "e", "p"], ["K", "V"])
-    static = (ca.Function("static_force", [q, qd, e, p], [ca.vertcat(*[sums.force(j, static=True) for j in free])],
+    static = (ca.Function("static_force", [q, qd, e, p], [f_static],
                           ["q", "qd", "e", "p"], ["f"]) if bed is not None else None)
     cable_force = ca.Function("cable_force", [x, p], [ca.SX(0, 1)], ["x", "p"], ["gap"])
     return SystemModel(layout=layout, n_sections=0, angles=scene.angles, q_labels=q_labels,
@@ -267,4 +339,5 @@ def build_system_model(scene: Scene) -> SystemModel:
                        point_kinds=tuple(pt.kind for pt in system.point), point_nodes=point_nodes,
                        line_names=tuple(ln.name for ln in system.line), line_nodes=line_nodes,
                        line_segments=tuple(tuple(c.segments for c in ln.section) for ln in system.line),
-                       node_q=tuple(node_q), node_labels=tuple(node_labels))
+                       node_q=tuple(node_q), node_labels=tuple(node_labels), n_rotations=n_rot,
+                       rotation_rest=rest * len(rigid))

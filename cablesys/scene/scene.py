@@ -100,13 +100,14 @@ class Scene:
                                  "anchor")
         bed, depth0 = self.seabed, self.environment.top_depth
         for i, p in enumerate(sys_.point):
-            if p.kind == "fixed" and bed is not None:
-                y_bed = bed.bed_y(p.x, depth0, p.z or 0.0)
-                if p.y > y_bed + 1e-9 * max(1.0, abs(y_bed)):
-                    where = f"x = {p.x:.6g} m" + (f", z = {p.z:.6g} m" if p.z else "")
-                    raise ParameterError(f"point[{i}].y", p.y, f"puts the fixed point {p.name!r} below the seabed "
+            if p.held and bed is not None:
+                px, py, pz = p.position
+                y_bed = bed.bed_y(px, depth0, pz)
+                if py > y_bed + 1e-9 * max(1.0, abs(y_bed)):
+                    where = f"x = {px:.6g} m" + (f", z = {pz:.6g} m" if pz else "")
+                    raise ParameterError(f"point[{i}].y", py, f"puts the {p.kind} point {p.name!r} below the seabed "
                                          f"(the bed is at y = {y_bed:.6g} m under {where}, seabed.depth = "
-                                         f"{bed.depth:.6g} m): a fixed point must lie on or above the bed")
+                                         f"{bed.depth:.6g} m): a fixed or prescribed point must lie on or above the bed")
         chain = sys_.as_chain()
         if chain is None:
             return secs
@@ -124,14 +125,20 @@ class Scene:
 
     def _check_system(self) -> None:
         """What the node model of a graph of lines (:mod:`cablesys.model.system`) does not take yet, each refused by
-        name: a rigid body, a winch, a track, an initial angle or stretch (it starts from its statics), top motion
-        without a prescribed point."""
-        for name, bad in (("winch", self.winch is not None), ("top_motion.track", self.top_motion.track is not None)):
-            if bad:
-                raise ParameterError(name, "set", "must be unset for a system that is not a chain of sections: the "
-                                     "node model of a graph of lines has no " + {"winch": "winch",
-                                     "top_motion.track": "steady turn"}[name] + " yet")
+        name: a track, a rigid body with a seabed (as the chain's), an initial angle or stretch (it starts from its
+        statics), top motion without a prescribed point, a vessel's 6-DOF RAO with several prescribed points (each
+        would need its own lever arm); a winch whose line is not the prescribed point's one line."""
+        if self.top_motion.track is not None:
+            raise ParameterError("top_motion.track", "set", "must be unset for a system that is not a chain of "
+                                 "sections: the node model of a graph of lines has no steady turn yet")
+        self._check_system_winch()
         top = self.top_motion
+        n_top = self.system.n_prescribed
+        if n_top > 1 and top.vessel is not None:
+            raise ParameterError("top_motion.vessel", "set", f"must be unset with {n_top} prescribed points: the "
+                                 "6-DOF RAO moves each point of the vessel by its own lever arm (its rotations), and "
+                                 "the system's one [top_motion] translates every prescribed point alike so far; give "
+                                 "that translation as top_motion.x, y, z, a series or [top_motion.rao]")
         if self.system.prescribed is None:
             moved = [f"top_motion.{a}" for a in ("x", "y", "z") if getattr(top, a)] + [
                 f"top_motion.{a}" for a in ("series", "spectrum", "track") if getattr(top, a) is not None]
@@ -143,10 +150,31 @@ class Scene:
                 raise ParameterError(f"initial.{name}", getattr(self.initial, name), "must be unset for a system of "
                                      "lines: it starts from its static state")
         for i, p in enumerate(self.system.point):
-            if p.body is not None and p.body.is_rigid:
-                raise ParameterError(f"point[{i}].pitch_inertia", p.body.pitch_inertia, "must be unset in a "
-                                     "system that is not a chain of sections: the node model of a graph of lines "
-                                     "takes point bodies so far")
+            if p.body is not None and p.body.is_rigid and self.seabed is not None:
+                raise ParameterError(f"point[{i}].pitch_inertia", p.body.pitch_inertia, "must be unset for a scene "
+                                     "with a [seabed]: a rigid, pitching body is built by the node model without "
+                                     "seabed so far (its footprint's contact does not turn it)")
+
+    def _check_system_winch(self) -> None:
+        """A ``[winch]`` on a system pays out the one line that starts at the (first) prescribed point (its first section, as
+        the chain's first section: :mod:`cablesys.model.segmented_winch`), keeping its zero-tension length in
+        (0, max_length] (:meth:`.ends.Winch.check_length`)."""
+        if self.winch is None:
+            return
+        top = self.system.prescribed
+        if top is None:
+            raise ParameterError("winch", "set", "must be unset: a winch pays out the line that starts at the "
+                                 "prescribed point, and this system has none (its points are fixed or free)")
+        starts = [k for k, ln in enumerate(self.system.line) if ln.start == top.name]
+        if len(starts) != 1:
+            names = [self.system.line[k].name for k in starts]
+            raise ParameterError("winch", f"{len(starts)} lines from the prescribed point {top.name!r}"
+                                 + (f" ({', '.join(names)})" if names else ""),
+                                 "must pay out one line: exactly one [[line]] must start (from) at the prescribed "
+                                 "point, the line the winch pays out (write the others from their other end)")
+        k = starts[0]
+        c = self.system.line[k].section[0]
+        self.winch.check_length(c.length * (1.0 - c.tension_ref / c.ae), f"line[{k}].section[0].length")
 
     def _check_ends(self) -> None:
         """An anchor or a seabed acts on the nodes of the segmented cable; the anchor lies on or above
@@ -229,9 +257,11 @@ class Scene:
         if self.seabed is not None and self.seabed.heading_deg is not None:
             out.append("seabed.heading_deg")
         if self.system is not None:      # a fixed point off the x-y plane, a body's M_bvz
-            out += [f"point[{i}].z" for i, p in enumerate(self.system.point) if p.kind == "fixed" and p.z]
+            out += [f"point[{i}].z" for i, p in enumerate(self.system.point) if p.held and p.z]
             out += [f"point[{i}].mass_z" for i, p in enumerate(self.system.point)
                     if p.body is not None and p.body.mass_z is not None]
+            out += [f"point[{i}].{name}" for i, p in enumerate(self.system.point) if p.body is not None
+                    for name in p.body.three_d_fields()]      # a rigid body's 3-D fields
         return tuple(out)
 
     @property

@@ -3,7 +3,10 @@
 Every point is one of four kinds:
 
 - ``prescribed``: the top (a ship, a crane tip, a fairlead); its motion is the scene's ``[top_motion]`` and its
-  mean position is the origin of the node frame (x right, y down from the top's mean depth, z the sway);
+  mean position is the origin of the node frame (x right, y down from the top's mean depth, z the sway). More
+  prescribed points are more points of the same vessel (a second fairlead, a second lift wire): each at its mean
+  position (x, y, z) in the node frame, every one moved by the one ``[top_motion]``'s translation (the first
+  prescribed point stays the origin, its position unset);
 - ``fixed``: an anchor or a support at rest at (x, y, z);
 - ``body``: a free body (Wang's body, :class:`~.body.Body`: weight in water, virtual masses, drag; rigid with
   ``pitch_inertia``);
@@ -53,8 +56,9 @@ class Point:
 
     A fixed point's ``x``, ``y`` (and ``z``, unset: 0) are its position in the node frame (m: x from the prescribed
     point's mean position, y down from its mean depth, z the sway). A body's or junction's position, when given, is
-    the statics' starting guess for it. A prescribed point is the origin: its position is unset (its motion is the
-    scene's ``[top_motion]``). In a TOML file a body's or junction's fields (``weight``, ``mass_x``, ...) are written
+    the statics' starting guess for it. The (first) prescribed point is the origin: its position is unset (its
+    motion is the scene's ``[top_motion]``); a further prescribed point's ``x``, ``y`` (``z``) are its mean position,
+    about which the same ``[top_motion]`` translates it. In a TOML file a body's or junction's fields (``weight``, ``mass_x``, ...) are written
     in the ``[[point]]`` table itself.
     """
 
@@ -77,15 +81,13 @@ class Point:
         for c in _POSITION:
             if getattr(self, c) is not None:
                 object.__setattr__(self, c, require_finite(f"point.{c}", getattr(self, c)))
-        if self.kind == "prescribed":
-            for c in _POSITION:
-                if getattr(self, c) not in (None, 0.0):
-                    raise ParameterError(f"point.{c}", getattr(self, c), "must be unset (or 0) for the prescribed "
-                                         "point: it is the origin of the node frame, moved by [top_motion]")
-        if self.kind == "fixed":
+        if self.kind == "fixed" or (self.kind == "prescribed" and any(getattr(self, c) not in (None, 0.0)
+                                                                       for c in _POSITION)):
             for c in ("x", "y"):
                 if getattr(self, c) is None:
-                    raise ParameterError(f"point.{c}", "missing", "is required for a fixed point (its position, m)")
+                    raise ParameterError(f"point.{c}", "missing", f"is required for a {self.kind} point given a "
+                                         "position (its mean position in the node frame, m)" if self.kind ==
+                                         "prescribed" else "is required for a fixed point (its position, m)")
         if self.kind in ("prescribed", "fixed"):
             if self.body is not None:
                 raise ParameterError("point.weight", self.body.weight, f"must be unset for a {self.kind} point: it "
@@ -110,10 +112,10 @@ class Point:
 
     @property
     def position(self) -> tuple:
-        """(x, y, z) (m): a fixed point's position, the prescribed point's mean position (0, 0, 0), a free point's
-        guess (None entries unset)."""
+        """(x, y, z) (m): a fixed point's position, a prescribed point's mean position (unset: the origin), a free
+        point's guess (None entries unset)."""
         if self.kind == "prescribed":
-            return (0.0, 0.0, 0.0)
+            return (self.x or 0.0, self.y or 0.0, self.z or 0.0)
         if self.kind == "fixed":
             return (self.x, self.y, self.z or 0.0)
         return (self.x, self.y, self.z)
@@ -165,8 +167,9 @@ def _unique(kind: str, items) -> dict:
 class System:
     """Points joined by lines (module docstring): ``point`` and ``line`` are the ``[[point]]`` and ``[[line]]``
     tables in file order. Checked when made: unique names, every line's ends name points, every point ends a line,
-    a prescribed or fixed point holds the system, one prescribed point at most (the scene's one top motion), every
-    path of lines between two held points at least as long as their distance."""
+    a prescribed or fixed point holds the system, the first prescribed point at the origin and every other one at a
+    given mean position (the scene's one top motion translates them all), every path of lines between two held points
+    at least as long as their distance."""
 
     point: tuple[Point, ...] = spec("none", "the points ([[point]] tables)")
     line: tuple[Line, ...] = spec("none", "the lines ([[line]] tables)")
@@ -200,10 +203,19 @@ class System:
                                  "(an anchor, a support)")
         self._check_held_parts()
         top = [i for i, p in enumerate(pts) if p.kind == "prescribed"]
-        if len(top) > 1:
-            raise ParameterError(f"point[{top[1]}].kind", "prescribed", f"point[{top[0]}] is prescribed already: a "
-                                 "system has one prescribed point so far (the scene's one [top_motion] moves it); make "
-                                 "the others fixed points (supports at rest)")
+        if top:
+            first = pts[top[0]]
+            for c in _POSITION:
+                if getattr(first, c) not in (None, 0.0):
+                    raise ParameterError(f"point[{top[0]}].{c}", getattr(first, c), "must be unset (or 0) for the "
+                                         "first prescribed point: it is the origin of the node frame, moved by "
+                                         "[top_motion] (a further prescribed point's x, y, z are its mean position)")
+        for i in top[1:]:
+            if pts[i].x is None:
+                raise ParameterError(f"point[{i}].x", "missing", f"is required for a second prescribed point (its "
+                                     f"mean position in the node frame, m, x and y; point[{top[0]}] "
+                                     f"{pts[top[0]].name!r} is the origin): the one [top_motion] translates every "
+                                     "prescribed point about its mean position")
         self._check_reach()
 
     def _check_held_parts(self) -> None:
@@ -273,8 +285,13 @@ class System:
 
     @property
     def prescribed(self) -> Point | None:
-        """The prescribed point (None: the system hangs between fixed points)."""
+        """The (first) prescribed point, the node frame's origin (None: the system hangs between fixed points)."""
         return next((p for p in self.point if p.kind == "prescribed"), None)
+
+    @property
+    def n_prescribed(self) -> int:
+        """How many prescribed points the system has (each moved by the one [top_motion])."""
+        return sum(p.kind == "prescribed" for p in self.point)
 
     def degree(self, name: str) -> int:
         """How many line ends meet at point ``name``."""

@@ -613,15 +613,15 @@ def segmented_initial_state(scene, model, p, t0: float = 0.0, q=None) -> np.ndar
                 vel.append(v0 + s * (ini.u_rate * et + length * ini.phi_rate * en))
             r0, v0 = pos[-1], vel[-1]
         q, v = np.array(pos), np.array(vel)
-    return np.concatenate([(q + z).ravel(), _released(scene, rot), (v + zd).ravel(), np.zeros(n_rot)])
+    bodies = [s.body for s in scene.sections if s.body.is_rigid]
+    return np.concatenate([(q + z).ravel(), released(bodies, rot), (v + zd).ravel(), np.zeros(n_rot)])
 
 
-def _released(scene, rot) -> np.ndarray:
+def released(bodies, rot) -> np.ndarray:
     """The rigid bodies' orientation coordinates ``rot`` with each body turned to its ``initial_*_deg`` attitude where
     set (:func:`cablesys.model.rigid_body.turned_orientation`, about its attachment point: the nodes keep their
-    places), the bodies in section order as in q."""
+    places); ``bodies`` (:class:`~cablesys.scene.body.Body`) in the order of their coordinates in q."""
     rot = np.array(rot, float)
-    bodies = [s.body for s in scene.sections if s.body.is_rigid]
     if not bodies:
         return rot
     n = rot.size // len(bodies)

@@ -1,8 +1,8 @@
 """Equilibrium of a cable system: lines joined at points (the node model of a graph of lines, model/system.py).
 
 The static residual is the model's own force vector with every rate zero (:func:`.problem.static_residual`; waves
-off, forces over the total weight), the prescribed point held at a given position (its mean position, or where the
-top motion puts it at the start of a run). KINSOL solves it in node coordinates with a sparse direct solver, as the
+off, forces over the total weight), the prescribed points held at a given translation (their mean positions, or
+where the top motion puts them at the start of a run). KINSOL solves it in node coordinates with a sparse direct solver, as the
 anchored line's statics do (:mod:`.catenary`): first with every element elastic both ways (tension floor -(AE)_r, so
 that an element of the guess shorter than its zero-tension length keeps its stiffness), then with the lines' own
 law. The first guess:
@@ -34,7 +34,7 @@ import numpy as np
 
 from ..errors import SolverError
 from ..messages import casadi_warnings_captured, kinsol_flags
-from .catenary import NODE_KINSOL, TOLERANCE, _taut_span, flow_continuation, flow_indices
+from .catenary import NODE_KINSOL, TOLERANCE, _pins, _taut_span, flow_continuation, flow_indices, released
 from .problem import SteadyState, at_rest, residual_scales, static_parameters, static_zeroed
 
 __all__ = ["system_equilibrium", "system_guess", "system_initial_state", "system_steady"]
@@ -62,16 +62,19 @@ def _bodies(model, p) -> dict:
 
 
 def _held(model, p, top) -> dict:
-    """{node: (x, y, z)} of the held nodes: the prescribed point at ``top`` (default its mean position, the origin),
-    the fixed points at their positions (m)."""
+    """{node: (x, y, z)} of the held nodes: the prescribed points translated by ``top`` (default 0: at their mean
+    positions, the first at the origin), the fixed points at their positions (m)."""
     lab = model.layout.labels
+    shift = np.zeros(3) if top is None else np.r_[np.asarray(top, float), np.zeros(3 - len(top))]
     out = {}
     for i, kind in enumerate(model.point_kinds):
         j = model.point_nodes[i]
+        at = np.array([float(p[lab.index(f"system.point[{i}].{c}")]) if f"system.point[{i}].{c}" in lab else 0.0
+                       for c in "xyz"])
         if kind == "prescribed":
-            out[j] = np.zeros(3) if top is None else np.r_[np.asarray(top, float), np.zeros(3 - len(top))]
+            out[j] = at + shift
         elif kind == "fixed":
-            out[j] = np.array([float(p[lab.index(f"system.point[{i}].{c}")]) for c in "xyz"])
+            out[j] = at
     return out
 
 
@@ -182,26 +185,41 @@ def system_guess(model, p, *, points: dict | None = None, top=None) -> np.ndarra
     for j, r in pos.items():
         if model.node_q[j] >= 0:
             q[model.node_q[j]:model.node_q[j] + dim] = r[:dim]
+    return _level(model, q)
+
+
+def _level(model, q) -> np.ndarray:
+    """``q`` with the rigid bodies' orientation coordinates (after the nodes) at the level attitude (theta_b = 0, the
+    unit quaternion: :data:`cablesys.model.rigid_body.ORIENTATION_REST`)."""
+    n_rot = model.n_rotations
+    if n_rot:
+        q[model.nq - n_rot:] = model.rotation_rest
     return q
 
 
 def _residual(model) -> ca.Function:
-    """``(q, (p, z0)) -> r``: the static residual (:func:`.problem.static_residual`) with the prescribed point at z0
-    (dim entries; the top input e = (0, z0, 0, 0))."""
+    """``(q, (p, z0, a_ref, U)) -> r``: the static residual (:func:`.problem.static_residual`) with the prescribed
+    point at z0 (dim entries; the top input e = (0, z0, 0, 0)) and the rigid bodies' neutral rotations pinned as the
+    chain's statics pin them (:func:`.catenary._pinned_residual`: U (a_ref - a) added to the orientation rows, U by
+    columns, n_rot x n_rot; U = 0 where no rotation is neutral, e.g. the yaw of a body hanging still in space)."""
     def build():
         q = ca.SX.sym("q", model.nq)
-        n_p, dim = len(model.layout), model.dim
-        pz = ca.SX.sym("pz", n_p + dim)
+        n_p, dim, n_rot = len(model.layout), model.dim, model.n_rotations
+        pz = ca.SX.sym("pz", n_p + dim + n_rot + n_rot * n_rot)
         p = pz[:n_p]
         zeroed = set(static_zeroed(model))
         ps = ca.vertcat(*[0.0 if i in zeroed else p[i] for i in range(n_p)])
-        e = ca.vertcat(0.0, pz[n_p:], ca.SX.zeros(2 * dim))
+        e = ca.vertcat(0.0, pz[n_p:n_p + dim], ca.SX.zeros(2 * dim))
         forces = getattr(model, "static_force", None)   # a seabed's statics have their own laws (segmented_seabed.py)
         if forces is not None:
             f = forces(q, ca.SX.zeros(model.nq), e, ps)
         else:
             _, f = model.dynamics(q, ca.SX.zeros(model.nq), e, ps)
-        return ca.Function("system_residual", [q, pz], [f / residual_scales(model, p)], ["q", "p"], ["r"])
+        r = f / residual_scales(model, p)
+        if n_rot:
+            ref, U = pz[n_p + dim:n_p + dim + n_rot], ca.reshape(pz[n_p + dim + n_rot:], n_rot, n_rot)
+            r = ca.vertcat(r[:model.nq - n_rot], r[model.nq - n_rot:] + ca.mtimes(U, ref - q[model.nq - n_rot:]))
+        return ca.Function("system_residual", [q, pz], [r], ["q", "p"], ["r"])
     return model.derive("system_static_residual", build)
 
 
@@ -273,19 +291,24 @@ def system_equilibrium(model, p, *, guess=None, points: dict | None = None, top=
             lb = f"system.line[{k}].section[{s}]."
             both[model.layout.index(lb + "tension_floor")] = -p[model.layout.index(lb + "ae")]
 
+    q0 = system_guess(model, p, points=points, top=z0) if guess is None else np.asarray(guess, float)
+    n_rot = model.n_rotations
+    unpinned = np.zeros(n_rot + n_rot * n_rot)
+
     def residual(q, pp):
-        return float(np.max(np.abs(np.array(resid(q, np.concatenate([pp, z0])))))) if np.all(np.isfinite(q)) else np.inf
+        return (float(np.max(np.abs(np.array(resid(q, np.concatenate([pp, z0, unpinned]))))))
+                if np.all(np.isfinite(q)) else np.inf)
 
     def solve(q, pp):
-        """KINSOL with the elements elastic both ways, then with the line's own law (restarted from its iterate)."""
+        """KINSOL with the elements elastic both ways, then with the line's own law (restarted from its iterate), a
+        neutral rotation pinned where it is (:func:`_residual`)."""
         for law in (_both_ways(model, pp, both, p), pp):
             for _ in range(2):
-                q_new = np.array(nodes(q, np.concatenate([law, z0]))).ravel()
+                q_new = np.array(nodes(q, np.concatenate([law, z0, _pins(model, q, law)]))).ravel()
                 if np.all(np.isfinite(q_new)):
                     q = q_new
         return q, residual(q, pp)
 
-    q0 = system_guess(model, p, points=points, top=z0) if guess is None else np.asarray(guess, float)
     with casadi_warnings_captured() as kinsol:
         q, r = solve(q0, p)
         if not r < tol:                    # from the energy minimum (no flow), then along the flow speed
@@ -365,6 +388,8 @@ def refine(coarse, p_coarse, q_coarse, fine, p_fine, top=None) -> np.ndarray:
         for j, s_ in zip(seq, s_f):
             if fine.node_q[j] >= 0:
                 q[fine.node_q[j]:fine.node_q[j] + fine.dim] = [np.interp(s_, s_c, pts[:, c]) for c in range(fine.dim)]
+    if fine.n_rotations:                     # the rigid bodies' orientations as the coarse model found them
+        q[fine.nq - fine.n_rotations:] = q_coarse[coarse.nq - coarse.n_rotations:]
     return q
 
 
@@ -399,4 +424,8 @@ def system_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
             prev = (m, p_c, system_equilibrium(m, p_c, guess=guess, points=points, top=top)[0])
             n *= 2
         q, _ = system_equilibrium(model, p, guess=refine(*prev, model, p, top), top=top)
+    n_rot = model.n_rotations     # a rigid body turned to its initial_*_deg attitude where set, about its attachment
+    if n_rot:
+        q[model.nq - n_rot:] = released([pt.body for pt in scene.system.point if pt.free and pt.body.is_rigid],
+                                        q[model.nq - n_rot:])
     return np.concatenate([q, np.zeros_like(q)])

@@ -56,7 +56,10 @@ def has_ends(scene: Scene) -> bool:
 
 
 def rigid(scene: Scene) -> bool:
-    """True when a section's body is rigid and pitches (``body.pitch_inertia`` set): the node model's coordinate."""
+    """True when a section's body, or a system's body point, is rigid and pitches (``body.pitch_inertia`` set): the
+    node model's coordinate."""
+    if system(scene):
+        return any(p.body is not None and p.body.is_rigid for p in scene.system.point)
     return any(getattr(sec.body, "is_rigid", False) for sec in scene.sections)
 
 

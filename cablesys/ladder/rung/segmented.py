@@ -54,10 +54,10 @@ class Segmented(BuiltinRung):
                "N = {n}, the only rung whose coordinates include its orientation (pitch in the plane, a quaternion in 3-D)" if rigid(scene) else "a towing ship's track "
                "(top_motion.track): the node model with N = {n}, the only rung whose steady turn or straight tow the "
                "statics find")
-        if has_ends(scene) and winched(scene):
+        if (has_ends(scene) or system(scene)) and winched(scene):
             why += " and whose cable length can change in time (the [winch])"
-        if rigid(scene) and (has_ends(scene) or winched(scene)):
-            why += " and whose coordinates include a rigid body's pitch"
+        if rigid(scene) and (has_ends(scene) or winched(scene) or system(scene)):
+            why += " and whose coordinates include a rigid body's orientation (pitch in the plane, a quaternion in 3-D)"
         return n, why.format(n=n) + "; N checked a posteriori on every quantity", requested == "auto"
 
 
