@@ -14,7 +14,7 @@ import pytest
 
 from cablesys.model import build_model
 from cablesys.model.segmented import drag_points
-from cablesys.model.segmented_kernel import kernel_jacobian, kernel_ode, kernel_statics
+from cablesys.model.segmented_kernel import kernel_statics
 from cablesys.slack import shared
 from cablesys.slack.modal import _eig
 from cablesys.slack.scene import PointMass, SlackCable, SlackScene
@@ -52,8 +52,8 @@ def test_anchored_kernel_ode_and_jacobian_equal_the_element_by_element_ode(dim):
     scene = main if dim == 3 else _planar(main)
     model = build_model(scene)
     assert model.anchored and model.dim == dim
-    points = lambda n: drag_points(scene, n)     # noqa: E731
-    ode, jac = kernel_ode(scene, points), kernel_jacobian(scene, points)
+    ode, jac = model.kernel_ode, model.kernel_jacobian        # an anchored line has its kernel (segmented.has_kernel)
+    assert ode is not None and model.loop_ode is ode
     xs, ts, ps = ca.SX.sym("x", model.ode.size1_in(0)), ca.SX.sym("t"), ca.SX.sym("p", model.ode.size1_in(2))
     ad = ca.Function("ad", [xs, ts, ps], [ca.jacobian(model.ode(xs, ts, ps), xs)])
     p = model.parameters(scene)
