@@ -316,7 +316,8 @@ def _jacobian_pattern(dim: int, n: int, velocities: bool = True):
     blocks, dim x 3 (2 dim) per node, then the dim n ones of the q' rows); else (:func:`kernel_statics`) d f / d q,
     ``source`` indexing vec of the node blocks dim x 3 dim (position columns only)."""
     w = 2 * dim if velocities else dim
-    j, k, c, r = (g.ravel() for g in np.meshgrid(np.arange(n), np.arange(3), np.arange(w), np.arange(dim), indexing="ij"))
+    grid = np.meshgrid(np.arange(n), np.arange(3), np.arange(w), np.arange(dim), indexing="ij")
+    j, k, c, r = (g.ravel() for g in grid)
     node = j + k - 1                                   # free-node index of the column node (-1: the top, n: none)
     keep = (node >= 0) & (node < n)
     j, k, c, r, node = j[keep], k[keep], c[keep], r[keep], node[keep]
@@ -326,7 +327,8 @@ def _jacobian_pattern(dim: int, n: int, velocities: bool = True):
     if velocities:
         off = dim * 3 * w * n
         ident = np.arange(dim * n)
-        row, col, src = np.concatenate([row, ident]), np.concatenate([col, dim * n + ident]), np.concatenate([src, off + ident])
+        row, col = np.concatenate([row, ident]), np.concatenate([col, dim * n + ident])
+        src = np.concatenate([src, off + ident])
     order = np.lexsort((row, col))
     return row[order].tolist(), col[order].tolist(), src[order].tolist()
 

@@ -47,8 +47,7 @@ class SpanKernel:
 
     ``forces(q, p) -> (M, f)`` and ``stiffness(q, p) -> K`` (:func:`cablesys.model.segmented_kernel.kernel_statics`:
     mass blocks, 9 x n column-major per free node, kg; forces f(q, q' = 0, e = 0, p), N; K = -df/dq, N/m, sparse),
-    ``residual(q, p)``
-    the statics' scaled residual f / W (W the total weight in the medium, as
+    ``residual(q, p)`` the statics' scaled residual f / W (W the total weight in the medium, as
     :func:`cablesys.statics.problem.static_residual`) and ``rootfinder`` KINSOL on it with -K / W as its Jacobian
     (the chain rule over the elements' AD: CasADi's AD of the mapped residual costs a colour of the
     block-tridiagonal pattern per direction through every element, several times more to set up and evaluate).
@@ -124,11 +123,11 @@ def span_equilibrium(model, p, *, guess=None):
     """Node positions q* (m) of the span at rest and the scaled residual reached.
 
     The node model's statics (:func:`.catenary.anchored_equilibrium`: KINSOL on its static residual; ``model`` the
-    element-by-element node model or its :class:`SpanKernel`), first with every element elastic both ways (tension floor -(AE)_r: the law (AE)_r strain for any
-    strain > -1, the lumped chain's potential energy of Griffin & Rosenthal's bars), so that a guess
-    with slack elements still has a regular Jacobian (a slack element of the cable's own law has no
-    stiffness), then from that solution with the scene's own law; a static shape with an element in
-    compression is refused (it would not hang). ``guess``: starting node positions (x_1, y_1, z_1, ...),
+    element-by-element node model or its :class:`SpanKernel`), first with every element elastic both ways (tension
+    floor -(AE)_r: the law (AE)_r strain for any strain > -1, the lumped chain's potential energy of Griffin &
+    Rosenthal's bars), so that a guess with slack elements still has a regular Jacobian (a slack element of the
+    cable's own law has no stiffness), then from that solution with the scene's own law; a static shape with an
+    element in compression is refused (it would not hang). ``guess``: starting node positions (x_1, y_1, z_1, ...),
     default the anchored line's guess.
     """
     _require_span(model)
