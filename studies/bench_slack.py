@@ -15,8 +15,9 @@ own, the two processes run one after the other in this run.
 
 Writes DIR/bench_slack.json with static_s, modes_s, total_s (best of --repeat warm runs, chain
 route), shared_static_s, shared_modes_s, shared_total_s, shared_vs_chain_ratio (shared_total_s /
-total_s), both set-up times, first_call_chain_s, first_call_shared_s (statics + modes, cold) and
-first_call_ratio (shared / chain), the load average and the frequency agreement of the routes.
+total_s), the in-process set-up times (first_call_setup_s: the chain's first statics, its NLP
+built; shared_first_call_setup_s: the shared route's first statics + modes, after the chain's),
+first_call_chain_s, first_call_shared_s (statics + modes, cold) and first_call_ratio (shared / chain), the load average and the frequency agreement of the routes.
 """
 
 from __future__ import annotations
