@@ -139,7 +139,8 @@ def free_decay(slack: float, n: int, mode_type: str, amplitude: float, periods: 
     eq = shared.equilibrium(sc)
     ms = shared.modes(eq, 8)
     j = list(ms.mode_type).index(mode_type)
-    model, q, p = eq.node_state
+    _, q, p = eq.node_state                     # the equilibrium and modes ran on the model's element-kernel form
+    model = shared.span_model(shared.to_scene(sc))
     dq = node_shape(ms.shapes[j])
     w_lin = float(ms.omega[j])
     T = 2 * math.pi / w_lin
@@ -223,7 +224,8 @@ def forced(n: int, fraction: float, amplitude: float = FORCE_AMPLITUDE, periods:
     w1 = float(ms.omega[j])
     w = fraction * w1
     T = 2 * math.pi / w
-    model, q, p = eq.node_state
+    _, q, p = eq.node_state                     # the equilibrium and modes ran on the model's element-kernel form
+    model = shared.span_model(shared.to_scene(sc))
     top = TopMotion(y=(Sinusoid(amplitude=amplitude, frequency=w),), ramp_s=3 * T)
     scene = with_run(shared.to_scene(sc), duration=periods * T, output_step=T / 32, drag=True, rtol=1e-8, top_motion=top)
     forced_model = build_model(scene)           # the sinusoid is part of the model's structure

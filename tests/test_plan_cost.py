@@ -52,8 +52,8 @@ def test_run_command_prints_the_prediction(tmp_path, capsys):
 def test_past_the_element_rule_the_prediction_compiles_as_the_run_does(anchored, monkeypatch):
     # before the build, the prediction's "compiled" (plan_cost.kernel_compiled) must be what the built model's run
     # does (integrators.compiled_by_default): past COMPILE_MAX_ELEMENTS the node model's element kernel compiles the
-    # DAE of an adaptive ODE-form method (the run is then ~10x cheaper per step than in the VM), an anchored line has
-    # no kernel and runs in the VM
+    # DAE of an adaptive ODE-form method (the run is then ~10x cheaper per step than in the VM), an anchored line's
+    # kernel too (its last node the anchor's parameters)
     from cablesys.model import build_model
     from cablesys.scene.ends import Anchor
     from cablesys.time_domain.integrators import COMPILE_MAX_ELEMENTS, compiled_by_default

@@ -132,7 +132,9 @@ def test_starting_guesses_of_a_span_are_its_node_positions():
     guess, one position per free node, running from the top towards the anchor in the plane."""
     from cablesys.slack import shared
     from cablesys.statics.steady import starting_guesses
-    model, q, p = shared.equilibrium(SD.span_scene(SD.SLACKS[1], 10)).node_state
+    sc = SD.span_scene(SD.SLACKS[1], 10)
+    _, q, p = shared.equilibrium(sc).node_state
+    model = shared.span_model(shared.to_scene(sc))
     (g,) = list(starting_guesses(model, p))
     r = g.reshape(-1, 3)
     assert g.shape == q.shape and np.all(np.isfinite(g)) and np.all(r[:, 2] == 0.0)

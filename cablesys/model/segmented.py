@@ -26,8 +26,8 @@ and regularised Coulomb friction (:mod:`.segmented_seabed`, MoorDyn's seabed mod
 seabed, ``static_force`` is the statics' own right-hand side at rest: elements elastic both ways
 (a line laid unstretched on the bed has zero tension, not an undetermined slack length) and the
 laid-down line's friction (:func:`.segmented_seabed.seabed_forces`); without one it is None and the
-statics use ``dynamics``. Scenes with an anchor or a seabed evaluate the element-by-element
-``ode`` (no mapped kernel). A ``[winch]`` changes the first section's zero-tension length in time, its
+statics use ``dynamics``. Scenes with a seabed evaluate the element-by-element
+``ode`` (no mapped kernel; an anchored line has it, its last node the anchor's parameters). A ``[winch]`` changes the first section's zero-tension length in time, its
 elements sharing L(t) uniformly (:mod:`.segmented_winch`: material velocities for the element terms and the
 seabed's contact, L a prescribed coordinate in Lagrange's equations; element-by-element ``ode`` too), with a free body
 or an anchor at the line's lower end.
@@ -146,10 +146,9 @@ KERNEL_MIN_ELEMENTS = 10
 
 
 def has_kernel(scene: Scene) -> bool:
-    """Whether the segmented model of ``scene`` has its element-kernel form (:mod:`.segmented_kernel`): no anchor, no
-    seabed, no winch and no rigid body (such scenes evaluate the element-by-element ``ode``)."""
-    return (scene.anchor is None and scene.seabed is None and scene.winch is None
-            and not any(s.body.is_rigid for s in scene.sections))
+    """Whether the segmented model of ``scene`` has its element-kernel form (:mod:`.segmented_kernel`; an ``[anchor]``
+    its fixed last node): no seabed, no winch and no rigid body (such scenes evaluate the element-by-element ``ode``)."""
+    return scene.seabed is None and scene.winch is None and not any(s.body.is_rigid for s in scene.sections)
 
 
 def drag_points(scene: Scene, n_el: int) -> int:

@@ -33,7 +33,7 @@ from .section import SectionParameters
 from .segmented_element import block_solve, body_drag, element_inertia, element_terms
 from .top_motion import top_motion_function
 
-__all__ = ["kernel_jacobian", "kernel_ode"]
+__all__ = ["kernel_jacobian", "kernel_ode", "kernel_statics"]
 
 
 def _element_kernel(P: SectionParameters, n_el: int, p, t, env, rho, depth0, n_points: int, name: str,
@@ -80,31 +80,42 @@ def _solve3() -> ca.Function:
     return ca.Function("node_solve", [m, f], [ca.vertcat(*block_solve(ca.reshape(m, 3, 3), f))])
 
 
-def _element_jacobian(kern: ca.Function, dim: int, name: str) -> ca.Function:
+def _element_jacobian(kern: ca.Function, dim: int, name: str, static: bool = False) -> ca.Function:
     """``(r_a, r_b, v_a, v_b, t, p, a_a, a_b) -> (L_b, D_b, D_a, U_a)``: the derivatives of one element's end residuals
     g_a = F_a - M_a a_a and g_b = F_b - M_b a_b (the end accelerations a held fixed) with respect to its end nodes,
     each dim x 2 dim with the columns (d/dr, d/dv) of one node: L_b, D_b the b end's with respect to nodes a and b,
-    D_a, U_a the a end's with respect to nodes a and b (CasADi's SX AD of the kernel)."""
+    D_a, U_a the a end's with respect to nodes a and b (CasADi's SX AD of the kernel).
+
+    ``static``: at rest (v = a = 0 substituted before differentiating, so the terms quadratic in the velocities
+    drop out of the expression), the derivatives of the end forces F_a, F_b with respect to the end positions only
+    (each dim x dim); the velocity and acceleration inputs are kept and not used."""
     ra, rb, va, vb, aa, ab = (ca.SX.sym(s, dim) for s in ("ra", "rb", "va", "vb", "aa", "ab"))
     t, p = ca.SX.sym("t"), ca.SX.sym("p", kern.size1_in(5))
-    Ma, Mb, Fa, Fb = kern(ra, rb, va, vb, t, p)
-    ga = Fa - ca.mtimes(ca.reshape(Ma, dim, dim), aa)
-    gb = Fb - ca.mtimes(ca.reshape(Mb, dim, dim), ab)
-    node_a, node_b = ca.vertcat(ra, va), ca.vertcat(rb, vb)
+    if static:
+        _, _, ga, gb = kern(ra, rb, ca.SX.zeros(dim), ca.SX.zeros(dim), t, p)
+        node_a, node_b, w = ra, rb, dim
+    else:
+        Ma, Mb, Fa, Fb = kern(ra, rb, va, vb, t, p)
+        ga = Fa - ca.mtimes(ca.reshape(Ma, dim, dim), aa)
+        gb = Fb - ca.mtimes(ca.reshape(Mb, dim, dim), ab)
+        node_a, node_b, w = ca.vertcat(ra, va), ca.vertcat(rb, vb), 2 * dim
     outs = [ca.densify(ca.jacobian(g, z)) for g, z in ((gb, node_a), (gb, node_b), (ga, node_a), (ga, node_b))]
     sizes = [0] + [o.numel() for o in outs]
     flat = ca.vertsplit(ca.cse(ca.vertcat(*[ca.vec(o) for o in outs])), list(np.cumsum(sizes)))
-    return ca.Function(name, [ra, rb, va, vb, t, p, aa, ab], [ca.reshape(f, dim, 2 * dim) for f in flat],
+    return ca.Function(name, [ra, rb, va, vb, t, p, aa, ab], [ca.reshape(f, dim, w) for f in flat],
                        ["ra", "rb", "va", "vb", "t", "p", "aa", "ab"], ["Lb", "Db", "Da", "Ua"])
 
 
-def _body_jacobian(body: ca.Function, dim: int, name: str) -> ca.Function:
+def _body_jacobian(body: ca.Function, dim: int, name: str, static: bool = False) -> ca.Function:
     """``(r, v, t, p, a) -> D``: the derivative of the body's residual F - M a (a fixed) with respect to its node
-    (dim x 2 dim, columns d/dr, d/dv)."""
+    (dim x 2 dim, columns d/dr, d/dv); ``static``: of F at v = 0 with respect to r only (dim x dim)."""
     r, v, a, t, p = ca.SX.sym("r", dim), ca.SX.sym("v", dim), ca.SX.sym("a", dim), ca.SX.sym("t"), ca.SX.sym("p", body.size1_in(3))
-    M, F = body(r, v, t, p)
-    g = F - ca.mtimes(ca.reshape(M, dim, dim), a)
-    return ca.Function(name, [r, v, t, p, a], [ca.densify(ca.jacobian(g, ca.vertcat(r, v)))], ["r", "v", "t", "p", "a"], ["D"])
+    if static:
+        D = ca.jacobian(body(r, ca.SX.zeros(dim), t, p)[1], r)
+    else:
+        M, F = body(r, v, t, p)
+        D = ca.jacobian(F - ca.mtimes(ca.reshape(M, dim, dim), a), ca.vertcat(r, v))
+    return ca.Function(name, [r, v, t, p, a], [ca.densify(D)], ["r", "v", "t", "p", "a"], ["D"])
 
 
 def _solve_columns(dim: int, cols: int) -> ca.Function:
@@ -140,11 +151,16 @@ def _mapped(f: ca.Function, n: int, name: str, shared=()) -> ca.Function:
     return f.map(name, "serial", n, list(shared), []) if n > 1 else f
 
 
-def _assembled(scene, n_points):
-    """The pieces both :func:`kernel_ode` and :func:`kernel_jacobian` are made of: the symbols (x, t, p), the node
-    positions R and velocities V (dim x (n + 1), column 0 the prescribed top), each section's (element kernel,
-    element-terms inputs, mapped terms, body function, body terms) and the node sums M_all, F_all (mass blocks
-    column-major, forces; one column per free node)."""
+def _assembled(scene, n_points, static: bool = False):
+    """The pieces :func:`kernel_ode`, :func:`kernel_jacobian` and :func:`kernel_statics` are made of: the symbols
+    (x, t, p), the node positions R and velocities V (dim x (n + 1), column 0 the prescribed top; with an
+    ``[anchor]`` a last column, the anchor's parameters (anchor.x, anchor.y[, anchor.z]) at rest: the line's last node
+    is fixed there and is no coordinate, as in :mod:`.segmented`), each section's (element kernel, element-terms inputs,
+    body function, first node, elements) and the node sums M, F (mass blocks column-major, forces; one column per free
+    node: the anchor's column, where the last section's body sits and loads the support only, is dropped).
+
+    ``static``: the state is the free node positions q alone, every velocity zero, the top at rest at its mean
+    position and t = 0 (the statics' f(q, q' = 0, e = 0, p) of :func:`cablesys.statics.problem.static_residual`)."""
     layout = ParameterLayout.from_scene(scene)
     p = layout.symbol
     t = ca.SX.sym("t")
@@ -152,13 +168,24 @@ def _assembled(scene, n_points):
     rho, depth0 = env["density"], env["top_depth"]
     n_sec = len(scene.sections)
     segs = [s.cable.segments for s in scene.sections]
-    n_nodes = sum(segs)
+    anchored = scene.anchor is not None
+    n_nodes = sum(segs) - int(anchored)               # free nodes
 
     dim = 3 if scene.three_d else 2                   # nodes (x, y) in the plane, (x, y, z) in space
-    xm, tm, pm = ca.MX.sym("x", 2 * dim * n_nodes), ca.MX.sym("t"), ca.MX.sym("p", p.shape[0])
-    e = top_motion_function(scene, layout)(tm, pm)
-    R = ca.horzcat(e[1:1 + dim], ca.reshape(xm[: dim * n_nodes], dim, n_nodes))       # node 0 (the top) prescribed
-    V = ca.horzcat(e[1 + dim:1 + 2 * dim], ca.reshape(xm[dim * n_nodes:], dim, n_nodes))
+    axes = ("x", "y", "z")[:dim]
+    pm = ca.MX.sym("p", p.shape[0])
+    if static:
+        xm, tm = ca.MX.sym("q", dim * n_nodes), ca.MX(0.0)
+        top_r = top_v = ca.MX.zeros(dim, 1)
+        v_free = ca.MX.zeros(dim, n_nodes)
+    else:
+        xm, tm = ca.MX.sym("x", 2 * dim * n_nodes), ca.MX.sym("t")
+        e = top_motion_function(scene, layout)(tm, pm)
+        top_r, top_v = e[1:1 + dim], e[1 + dim:1 + 2 * dim]
+        v_free = ca.reshape(xm[dim * n_nodes:], dim, n_nodes)
+    fixed_r = [ca.vertcat(*[pm[layout.index(f"anchor.{c}")] for c in axes])] if anchored else []
+    R = ca.horzcat(top_r, ca.reshape(xm[: dim * n_nodes], dim, n_nodes), *fixed_r)   # node 0 (the top) prescribed
+    V = ca.horzcat(top_v, v_free, *([ca.MX.zeros(dim, 1)] if anchored else []))
     parts = []                           # per section: element terms (M_a, M_b, F_a, F_b) and body (M, F)
     sections = []
     j0 = 0
@@ -183,7 +210,7 @@ def _assembled(scene, n_points):
         M_cols.append(Mb + ca.horzcat(Ma[:, 1:], M_end))
         F_cols.append(Fb + ca.horzcat(Fa[:, 1:], F_end))
     return dict(x=xm, t=tm, p=pm, R=R, V=V, dim=dim, n_nodes=n_nodes, sections=sections,
-                M=ca.horzcat(*M_cols), F=ca.horzcat(*F_cols))
+                M=ca.horzcat(*M_cols)[:, :n_nodes], F=ca.horzcat(*F_cols)[:, :n_nodes])
 
 
 def kernel_ode(scene, n_points) -> ca.Function:
@@ -241,25 +268,8 @@ def kernel_jacobian(scene, n_points) -> ca.Function:
     """
     a = _assembled(scene, n_points)
     dim, n = a["dim"], a["n_nodes"]
-    acc = _accelerations(a)
-    A = ca.horzcat(ca.MX.zeros(dim, 1), acc)          # node 0 (the top): its row is not in the state
-    L_cols, D_cols, U_cols = [], [], []
-    pieces = []
-    for i, (kern, args, body, j0, n_el) in enumerate(a["sections"]):
-        jac = _mapped(_element_jacobian(kern, dim, f"element_jacobian_{i}"), n_el, f"element_jacobians_{i}", (4, 5))
-        Lb, Db, Da, Ua = jac(*args, A[:, j0:j0 + n_el], A[:, j0 + 1:j0 + n_el + 1])
-        jb = j0 + n_el
-        D_body = _body_jacobian(body, dim, f"body_jacobian_{i}")(a["R"][:, jb], a["V"][:, jb], a["t"], a["p"], A[:, jb])
-        pieces.append((Lb, Db, Da, Ua, D_body))
     w = 2 * dim                                        # one node's columns (d/dr, d/dv)
-    for i, (Lb, Db, Da, Ua, D_body) in enumerate(pieces):
-        nxt = pieces[i + 1] if i + 1 < len(pieces) else None
-        D_end = D_body + (nxt[2][:, :w] if nxt else 0)
-        U_end = nxt[3][:, :w] if nxt else ca.MX.zeros(dim, w)
-        L_cols.append(Lb)
-        D_cols.append(Db + ca.horzcat(Da[:, w:], D_end))
-        U_cols.append(ca.horzcat(Ua[:, w:], U_end))
-    L, D, U = ca.horzcat(*L_cols), ca.horzcat(*D_cols), ca.horzcat(*U_cols)
+    L, D, U = _node_blocks(a, _accelerations(a))
     # node j's block row [L_j D_j U_j] (dim x 3 w), solved with its mass block
     B = ca.reshape(ca.vertcat(*[ca.reshape(X, dim * w, n) for X in (L, D, U)]), dim, 3 * w * n)
     sol = _mapped(_solve_columns(dim, 3 * w), n, "node_solves_columns")(a["M"], B)   # dim x (3 w n)
@@ -269,22 +279,84 @@ def kernel_jacobian(scene, n_points) -> ca.Function:
     return ca.Function("ode_jacobian", [a["x"], a["t"], a["p"]], [ca.MX(sp, values[list(src)])], ["x", "t", "p"], ["jac"])
 
 
-def _jacobian_pattern(dim: int, n: int):
-    """(rows, cols, source) of the nonzeros of :func:`kernel_jacobian`'s result in column-major order: ``source``
-    indexes the vector (vec of the solved node blocks, dim x 3 (2 dim) per node, then dim n ones of the q' rows)."""
-    w = 2 * dim
-    entries = []
-    for j in range(n):                                 # free node j + 1; block k = 0, 1, 2: nodes j, j + 1, j + 2
-        for k in range(3):
-            node = j + k - 1                           # free-node index of the column node (-1: the top, n: none)
-            if node < 0 or node >= n:
-                continue
-            for c in range(w):                         # d/dr_0.., d/dv_0..
-                col = (node * dim + c) if c < dim else (dim * n + node * dim + c - dim)
-                for r in range(dim):
-                    entries.append((col, dim * n + j * dim + r, (j * 3 * w + k * w + c) * dim + r))
-    off = dim * 3 * w * n
-    entries += [(dim * n + i, i, off + i) for i in range(dim * n)]
-    entries.sort()
-    cols, rows, src = zip(*entries)
-    return rows, cols, src
+def _node_blocks(a: dict, acc, static: bool = False) -> tuple:
+    """(L, D, U), each dim x (w n): node j's derivatives of F_j - M_j a_j (the accelerations ``acc``, dim x n,
+    held fixed) with respect to the nodes j - 1, j and j + 1, columns (d/dr, d/dv) per node, w = 2 dim (zero past the
+    ends; the top's and an anchor's columns are not coordinates and are dropped by :func:`_jacobian_pattern`): the
+    elements' end derivatives (:func:`_element_jacobian`) and the bodies' (:func:`_body_jacobian`), summed per node.
+    ``static``: of F_j at rest with respect to the positions only (w = dim)."""
+    dim, n = a["dim"], a["n_nodes"]
+    w = dim if static else 2 * dim
+    fixed = a["R"].shape[1] - n - 1                    # an anchor's column after the free nodes (its a = 0)
+    A = ca.horzcat(ca.MX.zeros(dim, 1), acc, ca.MX.zeros(dim, fixed))   # node 0 (the top): its row is not in the state
+    pieces = []
+    for i, (kern, args, body, j0, n_el) in enumerate(a["sections"]):
+        jac = _mapped(_element_jacobian(kern, dim, f"element_jacobian_{i}", static), n_el, f"element_jacobians_{i}",
+                      (4, 5))
+        Lb, Db, Da, Ua = jac(*args, A[:, j0:j0 + n_el], A[:, j0 + 1:j0 + n_el + 1])
+        jb = j0 + n_el
+        D_body = _body_jacobian(body, dim, f"body_jacobian_{i}", static)(a["R"][:, jb], a["V"][:, jb], a["t"], a["p"],
+                                                                          A[:, jb])
+        pieces.append((Lb, Db, Da, Ua, D_body))
+    L_cols, D_cols, U_cols = [], [], []
+    for i, (Lb, Db, Da, Ua, D_body) in enumerate(pieces):
+        nxt = pieces[i + 1] if i + 1 < len(pieces) else None
+        D_end = D_body + (nxt[2][:, :w] if nxt else 0)
+        U_end = nxt[3][:, :w] if nxt else ca.MX.zeros(dim, w)
+        L_cols.append(Lb)
+        D_cols.append(Db + ca.horzcat(Da[:, w:], D_end))
+        U_cols.append(ca.horzcat(Ua[:, w:], U_end))
+    return tuple(ca.horzcat(*X)[:, :w * n] for X in (L_cols, D_cols, U_cols))    # an anchor's row dropped
+
+
+def _jacobian_pattern(dim: int, n: int, velocities: bool = True):
+    """(rows, cols, source) of the nonzeros of a block-tridiagonal node Jacobian in column-major order.
+
+    ``velocities`` (:func:`kernel_jacobian`): d xdot / d x, ``source`` indexing the vector (vec of the solved node
+    blocks, dim x 3 (2 dim) per node, then the dim n ones of the q' rows); else (:func:`kernel_statics`) d f / d q,
+    ``source`` indexing vec of the node blocks dim x 3 dim (position columns only)."""
+    w = 2 * dim if velocities else dim
+    grid = np.meshgrid(np.arange(n), np.arange(3), np.arange(w), np.arange(dim), indexing="ij")
+    j, k, c, r = (g.ravel() for g in grid)
+    node = j + k - 1                                   # free-node index of the column node (-1: the top, n: none)
+    keep = (node >= 0) & (node < n)
+    j, k, c, r, node = j[keep], k[keep], c[keep], r[keep], node[keep]
+    src = (j * 3 * w + k * w + c) * dim + r
+    col = np.where(c < dim, node * dim + c, dim * n + node * dim + c - dim)
+    row = dim * n + j * dim + r if velocities else j * dim + r
+    if velocities:
+        off = dim * 3 * w * n
+        ident = np.arange(dim * n)
+        row, col = np.concatenate([row, ident]), np.concatenate([col, dim * n + ident])
+        src = np.concatenate([src, off + ident])
+    order = np.lexsort((row, col))
+    return row[order].tolist(), col[order].tolist(), src[order].tolist()
+
+
+def kernel_statics(scene, n_points) -> tuple[ca.Function, ca.Function]:
+    """``forces(q, p) -> (M, f)`` and ``stiffness(q, p) -> K`` of a segmented scene at rest, from the mapped element
+    kernels (MX): the free nodes' mass blocks M (dim^2 x n, column-major per node), forces f (dim n: f(q, q' = 0,
+    e = 0, p) of the element-by-element ``dynamics``, the statics' residual before scaling) and their stiffness
+    K = -d f / d q (dim n x dim n, sparse block-tridiagonal), every velocity zero, the top at rest at its mean
+    position, t = 0. Two functions, so that the statics' residual does not evaluate K.
+
+    K is the chain rule over the elements' AD as in :func:`kernel_jacobian`, at rest and without the node solves:
+    d f_j / d r_k summed from the end derivatives of node j's two elements and its body (:func:`_node_blocks`; the
+    Jacobian CasADi's AD of the element-by-element f gives, to rounding: ``tests/test_span_kernel.py``). About an
+    equilibrium (f = 0) M q'' + K q = 0 are the linearized equations of motion (Lagrange's equations of the node
+    model, Wang 1971 eq. 8-9, with the lumped element terms of eq. 5, 12, 23-24, 46). No function of size N is built:
+    the graph is the element kernel and its Jacobian mapped over the elements.
+
+    Parameters
+    ----------
+    scene, n_points
+        As :func:`kernel_ode` (an ``[anchor]`` fixes the last node: :func:`_assembled`).
+    """
+    a = _assembled(scene, n_points, static=True)
+    dim, n = a["dim"], a["n_nodes"]
+    L, D, U = _node_blocks(a, ca.MX.zeros(dim, n), static=True)
+    B = ca.reshape(ca.vertcat(*[ca.reshape(X, dim * dim, n) for X in (L, D, U)]), dim, 3 * dim * n)
+    rows, cols, src = _jacobian_pattern(dim, n, velocities=False)
+    K = -ca.MX(ca.Sparsity.triplet(dim * n, dim * n, rows, cols), ca.vec(B)[src])
+    return (ca.Function("kernel_forces", [a["x"], a["p"]], [a["M"], ca.vec(a["F"])], ["q", "p"], ["M", "f"]),
+            ca.Function("kernel_stiffness", [a["x"], a["p"]], [K], ["q", "p"], ["K"]))

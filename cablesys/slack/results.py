@@ -82,7 +82,8 @@ class Equilibrium(ResultBase):
 
     ``discretization``: the lumped-mass element layout the shape was solved on (the modes of
     :func:`cablesys.slack.modes` need it); ``node_state``: on the shared cable
-    (:mod:`cablesys.slack.shared`), the node model, its node positions q* (m) and parameter vector,
+    (:mod:`cablesys.slack.shared`), the node model's element-kernel form (:func:`cablesys.slack.shared.span_form`;
+    :func:`cablesys.slack.shared.span_model` is the model itself), its node positions q* (m) and parameter vector,
     about which its modes are taken, else None; ``stats``: ``wall_time_s`` (``seconds``) and
     ``iterations`` of the statics solver."""
 

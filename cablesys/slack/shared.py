@@ -23,7 +23,10 @@ water) as a main :class:`cablesys.scene.Scene` of the segmented node model (:mod
 :func:`equilibrium` solves the node model's statics (:func:`cablesys.statics.span.span_equilibrium`)
 and :func:`modes` its linear modes from the model's own mass matrix and the Jacobian of its forces
 (:func:`cablesys.statics.span.span_matrices`), in-plane and out-of-plane, with the eigen solver,
-mass normalisation (eq. 25) and mode classification of :mod:`.vibration`.
+mass normalisation (eq. 25) and mode classification of :mod:`.vibration`. Both use the node model's
+element-kernel form (:func:`span_form`: the same equations from the element kernel mapped over the
+elements, built at constant size and never stored); :func:`span_model` is the element-by-element node model
+itself, for the time domain about that equilibrium.
 """
 
 from __future__ import annotations
@@ -40,7 +43,7 @@ from ..model import FunctionCache, build_model
 from ..model.params import ParameterLayout, structure_of
 from ..results import timed
 from ..scene import Anchor, Body, Cable, Environment, Numerics, Scene, Section
-from ..statics.span import span_equilibrium, span_matrices
+from ..statics.span import SpanKernel, span_equilibrium, span_kernel, span_matrices
 from .results import Equilibrium, SlackAnalysis
 from .scene import SlackScene, _buoyancy_and_added
 from .statics import Discretization, shooting_nodes, solve_equilibrium
@@ -118,15 +121,29 @@ _MODELS: OrderedDict = OrderedDict()
 
 
 def span_model(scene: Scene, cache: FunctionCache | None = None):
-    """The node model of a span scene, kept by structure (sections, elements, parameter labels): in
-    ``cache`` when given, else in a module store of the last used structures (at most
-    :data:`MODEL_CACHE_SIZE` of them and :data:`MODEL_CACHE_ELEMENTS` elements in all)."""
-    key = "span_model_" + hashlib.sha256(repr((structure_of(scene), ParameterLayout.from_scene(scene).labels))
-                                         .encode()).hexdigest()[:32]
+    """The element-by-element node model of a span scene (:func:`cablesys.model.build_model`: what the time domain
+    runs), kept by structure (see :func:`_kept`). The statics and modes here do not need it: they use
+    :func:`span_form`."""
+    return _kept("span_model_", scene, lambda: build_model(scene), cache)
+
+
+def span_form(scene: Scene, cache: FunctionCache | None = None) -> SpanKernel:
+    """The element-kernel form of a span scene's node model (:func:`cablesys.statics.span.span_kernel`: its statics,
+    mass and stiffness from the element kernel mapped over the elements, a graph of constant size at any number of
+    elements), kept by structure (see :func:`_kept`)."""
+    return _kept("span_kernel_", scene, lambda: span_kernel(scene), cache)
+
+
+def _kept(prefix: str, scene: Scene, build, cache: FunctionCache | None):
+    """``build()`` kept by the scene's structure (sections, elements, parameter labels): in ``cache`` when given,
+    else in a module store of the last used structures (at most :data:`MODEL_CACHE_SIZE` of them and
+    :data:`MODEL_CACHE_ELEMENTS` elements in all)."""
+    key = prefix + hashlib.sha256(repr((structure_of(scene), ParameterLayout.from_scene(scene).labels))
+                                  .encode()).hexdigest()[:32]
     if cache is not None:
-        return cache.get(key, lambda: build_model(scene))
+        return cache.get(key, build)
     if key not in _MODELS:
-        _MODELS[key] = build_model(scene)
+        _MODELS[key] = build()
         while len(_MODELS) > 1 and (len(_MODELS) > MODEL_CACHE_SIZE
                                     or sum(m.n_elements for m in _MODELS.values()) > MODEL_CACHE_ELEMENTS):
             _MODELS.popitem(last=False)
@@ -170,7 +187,7 @@ def equilibrium(scene: SlackScene, *, n_elements: int | None = None, segments=No
     steps; the scaled residual is below the statics' tolerance, else a SolverError)."""
     t0 = time.perf_counter()
     main = to_scene(scene, n_elements, segments)
-    model = span_model(main, cache)
+    model = span_form(main, cache)
     p = np.asarray(model.parameters(main), float)
     d = _discretization(scene, main)
     try:
@@ -228,4 +245,4 @@ def analyze(scene: SlackScene, n_modes: int | None = None, *, n_elements: int | 
     return SlackAnalysis(equilibrium=eq, modes=modes(eq, n_modes, solver=solver))
 
 
-__all__ = ["analyze", "equilibrium", "modes", "section_segments", "span_model", "to_scene"]
+__all__ = ["analyze", "equilibrium", "modes", "section_segments", "span_form", "span_model", "to_scene"]

@@ -144,7 +144,7 @@ def analyze(scene, n_modes: int | None = None, *, n_elements: int | None = None,
     solver : str, optional
         'auto', 'dense' (scipy.linalg.eigh) or 'sparse' (shift-invert eigsh).
     cache : FunctionCache, optional
-        Keeps the node models by structure (see :func:`.shared.span_model`).
+        Keeps the node models' element-kernel forms by structure (see :func:`.shared.span_form`).
     segments : tuple of int, optional
         Elements per section (overrides ``n_elements``).
 

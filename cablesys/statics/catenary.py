@@ -394,7 +394,7 @@ def segmented_equilibrium(model, p, *, guess=None):
     """
     p = static_parameters(model, p)
     if getattr(model, "anchored", False):
-        return _anchored_equilibrium(model, p, guess)
+        return anchored_equilibrium(model, p, guess)
     polar, nodes = _rootfinders(model)
     resid, to_q = static_residual(model), polar_map(model)
     g0 = hanging_guess(model, p) if guess is None else np.asarray(guess, float)
@@ -476,12 +476,14 @@ def _node_rootfinder(model):
     return model.derive("catenary_anchored_rootfinder", build)
 
 
-def _anchored_equilibrium(model, p, guess):
-    """The static state of an anchored line: KINSOL in node coordinates from :func:`anchored_guess`.
-    With a seabed the statics' elements are elastic both ways (segmented_seabed.py) and a solution with a
-    compressed element is refused; without one (a span) KINSOL first solves with the elements elastic both
-    ways, then from there with the line's own law."""
-    resid, nodes = static_residual(model), _node_rootfinder(model)
+def anchored_equilibrium(model, p, guess=None, functions=None):
+    """The static state of an anchored line: KINSOL in node coordinates from ``guess`` (default
+    :func:`anchored_guess`). With a seabed the statics' elements are elastic both ways (segmented_seabed.py) and a
+    solution with a compressed element is refused; without one (a span) KINSOL first solves with the elements elastic
+    both ways, then from there with the line's own law. ``functions``: (scaled static residual, its KINSOL
+    rootfinder), default the model's (:func:`.problem.static_residual`); a span's element-kernel form
+    (:class:`cablesys.statics.span.SpanKernel`) passes its own. Returns (q, scaled residual)."""
+    resid, nodes = functions if functions is not None else (static_residual(model), _node_rootfinder(model))
     tol = static_tolerance(model, p)
     q = anchored_guess(model, p) if guess is None else np.asarray(guess, float)
     best = np.inf
