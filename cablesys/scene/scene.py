@@ -124,13 +124,11 @@ class Scene:
 
     def _check_system(self) -> None:
         """What the node model of a graph of lines (:mod:`cablesys.model.system`) does not take yet, each refused by
-        name: a rigid body, a winch, a track, an initial angle or stretch (it starts from its statics), top motion
-        without a prescribed point."""
-        for name, bad in (("winch", self.winch is not None), ("top_motion.track", self.top_motion.track is not None)):
-            if bad:
-                raise ParameterError(name, "set", "must be unset for a system that is not a chain of sections: the "
-                                     "node model of a graph of lines has no " + {"winch": "winch",
-                                     "top_motion.track": "steady turn"}[name] + " yet")
+        name: a rigid body, a winch, an initial angle or stretch (it starts from its statics), top motion
+        without a prescribed point; a track as a chain's (:meth:`_check_track`)."""
+        if self.winch is not None:
+            raise ParameterError("winch", "set", "must be unset for a system that is not a chain of sections: the "
+                                 "node model of a graph of lines has no winch yet")
         top = self.top_motion
         if self.system.prescribed is None:
             moved = [f"top_motion.{a}" for a in ("x", "y", "z") if getattr(top, a)] + [
@@ -147,6 +145,7 @@ class Scene:
                 raise ParameterError(f"point[{i}].pitch_inertia", p.body.pitch_inertia, "must be unset in a "
                                      "system that is not a chain of sections: the node model of a graph of lines "
                                      "takes point bodies so far")
+        self._check_track()
 
     def _check_ends(self) -> None:
         """An anchor or a seabed acts on the nodes of the segmented cable; the anchor lies on or above
@@ -268,6 +267,15 @@ class Scene:
         if self.anchor is not None:
             raise ParameterError("anchor", "set", "must be unset with top_motion.track: an anchored line cannot be towed "
                                  "along with the tow point")
+        points = self.system.point if self.system is not None else ()
+        for i, pt in enumerate(points):
+            if pt.kind == "fixed":
+                raise ParameterError(f"point[{i}].kind", "fixed", "must not be fixed with top_motion.track: a system "
+                                     f"held at {pt.name!r} cannot be towed along with the tow point (make it a body "
+                                     "or a junction)")
+            if track.is_circle and pt.body is not None and pt.body.is_rigid:
+                raise ParameterError(f"point[{i}].pitch_inertia", pt.body.pitch_inertia, "must be unset with a "
+                                     "circular top_motion.track: the steady turn's statics hold the nodes alone so far")
         env = self.environment
         for i, v in enumerate(env.current_speeds):
             if v != 0.0:
