@@ -320,9 +320,14 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
         point_nodes, line_nodes, _ = topology(system)
         with out.writing("timeseries.png") as tmp:
             plot_system_series(result, tmp, units=units, limits=scene.limits,
-                               window_start=summary["statistics"]["window_s"][0],
+                               window_start=summary["statistics"]["window_s"][0], towed=scene.top_motion.track is not None,
                                lines={ln.name: (nodes, ln.start, ln.end) for ln, nodes in zip(system.line, line_nodes)},
                                points={p.name: (p.kind, j) for p, j in zip(system.point, point_nodes)})
+        if scene.three_d:                            # out of the plane or towed along a track: seen from above
+            from ..plots.plan import plot_plan_view
+            with out.writing("plan_view.png") as tmp:
+                plot_plan_view(result, tmp, units=units, lines=line_nodes,
+                               bodies={p.name: f"point.{p.name}." for p in system.point if p.free})
     elif plot and result.time.size > 1:
         from ..plots.time_domain import plot_time_series
         with out.writing("timeseries.png") as tmp:

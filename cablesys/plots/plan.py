@@ -29,7 +29,8 @@ def _headings(t, xs, zs) -> np.ndarray | None:
     return np.unwrap(np.arctan2(vz, vx))
 
 
-def plot_plan_view(result, path, *, title: str | None = None, units: str = "SI") -> Path:
+def plot_plan_view(result, path, *, title: str | None = None, units: str = "SI", bodies: dict | None = None,
+                   lines: tuple | None = None) -> Path:
     """Two panels: the plan view seen from above (x right, z up the page: right-handed with y down) of the top's track,
     each body's path and the cable at :data:`SNAPSHOTS` instants (segmented runs, nodes ``node_x``, ``node_z``); and
     each body's position relative to the top against time, along and across the top's heading when it moves
@@ -46,6 +47,11 @@ def plot_plan_view(result, path, *, title: str | None = None, units: str = "SI")
         Figure title (default: the scene name).
     units : str
         "SI" or "fps": the units of the scene file.
+    bodies : dict, optional
+        {name: output label prefix} of the bodies to follow (a system of lines: its free points, ``"point.NAME."``
+        with outputs ``point.NAME.x``, ``.y``, ``.z``); default the chain's bodies ``x_b``, ``x_b_2``, ...
+    lines : tuple, optional
+        The node numbers of each line, drawn apart (a system of lines); default one chain of all nodes.
 
     Returns
     -------
@@ -58,9 +64,13 @@ def plot_plan_view(result, path, *, title: str | None = None, units: str = "SI")
     data = result.data
     zero = np.zeros_like(t)
     xs, zs, ys = np.asarray(result["x_s"]), np.asarray(data.get("z_s", zero)), np.asarray(result["y_s"])
-    sfx = [""] if "x_b" in data else sorted({lbl[3:] for lbl in data if lbl.startswith("x_b_") and lbl[4:].isdigit()})
-    bodies = [(s, np.asarray(result[f"x_b{s}"]), np.asarray(data.get(f"z_b{s}", zero)), np.asarray(result[f"y_b{s}"]))
-              for s in sfx]
+    if bodies is None:
+        sfx = [""] if "x_b" in data else sorted({lbl[3:] for lbl in data if lbl.startswith("x_b_") and lbl[4:].isdigit()})
+        bodies = {(f"body {s[1:]}" if s else "body"): (f"x_b{s}", f"z_b{s}", f"y_b{s}") for s in sfx}
+    else:
+        bodies = {name: (f"{pre}x", f"{pre}z", f"{pre}y") for name, pre in bodies.items()}
+    bodies = [(name, np.asarray(result[lx]), np.asarray(data.get(lz, zero)), np.asarray(result[ly]))
+              for name, (lx, lz, ly) in bodies.items()]
     span = max([np.ptp(xs), np.ptp(zs)] + [max(np.ptp(x), np.ptp(z)) for _, x, z, _ in bodies])
     fl, ul = _length(span, units)
     fig, (a_plan, a_rel) = plt.subplots(1, 2, figsize=(13, 5.8), gridspec_kw={"width_ratios": [1.15, 1.0]})
@@ -69,16 +79,17 @@ def plot_plan_view(result, path, *, title: str | None = None, units: str = "SI")
         nx, nz = np.asarray(prof["node_x"]), np.asarray(prof.get("node_z", np.zeros_like(prof["node_x"])))
         picks = np.unique(np.linspace(0, t.size - 1, SNAPSHOTS).astype(int))
         for k, i in enumerate(picks):
-            a_plan.plot(nx[i] * fl, nz[i] * fl, ".-", color="C3", lw=1.3, ms=4, zorder=3,
-                        label=f"cable (nodes) at {picks.size} instants, t = {t[picks[0]]:.4g} to {t[picks[-1]]:.4g} s"
-                        if k == 0 else None)
+            for m, seq in enumerate(lines or (slice(None),)):
+                a_plan.plot(nx[i][list(seq) if lines else seq] * fl, nz[i][list(seq) if lines else seq] * fl, ".-",
+                            color="C3", lw=1.3, ms=4, zorder=3,
+                            label=f"cable (nodes) at {picks.size} instants, t = {t[picks[0]]:.4g} to "
+                                  f"{t[picks[-1]]:.4g} s" if k == 0 and m == 0 else None)
     a_plan.plot(xs * fl, zs * fl, "k-", lw=1.4, label="top (tow point / ship)")
     a_plan.plot(xs[0] * fl, zs[0] * fl, "ks", ms=6, label=f"top at t = {t[0]:.4g} s")
     if xs.size > 1 and np.hypot(xs[-1] - xs[-2], zs[-1] - zs[-2]) > 0:
         a_plan.annotate("", xy=(xs[-1] * fl, zs[-1] * fl), xytext=(xs[-2] * fl, zs[-2] * fl),
                         arrowprops=dict(arrowstyle="-|>", color="k", lw=1.2))
-    for k, (s, x, z, _) in enumerate(bodies):
-        name = f"body {s[1:]}" if s else "body"
+    for k, (name, x, z, _) in enumerate(bodies):
         a_plan.plot(x * fl, z * fl, "-", color=f"C{k}", lw=1.1, label=f"{name} path")
         a_plan.plot(x[-1] * fl, z[-1] * fl, "o", color=f"C{k}", ms=6, label=f"{name} at t = {t[-1]:.4g} s")
     a_plan.set_aspect("equal", adjustable="datalim")
@@ -91,8 +102,7 @@ def plot_plan_view(result, path, *, title: str | None = None, units: str = "SI")
     psi = _headings(t, xs, zs)
     rel_span = max([1e-12] + [max(np.ptp(x - xs), np.ptp(z - zs), np.max(np.abs(y - ys))) for _, x, z, y in bodies])
     fr, ur = _length(rel_span, units)
-    for k, (s, x, z, y) in enumerate(bodies):
-        name = f"body {s[1:]}" if s else "body"
+    for k, (name, x, z, y) in enumerate(bodies):
         dx, dz = x - xs, z - zs
         if psi is not None:
             along, across = np.cos(psi) * dx + np.sin(psi) * dz, -np.sin(psi) * dx + np.cos(psi) * dz

@@ -14,10 +14,20 @@ from .time_domain import ATOL_FORCE, ATOL_LENGTH, _force_scale, _length_scale
 _MARK = {"prescribed": "s", "fixed": "^", "body": "o", "junction": "D"}
 
 
-def _shape(ax, result, lines: dict, points: dict, fl: float, ul: str, plan: bool) -> None:
-    """The mean shape of every line (its nodes) and its extremes where it moves; the points marked by kind and named.
-    ``plan``: seen from above (x, z) instead of the elevation (x, y down)."""
-    prof = result.profiles
+def _nodes(result, towed: bool) -> dict:
+    """The node profiles ``node_x``, ``node_y`` (``node_z``), (times, nodes), measured from the tow point (its x and z)
+    when ``towed``."""
+    prof = {k: np.asarray(v) for k, v in result.profiles.items() if k in ("node_x", "node_y", "node_z")}
+    if towed:
+        prof["node_x"] = prof["node_x"] - np.asarray(result["x_s"])[:, None]
+        if "node_z" in prof:
+            prof["node_z"] = prof["node_z"] - np.asarray(result.data.get("z_s", 0.0 * result.time))[:, None]
+    return prof
+
+
+def _shape(ax, prof: dict, lines: dict, points: dict, fl: float, ul: str, plan: bool, towed: bool) -> None:
+    """The mean shape of every line (its nodes ``prof``, :func:`_nodes`) and its extremes where it moves; the points
+    marked by kind and named. ``plan``: seen from above (x, z) instead of the elevation (x, y down)."""
     nx, nv = prof["node_x"], prof["node_z" if plan else "node_y"]
     for k, (name, (nodes, _, _)) in enumerate(lines.items()):
         idx = list(nodes)
@@ -33,13 +43,14 @@ def _shape(ax, result, lines: dict, points: dict, fl: float, ul: str, plan: bool
     if not plan:
         ax.invert_yaxis()
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set(xlabel=f"x ({ul}, + right)", ylabel=f"z ({ul}, sway)" if plan else f"depth y ({ul}, + down)",
+    frm = ", from the tow point" if towed else ""
+    ax.set(xlabel=f"x ({ul}, + right{frm})", ylabel=f"z ({ul}, sway{frm})" if plan else f"depth y ({ul}, + down)",
            title="seen from above" if plan else "shape (elevation); dotted: extremes")
     plain_axis(ax)
 
 
 def plot_system_series(result, path, *, lines: dict, points: dict, title: str | None = None, units: str = "SI",
-                       limits=None, window_start: float | None = None) -> Path:
+                       limits=None, window_start: float | None = None, towed: bool = False) -> Path:
     """Panels of a system's run: its shape (elevation, and a plan view in 3-D), the paths of its bodies and junctions
     about their mean positions, and the tension at both ends of every line against time.
 
@@ -56,12 +67,15 @@ def plot_system_series(result, path, *, lines: dict, points: dict, title: str | 
         {point name: (kind, node number)}.
     title, units, limits, window_start
         As for :func:`.time_domain.plot_time_series`.
+    towed : bool
+        The prescribed point follows a track: shapes and paths are measured from it (x and z from the tow point).
     """
     import matplotlib.pyplot as plt
 
     t, data = result.time, result.data
-    three_d = "node_z" in result.profiles and not is_steady(result.profiles["node_z"], ATOL_LENGTH)
-    span = max(np.ptp(result.profiles["node_x"]), np.ptp(result.profiles["node_y"]))
+    prof = _nodes(result, towed)
+    three_d = "node_z" in prof and not is_steady(prof["node_z"], ATOL_LENGTH)
+    span = max(np.ptp(prof["node_x"]), np.ptp(prof["node_y"]))
     fl, ul = _length_scale(span, units)
     tens = [(f"line.{name}.tension_{end}", f"{name} at {at}") for name, (_, a, b) in lines.items()
             for end, at in (("from", a), ("to", b))]
@@ -72,11 +86,11 @@ def plot_system_series(result, path, *, lines: dict, points: dict, title: str | 
     a_plan = fig.add_subplot(gs[0, 2:4]) if three_d else None
     a_path = fig.add_subplot(gs[0, 4:] if three_d else gs[0, 2:])
     a_t = fig.add_subplot(gs[1, :])
-    _shape(a_shape, result, lines, points, fl, ul, False)
+    _shape(a_shape, prof, lines, points, fl, ul, False, towed)
     a_shape.legend(fontsize=7, loc="best")
     if three_d:
-        _shape(a_plan, result, lines, points, fl, ul, True)
-    moving = [(name, result[f"point.{name}.x"], result[f"point.{name}.y"]) for name, (kind, _) in points.items()
+        _shape(a_plan, prof, lines, points, fl, ul, True, towed)
+    moving = [(name, prof["node_x"][:, node], prof["node_y"][:, node]) for name, (kind, node) in points.items()
               if kind != "fixed"]
     moving = [(n, x, y) for n, x, y in moving if not (is_steady(x, ATOL_LENGTH) and is_steady(y, ATOL_LENGTH))]
     pspan = max([max(np.ptp(x), np.ptp(y)) for _, x, y in moving], default=0.0)
@@ -90,8 +104,8 @@ def plot_system_series(result, path, *, lines: dict, points: dict, title: str | 
         a_path.axis("equal")
         a_path.legend(fontsize=7, loc="best")
     a_path.invert_yaxis()
-    a_path.set(xlabel=f"x - mean ({up}, + right)", ylabel=f"y - mean ({up}, + down)",
-               title="paths of the moving points about their means")
+    a_path.set(xlabel=f"x - mean ({up}, + right" + (", from the tow point)" if towed else ")"),
+               ylabel=f"y - mean ({up}, + down)", title="paths of the moving points about their means")
     plain_axis(a_path)
     traces = [(label, result[k] * ff, f"C{i}") for i, (k, label) in enumerate(tens)]
     series_panel(a_t, t, traces, uf, ATOL_FORCE * ff)

@@ -125,12 +125,10 @@ class Scene:
 
     def _check_system(self) -> None:
         """What the node model of a graph of lines (:mod:`cablesys.model.system`) does not take yet, each refused by
-        name: a track, a rigid body with a seabed (as the chain's), an initial angle or stretch (it starts from its
+        name: a rigid body with a seabed (as the chain's), an initial angle or stretch (it starts from its
         statics), top motion without a prescribed point, a vessel's 6-DOF RAO with several prescribed points (each
-        would need its own lever arm); a winch whose line is not the prescribed point's one line."""
-        if self.top_motion.track is not None:
-            raise ParameterError("top_motion.track", "set", "must be unset for a system that is not a chain of "
-                                 "sections: the node model of a graph of lines has no steady turn yet")
+        would need its own lever arm); a winch whose line is not the prescribed point's one line; a track as a chain's
+        (:meth:`_check_track`)."""
         self._check_system_winch()
         top = self.top_motion
         n_top = self.system.n_prescribed
@@ -154,6 +152,7 @@ class Scene:
                 raise ParameterError(f"point[{i}].pitch_inertia", p.body.pitch_inertia, "must be unset for a scene "
                                      "with a [seabed]: a rigid, pitching body is built by the node model without "
                                      "seabed so far (its footprint's contact does not turn it)")
+        self._check_track()
 
     def _check_system_winch(self) -> None:
         """A ``[winch]`` on a system pays out the one line that starts at the (first) prescribed point (its first section, as
@@ -298,6 +297,19 @@ class Scene:
         if self.anchor is not None:
             raise ParameterError("anchor", "set", "must be unset with top_motion.track: an anchored line cannot be towed "
                                  "along with the tow point")
+        points = self.system.point if self.system is not None else ()
+        if self.system is not None and self.system.n_prescribed > 1:
+            raise ParameterError("top_motion.track", "set", f"must be unset with {self.system.n_prescribed} prescribed "
+                                 "points: the track moves one tow point (the others would need their lever arms "
+                                 "turned with the ship's heading)")
+        for i, pt in enumerate(points):
+            if pt.kind == "fixed":
+                raise ParameterError(f"point[{i}].kind", "fixed", "must not be fixed with top_motion.track: a system "
+                                     f"held at {pt.name!r} cannot be towed along with the tow point (make it a body "
+                                     "or a junction)")
+            if track.is_circle and pt.body is not None and pt.body.is_rigid:
+                raise ParameterError(f"point[{i}].pitch_inertia", pt.body.pitch_inertia, "must be unset with a "
+                                     "circular top_motion.track: the steady turn's statics hold the nodes alone so far")
         env = self.environment
         for i, v in enumerate(env.current_speeds):
             if v != 0.0:

@@ -37,7 +37,7 @@ from ..messages import casadi_warnings_captured, kinsol_flags
 from .catenary import NODE_KINSOL, TOLERANCE, _pins, _taut_span, flow_continuation, flow_indices, released
 from .problem import SteadyState, at_rest, residual_scales, static_parameters, static_zeroed
 
-__all__ = ["system_equilibrium", "system_guess", "system_initial_state", "system_steady"]
+__all__ = ["system_equilibrium", "system_guess", "system_initial_state", "system_rest", "system_steady"]
 
 
 def _sections(model, p) -> list:
@@ -397,19 +397,19 @@ def refine(coarse, p_coarse, q_coarse, fine, p_fine, top=None) -> np.ndarray:
 COARSE_SEGMENTS = 4
 
 
-def system_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
-    """x0 = (q, q') of a run: the system at rest in its static state with the prescribed point where the top motion
-    puts it at t0 (the origin after a smooth start), the bodies' and junctions' positions given in the scene as the
-    statics' guess. When the statics do not converge from the first guess, they are solved for the same system with
+def system_rest(scene, model, p, *, top=None, flow=None) -> np.ndarray:
+    """q (m) of the system at rest in its static state (:func:`system_equilibrium`) with the prescribed point at ``top``
+    (default its mean position, the origin), the bodies' and junctions' positions given in the scene as the statics'
+    guess. When the statics do not converge from the first guess, they are solved for the same system with
     COARSE_SEGMENTS elements per line section, then twice as many, ..., each state interpolated along the lines into the
     next one's guess (:func:`refine`): a mooring line lying on the seabed, whose touchdown the coarse guess misplaces by
-    tens of metres, is found so."""
-    e = np.array(model.top(t0, p)).ravel()
-    top = e[1:1 + model.dim]
+    tens of metres, is found so. ``flow(model, p)``, when given, gives the parameters each model is solved at (the
+    water streaming past a towed system, :mod:`.tow`)."""
+    at = flow or (lambda m, pp: pp)
     points = {pt.name: tuple(v for v in (pt.x, pt.y, pt.z or 0.0)) for pt in scene.system.point
               if pt.free and pt.x is not None and pt.y is not None}
     try:
-        q, _ = system_equilibrium(model, p, points=points, top=top)
+        return system_equilibrium(model, at(model, p), points=points, top=top)[0]
     except SolverError:
         from ..model import build_model
         n_fine, n = max(model.segments), COARSE_SEGMENTS
@@ -419,12 +419,20 @@ def system_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
         while n < n_fine:
             sc = dataclasses.replace(scene, system=scene.system.with_segments(n))
             m = build_model(sc)
-            p_c = m.parameters(sc)
+            p_c = at(m, m.parameters(sc))
             guess = None if prev is None else refine(*prev, m, p_c, top)
             prev = (m, p_c, system_equilibrium(m, p_c, guess=guess, points=points, top=top)[0])
             n *= 2
-        q, _ = system_equilibrium(model, p, guess=refine(*prev, model, p, top), top=top)
-    n_rot = model.n_rotations     # a rigid body turned to its initial_*_deg attitude where set, about its attachment
+        return system_equilibrium(model, at(model, p), guess=refine(*prev, model, at(model, p), top), top=top)[0]
+
+
+def system_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
+    """x0 = (q, q') of a run: the system at rest in its static state (:func:`system_rest`) with the prescribed point
+    where the top motion puts it at t0 (the origin after a smooth start), a rigid body turned to its
+    ``initial_*_deg`` attitude where set, about its attachment point."""
+    e = np.array(model.top(t0, p)).ravel()
+    q = system_rest(scene, model, p, top=e[1:1 + model.dim])
+    n_rot = model.n_rotations
     if n_rot:
         q[model.nq - n_rot:] = released([pt.body for pt in scene.system.point if pt.free and pt.body.is_rigid],
                                         q[model.nq - n_rot:])

@@ -20,8 +20,8 @@ Marine Hydrodynamics, 1977, sec. 4.13), and an axial pair from a's growth with l
 (``environment.system_speed``: the nodes still, the water moving) has no such term, so the two frames differ by it
 (tests/test_tracks.py measures it); a point body's virtual masses are fixed in the scene's axes and feel none.
 
-The steady tow is found from the statics in that streaming water (:func:`.catenary.segmented_steady`, with its
-continuation in the flow speed and the pins of a rigid body's neutral rotations): in the plane the system speed
+The steady tow is found from the statics in that streaming water (:func:`.catenary.segmented_steady`, a system of
+lines joined at points :func:`.system.system_steady`, with its continuation in the flow speed and the pins of a rigid body's neutral rotations): in the plane the system speed
 U cos psi (psi = 0 or pi), in space a current of speed U at every depth heading psi + pi; then KINSOL polishes it
 on the residual above (scaled by the total weight, as the statics', with the statics' pins), from which it is
 small. On the ground every node keeps its place relative to the tow point and moves with V, a rigid body at rest
@@ -39,8 +39,11 @@ import numpy as np
 
 from ..errors import SolverError
 from ..messages import casadi_warnings_captured, kinsol_flags
+from ..model.system import SystemModel
 from .catenary import _pins, _rotations, segmented_initial_state, segmented_steady, static_tolerance
 from .problem import residual_scales, static_parameters
+from .system import static_tolerance as system_tolerance
+from .system import system_rest, system_steady
 
 
 def tow_parameters(model, p, speed: float, heading: float) -> np.ndarray:
@@ -90,21 +93,24 @@ def _tow_rootfinder(model):
     return model.derive("straight_tow_rootfinder", build)
 
 
-def straight_tow(model, p, speed: float, heading: float) -> np.ndarray:
+def straight_tow(model, p, speed: float, heading: float, scene=None) -> np.ndarray:
     """q of the steady straight tow relative to the tow point (m; a rigid body's orientation coordinates after the
-    nodes): the module docstring's residual, from the statics in the streaming water.
+    nodes): the module docstring's residual, from the statics in the streaming water (a system of lines: of ``scene``,
+    coarse to fine where its first guess fails, :func:`.system.system_rest`).
 
     Raises
     ------
     SolverError
         When KINSOL does not bring the residual below the statics' tolerance.
     """
-    p_flow = static_parameters(model, tow_parameters(model, p, speed, heading))
-    q0 = segmented_steady(model, p_flow).q
+    def flow(m, pp):             # still water streaming past the tow point, on every model the statics solve
+        return static_parameters(m, tow_parameters(m, pp, speed, heading))
+    p_flow = flow(model, p)
+    q0 = hanging(model, p, scene, flow)
     p = static_parameters(model, p)
     P = np.concatenate([p, tow_velocity(model, speed, heading), _pins(model, q0, p_flow)])
     F, solve = _tow_rootfinder(model)
-    tol = static_tolerance(model, p)
+    tol = tolerance(model, p)
     resid = lambda q: float(np.max(np.abs(np.array(F(q, P))))) if np.all(np.isfinite(q)) else np.inf
     if resid(q0) < tol:
         return q0
@@ -118,8 +124,42 @@ def straight_tow(model, p, speed: float, heading: float) -> np.ndarray:
     return q
 
 
+def hanging(model, p, scene=None, flow=None) -> np.ndarray:
+    """q of the node model at rest (m, relative to the top at its mean position) at the parameters ``flow(model, p)``
+    (default ``p``): the chain's statics (:func:`.catenary.segmented_steady`) or a system's of lines joined at points,
+    its prescribed point the top (:func:`.system.system_rest` on ``scene``, coarse to fine where the first guess
+    fails, or :func:`.system.system_steady` without one)."""
+    at = flow or (lambda m, pp: pp)
+    if not isinstance(model, SystemModel):
+        return segmented_steady(model, at(model, p)).q
+    return system_rest(scene, model, p, flow=flow) if scene is not None else system_steady(model, at(model, p)).q
+
+
+def tolerance(model, p) -> float:
+    """The statics' tolerance on the scaled residual: the chain's (:func:`.catenary.static_tolerance`) or a system's
+    (:func:`.system.static_tolerance`)."""
+    return (system_tolerance if isinstance(model, SystemModel) else static_tolerance)(model, p)
+
+
+def moved_with_top(model, p, q, t0: float) -> np.ndarray:
+    """x0 = (q, q') of a system of lines (:class:`~cablesys.model.system.SystemModel`) whose shape ``q`` (node
+    positions relative to the prescribed point, then the rigid bodies' orientation coordinates) moves with the top:
+    translated to the top's position at ``t0``, every free node with the top's velocity, the orientations at rest.
+    (A system held by a fixed point cannot move with its top: a track refuses one, Scene._check_track.)"""
+    e = np.array(model.top(t0, p)).ravel()
+    dim, n_rot = model.dim, _rotations(model)
+    q = np.asarray(q, float)
+    nodes = q[:q.size - n_rot].reshape(-1, dim)
+    return np.concatenate([(nodes + e[1:1 + dim]).ravel(), q[q.size - n_rot:],
+                           np.tile(e[1 + dim:1 + 2 * dim], nodes.shape[0]), np.zeros(n_rot)])
+
+
 def straight_tow_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
     """x0 of a node model whose top follows ``scene.top_motion.track`` (not a circle): the steady straight tow at the
-    track's speed along its initial heading (module docstring), at time ``t0`` (the track still straight there)."""
+    track's speed along its initial heading (module docstring), at time ``t0`` (the track still straight there); a
+    system of lines (``scene.system``) moved with its prescribed point as the chain with its top."""
     track = scene.top_motion.track
-    return segmented_initial_state(scene, model, p, t0, q=straight_tow(model, p, track.speed, track.heading))
+    q = straight_tow(model, p, track.speed, track.heading, scene)
+    if isinstance(model, SystemModel):
+        return moved_with_top(model, p, q, t0)
+    return segmented_initial_state(scene, model, p, t0, q=q)

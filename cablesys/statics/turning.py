@@ -13,7 +13,8 @@ inertia of the turn balances tension, weight and the drag of the still water on 
 weight as the statics' is (and held to the same tolerance), is solved by KINSOL in element angles
 and lengths (then polished in node positions), by continuation in the turn rate from the hanging
 cable (each solution the next guess), as the catenary's statics continue in the flow speed
-(:mod:`.catenary`). The tow point's position, velocity and acceleration e are those of the rigid
+(:mod:`.catenary`). A system of lines joined at points (:mod:`cablesys.model.system`) has no chain of element
+angles: its continuation steps in node positions alone, from its statics with the prescribed point as the top. The tow point's position, velocity and acceleration e are those of the rigid
 turn at the start time, equal to the track's own (checked).
 """
 
@@ -24,8 +25,11 @@ import numpy as np
 
 from ..errors import SolverError
 from ..messages import casadi_warnings_captured, kinsol_flags
-from .catenary import polar_map, segmented_steady, static_tolerance, to_polar
+from ..model.system import SystemModel
+from .catenary import polar_map, to_polar
 from .problem import residual_scales, static_parameters
+from .tow import hanging as hanging_shape
+from .tow import tolerance
 
 
 
@@ -53,21 +57,77 @@ def _rootfinder(model):
         M, f = model.dynamics(q, ca.vec(v.T), e, p)
         res = (ca.mtimes(M, ca.vec(a.T)) - f) / residual_scales(model, p)
         F = ca.Function("turning_residual", [q, ca.vertcat(t0, rt, w, p)], [res])
-        v = ca.SX.sym("v", nq)
-        P = ca.SX.sym("P", 5 + n_p)
-        G = ca.Function("turning_polar_residual", [v, P], [F(ca.repmat(P[1:4], nq // 3, 1) + polar_map(model)(v), P)])
         opts = {"strategy": "linesearch", "abstol": 1e-13, "error_on_fail": False, "print_level": 0,
                 "disable_internal_warnings": True, "max_iter": 200}
         nodes = ca.rootfinder("turning", "kinsol", F, dict(opts, linear_solver_type="user_defined",
                                                             linear_solver="csparse"))
+        if isinstance(model, SystemModel):    # a graph of lines has no chain of element angles: node coordinates
+            return F, None, nodes
+        v = ca.SX.sym("v", nq)
+        P = ca.SX.sym("P", 5 + n_p)
+        G = ca.Function("turning_polar_residual", [v, P], [F(ca.repmat(P[1:4], nq // 3, 1) + polar_map(model)(v), P)])
         return F, ca.rootfinder("turning_polar", "kinsol", G, opts), nodes
     return model.derive("turning_rootfinder", build)
 
 
 def turning_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
     """x0 of a segmented model towed in a circle (``scene.top_motion.track``): the steady turn, continued from the
-    scene's hanging equilibrium (:func:`.catenary.segmented_steady`)."""
-    return turning_state(model, p, scene.top_motion.track.turn_rate, segmented_steady(model, p).q, t0)
+    scene's hanging equilibrium (:func:`.catenary.segmented_steady`); a system of lines joined at points from its
+    steady straight tow (:func:`system_turning_state`)."""
+    if isinstance(model, SystemModel):
+        return system_turning_state(scene, model, p, t0)
+    return turning_state(model, p, scene.top_motion.track.turn_rate, hanging_shape(model, p), t0)
+
+
+def system_turning_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
+    """x0 = (node positions, node velocities) of the steady turn of a system of lines joined at points.
+
+    A graph of lines has no chain of element angles to continue in (:func:`turning_state`), and Newton in node
+    positions from the hanging system must swing stiff lines far out (it stalls). The straight tow at the track's speed
+    along the turn's heading at ``t0`` (:func:`.tow.straight_tow`, from the statics in streaming water) is the turn of
+    zero rate; the turn rate is then continued from 0 to Omega with the tow point held where the track puts it at t0,
+    moving at the same speed along the same heading, about a centre at the distance U / omega on its inner side (at
+    Omega: the circle's centre, the origin). Each step solves the module docstring's residual in node positions from
+    the last shape relative to the tow point. Raises SolverError when the continuation stalls."""
+    from .tow import straight_tow
+    track = scene.top_motion.track
+    rate, speed = track.turn_rate, track.speed
+    p = static_parameters(model, p)
+    e = np.array(model.top(t0, p)).ravel()
+    r_top, v_top = e[1:4], e[4:7]
+    heading = float(np.arctan2(v_top[2], v_top[0]))
+    rel = straight_tow(model, p, speed, heading, scene).reshape(-1, 3)     # relative to the tow point
+    radial = r_top / np.linalg.norm(r_top)                                  # from the centre out to the tow point
+    F, _, nodes = _rootfinder(model)
+    tol = tolerance(model, p)
+
+    def solve(rel, w):
+        """(shape relative to the tow point, residual) at the turn rate w about the centre U / |w| inwards."""
+        r_w = radial * speed / abs(w)                                      # the tow point seen from that centre
+        P = np.concatenate([[t0], r_w, [w], p])
+        q = np.array(nodes((rel + r_w).ravel(), P)).ravel()
+        if not np.all(np.isfinite(q)):
+            return rel, np.inf
+        return q.reshape(-1, 3) - r_w, float(np.max(np.abs(np.array(F(q, P)))))
+
+    lam, step = 0.0, 0.125
+    with casadi_warnings_captured() as kinsol:
+        while lam < 1.0 and step > 1.0 / 4096:
+            w = rate * min(1.0, lam + step)
+            rel_try, r = solve(rel, w)
+            if r < tol:
+                rel, lam, step = rel_try, min(1.0, lam + step), 2.0 * step
+            else:
+                step *= 0.5
+    if lam < 1.0:
+        flags = kinsol_flags(kinsol)
+        raise SolverError(f"steady turn of the system not found: the continuation in the turn rate from the straight "
+                          f"tow stopped at {lam * rate:.4g} of {rate:.4g} rad/s"
+                          + (f" (KINSOL: {', '.join(flags)})" if flags else "")
+                          + "; a tight, fast turn may have no steady state with the lines taut")
+    q = rel + r_top
+    v, _ = _rigid(rate, q)
+    return np.concatenate([q.ravel(), v.ravel()])
 
 
 def turning_state(model, p, turn_rate: float, hanging, t0: float = 0.0) -> np.ndarray:
@@ -108,7 +168,7 @@ def turning_state(model, p, turn_rate: float, hanging, t0: float = 0.0) -> np.nd
         raise SolverError(f"the top motion at t = {t0:g} s is not a rigid turn at {turn_rate:.6g} rad/s about the "
                           "origin: the steady turn needs the track alone")
     F, polar, nodes = _rootfinder(model)
-    tol = static_tolerance(model, p)
+    tol = tolerance(model, p)
     q = (np.asarray(hanging, float).reshape(-1, 3) + r_top).ravel()
     resid = lambda qq, w: float(np.max(np.abs(np.array(F(qq, np.concatenate([[t0], r_top, [w], p]))))))
     lam, step = 0.0, 0.25
@@ -116,8 +176,10 @@ def turning_state(model, p, turn_rate: float, hanging, t0: float = 0.0) -> np.nd
         while lam < 1.0 and step > 1.0 / 4096:
             w = turn_rate * min(1.0, lam + step)
             P = np.concatenate([[t0], r_top, [w], p])
-            v = np.array(polar(to_polar(q - np.tile(r_top, q.size // 3), 3), P)).ravel()
-            q_try = np.tile(r_top, q.size // 3) + np.array(polar_map(model)(v)).ravel() if np.all(np.isfinite(v)) else q
+            q_try = q
+            if polar is not None:
+                v = np.array(polar(to_polar(q - np.tile(r_top, q.size // 3), 3), P)).ravel()
+                q_try = np.tile(r_top, q.size // 3) + np.array(polar_map(model)(v)).ravel() if np.all(np.isfinite(v)) else q
             if not resid(q_try, w) < tol:                      # polished in node coordinates (sparse)
                 q_try = np.array(nodes(q_try, P)).ravel()
             if np.all(np.isfinite(q_try)) and resid(q_try, w) < tol:

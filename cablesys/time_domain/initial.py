@@ -30,16 +30,16 @@ def initial_state(scene: Scene, model: CableModel, p) -> np.ndarray:
         x_n = initial_state(scene, model.node_model, p)
         e = np.array(model.top(float(scene.output_times[0]), p)).ravel()
         return np.array(model.from_nodes(x_n, e, np.asarray(p, dtype=float))).ravel()
-    if getattr(scene, "system", None) is not None:   # lines joined at points: at rest in its static state
-        from ..statics.system import system_initial_state
-        return system_initial_state(scene, model, p, float(scene.output_times[0]))
     track = getattr(scene.top_motion, "track", None)
-    if getattr(model, "segments", None) and track is not None:
+    if getattr(model, "segments", None) and track is not None:     # a chain or a system of lines on a track
         if track.is_circle:                                     # towing in a circle: the steady turn
             from ..statics.turning import turning_initial_state
             return turning_initial_state(scene, model, p)
         from ..statics.tow import straight_tow_state            # a path: the steady straight tow before it
         return straight_tow_state(scene, model, p)
+    if getattr(scene, "system", None) is not None:   # lines joined at points: at rest in its static state
+        from ..statics.system import system_initial_state
+        return system_initial_state(scene, model, p, float(scene.output_times[0]))
     if getattr(model, "segments", None):      # node coordinates: the segmented cable
         from ..statics.catenary import segmented_initial_state
         return segmented_initial_state(scene, model, p)
