@@ -70,6 +70,21 @@ def _rootfinder(model):
     return model.derive("turning_rootfinder", build)
 
 
+def _continued(solve, state, rate: float, first_step: float) -> tuple:
+    """Continuation in the turn rate from 0 to ``rate``: ``solve(state, w)`` gives the steady state at the rate w from
+    the last one (or None), the step doubled after a success and halved after a failure, down to 1/4096 of the rate.
+    Returns (the last state, the fraction of ``rate`` reached, KINSOL's flags)."""
+    lam, step = 0.0, first_step
+    with casadi_warnings_captured() as kinsol:
+        while lam < 1.0 and step > 1.0 / 4096:
+            tried = solve(state, rate * min(1.0, lam + step))
+            if tried is not None:
+                state, lam, step = tried, min(1.0, lam + step), 2.0 * step
+            else:
+                step *= 0.5
+    return state, lam, kinsol_flags(kinsol)
+
+
 def turning_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
     """x0 of a segmented model towed in a circle (``scene.top_motion.track``): the steady turn, continued from the
     scene's hanging equilibrium (:func:`.catenary.segmented_steady`); a system of lines joined at points from its
@@ -102,25 +117,15 @@ def system_turning_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
     tol = tolerance(model, p)
 
     def solve(rel, w):
-        """(shape relative to the tow point, residual) at the turn rate w about the centre U / |w| inwards."""
+        """The shape relative to the tow point at the turn rate w about the centre U / |w| inwards, or None."""
         r_w = radial * speed / abs(w)                                      # the tow point seen from that centre
         P = np.concatenate([[t0], r_w, [w], p])
         q = np.array(nodes((rel + r_w).ravel(), P)).ravel()
-        if not np.all(np.isfinite(q)):
-            return rel, np.inf
-        return q.reshape(-1, 3) - r_w, float(np.max(np.abs(np.array(F(q, P)))))
+        ok = np.all(np.isfinite(q)) and float(np.max(np.abs(np.array(F(q, P))))) < tol
+        return q.reshape(-1, 3) - r_w if ok else None
 
-    lam, step = 0.0, 0.125
-    with casadi_warnings_captured() as kinsol:
-        while lam < 1.0 and step > 1.0 / 4096:
-            w = rate * min(1.0, lam + step)
-            rel_try, r = solve(rel, w)
-            if r < tol:
-                rel, lam, step = rel_try, min(1.0, lam + step), 2.0 * step
-            else:
-                step *= 0.5
+    rel, lam, flags = _continued(solve, rel, rate, 0.125)
     if lam < 1.0:
-        flags = kinsol_flags(kinsol)
         raise SolverError(f"steady turn of the system not found: the continuation in the turn rate from the straight "
                           f"tow stopped at {lam * rate:.4g} of {rate:.4g} rad/s"
                           + (f" (KINSOL: {', '.join(flags)})" if flags else "")
@@ -171,23 +176,17 @@ def turning_state(model, p, turn_rate: float, hanging, t0: float = 0.0) -> np.nd
     tol = tolerance(model, p)
     q = (np.asarray(hanging, float).reshape(-1, 3) + r_top).ravel()
     resid = lambda qq, w: float(np.max(np.abs(np.array(F(qq, np.concatenate([[t0], r_top, [w], p]))))))
-    lam, step = 0.0, 0.25
-    with casadi_warnings_captured() as kinsol:
-        while lam < 1.0 and step > 1.0 / 4096:
-            w = turn_rate * min(1.0, lam + step)
-            P = np.concatenate([[t0], r_top, [w], p])
-            q_try = q
-            if polar is not None:
-                v = np.array(polar(to_polar(q - np.tile(r_top, q.size // 3), 3), P)).ravel()
-                q_try = np.tile(r_top, q.size // 3) + np.array(polar_map(model)(v)).ravel() if np.all(np.isfinite(v)) else q
-            if not resid(q_try, w) < tol:                      # polished in node coordinates (sparse)
-                q_try = np.array(nodes(q_try, P)).ravel()
-            if np.all(np.isfinite(q_try)) and resid(q_try, w) < tol:
-                q, lam, step = q_try, min(1.0, lam + step), 2.0 * step
-            else:
-                step *= 0.5
+    def solve(q, w):
+        """The nodes at the turn rate w from ``q`` (element angles and lengths, polished in node positions), or None."""
+        P = np.concatenate([[t0], r_top, [w], p])
+        v = np.array(polar(to_polar(q - np.tile(r_top, q.size // 3), 3), P)).ravel()
+        q_try = np.tile(r_top, q.size // 3) + np.array(polar_map(model)(v)).ravel() if np.all(np.isfinite(v)) else q
+        if not resid(q_try, w) < tol:                      # polished in node coordinates (sparse)
+            q_try = np.array(nodes(q_try, P)).ravel()
+        return q_try if np.all(np.isfinite(q_try)) and resid(q_try, w) < tol else None
+
+    q, lam, flags = _continued(solve, q, turn_rate, 0.25)
     if lam < 1.0:
-        flags = kinsol_flags(kinsol)
         raise SolverError(f"steady turn not found: the continuation in the turn rate stopped at "
                           f"{lam * turn_rate:.4g} of {turn_rate:.4g} rad/s"
                           + (f" (KINSOL: {', '.join(flags)})" if flags else "")
