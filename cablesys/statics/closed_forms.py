@@ -157,7 +157,10 @@ def suspended_catenary(length: float, anchor, arcs) -> np.ndarray:
     from scipy.optimize import brentq
     h, dY = abs(float(anchor[0])), -float(anchor[1])
     target = np.sqrt(length**2 - dY**2) / h                       # 2 a sinh(h / 2a) / h = target > 1
-    u = brentq(lambda u: np.sinh(u) / u - target, 1e-9, 1.0 + np.arcsinh(target))   # u = h / (2 a)
+    hi = 1.0                                   # sinh(u) / u grows from 1 at u = 0: double until it passes the target
+    while np.sinh(hi) / hi < target:
+        hi *= 2.0
+    u = brentq(lambda u: np.sinh(u) / u - target, 1e-9, hi)        # u = h / (2 a)
     a = h / (2.0 * u)
     x0 = 0.5 * h - a * np.arctanh(dY / length)
     X = x0 + a * np.arcsinh(np.asarray(arcs, float) / a - np.sinh(x0 / a))
