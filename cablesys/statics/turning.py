@@ -20,12 +20,15 @@ turn at the start time, equal to the track's own (checked).
 
 from __future__ import annotations
 
+import warnings
+
 import casadi as ca
 import numpy as np
 
-from ..errors import SolverError
+from ..errors import NumericalWarning, SolverError
 from ..messages import casadi_warnings_captured, kinsol_flags
 from ..model.system import SystemModel
+from ..scene.labels import section_prefix
 from .catenary import polar_map, to_polar
 from .problem import residual_scales, static_parameters
 from .tow import hanging as hanging_shape
@@ -85,10 +88,38 @@ def _continued(solve, state, rate: float, first_step: float) -> tuple:
     return state, lam, kinsol_flags(kinsol)
 
 
+def heading_dependent_bodies(scene) -> list:
+    """The fields of the point bodies of ``scene`` that a turn's heading changes: virtual masses unequal in x and z, or
+    a drag axis tilted off the vertical (not sphere drag). A point body's virtual masses and drag axis are fixed in
+    the scene's axes (Wang 1971 eq. 16, 32-35), so such a body meets the water differently as the tow turns and no
+    turn is steady; a rigid body's are its own axes'."""
+    if scene.system is not None:
+        bodies = [(f"point[{i}].", pt.body) for i, pt in enumerate(scene.system.point) if pt.free]
+    else:
+        bodies = [(section_prefix(scene, i), s.body) for i, s in enumerate(scene.sections)]
+    out = []
+    for prefix, b in bodies:
+        if b.is_rigid:
+            continue
+        if b.virtual_mass_z != b.mass_x:
+            out.append(f"{prefix}body.mass_z = {b.virtual_mass_z:g} kg (mass_x = {b.mass_x:g} kg)")
+        if not b.is_sphere and b.axis_angle_deg % 180.0 != 0.0:
+            out.append(f"{prefix}body.axis_angle_deg = {b.axis_angle_deg:g}")
+    return out
+
+
 def turning_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
     """x0 of a segmented model towed in a circle (``scene.top_motion.track``): the steady turn, continued from the
     scene's hanging equilibrium (:func:`.catenary.segmented_steady`); a system of lines joined at points from its
-    steady straight tow (:func:`system_turning_state`)."""
+    steady straight tow (:func:`system_turning_state`). Warns (NumericalWarning) when a point body's fields change
+    with the heading (:func:`heading_dependent_bodies`): the turn found is the equilibrium at t0's heading, and the run
+    moves about it."""
+    odd = heading_dependent_bodies(scene)
+    if odd:
+        warnings.warn("the steady turn is steady only at the start's heading: " + "; ".join(odd) + " are fixed in the "
+                      "scene's axes (a point body, Wang 1971 eq. 16, 32-35), so the run moves about it as the tow "
+                      "turns (equal mass_x and mass_z, a vertical drag axis or sphere drag keep it steady)",
+                      NumericalWarning, stacklevel=2)
     if isinstance(model, SystemModel):
         return system_turning_state(scene, model, p, t0)
     return turning_state(model, p, scene.top_motion.track.turn_rate, hanging_shape(model, p), t0)
