@@ -147,9 +147,14 @@ def _analyse(args, scene, outdir) -> int:
             plot_sea_response(resp, natural, tmp, title=f"{scene.name}: response spectra in the sea", forcing=forcing,
                               units=units)
         written.append("sea_response.png")
+    graph = {}
+    if getattr(scene, "system", None) is not None:      # lines joined at points: each line drawn apart, points by kind
+        from ..model.system import topology
+        point_nodes, line_nodes, _ = topology(scene.system)
+        graph = dict(lines=line_nodes, points={p.name: (p.kind, j) for p, j in zip(scene.system.point, point_nodes)})
     with outdir.writing("modes.png") as tmp:
         plot_modes(md, lin, tmp, title=f"{scene.name}: mode shapes about the steady state", units=units,
-                   n_shown=len(relevant_modes(md.omega_undamped, forcing.values())))
+                   n_shown=len(relevant_modes(md.omega_undamped, forcing.values())), **graph)
     written.append("modes.png")
     doc = {"scene": scene.name, "model": which, "steady_state": dict(zip(lin.q_labels, lin.q0.tolist())),
            "natural_frequencies_rad_s": md.omega_undamped.tolist(), "mode_dominant": list(md.dominant),

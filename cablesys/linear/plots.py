@@ -233,7 +233,8 @@ def _mode_table(modes, shown: int) -> str:
     return "\n".join([f"all {len(rows)} modes ({drawn}; zeta: damping ratio, largest: largest coordinate)"] + lines)
 
 
-def plot_modes(modes, rest, path, title: str = "", *, n_shown: int | None = None, units: str = "SI") -> Path:
+def plot_modes(modes, rest, path, title: str = "", *, n_shown: int | None = None, units: str = "SI",
+               lines: tuple | None = None, points: dict | None = None) -> Path:
     """Mode shapes about the real rest shape (offset, tow angle) on a bounded grid, and a table of every mode.
 
     Parameters
@@ -253,6 +254,10 @@ def plot_modes(modes, rest, path, title: str = "", *, n_shown: int | None = None
         are in the table.
     units : str
         "SI" (m) or "fps" (ft) for the positions.
+    lines, points : optional
+        A system of lines joined at points (:mod:`cablesys.model.system`): the node numbers of each line, drawn
+        apart, and {point name: (kind, node number)}, marked by kind (square prescribed, triangle fixed, dot a body
+        or junction); default one chain from the top (square) to the body (dot).
 
     Each drawn displacement is scaled so that its largest point moves 10 % of the rest shape's extent.
     """
@@ -261,8 +266,10 @@ def plot_modes(modes, rest, path, title: str = "", *, n_shown: int | None = None
     f, ul = output_unit("m", units)
     n = len(modes.omega_undamped)
     shown = max(1, min(n, MAX_MODE_PANELS if n_shown is None else n_shown, MAX_MODE_PANELS))
-    points, D = _rest_geometry(rest, modes.q_labels)
-    extent = max(float(np.ptp(points[:, 0])), float(np.ptp(points[:, 1])), 1e-9)
+    nodes, D = _rest_geometry(rest, modes.q_labels)
+    extent = max(float(np.ptp(nodes[:, 0])), float(np.ptp(nodes[:, 1])), 1e-9)
+    marks = (list(points.values()) if points is not None
+             else [("prescribed", 0), ("body", len(nodes) - 1)])       # a chain: the top, the last body
     ncol = min(3, shown)
     nrow = -(-shown // ncol)
     table_h = 0.13 * ((n if n <= 8 else -(-n // 3)) + 2) + 0.2      # inches: the table's text lines
@@ -274,10 +281,16 @@ def plot_modes(modes, rest, path, title: str = "", *, n_shown: int | None = None
         big = float(np.max(np.hypot(d[:, 0], d[:, 1])))
         d = d * (0.1 * extent / big if big > 0 else 0.0)
         for s, style, name in ((0.0, "k-", "at rest"), (1.0, "C0-", "+ mode"), (-1.0, "C1--", "- mode")):
-            p = (points + s * d) * f
-            ax.plot(p[:, 0], p[:, 1], style, lw=1.6 if s == 0 else 1.2, label=name)
-            ax.plot(p[-1, 0], p[-1, 1], "o", color=style[:2] if s else "k", ms=7)
-        ax.plot(points[0, 0] * f, points[0, 1] * f, "ks", ms=5)
+            p = (nodes + s * d) * f
+            for m, seq in enumerate(lines or (range(len(nodes)),)):
+                ax.plot(p[list(seq), 0], p[list(seq), 1], style, lw=1.6 if s == 0 else 1.2, label=name if m == 0 else None)
+            for kind, j in marks:
+                if kind in ("body", "junction"):
+                    ax.plot(p[j, 0], p[j, 1], "o", color=style[:2] if s else "k", ms=7 if kind == "body" else 5)
+        for kind, j in marks:
+            if kind in ("prescribed", "fixed"):
+                ax.plot(nodes[j, 0] * f, nodes[j, 1] * f, "ks" if kind == "prescribed" else "k^", ms=5,
+                        mfc="k" if kind == "prescribed" else "w")
         ax.invert_yaxis()
         ax.set_aspect("equal", adjustable="datalim")
         ax.set_xlabel(f"x [{ul}]")
@@ -293,7 +306,8 @@ def plot_modes(modes, rest, path, title: str = "", *, n_shown: int | None = None
     ax.text(0.0, 1.0, _mode_table(modes, shown), family="DejaVu Sans Mono", fontsize=7, va="top", ha="left",
                 transform=ax.transAxes)
     fig.suptitle(_wrap(title or "mode shapes about the rest shape") + "\n(displacements scaled to 10 % of the cable's "
-                 "extent; square = top, dot = body)", fontsize=10)
+                 "extent; " + ("square = prescribed, triangle = fixed, dot = body or junction)" if points is not None
+                               else "square = top, dot = body)"), fontsize=10)
     save_figure(fig, path, dpi=110)
     return Path(path)
 
