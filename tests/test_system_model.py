@@ -49,6 +49,19 @@ PKG = Body(weight=3000.0, mass_x=400.0, mass_y=450.0, mass_z=420.0, drag_area_no
            axis_angle_deg=10.0)
 
 
+def same_dynamics(m_c, m_g, p_c, p_g, x, times):
+    """The graph model ``m_g``'s ode and energy are the chain model ``m_c``'s at the state x and each of ``times`` (to
+    1e-12 relative); yields (t, the chain's outputs by label, the graph's) for the caller's outputs."""
+    for t in times:
+        f_c, f_g = np.array(m_c.ode(x, t, p_c)).ravel(), np.array(m_g.ode(x, t, p_g)).ravel()
+        assert np.max(np.abs(f_g - f_c)) <= 1e-12 * np.max(np.abs(f_c))
+        e = np.array(m_c.top(t, p_c)).ravel()
+        np.testing.assert_allclose(np.array(m_g.energy(x, e, p_g), float), np.array(m_c.energy(x, e, p_c), float),
+                                   rtol=1e-12)
+        yield (t, dict(zip(m_c.output_labels, np.array(m_c.outputs(x, e, p_c)).ravel())),
+               dict(zip(m_g.output_labels, np.array(m_g.outputs(x, e, p_g)).ravel())))
+
+
 @pytest.mark.parametrize("space", [False, True])
 def test_a_chain_built_as_a_graph_is_the_chains_node_model(space):
     """ship -> wire -> clump (junction) -> wire -> anchor in the plane, or -> package (free) swaying in 3-D: the graph
@@ -70,14 +83,7 @@ def test_a_chain_built_as_a_graph_is_the_chains_node_model(space):
     x = rng.normal(size=2 * m_c.nq)
     x[:m_c.nq] += np.tile(np.r_[0.0, 40.0, 0.0][:dim], m_c.nq // dim) * np.repeat(np.arange(1, m_c.nq // dim + 1), dim)
     p_c, p_g = m_c.parameters(chain), m_g.parameters(graph)
-    for t in (0.7, 13.1):
-        f_c, f_g = np.array(m_c.ode(x, t, p_c)).ravel(), np.array(m_g.ode(x, t, p_g)).ravel()
-        assert np.max(np.abs(f_g - f_c)) <= 1e-12 * np.max(np.abs(f_c))
-        e = np.array(m_c.top(t, p_c)).ravel()
-        np.testing.assert_allclose(np.array(m_g.energy(x, e, p_g), float), np.array(m_c.energy(x, e, p_c), float),
-                                   rtol=1e-12)
-        y_c = dict(zip(m_c.output_labels, np.array(m_c.outputs(x, e, p_c)).ravel()))
-        y_g = dict(zip(m_g.output_labels, np.array(m_g.outputs(x, e, p_g)).ravel()))
+    for _, y_c, y_g in same_dynamics(m_c, m_g, p_c, p_g, x, (0.7, 13.1)):
         pairs = {"tension_top_1": "line.upper.tension_from", "tension_bottom_1": "line.upper.tension_to",
                  "tension_top_2": "line.lower.tension_from", "tension_bottom_2": "line.lower.tension_to",
                  "x_b_1": "point.clump.x", "y_b_1": "point.clump.y", "y_b_rate_1": "point.clump.y_rate"}

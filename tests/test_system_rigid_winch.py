@@ -18,7 +18,7 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from energy_checks import energy_history  # noqa: E402
-from test_system_model import as_graph  # noqa: E402
+from test_system_model import as_graph, same_dynamics  # noqa: E402
 
 import cablesys  # noqa: E402
 from cablesys.cli import main  # noqa: E402
@@ -80,14 +80,7 @@ def test_a_chain_with_a_rigid_body_built_as_a_graph_is_the_chains_node_model(spa
     x = rng.normal(size=2 * nq)
     x[:nq - len(names)] += np.tile(np.r_[0.0, 25.0, 0.0][:dim], 4) * np.repeat(np.arange(1, 5), dim)
     p_c, p_g = m_c.parameters(chain), m_g.parameters(graph)
-    for t in (0.7, 13.1):
-        f_c, f_g = np.array(m_c.ode(x, t, p_c)).ravel(), np.array(m_g.ode(x, t, p_g)).ravel()
-        assert np.max(np.abs(f_g - f_c)) <= 1e-12 * np.max(np.abs(f_c))
-        e = np.array(m_c.top(t, p_c)).ravel()
-        np.testing.assert_allclose(np.array(m_g.energy(x, e, p_g), float), np.array(m_c.energy(x, e, p_c), float),
-                                   rtol=1e-12)
-        y_c = dict(zip(m_c.output_labels, np.array(m_c.outputs(x, e, p_c)).ravel()))
-        y_g = dict(zip(m_g.output_labels, np.array(m_g.outputs(x, e, p_g)).ravel()))
+    for _, y_c, y_g in same_dynamics(m_c, m_g, p_c, p_g, x, (0.7, 13.1)):
         for k in RIGID_OUTPUTS + (RIGID_OUTPUTS_3D if space else ()):
             assert y_g[f"point.pkg.{k}"] == pytest.approx(y_c[k], rel=1e-12, abs=1e-12), k
         assert y_g["line.wire.tension_to"] == pytest.approx(y_c["tension_bottom"], rel=1e-12)
@@ -210,14 +203,7 @@ def test_a_chain_paid_out_by_a_winch_built_as_a_graph_is_the_chains_node_model(s
     rng = np.random.default_rng(7)
     x = rng.normal(size=2 * m_c.nq)
     x[:m_c.nq] += np.tile(np.r_[0.0, 25.0, 0.0][:m_c.dim], 5) * np.repeat(np.arange(1, 6), m_c.dim)
-    for t in (0.7, 5.1, 13.1):
-        f_c, f_g = np.array(m_c.ode(x, t, p_c)).ravel(), np.array(m_g.ode(x, t, p_g)).ravel()
-        assert np.max(np.abs(f_g - f_c)) <= 1e-12 * np.max(np.abs(f_c))
-        e = np.array(m_c.top(t, p_c)).ravel()
-        np.testing.assert_allclose(np.array(m_g.energy(x, e, p_g), float), np.array(m_c.energy(x, e, p_c), float),
-                                   rtol=1e-12)
-        y_c = dict(zip(m_c.output_labels, np.array(m_c.outputs(x, e, p_c)).ravel()))
-        y_g = dict(zip(m_g.output_labels, np.array(m_g.outputs(x, e, p_g)).ravel()))
+    for t, y_c, y_g in same_dynamics(m_c, m_g, p_c, p_g, x, (0.7, 5.1, 13.1)):
         pairs = {k: k for k in WINCH_OUTPUTS}
         pairs.update({"tension_top": "line.wire.tension_from", "tension_bottom": "line.wire.tension_to"})
         pairs.update({f"element_tension_rate[{k}]": f"element_tension_rate[{k}]" for k in range(5)})

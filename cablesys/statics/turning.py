@@ -73,10 +73,11 @@ def _rootfinder(model):
     return model.derive("turning_rootfinder", build)
 
 
-def _continued(solve, state, rate: float, first_step: float) -> tuple:
-    """Continuation in the turn rate from 0 to ``rate``: ``solve(state, w)`` gives the steady state at the rate w from
-    the last one (or None), the step doubled after a success and halved after a failure, down to 1/4096 of the rate.
-    Returns (the last state, the fraction of ``rate`` reached, KINSOL's flags)."""
+def _continued(solve, state, rate: float, first_step: float, what: str, start: str):
+    """The steady state at ``rate`` by continuation in the turn rate from 0: ``solve(state, w)`` gives the steady state
+    at the rate w from the last one (or None), the step doubled after a success and halved after a failure, down to
+    1/4096 of the rate. Raises SolverError naming the rate reached (``what``: the turn's owner, ``start``: where the
+    continuation started, for the message)."""
     lam, step = 0.0, first_step
     with casadi_warnings_captured() as kinsol:
         while lam < 1.0 and step > 1.0 / 4096:
@@ -85,7 +86,13 @@ def _continued(solve, state, rate: float, first_step: float) -> tuple:
                 state, lam, step = tried, min(1.0, lam + step), 2.0 * step
             else:
                 step *= 0.5
-    return state, lam, kinsol_flags(kinsol)
+    if lam < 1.0:
+        flags = kinsol_flags(kinsol)
+        raise SolverError(f"steady turn {what}{' ' if what else ''}not found: the continuation in the turn rate "
+                          f"{start}stopped at {lam * rate:.4g} of {rate:.4g} rad/s"
+                          + (f" (KINSOL: {', '.join(flags)})" if flags else "")
+                          + "; a tight, fast turn may have no steady state with the lines taut")
+    return state
 
 
 def heading_dependent_bodies(scene) -> list:
@@ -155,13 +162,7 @@ def system_turning_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
         ok = np.all(np.isfinite(q)) and float(np.max(np.abs(np.array(F(q, P))))) < tol
         return q.reshape(-1, 3) - r_w if ok else None
 
-    rel, lam, flags = _continued(solve, rel, rate, 0.125)
-    if lam < 1.0:
-        raise SolverError(f"steady turn of the system not found: the continuation in the turn rate from the straight "
-                          f"tow stopped at {lam * rate:.4g} of {rate:.4g} rad/s"
-                          + (f" (KINSOL: {', '.join(flags)})" if flags else "")
-                          + "; a tight, fast turn may have no steady state with the lines taut")
-    q = rel + r_top
+    q = _continued(solve, rel, rate, 0.125, "of the system", "from the straight tow ") + r_top
     v, _ = _rigid(rate, q)
     return np.concatenate([q.ravel(), v.ravel()])
 
@@ -216,11 +217,6 @@ def turning_state(model, p, turn_rate: float, hanging, t0: float = 0.0) -> np.nd
             q_try = np.array(nodes(q_try, P)).ravel()
         return q_try if np.all(np.isfinite(q_try)) and resid(q_try, w) < tol else None
 
-    q, lam, flags = _continued(solve, q, turn_rate, 0.25)
-    if lam < 1.0:
-        raise SolverError(f"steady turn not found: the continuation in the turn rate stopped at "
-                          f"{lam * turn_rate:.4g} of {turn_rate:.4g} rad/s"
-                          + (f" (KINSOL: {', '.join(flags)})" if flags else "")
-                          + "; a tight, fast turn may have no steady state with the cable taut")
+    q = _continued(solve, q, turn_rate, 0.25, "", "")
     v, _ = _rigid(turn_rate, q.reshape(-1, 3))
     return np.concatenate([q, v.ravel()])
