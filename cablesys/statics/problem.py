@@ -81,14 +81,20 @@ def static_residual(model: CableModel) -> ca.Function:
     return model.derive("static_residual", build)
 
 
+def total_weight(labels, p):
+    """The total weight in the medium (N) of the bodies and cables whose parameters ``p`` (symbolic or numeric) carry
+    these labels: sum |W_b| + |w| l_r over bodies and cable sections (a chain's cables, a system's lines)."""
+    return sum(ca.fabs(p[i]) for i, lb in enumerate(labels) if lb.endswith("body.weight")) + sum(
+        ca.fabs(p[i] * p[labels.index(lb.replace("weight_per_length", "length"))])
+        for i, lb in enumerate(labels) if lb.endswith(".weight_per_length"))
+
+
 def residual_scales(model: CableModel, p):
     """The scale of each equation of motion's residual, from the (symbolic) parameters ``p``: the total submerged
     weight (N) for the force rows, weight x cable length (N m) for the moment rows (``phi``); dividing by it makes
     solver tolerances relative, not below round-off for heavy, long systems."""
     lab = model.layout.labels
-    weight = sum(ca.fabs(p[i]) for i, lb in enumerate(lab) if lb.endswith("body.weight")) + sum(
-        ca.fabs(p[i] * p[lab.index(lb.replace("weight_per_length", "length"))])
-        for i, lb in enumerate(lab) if lb.endswith(".weight_per_length"))      # a chain's cables, a system's lines
+    weight = total_weight(lab, p)
     length = sum(p[i] for i, lb in enumerate(lab) if lb.endswith("cable.length"))
     return ca.vertcat(*[weight * length if lbl.startswith("phi") else weight for lbl in model.q_labels])
 

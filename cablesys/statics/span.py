@@ -37,7 +37,7 @@ from ..model.segmented import drag_points
 from ..model.segmented_kernel import kernel_statics
 from ..scene import Scene
 from .catenary import NODE_KINSOL, anchored_equilibrium, segmented_equilibrium
-from .problem import static_parameters
+from .problem import static_parameters, total_weight
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -95,20 +95,12 @@ def span_kernel(scene: Scene) -> SpanKernel:
     forces, stiffness = kernel_statics(scene, lambda n_el: drag_points(scene, n_el))
     q, p = ca.MX.sym("q", forces.size1_in(0)), ca.MX.sym("p", forces.size1_in(1))
     f, K = forces(q, p)[1], stiffness(q, p)
-    W = _total_weight(layout, len(scene.sections), p)
+    W = total_weight(layout.labels, p)         # the static residual's force scale, as residual_scales
     residual = ca.Function("static_residual", [q, p], [f / W], ["q", "p"], ["r"])
     jac = ca.Function("static_residual_jacobian", [q, p], [-K / W], ["q", "p"], ["jac"])
     rootfinder = ca.rootfinder("span_kernel_kinsol", "kinsol", residual, dict(NODE_KINSOL, jacobian_function=jac))
     return SpanKernel(layout=layout, segments=tuple(s.cable.segments for s in scene.sections), forces=forces,
                       stiffness=stiffness, residual=residual, rootfinder=rootfinder)
-
-
-def _total_weight(layout: ParameterLayout, n_sections: int, p):
-    """The total weight in the medium (N) of the bodies and cables, sum |W_b| + |w| l_r (symbolic in p): the scale
-    of the static residual's force rows (:func:`cablesys.statics.problem.residual_scales`)."""
-    val = lambda i, name: p[layout.section_index(i, name)]        # noqa: E731
-    return sum(ca.fabs(val(i, "body.weight")) + ca.fabs(val(i, "cable.weight_per_length") * val(i, "cable.length"))
-               for i in range(n_sections))
 
 
 def _require_span(model) -> None:
