@@ -39,6 +39,7 @@ from ..linear.spectra import jonswap
 from ..linear.steady import static_residual
 from ..linear.stochastic import BUOY
 from ..model import CableModel
+from ..model.design_variables import linear_map
 from .problem import DesignSettings
 
 # constraint rows: (kind, section index); kinds below
@@ -88,15 +89,14 @@ def complex_solve(A, B, fr, fi):
 
 
 def parameter_map(model: CableModel, variables: tuple):
-    """(x -> p) as an SX Function of (x, p_base): the variables replace their parameters."""
+    """(x -> p) as an SX Function of (x, p_base): the variables' values v.value(x_j) replace their parameters (times
+    each target's factor), through the one linear map of :func:`cablesys.model.design_variables.linear_map`."""
     x = ca.SX.sym("x", len(variables))
     pb = ca.SX.sym("p_base", len(model.layout))
-    p = [pb[k] for k in range(len(model.layout))]
-    for j, v in enumerate(variables):
-        val = v.value(x[j])
-        for label, factor in v.targets:
-            p[model.layout.index(label)] = factor * val
-    return ca.Function("design_parameters", [x, pb], [ca.vertcat(*p)], ["x", "p_base"], ["p"])
+    keep, B = linear_map(model.layout, np.ones(len(model.layout)), variables)     # keep: 0 at every target, else 1
+    theta = ca.vertcat(*[v.value(x[j]) for j, v in enumerate(variables)])
+    p = keep * pb + ca.mtimes(ca.DM(B), theta)
+    return ca.Function("design_parameters", [x, pb], [p], ["x", "p_base"], ["p"])
 
 
 def static_rootfinder(model: CableModel) -> ca.Function:
