@@ -297,3 +297,43 @@ def test_a_taut_line_keeps_its_tension_detail(tmp_path, figures):
     td_plots.plot_time_series(run, tmp_path / "taut.png")
     lo, hi = _axis(figures[0], "tension").get_ylim()
     assert 0.105 < lo < 0.109 and 0.13 < hi < 0.135, (lo, hi)
+
+
+def test_a_rigid_bodys_attitude_is_drawn_in_degrees_beside_the_swing(tmp_path, figures):
+    """A rigid body's roll, pitch and yaw (rad in the run: roll_b, theta_b, yaw_b) are drawn in degrees on the swing
+    panel of a chain's figure, named apart from the cable's phi, every mark in its legend."""
+    run = _snapping_lift()
+    w = 2 * np.pi * run.time / 6.0
+    run.data.update(roll_b=0.1 * np.sin(w), theta_b=-0.3 + 0.05 * np.cos(w), yaw_b=np.full_like(w, 0.2))
+    td_plots.plot_time_series(run, tmp_path / "rigid.png")
+    ax = _axis(figures[0], "body attitude")
+    drawn = {ln.get_label().split(":")[0]: ln.get_ydata() for ln in ax.lines}
+    np.testing.assert_allclose(drawn["body roll"], np.degrees(0.1 * np.sin(w)))
+    np.testing.assert_allclose(drawn["body pitch"], np.degrees(-0.3 + 0.05 * np.cos(w)))
+    assert np.degrees(0.2) == pytest.approx(drawn["body yaw"][0])          # steady: one flat line at its value
+    assert any(k.startswith("cable $\\phi$") for k in drawn)
+    _assert_legend_complete(ax)
+
+
+def test_a_systems_rigid_body_gets_an_attitude_panel(tmp_path, monkeypatch):
+    """A system's figure (lines joined at points) draws every rigid body point's roll, pitch and yaw in degrees on a
+    panel of their own (point.NAME.theta_b ... in the run), and none without a rigid body."""
+    import cablesys.plots.system as sys_plots
+    seen = []
+    monkeypatch.setattr(sys_plots, "save_figure", lambda fig, path, **kw: seen.append(fig) or path)
+    t = np.linspace(0.0, 30.0, 301)
+    w = 2 * np.pi * t / 10.0
+    data = {"line.a.tension_from": 4e3 + 500 * np.sin(w), "line.a.tension_to": 3.5e3 + 500 * np.sin(w)}
+    for k, (x, y) in enumerate([(0.3 * np.sin(w), 0.0 * w), (0.2 * np.sin(w), 10.0 + 0 * w), (0.1 * np.sin(w), 20 + 0 * w)]):
+        data[f"node_x[{k}]"], data[f"node_y[{k}]"] = x, y
+    lines, points = {"a": ([0, 1, 2], "ship", "pkg")}, {"ship": ("prescribed", 0), "pkg": ("body", 2)}
+    sys_plots.plot_system_series(TimeResult(time=t, data=dict(data), scene_name="synthetic"), tmp_path / "a.png",
+                                 lines=lines, points=points)
+    assert not [a for a in seen[0].axes if "attitude" in a.get_title()]
+    data["point.pkg.theta_b"] = -0.2 + 0.05 * np.sin(w)
+    sys_plots.plot_system_series(TimeResult(time=t, data=data, scene_name="synthetic"), tmp_path / "b.png",
+                                 lines=lines, points=points)
+    ax = _axis(seen[1], "attitude")
+    (line,) = [ln for ln in ax.lines if ln.get_label() == "pkg pitch"]
+    np.testing.assert_allclose(line.get_ydata(), np.degrees(data["point.pkg.theta_b"]))
+    _assert_legend_complete(ax)

@@ -5,6 +5,8 @@ Each takes matplotlib axes and data in the units drawn; none imports matplotlib 
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 STEADY_RTOL = 1e-6     # a series whose range is below 1e-6 of its magnitude is steady (integrator noise)
@@ -116,3 +118,22 @@ def tension_marks(values: list, limits, factor: float) -> tuple[list, dict]:
         if getattr(limits, "least_tension", None) is not None:
             marks["least allowed tension"] = limits.least_tension * factor
     return values, marks
+
+
+# a rigid body's attitude outputs (model/rigid_assembly.py RIGID_OUTPUTS, RIGID_OUTPUTS_3D; rad): a chain's body
+# (``theta_b``, a section suffix ``_2`` in a chain of sections) or a system's body point (``point.NAME.theta_b``)
+_ATTITUDE = re.compile(r"^(?:point\.(?P<point>[^.]+)\.)?(?P<angle>roll_b|theta_b|yaw_b)(?P<sfx>_\d+)?$")
+_ANGLE_NAMES = {"roll_b": "roll", "theta_b": "pitch", "yaw_b": "yaw"}
+
+
+def attitude_traces(labels) -> list:
+    """[(trace label, output label)] of every rigid body's roll, pitch and yaw among ``labels`` (a run's output
+    labels), body by body in roll, pitch, yaw order; empty without a rigid body."""
+    found = {}
+    for lbl in labels:
+        m = _ATTITUDE.match(lbl)
+        if m:
+            owner = m["point"] or (f"body {m['sfx'][1:]}" if m["sfx"] else "body")
+            found.setdefault(owner, {})[m["angle"]] = lbl
+    return [(f"{owner} {_ANGLE_NAMES[a]}", angles[a]) for owner, angles in found.items()
+            for a in ("roll_b", "theta_b", "yaw_b") if a in angles]

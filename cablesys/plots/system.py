@@ -7,9 +7,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .axes import is_steady, legend_outside, limit_lines, plain_axis, series_panel, tension_marks
+from .axes import attitude_traces, is_steady, legend_outside, limit_lines, plain_axis, series_panel, tension_marks
 from .figure import save_figure
-from .time_domain import ATOL_FORCE, ATOL_LENGTH, _force_scale, _length_scale
+from .time_domain import ATOL_ANGLE, ATOL_FORCE, ATOL_LENGTH, _force_scale, _length_scale
 
 _MARK = {"prescribed": "s", "fixed": "^", "body": "o", "junction": "D"}
 
@@ -52,7 +52,8 @@ def _shape(ax, prof: dict, lines: dict, points: dict, fl: float, ul: str, plan: 
 def plot_system_series(result, path, *, lines: dict, points: dict, title: str | None = None, units: str = "SI",
                        limits=None, window_start: float | None = None, towed: bool = False) -> Path:
     """Panels of a system's run: its shape (elevation, and a plan view in 3-D), the paths of its bodies and junctions
-    about their mean positions, and the tension at both ends of every line against time.
+    about their mean positions, the tension at both ends of every line against time, and every rigid body's roll,
+    pitch and yaw (deg) against time.
 
     Parameters
     ----------
@@ -80,12 +81,14 @@ def plot_system_series(result, path, *, lines: dict, points: dict, title: str | 
     tens = [(f"line.{name}.tension_{end}", f"{name} at {at}") for name, (_, a, b) in lines.items()
             for end, at in (("from", a), ("to", b))]
     ff, uf = _force_scale(max(float(np.max(np.abs(data[k]))) for k, _ in tens), units)
-    fig = plt.figure(figsize=(14, 8.5))
-    gs = fig.add_gridspec(2, 6)
+    attitude = attitude_traces(data)
+    fig = plt.figure(figsize=(14, 11.5 if attitude else 8.5))
+    gs = fig.add_gridspec(3 if attitude else 2, 6)
     a_shape = fig.add_subplot(gs[0, :2])
     a_plan = fig.add_subplot(gs[0, 2:4]) if three_d else None
     a_path = fig.add_subplot(gs[0, 4:] if three_d else gs[0, 2:])
     a_t = fig.add_subplot(gs[1, :])
+    a_att = fig.add_subplot(gs[2, :]) if attitude else None
     _shape(a_shape, prof, lines, points, fl, ul, False, towed)
     a_shape.legend(fontsize=7, loc="best")
     if three_d:
@@ -113,13 +116,19 @@ def plot_system_series(result, path, *, lines: dict, points: dict, title: str | 
     values, marks = tension_marks([v for _, y, _ in traces for v in (float(np.nanmin(y)), float(np.nanmax(y)))],
                                   limits, ff)
     limit_lines(a_t, marks, min(values), max(values), uf)
-    a_t.set_xlim(t[0], t[-1])
-    if window_start is not None and window_start > t[0]:
-        a_t.axvspan(t[0], window_start, color="0.85", alpha=0.5, lw=0,
-                    label=f"before the statistics window (t < {window_start:.4g} s)")
-    for a in (a_shape, a_path, a_t) + ((a_plan,) if a_plan is not None else ()):
+    if a_att is not None:
+        series_panel(a_att, t, [(label, np.degrees(result[k]), f"C{j}") for j, (label, k) in enumerate(attitude)],
+                     "deg", np.degrees(ATOL_ANGLE))
+        a_att.set(xlabel="time (s)", ylabel="angle (deg)", title="rigid bodies' attitude (roll, pitch, yaw)")
+    for a in (a_t,) + ((a_att,) if a_att is not None else ()):
+        a.set_xlim(t[0], t[-1])
+        if window_start is not None and window_start > t[0]:
+            a.axvspan(t[0], window_start, color="0.85", alpha=0.5, lw=0,
+                      label=f"before the statistics window (t < {window_start:.4g} s)")
+    for a in (a_shape, a_path, a_t) + tuple(a for a in (a_plan, a_att) if a is not None):
         a.grid(alpha=0.3)
-    legend_outside(a_t)
+    for a in (a_t,) + ((a_att,) if a_att is not None else ()):
+        legend_outside(a)
     fig.suptitle(title or result.scene_name)
     return save_figure(fig, path)
 

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .axes import clean, is_steady, legend_outside, limit_lines, plain_axis, series_panel, tension_marks
+from .axes import attitude_traces, clean, is_steady, legend_outside, limit_lines, plain_axis, series_panel, tension_marks
 from .figure import save_figure
 
 # steady-series tolerances (SI): below these ranges a series is integrator noise, stated by its value
@@ -76,7 +76,8 @@ def _shape_panel(ax, result, units: str, anchored: bool = False, towed: bool = F
 
 def plot_time_series(result, path, *, title: str | None = None, units: str = "SI", limits=None,
                      window_start: float | None = None, anchored: bool = False, towed: bool = False) -> Path:
-    """Panels of a run: cable shape (segmented runs), body path x_b-y_b (y down), phi(t), u(t) and tensions(t).
+    """Panels of a run: cable shape (segmented runs), body path x_b-y_b (y down), phi(t) (with a rigid body's roll,
+    pitch and yaw), u(t) and tensions(t).
 
     The tension axis is scaled to the traces and the snap loads (from zero when they come within
     25 % of it); a working load or least allowed
@@ -175,8 +176,12 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
         a_path.axis("equal")
         a_path.xaxis.set_major_locator(MaxNLocator(5))
     plain_axis(a_path)
-    series_panel(a_phi, t, phis, "deg", np.degrees(ATOL_ANGLE))
-    a_phi.set(xlabel="time (s)", ylabel=r"cable angle $\phi$ (deg)", title="swing angle")
+    body = [(label, np.degrees(result[k]), f"C{len(phis) + j}") for j, (label, k) in enumerate(attitude_traces(data))]
+    if body:                                # the swing angle is the cable's: say so beside the body's angles
+        phis = [(f"cable $\\phi$ ({name})", y, c) for name, y, c in phis]
+    series_panel(a_phi, t, phis + body, "deg", np.degrees(ATOL_ANGLE))
+    a_phi.set(xlabel="time (s)", ylabel=r"cable angle $\phi$, body angles (deg)" if body else r"cable angle $\phi$ (deg)",
+              title="swing angle and body attitude" if body else "swing angle")
     series_panel(a_u, t, us, uu, ATOL_LENGTH * fu)
     a_u.set(xlabel="time (s)", ylabel=f"stretch u ({uu})", title="cable stretch")
     series_panel(a_t, t, traces, uf, ATOL_FORCE * ff)
@@ -205,9 +210,11 @@ def plot_time_series(result, path, *, title: str | None = None, units: str = "SI
                       label=f"before the statistics window (t < {window_start:.4g} s)")
     for a in (a_path, a_phi, a_u, a_t):
         a.grid(alpha=0.3)
-    for a in (a_path, a_phi, a_u):
+    for a in (a_path, a_u) + (() if body else (a_phi,)):
         if a.get_legend_handles_labels()[0]:
             a.legend(fontsize=7, loc="best")
+    if body:                                # the body's angles span the panel: their legend beside it
+        legend_outside(a_phi)
     legend_outside(a_t)
     fig.suptitle(title or result.scene_name)
     return save_figure(fig, path)
