@@ -13,7 +13,10 @@ Nodes. The lines are walked in the scene's order; each line's start point gets a
 line's interior nodes from its start to its end (section joints included: a section's last node is the next
 section's first), then its end point when first met. The prescribed point's node moves with the top motion e (the
 origin of the node frame at its mean position), a further prescribed point's node (another point of the vessel) with
-the same translation about its mean position (entries of p, ``system.point[i].x``, ...); a fixed point's node is held
+the same translation about its mean position (entries of p, ``system.point[i].x``, ...), and with a vessel's 6-DOF RAO
+also turned by the vessel's small rotation theta at its lever arm: s_0 + theta x Delta, Delta its mean position (the
+rotation theta, its rate and acceleration are entries of e after the translation's, ``vessel_inputs``; Faltinsen 1990
+ch. 3 in the node frame, derived in :mod:`cablesys.scene.vessel`; :func:`swing`); a fixed point's node is held
 at its position (entries of p); every
 other node is free: its coordinates (x, y) in the plane, (x, y, z) in space are q, labelled ``x[j]``, ``y[j]``,
 ``z[j]`` by node number j. A chain written from its top down is numbered as the chain's node model numbers it, so
