@@ -51,6 +51,9 @@ QUANTITIES = {
     "phi_z": ("rad", "cable angle out of the x-y plane"), "phi_z_rate": ("rad/s", "out-of-plane angular rate"),
     "z_b": ("m", "body sway position"), "z_b_rate": ("m/s", "body sway velocity"),
     "z_s": ("m", "top (ship) sway motion"),
+    # a vessel's small rotation about the node axes, moving several prescribed points (model/top_motion.py)
+    "rot_x_s": ("rad", "vessel rotation about x"), "rot_y_s": ("rad", "vessel rotation about y (down)"),
+    "rot_z_s": ("rad", "vessel rotation about z (x towards y)"),
     # a rigid, pitching body (model/rigid_body.py): x_b, y_b are its attachment point
     "theta_b": ("rad", "body pitch (x towards y) from its body axes along x, y"),
     "theta_b_rate": ("rad/s", "body pitch rate"),

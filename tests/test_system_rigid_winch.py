@@ -366,19 +366,22 @@ def test_two_prescribed_points_lift_a_package_at_the_elastic_bars_closed_form(tm
     assert np.ptp(r["y_s"]) > 0.5
 
 
-def test_two_prescribed_points_refuse_a_vessels_6dof_rao():
-    """Refused by name before any work: a vessel's 6-DOF RAO with two prescribed points (each point would need its
-    own lever arm); the planar translation RAO ([top_motion.rao]) moves both alike and is taken."""
+def test_two_prescribed_points_take_a_vessels_6dof_rao():
+    """A vessel's 6-DOF RAO with two prescribed points moves each by its own lever arm (tests/test_system_vessel.py):
+    the model takes the vessel's rotation as input (rot_z_s in the plane, with heave and pitch), the planar
+    translation RAO ([top_motion.rao]) none."""
     from cablesys.scene.sea import MotionRAO, SeaSpectrum
     from cablesys.scene.vessel import HeadingRAO, VesselRAO
     omega = (0.3, 0.5, 0.8, 1.2)
     heave = dict(heave_amplitude=(1.0, 0.9, 0.5, 0.1), heave_phase_deg=(0.0, -5.0, -40.0, -120.0))
+    pitch = dict(pitch_amplitude=(0.5, 1.0, 0.8, 0.2), pitch_phase_deg=(0.0, 10.0, 30.0, 60.0))
     sea = SeaSpectrum(hs=3.0, tp=9.0, n_components=5, seed=4)
     system = System(point=vessel_points("crane", ("davit", (10.0, 0.0, None)), False),
                     line=(Line(name="a", start="crane", end="pkg", section=(wire(3),)),
                           Line(name="b", start="davit", end="pkg", section=(wire(3),))))
-    with pytest.raises(ParameterError) as err:
-        Scene(system=system, top_motion=TopMotion(spectrum=sea, vessel=VesselRAO(
-            omega=omega, headings=(HeadingRAO(heading_deg=0.0, **heave),))))
-    assert err.value.field == "top_motion.vessel" and "2 prescribed points" in str(err.value)
-    assert Scene(system=system, top_motion=TopMotion(spectrum=sea, rao=MotionRAO(omega=omega, **heave))).system
+    sc = Scene(system=system, top_motion=TopMotion(spectrum=sea, vessel=VesselRAO(
+        omega=omega, headings=(HeadingRAO(heading_deg=0.0, **heave, **pitch),))))
+    assert not sc.three_d and sc.vessel_rotation_axes == ("z",)
+    assert build_model(sc).vessel_inputs == ("rot_z_s",)
+    assert Scene(system=system, top_motion=TopMotion(spectrum=sea, rao=MotionRAO(omega=omega, **heave))
+                 ).vessel_rotation_axes == ()

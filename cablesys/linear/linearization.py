@@ -33,8 +33,12 @@ TOP_INPUTS_3D = TOP_INPUTS + ("z_s",)     # Wang's cable in 3-D: the sway z_s to
 
 
 def top_inputs(model: CableModel) -> tuple:
-    """The top-displacement inputs of ``model``: (x_s, y_s), and z_s for the 3-D equations (e = (t, z, z', z''))."""
-    return TOP_INPUTS_3D if model.top.size1_out(0) == 1 + 3 * len(TOP_INPUTS_3D) else TOP_INPUTS
+    """The top-displacement inputs of ``model``: (x_s, y_s), and z_s for the 3-D equations (e = (t, z, z', z'')), then
+    a vessel's rotation where it moves several prescribed points (``rot_z_s`` ..., rad; model/system.py), whose
+    entries e appends after the translation's (model/top_motion.py)."""
+    vessel = getattr(model, "vessel_inputs", ())
+    n = model.top.size1_out(0) - 3 * len(vessel)
+    return (TOP_INPUTS_3D if n == 1 + 3 * len(TOP_INPUTS_3D) else TOP_INPUTS) + tuple(vessel)
 
 
 def wave_amplitude_indices(model: CableModel) -> list[int]:
@@ -70,7 +74,9 @@ def _build_functions(model: CableModel) -> dict:
     p = ca.SX.sym("p", len(model.layout))
     widx = wave_amplitude_indices(model)
     p_w = ca.vertcat(*[xi[b["w"]][widx.index(i)] if i in widx else p[i] for i in range(len(model.layout))])
-    e = ca.vertcat(0.0, xi[b["z"]], xi[b["zd"]], xi[b["zdd"]])       # EXO_LABELS order
+    nt = len(top_inputs(model)) - len(getattr(model, "vessel_inputs", ()))      # the translation, then the rotation
+    z, zd, zdd = xi[b["z"]], xi[b["zd"]], xi[b["zdd"]]
+    e = ca.vertcat(0.0, z[:nt], zd[:nt], zdd[:nt], z[nt:], zd[nt:], zdd[nt:])   # EXO_LABELS order (top_motion.py)
     assert e.shape[0] == model.top.size1_out(0)
     q, qd, qdd = xi[b["q"]], xi[b["qd"]], xi[b["qdd"]]
     M, f = model.dynamics(q, qd, e, p_w)

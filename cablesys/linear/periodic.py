@@ -101,9 +101,13 @@ class PeriodicSolution(ResultBase):
 
 def scene_input_amplitude(scene) -> tuple[float, np.ndarray]:
     """(omega, Z) of a top motion made of sinusoids at one frequency: a sin(wt + ph) = Re(-i a e^{i ph} e^{iwt}).
-    Z = (x_s, y_s[, z_s in 3-D], wave amplitudes...), the input order of the model's linearization."""
+    Z = (x_s, y_s[, z_s in 3-D][, a vessel's rotation rot_z_s ...], wave amplitudes...), the input order of the
+    model's linearization."""
     axes = ("x", "y", "z") if getattr(scene, "three_d", False) else ("x", "y")
     terms = [(ax, s) for ax in axes for s in getattr(scene.top_motion, ax)]
+    turns = tuple(f"rot_{a}" for a in getattr(scene, "vessel_rotation_axes", ()))   # a vessel's rotation, after them
+    terms += [(ax, s) for ax in turns for s in scene.top_motion.vessel_rotation[ax[4:]]]
+    axes += turns
     freqs = {round(s.frequency, 12) for _, s in terms if s.amplitude != 0.0}
     if len(freqs) != 1 or scene.top_motion.series is not None:
         raise ParameterError("top_motion", f"frequencies {sorted(freqs)}"

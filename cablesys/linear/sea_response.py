@@ -5,7 +5,8 @@ The sea (``scene.top_motion.spectrum``) reaches the top through the motion RAO
 :func:`cablesys.scene.sea.top_transfer`); the RAOs of the exact linearization carry it to every
 output:
 
-    H_o(omega) = RAO(o, x_s) X_s(omega) + RAO(o, y_s) Y_s(omega) [+ RAO(o, z_s) Z_s(omega) in 3-D],
+    H_o(omega) = RAO(o, x_s) X_s(omega) + RAO(o, y_s) Y_s(omega) [+ RAO(o, z_s) Z_s(omega) in 3-D]
+                 [+ sum_a RAO(o, rot_a_s) Theta_a(omega), a vessel's rotation moving several points],
     S_o = |H_o|^2 S(omega),
 
 and :func:`cablesys.statistics.frequency_domain` turns S_o into sigma, T_z and the most probable
@@ -64,12 +65,16 @@ def sea_response(scene, lin, *, outputs=None, exposure: float | None = None, n: 
     S = sea.density(omega)
     top = scene.top_motion
     theta, weight = sea.direction_quadrature()       # a spread sea: sum_j w_j |H(omega, theta_j)|^2 (DNV-RP-C205 3.5.8)
-    transfers = [top_transfer(top.vessel or top.rao, omega, float(t)) for t in theta]
     r = rao(lin, omega)
+    turns = [i for i in r.input_labels if i.startswith("rot_")]    # a vessel's rotation moving further points
+    transfers = [dict(zip(("x_s", "y_s", "z_s"), top_transfer(top.vessel or top.rao, omega, float(t))))
+                 | (dict(zip(("rot_x_s", "rot_y_s", "rot_z_s"), top.vessel.rotation_transfer(omega, float(t))))
+                    if turns else {}) for t in theta]
     sway = "z_s" in r.input_labels
-    if not sway and any(np.any(Z != 0.0) for _, _, Z in transfers):
+    if not sway and any(np.any(T["z_s"] != 0.0) for T in transfers):
         raise ParameterError("top_motion.vessel", "sway at the lever arm", "needs the 3-D equations: the linear "
                              "model given has no z_s input (linearize the scene's own model)")
+    inputs = ["x_s", "y_s"] + (["z_s"] if sway else []) + turns
     if outputs is None:
         outputs = [o for o in r.output_labels if o.startswith(("x_b", "y_b", "z_b", "tension")) and not o.endswith("rate")]
     limits = getattr(scene, "limits", None)
@@ -77,8 +82,7 @@ def sea_response(scene, lin, *, outputs=None, exposure: float | None = None, n: 
     mean = dict(zip(lin.output_labels, np.asarray(lin.y0, float)))
     spectra, stats = {}, {}
     for o in outputs:
-        H2 = sum(wj * np.abs(r(o, "x_s") * X + r(o, "y_s") * Y + (r(o, "z_s") * Z if sway else 0.0)) ** 2
-                 for wj, (X, Y, Z) in zip(weight, transfers))
+        H2 = sum(wj * np.abs(sum(r(o, i) * T[i] for i in inputs)) ** 2 for wj, T in zip(weight, transfers))
         spectra[o] = H2 * S
         stats[o] = st.frequency_domain(omega, spectra[o], exposure, mean=float(mean.get(o, 0.0)),
                                        nonnegative=o.startswith("tension"))      # a tension-only cable: >= 0

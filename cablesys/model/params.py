@@ -48,7 +48,7 @@ def structure_of(scene: Scene) -> tuple:
         return (0, "per_section", (), scene.numerics.drag_segments, len(env.current_depths), len(env.waves),
                 len(top.x), len(top.y), None if top.series is None else (top.series.times, top.series.x, top.series.y),
                 ()) + _ends_structure(scene) + ((("3d", len(top.z)),) if scene.three_d else ()) + (
-                scene.system.structure(),)
+                scene.system.structure(),) + _vessel_structure(scene)
     return (len(scene.sections), scene.angles, tuple(s.body.is_sphere for s in scene.sections),
             scene.numerics.drag_segments, len(env.current_depths), len(env.waves),
             len(top.x), len(top.y),
@@ -61,6 +61,22 @@ def structure_of(scene: Scene) -> tuple:
             # rigid (pitching) bodies add a coordinate each: only then an entry (model/rigid_body.py)
             (("rigid", tuple(s.body.is_rigid for s in scene.sections)),)
             if any(s.body.is_rigid for s in scene.sections) else ())
+
+
+def _vessel_structure(scene: Scene) -> tuple:
+    """A vessel's rotation moving several prescribed points (model/top_motion.py): its axes and terms per axis, only
+    then (a scene without it keeps today's key)."""
+    axes = scene.vessel_rotation_axes
+    return (("vessel rotation", tuple((a, len(scene.top_motion.vessel_rotation[a])) for a in axes)),) if axes else ()
+
+
+def vessel_rotation_items(scene: Scene) -> list:
+    """(label, value) of the vessel's rotation sinusoids (rad; ``top_motion.vessel.rotation_z[k].amplitude``, ...)
+    on the axes the model takes (:attr:`cablesys.scene.Scene.vessel_rotation_axes`)."""
+    axes = getattr(scene, "vessel_rotation_axes", ())
+    rot = scene.top_motion.vessel_rotation if axes else {}
+    return [(f"top_motion.vessel.rotation_{axis}[{k}].{a}", float(getattr(s, a)))
+            for axis in axes for k, s in enumerate(rot[axis]) for a in _SINE]
 
 
 _ANCHOR = ("x", "y")
@@ -173,6 +189,7 @@ def _scene_items(scene: Scene) -> list:
             items += [(f"top_motion.{axis}[{k}].{a}", float(getattr(s, a))) for a in _SINE]
     # a sampled series is not in p: its samples are constants of the model (structure_of,
     # model/top_motion.py): 2n dead entries cost a copy in every integrator step
+    items += vessel_rotation_items(scene)   # the vessel's rotation moving several prescribed points (scene/vessel.py)
     items.append(("top_motion.ramp_s", top.effective_ramp_s))  # smooth start (model/top_motion.py; unset: 3 periods)
     if top.track is not None:              # a path's speed, heading and pieces (model/track_path.py); a circle: sinusoids
         items += top.track.parameter_items()

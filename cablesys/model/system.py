@@ -13,7 +13,10 @@ Nodes. The lines are walked in the scene's order; each line's start point gets a
 line's interior nodes from its start to its end (section joints included: a section's last node is the next
 section's first), then its end point when first met. The prescribed point's node moves with the top motion e (the
 origin of the node frame at its mean position), a further prescribed point's node (another point of the vessel) with
-the same translation about its mean position (entries of p, ``system.point[i].x``, ...); a fixed point's node is held
+the same translation about its mean position (entries of p, ``system.point[i].x``, ...), and with a vessel's 6-DOF RAO
+also turned by the vessel's small rotation theta at its lever arm: s_0 + theta x Delta, Delta its mean position (the
+rotation theta, its rate and acceleration are entries of e after the translation's, ``vessel_inputs``; Faltinsen 1990
+ch. 3 in the node frame, derived in :mod:`cablesys.scene.vessel`; :func:`swing`); a fixed point's node is held
 at its position (entries of p); every
 other node is free: its coordinates (x, y) in the plane, (x, y, z) in space are q, labelled ``x[j]``, ``y[j]``,
 ``z[j]`` by node number j. A chain written from its top down is numbered as the chain's node model numbers it, so
@@ -58,6 +61,7 @@ from __future__ import annotations
 import dataclasses
 
 import casadi as ca
+import numpy as np
 
 from ..scene import Scene
 from .node_terms import NodeSums
@@ -70,7 +74,7 @@ from .segmented_element import block_solve, lump_force, norm
 from .segmented_seabed import seabed_forces
 from .segmented_winch import WINCH_OUTPUTS, payout
 from .signals import EXO_LABELS
-from .top_motion import EXO_LABELS_3D, symbolic_type, top_motion_function
+from .top_motion import EXO_LABELS_3D, symbolic_type, top_motion_function, vessel_rotation_labels
 
 __all__ = ["SystemModel", "build_system_model", "topology", "winch_line"]
 
@@ -92,11 +96,25 @@ class SystemModel(SegmentedModel):
     line_segments: tuple = ()
     node_q: tuple = ()
     node_labels: tuple = ()
+    vessel_inputs: tuple = ()        # the vessel's rotation in e after (t, z, z', z''): ("rot_z_s",) or x, y, z
 
     @property
     def n_nodes(self) -> int:
         """Every node: free, fixed and the prescribed one."""
         return len(self.node_q)
+
+    def top_input(self, e) -> list:
+        """u = (z, theta): the top's translation (dim entries) and the vessel's rotation (``vessel_inputs``) of e."""
+        n = len(self.vessel_inputs)
+        return list(e[1:1 + self.dim]) + list(e[1 + 3 * self.dim:1 + 3 * self.dim + n])
+
+    def at_rest(self, u):
+        """e at rest with the top input u (:meth:`top_input`): (0, z, 0, 0, theta, 0, 0); SX for SX, else numbers."""
+        dim, n = self.dim, len(self.vessel_inputs)
+        if isinstance(u, ca.SX):
+            return ca.vertcat(0.0, u[:dim], ca.SX.zeros(2 * dim), u[dim:dim + n], ca.SX.zeros(2 * n))
+        u = np.asarray(u, float)
+        return np.concatenate([[0.0], u[:dim], np.zeros(2 * dim), u[dim:dim + n], np.zeros(2 * n)])
 
 
 def topology(system) -> tuple:
@@ -119,6 +137,18 @@ def topology(system) -> tuple:
         seq.append(point(line.end))
         line_nodes.append(tuple(seq))
     return tuple(point_nodes[p.name] for p in system.point), tuple(line_nodes), count
+
+
+def swing(theta, arm, axes) -> tuple:
+    """theta x Delta (m, node frame): the displacement of a point of the vessel at ``arm`` Delta (its mean position
+    from the first prescribed point, dim entries) under the vessel's small rotation ``theta`` about the node ``axes``
+    (rad; (z,) in the plane, where theta x Delta = (-theta_z Delta_y, theta_z Delta_x)); Faltinsen 1990 ch. 3, the
+    rigid-body displacement eta_r x r in the node frame (:mod:`cablesys.scene.vessel`). Linear in theta: its rate and
+    acceleration are the same map of theta's."""
+    th = dict(zip(axes, (theta[m] for m in range(len(axes)))))
+    wx, wy, wz = (th.get(c, 0.0) for c in "xyz")
+    dx, dy, dz = (list(arm) + [0.0])[:3]
+    return (wy * dz - wz * dy, wz * dx - wx * dz, wx * dy - wy * dx)[:len(arm)]
 
 
 def winch_line(scene: Scene) -> int | None:
@@ -165,28 +195,37 @@ def build_system_model(scene: Scene) -> SystemModel:
     q_labels = tuple(f"{c}[{j}]" for j in free for c in axes) + tuple(
         f"point.{system.point[i].name}.{name}" for i in rigid for name in orientation_names(dim))
     q, qd = ca.SX.sym("q", n_nq + n_rot), ca.SX.sym("qd", n_nq + n_rot)
-    e = ca.SX.sym("e", len(EXO_LABELS_3D if dim == 3 else EXO_LABELS))
+    vessel = scene.vessel_rotation_axes                # the vessel's rotation moves the further prescribed points
+    n_v = len(vessel)
+    e = ca.SX.sym("e", len(EXO_LABELS_3D if dim == 3 else EXO_LABELS) + len(vessel_rotation_labels(vessel)))
     t, z, zd, zdd = e[0], e[1:1 + dim], e[1 + dim:1 + 2 * dim], e[1 + 2 * dim:1 + 3 * dim]
+    theta = [e[1 + 3 * dim + n_v * m:1 + 3 * dim + n_v * (m + 1)] for m in range(3)]   # rotation, rate, acceleration
     env = environment_symbols(layout, scene)          # Wang 1971 eq. 26-28 inputs
     rho, depth0 = env["density"], env["top_depth"]
 
-    node_r, node_v, node_labels = [], [], []
+    node_r, node_v, node_a, node_labels = [], [], [], []
     for j in range(n_nodes):
         pt = kind_of.get(j)
-        labels = ()
+        labels, a = (), None
         if node_q[j] >= 0:
             k = node_q[j]
             r, v = tuple(q[k + c] for c in range(dim)), tuple(qd[k + c] for c in range(dim))
         elif pt.kind == "prescribed" and pt is system.prescribed:     # the top: the scene's top motion
-            r, v = tuple(z[c] for c in range(dim)), tuple(zd[c] for c in range(dim))
+            r, v, a = tuple(z[c] for c in range(dim)), tuple(zd[c] for c in range(dim)), tuple(zdd[c] for c in range(dim))
         elif pt.kind == "prescribed":                  # another point of the vessel: its mean position, translated
             labels = tuple(f"system.point[{point_index[j]}].{c}" for c in axes)
             r, v = tuple(layout.sym(lb) + z[c] for c, lb in enumerate(labels)), tuple(zd[c] for c in range(dim))
+            a = tuple(zdd[c] for c in range(dim))
+            if n_v:                                    # and turned by the vessel's rotation at its lever arm
+                arm = [layout.sym(lb) for lb in labels]
+                r, v, a = (tuple(w[c] + turn[c] for c in range(dim)) for w, turn in
+                           zip((r, v, a), (swing(th, arm, vessel) for th in theta)))
         else:                                          # a fixed point, held at its position
             labels = tuple(f"system.point[{point_index[j]}].{c}" for c in axes)
             r, v = tuple(layout.sym(lb) for lb in labels), (0.0,) * dim
         node_r.append(r)
         node_v.append(v)
+        node_a.append(a)
         node_labels.append(labels)
 
     static_law = scene.seabed is not None            # the seabed's statics: elements elastic both ways (catenary.py)
@@ -262,7 +301,7 @@ def build_system_model(scene: Scene) -> SystemModel:
             a_j = block_solve(sums.M[j], sums.force(j))
             acc += list(a_j)
         elif kind_of[j].kind == "prescribed":
-            a_j = tuple(zdd[c] for c in range(dim))
+            a_j = node_a[j]
         else:
             a_j = (0.0,) * dim
         acc_nodes[j] = a_j
@@ -301,7 +340,9 @@ def build_system_model(scene: Scene) -> SystemModel:
         out += winch_out
         labels += list(WINCH_OUTPUTS)
     T = ca.vertcat(*[el["tension"] for el in elements])
-    T_rate = ca.jtimes(T, x, xdot) + ca.jacobian(T, e) @ ca.vertcat(1.0, zd, zdd, ca.DM.zeros(dim))
+    e_rate = ca.vertcat(1.0, zd, zdd, ca.DM.zeros(dim)) if not n_v else ca.vertcat(1.0, zd, zdd, ca.DM.zeros(dim),
+                                                                                     theta[1], theta[2], ca.DM.zeros(n_v))
+    T_rate = ca.jtimes(T, x, xdot) + ca.jacobian(T, e) @ e_rate
     prof = {"element_tension": T, "element_tension_rate": T_rate,
             "element_strain": ca.vertcat(*[el["strain"] for el in elements]),
             "element_slack": ca.vertcat(*[el["slack"] for el in elements]),
@@ -340,4 +381,5 @@ def build_system_model(scene: Scene) -> SystemModel:
                        line_names=tuple(ln.name for ln in system.line), line_nodes=line_nodes,
                        line_segments=tuple(tuple(c.segments for c in ln.section) for ln in system.line),
                        node_q=tuple(node_q), node_labels=tuple(node_labels), n_rotations=n_rot,
+                       vessel_inputs=vessel_rotation_labels(vessel)[:n_v],
                        rotation_rest=rest * len(rigid))

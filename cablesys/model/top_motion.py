@@ -70,6 +70,14 @@ from .track_path import path_position, track_symbols
 EXO_LABELS_3D = ("t", "x_s", "y_s", "z_s", "x_s_rate", "y_s_rate", "z_s_rate", "x_s_acc", "y_s_acc", "z_s_acc")
 
 
+def vessel_rotation_labels(axes) -> tuple:
+    """Names of the vessel's rotation about the node axes ``axes`` (rad), the top input appended to e after the
+    translation's (t, z, z', z''): ``rot_z_s`` ... then the rates ``rot_z_s_rate`` ..., then ``rot_z_s_acc`` ...
+    (:func:`top_motion_function`)."""
+    names = tuple(f"rot_{a}_s" for a in axes)
+    return names + tuple(f"{n}_rate" for n in names) + tuple(f"{n}_acc" for n in names)
+
+
 def symbolic_type(scene):
     """The symbolic type of the model's functions: always ``ca.SX`` (the series is SX too)."""
     return ca.SX
@@ -286,18 +294,23 @@ def top_motion_function(scene, layout) -> ca.Function:
     ``(t, x_s, y_s, z_s, x_s', y_s', z_s', x_s'', y_s'', z_s'')`` (:data:`EXO_LABELS_3D`); the
     sampled series moves x and y only. A track other than the circle (whose sinusoids are among x and z) adds its
     path (:func:`.track_path.path_position`; in the plane only x: a straight track along +x), after the smooth start,
-    which a track has none of.
+    which a track has none of. A vessel moving several prescribed points (``scene.vessel_rotation_axes``) appends its
+    small rotation theta about those node axes, its rate and acceleration (:func:`vessel_rotation_labels`; the
+    sinusoids ``top_motion.vessel.rotation_x[k]`` ..., scene/vessel.py), with the same smooth start: the model moves
+    each point by s_0 + theta x Delta.
     """
     t = ca.SX.sym("t")
     p = ca.SX.sym("p", len(layout))
     sym = lambda label: p[layout.index(label)]
-    pos = []
-    for axis in ("x", "y", "z") if scene.three_d else ("x", "y"):
+
+    def sines(prefix, n):                     # sum_k a_k sin(w_k t + ph_k) of the terms prefix[k]
         s = ca.SX(0)
-        for k in range(len(getattr(scene.top_motion, axis))):
-            a, w, ph = (sym(f"top_motion.{axis}[{k}].{n}") for n in ("amplitude", "frequency", "phase"))
+        for k in range(n):
+            a, w, ph = (sym(f"{prefix}[{k}].{name}") for name in ("amplitude", "frequency", "phase"))
             s = s + a * ca.sin(w * t + ph)
-        pos.append(s)
+        return s
+    pos = [sines(f"top_motion.{axis}", len(getattr(scene.top_motion, axis)))
+           for axis in (("x", "y", "z") if scene.three_d else ("x", "y"))]
     series = scene.top_motion.series
     if series is not None:
         # the samples are constants of the model (module docstring): O(1) per evaluation
@@ -312,4 +325,13 @@ def top_motion_function(scene, layout) -> ca.Function:
     pos = ca.vertcat(*pos)
     vel = ca.jacobian(pos, t)
     acc = ca.jacobian(vel, t)
-    return ca.Function("top", [t, p], [ca.vertcat(t, pos, vel, acc)], ["t", "p"], ["e"])
+    out = [t, pos, vel, acc]
+    axes = getattr(scene, "vessel_rotation_axes", ())
+    if axes:                 # the vessel's rotation (rad), ramped as its translation (:func:`vessel_rotation_labels`)
+        rot = [sines(f"top_motion.vessel.rotation_{axis}", len(scene.top_motion.vessel_rotation[axis])) for axis in axes]
+        if "top_motion.ramp_s" in layout.labels:
+            rot = [ramp(t, sym("top_motion.ramp_s")) * v for v in rot]
+        rot = ca.vertcat(*rot)
+        rate = ca.jacobian(rot, t)
+        out += [rot, rate, ca.jacobian(rate, t)]
+    return ca.Function("top", [t, p], [ca.vertcat(*out)], ["t", "p"], ["e"])

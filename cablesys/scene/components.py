@@ -16,7 +16,7 @@ from ..integration import METHODS as INTEGRATION_METHODS
 from .body import RIGID_FIELDS, Body  # noqa: F401  (re-exported: the scene's components)
 from .fields import check_all_finite, quantity, spec  # noqa: F401  (check_all_finite re-exported)
 from .harmonics import MAX_AMPLITUDE_M, MAX_FREQUENCY_RAD_S, Sinusoid, Wave
-from .sea import MotionRAO, SeaSpectrum, append_once, sea_sinusoids
+from .sea import MotionRAO, SeaSpectrum, append_once, rotation_sinusoids, sea_sinusoids
 from .track import Track
 from .vessel import VesselRAO
 
@@ -224,6 +224,8 @@ class TopMotion:
                 raise ParameterError("top_motion.vessel", "given with top_motion.rao",
                                      "give one motion RAO: [top_motion.rao] (surge and heave) or [top_motion.vessel] (6-DOF)")
             realised = dict(zip("xyz", sea_sinusoids(self.spectrum, self.vessel or self.rao)))
+            if self.vessel is not None:     # its rotation too, for further points of the vessel (scene/vessel.py)
+                object.__setattr__(self, "_rotation", dict(zip("xyz", rotation_sinusoids(self.spectrum, self.vessel))))
             counts = {}
             for axis, terms in realised.items():
                 n = len(getattr(self, axis))
@@ -250,6 +252,14 @@ class TopMotion:
             object.__setattr__(self, "x", x)
             object.__setattr__(self, "z", z)
             object.__setattr__(self, "_user_count", {"x": 0, "y": 0, "z": 0})
+
+    @property
+    def vessel_rotation(self) -> dict:
+        """{axis: sinusoids} of the vessel's small rotation about cablesys' axes x, y, z (rad; the sea realised through
+        :meth:`.vessel.VesselRAO.rotation_transfer`, the same components and phases as its translation in x, y, z);
+        {} without [top_motion.vessel]. It moves a system's further prescribed points, each by its own lever arm
+        (s_0 + theta x Delta, scene/vessel.py)."""
+        return getattr(self, "_rotation", {})
 
     @property
     def effective_ramp_s(self) -> float:

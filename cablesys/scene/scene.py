@@ -126,17 +126,11 @@ class Scene:
     def _check_system(self) -> None:
         """What the node model of a graph of lines (:mod:`cablesys.model.system`) does not take yet, each refused by
         name: a rigid body with a seabed (as the chain's), an initial angle or stretch (it starts from its
-        statics), top motion without a prescribed point, a vessel's 6-DOF RAO with several prescribed points (each
-        would need its own lever arm); a winch whose line is not the prescribed point's one line; a track as a chain's
-        (:meth:`_check_track`)."""
+        statics), top motion without a prescribed point; a winch whose line is not the prescribed point's one line; a
+        track as a chain's (:meth:`_check_track`). A vessel's 6-DOF RAO moves several prescribed points each by its
+        own lever arm (:attr:`vessel_rotation_axes`)."""
         self._check_system_winch()
         top = self.top_motion
-        n_top = self.system.n_prescribed
-        if n_top > 1 and top.vessel is not None:
-            raise ParameterError("top_motion.vessel", "set", f"must be unset with {n_top} prescribed points: the "
-                                 "6-DOF RAO moves each point of the vessel by its own lever arm (its rotations), and "
-                                 "the system's one [top_motion] translates every prescribed point alike so far; give "
-                                 "that translation as top_motion.x, y, z, a series or [top_motion.rao]")
         if self.system.prescribed is None:
             moved = [f"top_motion.{a}" for a in ("x", "y", "z") if getattr(top, a)] + [
                 f"top_motion.{a}" for a in ("series", "spectrum", "track") if getattr(top, a) is not None]
@@ -261,7 +255,21 @@ class Scene:
                     if p.body is not None and p.body.mass_z is not None]
             out += [f"point[{i}].{name}" for i, p in enumerate(self.system.point) if p.body is not None
                     for name in p.body.three_d_fields()]      # a rigid body's 3-D fields
+            rot = self.top_motion.vessel_rotation       # a further point of the vessel swayed by its roll or yaw:
+            out += [f"top_motion.vessel (point[{i}]'s motion has sway: the vessel's roll or yaw at its lever arm)"
+                    for i, p in enumerate(self.system.point)      # z_k = z_0 + theta_x dy - theta_y dx (scene/vessel.py)
+                    if p.kind == "prescribed" and ((rot.get("x") and p.y) or (rot.get("y") and p.x))][:1]
         return tuple(out)
+
+    @property
+    def vessel_rotation_axes(self) -> tuple:
+        """The axes of the vessel's rotation that the model takes as input (:mod:`cablesys.model.top_motion`): with
+        [top_motion.vessel] and several prescribed points, each moved by its own lever arm (s_0 + theta x Delta,
+        :mod:`.vessel`), ("z",) in the plane (only theta_z moves a point in the x-y plane) and ("x", "y", "z") in
+        space; () otherwise (one point: the lever arm's motion is the top motion)."""
+        if self.system is None or not self.top_motion.vessel_rotation or self.system.n_prescribed < 2:
+            return ()
+        return ("x", "y", "z") if self.three_d else ("z",)
 
     @property
     def three_d(self) -> bool:

@@ -268,15 +268,29 @@ def sea_sinusoids(spectrum: SeaSpectrum, rao) -> tuple[tuple, tuple, tuple]:
     """(x, y, z sinusoids) of the top motion realising ``spectrum`` through ``rao`` (see
     :func:`top_transfer`), each component through the RAO at its own direction in a spread sea
     (:meth:`SeaSpectrum.directions`); an axis the motion does not reach has no terms."""
+    if not spectrum.long_crested and isinstance(rao, MotionRAO):
+        raise ParameterError("top_motion.spectrum.spreading_n", spectrum.spreading_n,
+                             "must be 0 with a [top_motion.rao] table, which holds surge and heave for one heading: "
+                             "a spread sea needs [top_motion.vessel] (its tables per heading)")
+    return realise(spectrum, lambda w, heading: top_transfer(rao, w, heading))
+
+
+def rotation_sinusoids(spectrum: SeaSpectrum, vessel) -> tuple[tuple, tuple, tuple]:
+    """(x, y, z sinusoids) of a vessel's small rotation about cablesys' axes (rad) realising ``spectrum`` through
+    :meth:`cablesys.scene.vessel.VesselRAO.rotation_transfer`: the same components, with the same phases, as the
+    translation's :func:`sea_sinusoids` (one rigid vessel)."""
+    return realise(spectrum, vessel.rotation_transfer)
+
+
+def realise(spectrum: SeaSpectrum, transfer) -> tuple[tuple, tuple, tuple]:
+    """Three tuples of :class:`Sinusoid`: sum_k |T(omega_k)| a_k sin(omega_k t + eps_k + arg T(omega_k)) per axis of
+    ``transfer(omega, heading_deg) -> (T_x, T_y, T_z)`` (complex, per unit wave amplitude), each component through
+    ``transfer`` at its own direction in a spread sea; an axis the motion does not reach has no terms."""
     w, a, eps = spectrum.components()
     if spectrum.long_crested:
-        transfer = top_transfer(rao, w, spectrum.heading_deg)
+        transfer = transfer(w, spectrum.heading_deg)
     else:
-        if isinstance(rao, MotionRAO):
-            raise ParameterError("top_motion.spectrum.spreading_n", spectrum.spreading_n,
-                                 "must be 0 with a [top_motion.rao] table, which holds surge and heave for one heading: "
-                                 "a spread sea needs [top_motion.vessel] (its tables per heading)")
-        per = [top_transfer(rao, np.array([wk]), float(dk)) for wk, dk in zip(w, spectrum.directions())]
+        per = [transfer(np.array([wk]), float(dk)) for wk, dk in zip(w, spectrum.directions())]
         transfer = tuple(np.concatenate([p[i] for p in per]) for i in range(3))
     out = []
     for T in transfer:

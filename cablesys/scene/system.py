@@ -6,7 +6,9 @@ Every point is one of four kinds:
   mean position is the origin of the node frame (x right, y down from the top's mean depth, z the sway). More
   prescribed points are more points of the same vessel (a second fairlead, a second lift wire): each at its mean
   position (x, y, z) in the node frame, every one moved by the one ``[top_motion]``'s translation (the first
-  prescribed point stays the origin, its position unset);
+  prescribed point stays the origin, its position unset); with ``[top_motion.vessel]`` (a 6-DOF RAO) the first is
+  at its ``lever_arm`` and every other one at its own lever arm, moved by the vessel's rotation there too
+  (s_0 + theta x Delta, :mod:`.vessel`);
 - ``fixed``: an anchor or a support at rest at (x, y, z);
 - ``body``: a free body (Wang's body, :class:`~.body.Body`: weight in water, virtual masses, drag; rigid with
   ``pitch_inertia``);
@@ -168,7 +170,8 @@ class System:
     """Points joined by lines (module docstring): ``point`` and ``line`` are the ``[[point]]`` and ``[[line]]``
     tables in file order. Checked when made: unique names, every line's ends name points, every point ends a line,
     a prescribed or fixed point holds the system, the first prescribed point at the origin and every other one at a
-    given mean position (the scene's one top motion translates them all), every path of lines between two held points
+    given mean position (the scene's one top motion translates them all, a vessel's RAO turns them about its
+    lever arm too), every path of lines between two held points
     at least as long as their distance."""
 
     point: tuple[Point, ...] = spec("none", "the points ([[point]] tables)")
@@ -290,7 +293,8 @@ class System:
 
     @property
     def n_prescribed(self) -> int:
-        """How many prescribed points the system has (each moved by the one [top_motion])."""
+        """How many prescribed points the system has (each moved by the one [top_motion]; by a vessel's RAO at its own
+        lever arm)."""
         return sum(p.kind == "prescribed" for p in self.point)
 
     def degree(self, name: str) -> int:

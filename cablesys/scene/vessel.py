@@ -25,7 +25,28 @@ Structures*, ch. 3):
 
 * the vessel's bow points ``vessel_heading_deg`` from cablesys' +x, counter-clockwise seen from
   above (towards +z); cablesys' axes are x horizontal, y down, z horizontal with (x, y, z)
-  right-handed, so x = cos(psi) s_1 - sin(psi) s_2, z = sin(psi) s_1 + cos(psi) s_2, y = -s_3.
+  right-handed, so x = cos(psi) s_1 - sin(psi) s_2, z = sin(psi) s_1 + cos(psi) s_2, y = -s_3:
+  a vessel vector v becomes R v in the node frame with::
+
+      R = [[c, -s, 0], [0, 0, -1], [s, c, 0]],   c = cos(psi), s = sin(psi),  det R = c^2 + s^2 = +1
+
+  (:meth:`VesselRAO.to_node`).
+
+Several points of one vessel (the prescribed points of a system, :mod:`cablesys.scene.system`; Faltinsen 1990
+ch. 3, the rigid-body displacement above). R is a proper rotation (both frames right-handed), so it carries cross
+products: R (a x b) = (R a) x (R b). A point whose mean position is Delta (node frame) from the first prescribed
+point, itself at ``lever_arm`` r_0, is at r = r_0 + R^T Delta in vessel axes (:meth:`VesselRAO.arm_of`)::
+
+      r = r_0 + (c Delta_x + s Delta_z, -s Delta_x + c Delta_z, -Delta_y)
+
+(at psi = 0: forward = node x, port = node z, up = -node y), and its displacement in the node frame is
+
+      R s(r) = R (eta_t + eta_r x r_0) + (R eta_r) x (R R^T Delta) = s_0 + theta x Delta,
+
+s_0 the first point's displacement (:meth:`VesselRAO.transfer`) and theta = R eta_r the vessel's small rotation in
+the node frame (:meth:`VesselRAO.rotation_transfer`): theta_x = c eta_4 - s eta_5, theta_y = -eta_6,
+theta_z = s eta_4 + c eta_5. Every point's motion is the same fixed linear map of the vessel's motion (s_0, theta),
+so the model takes (s_0, theta) as its input (:func:`cablesys.model.top_motion.top_motion_function`).
 
 Between table headings the RAO is linear in amplitude and phase; a table that goes more than half
 way round (its last heading within 180 deg of its first, through 360) is interpolated across 360
@@ -198,6 +219,26 @@ class VesselRAO:
             out[dof] = -r if (mirrored and dof in ANTISYMMETRIC) else r
         return out
 
+    def _heading(self) -> tuple[float, float]:
+        """(cos psi, sin psi) of ``vessel_heading_deg``; a whole quadrant exactly (0, +-1)."""
+        psi = math.radians(self.vessel_heading_deg)
+        c, s = (0.0 if abs(v) < 1e-12 else v for v in (math.cos(psi), math.sin(psi)))
+        return c, s
+
+    def to_node(self, v1, v2, v3) -> tuple:
+        """R v: a vector (v1 forward, v2 to port, v3 up) of the vessel in cablesys axes (x, y down, z), R of the
+        module docstring."""
+        c, s = self._heading()
+        return c * v1 - s * v2, -v3, s * v1 + c * v2
+
+    def arm_of(self, offset) -> tuple:
+        """The lever arm (m, vessel axes) of a point of the vessel whose mean position is ``offset`` (dx, dy, dz; m,
+        node frame: x, y down, z) from the ``lever_arm`` point: r_0 + R^T Delta (module docstring)."""
+        c, s = self._heading()
+        dx, dy, dz = (float(v) for v in offset)
+        x, y, z = self.lever_arm
+        return (x + c * dx + s * dz, y - s * dx + c * dz, z - dy)
+
     def transfer(self, omega, wave_heading_deg: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Complex amplitudes (X, Y, Z) of the lever-arm point's motion per unit wave amplitude, in
         cablesys axes (x, y down, z), from the rigid-body displacement of the module docstring."""
@@ -206,9 +247,13 @@ class VesselRAO:
         s1 = m["surge"] + z * m["pitch"] - y * m["yaw"]
         s2 = m["sway"] - z * m["roll"] + x * m["yaw"]
         s3 = m["heave"] + y * m["roll"] - x * m["pitch"]
-        psi = math.radians(self.vessel_heading_deg)
-        c, s = (0.0 if abs(v) < 1e-12 else v for v in (math.cos(psi), math.sin(psi)))   # a whole quadrant: exact
-        return c * s1 - s * s2, -s3, s * s1 + c * s2
+        return self.to_node(s1, s2, s3)
+
+    def rotation_transfer(self, omega, wave_heading_deg: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Complex amplitudes (theta_x, theta_y, theta_z) of the vessel's small rotation about cablesys' axes (rad per
+        m of wave amplitude): theta = R (roll, pitch, yaw) (module docstring)."""
+        m = self.motions(omega, wave_heading_deg)
+        return self.to_node(m["roll"], m["pitch"], m["yaw"])
 
 
 def _read_vessel_csv(path) -> tuple[tuple, tuple]:

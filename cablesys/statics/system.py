@@ -54,6 +54,12 @@ def _sections(model, p) -> list:
     return out
 
 
+def _n_top(model) -> int:
+    """Entries of the top input z0 of the statics: the prescribed point's translation (dim) and a vessel's rotation
+    moving further prescribed points (:meth:`cablesys.model.system.SystemModel.top_input`)."""
+    return model.dim + len(model.vessel_inputs)
+
+
 def _bodies(model, p) -> dict:
     """{point index: weight in water (N)} of the bodies and junctions."""
     lab = model.layout.labels
@@ -65,7 +71,7 @@ def _held(model, p, top) -> dict:
     """{node: (x, y, z)} of the held nodes: the prescribed points translated by ``top`` (default 0: at their mean
     positions, the first at the origin), the fixed points at their positions (m)."""
     lab = model.layout.labels
-    shift = np.zeros(3) if top is None else np.r_[np.asarray(top, float), np.zeros(3 - len(top))]
+    shift = np.zeros(3) if top is None else np.r_[np.asarray(top, float)[:model.dim], np.zeros(3 - model.dim)]
     out = {}
     for i, kind in enumerate(model.point_kinds):
         j = model.point_nodes[i]
@@ -198,18 +204,20 @@ def _level(model, q) -> np.ndarray:
 
 
 def _residual(model) -> ca.Function:
-    """``(q, (p, z0, a_ref, U)) -> r``: the static residual (:func:`.problem.static_residual`) with the prescribed
-    point at z0 (dim entries; the top input e = (0, z0, 0, 0)) and the rigid bodies' neutral rotations pinned as the
+    """``(q, (p, z0, a_ref, U)) -> r``: the static residual (:func:`.problem.static_residual`) with the top input at
+    z0 (the prescribed point's translation, dim entries, and a vessel's rotation moving further prescribed points,
+    :meth:`cablesys.model.system.SystemModel.top_input`; e = (0, z0, 0, 0)) and the rigid bodies' neutral rotations
+    pinned as the
     chain's statics pin them (:func:`.catenary._pinned_residual`: U (a_ref - a) added to the orientation rows, U by
     columns, n_rot x n_rot; U = 0 where no rotation is neutral, e.g. the yaw of a body hanging still in space)."""
     def build():
         q = ca.SX.sym("q", model.nq)
-        n_p, dim, n_rot = len(model.layout), model.dim, model.n_rotations
+        n_p, dim, n_rot = len(model.layout), _n_top(model), model.n_rotations
         pz = ca.SX.sym("pz", n_p + dim + n_rot + n_rot * n_rot)
         p = pz[:n_p]
         zeroed = set(static_zeroed(model))
         ps = ca.vertcat(*[0.0 if i in zeroed else p[i] for i in range(n_p)])
-        e = ca.vertcat(0.0, pz[n_p:n_p + dim], ca.SX.zeros(2 * dim))
+        e = model.at_rest(pz[n_p:n_p + dim])
         forces = getattr(model, "static_force", None)   # a seabed's statics have their own laws (segmented_seabed.py)
         if forces is not None:
             f = forces(q, ca.SX.zeros(model.nq), e, ps)
@@ -233,9 +241,9 @@ def _energy_minimum(model, p, q0, z0) -> np.ndarray:
     IPOPT from q0, the prescribed point at z0; V is divided by the total weight x the longest line (J)."""
     def build():
         q = ca.SX.sym("q", model.nq)
-        n_p, dim = len(model.layout), model.dim
+        n_p, dim = len(model.layout), _n_top(model)
         pz = ca.SX.sym("pz", n_p + dim + 1)
-        e = ca.vertcat(0.0, pz[n_p:n_p + dim], ca.SX.zeros(2 * dim))
+        e = model.at_rest(pz[n_p:n_p + dim])
         _, V = model.energy(ca.vertcat(q, ca.SX.zeros(model.nq)), e, pz[:n_p])
         return ca.nlpsol("system_energy", "ipopt", {"x": q, "p": pz, "f": V / pz[-1]},
                          {"print_time": False, "ipopt": {"print_level": 0, "sb": "yes", "max_iter": 3000,
@@ -281,8 +289,10 @@ def system_equilibrium(model, p, *, guess=None, points: dict | None = None, top=
         When KINSOL does not converge from the guess, from the energy minimum, or along the flow continuation.
     """
     p = static_parameters(model, p)
-    dim = model.dim
-    z0 = np.zeros(dim) if top is None else np.asarray(top, float)[:dim]
+    z0 = np.zeros(_n_top(model))        # the top input: its translation, a vessel's rotation (unset: 0)
+    if top is not None:
+        given = np.asarray(top, float)[:z0.size]
+        z0[:given.size] = given
     resid, nodes = _residual(model), _rootfinder(model)
     tol = static_tolerance(model, p)
     both = p.copy()
@@ -334,7 +344,7 @@ def system_equilibrium(model, p, *, guess=None, points: dict | None = None, top=
 def _no_compression(model, q, p, z0, tol) -> None:
     """A seabed's statics hold for lines in tension or lying unstretched on the bed (the elements elastic both ways,
     :mod:`cablesys.model.segmented_seabed`): a static state with a compressed element is refused (SolverError)."""
-    e = np.concatenate([[0.0], z0, np.zeros(2 * model.dim)])
+    e = model.at_rest(z0)
     y = dict(zip(model.output_labels, np.array(model.outputs(np.concatenate([q, np.zeros_like(q)]), e, p)).ravel()))
     secs = _sections(model, p)
     ae = np.concatenate([[s_[2]] * s_[4] for line in secs for s_ in line])
@@ -431,7 +441,7 @@ def system_initial_state(scene, model, p, t0: float = 0.0) -> np.ndarray:
     where the top motion puts it at t0 (the origin after a smooth start), a rigid body turned to its
     ``initial_*_deg`` attitude where set, about its attachment point."""
     e = np.array(model.top(t0, p)).ravel()
-    q = system_rest(scene, model, p, top=e[1:1 + model.dim])
+    q = system_rest(scene, model, p, top=model.top_input(e))
     n_rot = model.n_rotations
     if n_rot:
         q[model.nq - n_rot:] = released([pt.body for pt in scene.system.point if pt.free and pt.body.is_rigid],

@@ -376,7 +376,8 @@ class Simulator(ev.EventLocator):
                                t_a=t_a, t_b=t_b, t_kept=t_kept)
 
     def labelled(self, times, X, modes, p) -> dict:
-        """Labelled outputs and top motion (``x_s``, ``y_s``) for states ``X`` at ``times``.
+        """Labelled outputs and top motion (``x_s``, ``y_s``; ``z_s`` in space; a vessel's rotation ``rot_z_s`` ... where it
+        moves several prescribed points) for states ``X`` at ``times``.
 
         Parameters
         ----------
@@ -402,8 +403,12 @@ class Simulator(ev.EventLocator):
         Y = self._outputs_cols(np.asarray(X, float), E, P)[0]
         data = {lbl: Y[i] for i, lbl in enumerate(self.model.output_labels)}
         data["x_s"], data["y_s"] = E[1], E[2]
-        if E.shape[0] == 10:                      # a 3-D top input (t, x, y, z and their rates, accelerations)
+        vessel = getattr(self.model, "vessel_inputs", ())    # a vessel's rotation after (t, z, z', z'') (model/system.py)
+        n_t = (E.shape[0] - 1 - 3 * len(vessel)) // 3
+        if n_t == 3:                              # a 3-D top input (t, x, y, z and their rates, accelerations)
             data["z_s"] = E[3]
+        for m, name in enumerate(vessel):         # the vessel's rotation about the node axes (rad)
+            data[name] = E[1 + 3 * n_t + m]
         return data
 
 
