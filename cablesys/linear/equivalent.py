@@ -479,11 +479,11 @@ def harmonic_model(scene, model: CableModel) -> CableModel:
     node coordinates overstates the response by O(W^2 AE / (h^2 T)). One harmonic of the angles follows the arc, as
     in Wang's straight cable. Measured (the 60 m wire of a 6 kN sphere in a 0.5 m/s current, N = 3, 0.4 m of sway
     at 0.6 rad/s, against the first harmonic of the time domain; tests/test_rao_describing_3d.py): the body's sway
-    6.5 % high in node coordinates, 0.16 % in element coordinates. An anchored line, a winch or a rigid body has no
-    element coordinates (:func:`~cablesys.model.element_coordinates.build_element_model` refuses them): its own
-    model."""
+    6.5 % high in node coordinates, 0.16 % in element coordinates. An anchored line, a winch, a rigid body or a system
+    of lines joined at points (``scene.system``: a graph has no chain of element angles from one top) has no element
+    coordinates (:func:`~cablesys.model.element_coordinates.build_element_model` refuses them): its own model."""
     if not getattr(model, "segments", None) or getattr(model, "anchored", False) or getattr(model, "n_rotations", 0) \
-            or getattr(scene, "winch", None) is not None:
+            or getattr(scene, "winch", None) is not None or getattr(scene, "system", None) is not None:
         return model
     from ..model.element_coordinates import build_element_model
     return build_element_model(scene, model)

@@ -9,6 +9,7 @@ import numpy as np
 from ..plots import save_figure
 from ..plots.axes import legend_outside, plain_axis
 from ..results import unit_of
+from .frequency_response import is_tension
 
 
 def _plt():
@@ -114,7 +115,7 @@ def plot_rao_bode(raos: dict, output: str, input: str, natural: dict, path, titl
     """
     from ..units import per_input_unit
     plt = _plt()
-    fu, u = per_input_unit(unit_of(output) or ("N" if output.startswith("tension") else "-"), units)
+    fu, u = per_input_unit(unit_of(output) or "-", units)
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(10.5, 6.5), sharex=True)
     curves = {}
     for name, r in raos.items():
@@ -363,7 +364,7 @@ def plot_sea_response(resp, natural: dict, path, title: str = "", forcing: dict 
     zero = []
     for k, (o, S) in enumerate(resp.spectra.items()):
         s = resp.statistics[o]
-        tension = o.startswith("tension")
+        tension = is_tension(o)
         f, u = output_unit("N" if tension else (unit_of(o) or "-"), units)
         if is_noise(S, NOISE * peak if tension else NOISE * float(np.max(resp.sea))):
             zero.append(o)

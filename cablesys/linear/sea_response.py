@@ -56,7 +56,7 @@ def sea_response(scene, lin, *, outputs=None, exposure: float | None = None, n: 
     -------
     SeaResponse or None
     """
-    from .frequency_response import rao
+    from .frequency_response import is_tension, rao, response_outputs
     sea = scene.top_motion.spectrum
     if sea is None:
         return None
@@ -76,7 +76,7 @@ def sea_response(scene, lin, *, outputs=None, exposure: float | None = None, n: 
                              "model given has no z_s input (linearize the scene's own model)")
     inputs = ["x_s", "y_s"] + (["z_s"] if sway else []) + turns
     if outputs is None:
-        outputs = [o for o in r.output_labels if o.startswith(("x_b", "y_b", "z_b", "tension")) and not o.endswith("rate")]
+        outputs = response_outputs(r.output_labels, scene)
     limits = getattr(scene, "limits", None)
     exposure = exposure or getattr(limits, "exposure", None) or 3 * 3600.0
     mean = dict(zip(lin.output_labels, np.asarray(lin.y0, float)))
@@ -85,7 +85,7 @@ def sea_response(scene, lin, *, outputs=None, exposure: float | None = None, n: 
         H2 = sum(wj * np.abs(sum(r(o, i) * T[i] for i in inputs)) ** 2 for wj, T in zip(weight, transfers))
         spectra[o] = H2 * S
         stats[o] = st.frequency_domain(omega, spectra[o], exposure, mean=float(mean.get(o, 0.0)),
-                                       nonnegative=o.startswith("tension"))      # a tension-only cable: >= 0
+                                       nonnegative=is_tension(o))      # a tension-only cable: >= 0
     return SeaResponse(omega=omega, sea=S, spectra=spectra, statistics=stats, exposure=float(exposure))
 
 
