@@ -47,6 +47,7 @@ from .integrators import (
     helpers_compiled,
     make_integrator,
 )
+from .sampled import label_states
 from .record import (
     InterruptFlag,
     RunInterrupted,
@@ -394,17 +395,7 @@ class Simulator(ev.EventLocator):
         dict
             ``{label: (n,) array}`` in SI units.
         """
-        T = np.asarray(times, float)
-        n = T.size
-        P = np.tile(np.asarray(p, float)[:, None], (1, n))
-        P[list(self.model.slack_index), :] = modes
-        E = self._top_cols(T[None, :], P)[0]
-        Y = self._outputs_cols(np.asarray(X, float), E, P)[0]
-        data = {lbl: Y[i] for i, lbl in enumerate(self.model.output_labels)}
-        data["x_s"], data["y_s"] = E[1], E[2]
-        if E.shape[0] == 10:                      # a 3-D top input (t, x, y, z and their rates, accelerations)
-            data["z_s"] = E[3]
-        return data
+        return label_states(self.model, times, X, modes, p, self._top_cols, self._outputs_cols)
 
 
 def simulate(scene: Scene, *, model: CableModel | None = None, method: str | None = None,
