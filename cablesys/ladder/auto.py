@@ -15,6 +15,10 @@ The choice (:func:`~cablesys.ladder.choice.choose`) is checked a posteriori:
   kept with its integration error in the stated one (:mod:`.checks`); from N = 8 on a third run at N / 4 tells
   whether the pair is in the asymptotic range (each quantity's observed order), and in an irregular sea the
   estimate is the whole difference (:func:`.checks.richardson_triple`);
+- steady (a towing ship's steady turn or straight tow, :mod:`.steady_tow`): the steady state's stability, the eigenvalues
+  of its linearization in the frame of the tow; one that does not decay sends auto to the node model's stepped run at
+  the same N (:func:`steady_judged`); N is checked as the segmented one's, against steady states at N / 2 and N / 4,
+  with no integration part (nothing is stepped);
 - segmented under predicted partial slack (first order in N): RK4 runs at N, N/2, N/4 and the statistics
   are extrapolated (:mod:`.extrapolation`), N doubling while the runs are not asymptotic or miss the
   tolerance; ``estimated_error`` is then the extrapolated statistics' (``extrapolated`` holds them) and
@@ -476,7 +480,7 @@ def _check(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict
             break
         result = _run(scene, choice, tol, cache, kw)
         if choice.name == "steady":             # the grown N's steady state: its own stability
-            choice, declined = steady_judged(choice, result, auto=auto)
+            choice, declined = steady_judged(choice, result, auto=auto, again=True)
             if declined:
                 result = _run(scene, choice, tol, cache, kw)
     return result, choice
@@ -715,18 +719,20 @@ def after_run(scene: Scene, choice: Choice, result, *, auto: bool) -> tuple[Choi
                   est.segmented_error(choice.numbers["estimates"], n), choice.numbers), True
 
 
-def steady_judged(choice: Choice, result, *, auto: bool) -> tuple[Choice, bool]:
+def steady_judged(choice: Choice, result, *, auto: bool, again: bool = False) -> tuple[Choice, bool]:
     """The steady rung's run judged by its stability (:func:`.steady_tow.stability`): (``choice`` with the verdict in
-    its first clause, False) when stable; else under auto the node model's time-domain run at the same N, its reason
-    naming the least-damped eigenvalue (True: run it), and for a named steady rung the result kept with a warning."""
+    its first clause, or after a grown N (``again``) in a clause of its own, False) when stable; else under auto the
+    node model's time-domain run at the same N, its reason naming the least-damped eigenvalue (True: run it), and for a
+    named steady rung the result kept with a warning."""
     st = (getattr(result, "stats", None) or {}).get("steady")
     if st is None:
         return choice, False
     verdict = describe_stability(st)
-    statics = (f"not stepped: no integration error, the state holds the statics' tolerance {st['statics_tolerance']:.2g} "
-               f"on the residual scaled by the total weight")
+    statics = (f"no integration error: the state holds the statics' tolerance {st['statics_tolerance']:.2g} on the "
+               f"residual scaled by the total weight")
     head, _, rest = choice.reason.partition("; ")
-    said = f"{head}, {verdict}; {statics}" + (f"; {rest}" if rest else "")
+    said = (f"{choice.reason}; at N = {choice.segments} {verdict}" if again else
+            f"{head}, {verdict}; {statics}" + (f"; {rest}" if rest else ""))
     if st["stable"]:
         return dataclasses.replace(choice, reason=said), False
     if not auto:
