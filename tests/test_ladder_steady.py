@@ -70,6 +70,9 @@ def test_auto_answers_a_steady_tow_by_its_steady_state_as_the_stepped_node_model
     assert ("steady turn" if kind == "turn" else "steady straight tow") in info["reason"]
     assert "least damped" in info["reason"] and "a posteriori (N = " in info["reason"]
     assert r.stats["ladder_timing"]["runs"][0]["steps"] == 0 and r.stats["steady"]["stable"]
+    # the carried state solves the ODE: f(y, 0) = Omega_hat y (turn) or (V, 0) (tow), m/s and m/s^2; a wrong sign of
+    # Omega_hat would leave the tow point's speed, 2 m/s
+    assert r.stats["steady"]["residual"] < 1e-6
     stepped = _stepped(sc, n)
     assert set(stepped.labels) <= set(r.labels) and r.states.shape == stepped.states.shape
     got, ref = _stats(sc, r), _stats(sc, stepped)

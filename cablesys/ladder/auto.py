@@ -73,6 +73,7 @@ from .run_settings import (  # noqa: F401 - re-exported: the ladder's run settin
     STATED_ROOM,
     integrator_settings,
     rung_settings,
+    start,
 )
 from .hooks import checking, hooks
 from .steady_tow import describe_stability, steady_run
@@ -109,7 +110,7 @@ def run_rung(scene: Scene, name: str, segments: int = 1, *, cache: RungCache | N
     if name == "frequency":
         return _periodic_run(scene, cache)
     if name == "steady":
-        return steady_run(scene, segments, cache, kw.get("times"))
+        return _steady_run(scene, segments, cache, kw.get("times"))
     sc = rung_scene(scene, name, segments)
     return simulate(sc, model=cache.model(scene, name, segments), **kw)
 
@@ -127,7 +128,7 @@ def _run(scene: Scene, choice: Choice, tol, cache: RungCache, kw: dict, candidat
         return _periodic_run(scene, cache)
     if choice.name == "steady":
         t0, c0 = time.perf_counter(), time.process_time()
-        result = steady_run(scene, choice.segments, cache, kw.get("times"))
+        result = _steady_run(scene, choice.segments, cache, kw.get("times"))
         log_steady(kw, choice, candidate, result, time.perf_counter() - t0, time.process_time() - c0)
         return result
     sc = rung_scene(scene, choice.name, choice.segments)
@@ -181,6 +182,14 @@ def log_steady(kw: dict, choice: Choice, candidate: bool, result, wall_s: float,
                      "wall_per_step_us": None, "cpu_per_step_us": None})
 
 
+def _steady_run(scene: Scene, segments: int, cache: RungCache, times=None):
+    """The steady rung's run (:func:`.steady_tow.steady_run`) at N = ``segments``: the node model from ``cache`` and its
+    start, the one its time-domain run takes (:func:`.run_settings.start`)."""
+    sc = rung_scene(scene, "steady", segments)
+    model = cache.model(scene, "steady", segments)
+    return steady_run(scene, sc, model, start(sc, model, cache), segments, times, cache)
+
+
 def _periodic_run(scene: Scene, cache: RungCache):
     from ..linear import periodic_steady_state
     from ..linear.periodic import scene_input_amplitude
@@ -225,8 +234,9 @@ def _alone(scene: Scene, name: str, segments, tol):
     checked on every quantity); its error has no a priori estimate against the converged cable (NaN): the check's,
     or for Wang's cable none. Registered rungs are not considered for such a scene.
 
-    A rung that answers the sole rung's model without stepping (``shortcut``: the steady rung for the node model) and
-    is valid takes its place under auto, and may be named; the sole rung may still be named."""
+    A rung that answers the sole rung's model without stepping (``shortcut``: the steady rung for the node model), is
+    valid and costs less (its ``cost`` at the sole rung's N) takes its place under auto, and may be named; the sole rung
+    may still be named."""
     why = {r.name: r.valid(scene) for r in BUILTIN}
     runnable = [r for r in BUILTIN if not why[r.name]]
     stepped = [r for r in runnable if r.time_domain]
@@ -242,6 +252,9 @@ def _alone(scene: Scene, name: str, segments, tol):
             w for w in why.values() if w))))
     if sole is None:
         return None
+    if shortcut is not None and requested is None:      # under auto where it costs less than the stepped run
+        n = sole.alone(scene, name, segments)[0]
+        shortcut = shortcut if shortcut.cost(scene, None, n) < sole.cost(scene, None, n) else None
     taken = shortcut if shortcut is not None and requested in (None, shortcut) else sole
     n, reason, checked = taken.alone(scene, name, segments)
     return Choice(taken.name, n, reason, dict(NOT_ESTIMATED), {"valid": True}), tol, checked

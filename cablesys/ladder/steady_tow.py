@@ -183,10 +183,12 @@ def describe_stability(st: dict) -> str:
     return text + ")"
 
 
-def steady_run(scene: Scene, segments: int, cache, times=None):
-    """The run of the steady rung: the node model with ``segments`` elements per section (``cache``'s, the segmented
-    rung's model), started as its time-domain run starts (:func:`.run_settings.start`), carried to the output times
-    (:func:`carried`), every output the model's own (:func:`~cablesys.time_domain.sampled.sampled_record`).
+def steady_run(scene: Scene, scene_run: Scene, model, x0, segments: int, times=None, cache=None):
+    """The run of the steady rung: ``model``, the node model of ``scene_run`` (``scene`` with ``segments`` elements per
+    section, the segmented rung's), from its steady start ``x0`` (at t = 0: the start of its time-domain run), carried
+    to the output times (:func:`carried`), every output the model's own
+    (:func:`~cablesys.time_domain.sampled.sampled_record`); ``cache`` (a :class:`~.rungs.RungCache`) keeps the stability
+    verdict of a model and start it has seen.
 
     Returns
     -------
@@ -196,22 +198,20 @@ def steady_run(scene: Scene, segments: int, cache, times=None):
         max over the state, in its units: m/s and m/s^2) and :func:`stability`'s verdict.
     """
     from ..time_domain.sampled import sampled_record
-    from .run_settings import start
-    from .rungs import rung_scene
     t0 = time.perf_counter()
-    sc = rung_scene(scene, "segmented", segments)
-    model = cache.model(scene, "segmented", segments)
+    sc = scene_run
     p = np.asarray(model.parameters(sc), dtype=float)
-    x0 = np.asarray(start(sc, model, cache), dtype=float).ravel()
+    x0 = np.asarray(x0, dtype=float).ravel()
     kind = steady_kind(scene)
     rate = float(scene.top_motion.track.turn_rate) if kind == "turn" else 0.0
     T = sc.output_times if times is None else np.asarray(times, float)
     X = carried(model, x0, T, rate, p)
     f0 = np.array(model.ode(x0, 0.0, p)).ravel()
-    frame = carried(model, x0, [1.0], rate, p)[:, 0] - x0 if not rate else None     # V on the positions (tow)
+    # x' of the carried state at t = 0: Omega_hat y (turn), or (V, 0) (tow: the state carried over 1 s, less itself)
     drift = (np.kron(np.eye(x0.size // 3), [[0, 0, -rate], [0, 0, 0], [rate, 0, 0]]) @ x0 if rate
-             else np.concatenate([frame[:model.nq], np.zeros(model.nq)]))
-    st = cache.memo(model, "steady_stability", (p, x0), lambda: stability(model, x0, p, rate))
+             else carried(model, x0, [1.0], 0.0, p)[:, 0] - x0)
+    judge = lambda: stability(model, x0, p, rate)
+    st = judge() if cache is None else cache.memo(model, "steady_stability", (p, x0), judge)
     gap = np.array(model.cable_force(x0, p)).ravel()
     modes = np.repeat((gap < 0).astype(float)[:, None], T.size, axis=1)
     info = {"kind": kind, "turn_rate": rate, "statics_tolerance": float(statics_tolerance(model, p)),

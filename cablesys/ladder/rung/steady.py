@@ -15,9 +15,10 @@ from .segmented import alone_segments
 
 STEADY_COST = 0.05
 """Cost of the steady state at N elements per section in runs of the node model at N (whose cost is N): a few
-statics solves, the stability's eigenvalues and the outputs at the output times, against a run stepped over the
-whole duration (the benchmark turn, 503 s: 7 ms for the steady turn at N = 16 against 0.18 s for the run, measured
-under shared load; the ratio falls with the run's duration)."""
+statics solves (the steady state at N, one KINSOL solve continued in the turn rate or polished from the statics), the
+eigenvalues of its linearization and the outputs at the output times, where the node model's run steps every element
+over the whole duration; any weight below 1 makes the ladder take it where it is valid (the ratio falls with the
+run's duration and is not measured by studies/bench_rung_costs.py)."""
 
 
 class Steady(BuiltinRung):
