@@ -128,6 +128,10 @@ def test_the_rung_declines_what_is_not_a_steady_tow_and_says_why():
         with pytest.raises(cablesys.ParameterError, match="numerics.model = 'steady'"):
             decide(sc, "steady", None, None)
     assert STEADY.valid(_turn()) == "" and "no towing ship's track" in STEADY.valid(cablesys.dale_scene())
+    named = _turn().with_numerics(model="steady")            # numerics.model names it as any rung
+    assert decide(named, None, None, None)[0].name == "steady"
+    with pytest.raises(cablesys.ParameterError, match="x0"):  # a start off the steady state is not its question
+        cablesys.simulate(named, x0=np.zeros(6))
 
 
 def test_an_unstable_verdict_sends_auto_to_the_stepped_run(monkeypatch):
