@@ -63,7 +63,7 @@ class RecordingCache(RungCache):
 def integrator_text(settings: list, compiled: bool) -> str:
     """'auto (rk23 rtol 1e-04, compiled)': the distinct methods and rtols (fixed steps: per output) of auto's runs."""
     step = lambda s: f"rk4 {s.steps_per_output} steps/output" if s.method == "rk" else f"{s.method} rtol {s.rtol:.0e}"
-    what = "; ".join(dict.fromkeys(step(s) for s in settings)) or "periodic"
+    what = "; ".join(dict.fromkeys(step(s) for s in settings)) or "not stepped: a periodic orbit or a steady state"
     return f"auto ({what}, {'compiled' if compiled else 'VM'})"
 
 

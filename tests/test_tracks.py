@@ -164,12 +164,16 @@ def test_a_straight_track_along_x_runs_the_planar_equations():
 
 @pytest.mark.parametrize("track", ['[top_motion.track]\nkind = "straight"\nspeed = 2.0\n', PATH])
 def test_the_ladder_runs_a_track_on_the_node_model_and_says_why(track):
+    """The node model runs a track; a straight course is its steady tow for all time, which the steady rung answers
+    without stepping (tests/test_ladder_steady.py), a path with arcs is not and steps."""
     sc = _tracks.scene(track)
+    straight = "arc" not in track
     assert {r.name: r.valid(sc) == "" for r in BUILTIN} == {"frequency": False, "quasi-static": False, "wang": False,
-                                                            "segmented": True}
+                                                            "steady": straight, "segmented": True}
     assert next(r for r in BUILTIN if r.name == "wang").valid(sc) == TURNING
     choice, _, checked = decide(sc, "auto", None, None)
-    assert choice.name == "segmented" and "track" in choice.reason and checked
+    assert choice.name == ("steady" if straight else "segmented") and "track" in choice.reason and checked
+    assert decide(sc, "segmented", None, None)[0].name == "segmented"         # the stepped run may still be named
     with pytest.raises(ParameterError, match="numerics.model.*track"):
         decide(sc, "wang", None, None)
     from cablesys.ladder import linear_model                # the linear doors work about the statics at rest

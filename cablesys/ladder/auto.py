@@ -15,6 +15,10 @@ The choice (:func:`~cablesys.ladder.choice.choose`) is checked a posteriori:
   kept with its integration error in the stated one (:mod:`.checks`); from N = 8 on a third run at N / 4 tells
   whether the pair is in the asymptotic range (each quantity's observed order), and in an irregular sea the
   estimate is the whole difference (:func:`.checks.richardson_triple`);
+- steady (a towing ship's steady turn or straight tow, :mod:`.steady_tow`): the steady state's stability, the eigenvalues
+  of its linearization in the frame of the tow; one that does not decay sends auto to the node model's stepped run at
+  the same N (:func:`steady_judged`); N is checked as the segmented one's, against steady states at N / 2 and N / 4,
+  with no integration part (nothing is stepped);
 - segmented under predicted partial slack (first order in N): RK4 runs at N, N/2, N/4 and the statistics
   are extrapolated (:mod:`.extrapolation`), N doubling while the runs are not asymptotic or miss the
   tolerance; ``estimated_error`` is then the extrapolated statistics' (``extrapolated`` holds them) and
@@ -69,8 +73,10 @@ from .run_settings import (  # noqa: F401 - re-exported: the ladder's run settin
     STATED_ROOM,
     integrator_settings,
     rung_settings,
+    start,
 )
 from .hooks import checking, hooks
+from .steady_tow import describe_stability, steady_run
 from .rung.base import NOT_ESTIMATED, scene_segments
 from .rung.segmented import ENDS_SEGMENTS  # noqa: F401 - re-exported: the first N of an anchored line
 from .rungs import BUILTIN, RUNGS, RungCache, check_rung, get_rung, ladder_rungs, rung_scene, takes_elements, validity
@@ -85,7 +91,8 @@ def run_rung(scene: Scene, name: str, segments: int = 1, *, cache: RungCache | N
     scene : Scene
         The scene.
     name : str
-        A rung; ``frequency`` gives the periodic orbit (Fourier collocation) sampled at the output times.
+        A rung; ``frequency`` gives the periodic orbit (Fourier collocation) sampled at the output times, ``steady``
+        the steady tow or turn carried to them (:func:`.steady_tow.steady_run`).
     segments : int, optional
         Elements per section of the segmented rung.
     cache : RungCache, optional
@@ -102,6 +109,8 @@ def run_rung(scene: Scene, name: str, segments: int = 1, *, cache: RungCache | N
     cache = cache if cache is not None else RungCache()
     if name == "frequency":
         return _periodic_run(scene, cache)
+    if name == "steady":
+        return _steady_run(scene, segments, cache, kw.get("times"))
     sc = rung_scene(scene, name, segments)
     return simulate(sc, model=cache.model(scene, name, segments), **kw)
 
@@ -117,6 +126,11 @@ def _run(scene: Scene, choice: Choice, tol, cache: RungCache, kw: dict, candidat
     from ..time_domain import simulate
     if choice.name == "frequency":
         return _periodic_run(scene, cache)
+    if choice.name == "steady":
+        t0, c0 = time.perf_counter(), time.process_time()
+        result = _steady_run(scene, choice.segments, cache, kw.get("times"))
+        log_steady(kw, choice, candidate, result, time.perf_counter() - t0, time.process_time() - c0)
+        return result
     sc = rung_scene(scene, choice.name, choice.segments)
     model = cache.model(scene, choice.name, choice.segments)
     settings, x0 = rung_settings(sc, tol, choice, model, cache=cache, x0=kw.get("x0"), method=kw.get("method"),
@@ -157,10 +171,29 @@ def log_run(kw: dict, choice: Choice, candidate: bool, settings, result, wall_s:
                  "cpu_per_step_us": 1e6 * cpu_s / steps if steps else None})
 
 
+def log_steady(kw: dict, choice: Choice, candidate: bool, result, wall_s: float, cpu_s: float) -> None:
+    """One entry in ``kw["run_log"]`` (as :func:`log_run`) for a steady state of the plan: method "steady state", no
+    integrator tolerances, no steps."""
+    runs = kw.get("run_log")
+    if runs is not None:
+        runs.append({"rung": choice.name, "segments": choice.segments, "candidate": bool(candidate),
+                     "method": "steady state", "rtol": None, "atol": None, "compiled": False, "steps": 0,
+                     "success": bool(getattr(result, "success", False)), "wall_s": wall_s, "cpu_s": cpu_s,
+                     "wall_per_step_us": None, "cpu_per_step_us": None})
+
+
+def _steady_run(scene: Scene, segments: int, cache: RungCache, times=None):
+    """The steady rung's run (:func:`.steady_tow.steady_run`) at N = ``segments``: the node model from ``cache`` and its
+    start, the one its time-domain run takes (:func:`.run_settings.start`)."""
+    sc = rung_scene(scene, "steady", segments)
+    model = cache.model(scene, "steady", segments)
+    return steady_run(scene, sc, model, start(sc, model, cache), segments, times, cache)
+
+
 def _periodic_run(scene: Scene, cache: RungCache):
     from ..linear import periodic_steady_state
     from ..linear.periodic import scene_input_amplitude
-    from ..time_domain import RunRecord
+    from ..time_domain.sampled import sampled_record
     sc = rung_scene(scene, "wang")
     model = cache.model(scene, "wang")
     p = model.parameters(sc)
@@ -175,12 +208,9 @@ def _periodic_run(scene: Scene, cache: RungCache):
         ph = 2 * np.pi * (times[:, None] - per.time[0]) / per.period * k[None, :]
         w = np.where((k == 0) | ((n % 2 == 0) & (k == n // 2)), 1.0, 2.0)
         data[lbl] = np.real(np.exp(1j * ph) @ (w * c))
-    E = np.array(model.top.map(times.size)(times[None, :], np.tile(p[:, None], (1, times.size))))
-    data["x_s"], data["y_s"] = E[1], E[2]
-    stats = dict(per.stats, method="periodic collocation", nsteps=0, wall_s=float(per.stats.get("wall_time_s", 0.0)),
-                 build_s=0.0)
-    return RunRecord(time=times, data=data, success=bool(per.success), message=per.message, stats=stats,
-                     scene_name=scene.name, model_info={"name": "frequency", "segments": 1})
+    stats = dict(per.stats, method="periodic collocation", wall_s=float(per.stats.get("wall_time_s", 0.0)), build_s=0.0)
+    return sampled_record(scene, model, p, times, data=data, success=per.success, message=per.message, stats=stats,
+                          model_info={"name": "frequency", "segments": 1})
 
 
 def _went_slack(result, scene: Scene) -> bool:
@@ -202,21 +232,32 @@ def _alone(scene: Scene, name: str, segments, tol):
     The sole rung states its N, its reason and whether N is checked a posteriori (:meth:`~.rung.base.BuiltinRung.alone`:
     a 3-D scene or a massless cable runs Wang's straight cable, an anchored line or a seabed the node model, N
     checked on every quantity); its error has no a priori estimate against the converged cable (NaN): the check's,
-    or for Wang's cable none. Registered rungs are not considered for such a scene."""
+    or for Wang's cable none. Registered rungs are not considered for such a scene.
+
+    A rung that answers the sole rung's model without stepping (``shortcut``: the steady rung for the node model), is
+    valid and costs less (its ``cost`` at the sole rung's N) takes its place under auto, and may be named; the sole rung
+    may still be named."""
     why = {r.name: r.valid(scene) for r in BUILTIN}
     runnable = [r for r in BUILTIN if not why[r.name]]
-    sole = runnable[0] if len(runnable) == 1 else None
+    stepped = [r for r in runnable if r.time_domain]
+    sole = stepped[0] if len(stepped) == 1 and len(runnable) - 1 <= sum(r.shortcut for r in runnable) else None
+    shortcut = next((r for r in runnable if r.shortcut and sole is not None and r.model_of == sole.name), None)
     requested = None if name == "auto" else get_rung(name)
     refused = validity(requested, scene) if requested is not None else ""
-    if not runnable or (requested is not None and (refused or (sole is not None and requested is not sole))):
-        able = " or ".join([sole.name] if sole else [r.name for r in ladder_rungs() if not validity(r, scene)])
+    if not runnable or (requested is not None and (refused or (sole is not None and requested not in (sole, shortcut)))):
+        able = " or ".join([r.name for r in (shortcut, sole) if r is not None] if sole else
+                           [r.name for r in ladder_rungs() if not validity(r, scene)])
         allowed = f"must be auto, as-built or {able} for this scene" if able else "no rung can run this scene"
         raise ParameterError("numerics.model", name, f"{allowed}: " + (refused or "; ".join(dict.fromkeys(
             w for w in why.values() if w))))
     if sole is None:
         return None
-    n, reason, checked = sole.alone(scene, name, segments)
-    return Choice(sole.name, n, reason, dict(NOT_ESTIMATED), {"valid": True}), tol, checked
+    if shortcut is not None and requested is None:      # under auto where it costs less than the stepped run
+        n = sole.alone(scene, name, segments)[0]
+        shortcut = shortcut if shortcut.cost(scene, None, n) < sole.cost(scene, None, n) else None
+    taken = shortcut if shortcut is not None and requested in (None, shortcut) else sole
+    n, reason, checked = taken.alone(scene, name, segments)
+    return Choice(taken.name, n, reason, dict(NOT_ESTIMATED), {"valid": True}), tol, checked
 
 
 def decide(scene: Scene, model, tolerance, segments, cache: RungCache | None = None):
@@ -351,6 +392,13 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
     kw["check_runs"] = {}       # the plan's runs by scene, rung, N and integrator settings, for its checks (_run)
     t0, b0 = time.perf_counter(), cache.build_s
     choice, tol, auto = decide(scene, model, tolerance, segments, cache)
+    if choice.name == "steady" and kw.get("x0") is not None:     # the caller starts the run off the steady state
+        if not auto:
+            raise ParameterError("x0", "given", "must be unset for the steady rung: it answers the run started on the "
+                                 "steady tow or turn (name model 'segmented' to step from another start)")
+        choice = dataclasses.replace(choice, name="segmented", reason=f"{choice.reason}; the caller's x0 starts the run "
+                                     f"off the steady state: the node model's time-domain run with N = "
+                                     f"{choice.segments} instead")
     if auto:                                     # the mean shape in the current, from the statics, before any run
         choice = static_check.check(scene, choice, tol, cache)
         choice = checked_upward(choice)
@@ -444,6 +492,10 @@ def _check(scene: Scene, choice: Choice, tol, result, cache: RungCache, kw: dict
         if not again:
             break
         result = _run(scene, choice, tol, cache, kw)
+        if choice.name == "steady":             # the grown N's steady state: its own stability
+            choice, declined = steady_judged(choice, result, auto=auto, again=True)
+            if declined:
+                result = _run(scene, choice, tol, cache, kw)
     return result, choice
 
 
@@ -455,7 +507,8 @@ def settled_check(scene: Scene, choice: Choice, result) -> Choice:
     front still arriving is the run's, not the model's (extrapolated runs: :mod:`.extrapolation` has its own). Not for
     an irregular sea or a recorded motion, whose halves differ by sampling, nor for a winch scene, whose cable length
     changes by design (a lowering or a recovery has no settled response to approach)."""
-    if not getattr(result, "success", False) or "extrapolated" in choice.numbers or choice.name == "frequency":
+    stepped = getattr(get_rung(choice.name), "time_domain", True)     # a periodic orbit or a steady state: settled
+    if not getattr(result, "success", False) or "extrapolated" in choice.numbers or not stepped:
         return choice
     if scene.top_motion.spectrum is not None or scene.top_motion.series is not None:
         return choice      # an irregular sea: half the peak-to-peak of each half is a sample, not a build-up
@@ -499,10 +552,11 @@ def richardson_step(scene: Scene, choice: Choice, tol, result, cache: RungCache,
     irregular sea or a recorded motion the estimates are the whole differences (:func:`~.checks.richardson`)."""
     period, n = metrics.forcing_period(scene), choice.segments
     sc = rung_scene(scene, choice.name, n)
+    stepped = getattr(get_rung(choice.name), "time_domain", True)    # a steady state (the steady rung) has no integration error
     settings, _ = rung_settings(sc, tol, choice, cache.model(scene, choice.name, n), cache=cache, x0=kw.get("x0"),
                                 method=kw.get("method"), rtol=kw.get("rtol"), atol=kw.get("atol"),
-                                max_num_steps=kw.get("max_num_steps"), jit=kw.get("jit", False))
-    adaptive = checks.adaptive(settings.method)
+                                max_num_steps=kw.get("max_num_steps"), jit=kw.get("jit", False)) if stepped else (None, None)
+    adaptive = stepped and checks.adaptive(settings.method)
     tight_kw = checks.tightened(kw, settings) if adaptive else kw
     coarse = _run(check_scene(scene, n), dataclasses.replace(choice, segments=n // 2), tol, cache, checking(tight_kw),
                   candidate=False)
@@ -661,7 +715,10 @@ def after_run(scene: Scene, choice: Choice, result, *, auto: bool) -> tuple[Choi
 
     A straight-cable run (quasi-static or wang) or a quasi-static segmented run that went slack is
     outside its validity: under "auto" the segmented cable is chosen instead (run again); a forced rung
-    keeps its result with a warning and an infinite estimated error."""
+    keeps its result with a warning and an infinite estimated error. A steady state (the steady rung) is judged by its
+    stability (:func:`steady_judged`)."""
+    if choice.name == "steady":
+        return steady_judged(choice, result, auto=auto)
     if not getattr(get_rung(choice.name), "stays_taut", False) or not _went_slack(result, scene):
         return choice, False
     note = (f"the {choice.name} run went slack: " + ("a quasi-static stretch cannot go slack" if choice.segments > 1
@@ -673,6 +730,32 @@ def after_run(scene: Scene, choice: Choice, result, *, auto: bool) -> tuple[Choi
     n = max(choice.segments, 10)
     return Choice("segmented", n, f"{choice.name} rejected a posteriori: {note}; segmented with N = {n}",
                   est.segmented_error(choice.numbers["estimates"], n), choice.numbers), True
+
+
+def steady_judged(choice: Choice, result, *, auto: bool, again: bool = False) -> tuple[Choice, bool]:
+    """The steady rung's run judged by its stability (:func:`.steady_tow.stability`): (``choice`` with the verdict in
+    its first clause, or after a grown N (``again``) in a clause of its own, False) when stable; else under auto the
+    node model's time-domain run at the same N, its reason naming the least-damped eigenvalue (True: run it), and for a
+    named steady rung the result kept with a warning."""
+    st = (getattr(result, "stats", None) or {}).get("steady")
+    if st is None:
+        return choice, False
+    verdict = describe_stability(st)
+    statics = (f"no integration error: the state holds the statics' tolerance {st['statics_tolerance']:.2g} on the "
+               f"residual scaled by the total weight")
+    head, _, rest = choice.reason.partition("; ")
+    said = (f"{choice.reason}; at N = {choice.segments} {verdict}" if again else
+            f"{head}, {verdict}; {statics}" + (f"; {rest}" if rest else ""))
+    if st["stable"]:
+        return dataclasses.replace(choice, reason=said), False
+    if not auto:
+        warnings.warn(f"model 'steady': the steady {st['kind']} is {verdict}", NumericalWarning, stacklevel=3)
+        return dataclasses.replace(choice, reason=said), False
+    n = choice.segments
+    e = est.segmented_error(choice.numbers["estimates"], n) if "estimates" in choice.numbers else choice.estimated_error
+    return Choice("segmented", n, f"{head}; the steady {st['kind']} is {verdict}: the node model's time-domain run "
+                                  f"with N = {n} instead; N checked a posteriori on every quantity",
+                  dict(e), dict(choice.numbers)), True
 
 
 def short_reason(reason: str, segments: int) -> str:

@@ -430,9 +430,9 @@ def check_response(response: LinearResponse) -> None:
 
 def rung_error(errors: dict, name: str, n: int = 1) -> dict:
     """Estimated errors of rung ``name`` with ``n`` elements per section (``errors`` from
-    :func:`estimate_errors`): the segmented cable's at ``n``, the quasi-static segmented cable's for
-    "quasi-static" with ``n`` > 1, else the rung's own entry."""
-    if name == "segmented":
+    :func:`estimate_errors`): the segmented cable's at ``n`` (also for "steady", that model's steady state), the
+    quasi-static segmented cable's for "quasi-static" with ``n`` > 1, else the rung's own entry."""
+    if name in ("segmented", "steady"):
         return segmented_error(errors, n)
     if name == "quasi-static" and n > 1:
         return quasistatic_segmented_error(errors, n)

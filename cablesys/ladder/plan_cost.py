@@ -327,10 +327,10 @@ def for_run(scene: Scene, choice, tol, kw: dict) -> Prediction | None:
     """The :class:`Prediction` of the ladder's run of ``choice`` with the caller's options ``kw`` (``method``,
     ``rtol``, ``atol``, ``times``): the settings :func:`.run_settings.integrator_settings` gives it, the quasi-static
     rungs with QUASI_STATIC_METHOD (the method their guard, which needs the built model, accepts first). None for
-    a run with no time-domain model to predict (the frequency rung, a registered rung)."""
-    from .rungs import RUNGS
+    a run with no time-domain model to predict (the frequency and steady rungs, a registered rung)."""
+    from .rungs import TIME_DOMAIN_RUNGS
     from .run_settings import QUASI_STATIC_METHOD, integrator_settings, stated_room
-    if choice.name not in RUNGS or choice.name == "frequency":
+    if choice.name not in TIME_DOMAIN_RUNGS:
         return None
     sc = rung_scene(scene, choice.name, choice.segments)
     elements = sum(c.segments for c in cables(sc))

@@ -7,6 +7,9 @@ its error estimate and its cost), and the ladder asks the registry (:func:`ladde
 - ``quasi-static``: the swing with the stretch following the tension (:mod:`cablesys.model.quasistatic`),
   Wang's straight cable (``segments = 1``) or N elements whose stretches follow their tensions (``segments = N``);
 - ``wang``: Wang's (1971) 2-DOF straight cable per section (:mod:`cablesys.model.build`);
+- ``steady``: a towing ship's steady straight tow or steady turn (a circle), the node model's steady state at N
+  carried with the tow to the output times and checked for stability, where the run is that steady state for all time
+  (:mod:`cablesys.ladder.steady_tow`); under auto in place of the node model's run;
 - ``segmented``: N straight tension-only elements per section (:mod:`cablesys.model.segmented`).
 """
 
@@ -23,10 +26,10 @@ from ..model import CableModel
 from ..model.params import structure_of
 from ..scene import Scene
 from ..scene.components import MODEL_CHOICES, RUNGS
-from .rung import frequency, quasistatic, segmented, wang
+from .rung import frequency, quasistatic, segmented, steady, wang
 from .rung.base import with_segments  # noqa: F401 - re-exported: the scene of N elements, as before the split
 
-BUILTIN = (frequency.RUNG, quasistatic.RUNG, wang.RUNG, segmented.RUNG)     # in ladder order: RUNGS
+BUILTIN = (frequency.RUNG, quasistatic.RUNG, wang.RUNG, steady.RUNG, segmented.RUNG)     # in ladder order: RUNGS
 _BUILTIN = {r.name: r for r in BUILTIN}
 TIME_DOMAIN_RUNGS = tuple(r.name for r in BUILTIN if r.time_domain)
 
@@ -243,7 +246,7 @@ class RungCache:
         """
         rung = get_rung(name)
         if getattr(rung, "model_of", None):
-            return self.model(scene, rung.model_of)
+            return self.model(scene, rung.model_of, segments)
         if name in _REGISTERED:
             key = (name, 1, structure_of(scene), 0)
             if key not in self._models:

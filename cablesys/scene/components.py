@@ -315,7 +315,7 @@ class Initial:
 
 # the model ladder's rungs, cheapest first (cablesys.ladder.rungs builds them), and what numerics.model may name:
 # "auto" (the ladder's choice) or "as-built" (the scene's own model: its sections' segments, no choice)
-RUNGS = ("frequency", "quasi-static", "wang", "segmented")
+RUNGS = ("frequency", "quasi-static", "wang", "steady", "segmented")
 MODEL_CHOICES = ("auto", "as-built") + RUNGS
 INTEGRATORS = tuple(INTEGRATION_METHODS)      # the names of the one registry (cablesys.integration)
 
@@ -332,7 +332,7 @@ class Numerics:
     output_step: float = spec("time", "spacing of output times", 0.05)
     steps_per_output: int = spec("none", "fixed-step methods (rk, collocation): steps per output interval", 10)
     model: str = spec("none", "model ladder rung: auto (the cheapest within model_tolerance) | as-built (the scene's own "
-                              "model: segments per [cable]) | frequency | quasi-static | wang | segmented (cablesys.ladder)",
+                              "model: segments per [cable]) | frequency | quasi-static | wang | steady | segmented (cablesys.ladder)",
                       "auto")
     model_tolerance: float = spec("none", "relative error allowed on body motion for model = auto; tension extremes "
                                           "get twice it", 0.01)

@@ -47,6 +47,7 @@ from .integrators import (
     helpers_compiled,
     make_integrator,
 )
+from .sampled import label_states
 from .record import (
     InterruptFlag,
     RunInterrupted,
@@ -395,21 +396,7 @@ class Simulator(ev.EventLocator):
         dict
             ``{label: (n,) array}`` in SI units.
         """
-        T = np.asarray(times, float)
-        n = T.size
-        P = np.tile(np.asarray(p, float)[:, None], (1, n))
-        P[list(self.model.slack_index), :] = modes
-        E = self._top_cols(T[None, :], P)[0]
-        Y = self._outputs_cols(np.asarray(X, float), E, P)[0]
-        data = {lbl: Y[i] for i, lbl in enumerate(self.model.output_labels)}
-        data["x_s"], data["y_s"] = E[1], E[2]
-        vessel = getattr(self.model, "vessel_inputs", ())    # a vessel's rotation after (t, z, z', z'') (model/system.py)
-        n_t = (E.shape[0] - 1 - 3 * len(vessel)) // 3
-        if n_t == 3:                              # a 3-D top input (t, x, y, z and their rates, accelerations)
-            data["z_s"] = E[3]
-        for m, name in enumerate(vessel):         # the vessel's rotation about the node axes (rad)
-            data[name] = E[1 + 3 * n_t + m]
-        return data
+        return label_states(self.model, times, X, modes, p, self._top_cols, self._outputs_cols)
 
 
 def simulate(scene: Scene, *, model: CableModel | None = None, method: str | None = None,

@@ -148,6 +148,7 @@ class BuiltinRung:
     stays_taut = False
     straight_cost = 1.0
     model_of = None            # another rung whose model this one runs (a RungCache builds it once for both)
+    shortcut = False           # it answers model_of's run without stepping: under auto in that rung's place where valid
 
     def valid(self, scene: Scene) -> str:
         """"" when this rung can run ``scene``, else why not."""

@@ -18,6 +18,13 @@ CHECK_ACCEPT = 0.8
 """A checked N is kept when its Richardson estimate is within this fraction of the tolerance: those estimates were 0.82-0.98 x the actual error (studies/model_ladder.py: heavy1000 0.85, random current-4 / 9 / 10 0.98 / 0.92 / 0.82 against N = 32)."""
 
 
+def alone_segments(scene: Scene, requested: str, segments, name: str = "segmented") -> int:
+    """N of the node model where it is the only rung (or the steady rung in its place, ``name``): the caller's N, else
+    the scene's when the rung ``name`` was named, else at least ENDS_SEGMENTS."""
+    scene_n = scene_segments(scene)
+    return int(segments or (scene_n if requested == name and scene_n > 1 else max(scene_n, ENDS_SEGMENTS)))
+
+
 class Segmented(BuiltinRung):
     """The node model with N >= 2 elements per section."""
 
@@ -44,8 +51,7 @@ class Segmented(BuiltinRung):
         """A system of lines, an anchored line or a seabed, a winch, a rigid body, or a towing ship's track: the node model with the caller's N, else the scene's
         (named segmented rung), else at least ENDS_SEGMENTS, checked a posteriori on every quantity when the ladder
         chose it."""
-        scene_n = scene_segments(scene)
-        n = int(segments or (scene_n if requested == self.name and scene_n > 1 else max(scene_n, ENDS_SEGMENTS)))
+        n = alone_segments(scene, requested, segments, self.name)
         why = ("a system of lines joined at points ([[point]], [[line]]) that is not a chain: the node model with N = {n} "
                "elements per line section, the only rung that builds a graph of lines" if system(scene) else
                "an anchored line or a seabed: the node model with N = {n}, the only rung with nodes to anchor and to lay "
