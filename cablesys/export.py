@@ -87,7 +87,8 @@ def units_of_file(path) -> str:
 
 
 def convert_rao_table(head: list[str], rows: np.ndarray, system: str = "SI") -> tuple[list[str], np.ndarray]:
-    """An RAO table (columns ``name [unit/m]`` per unit top motion, ``[deg]``, ``[rad/s]``) in ``system``."""
+    """An RAO table (columns ``name [unit/m]`` per unit top motion or ``[unit/rad]`` per unit rotation, ``[deg]``,
+    ``[rad/s]``) in ``system``."""
     from .units import per_input_unit
     if system == "SI":
         return head, rows
@@ -96,8 +97,9 @@ def convert_rao_table(head: list[str], rows: np.ndarray, system: str = "SI") -> 
     for k, h in enumerate(head):
         name, _, unit = h.partition(" [")
         unit = unit.rstrip("]")
-        if unit.endswith("/m"):
-            f, unit = per_input_unit(unit[:-2], system)
+        if unit.endswith(("/m", "/rad")):
+            out_unit, _, per = unit.rpartition("/")
+            f, unit = per_input_unit(out_unit, system, per)
             rows[:, k] *= f
         out.append(f"{name} [{unit}]")
     return out, rows

@@ -51,9 +51,12 @@ def output_unit(si_unit: str, system: str = "SI") -> tuple[float, str]:
     return 1.0, si_unit
 
 
-def per_input_unit(si_output_unit: str, system: str = "SI") -> tuple[float, str]:
-    """(factor, unit name) of a response per unit top motion (SI: unit/m) shown in ``system``."""
+def per_input_unit(si_output_unit: str, system: str = "SI", si_input_unit: str = "m") -> tuple[float, str]:
+    """(factor, unit name) of a response per unit top motion (SI: unit/m; per unit of a vessel's rotation,
+    ``si_input_unit`` "rad": unit/rad in both systems) shown in ``system``."""
     f, name = output_unit(si_output_unit, system)
+    if si_input_unit == "rad":
+        return f, f"{name or '-'}/rad"
     if system == "fps":
         return f * FT, f"{name or '-'}/ft"
     return f, f"{name or '-'}/m"

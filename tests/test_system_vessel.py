@@ -219,3 +219,22 @@ def test_a_point_swayed_by_roll_needs_the_3d_equations():
     with pytest.raises(ParameterError) as err:
         Scene(system=lift((10.0, 2.0, 0.0), False), top_motion=top, numerics=Numerics(dimensions=2))
     assert err.value.field == "numerics.dimensions" and "top_motion.vessel" in str(err.value) and "point[1]" in str(err.value)
+
+
+def test_cablesys_rao_tabulates_the_response_per_rad_of_the_vessels_rotation(tmp_path):
+    """``cablesys rao`` on the tethers (the first point on the centreline, the second 12 m to starboard): a table and
+    figures per unit rotation (rot_z_s, per rad) beside those per metre; at the band's lowest frequency the second
+    tether's tension per rad is the quasi-static (AE / l_0) 12 m within 2 %, the first's is not drawn (zero)."""
+    import json
+    from cablesys.cli import main
+    from cablesys.scene import dump_scene
+    f = tmp_path / "tethers.toml"
+    f.write_text(dump_scene(tethers(port=0.0)))
+    out = tmp_path / "rao"
+    assert main(["rao", str(f), "--out", str(out)]) == 0
+    rows = (out / "rao_exact_rot_z_s.csv").read_text().splitlines()
+    head, first = rows[0].split(","), np.array(rows[1].split(","), float)
+    k = 2e6 / (30.0 * (1.0 - 6000.0 / 2e6))
+    assert first[head.index("line.lb.tension_from_amp [N/rad]")] == pytest.approx(k * 12.0, rel=0.02)
+    assert (out / "rao_line.lb.tension_from_rot_z_s.png").exists()
+    assert "line.la.tension_from per unit rot_z_s" in json.loads((out / "rao_summary.json").read_text())["zero_responses"]

@@ -128,9 +128,11 @@ def _analyse(args, scene, outdir) -> int:
     natural = {f"omega_{d}" if unique else f"mode {k + 1} ({d})": float(w)
                for k, (d, w) in enumerate(zip(md.dominant, md.omega_undamped)) if omega[0] <= w <= w_max}
     written = []
+    # a vessel's rotation moving further prescribed points (model/system.py): its RAOs per rad, drawn apart
+    turns = [i for i in lin.input_labels if i.startswith("rot_")]
     for name, r in raos.items():
         tag = "exact" if name.startswith("exact") else "describing"
-        for inp in [i for i in r.input_labels if i in tops]:
+        for inp in [i for i in r.input_labels if i in tops + turns]:
             head, rows = convert_rao_table(*r.table(inp), units)
             f = f"rao_{tag}_{inp}.csv"
             with outdir.writing(f) as tmp:
@@ -138,10 +140,11 @@ def _analyse(args, scene, outdir) -> int:
             written.append(f)
     plotted = response_outputs(lin.output_labels, scene)
     zero = []
-    for inp in tops:
+    for inp in tops + turns:
+        group = turns if inp in turns else tops     # per m of translation, per rad of rotation: each its own floor
         for o in plotted:
             sel = {k: r for k, r in raos.items() if inp in r.input_labels}
-            floor = noise_floor([r.amplitude(o, i) for r in sel.values() for i in r.input_labels if i in tops])
+            floor = noise_floor([r.amplitude(o, i) for r in sel.values() for i in r.input_labels if i in group])
             if all(is_noise(r.amplitude(o, inp), floor) for r in sel.values()):
                 zero.append(f"{o} per unit {inp}")
                 continue

@@ -84,12 +84,14 @@ class RAO(ResultBase):
                             name="rao", attrs={"kind": self.kind})
 
     def table(self, input: str) -> tuple[list[str], np.ndarray]:
-        """(header, rows) for CSV: omega, then amplitude and phase (deg) of every output."""
+        """(header, rows) for CSV: omega, then amplitude (per m of top motion; per rad of a vessel's rotation
+        ``rot_*_s``) and phase (deg) of every output."""
         head = ["omega [rad/s]"]
         cols = [self.omega]
+        per = unit_of(input) or "m"
         for o in self.output_labels:
             u = unit_of(o) or "-"
-            head += [f"{o}_amp [{u}/m]", f"{o}_phase [deg]"]
+            head += [f"{o}_amp [{u}/{per}]", f"{o}_phase [deg]"]
             cols += [self.amplitude(o, input), np.degrees(self.phase(o, input))]
         return head, np.column_stack(cols)
 

@@ -68,12 +68,19 @@ def _mode_number(name: str, k: int) -> str:
     return parts[1] if len(parts) > 1 and parts[0] == "mode" and parts[1].isdigit() else f"{k + 1}"
 
 
+MAX_TABLE_ROWS = 20      # rows of the natural-frequency table beside an RAO; the rest counted (all in rao_summary.json)
+
+
 def _natural_table(natural: dict) -> str:
-    """The numbered natural frequencies of :func:`_mark` as text lines "number  omega rad/s  name"."""
+    """The numbered natural frequencies of :func:`_mark` as text lines "number  omega rad/s  name", the first
+    MAX_TABLE_ROWS and a line counting the rest."""
     def what(name):                  # "mode 3 (x[10])" -> "x[10]": the number is already in the row
         return name.split("(", 1)[1].rstrip(")") if name.startswith("mode ") and "(" in name else name
-    return "\n".join([" #  omega        largest"] + [f"{_mode_number(name, k):>2} {w:>6.4g} rad/s  {what(name)}"
-                                                    for k, (name, w) in enumerate(natural.items())])
+    rows = [f"{_mode_number(name, k):>2} {w:>6.4g} rad/s  {what(name)}" for k, (name, w) in enumerate(natural.items())]
+    more = len(rows) - MAX_TABLE_ROWS
+    if more > 0:
+        rows = rows[:MAX_TABLE_ROWS] + [f"... {more} more to {max(natural.values()):.4g} rad/s"]
+    return "\n".join([" #  omega        largest"] + rows)
 
 
 def _wrap(title: str, width: int = 70) -> str:
@@ -115,7 +122,7 @@ def plot_rao_bode(raos: dict, output: str, input: str, natural: dict, path, titl
     """
     from ..units import per_input_unit
     plt = _plt()
-    fu, u = per_input_unit(unit_of(output) or "-", units)
+    fu, u = per_input_unit(unit_of(output) or "-", units, unit_of(input) or "m")
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(10.5, 6.5), sharex=True)
     curves = {}
     for name, r in raos.items():
@@ -159,7 +166,7 @@ def plot_rao_bode(raos: dict, output: str, input: str, natural: dict, path, titl
     _mark(a1, shown, forcing=forcing)
     _mark(a2, shown, label=False, forcing=forcing)
     a1.set_xlim(w_lo, w_hi)
-    a1.set_ylabel(f"|{output}| per unit {input} [{u}]")
+    a1.set_ylabel(f"|{output}|" + ("\n" if len(output) > 12 else " ") + f"per unit {input} [{u}]")
     a2.set_ylabel("phase, unwrapped [deg]")
     a2.set_xlabel("forcing frequency omega [rad/s]")
     if zero:
