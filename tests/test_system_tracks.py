@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from cablesys.errors import NumericalWarning, ParameterError
+from cablesys.ladder.steady_tow import steady_run
 from cablesys.model import build_model
 from cablesys.model.system import build_system_model
 from cablesys.scene import Body, Cable, Scene, TopMotion
@@ -111,7 +112,8 @@ def test_the_straight_tow_of_a_graph_is_held_by_the_time_domain():
 def test_the_steady_turn_of_a_graph_turns_rigidly_and_the_time_domain_keeps_it():
     """The towed array on a 75 m circle at 2 m/s: at its steady turn every node moves and accelerates as a point of
     the turning frame, v = Omega x r, a = -Omega^2 (x, 0, z) (Wang 1971 p. 32, towing in a circle), and a run through
-    a sixth of a revolution keeps each point's radius and depth within 1e-6 m (2e-8 m measured)."""
+    a sixth of a revolution keeps each point's radius and depth within 1e-6 m (2e-8 m measured); the model ladder's
+    steady rung (its state carried round the circle) is that run to 1e-6 m and its eigenvalues decay."""
     sc = scene(towed_array(), "circle", duration=40.0)
     model = build_model(sc)
     p = model.parameters(sc)
@@ -129,6 +131,14 @@ def test_the_steady_turn_of_a_graph_turns_rigidly_and_the_time_domain_keeps_it()
         rad = np.hypot(r[f"point.{name}.x"], r[f"point.{name}.z"])
         assert RADIUS - 40.0 < rad[0] < RADIUS and np.max(np.abs(rad - rad[0])) < 1e-6
         assert np.max(np.abs(np.asarray(r[f"point.{name}.y"]) - r[f"point.{name}.y"][0])) < 1e-6
+    # the ladder's steady rung on the same model and start: the steady turn carried round (not stepped) is the run,
+    # point by point and line end by line end, and its rotating-frame eigenvalues all decay
+    s = steady_run(sc, sc, model, x0, 0)
+    assert s.stats["steady"]["stable"] and s.stats["steady"]["kind"] == "turn"
+    for k in [f"point.{n}.{c}" for n in ("split", "a", "b") for c in "xyz"]:
+        np.testing.assert_allclose(s[k], r[k], rtol=0, atol=1e-6)
+    for line in ("tow", "drop_a", "drop_b"):
+        np.testing.assert_allclose(s[f"line.{line}.tension_to"], r[f"line.{line}.tension_to"], rtol=1e-7)
 
 
 def test_a_track_refuses_a_held_system_by_name():
