@@ -425,6 +425,7 @@ def main(argv=None) -> dict:
         "contact_energy_drift_rel": bounce["energy_drift_rel"],
         "bounce_contacts": bounce["contacts"],
         "bounce_duration_s": bounce["duration_s"],
+        "bounce": bounce,
         "lowering_tension_rel_err": lower["max_rel_err"],
         "lowering": lower,
         "payout_mass_rel_err": payout_mass(),
