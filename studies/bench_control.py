@@ -11,7 +11,7 @@ Measured in one run:
 - that optimum re-simulated by CVODES on a 4x finer output grid: the largest relative
   constraint violation;
 - closed loop on a finer plant (Wang's 2-DOF winch, asked for by name, with the scene's 10 drag segments;
-  ``--quick``: 4): PI/feed-forward
+  ``--quick``: 4), 120 s (``--quick``: 20 s): PI/feed-forward
   AHC, MPC with a 20 s horizon (``--quick``: 10 s) and preview, and MPC without preview (the top
   motion predicted by an AR model of its measured past), both by the Gauss-Newton real-time
   iteration: heave in dB against the uncompensated plant run, mean time per MPC step and the
@@ -22,8 +22,9 @@ Measured in one run:
   axial mode at rest, :func:`cablesys.control.payout.fastest_mode`), and Wang's 2-DOF optimum on the same record
   in the same run: wall and IPOPT CPU times and their ratio, iterations, status, heave in dB, IPOPT's time split
   (the Lagrangian Hessian's share); IPOPT with the objective's Gauss-Newton Hessian (the default) and with the
-  exact AD Hessian on the node model, interleaved (exact, Gauss-Newton, twice; ``--quick``: once each): IPOPT CPU
-  and iterations of each and the difference of their optima; ``--only node`` runs this row alone;
+  exact AD Hessian on the node model, interleaved (exact, Gauss-Newton, twice; ``--quick``: the exact once, the
+  Gauss-Newton being the node row's own solve of the same NLP): IPOPT CPU and iterations of each and the difference
+  of their optima; ``--only node`` runs this row alone;
 - the closed loop on the node-model plant (N = 4, the ladder's model of the ROV lift) with the Gauss-Newton MPC on
   Wang's 2-DOF controller (the model mismatch of ``cablesys control``'s default), 120 s with a 20 s horizon
   (``--quick``: 30 s, 10 s): heave in dB against the uncompensated node plant, time per MPC step and the
@@ -196,7 +197,7 @@ def closed_loop_mpc(scene, limits, quick: bool) -> dict:
     top motion predicted from its measured past, ``ARPredictor``) by the Gauss-Newton real-time
     iteration (``GaussNewtonMPC``), and MPC with preview by IPOPT on the full NLP per step (exact
     Hessian, to convergence) as the reference of quality and speed in the same run."""
-    duration, horizon = (30.0, 10.0) if quick else (120.0, 20.0)
+    duration, horizon = (20.0, 10.0) if quick else (120.0, 20.0)
     loop_scene = scene.with_numerics(duration=duration + horizon)
     kw = dict(duration=duration, horizon=horizon, dt=0.5, plant_segments=4 if quick else None, plant_model="wang")
     load0 = os.getloadavg()[0]
@@ -208,7 +209,7 @@ def closed_loop_mpc(scene, limits, quick: bool) -> dict:
                                               model="wang").interval)
     compiled = bool(compiled is not None and compiled.compiled)
     return dict(
-        mpc_step_breakdown_ms=gauss_newton_breakdown(loop_scene, limits, duration, horizon),
+        mpc_step_breakdown_ms=gauss_newton_breakdown(loop_scene, limits, duration, horizon, repeats=5 if quick else 50),
         mpc_no_preview_prediction=prediction_error(loop_scene, limits, duration, horizon),
         mpc_heave_reduction_db=m["mpc"]["heave_reduction_db"], pi_heave_reduction_db=m["pi"]["heave_reduction_db"],
         mpc_no_preview_heave_reduction_db=m["mpc_no_preview"]["heave_reduction_db"],
@@ -229,14 +230,21 @@ def closed_loop_mpc(scene, limits, quick: bool) -> dict:
           "(run after the others; load averages before and after the Gauss-Newton runs in mpc_load_average_1min)")
 
 
-def node_hessians(problem, horizon: float, rounds: int) -> dict:
+def node_hessians(problem, horizon: float, rounds: int, gauss_newton=None) -> dict:
     """IPOPT on the node-model OCP with the exact AD Hessian and with the objective's Gauss-Newton matrix,
     interleaved (exact, Gauss-Newton, ``rounds`` times) in one run under the same load: IPOPT CPU (least of the
     rounds), iterations, and the difference of the two optima (objective, relative; controls but the last, m/s^2:
-    the last interval's alpha moves only the terminal node, a nearly flat direction)."""
+    the last interval's alpha moves only the terminal node, a nearly flat direction). ``gauss_newton``: an optimum
+    of this same problem already solved with the Gauss-Newton Hessian (``--quick``: the node row's own), taken as
+    that Hessian's only round instead of solving the same NLP again (``rounds`` must then be 1)."""
+    if gauss_newton is not None and rounds != 1:
+        raise ValueError("gauss_newton: only with rounds = 1")
     runs = {"exact": [], "gauss-newton": []}
     for _ in range(rounds):
         for h in runs:
+            if h == "gauss-newton" and gauss_newton is not None:
+                runs[h].append(gauss_newton)
+                continue
             runs[h].append(optimal_payout(problem, horizon, max_iter=300, hessian=h))
     best = {h: min(r, key=lambda x: x.stats["ipopt_timing_s"]["t_proc_total"]) for h, r in runs.items()}
     e, g = best["exact"], best["gauss-newton"]
@@ -250,8 +258,11 @@ def node_hessians(problem, horizon: float, rounds: int) -> dict:
                                        "hessian_proc_s": best[h].stats["ipopt_timing_s"].get("t_proc_nlp_hess_l"),
                                        "jacobian_proc_s": best[h].stats["ipopt_timing_s"].get("t_proc_nlp_jac_g")}
                                    for h in runs},
-                node_ocp_hessian_note=f"the same NLP, IPOPT tol 1e-8; interleaved exact, gauss-newton x {rounds} "
-                                      "in one run; ipopt_proc_s per round, speedup from the least of each")
+                node_ocp_hessian_note=(f"the same NLP, IPOPT tol 1e-8; interleaved exact, gauss-newton x {rounds} "
+                                       "in one run; ipopt_proc_s per round, speedup from the least of each")
+                if gauss_newton is None else
+                "the same NLP, IPOPT tol 1e-8; exact solved here, gauss-newton the node row's own solve of the same "
+                "NLP earlier in the run (--quick: not interleaved); ipopt_proc_s per round")
 
 
 def node_plant_mpc(scene, limits, quick: bool, segments: int = 4) -> dict:
@@ -302,6 +313,8 @@ def node_ocp(scene, limits, horizon: float, segments: int = 4, rounds: int = 2) 
         compiled = pr.nlp_functions()[2]             # builds (or loads) the kernels of this structure
         setup_s = time.perf_counter() - t0
         res = optimal_payout(pr, horizon, max_iter=300)
+        if name == "node":
+            gn_result = res
         timing = res.stats["ipopt_timing_s"]
         out[name] = dict(wall_s=res.stats["solve_s"], iterations=res.stats["iterations"], status=res.status,
                          heave_reduction_db=res.heave_reduction_db, rk4_steps_per_interval=pr.substeps,
@@ -310,7 +323,9 @@ def node_ocp(scene, limits, horizon: float, segments: int = 4, rounds: int = 2) 
                          hessian_share_proc=timing.get("t_proc_nlp_hess_l", 0.0) / timing["t_proc_total"],
                          ipopt_timing_s=timing, kernels_compiled=compiled, kernels_setup_s=setup_s)
     n, w = out["node"], out["wang"]
-    hessians = node_hessians(heave_problem(sc, limits, dt=0.5, model="segmented", segments=segments), horizon, rounds)
+    # one round (--quick): the node row's optimum above is the Gauss-Newton round (the same NLP), not solved twice
+    hessians = node_hessians(heave_problem(sc, limits, dt=0.5, model="segmented", segments=segments), horizon, rounds,
+                             gauss_newton=gn_result if rounds == 1 else None)
     return dict(**hessians, node_ocp_wall_s=n["wall_s"], node_ocp_iterations=n["iterations"], node_ocp_status=n["status"],
                 node_ocp_heave_reduction_db=n["heave_reduction_db"],
                 node_ocp_rk4_steps_per_interval=n["rk4_steps_per_interval"],

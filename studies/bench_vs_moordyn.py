@@ -58,7 +58,10 @@ crane tip moved in x, y, z by a vessel's 6-DOF RAO in a regular wave) and ``curr
 current at 45 deg; MoorDyn drifts into the current before its run, its own equilibrium being in still water), each
 measured by :func:`bench_case` as the planar cases, with ``checks`` (closed forms and independent routes),
 ``differs_from_moordyn_by_more_than_2pc`` and ``planar_ratio`` (the planar heave scene as dispatched against the
-planar path, and against the 3-D equations: ``planar``).
+planar path, and against the 3-D equations: ``planar``). Their ``--quick`` run (tests/test_bench_3d.py: physical
+checks, no timing) has no auto row and no converged reference (the errors against it null) and runs cablesys in
+CasADi's virtual machine (``cablesys_compiled`` false, the Wang row's ``compiled`` false): its speeds are the VM's,
+the compiled ones are the full run's.
 
     python studies/bench_vs_moordyn.py --out DIR [--quick] [--case heave_T6 [--slack-flags=-O1,-O2,-O3]]
     python studies/bench_vs_moordyn.py --out DIR [--quick] --case turn --case crane_rao --case current45
@@ -486,20 +489,30 @@ def _rk(sc, tight_stats, period, md_wall):
             "error_vs_own_tight": _diff(_stats(res, period), tight_stats) if res.success else None}
 
 
-def bench_case(name, scene, period, ns, taut, quick, keep=None, flags=(), auto=True):
+def bench_case(name, scene, period, ns, taut, quick, keep=None, flags=(), auto=True, compile_=True, reference=True):
     """One case's row: MoorDyn and the segmented cable at each N of ``ns``, then Wang's model and auto against
     the converged reference (``auto=False``: not the auto row, which says why; the 3-D cases' quick mode, whose
-    steady turn sends auto's checks to N = 128 over two revolutions, minutes for a check the test does not read)."""
+    steady turn sends auto's checks to N = 128 over two revolutions, minutes for a check the test does not read).
+    ``compile_=False``: cablesys in CasADi's virtual machine throughout (the 3-D cases' quick mode, whose checks are
+    physical: on a fresh cache compiling their few short runs' structures cost more than the runs).
+    ``reference=False``: no converged reference (2 x the largest N, the errors ``*_vs_converged`` and the Wang row's
+    ``error`` null, ``reference`` says why; the 3-D cases' quick mode: the reference run was two thirds of their
+    cablesys runs, for numbers the test does not read)."""
     if not taut:
         return bench_slack_case(name, scene, period, ns, timed_run=_timed_run, prepared=_prepared,
                                 compiled_ctx=_compiled, segments=_segments, keep=keep, flags=flags)
     dur = scene.numerics.duration
     row = {"case": name, "scene": scene.name, "duration_s": dur, "period_s": period, "taut": taut, "by_n": []}
     n_conv = 2 * max(ns) if taut else max(ns)   # partial slack: 2x the largest N is out of reach here
-    with _compiled(False):
-        ref = simulate(_segments(scene, n_conv), method="cvodes", rtol=1e-7, atol=1e-10)
-    ref_stats = _stats(ref, period)
-    row["reference"] = {"segments": n_conv, "stats": ref_stats, "success": ref.success}
+    if reference:
+        with _compiled(False):
+            ref = simulate(_segments(scene, n_conv), method="cvodes", rtol=1e-7, atol=1e-10)
+        ref_stats = _stats(ref, period)
+        row["reference"] = {"segments": n_conv, "stats": ref_stats, "success": ref.success}
+    else:
+        ref_stats = None
+        row["reference"] = {"skipped": "quick mode of a 3-D case: the full run measures the converged reference"}
+    vs_ref = lambda st: None if ref_stats is None else _diff(st, ref_stats)
     md_small = None
     for n in ns:
         sc = _segments(scene, n)
@@ -507,7 +520,7 @@ def bench_case(name, scene, period, ns, taut, quick, keep=None, flags=(), auto=T
         dt = largest_stable_dt(sc, n, probe_s=min(dur, 10.0) if taut else None, agree=None if taut else _slack_agree(period))
         md, _, _ = _timed(lambda sc=sc, n=n, dt=dt: run_moordyn(sc, n, dt))
         md_stats = _moordyn_stats(md, period)
-        compiled = n <= COMPILE_MAX_ELEMENTS
+        compiled = compile_ and n <= COMPILE_MAX_ELEMENTS
         with _compiled(compiled):
             tight = simulate(sc, method="cvodes", rtol=1e-7, atol=1e-10)
             tight_stats = _stats(tight, period)
@@ -523,14 +536,14 @@ def bench_case(name, scene, period, ns, taut, quick, keep=None, flags=(), auto=T
                     extra["cablesys_vm"] = {"s_per_s": wall_vm / dur, "setup_s": setup_vm}
             if taut and compiled and not quick:
                 extra["cablesys_rk"] = _rk(sc, tight_stats, period, md["wall_s"])
-        entry = {"segments": n, "cablesys_compiled": n <= COMPILE_MAX_ELEMENTS, "moordyn_dt_s": dt, "moordyn_s_per_s": md["wall_s"] / dur,
+        entry = {"segments": n, "cablesys_compiled": compiled, "moordyn_dt_s": dt, "moordyn_s_per_s": md["wall_s"] / dur,
                  "moordyn_stable": md["stable"], "moordyn_stats": md_stats,
                  "moordyn_slack_fraction_per_segment": md["slack_fraction_per_segment"].tolist(),
                  "cablesys_stats": tight_stats,
                  "cablesys_vs_moordyn": _diff(tight_stats, md_stats),
                  "cablesys_vs_moordyn_segments": _diff(_segment_stats(tight, period), md_stats),
-                 "cablesys_error_vs_converged": _diff(tight_stats, ref_stats),
-                 "moordyn_error_vs_converged": _diff(md_stats, ref_stats)}
+                 "cablesys_error_vs_converged": vs_ref(tight_stats),
+                 "moordyn_error_vs_converged": vs_ref(md_stats)}
         if m:
             res, wall, first, how = m
             setup = extra["cablesys_profile"]["setup_s"]
@@ -548,7 +561,7 @@ def bench_case(name, scene, period, ns, taut, quick, keep=None, flags=(), auto=T
     helpers = {"stats": _stats, "diff": _diff, "compiled_ctx": _compiled}
     # Wang's 2-DOF model itself (issue 13), whatever the scene's own segments
     row["wang"] = wang_row(_segments(scene, 1), period, ref_stats, md_small, matched=_matched, timed_run=_timed_run,
-                           **helpers)
+                           compiled=compile_, **helpers)
     row["auto"] = (auto_row(scene, period, ref_stats, md_small, stats=_stats, diff=_diff) if auto else
                    {"skipped": "quick mode of a 3-D case: the full run measures auto"})
     row["wang_speedup"] = row["wang"].get("speedup")
@@ -594,8 +607,9 @@ def main(argv=None):
     for c in cases(args.quick, args.slack_duration, args.slack_n) + three_d:
         if args.case and c[0] not in args.case:
             continue
+        full_3d = not (args.quick and c[0] in CASES_3D)    # a 3-D case's quick run: no auto, compile or reference
         rows.append(bench_case(*c, args.quick, keep=args.out / "moordyn_steps.json", flags=args.slack_flags,
-                               auto=not (args.quick and c[0] in CASES_3D)))
+                               auto=full_3d, compile_=full_3d, reference=full_3d))
         if c[0] in CASES_3D:      # issue 24: closed-form checks, agreement, planar_ratio (_bench_3d)
             rows[-1]["checks"] = CHECKS[c[0]](c[1], rows[-1])
             rows[-1]["differs_from_moordyn_by_more_than_2pc"] = agreement(rows[-1])

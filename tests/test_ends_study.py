@@ -14,6 +14,9 @@ def test_ends_checks_quick(run_study):
     assert abs(res["catenary_seabed_order"] - 2.0) < 0.05
     assert res["sloped_seabed_max_rel_err"] < 1e-9
     assert res["resting_chain_drift_m"] < 1e-6
+    # the rope dropped on the bed (no drag, friction or contact damping): energy to 1e-4 of the drop over 6 s and at
+    # least 6 contacts (tests/test_ends.py ran the same rope for 4 s against the same bound: this check holds it)
+    assert res["bounce"]["success"] and res["bounce"]["reached_s"] == pytest.approx(6.0)
     assert res["contact_energy_drift_rel"] < 1e-4 and res["bounce_contacts"] >= 6
     # Table 1 from the shared cable: the five in-plane modes within 0.25 % of Triantafyllou's printed values
     # (printed to three figures, 0.09-0.23 %: the first three inside that rounding, the fourth and fifth ~2x it)
@@ -35,8 +38,11 @@ def test_ends_checks_quick(run_study):
     coarse, fine = res["payout_haulin_rtol_sweep"]
     assert (coarse["rtol"], fine["rtol"]) == (1e-6, 1e-8) and fine["return_max_abs_m"] < coarse["return_max_abs_m"] / 30
     assert res["haulin_tension_rel_err"] < 5e-4 and res["payout_haulin"]["haulin_drag_share"] > 0.15
-    # a span's free decay in water: the time series' frequencies are the linear modes' (the issue: 1 %)
-    assert res["span_decay_vs_modes_max_rel_err"] < 1e-3
+    # a span's free decay in water: the time series' frequencies are the linear modes' (the issue: 1 %). The quick run
+    # leaves it to studies/span_dynamics.py --quick, whose water decays are the same two runs: the same bound (1e-3)
+    # is asserted there (tests/test_span_dynamics.py::test_decay_in_water_keeps_the_linear_frequencies)
+    assert res["span_decay_vs_modes_max_rel_err"] is None
+    assert "span_dynamics.py --quick" in res["run_elsewhere_in_quick"]["span_decay_vs_modes_max_rel_err"]
     # the seabed in space. A planar mooring (axial and lateral friction, fairlead in surge and heave) forced through the
     # 3-D equations: its right-hand side is the planar one to 1e-10 (relative), no sway, and the runs agree to the
     # integrator's tolerance (rtol 1e-9 on a 300 m line); turned by 35 degrees about the vertical (anchor, fairlead
