@@ -151,6 +151,45 @@ def test_a_track_refuses_a_held_system_by_name():
         scene(held, "straight")
 
 
+def two_booms() -> System:
+    """A sled towed from two booms of one ship 20 m apart across the course (two prescribed points), a 50 m wire from
+    each."""
+    sled = Body(weight=3000.0, mass_x=500.0, mass_y=600.0, mass_z=500.0, drag_area_normal=0.5,
+                drag_area_tangential=0.3, axis_angle_deg=0.0)
+    return System(point=(Point(name="port", kind="prescribed"), Point(name="stbd", kind="prescribed", x=0.0, y=0.0,
+                                                                      z=20.0),
+                         Point(name="sled", kind="body", body=sled, x=-20.0, y=40.0, z=10.0)),
+                  line=(Line(name="p", start="port", end="sled", section=(wire(4, 50.0),)),
+                        Line(name="s", start="stbd", end="sled", section=(wire(4, 50.0),))))
+
+
+def test_a_sled_towed_from_two_booms_on_a_straight_course():
+    """Two prescribed points of one ship on a straight course keep their places about each other (the heading holds):
+    the steady tow has no node accelerating (1e-7 m/s^2), the sled midway across (z = 10 m) with equal wire tensions
+    by symmetry (1e-9), towed well back; a 20 s run (CVODES, rtol 1e-10) keeps every point's place behind the booms
+    within 1e-6 m, and the ladder's steady rung on the same model and start is that run (1e-6 m). On a circle the two
+    points would swing round with the ship's heading: refused by name before any work."""
+    sc = scene(two_booms(), "straight")
+    model = build_model(sc)
+    p = model.parameters(sc)
+    x0 = initial_state(sc, model, p)
+    assert np.max(np.abs(np.array(model.ode(x0, 0.0, p)).ravel()[model.nq:])) < 1e-7
+    r = Simulator(model, sc.output_times, IntegratorSettings(method="cvodes", rtol=1e-10, atol=1e-12)).run(p, x0)
+    assert r.success
+    np.testing.assert_allclose(r["point.stbd.x"], r["point.port.x"], atol=1e-12)      # both moved by the track
+    assert r["point.sled.z"][0] == pytest.approx(10.0, abs=1e-9)
+    assert r["line.p.tension_from"][0] == pytest.approx(r["line.s.tension_from"][0], rel=1e-9)
+    rel = np.asarray(r["point.sled.x"]) - np.asarray(r["point.port.x"])
+    assert rel[0] < -20.0 and np.max(np.abs(rel - rel[0])) < 1e-6
+    assert np.max(np.abs(np.asarray(r["point.sled.y"]) - r["point.sled.y"][0])) < 1e-6
+    s = steady_run(sc, sc, model, x0, 0)
+    assert s.stats["steady"]["stable"] and s.stats["steady"]["kind"] == "tow"
+    for k in [f"point.sled.{c}" for c in "xyz"]:
+        np.testing.assert_allclose(s[k], r[k], rtol=0, atol=1e-6)
+    with pytest.raises(ParameterError, match=r"top_motion\.track.*straight course with 2 prescribed points"):
+        scene(two_booms(), "circle")
+
+
 def test_a_body_whose_masses_change_with_the_heading_is_warned_of_and_rings_about_the_turn():
     """A point body's virtual masses are fixed in the scene's axes (Wang 1971 eq. 16): with mass_z = 1.1 mass_x the
     steady turn is an equilibrium at the start's heading only. Its statics warn, naming the field, and the run moves

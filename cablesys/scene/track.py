@@ -187,6 +187,11 @@ class Track:
         return self.kind == "circle"
 
     @property
+    def keeps_heading(self) -> bool:
+        """True for a track whose heading never changes: a straight course, or a path of straight legs alone."""
+        return self.kind == "straight" or (self.kind == "path" and all(g.kind == "straight" for g in self.leg))
+
+    @property
     def in_plane(self) -> bool:
         """True for a straight track with no heading set: the tow point moves along +x, in the x-y plane."""
         return self.kind == "straight" and self.heading_deg is None
