@@ -168,5 +168,6 @@ def test_cablesys_run_on_a_tow_says_the_steady_rung_ran(tmp_path, capsys):
     assert main(["run", str(f), "--out", str(tmp_path / "out")]) == 0
     text = capsys.readouterr().out
     assert "model steady, N = 16" in text and "steady turn" in text and "least damped" in text
+    assert "not stepped (steady state" in text and "integrator" not in text     # no integrator to name
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     assert summary["model"]["name"] == "steady" and summary["success"]

@@ -347,9 +347,13 @@ def _print_summary(summary: dict, units: str = "SI") -> None:
         from ..ladder.auto import describe
         print(describe(summary["model"]))
     st = summary["stats"]
-    print(f"integrator {st['method']}: {st.get('nsteps', '-')} steps, {st.get('nfevals', st.get('nresevals', '-'))} "
-          f"rhs evaluations, {st['wall_s'] * 1e3:.0f} ms (+ {st['build_s'] * 1e3:.0f} ms build)"
-          + (f"; step budget {st['max_num_steps']} per output interval" if "max_num_steps" in st else ""))
+    if st["method"] in ("steady state", "periodic collocation"):     # the steady and frequency rungs: nothing stepped
+        print(f"not stepped ({st['method']}, sampled at the output times): {st['wall_s'] * 1e3:.0f} ms "
+              f"(+ {st['build_s'] * 1e3:.0f} ms build)")
+    else:
+        print(f"integrator {st['method']}: {st.get('nsteps', '-')} steps, {st.get('nfevals', st.get('nresevals', '-'))} "
+              f"rhs evaluations, {st['wall_s'] * 1e3:.0f} ms (+ {st['build_s'] * 1e3:.0f} ms build)"
+              + (f"; step budget {st['max_num_steps']} per output interval" if "max_num_steps" in st else ""))
     from ..units import output_unit
     for unit in ("m", "rad", "N"):
         f, name = output_unit(unit, units)
