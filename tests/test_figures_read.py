@@ -337,3 +337,9 @@ def test_a_systems_rigid_body_gets_an_attitude_panel(tmp_path, monkeypatch):
     (line,) = [ln for ln in ax.lines if ln.get_label() == "pkg pitch"]
     np.testing.assert_allclose(line.get_ydata(), np.degrees(data["point.pkg.theta_b"]))
     _assert_legend_complete(ax)
+    # two points at one place (a package above its sinker, seen from above): their names one under the other
+    data["node_x[3]"], data["node_y[3]"] = data["node_x[2]"], data["node_y[2]"]
+    sys_plots.plot_system_series(TimeResult(time=t, data=data, scene_name="synthetic"), tmp_path / "c.png",
+                                 lines=lines, points={**points, "sinker": ("fixed", 3)})
+    notes = {a.get_text(): a.xyann for a in _axis(seen[2], "shape").texts}
+    assert notes["pkg (body)"][1] - notes["sinker (fixed)"][1] >= 8

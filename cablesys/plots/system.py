@@ -36,10 +36,14 @@ def _shape(ax, prof: dict, lines: dict, points: dict, fl: float, ul: str, plan: 
         if not (is_steady(nx[:, idx], ATOL_LENGTH) and is_steady(nv[:, idx], ATOL_LENGTH)):
             for i in (int(np.argmin(nv[:, idx].mean(axis=1))), int(np.argmax(nv[:, idx].mean(axis=1)))):
                 ax.plot(nx[i, idx] * fl, nv[i, idx] * fl, color=f"C{k}", lw=0.6, ls=":")
+    seen = {}                                # points drawn at one place (a package above its sinker, seen from above)
+    scale = max(np.ptp(nx), np.ptp(nv), 1e-9) * fl
     for name, (kind, node) in points.items():
         x, v = nx[:, node].mean() * fl, nv[:, node].mean() * fl
         ax.plot(x, v, _MARK[kind], color="k", ms=6, mfc="w" if kind == "fixed" else "k")
-        ax.annotate(f"{name} ({kind})", (x, v), textcoords="offset points", xytext=(4, 4), fontsize=7)
+        at = (round(x / scale, 2), round(v / scale, 2))
+        k = seen[at] = seen.get(at, -1) + 1      # the k-th name at that place goes k lines lower
+        ax.annotate(f"{name} ({kind})", (x, v), textcoords="offset points", xytext=(4, 4 - 9 * k), fontsize=7)
     if not plan:
         ax.invert_yaxis()
     ax.set_aspect("equal", adjustable="datalim")
