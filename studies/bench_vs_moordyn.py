@@ -492,8 +492,8 @@ def _rk(sc, tight_stats, period, md_wall):
 
 def bench_case(name, scene, period, ns, taut, quick, keep=None, flags=(), auto=True, compile_=True, reference=True):
     """One case's row: MoorDyn and the segmented cable at each N of ``ns``, then Wang's model and auto against
-    the converged reference (``auto=False``: not the auto row, which says why; the 3-D cases' quick mode, whose
-    steady turn sends auto's checks to N = 128 over two revolutions, minutes for a check the test does not read).
+    the converged reference (``auto=False``: not the auto row, which says why; the 3-D cases' quick mode, whose test
+    reads no auto figure: auto's a posteriori climbs on the wave scenes cost more than the quick runs).
     ``compile_=False``: cablesys in CasADi's virtual machine throughout (the 3-D cases' quick mode, whose checks are
     physical: on a fresh cache compiling their few short runs' structures cost more than the runs).
     ``reference=False``: no converged reference (2 x the largest N, the errors ``*_vs_converged`` and the Wang row's
