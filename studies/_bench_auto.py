@@ -62,10 +62,11 @@ def auto_row(scene, period, ref_stats, md_small, *, stats, diff, repeats=AUTO_RE
     integrator settings (issue 12), one RungCache for the calls, compiled (:func:`_ladder_auto.run_auto`, as the
     model-ladder study times it). The first call builds (models, compiled code, the describing-function solver);
     the least of each figure over it and ``repeats`` further calls gives ``choose_s`` (steady state, describing
-    function, estimates), ``check_s`` (a posteriori runs) and ``run_s`` (the chosen run with its integrator guard
-    and start: stepping and outputs, as MoorDyn's time is). ``speedup`` counts the choice and the checks
-    (choose_s + check_s + run_s), ``speedup_run_only`` the run alone; both against MoorDyn at the smallest N of
-    the case. ``error``: against the converged reference of ``stats(result, period)`` (what auto reports).
+    function, estimates), ``check_s`` (a posteriori runs, a grown N's runs among them) and ``run_s`` (the first run of
+    the chosen rung and N with its integrator guard and start: stepping and outputs, as MoorDyn's time is);
+    ``kept_run_s`` is the run whose result auto reports (:func:`_ladder_auto.kept_run_s`: the last candidate, at a
+    grown N or the check's rtol). ``speedup`` counts the choice and the checks (choose_s + check_s + run_s),
+    ``speedup_run_only`` the reported run alone (kept_run_s); both against MoorDyn at the smallest N of the case. ``error``: against the converged reference of ``stats(result, period)`` (what auto reports).
     ``load_average``: the machine's 1-minute load when measured. ``more(result)``: further entries of the row."""
     dur = scene.numerics.duration
     try:
@@ -76,12 +77,13 @@ def auto_row(scene, period, ref_stats, md_small, *, stats, diff, repeats=AUTO_RE
         return {"failed": f"{type(err).__name__}: {err}"}
     t, cold = info["ladder_timing"], info["ladder_timing_first"]["total_s"]
     waited = t["choose_s"] + t["check_s"] + t["run_s"]
-    return {"s_per_s": waited / dur, "run_s_per_s": t["run_s"] / dur, "choose_s": t["choose_s"], "check_s": t["check_s"],
-            "run_s": t["run_s"], "build_s": cold - t["total_s"], "first_call_s": cold,
+    return {"s_per_s": waited / dur, "run_s_per_s": info["kept_run_s"] / dur, "choose_s": t["choose_s"],
+            "check_s": t["check_s"], "run_s": t["run_s"], "kept_run_s": info["kept_run_s"],
+            "build_s": cold - t["total_s"], "first_call_s": cold,
             "error": diff(stats(res, period), ref_stats) if res.success else None, "success": bool(res.success),
             "model": res.stats.get("model"), "method": res.stats.get("method"), "steps": res.stats.get("nsteps"),
             "compiled": res.stats.get("compiled"), "speedup_vs_moordyn_n": md_small[0],
-            "speedup": md_small[1] / waited, "speedup_run_only": md_small[1] / t["run_s"],
+            "speedup": md_small[1] / waited, "speedup_run_only": md_small[1] / info["kept_run_s"],
             "load_average": os.getloadavg()[0], "repeats": repeats, **(more(res) if more and res.success else {})}
 
 

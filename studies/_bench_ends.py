@@ -370,16 +370,17 @@ NOTES = {
                                 "chain creep back towards the frictionless state, ends_checks' laid_line_creep_m). "
                                 "The benchmark's cablesys runs start as MoorDyn's; auto runs as a user runs it (laid "
                                 "down), and its reference (N = 40, rtol 1e-7) starts the same way.",
-    "mooring_speed": "Run of 2026-12-05 06:41-06:42 UTC (this JSON), load 1.0 on 2 cores (nothing else running): "
-                     "MoorDyn N = 20 at 8.84 ms, 9051 steps, 0.154 s wall, 0.176 s CPU (the whole call, its stationary "
+    "mooring_speed": "Run of 2026-12-05 10:37-10:38 UTC (this JSON), load 1.0 on 2 cores (nothing else running): "
+                     "MoorDyn N = 20 at 8.84 ms, 9051 steps, 0.167 s wall, 0.189 s CPU (the whole call, its stationary "
                      "solver included); cablesys segmented N = 20, BDF(<= 2) at rtol 1e-2, the loosest of "
                      "_common.BDF_RTOLS within matched accuracy (tension 0.33 % from its own tight run), 545 steps, "
-                     "0.013 s: speedup 12.0 (target >= 5: met; 8.5 at rtol 1e-3 on 2026-12-03). Auto (N = 20 from the "
-                     "scene's cable, checked a posteriori against N = 10 and against rtol 1e-5; the node model is the "
-                     "only rung for an anchored line): choose 0.1 ms + run 0.022 s + checks 0.069 s = 0.090 s: "
-                     "auto_speedup 1.7 (7.2 run only; target >= 20: missed: the a posteriori checks are 3 / 4 of the "
-                     "wait, and the run alone at auto's rtol 1e-4 is 7x); its error against the reference 0.30 % "
-                     "(stated 0.70 %).",
+                     "0.014 s: speedup 11.9 (target >= 5: met). Auto (N = 20 from the scene's cable, checked a "
+                     "posteriori against N = 10 and against rtol 1e-5; the node model is the only rung for an anchored "
+                     "line): choose 0.1 ms + run 0.022 s + checks 0.072 s = 0.095 s: auto_speedup 1.76 (target >= 20: "
+                     "missed); speedup_run_only 4.5, the run auto reports (N = 20 at the check's rtol 1e-5, 0.037 s; "
+                     "the 7.2 reported before was its first run at rtol 1e-4); its error against the reference 0.30 % "
+                     "(stated 0.70 %). Started at N = 10 (simulate(segments=10)) the check against N = 5 misses "
+                     "(tension_bottom_min 5.6 %) and the plan climbs to N = 24: 0.32 s.",
     "lowering_law": "MoorDyn pays out as cablesys does (nodes at fixed fractions of L, mass, weight and buoyancy from "
                     "L). Left out on both sides because MoorDyn lacks them: the material strain rate (its Voigt damping "
                     "sees the rate of stretch of a segment, BA w / L of compression damping in a steady payout: C_I "
@@ -392,10 +393,10 @@ NOTES = {
                     "1.4 % of the 4.15 kN maximum (1.2 % seen). Both within 0.09 % of the closed form "
                     "W_b + w L - 1/2 rho C_D A v^2 (drag 25 % of the load) over the constant-speed part.",
     "lowering_speed": "Same run: MoorDyn N = 20 at 0.427 ms (the 1 m elements of the 20 m start set RK4's axial "
-                      "limit), 2.41 s wall, 2.53 s CPU; cablesys segmented N = 20, BDF(<= 2) rtol 1e-4 (tension 0.55 % "
+                      "limit), 2.51 s wall, 2.63 s CPU; cablesys segmented N = 20, BDF(<= 2) rtol 1e-4 (tension 0.55 % "
                       "from its tight run; the looser ones of _common.BDF_RTOLS miss matched accuracy), 478 steps, "
-                      "0.013 s: speedup 179 (target >= 5: met); auto N = 20 checked against 10 and rtol 1e-5, 0.049 s: "
-                      "auto_speedup 49 (184 run only; target >= 20: met), error 0.17 % (stated 0.23 %).",
+                      "0.014 s: speedup 178 (target >= 5: met); auto N = 20 checked against 10 and rtol 1e-5, 0.051 s: "
+                      "auto_speedup 50 (target >= 20: met; the run it reports alone 152x), error 0.17 % (stated 0.23 %).",
     "moordyn_wheel": "The moordyn 2.7.2 wheel's SetLineUnstretchedLength and SetLineUnstretchedLengthVel drop a reference "
                      "to None per call (CPython aborts with 'deallocating None' after ~6000 calls); _moordyn.winch_hook "
                      "gives the references back (ctypes Py_IncRef).",

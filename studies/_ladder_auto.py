@@ -67,12 +67,21 @@ def integrator_text(settings: list, compiled: bool) -> str:
     return f"auto ({what}, {'compiled' if compiled else 'VM'})"
 
 
+def kept_run_s(timing: dict) -> float:
+    """Wall seconds of the run whose result auto reports, from one call's ``ladder_timing``: its plan's last candidate
+    run (a grown N's, or the same N again at the check's rtol), which ``run_s`` (the first candidate's) is not where
+    a check grew N or tightened the rtol; ``run_s`` where the plan logs no run (the extrapolation keeps its own)."""
+    runs = [r for r in timing.get("runs", ()) if r["candidate"]]
+    return float(runs[-1]["wall_s"]) if runs else float(timing["run_s"])
+
+
 def run_auto(scene, compiled: bool, repeats: int = 1, **kw) -> tuple:
     """(first result, info) of ``simulate(scene, **kw)`` called ``repeats`` times on one cache.
 
     ``info``: ``integrator`` (:func:`integrator_text` of the first call), ``method``/``rtol`` lists,
     ``ladder_timing_first`` (fresh cache), ``ladder_timing`` (least of each figure over the calls),
-    ``wall_s`` (least total less building: choose + run + check), ``compiled``."""
+    ``wall_s`` (least total less building: choose + run + check), ``kept_run_s`` (least :func:`kept_run_s`),
+    ``compiled``."""
     cache = RecordingCache()
     with compiling(compiled), warnings.catch_warnings():
         warnings.simplefilter("ignore", NumericalWarning)
@@ -82,10 +91,12 @@ def run_auto(scene, compiled: bool, repeats: int = 1, **kw) -> tuple:
         for _ in range(repeats - 1):
             timings.append(dict(simulate(scene, cache=cache, **kw).stats["ladder_timing"]))
     best = {k: min(t[k] for t in timings) for k in TIMES}
+    kept = [kept_run_s(t) for t in timings]
     compiled = bool(result.stats.get("compiled", compiled))        # as it ran (a failed compilation runs in the VM)
     return result, {"integrator": integrator_text(used, compiled), "methods": [s.method for s in used],
                     "rtols": [s.rtol for s in used], "ladder_timing_first": timings[0], "ladder_timing": best,
                     "wall_s": min(t["total_s"] - t["build_s"] for t in timings), "calls": len(timings),
+                    "kept_run_s": min(kept),
                     "compiled": compiled, "load_1min": os.getloadavg()[0]}
 
 

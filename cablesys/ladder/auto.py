@@ -376,8 +376,9 @@ def simulate(scene: Scene, *, model=None, tolerance=None, segments: int | None =
         a posteriori check, ``estimated_error_per_quantity`` (every quantity of :func:`.metrics.statistics`, each
         relative to its own value with an absolute floor: :func:`.metrics.quantity_errors`);
         ``stats["ladder_timing"]``: wall seconds ``choose_s`` (steady state, linearization, describing function,
-        estimates), ``build_s`` (models and simulators, incl. loading compiled code), ``run_s`` (the chosen run),
-        ``check_s`` (a posteriori runs), ``total_s``, and ``runs``: each time-domain run of the plan but the
+        estimates), ``build_s`` (models and simulators, incl. loading compiled code), ``run_s`` (the first run of the chosen
+        rung and N), ``check_s`` (a posteriori runs: a grown N's and the reported run at the check's rtol among them),
+        ``total_s``, and ``runs``: each time-domain run of the plan but the
         extrapolation's (which ``model.extrapolated.plan`` lists), in order (:func:`log_run`). A rung named outside its validity warns
         (:class:`~cablesys.errors.NumericalWarning`) with the reason.
     """
