@@ -216,7 +216,7 @@ def _run(args) -> int:
             summary["timing"]["build_s"] += float(result.stats.get("ladder_timing", {}).get("build_s", 0.0))
         summary["model"] = info
         outdir.finish("success" if result.success else "failed", **summary)
-    _print_summary(summary, units)
+    sys.stdout.write("\n".join(summary_lines(summary, units)) + "\n")
     print(f"wrote {out}/ ({', '.join(outdir.files)}, summary.json)")
     if not result.success:
         print(f"error: {result.message}")
@@ -341,40 +341,43 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
     return summary
 
 
-def _print_summary(summary: dict, units: str = "SI") -> None:
-    print(f"scene: {summary['scene']}")
+def summary_lines(summary: dict, units: str = "SI") -> list[str]:
+    """The console report of a run's ``summary`` (write_run's dict) in ``units``: the model and why, the integrator
+    (or that nothing was stepped), amplitudes, tension extremes, the statistics window, statistics and verdicts."""
+    lines = [f"scene: {summary['scene']}"]
     if "model" in summary:
         from ..ladder.auto import describe
-        print(describe(summary["model"]))
+        lines.append(describe(summary["model"]))
     st = summary["stats"]
     if st["method"] in ("steady state", "periodic collocation"):     # the steady and frequency rungs: nothing stepped
-        print(f"not stepped ({st['method']}, sampled at the output times): {st['wall_s'] * 1e3:.0f} ms "
-              f"(+ {st['build_s'] * 1e3:.0f} ms build)")
+        lines.append(f"not stepped ({st['method']}, sampled at the output times): {st['wall_s'] * 1e3:.0f} ms "
+                     f"(+ {st['build_s'] * 1e3:.0f} ms build)")
     else:
-        print(f"integrator {st['method']}: {st.get('nsteps', '-')} steps, {st.get('nfevals', st.get('nresevals', '-'))} "
-              f"rhs evaluations, {st['wall_s'] * 1e3:.0f} ms (+ {st['build_s'] * 1e3:.0f} ms build)"
-              + (f"; step budget {st['max_num_steps']} per output interval" if "max_num_steps" in st else ""))
+        lines.append(f"integrator {st['method']}: {st.get('nsteps', '-')} steps, "
+                     f"{st.get('nfevals', st.get('nresevals', '-'))} rhs evaluations, {st['wall_s'] * 1e3:.0f} ms "
+                     f"(+ {st['build_s'] * 1e3:.0f} ms build)"
+                     + (f"; step budget {st['max_num_steps']} per output interval" if "max_num_steps" in st else ""))
     from ..units import output_unit
     for unit in ("m", "rad", "N"):
         f, name = output_unit(unit, units)
         for k, v in summary.get(f"amplitudes_{unit}", {}).items():
-            print(f"  amplitude {k:14s} {v * f:.6g} {name}")
+            lines.append(f"  amplitude {k:14s} {v * f:.6g} {name}")
     fn, name_n = output_unit("N", units)
     bottom = summary.get("tension_bottom_at", "at the body")
     for end, what in (("top", "at the top"), ("bottom", bottom)):   # the same meaning for every model
         lo, hi = summary.get(f"tension_{end}_min_N"), summary.get(f"tension_{end}_max_N")
         if lo is not None and hi is not None:
-            print(f"  tension {what} min/max {lo * fn:.4g} / {hi * fn:.4g} {name_n} (over the run)")
-    print(f"  time slack {summary['time_slack_s']:.3g} s")
+            lines.append(f"  tension {what} min/max {lo * fn:.4g} / {hi * fn:.4g} {name_n} (over the run)")
+    lines.append(f"  time slack {summary['time_slack_s']:.3g} s")
     if "window" in summary:
         w = summary["window"]
-        print(f"  statistics window {w['start_s']:.4g} - {w['end_s']:.4g} s ({w['how']})")
+        lines.append(f"  statistics window {w['start_s']:.4g} - {w['end_s']:.4g} s ({w['how']})")
     from ..verdict import format_statistics, format_table, steady_shape_lines
-    for line in (format_statistics(summary["statistics"], units) if "statistics" in summary else []) + \
-            steady_shape_lines(summary, lambda u: output_unit(u, units)) + \
-            summary.get("warnings", []) + (format_table(summary["verdict"], lambda u: output_unit(u, units))
-                                           if summary.get("verdict") else []):
-        print("  " + line)
+    unit = lambda u: output_unit(u, units)     # noqa: E731
+    table = format_table(summary["verdict"], unit) if summary.get("verdict") else []
+    stats = format_statistics(summary["statistics"], units) if "statistics" in summary else []
+    lines += ["  " + line for line in stats + steady_shape_lines(summary, unit) + summary.get("warnings", []) + table]
+    return lines
 
 
 def _run_dale_table(args, out: Path) -> int:
