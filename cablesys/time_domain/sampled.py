@@ -41,10 +41,12 @@ def label_states(model, times, X, modes, p, top=None, outputs=None) -> dict:
     if modes is not None and len(model.slack_index):
         P[list(model.slack_index), :] = modes
     block = min(256, max(n, 1))
-    E = (top or Columns(model.top, block))(T[None, :], P)[0]
+    # the model's own functions over columns, mapped once per model and block (model.derive), not per call
+    columns = lambda name: model.derive(f"columns_{name}_{block}", lambda: Columns(getattr(model, name), block))  # noqa: E731
+    E = (top or columns("top"))(T[None, :], P)[0]
     data = {}
     if X is not None:
-        Y = (outputs or Columns(model.outputs, block))(np.asarray(X, float), E, P)[0]
+        Y = (outputs or columns("outputs"))(np.asarray(X, float), E, P)[0]
         data = {lbl: Y[i] for i, lbl in enumerate(model.output_labels)}
     data["x_s"], data["y_s"] = E[1], E[2]
     vessel = getattr(model, "vessel_inputs", ())    # a vessel's rotation after (t, z, z', z'') (model/system.py)
