@@ -98,6 +98,13 @@ _SYSTEM_NAMES = {"x": ("m", "horizontal position of point {}"), "y": ("m", "dept
 _SYSTEM_BODY = re.compile(r"^point\.([A-Za-z][A-Za-z0-9_\-]*)\.([a-z_]+)$")
 
 
+def system_quantity(label: str):
+    """(``"point"`` or ``"line"``, its name, quantity) of a system's output label (``point.buoy.x``,
+    ``line.riser.tension_to``), or None for any other label."""
+    m = _SYSTEM.match(label)
+    return (m.group(1), m.group(2), m.group(3)) if m else None
+
+
 def _system_body(label: str):
     """(point name, quantity) of a rigid body's quantity at a system's point, or None."""
     m = _SYSTEM_BODY.match(label)

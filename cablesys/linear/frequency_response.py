@@ -8,29 +8,25 @@ phase convention: output = Re(RAO * A e^{i omega t}) for input Re(A e^{i omega t
 from __future__ import annotations
 
 import dataclasses
-import re
 from typing import ClassVar
 
 import numpy as np
 
+from ..result_protocol import system_quantity
 from ..results import ResultBase, timed, unit_of
 from .linearization import LinearModel
-
-# a system's reported responses (model/system.py): a point's coordinates and a line's end tensions
-_SYSTEM_RESPONSE = re.compile(r"^point\.(?P<point>[^.]+)\.[xyz]$|^line\.[^.]+\.tension_(from|to)$")
-
 
 def response_outputs(labels, scene=None) -> list:
     """The outputs an RAO table or a sea response reports unless told: the body's motion (``x_b``, ``y_b``, ``z_b`` of
     each section) and the tensions (``tension_*``), rates left out; for a system of lines (``scene.system``) every
     point's coordinates (``point.NAME.x`` ...) but those of its held points (prescribed: the input itself; fixed:
-    zero) and every line's end tensions."""
+    zero) and every line's end tensions (:func:`cablesys.result_protocol.system_quantity`)."""
     held = {p.name for p in scene.system.point if p.held} if getattr(scene, "system", None) is not None else set()
     out = []
     for o in labels:
-        m = _SYSTEM_RESPONSE.match(o)
-        if (o.startswith(("x_b", "y_b", "z_b", "tension")) and not o.endswith("rate")) or (
-                m and m["point"] not in held):
+        q = system_quantity(o)
+        if (o.startswith(("x_b", "y_b", "z_b", "tension")) and not o.endswith("rate")) or (q is not None and (
+                q[0] == "line" or (q[2] in ("x", "y", "z") and q[1] not in held))):
             out.append(o)
     return out
 
