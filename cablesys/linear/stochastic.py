@@ -30,8 +30,10 @@ from ..compiled import compile_functions
 from ..errors import ParameterError
 from ..model import CableModel
 from ..results import ResultBase, timed
+from ..scene.sea import top_transfer
 from .linearization import (
     LinearModel,
+    top_inputs,
     from_jacobian,
     functions,
     linearize,
@@ -42,6 +44,45 @@ from .linearization import (
 from .spectra import significant_amplitude, slack_probability
 
 BUOY = np.array([1.0, 1.0j])
+SEA_POINTS = 60             # frequencies over a scene sea's band (SeaSpectrum.band: 0.1 % - 99.9 % of its energy)
+
+
+def sea_inputs(scene, model: CableModel, n_omega: int = SEA_POINTS) -> tuple:
+    """The scene's irregular sea as the linearization's input: (omega, S(omega), D(omega)), the same sea and top motion
+    the time-domain run realises (:func:`cablesys.scene.sea.sea_sinusoids`).
+
+    ``omega``: ``n_omega`` points over the sea's band (rad/s); S: its spectrum (m^2 s/rad); D (n_omega, inputs): the
+    top's motion per unit wave amplitude from the scene's motion RAO ([top_motion.rao] in the plane,
+    [top_motion.vessel] at its lever arm, with the vessel's rotation where the model takes it), read at the sea's
+    heading (:func:`cablesys.scene.sea.top_transfer`; none: the top heaves with the surface), turned from the
+    elevation's convention eta = Re(-i e^{i omega t}) to x = Re(D e^{i omega t}). A short-crested sea (spreading) and the
+    sea's particle velocities at the cable are not inputs of this linearization: refused, named, rather than left out.
+    """
+    sea = scene.top_motion.spectrum
+    if sea is None:
+        raise ParameterError("top_motion.spectrum", None, "must be given for the scene's own sea")
+    if not sea.long_crested:
+        raise ParameterError("top_motion.spectrum.spreading_n", sea.spreading_n,
+                             "must be 0 for the stochastic linearization (a long-crested sea: it takes one heading); "
+                             "the time-domain run takes the spread sea")
+    if sea.waves_at_cable:
+        raise ParameterError("top_motion.spectrum.waves_at_cable", True,
+                             "must be false for the stochastic linearization (it moves the top only; the sea's "
+                             "particle velocities at the cable are not among its inputs); the time-domain run has them")
+    lo, hi = sea.band()
+    omega = np.linspace(lo, hi, int(n_omega))
+    top = scene.top_motion
+    rao = top.vessel if top.vessel is not None else top.rao
+    X, Y, Z = top_transfer(rao, omega, sea.heading_deg)
+    cols = {"x_s": X, "y_s": Y, "z_s": Z}
+    labels = top_inputs(model)
+    if top.vessel is not None and any(k.startswith("rot_") for k in labels):   # several points on the vessel
+        cols.update(zip(("rot_x_s", "rot_y_s", "rot_z_s"), top.vessel.rotation_transfer(omega, sea.heading_deg)))
+    left = [k for k, v in cols.items() if k not in labels and np.any(np.abs(v) > 0.0)]
+    if left:
+        raise ParameterError("top_motion", left, f"moves inputs the model does not take ({', '.join(labels)})")
+    D = -1j * np.stack([np.asarray(cols.get(k, np.zeros_like(X)), complex) for k in labels], axis=1)
+    return omega, sea.density(omega), D
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -129,7 +170,8 @@ def _xi_amplitudes(b: dict, Q: np.ndarray, D: np.ndarray, omega: np.ndarray) -> 
     """Complex amplitudes of xi = (q, q', q'', z, z', z'', w) on the grid: (n_omega, n_xi)
     (:func:`cablesys.linear.equivalent.complex_xi` for every frequency at once)."""
     s = 1j * omega[:, None]
-    return np.hstack([Q, s * Q, s**2 * Q, D[:, :2], s * D[:, :2], s**2 * D[:, :2], D[:, 2:]])
+    nz = b["z"].stop - b["z"].start       # the top's inputs: x_s, y_s (and z_s in 3-D, a vessel's rotations)
+    return np.hstack([Q, s * Q, s**2 * Q, D[:, :nz], s * D[:, :nz], s**2 * D[:, :nz], D[:, nz:]])
 
 
 @timed
@@ -152,7 +194,9 @@ def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY
     spectrum : array_like
         Sea elevation spectrum S(omega) (m^2 s/rad) on ``omega``.
     direction : array_like of complex, optional
-        Input amplitudes per unit sea amplitude (default: the buoy orbit (1, i), Wang (1971) eq. 26).
+        Input amplitudes per unit sea amplitude, x = Re(D e^{i omega t}) (default: the buoy orbit (1, i), Wang (1971)
+        eq. 26): one per input (the first of ``input_labels``), or one row per frequency of ``omega`` (a motion RAO,
+        :func:`sea_inputs`).
     n_log2 : int, optional
         log2 of the Sobol sample count of the expectation.
     tol : float, optional
@@ -175,7 +219,8 @@ def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY
     Raises
     ------
     ParameterError
-        If ``omega`` and ``spectrum`` are not 1-D arrays of the same length (>= 8).
+        If ``omega`` and ``spectrum`` are not 1-D arrays of the same length (>= 8), or ``direction`` fits neither
+        shape.
     """
     p = taut_parameters(model, p)
     omega = np.asarray(omega, float)
@@ -183,7 +228,12 @@ def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY
     if omega.shape != S.shape or omega.ndim != 1 or omega.size < 8:
         raise ParameterError("omega, spectrum", (omega.shape, S.shape), "1-D arrays of the same length, at least 8 points")
     lin = linearize(model, p)
-    direction = np.broadcast_to(np.asarray(direction, complex), (omega.size, len(direction)))
+    direction = np.asarray(direction, complex)
+    if direction.ndim == 1:
+        direction = np.broadcast_to(direction, (omega.size, direction.size))
+    if direction.ndim != 2 or direction.shape[0] != omega.size or direction.shape[1] > len(lin.input_labels):
+        raise ParameterError("direction", direction.shape, f"(inputs,) or (n_omega = {omega.size}, inputs), at most "
+                             f"{len(lin.input_labels)} inputs ({', '.join(lin.input_labels)})")
     nu = len(lin.input_labels)
     b = xi_blocks(model)
     D = np.zeros((omega.size, nu), complex)

@@ -180,23 +180,48 @@ def periodic(scene, options, cache):
     return s, sol.success, sol.message
 
 
+SEA_OPTIONS = ("hs", "tp", "gamma", "omega_min", "omega_max", "direction")
+
+
 def stochastic(scene, options, cache):
-    """Gaussian equivalent linearization in a JONSWAP sea (options ``hs``, ``tp``, ``gamma``, the band
-    ``omega_min``/``omega_max``/``n_omega`` and the top's ``direction`` per unit sea amplitude, default the
-    surface orbit of :mod:`cablesys.linear.stochastic`)."""
-    from ..linear.spectra import jonswap
+    """Gaussian equivalent linearization in an irregular sea: the scene's own ([top_motion.spectrum] and its motion
+    RAO, :func:`cablesys.linear.stochastic.sea_inputs`: the sea its time-domain run realises); a scene without one
+    takes a JONSWAP sea from the options ``hs``, ``tp``, ``gamma`` (default 2 m, 8 s, 3.3), the band
+    ``omega_min``/``omega_max`` (0.25-3 rad/s) and the top's ``direction`` per unit sea amplitude (default the surface
+    orbit of :mod:`cablesys.linear.stochastic`), and says so in ``sea``. ``n_omega``: frequencies over the band."""
     from ..ladder.auto import require_at_rest
-    from ..linear.stochastic import stochastic_response
+    from ..linear.spectra import jonswap
+    from ..linear.stochastic import sea_inputs, stochastic_response
     require_at_rest(scene, "the stochastic analysis")
     model = cache.model(scene)
-    hs, tp = float(options.get("hs", 2.0)), float(options.get("tp", 8.0))
-    omega = np.linspace(float(options.get("omega_min", 0.25)), float(options.get("omega_max", 3.0)),
-                        int(options.get("n_omega", 60)))
-    kw = {"direction": np.asarray(options["direction"], complex)} if "direction" in options else {}
-    st = stochastic_response(model, model.parameters(scene), omega, jonswap(omega, hs, tp, float(options.get("gamma", 3.3))),
-                             n_log2=int(options.get("n_log2", 8)), **kw)
+    n_omega = int(options.get("n_omega", 60))
+    sea = scene.top_motion.spectrum
+    if sea is not None:
+        given = [k for k in SEA_OPTIONS if k in options]
+        if given:
+            raise ParameterError(f"options.{given[0]}", options[given[0]],
+                                 "must be unset: the scene has its own sea ([top_motion.spectrum] and its motion RAO); "
+                                 "vary top_motion.spectrum.hs, ... instead")
+        omega, S, D = sea_inputs(scene, model, n_omega)
+        words = (f"the scene's {sea.kind} sea, Hs {sea.hs:g} m, Tp {sea.tp:g} s, heading {sea.heading_deg:g} deg, "
+                 f"{omega[0]:.3g}-{omega[-1]:.3g} rad/s, the top moved by "
+                 + ("[top_motion.vessel]" if scene.top_motion.vessel is not None else
+                    "[top_motion.rao]" if scene.top_motion.rao is not None else "the surface (no motion RAO)"))
+        hs, tp = sea.hs, sea.tp
+    else:
+        hs, tp, gamma = float(options.get("hs", 2.0)), float(options.get("tp", 8.0)), float(options.get("gamma", 3.3))
+        omega = np.linspace(float(options.get("omega_min", 0.25)), float(options.get("omega_max", 3.0)), n_omega)
+        S = jonswap(omega, hs, tp, gamma)
+        D = np.asarray(options["direction"], complex) if "direction" in options else None
+        words = (f"no [top_motion.spectrum] in the scene: JONSWAP Hs {hs:g} m, Tp {tp:g} s, gamma {gamma:g} "
+                 f"({'options' if any(k in options for k in ('hs', 'tp', 'gamma')) else 'the analysis defaults'}), "
+                 f"{omega[0]:.3g}-{omega[-1]:.3g} rad/s, the top moved "
+                 + ("along options.direction" if D is not None else "on the surface orbit (Wang 1971 eq. 26)"))
+    kw = {} if D is None else {"direction": D}
+    st = stochastic_response(model, model.parameters(scene), omega, S, n_log2=int(options.get("n_log2", 8)), **kw)
     outs = _outputs(st.output_labels)
-    s = {"mean": {o: float(st.output_mean[st.output_labels.index(o)]) for o in outs},
+    s = {"sea": words, "sea_hs_m": float(hs), "sea_tp_s": float(tp),
+         "mean": {o: float(st.output_mean[st.output_labels.index(o)]) for o in outs},
          "std": {o: st.std(o) for o in outs},
          "slack_probability": {o: st.slack_probability(o) for o in outs if o.startswith("tension")},
          "iterations": st.iterations, "converged": st.converged}
@@ -302,7 +327,9 @@ ANALYSES = {
                                  "statistics and the verdict against [limits]"),
     "rao": Analysis(rao, "wang", "linearization: natural frequencies omega_n, damping ratios, RAOs"),
     "periodic": Analysis(periodic, "wang", "harmonic balance: the nonlinear periodic steady state"),
-    "stochastic": Analysis(stochastic, "wang", "Gaussian linearization in a JONSWAP sea (options hs, tp, gamma)"),
+    "stochastic": Analysis(stochastic, "wang", "Gaussian linearization in the scene's irregular sea "
+                                               "([top_motion.spectrum] and its motion RAO; without one a JONSWAP sea, "
+                                               "options hs, tp, gamma)"),
     "design": Analysis(design, "wang", "the isolation design NLP (options={'settings': DesignSettings(...)})",
                        cli=False),
     "ladder": Analysis(ladder, "wang", "which model the scene needs (cablesys.ladder.choose), without running it"),
