@@ -26,6 +26,7 @@ import _ladder_auto as auto_run
 
 from cablesys.ladder import richardson as R
 from cablesys.ladder import metrics as M
+from cablesys.ladder.choice import tolerances
 from cablesys.model import build_model
 from cablesys.time_domain import simulate
 
@@ -85,6 +86,86 @@ def auto_row(scene, period, ref_stats, md_small, *, stats, diff, repeats=AUTO_RE
             "compiled": res.stats.get("compiled"), "speedup_vs_moordyn_n": md_small[0],
             "speedup": md_small[1] / waited, "speedup_run_only": md_small[1] / info["kept_run_s"],
             "load_average": os.getloadavg()[0], "repeats": repeats, **(more(res) if more and res.success else {})}
+
+
+def worst_quantity(stats: dict, reference: dict, tol: dict) -> tuple:
+    """(quantity, relative error, within) of ``stats`` against ``reference`` on auto's metric
+    (:func:`cablesys.ladder.metrics.quantity_errors`; only the keys of :func:`cablesys.ladder.metrics.statistics`):
+    the quantity furthest from its tolerance ``tol`` ({"body", "tension"}), and whether it is within it."""
+    keys = [k for k in reference if k.endswith(("_amplitude", "_mean", "_max", "_min"))]
+    q = M.quantity_errors({k: stats[k] for k in keys if k in stats}, {k: reference[k] for k in keys})
+    k = max(q, key=lambda key: q[key] / tol[M.group(key)])
+    return k, q[k], bool(q[k] <= tol[M.group(k)])
+
+
+BOUND_NS = (2, 3, 4, 6, 8, 10, 12, 14, 16, 20, 24, 30, 36)   # the element counts searched, below the reference's
+BOUND_RTOLS = (1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5)     # BDF(<= 2) settings, loosest first
+BOUND_NEXT = 2                                               # N above the least one also timed (looser rtol)
+
+
+def auto_bound(make, reference, n_ref: int, period, md_small, *, timed_run, compiled_ctx, compiled_max: int,
+               ramp_s: float | None = None, moordyn_stats: dict | None = None,
+               moordyn_reference: dict | None = None) -> dict:
+    """The most auto can reach on a case: a bound of ``auto_speedup`` that no choice of rung settings can pass.
+
+    Auto promises every quantity of its statistics (:func:`cablesys.ladder.metrics.quantity_errors`: each body
+    amplitude and mean, each tension extreme, on its own scale or the floor) within its default tolerance
+    (:func:`cablesys.ladder.choice.tolerances` of the scene) of the converged cable. The least element count N whose
+    tight run (CVODES rtol 1e-7) keeps that promise against ``reference`` (the case's converged statistics at
+    ``n_ref``, :func:`cablesys.ladder.metrics.statistics`) is the least any honest auto can run; that N and the next
+    BOUND_NEXT of BOUND_NS are then timed at the loosest BDF(<= 2) rtol of BOUND_RTOLS still keeping the promise
+    (stepping and outputs, a second run, setup apart, as MoorDyn's time: ``timed_run(scene, method, rtol, atol)``).
+    The fastest of them, with no choice and no check counted, gives ``speedup_bound`` = MoorDyn's wall
+    (``md_small`` = (N, s)) over it. The reference's own discretisation error makes the least N too small, so the
+    bound is generous. ``make(n)``: the case's scene at n elements; ``compiled_ctx(bool)``: compiled code on or
+    off (the tight runs in CasADi's virtual machine, the timed ones compiled up to ``compiled_max`` elements).
+    ``moordyn_stats``: the statistics of MoorDyn's run at ``md_small[0]``, judged on the same metric
+    (``moordyn_worst``: whether the peer's run the speed-up is taken against keeps auto's tolerance) against
+    ``moordyn_reference``, the converged statistics in MoorDyn's definitions (its line tensions are the end
+    segments', not the forces on the end points: ``bench_vs_moordyn._segment_stats``; default ``reference``)."""
+    scene = make(n_ref)
+    tol_body, tol_tension = tolerances(scene)
+    tol = {"body": tol_body, "tension": tol_tension}
+    worst = lambda stats: worst_quantity(stats, reference, tol)     # noqa: E731
+
+    searched, least = [], None
+    for n in (n for n in BOUND_NS if n < n_ref):
+        try:
+            with compiled_ctx(False):
+                tight = simulate(make(n), method="cvodes", rtol=1e-7, atol=1e-10)
+        except Exception as err:      # noqa: BLE001 - an N too coarse for the scene (its statics) is a result
+            searched.append({"segments": n, "failed": f"{type(err).__name__}: {err}", "within": False})
+            continue
+        k, e, ok = worst(M.statistics(tight, period, ramp_s))
+        searched.append({"segments": n, "worst_quantity": k, "error": e, "within": ok})
+        if ok and least is None:
+            least = n
+        if least is not None and len([s for s in searched if s["segments"] >= least]) > BOUND_NEXT:
+            break
+    out = {"tolerance": tol, "reference_segments": n_ref, "searched": searched,
+           "moordyn_segments": md_small[0], "moordyn_wall_s": md_small[1]}
+    if moordyn_stats is not None:  # the peer's run the speed-up is taken against, on the same metric
+        k, e, ok = worst_quantity(moordyn_stats, moordyn_reference or reference, tol)
+        out["moordyn_worst"] = {"quantity": k, "error": e, "within": ok}
+    if least is None:
+        return {**out, "least_segments": None,
+                "why": f"no N below the reference's {n_ref} keeps every quantity within the tolerance"}
+    timed = []
+    for s in (s for s in searched if s["segments"] >= least and s["within"]):
+        n = s["segments"]
+        for rtol in BOUND_RTOLS:
+            with compiled_ctx(n <= compiled_max):
+                res, wall = timed_run(make(n), "cvodes-bdf2", rtol, rtol * 1e-3)[:2]
+            k, e, ok = worst(M.statistics(res, period, ramp_s))
+            if res.success and ok:
+                timed.append({"segments": n, "rtol": rtol, "wall_s": wall, "steps": res.stats.get("nsteps"),
+                              "worst_quantity": k, "error": e})
+                break
+    if not timed:
+        return {**out, "least_segments": least, "why": "no rtol of BOUND_RTOLS keeps the tolerance"}
+    best = min(timed, key=lambda t: t["wall_s"])
+    return {**out, "least_segments": least, "timed": timed, "fastest": best,
+            "speedup_bound": md_small[1] / best["wall_s"]}
 
 
 # -- the slack row (heave at T = 6 s, _bench_slack): auto reports extrapolated statistics -------------------

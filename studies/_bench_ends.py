@@ -49,6 +49,7 @@ import numpy as np
 from _common import BDF_RTOLS
 from _moordyn import largest_stable_dt, moordyn_input, moordyn_static, run_moordyn, seabed_options, volume_diameter
 
+from cablesys.ladder import metrics as M
 from cablesys.model import build_model
 from cablesys.scene import Anchor, Body, Cable, Numerics, Seabed, Winch, single_section_scene
 from cablesys.scene.components import Environment, TopMotion
@@ -221,7 +222,7 @@ def lowering_closed_form(result, scene, segment: bool = False) -> dict:
 # -- the row -----------------------------------------------------------------------------------------------------------
 
 def bench_ends_case(name: str, quick: bool, *, matched, stats, diff, segment_stats, moordyn_stats, compiled_ctx,
-                    auto_row=None) -> dict:
+                    auto_row=None, auto_bound=None) -> dict:
     """One other-ends row (module docstring). The helpers are ``bench_vs_moordyn``'s (``_matched``, ``_stats``,
     ``_diff``, ``_segment_stats``, ``_moordyn_stats``, ``_compiled``) and ``_bench_auto.auto_row`` (None: no auto)."""
     make, period, ns, make_start = case(name, quick)
@@ -292,6 +293,12 @@ def bench_ends_case(name: str, quick: bool, *, matched, stats, diff, segment_sta
     for e in row["by_n"]:          # the run started as the reference was (MoorDyn's tensions are its segments': no error)
         e["cablesys_error_vs_converged"] = diff(e.get("laid_start_stats", e["cablesys_stats"]), ref_stats)
     row["auto"] = auto_row(scene, period, ref_stats, md_at, stats=stats, diff=diff)
+    if auto_bound is not None:    # the most any auto keeping its tolerance could reach here (choice and checks free)
+        row["auto_bound"] = auto_bound(make, M.statistics(ref, period), 2 * max(ns), period, md_at,
+                                       timed_run=_timed_run,
+                                       compiled_ctx=compiled_ctx, compiled_max=COMPILE_MAX_ELEMENTS,
+                                       moordyn_stats=row["by_n"][-1]["moordyn_stats"],
+                                       moordyn_reference=segment_stats(ref, period))
     row["auto_speedup"] = row["auto"].get("speedup")
     row["auto_speedup_run_only"] = row["auto"].get("speedup_run_only")
     row["auto_error"] = row["auto"].get("error")
@@ -370,17 +377,21 @@ NOTES = {
                                 "chain creep back towards the frictionless state, ends_checks' laid_line_creep_m). "
                                 "The benchmark's cablesys runs start as MoorDyn's; auto runs as a user runs it (laid "
                                 "down), and its reference (N = 40, rtol 1e-7) starts the same way.",
-    "mooring_speed": "Run of 2026-12-05 10:37-10:38 UTC (this JSON), load 1.0 on 2 cores (nothing else running): "
-                     "MoorDyn N = 20 at 8.84 ms, 9051 steps, 0.167 s wall, 0.189 s CPU (the whole call, its stationary "
+    "mooring_speed": "Run of 2026-12-05 12:16-12:19 UTC (this JSON), load 0.9 on 2 cores (nothing else running): "
+                     "MoorDyn N = 20 at 8.84 ms, 9051 steps, 0.199 s wall, 0.224 s CPU (the whole call, its stationary "
                      "solver included); cablesys segmented N = 20, BDF(<= 2) at rtol 1e-2, the loosest of "
-                     "_common.BDF_RTOLS within matched accuracy (tension 0.33 % from its own tight run), 545 steps, "
-                     "0.014 s: speedup 11.9 (target >= 5: met). Auto (N = 20 from the scene's cable, checked a "
-                     "posteriori against N = 10 and against rtol 1e-5; the node model is the only rung for an anchored "
-                     "line): choose 0.1 ms + run 0.022 s + checks 0.072 s = 0.095 s: auto_speedup 1.76 (target >= 20: "
-                     "missed); speedup_run_only 4.5, the run auto reports (N = 20 at the check's rtol 1e-5, 0.037 s; "
-                     "the 7.2 reported before was its first run at rtol 1e-4); its error against the reference 0.30 % "
-                     "(stated 0.70 %). Started at N = 10 (simulate(segments=10)) the check against N = 5 misses "
-                     "(tension_bottom_min 5.6 %) and the plan climbs to N = 24: 0.32 s.",
+                     "_common.BDF_RTOLS within matched accuracy, 545 steps, 0.015 s: speedup 13.0 (target >= 5: met). "
+                     "Auto (N = 20 from the scene's cable, checked a posteriori against N = 10 and against rtol 1e-5; "
+                     "the node model is the only rung for an anchored line): choose 0.1 ms + run 0.027 s + checks "
+                     "0.082 s = 0.109 s: auto_speedup 1.83 (target >= 20: missed); speedup_run_only 4.9 (the reported "
+                     "run, N = 20 at rtol 1e-5, 0.041 s); its error against the reference 0.30 %. The bound "
+                     "(auto_bound): the least N keeping auto's tolerance on every quantity against the N = 40 "
+                     "reference is 10 (tension_top_min 1.1 %; N = 8: 2.6 %), its fastest run 7.6 ms (rtol 1e-2, 590 "
+                     "steps): 26x with no choice and no check. A check of N = 10 costs a second run: N = 5 takes 7.3 ms "
+                     "at rtol 1e-2 (603 steps: the step count, not N, sets the cost here), so N = 10 checked costs at "
+                     "least 14.9 ms, 13x, and auto's check (Richardson, order 2) cannot accept N = 10 from N = 5 "
+                     "(tension_bottom_min 5.6 % apart: it climbs to N = 24, 0.32 s). MoorDyn's N = 20 run misses auto's "
+                     "tolerance itself (tension_top_max 2.7 % from the converged reference, like for like).",
     "lowering_law": "MoorDyn pays out as cablesys does (nodes at fixed fractions of L, mass, weight and buoyancy from "
                     "L). Left out on both sides because MoorDyn lacks them: the material strain rate (its Voigt damping "
                     "sees the rate of stretch of a segment, BA w / L of compression damping in a steady payout: C_I "

@@ -40,6 +40,16 @@ def _equal_n(r: dict) -> str:
     return ", ".join(got) or "n/a"
 
 
+def _bound(r: dict) -> str:
+    """The most auto could reach by stepping the node model (``_bench_auto.auto_bound``): MoorDyn's wall over the fastest run keeping auto's
+    tolerance on every quantity, choice and checks free, with its N; "n/a" where the case did not measure it."""
+    b = r.get("auto_bound") or {}
+    if b.get("speedup_bound") is None:
+        return "n/a" if not b.get("why") else "none below the reference N"
+    v = b["speedup_bound"]
+    return f"{f'{v:.0f}x' if v >= 1000 else _x(v)} (N = {b['fastest']['segments']})"
+
+
 def _plan_row(r: dict) -> str:
     """A plan case's row (``_bench_slack.bench_plan_case``: MoorDyn at its largest N, auto at its default tolerance,
     the segmented cable at that N)."""
@@ -51,7 +61,7 @@ def _plan_row(r: dict) -> str:
     how = f" ({eq['method']}, rtol {eq['rtol']:g})" if eq.get("rtol") else ""
     return (f"| {r['case']} | {name} | {auto['wall_s'] / r['duration_s']:.3g} | N = {n}, {md['s_per_s']:.3g} | "
             f"{_x(r.get('auto_speedup'))} | N = {eq.get('segments', n)}{how}: {_x(r.get('speedup'))} | "
-            f"{_pct(err.get('body'))} / {_pct(err.get('tension'))} (stated) |")
+            f"{_pct(err.get('body'))} / {_pct(err.get('tension'))} (stated) | {_bound(r)} |")
 
 
 def table(bench: dict | list, source: str | list) -> str:
@@ -59,8 +69,8 @@ def table(bench: dict | list, source: str | list) -> str:
     with a list of their sources (one run each)."""
     benches, sources = (bench, source) if isinstance(bench, list) else ([bench], [source])
     rows = ["| case | auto's model | auto, s per simulated s | MoorDyn (N, s/s) | auto speed-up | segmented at equal N "
-            "| auto error body / tension |",
-            "|---|---|---|---|---|---|---|"]
+            "| auto error body / tension | most auto can reach |",
+            "|---|---|---|---|---|---|---|---|"]
     for r in (r for b in benches for r in b.get("cases", []) if "auto_default" in r and "moordyn" in r):
         rows.append(_plan_row(r))
     for r in (r for b in benches for r in b.get("cases", []) if "by_n" in r):
@@ -72,11 +82,16 @@ def table(bench: dict | list, source: str | list) -> str:
         md_s = md.get("moordyn_s_per_s")
         rows.append(f"| {r.get('case')} | {name} | {auto.get('s_per_s', float('nan')):.3g} | "
                     f"N = {md.get('segments', '?')}, {md_s if md_s is None else f'{md_s:.3g}'} | "
-                    f"{_x(r.get('auto_speedup'))} | {_equal_n(r)} | {_pct(err.get('body'))} / {_pct(err.get('tension'))} |")
+                    f"{_x(r.get('auto_speedup'))} | {_equal_n(r)} | {_pct(err.get('body'))} / {_pct(err.get('tension'))} | "
+                    f"{_bound(r)} |")
+    bound = ("Most auto can reach by stepping: MoorDyn's time over the fastest run of the node model at the least N that "
+             "keeps auto's tolerance on every quantity against the converged reference (`_bench_auto.auto_bound`), "
+             "with no choice and no check counted. No auto that steps the node model and keeps its stated error can "
+             "pass it; only a cheaper rung that keeps the tolerance can (the steady rung on the turn).")
     runs = "; ".join(f"{src}{', quick mode' if b.get('quick') else ''}" for b, src in zip(benches, sources))
     note = (f"Measured in {'one run' if len(benches) == 1 else 'runs'} of `studies/bench_vs_moordyn.py` ({runs}; each "
             "file one run, its ratios measured in that run); regenerate with `python studies/readme_tables.py --bench DIR`.")
-    return "\n".join([BEGIN, *rows, "", note, END])
+    return "\n".join([BEGIN, *rows, "", bound, "", note, END])
 
 
 def rewrite(readme: str, block: str) -> str:

@@ -111,3 +111,20 @@ def test_moordyn_n_for_an_accuracy_first_order():
         assert out[name]["t"]["segments"] == 2000
         assert out[name]["t"]["wall_s"] == pytest.approx(16.0 * 25.0**2)
         assert out[name]["t"]["auto_speedup"] == pytest.approx(16.0 * 25.0**2 / 2.0)
+
+
+def test_the_bound_judges_each_quantity_on_autos_scales_and_ranks_by_tolerance():
+    """_bench_auto.worst_quantity, auto's promise per quantity (ladder.metrics.quantity_errors): a 2 cm sway under a
+    1 m heave is judged on the 10 cm floor (a tenth of the largest amplitude), a slack tension minimum of 0 N on 1 %
+    of the top tension (10 N), and the quantity furthest from its own tolerance (body 1 %, tension 2 %) is named;
+    the benchmark's slack fractions are no quantity of auto's."""
+    from _bench_auto import worst_quantity
+    ref = {"x_b_amplitude": 1.0, "z_b_amplitude": 0.02, "x_b_mean": 0.0, "tension_top_max": 1000.0,
+           "tension_top_min": 0.0, "slack_fraction_bottom": 0.0}
+    tol = {"body": 0.01, "tension": 0.02}
+    run = dict(ref, z_b_amplitude=0.029, slack_fraction_bottom=0.5)    # 9 mm on the 0.1 m floor: 9 % (9x the 1 %)
+    assert worst_quantity(run, ref, tol) == ("z_b_amplitude", pytest.approx(0.09), False)
+    run["tension_top_min"] = 5.0                                       # 5 N on the 10 N floor: 50 % (25x the 2 %)
+    assert worst_quantity(run, ref, tol) == ("tension_top_min", pytest.approx(0.5), False)
+    ok = dict(ref, z_b_amplitude=0.0205, tension_top_max=1019.0)       # 0.5 % of the floor, 1.9 % of the top tension
+    assert worst_quantity(ok, ref, tol) == ("tension_top_max", pytest.approx(0.019), True)
