@@ -27,11 +27,11 @@ def _top_std(sc):
     """The standard deviations of the top's motion (x_s, y_s, z_s) the linearization is driven by in the scene's sea,
     sqrt(int |D|^2 S d omega) on its grid (sea_inputs), and the body's response to it (the stochastic linearization)."""
     model = ModelCache().model(sc)
-    omega, S, D = sea_inputs(sc, model)
-    st = stochastic_response(model, model.parameters(sc), omega, S, direction=D, n_log2=6)
+    omega, S, D, weights = sea_inputs(sc, model)
+    st = stochastic_response(model, model.parameters(sc), omega, S, direction=D, weights=weights, n_log2=8)
     assert st.success, st.message
-    top = {k: math.sqrt(np.trapezoid(np.abs(D[:, j]) ** 2 * S, omega)) for j, k in enumerate(("x_s", "y_s", "z_s"))
-           if j < D.shape[1]}
+    top = {k: math.sqrt(sum(w * np.trapezoid(np.abs(Dd[:, j]) ** 2 * S, omega) for w, Dd in zip(weights, D)))
+           for j, k in enumerate(("x_s", "y_s", "z_s")) if j < D.shape[2]}
     return top, st
 
 
@@ -74,14 +74,15 @@ def test_a_scene_without_a_sea_says_which_sea_it_got():
     assert out["std"]["y_b"] == pytest.approx(math.sqrt(np.trapezoid(jonswap(w, 1.5, 9.0), w)), rel=0.1)
 
 
-def _crane(**sea):
+def _crane(heading_deg=None, **sea):
     """studies/_bench_3d.py's crane tip (300 m wire, 2 t sphere, [top_motion.vessel] at a lever arm) in a long-crested
-    JONSWAP sea at the case's wave heading."""
+    JONSWAP sea at the case's wave heading (or ``heading_deg``)."""
     sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "studies"))
     import _bench_3d as B
     from cablesys.scene.sea import SeaSpectrum
     base = B.crane_scene(60.0)
-    spectrum = SeaSpectrum(hs=1.0, tp=10.0, heading_deg=B.WAVE_HEADING_DEG, n_components=40, **sea)
+    spectrum = SeaSpectrum(hs=1.0, tp=10.0, heading_deg=B.WAVE_HEADING_DEG if heading_deg is None else heading_deg,
+                           n_components=40, **sea)
     top = dataclasses.replace(base.top_motion, x=(), y=(), z=(), spectrum=spectrum, vessel=B.vessel_rao())
     return dataclasses.replace(base, top_motion=top), B.vessel_rao()
 
@@ -114,3 +115,28 @@ def test_a_vessel_rao_moves_the_crane_tip_in_three_directions():
     # regular wave of the crane_rao benchmark its sway amplitude is 3.4 % of the tip's; broadband, between 0.5 % and 10 %
     assert 0.005 < st.std("z_b") / top["z_s"] < 0.1
     assert out["std"]["z_b"] == pytest.approx(st.std("z_b"), rel=5e-2)
+
+
+def test_a_spread_sea_sums_the_directions_as_the_double_integral_over_frequency_and_heading():
+    """A cos^2 spread sea (DNV-RP-C205 3.5.8) on the vessel, 150 deg relative heading (the table's 60-180 deg cover
+    +-90 deg by port-starboard symmetry): the tip's variance per axis is int int |T(omega, theta)|^2 S(omega) D(theta),
+    here by the trapezoid over 721 headings against the analysis' Gauss-Legendre directions; the body's response is
+    the sum over the directions, so its sway differs from the long-crested sea's."""
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "studies"))
+    import _bench_3d as B
+    heading = B.VESSEL_HEADING_DEG + 150.0
+    sc, vessel = _crane(heading, spreading_n=2.0)
+    sea = sc.top_motion.spectrum
+    top, st = _top_std(sc)
+    lo, hi = sea.band()
+    w, th = np.linspace(lo, hi, 4001), np.linspace(sea.heading_deg - 90.0, sea.heading_deg + 90.0, 721)
+    T = np.array([np.abs(np.array(vessel.transfer(w, float(t)))) ** 2 for t in th])      # (theta, axis, omega)
+    dens = sea.spreading(th)[:, None, None] * np.radians(1.0)                           # D(theta) per degree
+    var = np.trapezoid(np.trapezoid(T * dens * jonswap(w, sea.hs, sea.tp, sea.gamma), w, axis=2), th, axis=0)
+    for k, label in enumerate(("x_s", "y_s", "z_s")):
+        assert top[label] == pytest.approx(math.sqrt(var[k]), rel=1e-2), label
+    long_top, long_st = _top_std(_crane(heading)[0])
+    assert abs(st.std("z_b") / long_st.std("z_b") - 1.0) > 0.02       # the spread changes what the body sees
+    out, ok, msg = stochastic(sc, {}, ModelCache())
+    assert ok, msg
+    assert "spread cos^2" in out["sea"]

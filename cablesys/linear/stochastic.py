@@ -48,23 +48,21 @@ SEA_POINTS = 60             # frequencies over a scene sea's band (SeaSpectrum.b
 
 
 def sea_inputs(scene, model: CableModel, n_omega: int = SEA_POINTS) -> tuple:
-    """The scene's irregular sea as the linearization's input: (omega, S(omega), D(omega)), the same sea and top motion
-    the time-domain run realises (:func:`cablesys.scene.sea.sea_sinusoids`).
+    """The scene's irregular sea as the linearization's input: (omega, S(omega), D, weights), the same sea and top
+    motion the time-domain run realises (:func:`cablesys.scene.sea.sea_sinusoids`).
 
-    ``omega``: ``n_omega`` points over the sea's band (rad/s); S: its spectrum (m^2 s/rad); D (n_omega, inputs): the
-    top's motion per unit wave amplitude from the scene's motion RAO ([top_motion.rao] in the plane,
-    [top_motion.vessel] at its lever arm, with the vessel's rotation where the model takes it), read at the sea's
-    heading (:func:`cablesys.scene.sea.top_transfer`; none: the top heaves with the surface), turned from the
-    elevation's convention eta = Re(-i e^{i omega t}) to x = Re(D e^{i omega t}). A short-crested sea (spreading) and the
-    sea's particle velocities at the cable are not inputs of this linearization: refused, named, rather than left out.
+    ``omega``: ``n_omega`` points over the sea's band (rad/s); S: its spectrum (m^2 s/rad); D (n_dir, n_omega, inputs):
+    the top's motion per unit wave amplitude from the scene's motion RAO ([top_motion.rao] in the plane,
+    [top_motion.vessel] at its lever arm, with the vessel's rotation where the model takes it), read at each wave
+    direction (:func:`cablesys.scene.sea.top_transfer`; none: the top heaves with the surface), turned from the
+    elevation's convention eta = Re(-i e^{i omega t}) to x = Re(D e^{i omega t}); ``weights`` (n_dir): the directions'
+    (:meth:`cablesys.scene.sea.SeaSpectrum.direction_quadrature`: the heading alone for a long-crested sea, a
+    Gauss-Legendre rule over the cos^n spreading for a spread one). The sea's particle velocities at the cable are not
+    an input of this linearization: refused, named, rather than left out.
     """
     sea = scene.top_motion.spectrum
     if sea is None:
         raise ParameterError("top_motion.spectrum", None, "must be given for the scene's own sea")
-    if not sea.long_crested:
-        raise ParameterError("top_motion.spectrum.spreading_n", sea.spreading_n,
-                             "must be 0 for the stochastic linearization (a long-crested sea: it takes one heading); "
-                             "the time-domain run takes the spread sea")
     if sea.waves_at_cable:
         raise ParameterError("top_motion.spectrum.waves_at_cable", True,
                              "must be false for the stochastic linearization (it moves the top only; the sea's "
@@ -73,16 +71,20 @@ def sea_inputs(scene, model: CableModel, n_omega: int = SEA_POINTS) -> tuple:
     omega = np.linspace(lo, hi, int(n_omega))
     top = scene.top_motion
     rao = top.vessel if top.vessel is not None else top.rao
-    X, Y, Z = top_transfer(rao, omega, sea.heading_deg)
-    cols = {"x_s": X, "y_s": Y, "z_s": Z}
     labels = top_inputs(model)
-    if top.vessel is not None and any(k.startswith("rot_") for k in labels):   # several points on the vessel
-        cols.update(zip(("rot_x_s", "rot_y_s", "rot_z_s"), top.vessel.rotation_transfer(omega, sea.heading_deg)))
-    left = [k for k, v in cols.items() if k not in labels and np.any(np.abs(v) > 0.0)]
-    if left:
-        raise ParameterError("top_motion", left, f"moves inputs the model does not take ({', '.join(labels)})")
-    D = -1j * np.stack([np.asarray(cols.get(k, np.zeros_like(X)), complex) for k in labels], axis=1)
-    return omega, sea.density(omega), D
+    rotations = top.vessel is not None and any(k.startswith("rot_") for k in labels)    # several points on the vessel
+    theta, weights = sea.direction_quadrature()
+    blocks = []
+    for heading in theta:
+        X, Y, Z = top_transfer(rao, omega, float(heading))
+        cols = {"x_s": X, "y_s": Y, "z_s": Z}
+        if rotations:
+            cols.update(zip(("rot_x_s", "rot_y_s", "rot_z_s"), top.vessel.rotation_transfer(omega, float(heading))))
+        left = [k for k, v in cols.items() if k not in labels and np.any(np.abs(v) > 0.0)]
+        if left:
+            raise ParameterError("top_motion", left, f"moves inputs the model does not take ({', '.join(labels)})")
+        blocks.append(-1j * np.stack([np.asarray(cols.get(k, np.zeros_like(X)), complex) for k in labels], axis=1))
+    return omega, sea.density(omega), np.stack(blocks), weights
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -167,15 +169,25 @@ def _moment_functions(model: CableModel, n: int) -> tuple[ca.Function, ca.Functi
 
 
 def _xi_amplitudes(b: dict, Q: np.ndarray, D: np.ndarray, omega: np.ndarray) -> np.ndarray:
-    """Complex amplitudes of xi = (q, q', q'', z, z', z'', w) on the grid: (n_omega, n_xi)
-    (:func:`cablesys.linear.equivalent.complex_xi` for every frequency at once)."""
-    s = 1j * omega[:, None]
+    """Complex amplitudes of xi = (q, q', q'', z, z', z'', w) on the grid, per wave direction: (n_dir, n_omega, n_xi)
+    (:func:`cablesys.linear.equivalent.complex_xi` for every frequency and direction at once)."""
+    s = 1j * omega[None, :, None]
     nz = b["z"].stop - b["z"].start       # the top's inputs: x_s, y_s (and z_s in 3-D, a vessel's rotations)
-    return np.hstack([Q, s * Q, s**2 * Q, D[:, :nz], s * D[:, :nz], s**2 * D[:, :nz], D[:, nz:]])
+    Z = D[..., :nz]
+    return np.concatenate([Q, s * Q, s**2 * Q, Z, s * Z, s**2 * Z, D[..., nz:]], axis=-1)
+
+
+def _weighted(A: np.ndarray, weights: np.ndarray, S: np.ndarray, omega: np.ndarray) -> np.ndarray:
+    """A (n_dir, n_omega, m) scaled by sqrt(w_d S(omega_k) dw_k), the directions' weights times the trapezoid's on the
+    grid: sum over d and k of Re(a a^H) of its rows is sum_d w_d int Re(A_d A_d^H) S d omega."""
+    dw = np.zeros(omega.size)
+    dw[1:] += 0.5 * np.diff(omega)
+    dw[:-1] += 0.5 * np.diff(omega)
+    return A * np.sqrt(weights[:, None, None] * (S * dw)[None, :, None])
 
 
 @timed
-def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY, n_log2: int = 10,
+def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY, weights=None, n_log2: int = 10,
                         tol: float = 1e-4, max_iter: int = 60, relax: float = 0.5, seed: int = 0,
                         start: StochasticResponse | None = None) -> StochasticResponse:
     """Iterate N = E[J] <-> Sigma(N) until the response standard deviations change by < ``tol``.
@@ -196,7 +208,12 @@ def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY
     direction : array_like of complex, optional
         Input amplitudes per unit sea amplitude, x = Re(D e^{i omega t}) (default: the buoy orbit (1, i), Wang (1971)
         eq. 26): one per input (the first of ``input_labels``), or one row per frequency of ``omega`` (a motion RAO,
-        :func:`sea_inputs`).
+        :func:`sea_inputs`), or one such block per wave direction of a spread sea (n_dir, n_omega, inputs).
+    weights : array_like, optional
+        The directions' weights (n_dir, summing to 1: :meth:`cablesys.scene.sea.SeaSpectrum.direction_quadrature`):
+        Sigma = sum_d w_d int Re(Xi_d Xi_d^H) S d omega, the directions' responses uncorrelated (DNV-RP-C205 3.5.8);
+        default one direction. ``transfer`` then holds sqrt(sum_d w_d |Y_d|^2), the magnitude whose square times S
+        is the response spectrum.
     n_log2 : int, optional
         log2 of the Sobol sample count of the expectation.
     tol : float, optional
@@ -231,20 +248,27 @@ def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY
     direction = np.asarray(direction, complex)
     if direction.ndim == 1:
         direction = np.broadcast_to(direction, (omega.size, direction.size))
-    if direction.ndim != 2 or direction.shape[0] != omega.size or direction.shape[1] > len(lin.input_labels):
-        raise ParameterError("direction", direction.shape, f"(inputs,) or (n_omega = {omega.size}, inputs), at most "
-                             f"{len(lin.input_labels)} inputs ({', '.join(lin.input_labels)})")
+    if direction.ndim == 2:
+        direction = direction[None]
+    weights = np.ones(1) if weights is None else np.asarray(weights, float).ravel()
+    if (direction.ndim != 3 or direction.shape[1] != omega.size or direction.shape[2] > len(lin.input_labels)
+            or direction.shape[0] != weights.size):
+        raise ParameterError("direction", direction.shape, f"(inputs,), (n_omega = {omega.size}, inputs) or (n_dir = "
+                             f"{weights.size} weights, n_omega, inputs), at most {len(lin.input_labels)} inputs "
+                             f"({', '.join(lin.input_labels)})")
+    if np.any(weights < 0) or not abs(weights.sum() - 1.0) <= 1e-9:
+        raise ParameterError("weights", weights.tolist(), "must be >= 0 and sum to 1")
     nu = len(lin.input_labels)
     b = xi_blocks(model)
-    D = np.zeros((omega.size, nu), complex)
-    D[:, :direction.shape[1]] = direction
+    D = np.zeros(direction.shape[:2] + (nu,), complex)
+    D[..., :direction.shape[2]] = direction
     z = _normal_samples(b["n"], n_log2, seed)     # a value (the seed) varies between calls: computed, never a cache key
     n = z.shape[0]
     rj_sum, yj_sum = _moment_functions(model, n)
     q_static = lin.q0.copy()
     xi_mean = operating_xi(model, lin.q0)
     ny = len(model.output_labels)
-    Q = np.zeros((omega.size, model.nq), complex)
+    Q = np.zeros((D.shape[0], omega.size, model.nq), complex)
     sigma_old, Sigma = None, None
 
     def samples(Sigma):
@@ -265,7 +289,7 @@ def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY
         xi_mean[b["q"]] -= np.linalg.solve(J[:, b["q"]], r_mean)          # E[r] = 0: rectified mean drag
         lin = from_jacobian(model, J, np.zeros((ny, b["n"])), xi_mean[b["q"]].copy(), np.zeros(ny), kind="stochastic")
         Qw, _ = lin.transfer(omega)
-        return np.einsum("kqi,ki->kq", Qw, D)
+        return np.einsum("kqi,dki->dkq", Qw, D)
 
     if start is not None and start.covariance is not None and start.covariance.shape == (b["n"], b["n"]):
         Sigma = np.array(start.covariance, float)
@@ -273,8 +297,8 @@ def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY
         Q = update(Sigma)
     converged, it = False, 0
     for it in range(1, max_iter + 1):
-        Xi = _xi_amplitudes(b, Q, D, omega)
-        Sig_new = np.trapezoid(np.real(Xi[:, :, None] * np.conj(Xi[:, None, :])) * S[:, None, None], omega, axis=0)
+        A = _weighted(_xi_amplitudes(b, Q, D, omega), weights, S, omega).reshape(-1, b["n"])
+        Sig_new = np.real(A.T @ np.conj(A))
         Sigma = Sig_new if Sigma is None else (1 - relax) * Sigma + relax * Sig_new
         Q = update(Sigma)
         sigma = np.sqrt(np.clip(np.diag(Sig_new), 0, None))
@@ -286,7 +310,8 @@ def stochastic_response(model: CableModel, p, omega, spectrum, *, direction=BUOY
     lin = from_jacobian(model, last["J"], my[ny:].reshape(b["n"], ny).T,
                         xi_mean[b["q"]].copy(), my[:ny], kind="stochastic")
     _, Yw = lin.transfer(omega)
-    Y = np.einsum("kyi,ki->ky", Yw, D)
+    Yd = np.einsum("kyi,dki->dky", Yw, D)
+    Y = Yd[0] if weights.size == 1 else np.sqrt(np.einsum("d,dky->ky", weights, np.abs(Yd) ** 2)) + 0j
     std = np.sqrt(np.trapezoid(np.abs(Y) ** 2 * S[:, None], omega, axis=0))
     floors = [p[k] for k in model.layout.section_indices("cable.tension_floor")]
     return StochasticResponse(omega=omega, spectrum=S, linear=lin, output_labels=model.output_labels, transfer=Y,

@@ -202,8 +202,9 @@ def stochastic(scene, options, cache):
             raise ParameterError(f"options.{given[0]}", options[given[0]],
                                  "must be unset: the scene has its own sea ([top_motion.spectrum] and its motion RAO); "
                                  "vary top_motion.spectrum.hs, ... instead")
-        omega, S, D = sea_inputs(scene, model, n_omega)
-        words = (f"the scene's {sea.kind} sea, Hs {sea.hs:g} m, Tp {sea.tp:g} s, heading {sea.heading_deg:g} deg, "
+        omega, S, D, weights = sea_inputs(scene, model, n_omega)
+        spread = "" if sea.long_crested else f" spread cos^{sea.spreading_n:g} ({weights.size} directions)"
+        words = (f"the scene's {sea.kind} sea, Hs {sea.hs:g} m, Tp {sea.tp:g} s, heading {sea.heading_deg:g} deg{spread}, "
                  f"{omega[0]:.3g}-{omega[-1]:.3g} rad/s, the top moved by "
                  + ("[top_motion.vessel]" if scene.top_motion.vessel is not None else
                     "[top_motion.rao]" if scene.top_motion.rao is not None else "the surface (no motion RAO)"))
@@ -213,11 +214,12 @@ def stochastic(scene, options, cache):
         omega = np.linspace(float(options.get("omega_min", 0.25)), float(options.get("omega_max", 3.0)), n_omega)
         S = jonswap(omega, hs, tp, gamma)
         D = np.asarray(options["direction"], complex) if "direction" in options else None
+        weights = None
         words = (f"no [top_motion.spectrum] in the scene: JONSWAP Hs {hs:g} m, Tp {tp:g} s, gamma {gamma:g} "
                  f"({'options' if any(k in options for k in ('hs', 'tp', 'gamma')) else 'the analysis defaults'}), "
                  f"{omega[0]:.3g}-{omega[-1]:.3g} rad/s, the top moved "
                  + ("along options.direction" if D is not None else "on the surface orbit (Wang 1971 eq. 26)"))
-    kw = {} if D is None else {"direction": D}
+    kw = {} if D is None else {"direction": D, "weights": weights}
     st = stochastic_response(model, model.parameters(scene), omega, S, n_log2=int(options.get("n_log2", 8)), **kw)
     outs = _outputs(st.output_labels)
     s = {"sea": words, "sea_hs_m": float(hs), "sea_tp_s": float(tp),
