@@ -67,7 +67,7 @@ def test_a_scene_without_a_sea_says_which_sea_it_got():
     assert sc.top_motion.spectrum is None
     out, ok, msg = stochastic(sc, {"hs": 1.5, "tp": 9.0}, ModelCache())
     assert ok, msg
-    assert "no [top_motion.spectrum]" in out["sea"] and "Hs 1.5 m" in out["sea"] and "options" in out["sea"]
+    assert "no [top_motion.spectrum] in the scene, options hs, tp" in out["sea"] and "Hs 1.5 m" in out["sea"]
     # the buoy orbit, |R| = 1, and a stiff 300 m wire: the body heaves with the surface, sigma ~ Hs / 4 of the part of
     # the spectrum inside the default band 0.25-3 rad/s
     w = np.linspace(0.25, 3.0, 60)
@@ -93,9 +93,13 @@ def test_the_seas_velocities_at_the_cable_are_refused_by_name_not_left_out():
         stochastic(sc, {}, ModelCache())
 
 
-def test_options_cannot_silently_replace_the_scenes_sea():
-    with pytest.raises(ParameterError, match=r"options\.hs"):
-        stochastic(_rov(), {"hs": 4.0}, ModelCache())
+def test_options_that_define_a_sea_replace_the_scenes_and_say_so():
+    """The isolation design's sea (the surface orbit, a JONSWAP of its own Hs and Tp: notebooks/isolation_design.ipynb
+    sweeps it over Hs) is asked for by options: then it runs, and ``sea`` names what it replaced."""
+    out, ok, msg = stochastic(_rov(), {"hs": 4.0, "tp": 9.0}, ModelCache())
+    assert ok, msg
+    assert "options hs, tp in place of the scene's [top_motion.spectrum]" in out["sea"] and "surface orbit" in out["sea"]
+    assert (out["sea_hs_m"], out["sea_tp_s"]) == (4.0, 9.0)
 
 
 def test_a_vessel_rao_moves_the_crane_tip_in_three_directions():

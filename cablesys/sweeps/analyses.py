@@ -185,10 +185,11 @@ SEA_OPTIONS = ("hs", "tp", "gamma", "omega_min", "omega_max", "direction")
 
 def stochastic(scene, options, cache):
     """Gaussian equivalent linearization in an irregular sea: the scene's own ([top_motion.spectrum] and its motion
-    RAO, :func:`cablesys.linear.stochastic.sea_inputs`: the sea its time-domain run realises); a scene without one
-    takes a JONSWAP sea from the options ``hs``, ``tp``, ``gamma`` (default 2 m, 8 s, 3.3), the band
+    RAO, :func:`cablesys.linear.stochastic.sea_inputs`: the sea its time-domain run realises), unless the options
+    define one: a JONSWAP sea from ``hs``, ``tp``, ``gamma`` (default 2 m, 8 s, 3.3), the band
     ``omega_min``/``omega_max`` (0.25-3 rad/s) and the top's ``direction`` per unit sea amplitude (default the surface
-    orbit of :mod:`cablesys.linear.stochastic`), and says so in ``sea``. ``n_omega``: frequencies over the band."""
+    orbit of :mod:`cablesys.linear.stochastic`, the isolation design's), which a scene without a sea takes too.
+    ``sea`` (text) says which sea ran and why. ``n_omega``: frequencies over the band."""
     from ..ladder.auto import require_at_rest
     from ..linear.spectra import jonswap
     from ..linear.stochastic import sea_inputs, stochastic_response
@@ -196,12 +197,8 @@ def stochastic(scene, options, cache):
     model = cache.model(scene)
     n_omega = int(options.get("n_omega", 60))
     sea = scene.top_motion.spectrum
-    if sea is not None:
-        given = [k for k in SEA_OPTIONS if k in options]
-        if given:
-            raise ParameterError(f"options.{given[0]}", options[given[0]],
-                                 "must be unset: the scene has its own sea ([top_motion.spectrum] and its motion RAO); "
-                                 "vary top_motion.spectrum.hs, ... instead")
+    given = [k for k in SEA_OPTIONS if k in options]
+    if sea is not None and not given:
         omega, S, D, weights = sea_inputs(scene, model, n_omega)
         spread = "" if sea.long_crested else f" spread cos^{sea.spreading_n:g} ({weights.size} directions)"
         words = (f"the scene's {sea.kind} sea, Hs {sea.hs:g} m, Tp {sea.tp:g} s, heading {sea.heading_deg:g} deg{spread}, "
@@ -215,10 +212,12 @@ def stochastic(scene, options, cache):
         S = jonswap(omega, hs, tp, gamma)
         D = np.asarray(options["direction"], complex) if "direction" in options else None
         weights = None
-        words = (f"no [top_motion.spectrum] in the scene: JONSWAP Hs {hs:g} m, Tp {tp:g} s, gamma {gamma:g} "
-                 f"({'options' if any(k in options for k in ('hs', 'tp', 'gamma')) else 'the analysis defaults'}), "
-                 f"{omega[0]:.3g}-{omega[-1]:.3g} rad/s, the top moved "
-                 + ("along options.direction" if D is not None else "on the surface orbit (Wang 1971 eq. 26)"))
+        why = (f"options {', '.join(given)} in place of the scene's [top_motion.spectrum] and motion RAO" if sea is not None
+               else "no [top_motion.spectrum] in the scene" + (f", options {', '.join(given)}" if given else
+                                                                 ", the analysis defaults"))
+        words = (f"JONSWAP Hs {hs:g} m, Tp {tp:g} s, gamma {gamma:g}, {omega[0]:.3g}-{omega[-1]:.3g} rad/s, the top "
+                 + ("moved along options.direction" if D is not None else "on the surface orbit (Wang 1971 eq. 26)")
+                 + f": {why}")
     kw = {} if D is None else {"direction": D, "weights": weights}
     st = stochastic_response(model, model.parameters(scene), omega, S, n_log2=int(options.get("n_log2", 8)), **kw)
     outs = _outputs(st.output_labels)
