@@ -123,7 +123,8 @@ def rao(scene, options, cache):
 
 def rao_summary(scene, lin, options):
     """(summary, success, message) of one linear model: natural frequencies, RAO peaks on a grid
-    (options ``omega_min``, ``omega_max``, ``n_omega``) and |RAO| and amplitudes at the forcing frequency."""
+    (options ``omega_min``, ``omega_max``, ``n_omega``) and |RAO| and amplitudes at the forcing frequency, per top input
+    (x_s, y_s, and z_s in 3-D) and body axis (x_b, y_b, and z_b in 3-D)."""
     from ..ladder.auto import require_at_rest
     from ..linear import modes
     from ..linear.periodic import scene_input_amplitude
@@ -140,8 +141,9 @@ def rao_summary(scene, lin, options):
     n = int(options.get("n_omega", 300))
     omega = w_min + (w_max - w_min) * (np.arange(n) + 0.5) / n
     _, Y = lin.transfer(omega)
-    for j, inp in enumerate(lin.input_labels[:2]):
-        for o in ("x_b", "y_b", "tension_mid"):
+    tops = [k for k in lin.input_labels if not k.startswith("wave[")]   # x_s, y_s (z_s in 3-D, a vessel's rotations)
+    for j, inp in enumerate(tops):
+        for o in ("x_b", "y_b", "z_b", "tension_mid"):
             if o in lin.output_labels:
                 a = np.abs(Y[:, lin.output_labels.index(o), j])
                 k = int(np.argmax(a))
@@ -156,7 +158,7 @@ def rao_summary(scene, lin, options):
             Z = None
         for o in outs:
             i = lin.output_labels.index(o)
-            for j, inp in enumerate(lin.input_labels[:2]):
+            for j, inp in enumerate(tops):
                 s[f"rao_{o}_{inp}"] = float(abs(Yf[0, i, j]))
             if Z is not None:
                 s[f"amplitude_{o}"] = float(abs(Yf[0, i, :Z.size] @ Z))
