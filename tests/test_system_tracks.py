@@ -186,8 +186,42 @@ def test_a_sled_towed_from_two_booms_on_a_straight_course():
     assert s.stats["steady"]["stable"] and s.stats["steady"]["kind"] == "tow"
     for k in [f"point.sled.{c}" for c in "xyz"]:
         np.testing.assert_allclose(s[k], r[k], rtol=0, atol=1e-6)
-    with pytest.raises(ParameterError, match=r"top_motion\.track.*straight course with 2 prescribed points"):
-        scene(two_booms(), "circle")
+    zig = Track(kind="zig-zag", speed=SPEED, radius=RADIUS, heading_change_deg=20.0, leg_length=200.0)
+    with pytest.raises(ParameterError, match=r"top_motion\.track.*straight course or a circle with 2 prescribed"):
+        Scene(system=two_booms(), top_motion=TopMotion(track=zig), numerics=Numerics(duration=20.0, model="as-built"))
+
+
+def test_a_sled_towed_from_two_booms_on_a_circle_swings_round_with_the_ship():
+    """On the 75 m circle the starboard boom swings round with the ship's heading (model.system.turned): it keeps its
+    20 m from the port boom and its radius about the centre (1e-9 m), both booms turning at the track's rate; the steady
+    turn from the statics moves every node as a point of the turning frame (v = Omega x r, a = -Omega^2 (x, 0, z):
+    1e-7), a run through a sixth of a revolution (CVODES, rtol 1e-9) keeps the sled's radius and depth within 1e-6 m,
+    and the ladder's steady rung on the same model and start is that run."""
+    sc = scene(two_booms(), "circle", duration=40.0)
+    model = build_model(sc)
+    p = model.parameters(sc)
+    x0 = initial_state(sc, model, p)
+    w = sc.top_motion.track.turn_rate
+    q = x0[:model.nq].reshape(-1, 3)
+    acc = np.array(model.ode(x0, 0.0, p)).ravel()[model.nq:].reshape(-1, 3)
+    assert np.max(np.abs(acc - np.column_stack([-w**2 * q[:, 0], 0 * q[:, 0], -w**2 * q[:, 2]]))) < 1e-7
+    r = Simulator(model, sc.output_times, IntegratorSettings(method="cvodes", rtol=1e-9, atol=1e-11)).run(p, x0)
+    assert r.success
+    port = np.column_stack([r["point.port.x"], r["point.port.z"]])
+    stbd = np.column_stack([r["point.stbd.x"], r["point.stbd.z"]])
+    np.testing.assert_allclose(np.hypot(*(stbd - port).T), 20.0, atol=1e-9)
+    for name, xz in (("port", port), ("stbd", stbd)):
+        rad, ang = np.hypot(*xz.T), np.unwrap(np.arctan2(xz[:, 1], xz[:, 0]))
+        np.testing.assert_allclose(rad, rad[0], atol=1e-9)
+        np.testing.assert_allclose(ang - ang[0], w * (np.asarray(r.time) - r.time[0]), atol=1e-9)
+    assert abs(np.hypot(*stbd[0]) - RADIUS) > 1.0          # the booms on two circles, not one
+    rad = np.hypot(r["point.sled.x"], r["point.sled.z"])
+    assert np.max(np.abs(rad - rad[0])) < 1e-6
+    assert np.max(np.abs(np.asarray(r["point.sled.y"]) - r["point.sled.y"][0])) < 1e-6
+    st = steady_run(sc, sc, model, x0, 0)
+    assert st.stats["steady"]["stable"] and st.stats["steady"]["kind"] == "turn"
+    for k in [f"point.{n}.{c}" for n in ("stbd", "sled") for c in "xyz"]:
+        np.testing.assert_allclose(st[k], r[k], rtol=0, atol=1e-6)
 
 
 def test_a_body_whose_masses_change_with_the_heading_is_warned_of_and_rings_about_the_turn():

@@ -16,7 +16,8 @@ origin of the node frame at its mean position), a further prescribed point's nod
 the same translation about its mean position (entries of p, ``system.point[i].x``, ...), and with a vessel's 6-DOF RAO
 also turned by the vessel's small rotation theta at its lever arm: s_0 + theta x Delta, Delta its mean position (the
 rotation theta, its rate and acceleration are entries of e after the translation's, ``vessel_inputs``; Faltinsen 1990
-ch. 3 in the node frame, derived in :mod:`cablesys.scene.vessel`; :func:`swing`); a fixed point's node is held
+ch. 3 in the node frame, derived in :mod:`cablesys.scene.vessel`; :func:`swing`), and on a circular track swung
+round with the ship's heading about the circle's centre (:func:`turned`); a fixed point's node is held
 at its position (entries of p); every
 other node is free: its coordinates (x, y) in the plane, (x, y, z) in space are q, labelled ``x[j]``, ``y[j]``,
 ``z[j]`` by node number j. A chain written from its top down is numbered as the chain's node model numbers it, so
@@ -160,6 +161,28 @@ def winch_line(scene: Scene) -> int | None:
     return next(k for k, ln in enumerate(scene.system.line) if ln.start == top)
 
 
+def turned(arm, z, zd, zdd, z0) -> tuple:
+    """(Q(psi) Delta, its rate, its acceleration) (m, node frame): a point of a ship turning on a circle about the
+    vertical through its centre (the origin, :class:`cablesys.scene.track.Track`) at ``arm`` Delta from the tow point
+    when the run starts (its mean position, in the scene's axes), swung round with the ship's heading: psi(t) the angle
+    the tow point has turned about the centre since the start, from its position ``z`` (rate ``zd``, acceleration
+    ``zdd``) and its start ``z0``, Q(psi) the rotation about the upward vertical,
+    Q(psi) (x, y, z) = (x cos psi - z sin psi, y, x sin psi + z cos psi), psi' = (x z' - z x') / rho^2 and
+    psi'' = (x z'' - z x'') / rho^2 - 2 psi' (x x' + z z') / rho^2 (rho^2 = x^2 + z^2); d/dt Q Delta =
+    psi' (-(Q Delta)_z, 0, (Q Delta)_x) (the rigid rotation Omega x r of the steady turn, Wang 1971 p. 32)."""
+    x, zz, x0, zz0 = z[0], z[2], z0[0], z0[2]
+    # a tow point at the centre (the statics' straight tow, in the tow point's frame) turns nothing: psi = 0
+    off = (x * x + zz * zz) * (x0 * x0 + zz0 * zz0) > 1e-12
+    rho2 = ca.if_else(off, x * x + zz * zz, 1.0)
+    norm = ca.if_else(off, ca.sqrt((x * x + zz * zz) * (x0 * x0 + zz0 * zz0)), 1.0)
+    c = ca.if_else(off, (x0 * x + zz0 * zz) / norm, 1.0)
+    s = ca.if_else(off, (x0 * zz - zz0 * x) / norm, 0.0)
+    w = ca.if_else(off, (x * zd[2] - zz * zd[0]) / rho2, 0.0)
+    wd = ca.if_else(off, (x * zdd[2] - zz * zdd[0]) / rho2 - 2.0 * w * (x * zd[0] + zz * zd[2]) / rho2, 0.0)
+    qx, qz = arm[0] * c - arm[2] * s, arm[0] * s + arm[2] * c
+    return ((qx, arm[1], qz), (-w * qz, 0.0, w * qx), (-wd * qz - w * w * qx, 0.0, wd * qx - w * w * qz))
+
+
 def build_system_model(scene: Scene) -> SystemModel:
     """Build the node model of ``scene.system`` (module docstring); every value enters through ``p``.
 
@@ -200,6 +223,9 @@ def build_system_model(scene: Scene) -> SystemModel:
     e = ca.SX.sym("e", len(EXO_LABELS_3D if dim == 3 else EXO_LABELS) + len(vessel_rotation_labels(vessel)))
     t, z, zd, zdd = e[0], e[1:1 + dim], e[1 + dim:1 + 2 * dim], e[1 + 2 * dim:1 + 3 * dim]
     theta = [e[1 + 3 * dim + n_v * m:1 + 3 * dim + n_v * (m + 1)] for m in range(3)]   # rotation, rate, acceleration
+    top = top_motion_function(scene, layout)
+    track = scene.top_motion.track
+    z0 = top(0.0, p)[1:1 + dim] if track is not None and track.is_circle else None    # the tow point at the start
     env = environment_symbols(layout, scene)          # Wang 1971 eq. 26-28 inputs
     rho, depth0 = env["density"], env["top_depth"]
 
@@ -214,8 +240,12 @@ def build_system_model(scene: Scene) -> SystemModel:
             r, v, a = tuple(z[c] for c in range(dim)), tuple(zd[c] for c in range(dim)), tuple(zdd[c] for c in range(dim))
         elif pt.kind == "prescribed":                  # another point of the vessel: its mean position, translated
             labels = tuple(f"system.point[{point_index[j]}].{c}" for c in axes)
-            r, v = tuple(layout.sym(lb) + z[c] for c, lb in enumerate(labels)), tuple(zd[c] for c in range(dim))
+            arm = tuple(layout.sym(lb) for lb in labels)
+            r, v = tuple(arm[c] + z[c] for c in range(dim)), tuple(zd[c] for c in range(dim))
             a = tuple(zdd[c] for c in range(dim))
+            if z0 is not None:                         # and swung round with the ship's heading on a circle
+                r, v, a = (tuple(w[c] + turn[c] for c in range(dim)) for w, turn in
+                           zip((tuple(z[c] for c in range(dim)), zd, zdd), turned(arm, z, zd, zdd, z0)))
             if n_v:                                    # and turned by the vessel's rotation at its lever arm
                 arm = [layout.sym(lb) for lb in labels]
                 r, v, a = (tuple(w[c] + turn[c] for c in range(dim)) for w, turn in
@@ -359,7 +389,6 @@ def build_system_model(scene: Scene) -> SystemModel:
 
     dynamics = ca.Function("dynamics", [q, qd, e, p], [M, f], ["q", "qd", "e", "p"], ["M", "f"])
     accel = ca.Function("accel", [q, qd, e, p], [acc], ["q", "qd", "e", "p"], ["qdd"])
-    top = top_motion_function(scene, layout)
     S = symbolic_type(scene)
     nq = len(q_labels)
     xs, ts, ps = S.sym("x", 2 * nq), S.sym("t"), S.sym("p", p.shape[0])

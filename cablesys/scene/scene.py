@@ -298,8 +298,9 @@ class Scene:
         the steady straight tow (in the frame turning or moving with the tow point a current or a wave would not be
         steady, or is not modelled so far): no current, waves or system speed, no anchor, and the initial state is
         the steady one (``initial.u``, ``initial.phi`` unset). A system's several prescribed points (points of one
-        ship) only on a course whose heading holds (:attr:`~.track.Track.keeps_heading`): there they keep their places
-        about the first, which the track moves."""
+        ship) only on a course whose heading holds (:attr:`~.track.Track.keeps_heading`), where they keep their places
+        about the first, which the track moves, or on a circle, where they swing round with the ship's heading
+        (:func:`cablesys.model.system.turned`)."""
         track = self.top_motion.track
         if track is None:
             return
@@ -308,10 +309,11 @@ class Scene:
             raise ParameterError("anchor", "set", "must be unset with top_motion.track: an anchored line cannot be towed "
                                  "along with the tow point")
         points = self.system.point if self.system is not None else ()
-        if self.system is not None and self.system.n_prescribed > 1 and not track.keeps_heading:
-            raise ParameterError("top_motion.track", "set", f"must be a straight course with {self.system.n_prescribed} "
-                                 "prescribed points: points of one ship keep their places about the first only while "
-                                 "its heading holds (a turn would swing their lever arms round with the ship)")
+        if self.system is not None and self.system.n_prescribed > 1 and not (track.keeps_heading or track.is_circle):
+            raise ParameterError("top_motion.track", track.kind, f"must be a straight course or a circle with "
+                                 f"{self.system.n_prescribed} prescribed points: points of one ship keep their places "
+                                 "about the first while its heading holds and swing round with it on a circle (a "
+                                 "constant turn rate); a changing turn rate is not modelled for them so far")
         for i, pt in enumerate(points):
             if pt.kind == "fixed":
                 raise ParameterError(f"point[{i}].kind", "fixed", "must not be fixed with top_motion.track: a system "
