@@ -61,6 +61,22 @@ def scene(system, kind, duration=20.0):
                  numerics=Numerics(duration=duration, output_step=0.5, model="as-built"))
 
 
+def turning_start(system, duration=40.0):
+    """(scene, model, p, x0): ``system`` on the 75 m circle, started on its steady turn, where every node moves and
+    accelerates as a point of the turning frame, v = Omega x r (1e-12 m/s) and a = -Omega^2 (x, 0, z) (1e-7 m/s^2;
+    Wang 1971 p. 32, towing in a circle)."""
+    sc = scene(system, "circle", duration=duration)
+    model = build_model(sc)
+    p = model.parameters(sc)
+    x0 = initial_state(sc, model, p)
+    w = sc.top_motion.track.turn_rate
+    q, v = x0[:model.nq].reshape(-1, 3), x0[model.nq:].reshape(-1, 3)
+    np.testing.assert_allclose(v, np.column_stack([-w * q[:, 2], 0 * q[:, 0], w * q[:, 0]]), atol=1e-12)
+    acc = np.array(model.ode(x0, 0.0, p)).ravel()[model.nq:].reshape(-1, 3)
+    assert np.max(np.abs(acc - np.column_stack([-w**2 * q[:, 0], 0 * q[:, 0], -w**2 * q[:, 2]]))) < 1e-7
+    return sc, model, p, x0
+
+
 @pytest.mark.parametrize("kind", ["straight", "circle"])
 def test_a_chain_built_as_a_graph_tows_as_the_chain(kind):
     """ship -> 60 m wire -> split -> 20 m wire -> body, on a straight track and towed in a circle: the graph's steady
@@ -114,16 +130,8 @@ def test_the_steady_turn_of_a_graph_turns_rigidly_and_the_time_domain_keeps_it()
     the turning frame, v = Omega x r, a = -Omega^2 (x, 0, z) (Wang 1971 p. 32, towing in a circle), and a run through
     a sixth of a revolution keeps each point's radius and depth within 1e-6 m (2e-8 m measured); the model ladder's
     steady rung (its state carried round the circle) is that run to 1e-6 m and its eigenvalues decay."""
-    sc = scene(towed_array(), "circle", duration=40.0)
-    model = build_model(sc)
-    p = model.parameters(sc)
-    x0 = initial_state(sc, model, p)
+    sc, model, p, x0 = turning_start(towed_array())
     w = sc.top_motion.track.turn_rate
-    q = x0[:model.nq].reshape(-1, 3)
-    v = x0[model.nq:].reshape(-1, 3)
-    np.testing.assert_allclose(v, np.column_stack([-w * q[:, 2], 0 * q[:, 0], w * q[:, 0]]), atol=1e-12)
-    acc = np.array(model.ode(x0, 0.0, p)).ravel()[model.nq:].reshape(-1, 3)
-    assert np.max(np.abs(acc - np.column_stack([-w**2 * q[:, 0], 0 * q[:, 0], -w**2 * q[:, 2]]))) < 1e-7
     assert abs(w) * 40.0 > math.pi / 3 * 0.99
     r = Simulator(model, sc.output_times, IntegratorSettings(method="cvodes", rtol=1e-9, atol=1e-11)).run(p, x0)
     assert r.success
@@ -197,14 +205,8 @@ def test_a_sled_towed_from_two_booms_on_a_circle_swings_round_with_the_ship():
     turn from the statics moves every node as a point of the turning frame (v = Omega x r, a = -Omega^2 (x, 0, z):
     1e-7), a run through a sixth of a revolution (CVODES, rtol 1e-9) keeps the sled's radius and depth within 1e-6 m,
     and the ladder's steady rung on the same model and start is that run."""
-    sc = scene(two_booms(), "circle", duration=40.0)
-    model = build_model(sc)
-    p = model.parameters(sc)
-    x0 = initial_state(sc, model, p)
+    sc, model, p, x0 = turning_start(two_booms())
     w = sc.top_motion.track.turn_rate
-    q = x0[:model.nq].reshape(-1, 3)
-    acc = np.array(model.ode(x0, 0.0, p)).ravel()[model.nq:].reshape(-1, 3)
-    assert np.max(np.abs(acc - np.column_stack([-w**2 * q[:, 0], 0 * q[:, 0], -w**2 * q[:, 2]]))) < 1e-7
     r = Simulator(model, sc.output_times, IntegratorSettings(method="cvodes", rtol=1e-9, atol=1e-11)).run(p, x0)
     assert r.success
     port = np.column_stack([r["point.port.x"], r["point.port.z"]])
