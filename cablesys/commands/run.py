@@ -327,7 +327,8 @@ def write_run(scene, result, out, *, plot: bool = True, series_on_disk: bool = F
             from ..plots.plan import plot_plan_view
             with out.writing("plan_view.png") as tmp:
                 plot_plan_view(result, tmp, units=units, lines=line_nodes,
-                               bodies={p.name: f"point.{p.name}." for p in system.point if p.free})
+                               bodies={p.name: f"point.{p.name}." for p in system.point if p.free},
+                               held={p.name: f"point.{p.name}." for p in system.point[1:] if p.kind == "prescribed"})
     elif plot and result.time.size > 1:
         from ..plots.time_domain import plot_time_series
         with out.writing("timeseries.png") as tmp:

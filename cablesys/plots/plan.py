@@ -30,7 +30,7 @@ def _headings(t, xs, zs) -> np.ndarray | None:
 
 
 def plot_plan_view(result, path, *, title: str | None = None, units: str = "SI", bodies: dict | None = None,
-                   lines: tuple | None = None) -> Path:
+                   lines: tuple | None = None, held: dict | None = None) -> Path:
     """Two panels: the plan view seen from above (x right, z up the page: right-handed with y down) of the top's track,
     each body's path and the cable at :data:`SNAPSHOTS` instants (segmented runs, nodes ``node_x``, ``node_z``); and
     each body's position relative to the top against time, along and across the top's heading when it moves
@@ -52,6 +52,9 @@ def plot_plan_view(result, path, *, title: str | None = None, units: str = "SI",
         with outputs ``point.NAME.x``, ``.y``, ``.z``); default the chain's bodies ``x_b``, ``x_b_2``, ...
     lines : tuple, optional
         The node numbers of each line, drawn apart (a system of lines); default one chain of all nodes.
+    held : dict, optional
+        {name: output label prefix} of further prescribed points (points of the ship besides the tow point: a second
+        boom, a davit), their paths drawn dashed beside the top's.
 
     Returns
     -------
@@ -86,6 +89,9 @@ def plot_plan_view(result, path, *, title: str | None = None, units: str = "SI",
                                   f"{t[picks[-1]]:.4g} s" if k == 0 and m == 0 else None)
     a_plan.plot(xs * fl, zs * fl, "k-", lw=1.4, label="top (tow point / ship)")
     a_plan.plot(xs[0] * fl, zs[0] * fl, "ks", ms=6, label=f"top at t = {t[0]:.4g} s")
+    for name, pre in (held or {}).items():
+        a_plan.plot(np.asarray(result[f"{pre}x"]) * fl, np.asarray(data.get(f"{pre}z", zero)) * fl, "k--", lw=1.0,
+                    label=f"{name} (a point of the ship)")
     if xs.size > 1 and np.hypot(xs[-1] - xs[-2], zs[-1] - zs[-2]) > 0:
         a_plan.annotate("", xy=(xs[-1] * fl, zs[-1] * fl), xytext=(xs[-2] * fl, zs[-2] * fl),
                         arrowprops=dict(arrowstyle="-|>", color="k", lw=1.2))
