@@ -36,6 +36,33 @@ class SeaResponse:
     exposure: float              # s
 
 
+def input_transfers(scene, omega, labels) -> tuple[np.ndarray, np.ndarray]:
+    """(weights, T): the top's motion per unit wave amplitude in the scene's sea, per wave direction, for each input
+    of ``labels`` (a linearization's top inputs: ``x_s``, ``y_s``, ``z_s`` in 3-D, a vessel's rotation ``rot_*_s``).
+
+    The directions and their weights are :meth:`cablesys.scene.sea.SeaSpectrum.direction_quadrature`'s (the heading
+    alone for a long-crested sea, DNV-RP-C205 3.5.8 for a spread one); T (n_dir, n_omega, len(labels)) holds the motion
+    RAO read at each direction (:func:`cablesys.scene.sea.top_transfer`: none, the top heaves with the surface;
+    [top_motion.rao]; [top_motion.vessel] at its lever arm, and its rotation where ``labels`` take it), multipliers of
+    the elevation's complex amplitude (eta = Re(-i e^{i omega t}) = sin omega t), the time-domain run's
+    (:func:`cablesys.scene.sea.sea_sinusoids`). A motion on an input ``labels`` lack (sway on planar equations) raises
+    a ParameterError."""
+    top = scene.top_motion
+    theta, weight = top.spectrum.direction_quadrature()
+    turns = any(k.startswith("rot_") for k in labels)          # a vessel's rotation moving further points
+    blocks = []
+    for t in theta:
+        cols = dict(zip(("x_s", "y_s", "z_s"), top_transfer(top.vessel or top.rao, omega, float(t))))
+        if turns:
+            cols.update(zip(("rot_x_s", "rot_y_s", "rot_z_s"), top.vessel.rotation_transfer(omega, float(t))))
+        left = [k for k, v in cols.items() if k not in labels and np.any(np.asarray(v) != 0.0)]
+        if left:
+            raise ParameterError("top_motion", left, f"moves inputs the linear model does not take ({', '.join(labels)}): "
+                                 "linearize the scene's own model (the 3-D equations for sway)")
+        blocks.append(np.stack([np.asarray(cols[k], complex) for k in labels], axis=1))
+    return np.asarray(weight, float), np.stack(blocks)
+
+
 def sea_response(scene, lin, *, outputs=None, exposure: float | None = None, n: int = 800) -> SeaResponse | None:
     """The linear response of ``lin`` (a :class:`~cablesys.linear.LinearModel` of ``scene``) to its sea.
 
@@ -63,18 +90,9 @@ def sea_response(scene, lin, *, outputs=None, exposure: float | None = None, n: 
     lo, hi = sea.band()
     omega = np.linspace(lo, hi, n)
     S = sea.density(omega)
-    top = scene.top_motion
-    theta, weight = sea.direction_quadrature()       # a spread sea: sum_j w_j |H(omega, theta_j)|^2 (DNV-RP-C205 3.5.8)
     r = rao(lin, omega)
-    turns = [i for i in r.input_labels if i.startswith("rot_")]    # a vessel's rotation moving further points
-    transfers = [dict(zip(("x_s", "y_s", "z_s"), top_transfer(top.vessel or top.rao, omega, float(t))))
-                 | (dict(zip(("rot_x_s", "rot_y_s", "rot_z_s"), top.vessel.rotation_transfer(omega, float(t))))
-                    if turns else {}) for t in theta]
-    sway = "z_s" in r.input_labels
-    if not sway and any(np.any(T["z_s"] != 0.0) for T in transfers):
-        raise ParameterError("top_motion.vessel", "sway at the lever arm", "needs the 3-D equations: the linear "
-                             "model given has no z_s input (linearize the scene's own model)")
-    inputs = ["x_s", "y_s"] + (["z_s"] if sway else []) + turns
+    inputs = [i for i in r.input_labels if not i.startswith("wave[")]   # the top's (and a vessel's rotation)
+    weight, T = input_transfers(scene, omega, inputs)   # a spread sea: sum_j w_j |H(omega, theta_j)|^2
     if outputs is None:
         outputs = response_outputs(r.output_labels, scene)
     limits = getattr(scene, "limits", None)
@@ -82,7 +100,7 @@ def sea_response(scene, lin, *, outputs=None, exposure: float | None = None, n: 
     mean = dict(zip(lin.output_labels, np.asarray(lin.y0, float)))
     spectra, stats = {}, {}
     for o in outputs:
-        H2 = sum(wj * np.abs(sum(r(o, i) * T[i] for i in inputs)) ** 2 for wj, T in zip(weight, transfers))
+        H2 = sum(wj * np.abs(sum(r(o, i) * Tj[:, k] for k, i in enumerate(inputs))) ** 2 for wj, Tj in zip(weight, T))
         spectra[o] = H2 * S
         stats[o] = st.frequency_domain(omega, spectra[o], exposure, mean=float(mean.get(o, 0.0)),
                                        nonnegative=is_tension(o))      # a tension-only cable: >= 0

@@ -30,7 +30,6 @@ from ..compiled import compile_functions
 from ..errors import ParameterError
 from ..model import CableModel
 from ..results import ResultBase, timed
-from ..scene.sea import top_transfer
 from .linearization import (
     LinearModel,
     top_inputs,
@@ -41,6 +40,7 @@ from .linearization import (
     taut_parameters,
     xi_blocks,
 )
+from .sea_response import input_transfers
 from .spectra import significant_amplitude, slack_probability
 
 BUOY = np.array([1.0, 1.0j])
@@ -51,13 +51,10 @@ def sea_inputs(scene, model: CableModel, n_omega: int = SEA_POINTS) -> tuple:
     """The scene's irregular sea as the linearization's input: (omega, S(omega), D, weights), the same sea and top
     motion the time-domain run realises (:func:`cablesys.scene.sea.sea_sinusoids`).
 
-    ``omega``: ``n_omega`` points over the sea's band (rad/s); S: its spectrum (m^2 s/rad); D (n_dir, n_omega, inputs):
-    the top's motion per unit wave amplitude from the scene's motion RAO ([top_motion.rao] in the plane,
-    [top_motion.vessel] at its lever arm, with the vessel's rotation where the model takes it), read at each wave
-    direction (:func:`cablesys.scene.sea.top_transfer`; none: the top heaves with the surface), turned from the
-    elevation's convention eta = Re(-i e^{i omega t}) to x = Re(D e^{i omega t}); ``weights`` (n_dir): the directions'
-    (:meth:`cablesys.scene.sea.SeaSpectrum.direction_quadrature`: the heading alone for a long-crested sea, a
-    Gauss-Legendre rule over the cos^n spreading for a spread one). The sea's particle velocities at the cable are not
+    ``omega``: ``n_omega`` points over the sea's band (rad/s); S: its spectrum (m^2 s/rad); D (n_dir, n_omega, inputs)
+    and ``weights`` (n_dir): the top's motion per unit wave amplitude per wave direction, and the directions' weights,
+    of :func:`cablesys.linear.sea_response.input_transfers` (the sea response's), turned from the elevation's
+    convention eta = Re(-i e^{i omega t}) to x = Re(D e^{i omega t}). The sea's particle velocities at the cable are not
     an input of this linearization: refused, named, rather than left out.
     """
     sea = scene.top_motion.spectrum
@@ -69,22 +66,8 @@ def sea_inputs(scene, model: CableModel, n_omega: int = SEA_POINTS) -> tuple:
                              "particle velocities at the cable are not among its inputs); the time-domain run has them")
     lo, hi = sea.band()
     omega = np.linspace(lo, hi, int(n_omega))
-    top = scene.top_motion
-    rao = top.vessel if top.vessel is not None else top.rao
-    labels = top_inputs(model)
-    rotations = top.vessel is not None and any(k.startswith("rot_") for k in labels)    # several points on the vessel
-    theta, weights = sea.direction_quadrature()
-    blocks = []
-    for heading in theta:
-        X, Y, Z = top_transfer(rao, omega, float(heading))
-        cols = {"x_s": X, "y_s": Y, "z_s": Z}
-        if rotations:
-            cols.update(zip(("rot_x_s", "rot_y_s", "rot_z_s"), top.vessel.rotation_transfer(omega, float(heading))))
-        left = [k for k, v in cols.items() if k not in labels and np.any(np.abs(v) > 0.0)]
-        if left:
-            raise ParameterError("top_motion", left, f"moves inputs the model does not take ({', '.join(labels)})")
-        blocks.append(-1j * np.stack([np.asarray(cols.get(k, np.zeros_like(X)), complex) for k in labels], axis=1))
-    return omega, sea.density(omega), np.stack(blocks), weights
+    weights, T = input_transfers(scene, omega, top_inputs(model))
+    return omega, sea.density(omega), -1j * T, weights
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
