@@ -200,7 +200,7 @@ def test_a_sled_towed_from_two_booms_on_a_straight_course():
 
 
 def test_a_sled_towed_from_two_booms_on_a_circle_swings_round_with_the_ship():
-    """On the 75 m circle the starboard boom swings round with the ship's heading (model.system.turned): it keeps its
+    """On the 75 m circle the starboard boom swings round with the ship's heading (model.ship_points.turned): it keeps its
     20 m from the port boom and its radius about the centre (1e-9 m), both booms turning at the track's rate; the steady
     turn from the statics moves every node as a point of the turning frame (v = Omega x r, a = -Omega^2 (x, 0, z):
     1e-7), a run through a sixth of a revolution (CVODES, rtol 1e-9) keeps the sled's radius and depth within 1e-6 m,

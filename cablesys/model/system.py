@@ -16,8 +16,8 @@ origin of the node frame at its mean position), a further prescribed point's nod
 the same translation about its mean position (entries of p, ``system.point[i].x``, ...), and with a vessel's 6-DOF RAO
 also turned by the vessel's small rotation theta at its lever arm: s_0 + theta x Delta, Delta its mean position (the
 rotation theta, its rate and acceleration are entries of e after the translation's, ``vessel_inputs``; Faltinsen 1990
-ch. 3 in the node frame, derived in :mod:`cablesys.scene.vessel`; :func:`swing`), and on a circular track swung
-round with the ship's heading about the circle's centre (:func:`turned`); a fixed point's node is held
+ch. 3 in the node frame, derived in :mod:`cablesys.scene.vessel`), and on a circular track swung round with the
+ship's heading about the circle's centre (:mod:`.ship_points`); a fixed point's node is held
 at its position (entries of p); every
 other node is free: its coordinates (x, y) in the plane, (x, y, z) in space are q, labelled ``x[j]``, ``y[j]``,
 ``z[j]`` by node number j. A chain written from its top down is numbered as the chain's node model numbers it, so
@@ -74,6 +74,7 @@ from .segmented import SegmentedModel, drag_points
 from .segmented_element import block_solve, lump_force, norm
 from .segmented_seabed import seabed_forces
 from .segmented_winch import WINCH_OUTPUTS, payout
+from .ship_points import ship_point
 from .signals import EXO_LABELS
 from .top_motion import EXO_LABELS_3D, symbolic_type, top_motion_function, vessel_rotation_labels
 
@@ -140,18 +141,6 @@ def topology(system) -> tuple:
     return tuple(point_nodes[p.name] for p in system.point), tuple(line_nodes), count
 
 
-def swing(theta, arm, axes) -> tuple:
-    """theta x Delta (m, node frame): the displacement of a point of the vessel at ``arm`` Delta (its mean position
-    from the first prescribed point, dim entries) under the vessel's small rotation ``theta`` about the node ``axes``
-    (rad; (z,) in the plane, where theta x Delta = (-theta_z Delta_y, theta_z Delta_x)); Faltinsen 1990 ch. 3, the
-    rigid-body displacement eta_r x r in the node frame (:mod:`cablesys.scene.vessel`). Linear in theta: its rate and
-    acceleration are the same map of theta's."""
-    th = dict(zip(axes, (theta[m] for m in range(len(axes)))))
-    wx, wy, wz = (th.get(c, 0.0) for c in "xyz")
-    dx, dy, dz = (list(arm) + [0.0])[:3]
-    return (wy * dz - wz * dy, wz * dx - wx * dz, wx * dy - wy * dx)[:len(arm)]
-
-
 def winch_line(scene: Scene) -> int | None:
     """The index of the line a ``[winch]`` pays out (the one line starting at the prescribed point, checked by the
     scene), None without a winch."""
@@ -159,28 +148,6 @@ def winch_line(scene: Scene) -> int | None:
         return None
     top = scene.system.prescribed.name
     return next(k for k, ln in enumerate(scene.system.line) if ln.start == top)
-
-
-def turned(arm, z, zd, zdd, z0) -> tuple:
-    """(Q(psi) Delta, its rate, its acceleration) (m, node frame): a point of a ship turning on a circle about the
-    vertical through its centre (the origin, :class:`cablesys.scene.track.Track`) at ``arm`` Delta from the tow point
-    when the run starts (its mean position, in the scene's axes), swung round with the ship's heading: psi(t) the angle
-    the tow point has turned about the centre since the start, from its position ``z`` (rate ``zd``, acceleration
-    ``zdd``) and its start ``z0``, Q(psi) the rotation about the upward vertical,
-    Q(psi) (x, y, z) = (x cos psi - z sin psi, y, x sin psi + z cos psi), psi' = (x z' - z x') / rho^2 and
-    psi'' = (x z'' - z x'') / rho^2 - 2 psi' (x x' + z z') / rho^2 (rho^2 = x^2 + z^2); d/dt Q Delta =
-    psi' (-(Q Delta)_z, 0, (Q Delta)_x) (the rigid rotation Omega x r of the steady turn, Wang 1971 p. 32)."""
-    x, zz, x0, zz0 = z[0], z[2], z0[0], z0[2]
-    # a tow point at the centre (the statics' straight tow, in the tow point's frame) turns nothing: psi = 0
-    off = (x * x + zz * zz) * (x0 * x0 + zz0 * zz0) > 1e-12
-    rho2 = ca.if_else(off, x * x + zz * zz, 1.0)
-    norm = ca.if_else(off, ca.sqrt((x * x + zz * zz) * (x0 * x0 + zz0 * zz0)), 1.0)
-    c = ca.if_else(off, (x0 * x + zz0 * zz) / norm, 1.0)
-    s = ca.if_else(off, (x0 * zz - zz0 * x) / norm, 0.0)
-    w = ca.if_else(off, (x * zd[2] - zz * zd[0]) / rho2, 0.0)
-    wd = ca.if_else(off, (x * zdd[2] - zz * zdd[0]) / rho2 - 2.0 * w * (x * zd[0] + zz * zd[2]) / rho2, 0.0)
-    qx, qz = arm[0] * c - arm[2] * s, arm[0] * s + arm[2] * c
-    return ((qx, arm[1], qz), (-w * qz, 0.0, w * qx), (-wd * qz - w * w * qx, 0.0, wd * qx - w * w * qz))
 
 
 def build_system_model(scene: Scene) -> SystemModel:
@@ -238,18 +205,10 @@ def build_system_model(scene: Scene) -> SystemModel:
             r, v = tuple(q[k + c] for c in range(dim)), tuple(qd[k + c] for c in range(dim))
         elif pt.kind == "prescribed" and pt is system.prescribed:     # the top: the scene's top motion
             r, v, a = tuple(z[c] for c in range(dim)), tuple(zd[c] for c in range(dim)), tuple(zdd[c] for c in range(dim))
-        elif pt.kind == "prescribed":                  # another point of the vessel: its mean position, translated
+        elif pt.kind == "prescribed":                  # another point of the vessel: the top's motion plus its arm
             labels = tuple(f"system.point[{point_index[j]}].{c}" for c in axes)
-            arm = tuple(layout.sym(lb) for lb in labels)
-            r, v = tuple(arm[c] + z[c] for c in range(dim)), tuple(zd[c] for c in range(dim))
-            a = tuple(zdd[c] for c in range(dim))
-            if z0 is not None:                         # and swung round with the ship's heading on a circle
-                r, v, a = (tuple(w[c] + turn[c] for c in range(dim)) for w, turn in
-                           zip((tuple(z[c] for c in range(dim)), zd, zdd), turned(arm, z, zd, zdd, z0)))
-            if n_v:                                    # and turned by the vessel's rotation at its lever arm
-                arm = [layout.sym(lb) for lb in labels]
-                r, v, a = (tuple(w[c] + turn[c] for c in range(dim)) for w, turn in
-                           zip((r, v, a), (swing(th, arm, vessel) for th in theta)))
+            arm = tuple(layout.sym(lb) for lb in labels)   # its mean position from the first prescribed point
+            r, v, a = ship_point(arm, (z, zd, zdd), z0, theta if n_v else None, vessel)
         else:                                          # a fixed point, held at its position
             labels = tuple(f"system.point[{point_index[j]}].{c}" for c in axes)
             r, v = tuple(layout.sym(lb) for lb in labels), (0.0,) * dim

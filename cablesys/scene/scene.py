@@ -300,7 +300,7 @@ class Scene:
         the steady one (``initial.u``, ``initial.phi`` unset). A system's several prescribed points (points of one
         ship) only on a course whose heading holds (:attr:`~.track.Track.keeps_heading`), where they keep their places
         about the first, which the track moves, or on a circle, where they swing round with the ship's heading
-        (:func:`cablesys.model.system.turned`)."""
+        (:func:`cablesys.model.ship_points.turned`)."""
         track = self.top_motion.track
         if track is None:
             return
