@@ -78,9 +78,7 @@ def steady_kind(scene: Scene) -> str:
         return ""
     if track.is_circle:
         return "turn"
-    if track.kind == "straight" or (track.kind == "path" and all(g.kind == "straight" for g in track.leg)):
-        return "tow"
-    return ""
+    return "tow" if track.keeps_heading else ""
 
 
 def unsteady_reason(scene: Scene) -> str:

@@ -8,7 +8,7 @@ from __future__ import annotations
 from ...model import CableModel
 from ...scene import Scene
 from .. import estimate as est
-from ..steady_tow import unsteady_reason
+from ..steady_tow import steady_kind, unsteady_reason
 from .base import WITH_MASS, BuiltinRung, has_ends, massless, rigid, winched
 from .segmented import RUNG as SEGMENTED
 from .segmented import alone_segments
@@ -64,7 +64,6 @@ class Steady(BuiltinRung):
     def alone(self, scene: Scene, requested: str, segments) -> tuple:
         """(N, reason, checked a posteriori) in place of the node model's run: N as the segmented rung takes it
         (:func:`~.segmented.alone_segments`), checked a posteriori against N / 2 (and N / 4) of steady states."""
-        from ..steady_tow import steady_kind
         n = alone_segments(scene, requested, segments, self.name)
         track = scene.top_motion.track
         what = (f"a steady turn (top_motion.track: a circle of {track.radius:g} m at {track.speed:g} m/s, "
