@@ -47,7 +47,8 @@ def _bound(r: dict) -> str:
     if b.get("speedup_bound") is None:
         return "n/a" if not b.get("why") else "none below the reference N"
     v = b["speedup_bound"]
-    return f"{f'{v:.0f}x' if v >= 1000 else _x(v)} (N = {b['fastest']['segments']})"
+    shown = f"{v:.0f}x" if v >= 1000 else _x(v)          # 1226x, not 1.23e+03x
+    return f"{shown} (N = {b['fastest']['segments']})"
 
 
 def _plan_row(r: dict) -> str:
